@@ -1,0 +1,276 @@
+"""The ``cosserat`` command line: a thin layer over the API (no physics here).
+
+Bad input exits with status 2 and one line on stderr saying what is wrong.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from dataclasses import replace
+from pathlib import Path
+from typing import Any, NoReturn
+
+from . import __version__
+from .analysis import (
+    DEFAULT_F,
+    asymptotic_thickness,
+    thickness_curve,
+    thickness_limit,
+)
+from .errors import CosseratError
+from .parameters import FULLY_ROUGH, Material, Wall
+from .problems import PlaneShear, Problem
+from .solvers import METHODS, solve
+
+PAPER_DEFAULTS = {
+    "phi": 28.5,
+    "delta": 20.0,
+    "L": 10.0,
+    "A": 1.0 / 3.0,
+    "K": 0.5,
+    "B": 0.0,
+    "nu": 1.0,
+}
+
+
+class UsageError(Exception):
+    """Bad command-line usage (reported in one line, exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(f"{self.prog}: {message}")
+
+
+def _angle_or_rough(text: str) -> float | str:
+    if text.lower() in ("rough", "fully-rough", "fully_rough"):
+        return FULLY_ROUGH
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected an angle in degrees or 'fully-rough'; got {text!r}"
+        ) from None
+
+
+def _add_material_and_walls(p: argparse.ArgumentParser, plane: bool) -> None:
+    g = p.add_argument_group("material and walls (defaults: the paper's)")
+    g.add_argument(
+        "--phi",
+        type=float,
+        default=PAPER_DEFAULTS["phi"],
+        help="angle of internal friction [deg] (28.5)",
+    )
+    wall = g.add_mutually_exclusive_group()
+    wall.add_argument(
+        "--delta",
+        type=_angle_or_rough,
+        default=PAPER_DEFAULTS["delta"],
+        help="angle of wall friction [deg] or 'fully-rough' (20)",
+    )
+    wall.add_argument(
+        "--fully-rough", action="store_true", help="fully rough wall(s): tan(delta) = sin(phi)"
+    )
+    g.add_argument("--L", type=float, default=PAPER_DEFAULTS["L"], help="yield-condition L (10)")
+    g.add_argument(
+        "--A", type=float, default=PAPER_DEFAULTS["A"], help="yield-condition A = a2/a1 (1/3)"
+    )
+    g.add_argument(
+        "--K", type=float, default=PAPER_DEFAULTS["K"], help="wall slip coefficient (0.5)"
+    )
+    if plane:
+        g.add_argument(
+            "--delta-lower",
+            type=_angle_or_rough,
+            default=None,
+            help="lower wall's delta [deg] or 'fully-rough' (default: = delta)",
+        )
+        g.add_argument("--K-lower", type=float, default=None, help="lower wall's K (default: = K)")
+        g.add_argument(
+            "--B",
+            type=float,
+            default=PAPER_DEFAULTS["B"],
+            help="gravity parameter rho_p g H / N (0: no gravity)",
+        )
+        g.add_argument("--nu", type=float, default=PAPER_DEFAULTS["nu"], help="solids fraction (1)")
+        g.add_argument(
+            "--m-wall",
+            type=float,
+            default=None,
+            help="couple stress m at the non-slipping wall (instead of eqn-nd_bc4)",
+        )
+
+
+def _add_solution(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--method", choices=METHODS, default="numerical")
+    p.add_argument("--rtol", type=float, default=None, help="numerical tolerance (1e-8)")
+
+
+def build_problem(args: argparse.Namespace, eps: float) -> Problem:
+    """The problem the options describe (geometry from the sub-command)."""
+    material = Material(phi=args.phi, L=args.L, A=args.A)
+    delta = FULLY_ROUGH if args.fully_rough else args.delta
+    upper = Wall(delta, args.K)
+    lower_delta = delta if args.delta_lower is None else args.delta_lower
+    lower_K = args.K if args.K_lower is None else args.K_lower
+    return PlaneShear(
+        material=material,
+        upper=upper,
+        lower=Wall(lower_delta, lower_K),
+        eps=eps,
+        B=args.B,
+        nu=args.nu,
+        m_fixed_wall=args.m_wall,
+    )
+
+
+def _solver_options(args: argparse.Namespace) -> dict[str, Any]:
+    opts: dict[str, Any] = {}
+    if args.rtol is not None:
+        if args.method != "numerical":
+            raise UsageError("--rtol applies to --method numerical only")
+        opts["rtol"] = args.rtol
+    return opts
+
+
+def _emit(text: str, out: str | None) -> None:
+    if out:
+        Path(out).write_text(text if text.endswith("\n") else text + "\n")
+    else:
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+
+
+def _progress_bar(label: str):  # type: ignore[no-untyped-def]
+    """A text progress bar on stderr (only when stderr is a terminal)."""
+    if not sys.stderr.isatty():
+        return None
+
+    def update(i: int, n: int) -> None:
+        width = 30
+        done = int(width * i / n)
+        sys.stderr.write(f"\r{label} [{'#' * done}{'.' * (width - done)}] {i}/{n}")
+        if i == n:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+    return update
+
+
+def cmd_solve(args: argparse.Namespace) -> None:
+    problem = build_problem(args, args.eps)
+    if args.points < 3:
+        raise UsageError("--points must be at least 3")
+    profile = solve(problem, method=args.method, points=args.points, **_solver_options(args))
+    if args.plot:
+        profile.plot().savefig(args.plot)
+    if args.format == "csv":
+        _emit(profile.to_csv(), args.out)
+    else:
+        _emit(profile.to_json(indent=None), args.out)
+
+
+def cmd_thickness(args: argparse.Namespace) -> None:
+    eps_values = list(args.eps)
+    problem = build_problem(args, eps_values[0])
+    for e in eps_values[1:]:
+        replace(problem, eps=e)  # validate every eps before any solve
+    curve = thickness_curve(
+        problem,
+        eps_values,
+        f=args.f,
+        method=args.method,
+        progress=_progress_bar("thickness"),
+        **_solver_options(args),
+    )
+    limit = thickness_limit(problem, args.f)
+    asym = [asymptotic_thickness(replace(problem, eps=e), args.f) for e in eps_values]
+    record = {
+        "problem": problem.parameters()["geometry"],
+        "parameters": {k: v for k, v in problem.parameters().items() if k != "eps"},
+        "method": args.method,
+        "f": args.f,
+        "eps": eps_values,
+        "Delta": curve.Delta,
+        "Delta_asymptote": limit,
+        "Delta_asymptotic": asym,
+        "failures": {repr(e): why for e, why in curve.failures.items()},
+    }
+    if args.format == "csv":
+        lines = ["eps,Delta,Delta_asymptotic"]
+        lines += [
+            f"{e!r},{d!r},{a!r}" for e, d, a in zip(eps_values, curve.Delta, asym, strict=True)
+        ]
+        _emit("\n".join(lines), args.out)
+    else:
+        _emit(json.dumps(record, allow_nan=False), args.out)
+
+
+def cmd_reproduce(args: argparse.Namespace) -> None:
+    from .reproduce import reproduce
+
+    bar = _progress_bar("reproduce")
+
+    def progress(stage: str, i: int, n: int) -> None:
+        if bar is not None:
+            bar(i, n)
+
+    out = reproduce(args.out, progress=progress)
+    print(f"wrote {out}/report.md")
+
+
+def make_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="cosserat", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"cosserat {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    solve_p = sub.add_parser("solve", help="one profile across the gap")
+    solve_geo = solve_p.add_subparsers(dest="geometry", required=True, parser_class=_Parser)
+    sp = solve_geo.add_parser("plane", help="plane shear")
+    _add_material_and_walls(sp, plane=True)
+    sp.add_argument("--eps", type=float, required=True, help="grain diameter / gap d_p/H")
+    _add_solution(sp)
+    sp.add_argument("--points", type=int, default=201, help="output points (layers resolved)")
+    sp.add_argument("--format", choices=("json", "csv"), default="json")
+    sp.add_argument("--out", default=None, help="write to this file instead of stdout")
+    sp.add_argument("--plot", default=None, help="also save a quick plot (PNG/PDF)")
+    sp.set_defaults(func=cmd_solve)
+
+    th = sub.add_parser("thickness", help="shear-layer thickness Delta against eps")
+    th_geo = th.add_subparsers(dest="geometry", required=True, parser_class=_Parser)
+    tp = th_geo.add_parser("plane", help="plane shear")
+    _add_material_and_walls(tp, plane=True)
+    tp.add_argument("--eps", type=float, nargs="+", required=True)
+    tp.add_argument("--f", type=float, default=DEFAULT_F, help="fraction defining Delta (0.05)")
+    _add_solution(tp)
+    tp.add_argument("--format", choices=("json", "csv"), default="json")
+    tp.add_argument("--out", default=None)
+    tp.set_defaults(func=cmd_thickness)
+
+    rp = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
+    rp.add_argument("--out", required=True, help="output folder")
+    rp.set_defaults(func=cmd_reproduce)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = make_parser()
+    try:
+        args = parser.parse_args(argv)
+        if getattr(args, "f", None) is not None and not 0.0 < args.f < 1.0:
+            raise UsageError(f"--f must satisfy 0 < f < 1; got {args.f:g}")
+        args.func(args)
+    except UsageError as exc:
+        print(str(exc), file=sys.stderr)
+        return 2
+    except (CosseratError, ValueError) as exc:
+        message = " ".join(str(exc).split())
+        print(f"cosserat: error: {message}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,133 @@
+"""The constitutive law, written once and used by every geometry.
+
+Notation (dimensionless, ``docs/model.md``): ``sigma_yx`` is the shear stress on the plane
+parallel to the walls (``sigma_r_theta`` in Couette flow), ``sigma_xy`` the other one
+(``sigma_theta_r``), ``sigma_c`` the mean (= normal) stress, and ``m`` the scaled couple stress of
+``dimlessvar``. All stresses are compressive-positive and scaled as in the paper.
+
+* Yield condition ``eqn-nd_yc``::
+
+      sxy^2 + syx^2 + 2 A sxy syx + 4 (A+1)^2 m^2 = 2 (A+1) (sigma_c sin phi)^2
+
+* Its solution for ``sigma_xy`` with the paper's root (``eqn-nd_sigxy``, negative sign)::
+
+      sxy = -A syx - sqrt(S),   S = (A^2 - 1) syx^2 + 2 (A+1) sigma_c^2 sin^2 phi - 4 (A+1)^2 m^2
+
+  so that ``sigma_xy + A sigma_yx = -sqrt(S)`` and ``sigma_yx - sigma_xy >= 0`` wherever
+  ``sigma_yx <= 0`` (the asymmetry the paper shows in figures 2, 6, 10).
+
+* Flow-rule ratios (``eqn-nd_fr1``, ``eqn-nd_fr2``)::
+
+      du/dxi = -F1 omega,    eps alpha domega/dxi = -F2 omega,
+      F1 = (A+1)(sxy + syx)/(sxy + A syx),   F2 = 2 (A+1) m / (sxy + A syx).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .errors import NoSolutionError
+from .parameters import Material
+
+FloatArray = NDArray[np.float64]
+
+# Relative round-off allowance on the radicand S before "no real solution" is declared.
+RADICAND_ROUNDOFF = 1e-12
+
+
+def radicand(
+    sigma_yx: ArrayLike, sigma_c: ArrayLike, m: ArrayLike, material: Material
+) -> FloatArray:
+    """S of ``eqn-nd_sigxy``: the yield condition has a real ``sigma_xy`` iff ``S >= 0`` [-]."""
+    A = material.A
+    syx = np.asarray(sigma_yx, dtype=float)
+    sc = np.asarray(sigma_c, dtype=float)
+    mm = np.asarray(m, dtype=float)
+    return (
+        (A * A - 1.0) * syx**2
+        + 2.0 * (A + 1.0) * (sc * material.sin_phi) ** 2
+        - 4.0 * (A + 1.0) ** 2 * mm**2
+    )
+
+
+def radicand_scale(sigma_c: ArrayLike, material: Material) -> FloatArray:
+    """The size of the terms of S, for round-off comparisons [-]."""
+    return 2.0 * (material.A + 1.0) * (np.asarray(sigma_c, dtype=float) * material.sin_phi) ** 2
+
+
+def check_radicand(
+    S: ArrayLike, sigma_c: ArrayLike, m: ArrayLike, material: Material, xi: ArrayLike | None = None
+) -> FloatArray:
+    """Return ``max(S, 0)``; raise :class:`NoSolutionError` where S is negative beyond round-off."""
+    S = np.asarray(S, dtype=float)
+    bad = -RADICAND_ROUNDOFF * radicand_scale(sigma_c, material) > S
+    if np.any(bad):
+        i = int(np.flatnonzero(np.ravel(bad))[0])
+        where = "" if xi is None else f" at xi = {np.ravel(np.broadcast_to(xi, S.shape))[i]:.6g}"
+        mi = float(np.ravel(np.broadcast_to(m, S.shape))[i])
+        raise NoSolutionError(
+            f"no real solution{where}: the yield condition (eqn-nd_yc) has no real root for "
+            f"sigma_xy because the couple stress |m| = {abs(mi):.6g} exceeds its yield bound "
+            f"(the radicand of eqn-nd_sigxy is {np.ravel(S)[i]:.3g} < 0)"
+        )
+    return np.maximum(S, 0.0)
+
+
+def second_shear_stress(
+    sigma_yx: ArrayLike,
+    sigma_c: ArrayLike,
+    m: ArrayLike,
+    material: Material,
+    xi: ArrayLike | None = None,
+) -> FloatArray:
+    """sigma_xy from the yield condition with the paper's root, ``eqn-nd_sigxy`` [-].
+
+    Raises :class:`NoSolutionError` (saying where) if the root is complex.
+    """
+    S = check_radicand(radicand(sigma_yx, sigma_c, m, material), sigma_c, m, material, xi)
+    return -material.A * np.asarray(sigma_yx, dtype=float) - np.sqrt(S)
+
+
+def velocity_ratio(sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material) -> FloatArray:
+    """F1 = (A+1)(sxy + syx)/(sxy + A syx) of ``eqn-nd_fr1``: du/dxi = -F1 omega [-]."""
+    A = material.A
+    sxy = np.asarray(sigma_xy, dtype=float)
+    syx = np.asarray(sigma_yx, dtype=float)
+    return (A + 1.0) * (sxy + syx) / (sxy + A * syx)
+
+
+def spin_ratio(
+    sigma_xy: ArrayLike, sigma_yx: ArrayLike, m: ArrayLike, material: Material
+) -> FloatArray:
+    """F2 = 2(A+1) m/(sxy + A syx) of ``eqn-nd_fr2``: eps alpha domega/dxi = -F2 omega [-]."""
+    A = material.A
+    sxy = np.asarray(sigma_xy, dtype=float)
+    syx = np.asarray(sigma_yx, dtype=float)
+    return 2.0 * (A + 1.0) * np.asarray(m, dtype=float) / (sxy + A * syx)
+
+
+def asymmetry_source(sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material) -> FloatArray:
+    """(syx - sxy)/(2(A+1)): the right side of the couple-stress balance ``eqn-nd_zangmom`` [-].
+
+    ``eps alpha (dm/dxi + kappa m) = (syx - sxy)/(2(A+1))`` with curvature kappa = 0 in plane
+    shear and 1/(Ri + xi) in Couette flow (``docs/derivation_couette.md``).
+    """
+    return (np.asarray(sigma_yx, dtype=float) - np.asarray(sigma_xy, dtype=float)) / (
+        2.0 * (material.A + 1.0)
+    )
+
+
+def symmetric_couple_stress(sigma_yx: float, sigma_c: float, material: Material) -> float:
+    """|m| at which sigma_xy = sigma_yx (``eqn-nd_bc4`` with ``eqn-nd_yc``) [-].
+
+    From ``eqn-nd_yc`` with sxy = syx: ``syx^2 + 2(A+1) m^2 = (sigma_c sin phi)^2``.
+    """
+    arg = ((sigma_c * material.sin_phi) ** 2 - sigma_yx**2) / (2.0 * (material.A + 1.0))
+    if arg < -RADICAND_ROUNDOFF * (sigma_c * material.sin_phi) ** 2:
+        raise NoSolutionError(
+            f"no real solution: the wall condition sigma_xy = sigma_yx (eqn-nd_bc4) needs "
+            f"|sigma_yx| <= sigma_c sin(phi), but |sigma_yx| = {abs(sigma_yx):.6g} > "
+            f"{sigma_c * material.sin_phi:.6g}"
+        )
+    return float(np.sqrt(max(arg, 0.0)))

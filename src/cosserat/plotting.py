@@ -1,0 +1,80 @@
+"""Plotting helpers: one Matplotlib style for the package, and a quick profile plot."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from .profile import Profile
+
+STYLE = {
+    "figure.figsize": (6.4, 4.8),
+    "figure.dpi": 100,
+    "savefig.dpi": 200,
+    "savefig.bbox": "tight",
+    "font.size": 10,
+    "axes.labelsize": 11,
+    "axes.titlesize": 10,
+    "legend.fontsize": 8,
+    "legend.frameon": False,
+    "lines.linewidth": 1.4,
+    "lines.markersize": 4,
+    "axes.spines.top": True,
+    "axes.spines.right": True,
+    "xtick.direction": "in",
+    "ytick.direction": "in",
+    "xtick.top": True,
+    "ytick.right": True,
+    "mathtext.fontset": "cm",
+    "font.family": "serif",
+    "pdf.fonttype": 42,
+}
+"""The package's Matplotlib style (used by every figure)."""
+
+
+@contextmanager
+def style() -> Iterator[None]:
+    """Context manager applying :data:`STYLE`."""
+    import matplotlib as mpl
+
+    with mpl.rc_context(STYLE):
+        yield
+
+
+def new_figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float | None = None):
+    """A styled figure and its axes (headless: no pyplot state)."""
+    from matplotlib.figure import Figure
+
+    height = height if height is not None else 2.9 * nrows
+    with style():
+        fig = Figure(figsize=(width, height))
+        axes = fig.subplots(nrows, ncols, squeeze=False)
+    return fig, axes
+
+
+def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
+    """u, omega + du/dxi/2, sigma_yx - sigma_xy and m against xi (as the paper's figure 2)."""
+    from .profile import FIELD_LABELS
+
+    with style():
+        if fig is None:
+            fig, axes = new_figure(2, 2, height=5.6)
+        else:
+            axes = fig.subplots(2, 2, squeeze=False)
+        panels = [
+            ("u", profile.u),
+            ("spin_minus_half_vorticity", profile.spin_minus_half_vorticity),
+            ("asymmetry", profile.asymmetry),
+            ("m", profile.m),
+        ]
+        for ax, (name, values) in zip(axes.ravel(), panels, strict=True):
+            ax.plot(values, profile.xi, color="k")
+            ax.set_xlabel(FIELD_LABELS[name])
+            ax.set_ylabel(FIELD_LABELS["xi"])
+        fig.suptitle(profile.problem.describe(), fontsize=7)
+        fig.tight_layout()
+    return fig

@@ -1,0 +1,169 @@
+"""The numerical engine: two well-conditioned passes over a :class:`Formulation`.
+
+Why two passes (``docs/numerics.md``):
+
+1. **Couple stress.** ``dm/dxi`` is stiff (rate ~ k/eps) and stable only when integrated from
+   the wall that does not slip (or the centre) towards the slipping wall: along that direction
+   perturbations decay like exp(-k |xi - xi0| / eps). It is integrated with an implicit
+   Runge-Kutta method (Radau IIA, order 5) with dense output, and stopped with a
+   :class:`~cosserat.errors.NoSolutionError` if the yield radicand S of ``eqn-nd_sigxy``
+   reaches zero (the solution leaves the real domain).
+2. **Spin and velocity.** With m known, the spin relative to rigid rotation is
+   ``w = w_s exp(l(xi))`` and ``h u = (h u)_s - w_s P(xi)``, where ``l`` and ``P`` are
+   quadratures started at the slipping wall: ``l' = dln w/dxi``, ``P' = exp(l) G``,
+   ``l(xi_s) = P(xi_s) = 0``. Started there, ``l <= 0`` and ``P`` stay bounded for any eps, the
+   error control is relative to the spin where the spin matters, and nothing over- or
+   underflows: the integration stops where exp(l) underflows (l < -745), beyond which the
+   spin is exactly 0 in double precision and P is constant. This pass is not stiff (pure
+   quadratures) and uses the explicit DOP853 method.
+
+The two constants (u_s, w_s) then follow from the two linear velocity conditions.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import OdeSolution, solve_ivp
+
+from ..constitutive import FloatArray, radicand_scale
+from ..errors import ConvergenceError, NoSolutionError
+from ..problems.base import Formulation
+
+# exp(l) underflows below this; the spin is then exactly zero in double precision.
+LOG_UNDERFLOW = -745.0
+
+
+@dataclass(frozen=True)
+class CoupleStress:
+    """Dense couple stress m(xi) on [min(start, end), max(start, end)] (Radau dense output)."""
+
+    sol: OdeSolution
+    xi_start: float
+    xi_end: float
+    nfev: int
+    njev: int
+    steps: int
+
+    def __call__(self, xi: FloatArray) -> FloatArray:
+        x = np.asarray(xi, dtype=float)
+        return np.asarray(self.sol(x), dtype=float)[0] if x.ndim else float(self.sol(x)[0])
+
+
+def integrate_couple_stress(
+    form: Formulation,
+    xi_start: float,
+    xi_end: float,
+    m_start: float,
+    rtol: float,
+    atol: float,
+) -> CoupleStress:
+    """Pass 1: the couple-stress balance from ``xi_start`` to ``xi_end`` (stable direction)."""
+    material = form.material
+
+    def rhs(xi: float, y: FloatArray) -> FloatArray:
+        return form.dm_dxi(xi, y)
+
+    def yield_margin(xi: float, y: FloatArray) -> float:
+        st = form.stresses(xi, y[0])
+        return float(st.radicand) / float(radicand_scale(st.sigma_c, material))
+
+    yield_margin.terminal = True  # type: ignore[attr-defined]
+    yield_margin.direction = -1  # type: ignore[attr-defined]
+
+    res = solve_ivp(
+        rhs,
+        (xi_start, xi_end),
+        [m_start],
+        method="Radau",
+        rtol=rtol,
+        atol=atol,
+        dense_output=True,
+        events=yield_margin,
+    )
+    if res.status == 1:
+        xi_r = float(res.t_events[0][0])
+        m_r = float(res.y_events[0][0][0])
+        raise NoSolutionError(
+            f"no real solution: the couple stress reaches the yield bound at xi = {xi_r:.6g} "
+            f"(m = {m_r:.6g}), beyond which the second shear stress of eqn-nd_sigxy is complex; "
+            f"the couple-stress balance cannot be continued to the wall at xi = {xi_end:g}"
+        )
+    if not res.success:
+        raise ConvergenceError(f"couple-stress integration failed: {res.message}")
+    return CoupleStress(res.sol, xi_start, xi_end, res.nfev, res.njev, len(res.t) - 1)
+
+
+@dataclass(frozen=True)
+class SpinQuadrature:
+    """Dense (l, P) of pass 2 from the slipping wall ``xi_slip`` towards ``xi_far``."""
+
+    sol: OdeSolution
+    xi_slip: float
+    xi_cut: float  # where the integration stopped (xi_far, or where exp(l) underflows)
+    l_cut: float
+    P_cut: float
+    nfev: int
+
+    def __call__(self, xi: FloatArray) -> tuple[FloatArray, FloatArray]:
+        x = np.asarray(xi, dtype=float)
+        inside = np.abs(x - self.xi_slip) <= abs(self.xi_cut - self.xi_slip)
+        ell = np.full(x.shape, -np.inf)
+        P = np.full(x.shape, self.P_cut)
+        if np.any(inside):
+            y = self.sol(x[inside])
+            ell[inside] = y[0]
+            P[inside] = y[1]
+        return ell, P
+
+
+def integrate_spin(
+    form: Formulation,
+    m: Callable[[FloatArray], FloatArray],
+    xi_slip: float,
+    xi_far: float,
+    rtol: float,
+    atol: float,
+) -> SpinQuadrature:
+    """Pass 2: l = ln(w / w_s) and P = int exp(l) G from the slipping wall inwards."""
+
+    def rhs(xi: float, y: FloatArray) -> FloatArray:
+        mm = m(xi)
+        with np.errstate(under="ignore"):
+            gain = np.exp(y[0])
+        return np.array(
+            [float(form.log_spin_rate(xi, mm)), gain * float(form.velocity_source(xi, mm))]
+        )
+
+    def underflow(xi: float, y: FloatArray) -> float:
+        return float(y[0] - LOG_UNDERFLOW)
+
+    underflow.terminal = True  # type: ignore[attr-defined]
+    underflow.direction = -1  # type: ignore[attr-defined]
+
+    res = solve_ivp(
+        rhs,
+        (xi_slip, xi_far),
+        [0.0, 0.0],
+        method="DOP853",
+        rtol=rtol,
+        atol=[rtol, atol * form.eps],
+        dense_output=True,
+        events=underflow,
+    )
+    if not res.success:
+        raise ConvergenceError(f"spin/velocity quadrature failed: {res.message}")
+    return SpinQuadrature(
+        res.sol, xi_slip, float(res.t[-1]), float(res.y[0, -1]), float(res.y[1, -1]), res.nfev
+    )
+
+
+def solve_linear_2x2(matrix: list[list[float]], rhs: list[float], what: str) -> FloatArray:
+    """Solve the velocity conditions; a singular system is reported, not propagated as NaN."""
+    a = np.asarray(matrix, dtype=float)
+    det = a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]
+    if not np.isfinite(det) or abs(det) < 1e-300:
+        raise ConvergenceError(f"the velocity boundary conditions are singular ({what})")
+    return np.linalg.solve(a, np.asarray(rhs, dtype=float))
