@@ -9,7 +9,7 @@ import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
-from cosserat import Material, Wall  # noqa: E402
+from cosserat import Material, Wall
 
 PAPER = Material(phi=28.5, L=10.0, A=1.0 / 3.0)
 

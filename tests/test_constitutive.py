@@ -19,8 +19,13 @@ MAT = Material(28.5)
 def yield_residual(sxy, syx, sc, m, mat):
     """eqn-nd_yc written out independently."""
     A = mat.A
-    return (sxy**2 + syx**2 + 2 * A * sxy * syx + 4 * (A + 1) ** 2 * m**2
-            - 2 * (A + 1) * (sc * mat.sin_phi) ** 2)
+    return (
+        sxy**2
+        + syx**2
+        + 2 * A * sxy * syx
+        + 4 * (A + 1) ** 2 * m**2
+        - 2 * (A + 1) * (sc * mat.sin_phi) ** 2
+    )
 
 
 @pytest.mark.parametrize("A", [-0.5, 0.0, 1 / 3, 0.9])
@@ -28,8 +33,11 @@ def test_second_shear_stress_satisfies_the_yield_condition_with_the_papers_root(
     mat = Material(28.5, A=A)
     syx = -rng.uniform(0.05, 0.47, 200)
     sc = rng.uniform(1.0, 2.0, 200)
-    bound = np.sqrt(np.maximum((2 * (A + 1) * (sc * mat.sin_phi) ** 2 + (A * A - 1) * syx**2)
-                               / (4 * (A + 1) ** 2), 0))
+    bound = np.sqrt(
+        np.maximum(
+            (2 * (A + 1) * (sc * mat.sin_phi) ** 2 + (A * A - 1) * syx**2) / (4 * (A + 1) ** 2), 0
+        )
+    )
     m = rng.uniform(-1, 1, 200) * bound
     sxy = second_shear_stress(syx, sc, m, mat)
     assert np.max(np.abs(yield_residual(sxy, syx, sc, m, mat))) < 1e-14
@@ -52,7 +60,7 @@ def test_flow_ratios_for_a_symmetric_stress():
     syx = -0.36
     m = symmetric_couple_stress(syx, 1.0, MAT)
     sxy = second_shear_stress(syx, 1.0, m, MAT)
-    assert sxy == pytest.approx(syx, abs=1e-15)          # eqn-nd_bc4 reached
+    assert sxy == pytest.approx(syx, abs=1e-15)  # eqn-nd_bc4 reached
     assert velocity_ratio(sxy, syx, MAT) == pytest.approx(2.0)  # du/dxi = -2 omega
     # eps alpha omega' = -F2 omega with F2 = 2(A+1)m/((1+A)syx) = 2m/syx, so k = m/(alpha a)
     assert spin_ratio(sxy, syx, m, MAT) == pytest.approx(2 * m / syx)

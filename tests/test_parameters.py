@@ -45,7 +45,8 @@ def test_wall_bounds(args, pattern):
 
 
 def test_wall_rougher_than_fully_rough_is_rejected_with_the_bound():
-    with pytest.raises(ParameterError, match=r"tan\(delta\) <= sin\(phi\).*25.5086.*got delta = 26"):
+    pattern = r"tan\(delta\) <= sin\(phi\).*25.5086.*got delta = 26"
+    with pytest.raises(ParameterError, match=pattern):
         PlaneShear(material=MAT, upper=Wall(26.0), eps=0.1)
     with pytest.raises(ParameterError, match=r"delta_lower"):
         PlaneShear(material=MAT, upper=Wall(20.0), lower=Wall(30.0), eps=0.1)
@@ -100,8 +101,11 @@ def test_fully_rough_wall_is_exactly_sin_phi_and_atan_round_trip_snaps():
 )
 def test_the_problem_decides_which_wall_slips(upper, lower, B, case):
     p = PlaneShear(
-        material=MAT, upper=Wall(upper), lower=None if lower is None else Wall(lower),
-        eps=0.1, B=B,
+        material=MAT,
+        upper=Wall(upper),
+        lower=None if lower is None else Wall(lower),
+        eps=0.1,
+        B=B,
     )
     assert p.case is case
     limit_upper = math.tan(math.radians(upper))
@@ -115,8 +119,9 @@ def test_m_fixed_wall_range():
     assert p.couple_stress_bound(0.0) == pytest.approx(b, rel=1e-14)
     PlaneShear(material=MAT, upper=Wall(10.0), lower=Wall(20.0), eps=0.04, m_fixed_wall=b)
     with pytest.raises(ParameterError, match=r"m_fixed_wall must satisfy 0 <= m_fixed_wall"):
-        PlaneShear(material=MAT, upper=Wall(10.0), lower=Wall(20.0), eps=0.04,
-                   m_fixed_wall=1.01 * b)
+        PlaneShear(
+            material=MAT, upper=Wall(10.0), lower=Wall(20.0), eps=0.04, m_fixed_wall=1.01 * b
+        )
     with pytest.raises(ParameterError, match=r"m_fixed_wall must satisfy"):
         PlaneShear(material=MAT, upper=Wall(10.0), lower=Wall(20.0), eps=0.04, m_fixed_wall=-0.01)
     with pytest.raises(ParameterError, match=r"both walls slip"):

@@ -89,22 +89,34 @@ def second_shear_stress(
     return -material.A * np.asarray(sigma_yx, dtype=float) - np.sqrt(S)
 
 
-def velocity_ratio(sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material) -> FloatArray:
-    """F1 = (A+1)(sxy + syx)/(sxy + A syx) of ``eqn-nd_fr1``: du/dxi = -F1 omega [-]."""
+def velocity_ratio(
+    sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material, denom: ArrayLike | None = None
+) -> FloatArray:
+    """F1 = (A+1)(sxy + syx)/(sxy + A syx) of ``eqn-nd_fr1``: du/dxi = -F1 omega [-].
+
+    ``denom`` may supply sxy + A syx (= -sqrt(S) on the paper's root) where forming the sum
+    would lose it to round-off.
+    """
     A = material.A
     sxy = np.asarray(sigma_xy, dtype=float)
     syx = np.asarray(sigma_yx, dtype=float)
-    return (A + 1.0) * (sxy + syx) / (sxy + A * syx)
+    d = sxy + A * syx if denom is None else np.asarray(denom, dtype=float)
+    return (A + 1.0) * (sxy + syx) / d
 
 
 def spin_ratio(
-    sigma_xy: ArrayLike, sigma_yx: ArrayLike, m: ArrayLike, material: Material
+    sigma_xy: ArrayLike,
+    sigma_yx: ArrayLike,
+    m: ArrayLike,
+    material: Material,
+    denom: ArrayLike | None = None,
 ) -> FloatArray:
     """F2 = 2(A+1) m/(sxy + A syx) of ``eqn-nd_fr2``: eps alpha domega/dxi = -F2 omega [-]."""
     A = material.A
     sxy = np.asarray(sigma_xy, dtype=float)
     syx = np.asarray(sigma_yx, dtype=float)
-    return 2.0 * (A + 1.0) * np.asarray(m, dtype=float) / (sxy + A * syx)
+    d = sxy + A * syx if denom is None else np.asarray(denom, dtype=float)
+    return 2.0 * (A + 1.0) * np.asarray(m, dtype=float) / d
 
 
 def asymmetry_source(sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material) -> FloatArray:

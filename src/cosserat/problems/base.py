@@ -140,8 +140,8 @@ class Formulation:
         # sxy + A syx = -sqrt(S); the floor only matters exactly on the yield bound.
         denom = -np.maximum(np.sqrt(np.maximum(st.radicand, 0.0)), _SQRT_S_FLOOR)
         sxy = denom - A * st.sigma_yx
-        F1 = velocity_ratio(sxy, st.sigma_yx, self.material)
-        F2 = spin_ratio(sxy, st.sigma_yx, m, self.material)
+        F1 = velocity_ratio(sxy, st.sigma_yx, self.material, denom)
+        F2 = spin_ratio(sxy, st.sigma_yx, m, self.material, denom)
         return F1, F2
 
     def log_spin_rate(self, xi: ArrayLike, m: ArrayLike) -> FloatArray:

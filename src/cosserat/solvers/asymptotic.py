@@ -22,7 +22,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..constitutive import FloatArray, symmetric_couple_stress
-from ..errors import MethodNotAvailableError
 from ..problems.plane import PlaneShear, PlaneShearCase
 from ..profile import Fields, Profile
 from .assemble import make_profile
@@ -59,17 +58,13 @@ def solve_plane(
     const = problem.slip_constants
     sigma_yx = problem.sigma_yx
 
+    # k = 0 (fully rough slipping wall) happens only between identical fully rough walls
+    # without gravity, or at the upper wall under gravity: no wall is rougher than fully rough.
     if const.k == 0.0:
         if problem.B > 0.0:
             from .airy import solve_plane_fully_rough
 
             return solve_plane_fully_rough(problem, points=points, xi=xi, check=check)
-        if case is not PlaneShearCase.SYMMETRIC:
-            raise MethodNotAvailableError(
-                "no small-eps asymptotics for a fully rough upper wall above a rougher lower "
-                "wall without gravity: eqn-asymp_vels assumes k >> eps and k = 0 here; the "
-                "closed form (method='closed-form') is exact"
-            )
 
         def evaluate(x: FloatArray) -> Fields:
             x = np.asarray(x, dtype=float)

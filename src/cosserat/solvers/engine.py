@@ -100,12 +100,14 @@ def integrate_couple_stress(
 class SpinQuadrature:
     """Dense (l, P) of pass 2 from the slipping wall ``xi_slip`` towards ``xi_far``."""
 
-    sol: OdeSolution
+    sol: OdeSolution  # in tau: xi = xi_slip + span * tau (or the square-root map)
     xi_slip: float
     xi_cut: float  # where the integration stopped (xi_far, or where exp(l) underflows)
     l_cut: float
     P_cut: float
     nfev: int
+    span: float
+    singular: bool
 
     def __call__(self, xi: FloatArray) -> tuple[FloatArray, FloatArray]:
         x = np.asarray(xi, dtype=float)
@@ -113,7 +115,9 @@ class SpinQuadrature:
         ell = np.full(x.shape, -np.inf)
         P = np.full(x.shape, self.P_cut)
         if np.any(inside):
-            y = self.sol(x[inside])
+            frac = np.clip((x[inside] - self.xi_slip) / self.span, 0.0, 1.0)
+            tau = 1.0 - np.sqrt(1.0 - frac) if self.singular else frac
+            y = self.sol(tau)
             ell[inside] = y[0]
             P[inside] = y[1]
         return ell, P
@@ -127,13 +131,28 @@ def integrate_spin(
     rtol: float,
     atol: float,
 ) -> SpinQuadrature:
-    """Pass 2: l = ln(w / w_s) and P = int exp(l) G from the slipping wall inwards."""
+    """Pass 2: l = ln(w / w_s) and P = int exp(l) G from the slipping wall inwards.
 
-    def rhs(xi: float, y: FloatArray) -> FloatArray:
+    If the couple stress at the far end sits on the yield bound (S = 0, e.g. a prescribed
+    m = b at the fixed wall), the spin rate has an integrable 1/sqrt singularity there; the
+    quadrature is then carried out in tau with xi = xi_slip + (xi_far - xi_slip)(2 tau - tau^2),
+    whose Jacobian vanishes like the square root.
+    """
+    st = form.stresses(xi_far, m(xi_far))
+    singular = float(st.radicand) <= 1e-8 * float(radicand_scale(st.sigma_c, form.material))
+    span = xi_far - xi_slip
+
+    def to_xi(tau: float) -> tuple[float, float]:
+        if not singular:
+            return xi_slip + span * tau, span
+        return xi_slip + span * (2.0 * tau - tau * tau), span * 2.0 * (1.0 - tau)
+
+    def rhs(tau: float, y: FloatArray) -> FloatArray:
+        xi, jac = to_xi(tau)
         mm = m(xi)
         with np.errstate(under="ignore"):
             gain = np.exp(y[0])
-        return np.array(
+        return jac * np.array(
             [float(form.log_spin_rate(xi, mm)), gain * float(form.velocity_source(xi, mm))]
         )
 
@@ -145,7 +164,7 @@ def integrate_spin(
 
     res = solve_ivp(
         rhs,
-        (xi_slip, xi_far),
+        (0.0, 1.0),
         [0.0, 0.0],
         method="DOP853",
         rtol=rtol,
@@ -156,7 +175,14 @@ def integrate_spin(
     if not res.success:
         raise ConvergenceError(f"spin/velocity quadrature failed: {res.message}")
     return SpinQuadrature(
-        res.sol, xi_slip, float(res.t[-1]), float(res.y[0, -1]), float(res.y[1, -1]), res.nfev
+        res.sol,
+        xi_slip,
+        to_xi(float(res.t[-1]))[0],
+        float(res.y[0, -1]),
+        float(res.y[1, -1]),
+        res.nfev,
+        span,
+        singular,
     )
 
 

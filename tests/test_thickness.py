@@ -1,0 +1,91 @@
+"""Shear-layer thickness: eqn-delta_defn on profiles, its eps -> 0 laws, wall slip and spin."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve, wall_omega, wall_slip
+from cosserat.analysis import asymptotic_thickness, thickness_curve, thickness_limit
+
+MAT = Material(28.5)
+F = 0.05
+
+
+def delta_limit_by_hand(phi=28.5, delta=20.0, L=10.0, f=F):
+    """eqn-delta_soln written out: -ln f L tan(delta) / (2 sqrt(sin^2 phi - tan^2 delta))."""
+    s, t = math.sin(math.radians(phi)), math.tan(math.radians(delta))
+    return -math.log(f) * L * t / (2.0 * math.sqrt(s * s - t * t))
+
+
+def test_the_papers_limit_is_17_67():
+    assert round(delta_limit_by_hand(), 2) == 17.67
+    assert thickness_limit(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1)) == pytest.approx(
+        delta_limit_by_hand(), rel=1e-13
+    )
+
+
+CASES = {
+    "no gravity, identical walls": {"upper": Wall(20.0)},
+    "no gravity, rougher lower wall": {"upper": Wall(20.0), "lower": Wall(25.0)},
+    "gravity, layer at the upper wall": {"upper": Wall(20.0), "B": 1.0},
+    "gravity, layer at the lower wall": {"upper": Wall(25.0), "lower": Wall(20.0), "B": 0.2},
+}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_delta_approaches_17_67_in_every_plane_case(name):
+    problem = PlaneShear(material=MAT, eps=1e-2, **CASES[name])
+    eps = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6]
+    curve = thickness_curve(problem, eps)
+    gaps = [abs(d - delta_limit_by_hand()) for d in curve.Delta]
+    assert gaps[-1] < 2e-3  # eps = 1e-6
+    # from eps = 1e-3 on, each decade brings Delta closer to the limit
+    assert all(g1 <= g0 + 1e-6 for g0, g1 in itertools.pairwise(gaps[1:]))
+
+
+def test_thickness_of_uniform_shear_is_exact():
+    """Fully rough identical walls: linear u, so Delta = (1 - u0)(1 - f)/eps with u0 = 1/2."""
+    eps = 0.02
+    problem = PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=eps)
+    for method in ("closed-form", "numerical"):
+        assert shear_layer_thickness(solve(problem, method=method)) == pytest.approx(
+            0.5 * (1 - F) / eps, rel=1e-9
+        )
+    assert asymptotic_thickness(problem) == pytest.approx(0.5 * (1 - F) / eps)
+
+
+def test_thickness_does_not_depend_on_the_output_grid():
+    problem = PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-4, B=1.0)
+    coarse = solve(problem, points=5)
+    fine = solve(problem, points=2001)
+    assert shear_layer_thickness(coarse) == pytest.approx(shear_layer_thickness(fine), rel=1e-12)
+
+
+def test_thickness_definition_holds_on_the_profile():
+    problem = PlaneShear(material=MAT, upper=Wall(15.0), eps=1e-3)
+    prof = solve(problem)
+    d = shear_layer_thickness(prof, f=0.1)
+    u_w, u_d = prof.evaluate([1.0, 1.0 - problem.eps * d]).u
+    assert (u_d - 0.5) == pytest.approx(0.1 * (u_w - 0.5), rel=1e-9)
+
+
+def test_wall_slip_and_spin_match_the_closed_form():
+    eps, K = 1e-3, 0.5
+    problem = PlaneShear(material=MAT, upper=Wall(20.0, K), lower=Wall(25.0), eps=eps)
+    k = problem.slip_constants.k
+    omega_1 = -1.0 / eps / (2.0 / k + K - 2.0 * math.exp(-k / eps) / k)  # eqn-omega1_g0aw
+    prof = solve(problem)
+    assert wall_omega(prof) == pytest.approx(omega_1, rel=1e-7)
+    assert wall_slip(prof) == pytest.approx(-eps * K * omega_1, rel=1e-7)  # eqn-nd_bc3u
+
+
+def test_thickness_curve_records_no_solution_instead_of_failing():
+    problem = PlaneShear(material=MAT, upper=Wall(20.0), eps=0.01, B=1.0)
+    curve = thickness_curve(problem, [0.1, 0.01])
+    assert curve.Delta[0] is None and "no real solution" in curve.failures[0.1]
+    assert curve.Delta[1] == pytest.approx(11.837, rel=1e-3)
+    assert np.isfinite(curve.Delta[1])
