@@ -102,6 +102,21 @@ def test_thickness_json(capsys):
     assert record["Delta"][1] == pytest.approx(17.6688, rel=1e-4)
 
 
+def test_solve_and_thickness_couette(capsys):
+    code, out, _ = run(capsys, "solve", "couette", "--eps", "1e-3", "--Ri", "1", "--points", "31")
+    record = json.loads(out)
+    assert code == 0 and KEYS <= set(record)
+    assert record["problem"] == "couette" and record["parameters"]["Ri"] == 1.0
+    assert record["xi"][0] == 0.0 and record["xi"][-1] == 1.0
+    assert record["u"][0] < -0.9  # the inner cylinder moves at u = -1 (paper's sign)
+    code, out, _ = run(
+        capsys, "thickness", "couette", "--eps", "1e-3", "--fully-rough", "--method", "asymptotic"
+    )
+    record = json.loads(out)
+    assert code == 0 and record["Delta_asymptote"] is None
+    assert record["Delta"][0] == pytest.approx(record["Delta_asymptotic"][0], rel=1e-9)
+
+
 def test_thickness_reports_eps_without_solution(capsys):
     code, out, _ = run(capsys, "thickness", "plane", "--eps", "0.1", "0.01", "--B", "1")
     record = json.loads(out)
@@ -125,6 +140,9 @@ def test_thickness_reports_eps_without_solution(capsys):
         (["solve", "plane"], "required: --eps"),
         (["solve", "plane", "--eps", "abc"], "invalid float value"),
         (["thickness", "plane", "--eps", "0.1", "--f", "2"], "--f must satisfy 0 < f < 1"),
+        (["solve", "couette", "--eps", "0.1", "--Ri", "-1"], "Ri = R_i/H must satisfy"),
+        (["solve", "couette", "--eps", "0.04", "--Ri", "0.05"], "no real solution"),
+        (["solve", "couette", "--eps", "0.1", "--B", "1"], "unrecognized arguments: --B"),
     ],
 )
 def test_bad_input_one_line_exit_2(capsys, args, needle):

@@ -20,7 +20,7 @@ from .errors import (
     ParameterError,
 )
 from .parameters import FULLY_ROUGH, Material, Wall
-from .problems import PlaneShear, PlaneShearCase, Problem
+from .problems import CouetteFlow, PlaneShear, PlaneShearCase, Problem
 from .profile import Diagnostics, Fields, Profile
 from .solvers import METHODS, solve
 
@@ -32,6 +32,7 @@ __all__ = [
     "METHODS",
     "ConvergenceError",
     "CosseratError",
+    "CouetteFlow",
     "Diagnostics",
     "Fields",
     "Material",

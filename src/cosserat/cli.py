@@ -22,7 +22,7 @@ from .analysis import (
 )
 from .errors import CosseratError
 from .parameters import FULLY_ROUGH, Material, Wall
-from .problems import PlaneShear, Problem
+from .problems import CouetteFlow, PlaneShear, Problem
 from .solvers import METHODS, solve
 
 PAPER_DEFAULTS = {
@@ -33,6 +33,12 @@ PAPER_DEFAULTS = {
     "K": 0.5,
     "B": 0.0,
     "nu": 1.0,
+}
+
+
+GEOMETRIES = {
+    "plane": "plane shear between parallel walls",
+    "couette": "cylindrical Couette flow, inner cylinder turning",
 }
 
 
@@ -81,6 +87,8 @@ def _add_material_and_walls(p: argparse.ArgumentParser, plane: bool) -> None:
     g.add_argument(
         "--K", type=float, default=PAPER_DEFAULTS["K"], help="wall slip coefficient (0.5)"
     )
+    if not plane:
+        g.add_argument("--Ri", type=float, default=1.0, help="inner radius / gap R_i/H (1)")
     if plane:
         g.add_argument(
             "--delta-lower",
@@ -114,6 +122,8 @@ def build_problem(args: argparse.Namespace, eps: float) -> Problem:
     material = Material(phi=args.phi, L=args.L, A=args.A)
     delta = FULLY_ROUGH if args.fully_rough else args.delta
     upper = Wall(delta, args.K)
+    if args.geometry == "couette":
+        return CouetteFlow(material=material, wall=upper, eps=eps, Ri=args.Ri)
     lower_delta = delta if args.delta_lower is None else args.delta_lower
     lower_K = args.K if args.K_lower is None else args.K_lower
     return PlaneShear(
@@ -228,26 +238,28 @@ def make_parser() -> argparse.ArgumentParser:
 
     solve_p = sub.add_parser("solve", help="one profile across the gap")
     solve_geo = solve_p.add_subparsers(dest="geometry", required=True, parser_class=_Parser)
-    sp = solve_geo.add_parser("plane", help="plane shear")
-    _add_material_and_walls(sp, plane=True)
-    sp.add_argument("--eps", type=float, required=True, help="grain diameter / gap d_p/H")
-    _add_solution(sp)
-    sp.add_argument("--points", type=int, default=201, help="output points (layers resolved)")
-    sp.add_argument("--format", choices=("json", "csv"), default="json")
-    sp.add_argument("--out", default=None, help="write to this file instead of stdout")
-    sp.add_argument("--plot", default=None, help="also save a quick plot (PNG/PDF)")
-    sp.set_defaults(func=cmd_solve)
+    for geometry, helptext in GEOMETRIES.items():
+        sp = solve_geo.add_parser(geometry, help=helptext)
+        _add_material_and_walls(sp, plane=geometry == "plane")
+        sp.add_argument("--eps", type=float, required=True, help="grain diameter / gap d_p/H")
+        _add_solution(sp)
+        sp.add_argument("--points", type=int, default=201, help="output points (layers resolved)")
+        sp.add_argument("--format", choices=("json", "csv"), default="json")
+        sp.add_argument("--out", default=None, help="write to this file instead of stdout")
+        sp.add_argument("--plot", default=None, help="also save a quick plot (PNG/PDF)")
+        sp.set_defaults(func=cmd_solve)
 
     th = sub.add_parser("thickness", help="shear-layer thickness Delta against eps")
     th_geo = th.add_subparsers(dest="geometry", required=True, parser_class=_Parser)
-    tp = th_geo.add_parser("plane", help="plane shear")
-    _add_material_and_walls(tp, plane=True)
-    tp.add_argument("--eps", type=float, nargs="+", required=True)
-    tp.add_argument("--f", type=float, default=DEFAULT_F, help="fraction defining Delta (0.05)")
-    _add_solution(tp)
-    tp.add_argument("--format", choices=("json", "csv"), default="json")
-    tp.add_argument("--out", default=None)
-    tp.set_defaults(func=cmd_thickness)
+    for geometry, helptext in GEOMETRIES.items():
+        tp = th_geo.add_parser(geometry, help=helptext)
+        _add_material_and_walls(tp, plane=geometry == "plane")
+        tp.add_argument("--eps", type=float, nargs="+", required=True)
+        tp.add_argument("--f", type=float, default=DEFAULT_F, help="fraction defining Delta (0.05)")
+        _add_solution(tp)
+        tp.add_argument("--format", choices=("json", "csv"), default="json")
+        tp.add_argument("--out", default=None)
+        tp.set_defaults(func=cmd_thickness)
 
     rp = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
     rp.add_argument("--out", required=True, help="output folder")

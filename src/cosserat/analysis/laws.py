@@ -3,7 +3,8 @@
 * Walls that are not fully rough (k > 0), every problem: ``Delta = -ln f / k``
   (``eqn-delta_soln``), independent of eps; 17.67 for phi = 28.5 deg, delta = 20 deg, L = 10.
 * Fully rough walls under gravity: ``Delta = x_f eps^(-1/3) (L^2/(2 B nu))^(1/3)``
-  (``eqn-delta_soln_fr`` a), x_f the Airy inner coordinate where u = f u_w (1.2748 for f = 0.05).
+  (``eqn-delta_soln_fr`` a), x_f the Airy inner coordinate where u = f u_w (1.2748 for f = 0.05);
+  in Couette flow ``Delta = x_f eps^(-1/3) (L^2 Ri/4)^(1/3)`` (``eqn-delta_soln_fr`` b).
 * Fully rough walls without gravity: uniform shear, ``Delta = (1 - u_0)(1 - f)/eps``.
 """
 
@@ -12,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from ..problems import PlaneShear, PlaneShearCase, Problem
+from ..problems import CouetteFlow, PlaneShearCase, Problem
 from .thickness import DEFAULT_F
 
 
@@ -30,7 +31,9 @@ def asymptotic_thickness(problem: Problem, f: float = DEFAULT_F) -> float:
     if limit is not None:
         return limit
     eps = problem.eps
-    if isinstance(problem, PlaneShear) and problem.B > 0.0:
+    if isinstance(problem, CouetteFlow):  # eqn-delta_soln_fr (b)
+        return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * problem.inner_scale()
+    if problem.B > 0.0:  # eqn-delta_soln_fr (a)
         return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * plane_inner_scale(problem)
     u0 = 0.5 if problem.case is PlaneShearCase.SYMMETRIC else 0.0
     return (1.0 - u0) * (1.0 - f) / eps

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import TypeAlias
 
+from .couette import CouetteFlow
 from .plane import PlaneShear, PlaneShearCase
 
-Problem: TypeAlias = PlaneShear
+Problem: TypeAlias = PlaneShear | CouetteFlow
 
-__all__ = ["PlaneShear", "PlaneShearCase", "Problem"]
+__all__ = ["CouetteFlow", "PlaneShear", "PlaneShearCase", "Problem"]

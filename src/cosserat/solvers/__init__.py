@@ -6,14 +6,14 @@ from collections.abc import Callable
 from typing import Any
 
 from ..errors import ParameterError
-from ..problems import PlaneShear, Problem
+from ..problems import CouetteFlow, PlaneShear, Problem
 from ..profile import Profile
 from . import asymptotic, closed_form, numerical
 
 _ROUTES: dict[str, dict[type, Callable[..., Profile]]] = {
-    "numerical": {PlaneShear: numerical.solve_plane},
+    "numerical": {PlaneShear: numerical.solve_plane, CouetteFlow: numerical.solve_couette},
     "closed-form": {PlaneShear: closed_form.solve_plane},
-    "asymptotic": {PlaneShear: asymptotic.solve_plane},
+    "asymptotic": {PlaneShear: asymptotic.solve_plane, CouetteFlow: asymptotic.solve_couette},
 }
 METHODS = tuple(_ROUTES)
 

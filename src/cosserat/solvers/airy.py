@@ -24,6 +24,7 @@ from scipy.optimize import brentq
 from scipy.special import airy, airye
 
 from ..constitutive import FloatArray
+from ..problems.couette import CouetteFlow
 from ..problems.plane import PlaneShear
 from ..profile import Fields, Profile
 from .assemble import make_profile
@@ -77,6 +78,19 @@ def plane_inner_scale(problem: PlaneShear) -> float:
     return (problem.material.L**2 / (2.0 * problem.B * problem.nu)) ** (1.0 / 3.0)
 
 
+def airy_layer(
+    x_hat: FloatArray, *, eps: float, scale: float, u_wall: float, slip_sign: float
+) -> tuple[FloatArray, FloatArray]:
+    """(u, omega) of the Airy layer with u -> 0 far from the wall (``eqn-vel_g_unif``,
+    ``eqn-asymp_soln_vels_g__fr_consts``, ``eqn-asymp_soln_vels_cyl_fr``) [-].
+
+    ``omega_1 = -s u_w eps^(-2/3) / (2 scale I(inf))`` at leading order (the wall slip is
+    O(eps^(1/3)) and dropped), ``u = u_w (1 - I/I(inf))``.
+    """
+    omega_1 = -slip_sign * u_wall * eps ** (-2.0 / 3.0) / (2.0 * scale * I_INFINITY)
+    return u_wall * velocity_fraction(x_hat), omega_1 * spin_fraction(x_hat)
+
+
 def solve_plane_fully_rough(
     problem: PlaneShear, *, points: int | None, xi: FloatArray | None, check: bool
 ) -> Profile:
@@ -87,7 +101,6 @@ def solve_plane_fully_rough(
     a = 0.5 * problem.tan_delta_upper
     scale = plane_inner_scale(problem)
     inner_amp = (4.0 * a * mat.alpha * B_nu * mat.c2) ** (1.0 / 3.0) * eps ** (1.0 / 3.0)
-    omega_1 = -(eps ** (-2.0 / 3.0)) / (2.0 * scale * I_INFINITY)
     sigma_yx = problem.sigma_yx
 
     def evaluate(x: FloatArray) -> Fields:
@@ -98,9 +111,9 @@ def solve_plane_fully_rough(
         outer = math.sqrt(mat.c2) * np.sqrt(np.maximum(sc**2 - 1.0, 0.0))
         common = np.sqrt(2.0 * B_nu * mat.c2 * depth)
         m = outer + inner_amp * inner_couple_stress(xh) - common
-        omega = omega_1 * spin_fraction(xh)
+        u, omega = airy_layer(xh, eps=eps, scale=scale, u_wall=1.0, slip_sign=1.0)
         return Fields(
-            u=velocity_fraction(xh),
+            u=u,
             omega=omega,
             m=m,
             sigma_xy=np.full_like(x, sigma_yx),
@@ -120,4 +133,42 @@ def solve_plane_fully_rough(
         reference_velocity=0.0,
         check=check,
         message="Airy inner layer (eqn-eta_g_unif, eqn-vel_g_unif) at leading order in eps",
+    )
+
+
+def solve_couette_fully_rough(
+    problem: CouetteFlow, *, points: int | None, xi: FloatArray | None, check: bool
+) -> Profile:
+    """Couette flow, fully rough cylinders: the Airy inner layer at the inner cylinder with
+    x_hat = xi eps^(-2/3) (L^2 Ri/4)^(-1/3) and the composite couple stress of the Appendix."""
+    from .asymptotic import couette_leading_order_fields
+
+    eps, Ri = problem.eps, problem.Ri
+    scale = problem.inner_scale()
+    d = problem.tan_delta / math.sqrt(2.0 * (problem.material.A + 1.0))
+    inner_amp = eps ** (1.0 / 3.0) * d * (4.0 * problem.material.L / Ri) ** (1.0 / 3.0)
+
+    def evaluate(x: FloatArray) -> Fields:
+        x = np.asarray(x, dtype=float)
+        xh = x * eps ** (-2.0 / 3.0) / scale
+        # composite: outer + inner - common; the inner m_hat = Ai'/Ai solves dm/dx + m^2 = x
+        m = (
+            problem.outer_couple_stress(x)
+            - inner_amp * inner_couple_stress(xh)
+            + d * np.sqrt(4.0 * x / Ri)
+        )
+        u, omega = airy_layer(xh, eps=eps, scale=scale, u_wall=-1.0, slip_sign=-1.0)
+        return couette_leading_order_fields(problem, x, m, u, omega)
+
+    form = problem.formulation(float(evaluate(np.array([0.0])).m[0]))
+    return make_profile(
+        problem,
+        form,
+        evaluate,
+        method="asymptotic",
+        points=points,
+        xi=xi,
+        reference_velocity=0.0,
+        check=check,
+        message="Airy inner layer at the inner cylinder (eqn-asymp_soln_vels_cyl_fr)",
     )

@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..constitutive import FloatArray, symmetric_couple_stress
+from ..problems.couette import CouetteFlow
 from ..problems.plane import PlaneShear, PlaneShearCase
 from ..profile import Fields, Profile
 from .assemble import make_profile
@@ -43,6 +44,24 @@ def outer_couple_stress(problem: PlaneShear, xi: FloatArray) -> FloatArray:
     if case is PlaneShearCase.SYMMETRIC:
         return np.where(x >= 0.5, mag, -mag)
     return mag if case is PlaneShearCase.UPPER else -mag
+
+
+def exponential_layer(
+    distance: FloatArray,
+    *,
+    eps: float,
+    k: float,
+    K: float,
+    u_wall: float,
+    u_ref: float,
+    slip_sign: float,
+) -> tuple[FloatArray, FloatArray]:
+    """(u, omega) of ``eqn-asymp_vels`` at a distance from the slipping wall [-]."""
+    with np.errstate(under="ignore"):
+        decay = np.exp(-k * np.abs(distance) / eps)
+    u = u_ref + (u_wall - u_ref) * (2.0 / k) / (K + 2.0 / k) * decay
+    omega = -slip_sign * (u_wall - u_ref) / (eps * (K + 2.0 / k)) * decay
+    return u, omega
 
 
 def solve_plane(
@@ -83,24 +102,22 @@ def solve_plane(
         )
 
     xs = problem.slip_wall
-    u_w = problem.wall_velocity(xs)
     u0 = 0.5 if case is PlaneShearCase.SYMMETRIC else problem.reference_velocity
-    K, k = problem.slipping.K, const.k
-    s = problem.slip_sign(xs)
-    amp_u = (u_w - u0) * (2.0 / k) / (K + 2.0 / k)
-    amp_w = -s * (u_w - u0) / (eps * (K + 2.0 / k))
+    layer = {
+        "eps": eps,
+        "k": const.k,
+        "K": problem.slipping.K,
+        "u_wall": problem.wall_velocity(xs),
+        "u_ref": u0,
+        "slip_sign": problem.slip_sign(xs),
+    }
 
     def evaluate(x: FloatArray) -> Fields:
         x = np.asarray(x, dtype=float)
-        with np.errstate(under="ignore"):
-            decay = np.exp(-k * np.abs(xs - x) / eps)
-            if case is PlaneShearCase.SYMMETRIC:  # mirror layer at the lower wall
-                decay_low = np.exp(-k * x / eps)
-        u = u0 + amp_u * decay
-        omega = amp_w * decay
-        if case is PlaneShearCase.SYMMETRIC:
-            u = u - amp_u * decay_low
-            omega = omega + amp_w * decay_low
+        u, omega = exponential_layer(xs - x, **layer)
+        if case is PlaneShearCase.SYMMETRIC:  # the mirror layer at the lower wall
+            u_low, omega_low = exponential_layer(x, **layer)
+            u, omega = u - (u_low - u0), omega + omega_low
         return _fields(x, outer_couple_stress(problem, x), u, omega, sigma_yx, problem)
 
     return make_profile(
@@ -112,7 +129,70 @@ def solve_plane(
         xi=xi,
         reference_velocity=u0,
         check=check,
-        message=f"eqn-asymp_vels at leading order in eps (k = {k:.6g}, u_0 = {u0:g})",
+        message=f"eqn-asymp_vels at leading order in eps (k = {const.k:.6g}, u_0 = {u0:g})",
+    )
+
+
+def solve_couette(
+    problem: CouetteFlow,
+    *,
+    points: int | None = None,
+    xi: FloatArray | None = None,
+    check: bool = True,
+) -> Profile:
+    """Leading-order small-eps Couette profile (Appendix, "Cylindrical Couette flow").
+
+    Not fully rough: the Couette m^(0) outside an O(eps) layer and the velocity of
+    ``eqn-asymp_soln_vels_g0_aw`` near the inner cylinder. Fully rough: the Airy inner layer
+    (``eqn-asymp_soln_vels_cyl_fr``).
+    """
+    const = problem.slip_constants
+    if const.k == 0.0:
+        from .airy import solve_couette_fully_rough
+
+        return solve_couette_fully_rough(problem, points=points, xi=xi, check=check)
+    layer = {
+        "eps": problem.eps,
+        "k": const.k,
+        "K": problem.wall.K,
+        "u_wall": problem.wall_velocity(0.0),
+        "u_ref": 0.0,
+        "slip_sign": problem.slip_sign(0.0),
+    }
+    form = problem.formulation(float(problem.outer_couple_stress(np.array([0.0]))[0]))
+
+    def evaluate(x: FloatArray) -> Fields:
+        x = np.asarray(x, dtype=float)
+        u, omega = exponential_layer(x, **layer)
+        return couette_leading_order_fields(problem, x, problem.outer_couple_stress(x), u, omega)
+
+    return make_profile(
+        problem,
+        form,
+        evaluate,
+        method="asymptotic",
+        points=points,
+        xi=xi,
+        reference_velocity=0.0,
+        check=check,
+        message=f"Couette m^(0) and eqn-asymp_soln_vels_g0_aw at leading order (k = {const.k:.6g})",
+    )
+
+
+def couette_leading_order_fields(
+    problem: CouetteFlow, x: FloatArray, m: FloatArray, u: FloatArray, omega: FloatArray
+) -> Fields:
+    """Leading order: s_rt = s_tr = -tan(delta)/(1 + xi/Ri)^2 and du/dxi = -2 omega."""
+    s = -problem.tan_delta / (1.0 + x / problem.Ri) ** 2
+    return Fields(
+        u=u,
+        omega=omega,
+        m=m,
+        sigma_xy=s,
+        sigma_yx=s,
+        sigma_yy=np.ones_like(x),
+        du_dxi=-2.0 * omega,
+        kappa=problem.curvature(x),
     )
 
 

@@ -186,6 +186,30 @@ def integrate_spin(
     )
 
 
+def wall_constants_from_conditions(
+    *,
+    h_slip: float,
+    kappa_slip: float,
+    P_fixed: float,
+    h_fixed: float,
+    u_fixed: float,
+    u_wall_slip: float,
+    slip_sign: float,
+    eps_K: float,
+) -> tuple[float, float]:
+    """(u_s, w_s) at the slipping wall from the two velocity conditions.
+
+    With ``h u = (h u)_s - w_s P``: no slip at the fixed wall, ``h_f u_f = h_s u_s - w_s P_f``;
+    slip ``u_s = u_wall + s eps K omega_s`` with ``omega_s = w_s - kappa_s u_s``.
+    """
+    u_s, w_s = solve_linear_2x2(
+        [[h_slip, -P_fixed], [1.0 + slip_sign * eps_K * kappa_slip, -slip_sign * eps_K]],
+        [h_fixed * u_fixed, u_wall_slip],
+        "wall conditions",
+    )
+    return float(u_s), float(w_s)
+
+
 def solve_linear_2x2(matrix: list[list[float]], rhs: list[float], what: str) -> FloatArray:
     """Solve the velocity conditions; a singular system is reported, not propagated as NaN."""
     a = np.asarray(matrix, dtype=float)

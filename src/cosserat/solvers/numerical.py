@@ -5,10 +5,17 @@ from __future__ import annotations
 import numpy as np
 
 from ..constitutive import FloatArray
+from ..errors import ConvergenceError, NoSolutionError
+from ..problems.couette import CouetteFlow
 from ..problems.plane import PlaneShear, PlaneShearCase
 from ..profile import Fields, Profile
 from .assemble import fields_from_state, make_profile
-from .engine import integrate_couple_stress, integrate_spin, solve_linear_2x2
+from .engine import (
+    integrate_couple_stress,
+    integrate_spin,
+    solve_linear_2x2,
+    wall_constants_from_conditions,
+)
 
 DEFAULT_RTOL = 1e-8
 
@@ -70,12 +77,16 @@ def solve_plane(
         sq = integrate_spin(form, cs, xs, xn, rtol, atol)
         P_n = float(sq(np.array([xn]))[1][0])
         K = problem.slipping.K
-        # u = u_s - w_s P(xi):  u(xn) = wall velocity (no slip);
-        #   u_s = u_wall(xs) + s eps K w_s  (eqn-nd_bc3u / eqn-nd_bc3l).
-        u_s, w_s = solve_linear_2x2(
-            [[1.0, -P_n], [1.0, -problem.slip_sign(xs) * eps * K]],
-            [problem.wall_velocity(xn), problem.wall_velocity(xs)],
-            "plane",
+        # u = u_s - w_s P(xi): no slip at xn; u_s = u_wall + s eps K w_s (eqn-nd_bc3u/3l)
+        u_s, w_s = wall_constants_from_conditions(
+            h_slip=1.0,
+            kappa_slip=0.0,
+            P_fixed=P_n,
+            h_fixed=1.0,
+            u_fixed=problem.wall_velocity(xn),
+            u_wall_slip=problem.wall_velocity(xs),
+            slip_sign=problem.slip_sign(xs),
+            eps_K=eps * K,
         )
 
         def evaluate(x: FloatArray) -> Fields:
@@ -106,4 +117,122 @@ def solve_plane(
         message="Radau IIA couple stress (stable direction) + DOP853 spin/velocity quadrature",
         stats=stats,
         check=check,
+    )
+
+
+def solve_couette(
+    problem: CouetteFlow,
+    *,
+    rtol: float = DEFAULT_RTOL,
+    atol: float | None = None,
+    points: int | None = None,
+    xi: FloatArray | None = None,
+    check: bool = True,
+) -> Profile:
+    """Couette flow: the couple stress from the outer cylinder inwards for a trial m(0), with
+    m(0) fixed by a secant iteration on ``m(0; mu) - mu`` (``eqn-nd_shsts_cyl``); then spin and
+    velocity from the inner cylinder outwards."""
+    rtol, atol = _tolerances(rtol, atol)
+    mu, cs, form, iterations = _couette_shooting(problem, rtol, atol)
+    sq = integrate_spin(form, cs, 0.0, 1.0, rtol, atol)
+    P_1 = float(sq(np.array([1.0]))[1][0])
+    Ri, eps, K = problem.Ri, problem.eps, problem.wall.K
+    u_s, w_s = wall_constants_from_conditions(
+        h_slip=1.0 / Ri,
+        kappa_slip=1.0 / Ri,
+        P_fixed=P_1,
+        h_fixed=1.0 / (Ri + 1.0),
+        u_fixed=problem.wall_velocity(1.0),
+        u_wall_slip=problem.wall_velocity(0.0),
+        slip_sign=problem.slip_sign(0.0),
+        eps_K=eps * K,
+    )
+
+    def evaluate(x: FloatArray) -> Fields:
+        x = np.asarray(x, dtype=float)
+        ell, P = sq(x)
+        with np.errstate(under="ignore"):
+            w = w_s * np.exp(ell)
+        u = (Ri + x) * (u_s / Ri - w_s * P)
+        return fields_from_state(form, x, cs(x), u, w)
+
+    stats = {
+        "couple_stress_nfev": cs.nfev,
+        "couple_stress_steps": cs.steps,
+        "spin_nfev": sq.nfev,
+        "spin_cutoff_xi": sq.xi_cut,
+        "m_inner": mu,
+        "shooting_iterations": iterations,
+    }
+    return make_profile(
+        problem,
+        form,
+        evaluate,
+        method="numerical",
+        points=points,
+        xi=xi,
+        reference_velocity=problem.reference_velocity,
+        rtol=rtol,
+        atol=atol,
+        message="secant on m(0); Radau IIA couple stress (outer to inner) + DOP853 spin",
+        stats=stats,
+        check=check,
+    )
+
+
+def _couette_shooting(problem: CouetteFlow, rtol: float, atol: float):  # type: ignore[no-untyped-def]
+    """Find mu = m(0) with m(0; mu) = mu. Returns (mu, couple stress, formulation, iterations).
+
+    mu enters only through s_rt, with weight 2(A+1) eps alpha Ri/(Ri + xi)^2, so the map is
+    nearly linear: a secant iteration from the leading-order value m^(0)(0) converges in a few
+    steps. If that start leaves the real domain, a scan over admissible mu looks for one that
+    does not; if none does, the model has no real solution and the error says so.
+    """
+
+    def shoot(mu: float):  # type: ignore[no-untyped-def]
+        form = problem.formulation(mu)
+        cs = integrate_couple_stress(
+            form, 1.0, 0.0, problem.outer_wall_couple_stress(mu), rtol * 1e-2, atol * 1e-2
+        )
+        return float(cs(np.array([0.0]))[0]) - mu, cs, form
+
+    mu0 = float(problem.outer_couple_stress(np.array([0.0]))[0])
+    tol = max(atol, rtol * abs(mu0))
+    try:
+        g0, cs, form = shoot(mu0)
+    except NoSolutionError as first:
+        bound = problem.slip_constants.b
+        for trial in np.linspace(-2.0 * bound, bound, 13):
+            try:
+                g0, cs, form = shoot(float(trial))
+            except NoSolutionError:
+                continue
+            mu0 = float(trial)
+            break
+        else:
+            raise NoSolutionError(
+                f"no real solution for {problem.describe()}: for every trial couple stress at "
+                f"the inner cylinder, m(0) in [{-2 * bound:.3g}, {bound:.3g}], the couple-stress "
+                f"balance integrated from the outer cylinder leaves the yield surface inside the "
+                f"gap (first trial: {first})"
+            ) from None
+    mu1 = mu0 + g0
+    last_error: Exception | None = None
+    for iteration in range(1, 60):
+        if abs(g0) <= tol:
+            return mu0, cs, form, iteration
+        try:
+            g1, cs1, form1 = shoot(mu1)
+        except NoSolutionError as exc:
+            last_error = exc
+            mu1 = 0.5 * (mu0 + mu1)
+            continue
+        if abs(g1) <= tol:
+            return mu1, cs1, form1, iteration + 1
+        slope = (g1 - g0) / (mu1 - mu0) if mu1 != mu0 else -1.0
+        mu0, g0, cs, form = mu1, g1, cs1, form1
+        mu1 = mu1 - g1 / slope if slope != 0.0 else mu1 + g1
+    raise ConvergenceError(
+        f"Couette: the couple stress at the inner cylinder did not converge for "
+        f"{problem.describe()}" + (f" (last trial: {last_error})" if last_error else "")
     )
