@@ -101,19 +101,17 @@ class CouetteFlow:
         return -1.0
 
     def curvature(self, xi: FloatArray) -> FloatArray:
-        return 1.0 / (self.Ri + np.asarray(xi, dtype=float))
+        return 1.0 / (self.Ri + xi)
 
     def sigma_c(self, xi: FloatArray) -> FloatArray:
         """sigma_rr = sigma_c = 1 in the scaling ``newdimless`` [-]."""
-        return np.ones_like(np.asarray(xi, dtype=float))
+        return 1.0 + 0.0 * xi
 
     def shear_stress(self, xi: FloatArray, m: FloatArray, m_inner: float) -> FloatArray:
         """s_rt from ``eqn-nd_shsts_cyl`` given m(xi) and m(0) = ``m_inner`` [-]."""
-        r = self.Ri + np.asarray(xi, dtype=float)
+        r = self.Ri + xi
         g = 2.0 * (self.material.A + 1.0) * self.eps * self.material.alpha
-        return -self.tan_delta * (self.Ri / r) ** 2 + g * (
-            np.asarray(m, dtype=float) / r - m_inner * self.Ri / r**2
-        )
+        return -self.tan_delta * (self.Ri / r) ** 2 + g * (m / r - m_inner * self.Ri / r**2)
 
     def formulation(self, m_inner: float) -> Formulation:
         """The ODEs of :mod:`cosserat.problems.base` for a trial m(0) = ``m_inner``."""

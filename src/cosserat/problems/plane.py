@@ -179,7 +179,7 @@ class PlaneShear:
 
     def sigma_c(self, xi: FloatArray) -> FloatArray:
         """Mean stress = sigma_yy = 1 + B nu (1 - xi), ``eqn-nd_ymom`` with ``eqn-nd_bc1`` [-]."""
-        return 1.0 + self.B * self.nu * (1.0 - np.asarray(xi, dtype=float))
+        return 1.0 + self.B * self.nu * (1.0 - xi)
 
     @property
     def sigma_yx(self) -> float:
@@ -194,7 +194,7 @@ class PlaneShear:
         return Formulation(
             material=self.material,
             eps=self.eps,
-            sigma_yx=lambda xi, m: np.full(np.broadcast(xi, m).shape, syx),
+            sigma_yx=lambda xi, m: syx + 0.0 * m,
             sigma_c=self.sigma_c,
         )
 

@@ -22,6 +22,7 @@ The two constants (u_s, w_s) then follow from the two linear velocity conditions
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -63,8 +64,8 @@ def integrate_couple_stress(
     """Pass 1: the couple-stress balance from ``xi_start`` to ``xi_end`` (stable direction)."""
     material = form.material
 
-    def rhs(xi: float, y: FloatArray) -> FloatArray:
-        return form.dm_dxi(xi, y)
+    def rhs(xi: float, y: FloatArray) -> list[float]:
+        return [form.dm_dxi_scalar(xi, float(y[0]))]
 
     def yield_margin(xi: float, y: FloatArray) -> float:
         st = form.stresses(xi, y[0])
@@ -147,14 +148,12 @@ def integrate_spin(
             return xi_slip + span * tau, span
         return xi_slip + span * (2.0 * tau - tau * tau), span * 2.0 * (1.0 - tau)
 
-    def rhs(tau: float, y: FloatArray) -> FloatArray:
+    def rhs(tau: float, y: FloatArray) -> list[float]:
         xi, jac = to_xi(tau)
-        mm = m(xi)
-        with np.errstate(under="ignore"):
-            gain = np.exp(y[0])
-        return jac * np.array(
-            [float(form.log_spin_rate(xi, mm)), gain * float(form.velocity_source(xi, mm))]
-        )
+        rate, source = form.spin_rates_scalar(xi, m(xi))
+        ell = float(y[0])
+        gain = math.exp(ell) if ell > LOG_UNDERFLOW else 0.0
+        return [jac * rate, jac * gain * source]
 
     def underflow(xi: float, y: FloatArray) -> float:
         return float(y[0] - LOG_UNDERFLOW)
