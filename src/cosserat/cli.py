@@ -218,17 +218,33 @@ def cmd_thickness(args: argparse.Namespace) -> None:
         _emit(json.dumps(record, allow_nan=False), args.out)
 
 
-def cmd_reproduce(args: argparse.Namespace) -> None:
-    from .reproduce import reproduce
-
+def _stage_bar():  # type: ignore[no-untyped-def]
     bar = _progress_bar("reproduce")
 
     def progress(stage: str, i: int, n: int) -> None:
         if bar is not None:
             bar(i, n)
 
-    out = reproduce(args.out, progress=progress)
-    print(f"wrote {out}/report.md")
+    return progress
+
+
+def cmd_reproduce(args: argparse.Namespace) -> None:
+    from .reproduce import reproduce
+
+    out = reproduce(args.out, figures=args.only, workers=args.workers, progress=_stage_bar())
+    print(f"wrote {out}/index.html and {out}/report.md")
+
+
+def cmd_figures(args: argparse.Namespace) -> None:
+    from .figures import FIGURES, make_figure
+
+    numbers = args.only or list(FIGURES)
+    bar = _progress_bar("figures")
+    for i, n in enumerate(numbers):
+        make_figure(n, out=args.out)
+        if bar is not None:
+            bar(i + 1, len(numbers))
+    print(f"wrote {len(numbers)} figures to {args.out}")
 
 
 def make_parser() -> argparse.ArgumentParser:
@@ -263,7 +279,21 @@ def make_parser() -> argparse.ArgumentParser:
 
     rp = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
     rp.add_argument("--out", required=True, help="output folder")
+    rp.add_argument(
+        "--only",
+        type=int,
+        nargs="+",
+        choices=range(1, 15),
+        metavar="N",
+        help="only these figures (1-14)",
+    )
+    rp.add_argument("--workers", type=int, default=None, help="worker processes (default: cores)")
     rp.set_defaults(func=cmd_reproduce)
+
+    fp = sub.add_parser("figures", help="write every paper figure (PNG, PDF, CSV)")
+    fp.add_argument("--out", required=True, help="output folder")
+    fp.add_argument("--only", type=int, nargs="+", choices=range(1, 15), metavar="N")
+    fp.set_defaults(func=cmd_figures)
     return parser
 
 

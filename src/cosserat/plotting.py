@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING
@@ -40,6 +41,9 @@ STYLE = {
 def style() -> Iterator[None]:
     """Context manager applying :data:`STYLE`."""
     import matplotlib as mpl
+
+    # fontTools (font subsetting for the PDF) logs harmless warnings about font timestamps
+    logging.getLogger("fontTools").setLevel(logging.ERROR)
 
     with mpl.rc_context(STYLE):
         yield

@@ -152,7 +152,8 @@ def integrate_spin(
         xi, jac = to_xi(tau)
         rate, source = form.spin_rates_scalar(xi, m(xi))
         ell = float(y[0])
-        gain = math.exp(ell) if ell > LOG_UNDERFLOW else 0.0
+        # a trial stage may overshoot; l <= 0 on the solution (w is largest at the wall)
+        gain = math.exp(min(ell, 700.0)) if ell > LOG_UNDERFLOW else 0.0
         return [jac * rate, jac * gain * source]
 
     def underflow(xi: float, y: FloatArray) -> float:

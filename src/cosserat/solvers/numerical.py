@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from scipy.optimize import brentq
 
 from ..constitutive import FloatArray
 from ..errors import ConvergenceError, NoSolutionError
@@ -183,56 +186,101 @@ def solve_couette(
 def _couette_shooting(problem: CouetteFlow, rtol: float, atol: float):  # type: ignore[no-untyped-def]
     """Find mu = m(0) with m(0; mu) = mu. Returns (mu, couple stress, formulation, iterations).
 
-    mu enters only through s_rt, with weight 2(A+1) eps alpha Ri/(Ri + xi)^2, so the map is
-    nearly linear: a secant iteration from the leading-order value m^(0)(0) converges in a few
-    steps. If that start leaves the real domain, a scan over admissible mu looks for one that
-    does not; if none does, the model has no real solution and the error says so.
+    F(mu) = m(0; mu) - mu decreases with mu. mu enters only through s_rt, with weight
+    2(A+1) eps alpha Ri/(Ri + xi)^2, so F is nearly linear and a secant iteration from the
+    leading-order value m^(0)(0) usually converges in a few steps. Trials whose couple stress
+    leaves the real domain (``NoSolutionError``) bound the admissible mu from below; if F < 0
+    all the way to that bound, no mu satisfies the conditions and the model has no real
+    solution, which is reported as such.
     """
+    cache: dict[float, tuple[float, Any, Any] | None] = {}
 
-    def shoot(mu: float):  # type: ignore[no-untyped-def]
-        form = problem.formulation(mu)
-        cs = integrate_couple_stress(
-            form, 1.0, 0.0, problem.outer_wall_couple_stress(mu), rtol * 1e-2, atol * 1e-2
-        )
-        return float(cs(np.array([0.0]))[0]) - mu, cs, form
+    def shoot(mu: float) -> float | None:
+        if mu not in cache:
+            form = problem.formulation(mu)
+            try:
+                cs = integrate_couple_stress(
+                    form,
+                    1.0,
+                    0.0,
+                    problem.outer_wall_couple_stress(mu),
+                    rtol * 1e-2,
+                    atol * 1e-2,
+                )
+            except NoSolutionError:
+                cache[mu] = None
+            else:
+                cache[mu] = (float(cs(np.array([0.0]))[0]) - mu, cs, form)
+        hit = cache[mu]
+        return None if hit is None else hit[0]
 
     mu0 = float(problem.outer_couple_stress(np.array([0.0]))[0])
     tol = max(atol, rtol * abs(mu0))
-    try:
-        g0, cs, form = shoot(mu0)
-    except NoSolutionError as first:
-        bound = problem.slip_constants.b
+
+    def done(mu: float):  # type: ignore[no-untyped-def]
+        _, cs, form = cache[mu]  # type: ignore[misc]
+        return mu, cs, form, len(cache)
+
+    # 1. secant from the leading-order value
+    g0 = shoot(mu0)
+    if g0 is not None:
+        mu1 = mu0 + g0
+        for _ in range(12):
+            if abs(g0) <= tol:  # type: ignore[arg-type]
+                return done(mu0)
+            g1 = shoot(mu1)
+            if g1 is None:
+                break
+            if abs(g1) <= tol:
+                return done(mu1)
+            slope = (g1 - g0) / (mu1 - mu0) if mu1 != mu0 else -1.0  # type: ignore[operator]
+            mu0, g0, mu1 = mu1, g1, mu1 - g1 / (slope if slope < 0.0 else -1.0)
+
+    # 2. bracket, using that F decreases and failures lie below the admissible mu
+    bound = problem.slip_constants.b
+    ok = {mu: v[0] for mu, v in cache.items() if v is not None}
+    if not ok:
         for trial in np.linspace(-2.0 * bound, bound, 13):
-            try:
-                g0, cs, form = shoot(float(trial))
-            except NoSolutionError:
-                continue
-            mu0 = float(trial)
-            break
+            if (g := shoot(float(trial))) is not None:
+                ok[float(trial)] = g
+                break
         else:
             raise NoSolutionError(
                 f"no real solution for {problem.describe()}: for every trial couple stress at "
                 f"the inner cylinder, m(0) in [{-2 * bound:.3g}, {bound:.3g}], the couple-stress "
-                f"balance integrated from the outer cylinder leaves the yield surface inside the "
-                f"gap (first trial: {first})"
-            ) from None
-    mu1 = mu0 + g0
-    last_error: Exception | None = None
-    for iteration in range(1, 60):
-        if abs(g0) <= tol:
-            return mu0, cs, form, iteration
-        try:
-            g1, cs1, form1 = shoot(mu1)
-        except NoSolutionError as exc:
-            last_error = exc
-            mu1 = 0.5 * (mu0 + mu1)
-            continue
-        if abs(g1) <= tol:
-            return mu1, cs1, form1, iteration + 1
-        slope = (g1 - g0) / (mu1 - mu0) if mu1 != mu0 else -1.0
-        mu0, g0, cs, form = mu1, g1, cs1, form1
-        mu1 = mu1 - g1 / slope if slope != 0.0 else mu1 + g1
-    raise ConvergenceError(
-        f"Couette: the couple stress at the inner cylinder did not converge for "
-        f"{problem.describe()}" + (f" (last trial: {last_error})" if last_error else "")
-    )
+                f"balance integrated from the outer cylinder leaves the yield surface inside "
+                f"the gap"
+            )
+    low = [mu for mu, v in cache.items() if v is None]
+    mu_s = min(ok, key=lambda m: abs(ok[m]))
+    g_s = ok[mu_s]
+    step = max(0.05 * bound, abs(g_s))
+    if g_s > 0.0:  # go up to bracket the root
+        mu_b = mu_s + step
+        while (g_b := shoot(mu_b)) is not None and g_b > 0.0:
+            mu_s, mu_b, step = mu_b, mu_b + 2 * step, 2 * step
+        if g_b is None:
+            raise ConvergenceError(f"Couette: cannot bracket m(0) for {problem.describe()}")
+        lo, hi = mu_s, mu_b
+    else:  # go down until F > 0, or until the trials stop being real
+        mu_f = max([m for m in low if m < mu_s], default=None)
+        while True:
+            trial = mu_s - step if mu_f is None else 0.5 * (mu_s + mu_f)
+            g_t = shoot(trial)
+            if g_t is None:
+                mu_f = trial
+            elif g_t > 0.0:
+                lo, hi = trial, mu_s
+                break
+            else:
+                mu_s, step = trial, 2 * step
+            if mu_f is not None and mu_s - mu_f < tol:
+                raise NoSolutionError(
+                    f"no real solution for {problem.describe()}: the couple stress at the "
+                    f"inner cylinder would have to be below m(0) = {mu_s:.6g}, where the "
+                    f"couple-stress balance integrated from the outer cylinder already leaves "
+                    f"the yield surface inside the gap"
+                )
+    root = brentq(lambda mu: float(shoot(mu)), lo, hi, xtol=tol, rtol=4e-16)  # type: ignore[arg-type]
+    shoot(root)
+    return done(root)

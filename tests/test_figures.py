@@ -1,0 +1,131 @@
+"""Every figure's compute() runs and its data shows what the caption says; reproduce runs."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from cosserat.figures import FIGURES, make_figure
+
+_CACHE: dict[int, object] = {}
+
+
+def data_of(number: int):
+    if number not in _CACHE:
+        _CACHE[number] = make_figure(number)[0]
+    return _CACHE[number]
+
+
+def curves(number: int, panel: int = 0):
+    return {c.label: c for c in data_of(number).panels[panel].curves}
+
+
+@pytest.mark.parametrize("number", sorted(FIGURES))
+def test_every_figure_computes_and_plots(number, tmp_path):
+    data, fig = make_figure(number, out=str(tmp_path))
+    _CACHE[number] = data
+    assert data.number == number and data.caption
+    stem = f"fig{number:02d}_{data.key.removeprefix('fig-')}"
+    for ext in ("png", "pdf", "csv"):
+        assert (tmp_path / f"{stem}.{ext}").stat().st_size > 0
+    for panel in data.panels:
+        for c in panel.curves:
+            assert np.all(np.isfinite(c.x)) and np.all(np.isfinite(c.y)), c.label
+    assert fig.axes
+
+
+def test_fig2_fully_rough_is_linear_and_the_layer_thins_with_smoother_walls():
+    u = curves(2, 0)
+    rough = u["fully rough"]
+    fit = np.polyval(np.polyfit(rough.y, rough.x, 1), rough.y)
+    assert np.max(np.abs(rough.x - fit)) < 1e-10  # u against xi: a straight line
+    deviation = [np.max(np.abs(c.x - np.interp(c.y, rough.y, rough.x))) for c in u.values()]
+    assert deviation == sorted(deviation)  # fully rough, 25, 20, 10 deg: ever more curved
+
+
+def test_fig3_shear_localises_at_the_upper_wall_as_delta_falls():
+    mid = [np.interp(0.8, c.y, c.x) for c in curves(3, 0).values()]
+    assert mid[0] > mid[1] > mid[2]
+
+
+def test_fig4_asymptotic_symbols_sit_on_the_numerical_lines():
+    for panel in (0, 1):
+        c = list(curves(4, panel).values())
+        for line, symbols in ((c[0], c[1]), (c[2], c[3])):
+            scale = np.max(np.abs(line.x))
+            assert np.max(np.abs(np.interp(symbols.y, line.y, line.x) - symbols.x)) < 1e-3 * scale
+
+
+def test_fig5_velocity_is_insensitive_to_the_wall_couple_stress():
+    u = list(curves(5, 1).values())
+    for c in u[1:]:
+        assert np.max(np.abs(c.x - u[0].x)) < 1e-2
+    m = list(curves(5, 0).values())
+    b = data_of(5).extra["b"]
+    assert [c.x[0] / b for c in m] == pytest.approx(data_of(5).extra["fractions"], rel=1e-9)
+
+
+def test_fig6_the_layer_thins_as_B_grows():
+    extra = data_of(6).extra
+    deltas = [d for B, d in zip(extra["B"], extra["Delta"], strict=True) if B > 0]
+    assert deltas == sorted(deltas, reverse=True)
+    rough = curves(6, 1)["$B = 0$"]  # omega + du/dxi/2 = 0 for uniform shear
+    assert np.max(np.abs(rough.x)) < 1e-12
+
+
+def test_fig7_asymptotics_agree_to_their_order():
+    for panel in (0, 1):
+        c = list(curves(7, panel).values())
+        for line, symbols in ((c[0], c[1]), (c[2], c[3])):
+            assert np.max(np.abs(np.interp(symbols.y, line.y, line.x) - symbols.x)) < 0.05
+
+
+def test_fig9_localisation_grows_as_the_inner_radius_shrinks():
+    mid = [abs(np.interp(0.2, c.y, c.x)) for c in curves(9, 0).values()]  # Ri = inf, 100, 10, 1
+    assert mid == sorted(mid, reverse=True)
+
+
+@pytest.mark.parametrize("number", [10, 11])
+def test_experiment_figures_decay_from_the_inner_wall(number):
+    for panel in data_of(number).panels:
+        smooth, rough = panel.curves[:2]
+        assert 0.5 < smooth.y[0] <= 1.0 and abs(smooth.y[-1]) < 1e-9
+        assert np.all(np.diff(smooth.y) <= 1e-12)
+        assert np.all(rough.y >= smooth.y - 1e-9)  # the rougher wall shears a thicker layer
+
+
+def test_fig12_existence_bound_and_weak_dependence_on_A():
+    extra = data_of(12).extra
+    assert -1 < extra["A_bound"] < extra["A"][-1]
+    u = list(curves(12, 0).values())
+    assert np.max(np.abs(u[0].x - u[1].x)) < 0.1  # A = 1/3 and 0.9: "not much variation"
+
+
+def test_fig13_the_shape_of_u_is_unchanged_by_K():
+    u = list(curves(13, 0).values())
+    shapes = [c.x / c.x[-1] for c in u]
+    for s in shapes[1:]:
+        assert np.max(np.abs(s - shapes[0])) < 1e-7
+    assert len({round(c.x[-1], 6) for c in u}) == len(u)  # the slip differs
+
+
+def test_fig14_limits():
+    table = data_of(14).extra["table"]
+    for name, row in table.items():
+        if name.startswith("a:"):
+            assert row["Delta"][-1] == pytest.approx(17.6688, abs=3e-3), name
+        elif "identical" not in name:
+            assert row["Delta"][-1] / row["Delta_asymptotic"][-1] == pytest.approx(1, abs=2e-3)
+
+
+def test_reproduce_smoke(tmp_path):
+    from cosserat.reproduce import reproduce
+
+    out = reproduce(tmp_path, figures=[1, 2, 13], workers=1)
+    report = (out / "report.md").read_text()
+    assert "1.2748" in report and "25.5086" in report
+    assert (out / "index.html").read_text().count("<figure>") == 3
+    names = json.loads((out / "figures.json").read_text())
+    assert set(names) == {"1", "2", "13"}
