@@ -129,3 +129,19 @@ def test_reproduce_smoke(tmp_path):
     assert (out / "index.html").read_text().count("<figure>") == 3
     names = json.loads((out / "figures.json").read_text())
     assert set(names) == {"1", "2", "13"}
+
+
+def test_measured_profile_overlay(tmp_path):
+    from cosserat.analysis.fitting import model_at, model_profile
+    from cosserat.experiments import PRESETS
+    from cosserat.measurements import MeasuredProfile
+
+    truth = PRESETS["glass"].problem(delta=23.0)
+    d = np.linspace(0.5, 8.0, 10)
+    meas = MeasuredProfile(
+        d, model_at(model_profile(truth), d), None, {"label": "test points", "synthetic": "true"}
+    )
+    data, _ = make_figure(11, data={"glass": meas})
+    overlay = data.panels[0].curves[-1]
+    assert overlay.label == "test points (synthetic)"
+    np.testing.assert_allclose(overlay.x, d * truth.eps)

@@ -237,14 +237,168 @@ def cmd_reproduce(args: argparse.Namespace) -> None:
 
 def cmd_figures(args: argparse.Namespace) -> None:
     from .figures import FIGURES, make_figure
+    from .measurements import read_profile
 
+    data = {}
+    for item in args.data or []:
+        key, sep, path = item.partition("=")
+        if not sep or key not in ("mustard", "poppy", "glass"):
+            raise UsageError(f"--data takes mustard=FILE, poppy=FILE or glass=FILE; got {item!r}")
+        data[key] = read_profile(path)
     numbers = args.only or list(FIGURES)
     bar = _progress_bar("figures")
     for i, n in enumerate(numbers):
-        make_figure(n, out=args.out)
+        make_figure(n, out=args.out, data=data)
         if bar is not None:
             bar(i + 1, len(numbers))
     print(f"wrote {len(numbers)} figures to {args.out}")
+
+
+def _add_data_model(p: argparse.ArgumentParser) -> None:
+    """Options of compare/fit: the data file and the cell (None = take from file/preset)."""
+    p.add_argument("data", help="measured profile CSV (see docs/measurements.md)")
+    p.add_argument(
+        "--preset",
+        choices=("mustard", "poppy", "glass"),
+        default=None,
+        help="the paper's experiments: phi, eps, Ri, K (L = 10, A = 1/3)",
+    )
+    p.add_argument("--geometry", choices=tuple(GEOMETRIES), default=None)
+    p.add_argument("--eps", type=float, default=None, help="d_p/H (default: file header)")
+    p.add_argument("--Ri", type=float, default=None, help="R_i/H (Couette)")
+    p.add_argument("--B", type=float, default=None, help="gravity parameter (plane)")
+    p.add_argument("--nu", type=float, default=None)
+    p.add_argument("--phi", type=float, default=None)
+    wall = p.add_mutually_exclusive_group()
+    wall.add_argument("--delta", type=_angle_or_rough, default=None)
+    wall.add_argument("--fully-rough", action="store_true")
+    p.add_argument("--delta-lower", type=_angle_or_rough, default=None)
+    p.add_argument("--K-lower", type=float, default=None)
+    p.add_argument("--L", type=float, default=None)
+    p.add_argument("--A", type=float, default=None)
+    p.add_argument("--K", type=float, default=None)
+    p.add_argument("--m-wall", type=float, default=None)
+    p.add_argument("--method", choices=METHODS, default="numerical")
+    p.add_argument("--format", choices=("json", "text"), default="text")
+    p.add_argument("--plot", default=None, help="save a plot (PNG/PDF)")
+    p.add_argument("--out", default=None)
+
+
+def _data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+    """The measured profile and the model problem: command line > preset > file header >
+    the paper's defaults."""
+    from .experiments import PRESETS
+    from .measurements import read_profile
+
+    measured = read_profile(args.data)
+    header = measured.meta
+    preset = PRESETS[args.preset] if args.preset else None
+
+    def pick(
+        name: str,
+        header_key: str | None = None,
+        preset_attr: str | None = None,
+        default: object = None,
+    ) -> object:
+        value = getattr(args, name)
+        if value is not None:
+            return value
+        if preset is not None and preset_attr is not None:
+            return getattr(preset, preset_attr)
+        if header_key is not None and header_key in header:
+            return header[header_key]
+        return default
+
+    geometry = pick("geometry", "geometry", None, None)
+    if geometry is None:
+        geometry = "couette" if preset is not None else None
+    if geometry not in GEOMETRIES:
+        raise UsageError(
+            "give --geometry plane|couette (or a 'geometry:' header line, or --preset)"
+        )
+    eps = pick("eps", "eps", "eps")
+    if eps is None:
+        raise UsageError("give --eps (or an 'eps:' header line, or --preset)")
+    ns = argparse.Namespace(
+        geometry=geometry,
+        phi=pick("phi", None, "phi", PAPER_DEFAULTS["phi"]),
+        L=pick("L", None, "L", PAPER_DEFAULTS["L"]),
+        A=pick("A", None, "A", PAPER_DEFAULTS["A"]),
+        K=pick("K", None, "K", PAPER_DEFAULTS["K"]),
+        delta=args.delta if args.delta is not None else PAPER_DEFAULTS["delta"],
+        fully_rough=args.fully_rough,
+        Ri=pick("Ri", "ri", "Ri", 1.0),
+        B=pick("B", "b", None, 0.0),
+        nu=pick("nu", "nu", None, 1.0),
+        delta_lower=args.delta_lower,
+        K_lower=args.K_lower,
+        m_wall=args.m_wall,
+    )
+    if args.delta is None and not args.fully_rough and preset is not None:
+        ns.delta = preset.material.fully_rough_delta - 2.0  # the paper's solid lines
+    return measured, build_problem(ns, float(eps))  # type: ignore[arg-type]
+
+
+def cmd_compare(args: argparse.Namespace) -> None:
+    from .analysis.fitting import compare
+
+    measured, problem = _data_problem(args)
+    comparison = compare(problem, measured, method=args.method)
+    if args.plot:
+        from .plotting import comparison_plot
+
+        comparison_plot(comparison, problem.describe(), residual_panel=True).savefig(args.plot)
+    if args.format == "json":
+        _emit(json.dumps(comparison.to_dict(), allow_nan=False), args.out)
+    else:
+        lines = [
+            problem.describe(),
+            f"points: {measured.n}",
+            f"rms(data - model): {comparison.rms:.4g}",
+        ]
+        if comparison.chi2 is not None:
+            lines.append(f"chi-square: {comparison.chi2:.4g} for {measured.n} points")
+        lines.append("distance_d,u_over_uw,model,residual")
+        lines += [
+            f"{d:g},{u:g},{m:.6g},{r:.3g}"
+            for d, u, m, r in zip(
+                measured.distance_d,
+                measured.u_over_uw,
+                comparison.model,
+                comparison.residuals,
+                strict=True,
+            )
+        ]
+        _emit("\n".join(lines), args.out)
+
+
+def cmd_fit(args: argparse.Namespace) -> None:
+    from .analysis.fitting import fit
+
+    measured, problem = _data_problem(args)
+    free = [f.strip() for f in args.free.split(",") if f.strip()]
+    bar = (lambda msg: print(f"fit: {msg}", file=sys.stderr)) if sys.stderr.isatty() else None
+    result = fit(measured, problem, free=free, method=args.method, progress=bar)
+    if args.plot:
+        from .plotting import comparison_plot
+
+        comparison_plot(
+            result.comparison, "fit: " + result.problem.describe(), residual_panel=True
+        ).savefig(args.plot)
+    if args.format == "json":
+        _emit(json.dumps(result.to_dict(), allow_nan=False), args.out)
+    else:
+        lines = [f"fit of {', '.join(free)} to {measured.n} points ({result.n_solves} solves)"]
+        for name, par in result.parameters.items():
+            interval = (
+                ""
+                if par.interval is None
+                else (f"  interval [{par.interval[0]:.4g}, {par.interval[1]:.4g}]")
+            )
+            lines.append(f"  {name} = {par.value:.5g} +- {par.stderr:.2g}{interval}")
+        lines.append(f"  rms = {result.rms:.4g}, reduced chi-square = {result.reduced_chi2:.3g}")
+        lines += [f"warning: {w}" for w in result.warnings]
+        _emit("\n".join(lines), args.out)
 
 
 def make_parser() -> argparse.ArgumentParser:
@@ -290,9 +444,26 @@ def make_parser() -> argparse.ArgumentParser:
     rp.add_argument("--workers", type=int, default=None, help="worker processes (default: cores)")
     rp.set_defaults(func=cmd_reproduce)
 
+    cp = sub.add_parser("compare", help="the model beside a measured velocity profile")
+    _add_data_model(cp)
+    cp.set_defaults(func=cmd_compare)
+
+    fitp = sub.add_parser("fit", help="fit delta, K (and L, phi, A) to a measured profile")
+    _add_data_model(fitp)
+    fitp.add_argument(
+        "--free", default="delta,K", help="comma-separated free parameters among delta,K,L,phi,A"
+    )
+    fitp.set_defaults(func=cmd_fit)
+
     fp = sub.add_parser("figures", help="write every paper figure (PNG, PDF, CSV)")
     fp.add_argument("--out", required=True, help="output folder")
     fp.add_argument("--only", type=int, nargs="+", choices=range(1, 15), metavar="N")
+    fp.add_argument(
+        "--data",
+        nargs="+",
+        metavar="KEY=FILE",
+        help="overlay measured profiles on figures 10-11 (mustard, poppy, glass)",
+    )
     fp.set_defaults(func=cmd_figures)
     return parser
 

@@ -82,3 +82,60 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
         fig.suptitle(profile.problem.describe(), fontsize=7)
         fig.tight_layout()
     return fig
+
+
+def comparison_plot(comparison, title: str = "", residual_panel: bool = False):  # type: ignore[no-untyped-def]
+    """Data beside the model: linear and log velocity axes (the log axis shows the
+    exponential tail), and optionally the residuals."""
+    import numpy as np
+
+    from .analysis.fitting import model_at
+
+    meas = comparison.measured
+    d_max = float(meas.distance_d.max()) * 1.05 + 1e-9
+    eps = comparison.profile.problem.eps
+    d_fine = np.linspace(0.0, min(d_max, 1.0 / eps), 400)
+    model = model_at(comparison.profile, d_fine)
+    ncols = 3 if residual_panel else 2
+    fig, axes = new_figure(1, ncols, width=3.3 * ncols, height=3.0)
+    with style():
+        for k, ax in enumerate(axes[0, :2]):
+            ax.plot(d_fine, model, "k-", label="model")
+            if meas.u_err is not None:
+                ax.errorbar(
+                    meas.distance_d,
+                    meas.u_over_uw,
+                    yerr=meas.u_err,
+                    fmt="o",
+                    color="k",
+                    markerfacecolor="none",
+                    label=meas.label,
+                    capsize=2,
+                )
+            else:
+                ax.plot(
+                    meas.distance_d,
+                    meas.u_over_uw,
+                    "o",
+                    color="k",
+                    markerfacecolor="none",
+                    label=meas.label,
+                )
+            ax.set_xlabel(r"distance from the moving wall [$d_p$]")
+            ax.set_ylabel(r"$u/u_w$")
+            if k == 1:
+                positive = meas.u_over_uw[meas.u_over_uw > 0]
+                floor = max(float(positive.min()) / 3 if positive.size else 1e-4, 1e-8)
+                ax.set_yscale("log")
+                ax.set_ylim(floor, 1.5)
+            ax.legend()
+        if residual_panel:
+            ax = axes[0, 2]
+            ax.axhline(0.0, color="0.6", linewidth=0.8)
+            ax.plot(meas.distance_d, comparison.residuals, "o", color="k", markerfacecolor="none")
+            ax.set_xlabel(r"distance from the moving wall [$d_p$]")
+            ax.set_ylabel("data - model")
+        if title:
+            fig.suptitle(title, fontsize=8)
+        fig.tight_layout()
+    return fig

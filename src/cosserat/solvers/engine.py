@@ -29,9 +29,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
 
-from ..constitutive import FloatArray, radicand_scale
+from ..constitutive import FloatArray, radicand, radicand_scale
 from ..errors import ConvergenceError, NoSolutionError
 from ..problems.base import Formulation
+from .radau_scalar import ScalarSolution, radau_scalar
 
 # exp(l) underflows below this; the spin is then exactly zero in double precision.
 LOG_UNDERFLOW = -745.0
@@ -39,9 +40,9 @@ LOG_UNDERFLOW = -745.0
 
 @dataclass(frozen=True)
 class CoupleStress:
-    """Dense couple stress m(xi) on [min(start, end), max(start, end)] (Radau dense output)."""
+    """Dense couple stress m(xi) on [min(start, end), max(start, end)]."""
 
-    sol: OdeSolution
+    sol: ScalarSolution
     xi_start: float
     xi_end: float
     nfev: int
@@ -50,7 +51,7 @@ class CoupleStress:
 
     def __call__(self, xi: FloatArray) -> FloatArray:
         x = np.asarray(xi, dtype=float)
-        return np.asarray(self.sol(x), dtype=float)[0] if x.ndim else float(self.sol(x)[0])
+        return np.asarray(self.sol(x), dtype=float) if x.ndim else float(self.sol(x))
 
 
 def integrate_couple_stress(
@@ -61,40 +62,34 @@ def integrate_couple_stress(
     rtol: float,
     atol: float,
 ) -> CoupleStress:
-    """Pass 1: the couple-stress balance from ``xi_start`` to ``xi_end`` (stable direction)."""
+    """Pass 1: the couple-stress balance from ``xi_start`` to ``xi_end`` (stable direction).
+
+    Radau IIA (order 5) specialised to a scalar equation (:mod:`.radau_scalar`); a terminal
+    event on the yield radicand S stops it where the solution leaves the real domain.
+    """
     material = form.material
+    scale = float(radicand_scale(1.0, material))
 
-    def rhs(xi: float, y: FloatArray) -> list[float]:
-        return [form.dm_dxi_scalar(xi, float(y[0]))]
+    def yield_margin(xi: float, m: float) -> float:
+        syx = float(form.sigma_yx(xi, m))
+        sc = float(form.sigma_c(xi))
+        return float(radicand(syx, sc, m, material)) / (scale * sc * sc)
 
-    def yield_margin(xi: float, y: FloatArray) -> float:
-        st = form.stresses(xi, y[0])
-        return float(st.radicand) / float(radicand_scale(st.sigma_c, material))
-
-    yield_margin.terminal = True  # type: ignore[attr-defined]
-    yield_margin.direction = -1  # type: ignore[attr-defined]
-
-    res = solve_ivp(
-        rhs,
-        (xi_start, xi_end),
-        [m_start],
-        method="Radau",
-        rtol=rtol,
-        atol=atol,
-        dense_output=True,
-        events=yield_margin,
-    )
-    if res.status == 1:
-        xi_r = float(res.t_events[0][0])
-        m_r = float(res.y_events[0][0][0])
+    try:
+        sol = radau_scalar(
+            form.dm_dxi_scalar, xi_start, xi_end, m_start, rtol, atol, event=yield_margin
+        )
+    except RuntimeError as exc:
+        raise ConvergenceError(f"couple-stress integration failed: {exc}") from None
+    if sol.status == 1:
+        xi_r = float(sol.t_event)  # type: ignore[arg-type]
+        m_r = float(sol.y[-1])
         raise NoSolutionError(
             f"no real solution: the couple stress reaches the yield bound at xi = {xi_r:.6g} "
             f"(m = {m_r:.6g}), beyond which the second shear stress of eqn-nd_sigxy is complex; "
             f"the couple-stress balance cannot be continued to the wall at xi = {xi_end:g}"
         )
-    if not res.success:
-        raise ConvergenceError(f"couple-stress integration failed: {res.message}")
-    return CoupleStress(res.sol, xi_start, xi_end, res.nfev, res.njev, len(res.t) - 1)
+    return CoupleStress(sol, xi_start, xi_end, sol.nfev, sol.njev, sol.steps)
 
 
 @dataclass(frozen=True)

@@ -204,8 +204,8 @@ def _couette_shooting(problem: CouetteFlow, rtol: float, atol: float):  # type: 
                     1.0,
                     0.0,
                     problem.outer_wall_couple_stress(mu),
-                    rtol * 1e-2,
-                    atol * 1e-2,
+                    rtol * 0.1,
+                    atol * 0.1,
                 )
             except NoSolutionError:
                 cache[mu] = None

@@ -1,0 +1,535 @@
+"""Compare the model with a measured velocity profile, and fit its unknown parameters.
+
+The fit is a bounded nonlinear least-squares problem (SciPy ``least_squares``, trust-region
+reflective) on the residuals ``(u_model - u_data)/sigma``, sigma the point's uncertainty (or 1).
+Standard errors and correlations come from the Jacobian at the optimum; with uncertainties given
+they are taken as absolute, otherwise the covariance is scaled by the residual variance. Because
+the velocity depends strongly and non-linearly on delta near tan(delta) = sin(phi), delta also
+gets a profile-likelihood interval (the range where the refitted chi-square rises by less than
+one residual variance), which is one-sided when it reaches the fully rough bound.
+
+Parameters are fitted in bounded internal coordinates: ``t = tan(delta)/sin(phi)`` in
+(tan 1 deg / sin phi, 1] for delta (so the fully rough wall t = 1 is a bound, whatever phi is),
+and K, L, phi, A directly.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq, least_squares
+
+from ..constitutive import FloatArray
+from ..errors import NoSolutionError, ParameterError
+from ..measurements import MeasuredProfile
+from ..parameters import FULLY_ROUGH, Material, Wall
+from ..problems import CouetteFlow, Problem
+from ..profile import Profile
+
+FREE_PARAMETERS = ("delta", "K", "L", "phi", "A")
+BOUNDS = {"K": (0.0, 10.0), "L": (0.5, 100.0), "phi": (10.0, 60.0), "A": (-0.95, 0.95)}
+NO_SOLUTION_RESIDUAL = 1e3
+
+
+def moving_wall(problem: Problem) -> tuple[float, float]:
+    """(xi, u) of the moving wall: the upper plate (1, 1) or the inner cylinder (0, -1)."""
+    return (0.0, -1.0) if isinstance(problem, CouetteFlow) else (1.0, 1.0)
+
+
+def model_profile(problem: Problem, method: str = "numerical", **options: Any) -> Profile:
+    from ..solvers import solve
+
+    return solve(problem, method=method, check=False, points=3, **options)
+
+
+def model_at(profile: Profile, distance_d: FloatArray) -> FloatArray:
+    """u / u_wall of ``profile`` at distances from the moving wall in grain diameters [-]."""
+    xw, uw = moving_wall(profile.problem)
+    d = np.asarray(distance_d, dtype=float) * profile.problem.eps
+    xi = d if xw == 0.0 else 1.0 - d
+    return profile.evaluate(np.clip(xi, 0.0, 1.0)).u / uw
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """The model beside a measured profile."""
+
+    measured: MeasuredProfile
+    profile: Profile
+    model: FloatArray
+    residuals: FloatArray
+    rms: float
+    chi2: float | None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "problem": self.profile.problem.parameters(),
+            "distance_d": self.measured.distance_d.tolist(),
+            "u_over_uw": self.measured.u_over_uw.tolist(),
+            "model": self.model.tolist(),
+            "residuals": self.residuals.tolist(),
+            "rms": self.rms,
+            "chi2": self.chi2,
+            "n_points": self.measured.n,
+        }
+
+
+def compare(
+    problem: Problem, measured: MeasuredProfile, method: str = "numerical", **options: Any
+) -> Comparison:
+    """Model minus data at the measured points; RMS and (with uncertainties) chi-square."""
+    measured.xi(problem.eps, moving_wall(problem)[0])  # checks the points lie in the gap
+    prof = model_profile(problem, method, **options)
+    model = model_at(prof, measured.distance_d)
+    res = measured.u_over_uw - model
+    chi2 = None if measured.u_err is None else float(np.sum((res / measured.u_err) ** 2))
+    return Comparison(measured, prof, model, res, float(np.sqrt(np.mean(res**2))), chi2)
+
+
+# --------------------------------------------------------------------------- parameters
+def _moving(problem: Problem) -> Wall:
+    return problem.wall if isinstance(problem, CouetteFlow) else problem.upper
+
+
+def natural_value(problem: Problem, name: str) -> float:
+    """Current value of a fittable parameter (delta in degrees, fully rough as its angle)."""
+    mat = problem.material
+    if name == "delta":
+        wall = _moving(problem)
+        return mat.fully_rough_delta if wall.is_fully_rough else float(wall.delta)
+    if name == "K":
+        return _moving(problem).K
+    return float(getattr(mat, name))
+
+
+def with_values(problem: Problem, values: dict[str, float]) -> Problem:
+    """``problem`` with the moving wall's delta, K and the material's L, phi, A replaced.
+
+    delta = "fully-rough" when tan(delta) reaches sin(phi). Between identical plane walls both
+    walls change together.
+    """
+    mat = problem.material
+    material = Material(
+        values.get("phi", mat.phi), L=values.get("L", mat.L), A=values.get("A", mat.A)
+    )
+    old = _moving(problem)
+    delta: float | str = old.delta
+    if "delta" in values:
+        tan_d = math.tan(math.radians(values["delta"]))
+        delta = FULLY_ROUGH if tan_d >= material.sin_phi * (1 - 1e-12) else values["delta"]
+    elif not old.is_fully_rough and math.tan(math.radians(float(old.delta))) > material.sin_phi:
+        delta = FULLY_ROUGH  # phi changed below the wall's friction: clamp
+    wall = Wall(delta, values.get("K", old.K))
+    if isinstance(problem, CouetteFlow):
+        return replace(problem, material=material, wall=wall)
+    lower = wall if problem.lower_wall == problem.upper else problem.lower_wall
+    return replace(problem, material=material, upper=wall, lower=lower)
+
+
+@dataclass
+class _Coordinates:
+    """Map between the free natural parameters and bounded internal coordinates."""
+
+    names: list[str]
+    base: Problem
+
+    def phi_of(self, theta: FloatArray) -> float:
+        return (
+            float(theta[self.names.index("phi")])
+            if "phi" in self.names
+            else (self.base.material.phi)
+        )
+
+    def t_bounds(self) -> tuple[float, float]:
+        return 1e-6, 1.0
+
+    def to_natural(self, theta: FloatArray) -> dict[str, float]:
+        out = {}
+        phi = self.phi_of(theta)
+        for name, value in zip(self.names, theta, strict=True):
+            if name == "delta":
+                out[name] = math.degrees(math.atan(value * math.sin(math.radians(phi))))
+            else:
+                out[name] = float(value)
+        return out
+
+    def to_internal(self, natural: dict[str, float]) -> FloatArray:
+        phi = natural.get("phi", self.base.material.phi)
+        out = []
+        for name in self.names:
+            if name == "delta":
+                t = math.tan(math.radians(natural[name])) / math.sin(math.radians(phi))
+                out.append(min(t, 1.0))
+            else:
+                out.append(natural[name])
+        return np.asarray(out, dtype=float)
+
+    def bounds(self) -> tuple[FloatArray, FloatArray]:
+        lo, hi = [], []
+        for name in self.names:
+            b = (max(1e-6, math.tan(math.radians(1.0))), 1.0) if name == "delta" else BOUNDS[name]
+            lo.append(b[0])
+            hi.append(b[1])
+        return np.asarray(lo), np.asarray(hi)
+
+
+# --------------------------------------------------------------------------- fit
+@dataclass(frozen=True)
+class FitParameter:
+    value: float
+    stderr: float
+    interval: tuple[float, float] | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "value": self.value,
+            "stderr": self.stderr,
+            "interval": None if self.interval is None else list(self.interval),
+        }
+
+
+@dataclass
+class FitResult:
+    """Best-fit parameters with uncertainties (angles in degrees)."""
+
+    parameters: dict[str, FitParameter]
+    problem: Problem
+    comparison: Comparison
+    chi2: float
+    reduced_chi2: float
+    n_points: int
+    n_solves: int
+    covariance: FloatArray
+    correlation: FloatArray
+    warnings: list[str] = field(default_factory=list)
+    absolute_sigma: bool = False
+
+    @property
+    def rms(self) -> float:
+        return self.comparison.rms
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "parameters": {k: v.to_dict() for k, v in self.parameters.items()},
+            "rms": self.rms,
+            "chi2": self.chi2,
+            "reduced_chi2": self.reduced_chi2,
+            "n_points": self.n_points,
+            "n_solves": self.n_solves,
+            "warnings": list(self.warnings),
+            "correlation": {
+                "names": list(self.parameters),
+                "matrix": np.round(self.correlation, 6).tolist(),
+            },
+            "problem": self.problem.parameters(),
+        }
+
+
+class _Objective:
+    """Residuals as a function of internal coordinates, counting the model solves."""
+
+    def __init__(
+        self,
+        measured: MeasuredProfile,
+        base: Problem,
+        coords: _Coordinates,
+        fixed: dict[str, float],
+        method: str,
+        options: dict[str, Any],
+    ):
+        self.measured, self.base, self.coords = measured, base, coords
+        self.fixed, self.method, self.options = fixed, method, options
+        self.sigma = measured.u_err if measured.u_err is not None else np.ones(measured.n)
+        self.solves = 0
+
+    def problem(self, theta: FloatArray) -> Problem:
+        return with_values(self.base, {**self.fixed, **self.coords.to_natural(theta)})
+
+    def __call__(self, theta: FloatArray) -> FloatArray:
+        self.solves += 1
+        try:
+            prof = model_profile(self.problem(theta), self.method, **self.options)
+        except (NoSolutionError, ParameterError):
+            return np.full(self.measured.n, NO_SOLUTION_RESIDUAL)
+        return (model_at(prof, self.measured.distance_d) - self.measured.u_over_uw) / self.sigma
+
+
+def _least_squares(obj: _Objective, theta0: FloatArray) -> Any:
+    lo, hi = obj.coords.bounds()
+    theta0 = np.clip(theta0, lo, hi)
+    return least_squares(
+        obj,
+        theta0,
+        bounds=(lo, hi),
+        method="trf",
+        x_scale="jac",
+        diff_step=1e-4,  # relative; the model is solved to rtol = 1e-8
+        xtol=1e-8,
+        ftol=1e-10,
+        gtol=1e-10,
+        max_nfev=200,
+    )
+
+
+def fit(
+    measured: MeasuredProfile,
+    problem: Problem,
+    free: Sequence[str] = ("delta", "K"),
+    *,
+    method: str = "numerical",
+    interval_for: Sequence[str] = ("delta",),
+    progress: Callable[[str], None] | None = None,
+    **options: Any,
+) -> FitResult:
+    """Fit the ``free`` parameters of ``problem`` to ``measured``.
+
+    Parameters
+    ----------
+    measured : MeasuredProfile
+    problem : PlaneShear or CouetteFlow
+        The cell and the starting values; parameters not in ``free`` stay fixed.
+    free : sequence of {"delta", "K", "L", "phi", "A"}
+        delta is the moving wall's friction angle [deg], K its slip coefficient.
+    method : str
+        Solution route for the model ("numerical"; "closed-form" for gravity-free plane shear).
+    interval_for : sequence of str
+        Parameters that also get a profile-likelihood interval (default: delta).
+    """
+    names = list(dict.fromkeys(free))
+    bad = [n for n in names if n not in FREE_PARAMETERS]
+    if bad or not names:
+        raise ParameterError(
+            f"free parameters must be among {', '.join(FREE_PARAMETERS)}; got {', '.join(free)}"
+        )
+    if measured.n <= len(names):
+        raise ParameterError(f"{measured.n} points cannot determine {len(names)} parameters")
+    measured.xi(problem.eps, moving_wall(problem)[0])
+    if "rtol" not in options and method == "numerical":
+        options["rtol"] = 1e-8  # well below the finite-difference steps (1e-4 of the range)
+    coords = _Coordinates(names, problem)
+    start = {n: natural_value(problem, n) for n in names}
+    obj = _Objective(measured, problem, coords, {}, method, options)
+    res = _least_squares(obj, coords.to_internal(start))
+    best_problem = obj.problem(res.x)
+    comparison = compare(best_problem, measured, method, **options)
+    obj.solves += 1
+
+    n, p = measured.n, len(names)
+    chi2 = float(np.sum(res.fun**2))
+    dof = max(n - p, 1)
+    absolute = measured.u_err is not None
+    scale = 1.0 if absolute else chi2 / dof
+    J = _jacobian(obj, res.x, res.fun)
+    warnings: list[str] = []
+    _, sv, vt = np.linalg.svd(J, full_matrices=False)
+    if sv[-1] <= 1e-10 * sv[0]:
+        cov_internal = np.full((p, p), np.nan)
+        warnings.append(
+            "the Jacobian is singular: the free parameters are not identifiable "
+            "from these data together"
+        )
+    else:
+        cov_internal = (vt.T / sv**2) @ vt * scale
+    # delta method to natural units
+    grad = np.zeros((p, p))
+    nat0 = coords.to_natural(res.x)
+    for j in range(p):
+        h = 1e-7 * max(1.0, abs(res.x[j]))
+        th = res.x.copy()
+        th[j] -= h
+        nat1 = coords.to_natural(th)
+        grad[:, j] = [(nat0[k] - nat1[k]) / h for k in names]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cov = grad @ cov_internal @ grad.T
+        stderr = np.sqrt(np.diag(cov))
+        corr = cov / np.outer(stderr, stderr)
+    params = {k: FitParameter(nat0[k], float(stderr[i])) for i, k in enumerate(names)}
+
+    # profile-likelihood intervals
+    for name in interval_for:
+        if name not in names:
+            continue
+        if progress:
+            progress(f"profile likelihood for {name}")
+        lo_hi = _profile_interval(
+            measured, problem, names, name, nat0, chi2, scale, method, options, obj
+        )
+        params[name] = replace(params[name], interval=lo_hi)
+
+    warnings += _diagnose(
+        names, params, corr, measured, problem, chi2, dof, absolute, res.x, coords, comparison
+    )
+    return FitResult(
+        params,
+        best_problem,
+        comparison,
+        chi2,
+        chi2 / dof,
+        n,
+        obj.solves,
+        cov,
+        corr,
+        warnings,
+        absolute,
+    )
+
+
+def _jacobian(obj: _Objective, theta: FloatArray, f0: FloatArray) -> FloatArray:
+    """Forward differences at the optimum, stepping away from any bound (a column per
+    parameter); least_squares' own Jacobian is scaled at active bounds."""
+    lo, hi = obj.coords.bounds()
+    J = np.empty((f0.size, theta.size))
+    for j in range(theta.size):
+        h = 1e-4 * (hi[j] - lo[j])  # >> the model's tolerance, << the parameter's range
+        if theta[j] + h > hi[j]:
+            h = -h
+        th = theta.copy()
+        th[j] += h
+        J[:, j] = (obj(th) - f0) / h
+    return J
+
+
+def _profile_interval(
+    measured: MeasuredProfile,
+    problem: Problem,
+    names: list[str],
+    name: str,
+    best: dict[str, float],
+    chi2_min: float,
+    scale: float,
+    method: str,
+    options: dict[str, Any],
+    counter: _Objective,
+) -> tuple[float, float]:
+    """Where the refitted chi-square rises by ``scale`` (one residual variance) [units of name]."""
+    others = [n for n in names if n != name]
+    phi = best.get("phi", problem.material.phi)
+    upper_bound = (
+        math.degrees(math.atan(math.sin(math.radians(phi)))) if name == "delta" else BOUNDS[name][1]
+    )
+    lower_bound = 1.0 if name == "delta" else BOUNDS[name][0]
+    start = {k: best[k] for k in others}
+    cache: dict[float, float] = {}
+
+    def excess(value: float) -> float:
+        """Refitted chi-square rise over one residual variance, minus 1 (deterministic: every
+        refit starts from the best fit)."""
+        if value in cache:
+            return cache[value]
+        if others:
+            coords = _Coordinates(others, problem)
+            obj = _Objective(measured, problem, coords, {name: value}, method, options)
+            res = _least_squares(obj, coords.to_internal(start))
+            chi2 = float(np.sum(res.fun**2))
+        else:
+            coords = _Coordinates([name], problem)
+            obj = _Objective(measured, problem, coords, {}, method, options)
+            chi2 = float(np.sum(obj(coords.to_internal({name: value})) ** 2))
+        counter.solves += obj.solves
+        cache[value] = (chi2 - chi2_min) / scale - 1.0
+        return cache[value]
+
+    center = best[name]
+    ends = []
+    for direction, limit in ((-1.0, lower_bound), (1.0, upper_bound)):
+        step = max(abs(center) * 1e-3, 0.05 if name == "delta" else 1e-3)
+        inner = center
+        found = None
+        while step < 1e3:
+            trial = center + direction * step
+            if (trial - limit) * direction >= 0:
+                if excess(limit) < 0:
+                    found = limit  # the interval reaches the bound: one-sided
+                    break
+                trial = limit
+            if excess(trial) > 0:
+                if excess(inner) < 0:
+                    found = brentq(excess, *sorted((inner, trial)), xtol=1e-4 * max(1, abs(center)))
+                else:  # a refit found a lower minimum than the fit: keep the bracket end
+                    found = trial
+                break
+            inner, step = trial, step * 2
+        ends.append(found if found is not None else limit)
+    return float(ends[0]), float(ends[1])
+
+
+def _diagnose(
+    names: list[str],
+    params: dict[str, FitParameter],
+    corr: FloatArray,
+    measured: MeasuredProfile,
+    problem: Problem,
+    chi2: float,
+    dof: int,
+    absolute: bool,
+    theta: FloatArray,
+    coords: _Coordinates,
+    comparison: Comparison,
+) -> list[str]:
+    out = []
+    lo, hi = coords.bounds()
+    for i, name in enumerate(names):
+        margin = 1e-6 * (hi[i] - lo[i])
+        if theta[i] >= hi[i] - margin or theta[i] <= lo[i] + margin:
+            what = "the fully rough bound tan(delta) = sin(phi)" if name == "delta" else "a bound"
+            out.append(
+                f"{name} is at {what}: its standard error is not meaningful; use the "
+                f"profile-likelihood interval"
+            )
+        p = params[name]
+        if not np.isfinite(p.stderr) or p.stderr > max(abs(p.value), 1e-3):
+            out.append(
+                f"{name} is not identifiable from these data (standard error "
+                f"{p.stderr:.3g} against value {p.value:.3g})"
+            )
+    for i in range(len(names)):
+        for j in range(i + 1, len(names)):
+            if np.isfinite(corr[i, j]) and abs(corr[i, j]) > 0.95:
+                out.append(
+                    f"{names[i]} and {names[j]} are strongly correlated "
+                    f"(r = {corr[i, j]:.3f}): the data constrain mainly a combination"
+                )
+    if "K" in names and measured.distance_d.min() > 2.0:
+        out.append(
+            f"no point within 2 grain diameters of the moving wall (nearest: "
+            f"{measured.distance_d.min():.3g}): K, the wall slip, is constrained only "
+            f"indirectly"
+        )
+    reduced = chi2 / dof
+    if absolute and reduced > 3.0:
+        out.append(
+            f"poor fit: reduced chi-square = {reduced:.3g} >> 1; the model does not "
+            f"describe these data within their uncertainties, and the parameter errors "
+            f"are not meaningful"
+        )
+    signs = np.sign(comparison.residuals[np.argsort(measured.distance_d)])
+    signs = signs[signs != 0]
+    if signs.size >= 10:
+        runs = 1 + int(np.sum(signs[1:] != signs[:-1]))
+        n_pos, n_neg = int(np.sum(signs > 0)), int(np.sum(signs < 0))
+        if n_pos and n_neg:
+            mean = 1 + 2 * n_pos * n_neg / (n_pos + n_neg)
+            var = (mean - 1) * (mean - 2) / (n_pos + n_neg - 1)
+            z = (runs - mean) / math.sqrt(max(var, 1e-12))
+            if z < -3.0:
+                out.append(
+                    f"systematic misfit: the residuals change sign only {runs} times "
+                    f"(expected about {mean:.0f} for random scatter; z = {z:.1f})"
+                )
+    return out
+
+
+__all__ = [
+    "Comparison",
+    "FitParameter",
+    "FitResult",
+    "compare",
+    "fit",
+    "model_at",
+    "moving_wall",
+    "with_values",
+]

@@ -1,0 +1,161 @@
+"""Compare and fit: recovery of known parameters within their uncertainties over many seeds,
+honest failure on data from another law, identifiability warnings, the command line."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from cosserat import CouetteFlow, Material, PlaneShear, Wall
+from cosserat.analysis.fitting import compare, fit, model_at, model_profile
+from cosserat.cli import main
+from cosserat.measurements import MeasuredProfile, write_profile
+
+MAT = Material(28.5)
+TRUE = {"delta": 20.0, "K": 0.5}
+SIGMA = 0.01
+D = np.linspace(0.0, 40.0, 25)
+
+
+def plane(delta=TRUE["delta"], K=TRUE["K"]):
+    # gravity-free layer at the upper wall: the closed form makes many fits cheap
+    return PlaneShear(material=MAT, upper=Wall(delta, K), lower=Wall.fully_rough(), eps=0.02)
+
+
+def synthetic(seed, problem=None, distance=D, method="closed-form"):
+    clean = model_at(model_profile(problem or plane(), method), distance)
+    noise = SIGMA * np.random.default_rng(seed).standard_normal(distance.size)
+    return MeasuredProfile(distance, clean + noise, np.full(distance.size, SIGMA))
+
+
+def test_compare_is_exact_on_noise_free_model_data():
+    meas = synthetic(0)
+    exact = MeasuredProfile(
+        meas.distance_d, model_at(model_profile(plane(), "closed-form"), D), meas.u_err
+    )
+    cmp = compare(plane(), exact, method="closed-form")
+    assert cmp.rms < 1e-14 and cmp.chi2 < 1e-20
+
+
+def test_recovery_coverage_over_many_seeds():
+    """68% nominal: the true value lies within one standard error in about 68% of fits."""
+    n = 120
+    inside = {"delta": 0, "K": 0, "delta_interval": 0}
+    pulls = []
+    for seed in range(n):
+        res = fit(synthetic(seed), plane(15.0, 1.0), free=("delta", "K"), method="closed-form")
+        for name in ("delta", "K"):
+            p = res.parameters[name]
+            inside[name] += abs(p.value - TRUE[name]) <= p.stderr
+        lo, hi = res.parameters["delta"].interval
+        inside["delta_interval"] += lo <= TRUE["delta"] <= hi
+        pulls.append(
+            (res.parameters["delta"].value - TRUE["delta"]) / res.parameters["delta"].stderr
+        )
+    coverage = {k: v / n for k, v in inside.items()}
+    # binomial 99% band around 0.683 for n = 120: +- 0.11
+    for name, c in coverage.items():
+        assert 0.57 <= c <= 0.79, (name, coverage)
+    assert abs(np.mean(pulls)) < 0.35 and 0.75 < np.std(pulls) < 1.3
+
+
+def test_data_from_another_law_is_reported_as_a_poor_fit():
+    rng = np.random.default_rng(7)
+    gauss = np.exp(-((D / 8.0) ** 2)) + SIGMA * rng.standard_normal(D.size)
+    res = fit(
+        MeasuredProfile(D, gauss, np.full(D.size, SIGMA)), plane(15.0, 1.0), method="closed-form"
+    )
+    assert res.reduced_chi2 > 10
+    assert any("poor fit" in w for w in res.warnings)
+    assert any("systematic misfit" in w for w in res.warnings)
+
+
+def test_K_without_points_near_the_wall_is_flagged():
+    far = np.linspace(5.0, 40.0, 20)
+    res = fit(synthetic(3, distance=far), plane(15.0, 1.0), method="closed-form")
+    assert any("no point within 2 grain diameters" in w for w in res.warnings)
+
+
+def test_couette_fit_recovers_delta_and_K_within_uncertainties():
+    truth = CouetteFlow(material=MAT, wall=Wall(23.0, 0.3), eps=0.05, Ri=2.0)
+    distance = np.geomspace(0.25, 15.0, 30)
+    meas = synthetic(11, truth, distance, method="numerical")
+    res = fit(
+        meas, CouetteFlow(material=MAT, wall=Wall(20.0, 1.0), eps=0.05, Ri=2.0), interval_for=()
+    )
+    for name, true in (("delta", 23.0), ("K", 0.3)):
+        p = res.parameters[name]
+        assert abs(p.value - true) < 3 * p.stderr, (name, p)
+    assert 0.3 < res.reduced_chi2 < 2.0
+    assert res.n_solves < 80
+
+
+def test_fit_cli_json_contract(tmp_path, capsys):
+    meas = synthetic(5)
+    meas = MeasuredProfile(
+        meas.distance_d,
+        meas.u_over_uw,
+        meas.u_err,
+        {"geometry": "plane", "eps": 0.02, "synthetic": "true"},
+    )
+    path = write_profile(meas, tmp_path / "d.csv")
+    code = main(
+        [
+            "fit",
+            str(path),
+            "--free",
+            "delta,K",
+            "--delta",
+            "15",
+            "--K",
+            "1",
+            "--delta-lower",
+            "fully-rough",
+            "--method",
+            "closed-form",
+            "--format",
+            "json",
+            "--plot",
+            str(tmp_path / "fit.png"),
+        ]
+    )
+    out = capsys.readouterr().out
+    assert code == 0
+    record = json.loads(out)
+    assert set(record) >= {"parameters", "rms", "n_points", "n_solves", "warnings"}
+    delta = record["parameters"]["delta"]
+    assert set(delta) == {"value", "stderr", "interval"}
+    assert abs(delta["value"] - 20.0) < 4 * delta["stderr"]
+    assert delta["interval"][0] < delta["value"] < delta["interval"][1]
+    assert record["n_points"] == 25 and (tmp_path / "fit.png").stat().st_size > 0
+
+
+def test_compare_cli_with_a_preset(tmp_path, capsys):
+    from cosserat.experiments import PRESETS
+
+    truth = PRESETS["glass"].problem(delta=23.0)
+    meas = synthetic(2, truth, np.linspace(0.5, 10, 12), method="numerical")
+    path = write_profile(meas, tmp_path / "glass.csv")
+    assert (
+        main(["compare", str(path), "--preset", "glass", "--delta", "23", "--format", "json"]) == 0
+    )
+    record = json.loads(capsys.readouterr().out)
+    assert record["rms"] < 3 * SIGMA and record["n_points"] == 12
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["--free", "delta,zeta"], "free parameters must be among"),
+        ([], "give --geometry"),
+    ],
+)
+def test_fit_cli_errors(tmp_path, capsys, args, needle):
+    path = tmp_path / "d.csv"
+    path.write_text("distance_d,u_over_uw\n0,1\n1,0.5\n2,0.2\n3,0.1\n")
+    extra = [] if "give --geometry" in needle else ["--geometry", "plane", "--eps", "0.05"]
+    code = main(["fit", str(path), *extra, *args])
+    err = capsys.readouterr().err
+    assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
