@@ -100,10 +100,8 @@ def velocity_ratio(
     would lose it to round-off.
     """
     A = material.A
-    sxy = np.asarray(sigma_xy, dtype=float)
-    syx = np.asarray(sigma_yx, dtype=float)
-    d = sxy + A * syx if denom is None else np.asarray(denom, dtype=float)
-    return (A + 1.0) * (sxy + syx) / d
+    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
+    return (A + 1.0) * (sigma_xy + sigma_yx) / d  # type: ignore[operator,no-any-return]
 
 
 def spin_ratio(
@@ -115,10 +113,8 @@ def spin_ratio(
 ) -> FloatArray:
     """F2 = 2(A+1) m/(sxy + A syx) of ``eqn-nd_fr2``: eps alpha domega/dxi = -F2 omega [-]."""
     A = material.A
-    sxy = np.asarray(sigma_xy, dtype=float)
-    syx = np.asarray(sigma_yx, dtype=float)
-    d = sxy + A * syx if denom is None else np.asarray(denom, dtype=float)
-    return 2.0 * (A + 1.0) * np.asarray(m, dtype=float) / d
+    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
+    return 2.0 * (A + 1.0) * m / d  # type: ignore[operator,no-any-return]
 
 
 def asymmetry_source(sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material) -> FloatArray:

@@ -13,6 +13,7 @@ Vary a parameter with :func:`dataclasses.replace`; the copy is validated again.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Literal
@@ -70,22 +71,22 @@ class Material:
         object.__setattr__(self, "L", L)
         object.__setattr__(self, "A", require_open_interval("A", self.A, -1.0, 1.0))
 
-    @property
+    @functools.cached_property
     def sin_phi(self) -> float:
         """sin(phi) [-]."""
         return math.sin(math.radians(self.phi))
 
-    @property
+    @functools.cached_property
     def alpha(self) -> float:
         """alpha = L / sqrt(2(A+1)), the coefficient of eps in ``eqn-nd_zangmom`` [-]."""
         return self.L / math.sqrt(2.0 * (self.A + 1.0))
 
-    @property
+    @functools.cached_property
     def c2(self) -> float:
         """c^2 = sin^2(phi) / (2(A+1)) of ``eqn-eta_g`` [-]."""
         return self.sin_phi**2 / (2.0 * (self.A + 1.0))
 
-    @property
+    @functools.cached_property
     def fully_rough_delta(self) -> float:
         """The wall-friction angle of a fully rough wall, atan(sin phi) [deg]."""
         return math.degrees(math.atan(self.sin_phi))

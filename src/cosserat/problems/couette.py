@@ -25,6 +25,7 @@ curvature kappa = 1/(Ri + xi):
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -79,7 +80,7 @@ class CouetteFlow:
         self.wall.tan_delta(self.material, "delta")
 
     # ----------------------------------------------------------------- equations
-    @property
+    @functools.cached_property
     def tan_delta(self) -> float:
         return self.wall.tan_delta(self.material, "delta")
 
@@ -110,8 +111,13 @@ class CouetteFlow:
     def shear_stress(self, xi: FloatArray, m: FloatArray, m_inner: float) -> FloatArray:
         """s_rt from ``eqn-nd_shsts_cyl`` given m(xi) and m(0) = ``m_inner`` [-]."""
         r = self.Ri + xi
-        g = 2.0 * (self.material.A + 1.0) * self.eps * self.material.alpha
+        g = self._couple_factor
         return -self.tan_delta * (self.Ri / r) ** 2 + g * (m / r - m_inner * self.Ri / r**2)
+
+    @functools.cached_property
+    def _couple_factor(self) -> float:
+        """2(A+1) eps alpha: the weight of the couple stress in eqn-nd_shsts_cyl [-]."""
+        return 2.0 * (self.material.A + 1.0) * self.eps * self.material.alpha
 
     def formulation(self, m_inner: float) -> Formulation:
         """The ODEs of :mod:`cosserat.problems.base` for a trial m(0) = ``m_inner``."""

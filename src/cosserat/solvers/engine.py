@@ -27,11 +27,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import OdeSolution, solve_ivp
 
 from ..constitutive import FloatArray, radicand, radicand_scale
 from ..errors import ConvergenceError, NoSolutionError
 from ..problems.base import Formulation
+from .dop853_small import SmallSolution, dop853_small
 from .radau_scalar import ScalarSolution, radau_scalar
 
 # exp(l) underflows below this; the spin is then exactly zero in double precision.
@@ -52,6 +52,9 @@ class CoupleStress:
     def __call__(self, xi: FloatArray) -> FloatArray:
         x = np.asarray(xi, dtype=float)
         return np.asarray(self.sol(x), dtype=float) if x.ndim else float(self.sol(x))
+
+    def scalar(self, xi: float) -> float:
+        return self.sol.at(xi)
 
 
 def integrate_couple_stress(
@@ -96,7 +99,7 @@ def integrate_couple_stress(
 class SpinQuadrature:
     """Dense (l, P) of pass 2 from the slipping wall ``xi_slip`` towards ``xi_far``."""
 
-    sol: OdeSolution  # in tau: xi = xi_slip + span * tau (or the square-root map)
+    sol: SmallSolution  # in tau: xi = xi_slip + span * tau (or the square-root map)
     xi_slip: float
     xi_cut: float  # where the integration stopped (xi_far, or where exp(l) underflows)
     l_cut: float
@@ -114,8 +117,8 @@ class SpinQuadrature:
             frac = np.clip((x[inside] - self.xi_slip) / self.span, 0.0, 1.0)
             tau = 1.0 - np.sqrt(1.0 - frac) if self.singular else frac
             y = self.sol(tau)
-            ell[inside] = y[0]
-            P[inside] = y[1]
+            ell[inside] = y[:, 0]
+            P[inside] = y[:, 1]
         return ell, P
 
 
@@ -129,55 +132,41 @@ def integrate_spin(
 ) -> SpinQuadrature:
     """Pass 2: l = ln(w / w_s) and P = int exp(l) G from the slipping wall inwards.
 
-    If the couple stress at the far end sits on the yield bound (S = 0, e.g. a prescribed
-    m = b at the fixed wall), the spin rate has an integrable 1/sqrt singularity there; the
-    quadrature is then carried out in tau with xi = xi_slip + (xi_far - xi_slip)(2 tau - tau^2),
-    whose Jacobian vanishes like the square root.
+    DOP853 (:mod:`.dop853_small`). If the couple stress at the far end sits on the yield bound
+    (S = 0, e.g. a prescribed m = b at the fixed wall), the spin rate has an integrable
+    1/sqrt singularity there; the quadrature is then carried out in tau with
+    xi = xi_slip + (xi_far - xi_slip)(2 tau - tau^2), whose Jacobian vanishes like the square
+    root.
     """
     st = form.stresses(xi_far, m(xi_far))
     singular = float(st.radicand) <= 1e-8 * float(radicand_scale(st.sigma_c, form.material))
     span = xi_far - xi_slip
+    m_scalar = m.scalar if hasattr(m, "scalar") else (lambda x: float(m(x)))
 
-    def to_xi(tau: float) -> tuple[float, float]:
-        if not singular:
-            return xi_slip + span * tau, span
-        return xi_slip + span * (2.0 * tau - tau * tau), span * 2.0 * (1.0 - tau)
-
-    def rhs(tau: float, y: FloatArray) -> list[float]:
-        xi, jac = to_xi(tau)
-        rate, source = form.spin_rates_scalar(xi, m(xi))
-        ell = float(y[0])
+    def rhs(tau: float, y: list[float]) -> list[float]:
+        if singular:
+            xi, jac = xi_slip + span * (2.0 * tau - tau * tau), span * 2.0 * (1.0 - tau)
+        else:
+            xi, jac = xi_slip + span * tau, span
+        rate, source = form.spin_rates_scalar(xi, m_scalar(xi))
+        ell = y[0]
         # a trial stage may overshoot; l <= 0 on the solution (w is largest at the wall)
         gain = math.exp(min(ell, 700.0)) if ell > LOG_UNDERFLOW else 0.0
         return [jac * rate, jac * gain * source]
 
-    def underflow(xi: float, y: FloatArray) -> float:
-        return float(y[0] - LOG_UNDERFLOW)
+    def underflow(tau: float, y: list[float]) -> float:
+        return y[0] - LOG_UNDERFLOW
 
-    underflow.terminal = True  # type: ignore[attr-defined]
-    underflow.direction = -1  # type: ignore[attr-defined]
-
-    res = solve_ivp(
-        rhs,
-        (0.0, 1.0),
-        [0.0, 0.0],
-        method="DOP853",
-        rtol=rtol,
-        atol=[rtol, atol * form.eps],
-        dense_output=True,
-        events=underflow,
-    )
-    if not res.success:
-        raise ConvergenceError(f"spin/velocity quadrature failed: {res.message}")
+    try:
+        sol = dop853_small(
+            rhs, 0.0, 1.0, [0.0, 0.0], rtol, [rtol, atol * form.eps], event=underflow
+        )
+    except RuntimeError as exc:
+        raise ConvergenceError(f"spin/velocity quadrature failed: {exc}") from None
+    tau_cut = float(sol.t[-1])
+    xi_cut = xi_slip + span * (2.0 * tau_cut - tau_cut**2) if singular else xi_slip + span * tau_cut
     return SpinQuadrature(
-        res.sol,
-        xi_slip,
-        to_xi(float(res.t[-1]))[0],
-        float(res.y[0, -1]),
-        float(res.y[1, -1]),
-        res.nfev,
-        span,
-        singular,
+        sol, xi_slip, xi_cut, float(sol.y[-1, 0]), float(sol.y[-1, 1]), sol.nfev, span, singular
     )
 
 

@@ -13,6 +13,8 @@ Dense output is the collocation polynomial of each step (cubic), as in SciPy.
 
 from __future__ import annotations
 
+import bisect
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -34,7 +36,7 @@ MIN_FACTOR, MAX_FACTOR = 0.2, 10.0
 _SQRT3 = math.sqrt(3.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class ScalarSolution:
     """Step points and the cubic dense output of each step.
 
@@ -53,6 +55,30 @@ class ScalarSolution:
     def steps(self) -> int:
         return len(self.t) - 1
 
+    def at(self, t: float) -> float:
+        """Dense output at one float (no NumPy: for use inside right-hand sides)."""
+        ts = self._ascending
+        k = min(max(bisect.bisect_left(ts, t) - 1, 0), len(ts) - 2)
+        if self.t[-1] < self.t[0]:
+            k = len(ts) - 2 - k
+        t_old = float(self.t[k])
+        h = float(self.t[k + 1]) - t_old
+        x = (t - t_old) / h if h != 0.0 else 0.0
+        q0, q1, q2 = self._q[k]
+        return self._y[k] + x * (q0 + x * (q1 + x * q2))
+
+    @functools.cached_property
+    def _ascending(self) -> list[float]:
+        return sorted(self.t.tolist())
+
+    @functools.cached_property
+    def _q(self) -> list[tuple[float, float, float]]:
+        return [tuple(row) for row in self.q.tolist()]
+
+    @functools.cached_property
+    def _y(self) -> list[float]:
+        return self.y.tolist()
+
     def __call__(self, t: float | FloatArray) -> FloatArray:
         """Dense output at ``t`` (scalar or array) within the integrated interval."""
         tt = np.asarray(t, dtype=float)
@@ -67,10 +93,6 @@ class ScalarSolution:
         x = np.where(h != 0.0, (tt - t_old) / np.where(h != 0.0, h, 1.0), 0.0)
         q = self.q[k]
         return self.y[k] + x * (q[..., 0] + x * (q[..., 1] + x * q[..., 2]))
-
-
-def _norm3(a: float, b: float, c: float) -> float:
-    return math.sqrt((a * a + b * b + c * c) / 3.0)
 
 
 def radau_scalar(
@@ -225,40 +247,57 @@ def _predict(h_abs: float, h_abs_old: float | None, err: float, err_old: float |
     return min(1.0, multiplier) * (err**-0.25 if err > 0 else math.inf)
 
 
+_T00, _T01, _T02 = _T[0]
+_T10, _T11, _T12 = _T[1]
+_T20, _T21, _T22 = _T[2]
+_TI00, _TI01, _TI02 = _TI[0]
+_TIC0, _TIC1, _TIC2 = (complex(_TI[1][j], _TI[2][j]) for j in range(3))
+_TI10, _TI11, _TI12 = _TI[1]
+_TI20, _TI21, _TI22 = _TI[2]
+_C0, _C1, _C2 = _C
+
+
 def _newton(f, t, y, h, z, scale, rtol, m_real, m_cplx, lu_real, lu_cplx):  # type: ignore[no-untyped-def]
     """Simplified Newton on the decoupled collocation system (SciPy's
-    solve_collocation_system for n = 1)."""
-    tol = max(10 * np.finfo(float).eps / rtol, min(0.03, rtol**0.5))
-    w = [sum(_TI[i][j] * z[j] for j in range(3)) for i in range(3)]
+    solve_collocation_system for n = 1, written out for floats)."""
+    tol = max(10 * 2.220446049250313e-16 / rtol, min(0.03, rtol**0.5))
+    z0, z1, z2 = z
+    w0 = _TI00 * z0 + _TI01 * z1 + _TI02 * z2
+    w1 = _TI10 * z0 + _TI11 * z1 + _TI12 * z2
+    w2 = _TI20 * z0 + _TI21 * z1 + _TI22 * z2
     dw_norm_old = None
     rate = None
     converged = False
     k = 0
     for k in range(NEWTON_MAXITER):
-        F = [f(t + h * c, y + zz) for c, zz in zip(_C, z, strict=True)]
-        if not all(math.isfinite(v) for v in F):
+        F0 = f(t + h * _C0, y + z0)
+        F1 = f(t + h * _C1, y + z1)
+        F2 = f(t + h * _C2, y + z2)
+        if not (math.isfinite(F0) and math.isfinite(F1) and math.isfinite(F2)):
             break
-        f_real = sum(_TI[0][j] * F[j] for j in range(3)) - m_real * w[0]
-        f_cplx = sum((_TI[1][j] + 1j * _TI[2][j]) * F[j] for j in range(3)) - m_cplx * complex(
-            w[1], w[2]
-        )
+        f_real = _TI00 * F0 + _TI01 * F1 + _TI02 * F2 - m_real * w0
+        f_cplx = _TIC0 * F0 + _TIC1 * F1 + _TIC2 * F2 - m_cplx * complex(w1, w2)
         dw0 = f_real / lu_real
         dwc = f_cplx / lu_cplx
-        dw = (dw0, dwc.real, dwc.imag)
-        dw_norm = _norm3(dw[0] / scale, dw[1] / scale, dw[2] / scale)
+        dw1, dw2 = dwc.real, dwc.imag
+        dw_norm = math.sqrt((dw0 * dw0 + dw1 * dw1 + dw2 * dw2) / 3.0) / scale
         if dw_norm_old is not None:
             rate = dw_norm / dw_norm_old
         if rate is not None and (
             rate >= 1 or rate ** (NEWTON_MAXITER - k) / (1 - rate) * dw_norm > tol
         ):
             break
-        w = [w[i] + dw[i] for i in range(3)]
-        z = [sum(_T[i][j] * w[j] for j in range(3)) for i in range(3)]
+        w0 += dw0
+        w1 += dw1
+        w2 += dw2
+        z0 = _T00 * w0 + _T01 * w1 + _T02 * w2
+        z1 = _T10 * w0 + _T11 * w1 + _T12 * w2
+        z2 = _T20 * w0 + _T21 * w1 + _T22 * w2
         if dw_norm == 0 or (rate is not None and rate / (1 - rate) * dw_norm < tol):
             converged = True
             break
         dw_norm_old = dw_norm
-    return converged, k + 1, z, rate
+    return converged, k + 1, [z0, z1, z2], rate
 
 
 def _locate(event, t_old, t_new, y_old, q, ev_old):  # type: ignore[no-untyped-def]
