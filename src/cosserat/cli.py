@@ -401,6 +401,25 @@ def cmd_fit(args: argparse.Namespace) -> None:
         _emit("\n".join(lines), args.out)
 
 
+def cmd_sweep(args: argparse.Namespace) -> None:
+    import time
+
+    from .sweep import load_spec, run_sweep, write_table
+
+    spec = load_spec(args.spec)
+    out = args.out or spec.output or str(Path(args.spec).with_suffix(".csv"))
+    start = time.perf_counter()
+    rows = run_sweep(
+        spec, workers=args.workers, scheduler=args.scheduler, progress=_progress_bar("sweep")
+    )
+    write_table(rows, out, spec.columns)
+    counts = {s: sum(r.get("status") == s for r in rows) for s in ("ok", "no-solution", "invalid")}
+    print(
+        f"{len(rows)} cases in {time.perf_counter() - start:.1f} s -> {out} "
+        f"({', '.join(f'{k}: {v}' for k, v in counts.items())})"
+    )
+
+
 def make_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="cosserat", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="version", version=f"cosserat {__version__}")
@@ -454,6 +473,17 @@ def make_parser() -> argparse.ArgumentParser:
         "--free", default="delta,K", help="comma-separated free parameters among delta,K,L,phi,A"
     )
     fitp.set_defaults(func=cmd_fit)
+
+    sw = sub.add_parser("sweep", help="run a parameter sweep from a TOML spec")
+    sw.add_argument("spec", help="TOML file (see cosserat.sweep)")
+    sw.add_argument("--out", default=None, help="table to write (.csv or .parquet)")
+    sw.add_argument("--workers", type=int, default=None, help="local processes (default: cores)")
+    sw.add_argument(
+        "--scheduler",
+        default=None,
+        help="Dask scheduler address (tcp://host:port) instead of local processes",
+    )
+    sw.set_defaults(func=cmd_sweep)
 
     fp = sub.add_parser("figures", help="write every paper figure (PNG, PDF, CSV)")
     fp.add_argument("--out", required=True, help="output folder")

@@ -140,6 +140,7 @@ class Profile:
     reference_velocity: float
     diagnostics: Diagnostics
     evaluator: Evaluator = field(repr=False)
+    velocity: Callable[[FloatArray], FloatArray] | None = field(default=None, repr=False)
 
     @property
     def method(self) -> str:
@@ -165,6 +166,12 @@ class Profile:
         if np.any((x < 0.0) | (x > 1.0)):
             raise ValueError("evaluate: xi must lie in [0, 1]")
         return self.evaluator(x)
+
+    def velocity_at(self, xi: ArrayLike) -> FloatArray:
+        """u only, at arbitrary points (cheaper than :meth:`evaluate` where the route has a
+        velocity-only evaluator; used by the thickness root-finder)."""
+        x = np.atleast_1d(np.asarray(xi, dtype=float))
+        return self.velocity(x) if self.velocity is not None else self.evaluate(x).u
 
     def columns(self) -> dict[str, FloatArray]:
         """The profile as named columns (the export format)."""

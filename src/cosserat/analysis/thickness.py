@@ -36,13 +36,13 @@ def shear_layer_thickness(profile: Profile, f: float = DEFAULT_F) -> float:
     xw = profile.slip_wall
     direction = -1.0 if xw == 1.0 else 1.0
     u0 = profile.reference_velocity
-    u_w = float(profile.evaluate([xw]).u[0])
+    u_w = float(profile.velocity_at([xw])[0])
     target = f * (u_w - u0)
     span = 1.0
     eps = profile.problem.eps
 
     def g(d: float) -> float:
-        return float(profile.evaluate([xw + direction * d]).u[0] - u0 - target)
+        return float(profile.velocity_at([xw + direction * d])[0] - u0 - target)
 
     g0, g1 = g(0.0), g(span)
     if g0 == 0.0:
@@ -56,7 +56,7 @@ def shear_layer_thickness(profile: Profile, f: float = DEFAULT_F) -> float:
 def wall_slip(profile: Profile) -> float:
     """|u - u_wall| at the slipping wall: slip velocity over the wall speed [-]."""
     xw = profile.slip_wall
-    u = float(profile.evaluate([xw]).u[0])
+    u = float(profile.velocity_at([xw])[0])
     return abs(u - profile.problem.wall_velocity(xw))
 
 
@@ -96,16 +96,24 @@ def thickness_curve(
 
     deltas: list[float | None] = []
     failures: dict[float, str] = {}
+    guess: dict[str, float] = {}
     for i, eps in enumerate(eps_values):
         try:
             profile = solve(
-                replace(problem, eps=eps), method=method, check=False, points=3, **options
+                replace(problem, eps=eps),
+                method=method,
+                check=False,
+                points=3,
+                **options,
+                **guess,
             )
         except NoSolutionError as exc:
             deltas.append(None)
             failures[float(eps)] = str(exc)
         else:
             deltas.append(shear_layer_thickness(profile, f))
+            if "m_inner" in profile.diagnostics.stats:  # continuation in eps (Couette)
+                guess = {"m_inner_guess": profile.diagnostics.stats["m_inner"]}
         if progress is not None:
             progress(i + 1, len(eps_values))
     return ThicknessCurve([float(e) for e in eps_values], deltas, failures)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -31,6 +31,7 @@ def make_profile(
     message: str = "",
     stats: Mapping[str, Any] | None = None,
     check: bool = True,
+    velocity: Callable[[FloatArray], FloatArray] | None = None,
 ) -> Profile:
     """Evaluate on the output grid, verify, and package.
 
@@ -85,6 +86,7 @@ def make_profile(
         reference_velocity=float(reference_velocity),
         diagnostics=diag,
         evaluator=evaluate,
+        velocity=velocity,
     )
 
 

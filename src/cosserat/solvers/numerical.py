@@ -72,6 +72,11 @@ def solve_plane(
             low = x < 0.5
             return f._replace(u=np.where(low, 2.0 * u_c - f.u, f.u), m=np.where(low, -f.m, f.m))
 
+        def velocity(x: FloatArray) -> FloatArray:
+            x = np.asarray(x, dtype=float)
+            upper = u_s - w_s * sq(np.where(x >= 0.5, x, 1.0 - x))[1]
+            return np.where(x < 0.5, 2.0 * u_c - upper, upper)
+
         reference = u_c
     else:
         xs, xn = problem.slip_wall, problem.fixed_wall
@@ -99,6 +104,9 @@ def solve_plane(
                 w = w_s * np.exp(ell)
             return fields_from_state(form, x, cs(x), u_s - w_s * P, w)
 
+        def velocity(x: FloatArray) -> FloatArray:
+            return u_s - w_s * sq(np.asarray(x, dtype=float))[1]
+
         reference = problem.reference_velocity
 
     stats = {
@@ -120,6 +128,7 @@ def solve_plane(
         message="Radau IIA couple stress (stable direction) + DOP853 spin/velocity quadrature",
         stats=stats,
         check=check,
+        velocity=velocity,
     )
 
 
@@ -131,12 +140,14 @@ def solve_couette(
     points: int | None = None,
     xi: FloatArray | None = None,
     check: bool = True,
+    m_inner_guess: float | None = None,
 ) -> Profile:
     """Couette flow: the couple stress from the outer cylinder inwards for a trial m(0), with
     m(0) fixed by a secant iteration on ``m(0; mu) - mu`` (``eqn-nd_shsts_cyl``); then spin and
-    velocity from the inner cylinder outwards."""
+    velocity from the inner cylinder outwards. ``m_inner_guess`` (e.g. from a neighbouring
+    eps in a sweep) replaces the leading-order starting value."""
     rtol, atol = _tolerances(rtol, atol)
-    mu, cs, form, iterations = _couette_shooting(problem, rtol, atol)
+    mu, cs, form, iterations = _couette_shooting(problem, rtol, atol, m_inner_guess)
     sq = integrate_spin(form, cs, 0.0, 1.0, rtol, atol)
     P_1 = float(sq(np.array([1.0]))[1][0])
     Ri, eps, K = problem.Ri, problem.eps, problem.wall.K
@@ -159,6 +170,10 @@ def solve_couette(
         u = (Ri + x) * (u_s / Ri - w_s * P)
         return fields_from_state(form, x, cs(x), u, w)
 
+    def velocity(x: FloatArray) -> FloatArray:
+        x = np.asarray(x, dtype=float)
+        return (Ri + x) * (u_s / Ri - w_s * sq(x)[1])
+
     stats = {
         "couple_stress_nfev": cs.nfev,
         "couple_stress_steps": cs.steps,
@@ -180,10 +195,13 @@ def solve_couette(
         message="secant on m(0); Radau IIA couple stress (outer to inner) + DOP853 spin",
         stats=stats,
         check=check,
+        velocity=velocity,
     )
 
 
-def _couette_shooting(problem: CouetteFlow, rtol: float, atol: float):  # type: ignore[no-untyped-def]
+def _couette_shooting(  # type: ignore[no-untyped-def]
+    problem: CouetteFlow, rtol: float, atol: float, guess: float | None = None
+):
     """Find mu = m(0) with m(0; mu) = mu. Returns (mu, couple stress, formulation, iterations).
 
     F(mu) = m(0; mu) - mu decreases with mu. mu enters only through s_rt, with weight
@@ -214,7 +232,7 @@ def _couette_shooting(problem: CouetteFlow, rtol: float, atol: float):  # type: 
         hit = cache[mu]
         return None if hit is None else hit[0]
 
-    mu0 = float(problem.outer_couple_stress(np.array([0.0]))[0])
+    mu0 = float(problem.outer_couple_stress(np.array([0.0]))[0]) if guess is None else guess
     tol = max(atol, rtol * abs(mu0))
 
     def done(mu: float):  # type: ignore[no-untyped-def]

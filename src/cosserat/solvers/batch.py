@@ -1,0 +1,389 @@
+"""Wall quantities for many problems at once: the two passes of :mod:`.engine`, vectorised.
+
+Sweeps and thickness curves need, per parameter set, only the shear-layer thickness, the wall
+slip, spin and stress. Here every problem of a batch advances by one step per iteration of one
+Python loop (:mod:`.batch_ode`: Radau IIA for the couple stress, DOP853 for the spin and
+velocity quadratures), the equations evaluated on parameter arrays by the same formulas as the
+scalar path (``constitutive.radicand``, the cancellation-free torque, the flow ratios); the
+velocity constants and Delta (a vectorised bisection on the dense output) follow in closed form.
+
+Couette problems share a lock-step secant on m(0). A problem the batch cannot finish the
+standard way (a prescribed m on the yield bound, a secant that does not converge, a trial that
+leaves the real domain during shooting) is handed to the scalar solver, so results and error
+messages are the same as :func:`cosserat.solve` with ``check=False``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from ..analysis.thickness import DEFAULT_F, shear_layer_thickness, wall_omega, wall_slip
+from ..constitutive import FloatArray, radicand
+from ..errors import NoSolutionError
+from ..problems import CouetteFlow, PlaneShear, PlaneShearCase, Problem
+from ..problems.base import _torque_conjugate
+from .batch_ode import FINISHED, STOPPED, dop853_batch, radau_scalar_batch
+from .engine import LOG_UNDERFLOW
+
+
+@dataclass(frozen=True)
+class WallResult:
+    """Wall quantities of one problem (dimensionless; ``None`` where there is no solution)."""
+
+    status: str  # "ok" or "no-solution"
+    Delta: float | None
+    wall_slip: float | None
+    wall_omega: float | None
+    wall_stress: float | None  # sigma_yx (sigma_r_theta) at the slipping wall
+    message: str = ""
+
+
+class _Mat(NamedTuple):
+    """Array-valued stand-in for Material inside the vectorised formulas."""
+
+    A: FloatArray
+    sin_phi: FloatArray
+
+
+def _scalar(problem: Problem, rtol: float, f: float) -> WallResult:
+    from . import solve
+
+    try:
+        prof = solve(problem, check=False, points=3, rtol=rtol)
+    except NoSolutionError as exc:
+        return WallResult("no-solution", None, None, None, None, str(exc))
+    stress = float(prof.evaluate([prof.slip_wall]).sigma_yx[0])
+    return WallResult(
+        "ok", shear_layer_thickness(prof, f), wall_slip(prof), wall_omega(prof), stress
+    )
+
+
+def wall_quantities(
+    problems: Sequence[Problem], rtol: float = 1e-8, f: float = DEFAULT_F
+) -> list[WallResult]:
+    """Delta, wall slip, wall spin and wall stress for every problem (batched)."""
+    results: list[WallResult | None] = [None] * len(problems)
+    plane = [i for i, p in enumerate(problems) if isinstance(p, PlaneShear)]
+    couette = [i for i, p in enumerate(problems) if isinstance(p, CouetteFlow)]
+    for group, solver in ((plane, _plane_batch), (couette, _couette_batch)):
+        if group:
+            for i, r in zip(group, solver([problems[i] for i in group], rtol, f), strict=True):
+                results[i] = r
+    for i, r in enumerate(results):
+        if r is None:  # anything the batch left over
+            results[i] = _scalar(problems[i], rtol, f)
+    return results  # type: ignore[return-value]
+
+
+# ---------------------------------------------------------------------- shared pieces
+def _torque(syx: FloatArray, sc: FloatArray, m: FloatArray, mat: _Mat) -> FloatArray:
+    S = radicand(syx, sc, m, mat)  # type: ignore[arg-type]
+    root = np.sqrt(np.maximum(S, 0.0))
+    tau = -syx
+    conj = _torque_conjugate(tau, sc, m, root, mat)  # type: ignore[arg-type]
+    direct = (root - (1.0 + mat.A) * tau) / (2.0 * (mat.A + 1.0))
+    return np.where(tau > 0.0, conj, direct)
+
+
+def _margin(syx: FloatArray, sc: FloatArray, m: FloatArray, mat: _Mat) -> FloatArray:
+    S = radicand(syx, sc, m, mat)  # type: ignore[arg-type]
+    return S / (2.0 * (mat.A + 1.0) * (sc * mat.sin_phi) ** 2)
+
+
+def _ratios(
+    syx: FloatArray, sc: FloatArray, m: FloatArray, mat: _Mat
+) -> tuple[FloatArray, FloatArray]:
+    """(F1, F2) of the flow rule, sxy + A syx = -sqrt(S) (as Formulation.flow_ratios)."""
+    S = radicand(syx, sc, m, mat)  # type: ignore[arg-type]
+    denom = -np.maximum(np.sqrt(np.maximum(S, 0.0)), 1e-150)
+    sxy = denom - mat.A * syx
+    return (mat.A + 1.0) * (sxy + syx) / denom, 2.0 * (mat.A + 1.0) * m / denom
+
+
+def _spin_pass(
+    rate_source,
+    xi_slip: FloatArray,
+    span: FloatArray,
+    eps: FloatArray,  # type: ignore[no-untyped-def]
+    rtol: float,
+):
+    """Batched pass 2 in t in [0, 1], xi = xi_slip + span t; returns (result, P_far, t_far)."""
+    n = xi_slip.size
+
+    def fun(t: FloatArray, y: FloatArray, idx: FloatArray) -> FloatArray:
+        xi = xi_slip[idx] + span[idx] * t
+        rate, source = rate_source(xi, idx)
+        ell = y[:, 0]
+        gain = np.where(ell > LOG_UNDERFLOW, np.exp(np.minimum(ell, 700.0)), 0.0)
+        return np.stack([span[idx] * rate, span[idx] * gain * source], axis=1)
+
+    def stop(t: FloatArray, y: FloatArray, idx: FloatArray) -> FloatArray:
+        return y[:, 0] - LOG_UNDERFLOW
+
+    atol = np.stack([np.full(n, rtol), rtol * 1e-2 * eps], axis=1)
+    res = dop853_batch(fun, np.zeros(n), np.ones(n), np.zeros((n, 2)), rtol, atol, stop=stop)
+    return res, res.y_final[:, 1], res.t_final
+
+
+def _bisect_distance(g, upper: FloatArray, iterations: int = 64) -> FloatArray:  # type: ignore[no-untyped-def]
+    """Vectorised bisection for g(d) = 0 on [0, upper], g(0) > 0 > g(upper)."""
+    lo, hi = np.zeros_like(upper), upper.copy()
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        pos = g(mid) > 0.0
+        lo, hi = np.where(pos, mid, lo), np.where(pos, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+# ---------------------------------------------------------------------- plane shear
+def _plane_batch(problems: list[PlaneShear], rtol: float, f: float) -> list[WallResult | None]:
+    out: list[WallResult | None] = [None] * len(problems)
+    # a prescribed m on the yield bound makes pass 2 singular: the scalar path maps it
+    ok = [
+        i
+        for i, p in enumerate(problems)
+        if p.m_fixed_wall is None
+        or abs(p.m_fixed_wall) < p.couple_stress_bound(p.fixed_wall or 0.0) * (1 - 1e-6)
+    ]
+    if not ok:
+        return out
+    ps = [problems[i] for i in ok]
+    arr = _plane_arrays(ps)
+    mat = _Mat(arr["A"], arr["sin_phi"])
+
+    def fun(t: FloatArray, m: FloatArray, idx: FloatArray) -> FloatArray:
+        sub = _Mat(mat.A[idx], mat.sin_phi[idx])
+        sc = 1.0 + arr["Bnu"][idx] * (1.0 - t)
+        return _torque(-arr["tau"][idx], sc, m, sub) / arr["eps_alpha"][idx]
+
+    def stop(t: FloatArray, m: FloatArray, idx: FloatArray) -> FloatArray:
+        sub = _Mat(mat.A[idx], mat.sin_phi[idx])
+        return _margin(-arr["tau"][idx], 1.0 + arr["Bnu"][idx] * (1.0 - t), m, sub)
+
+    r1 = radau_scalar_batch(
+        fun, None, arr["xi0"], arr["xi1"], arr["m0"], rtol, rtol * 1e-2, stop=stop
+    )
+
+    # pass 2 only for the problems whose couple stress reached the slipping wall; the others
+    # (no real solution) go to the scalar path, which words the reason
+    fin = np.flatnonzero(r1.status == FINISHED)
+    if fin.size == 0:
+        return out
+    a2 = {key: value[fin] for key, value in arr.items()}
+
+    def rate_source(xi: FloatArray, j: FloatArray) -> tuple[FloatArray, FloatArray]:
+        k = fin[j]
+        sub = _Mat(mat.A[k], mat.sin_phi[k])
+        m = r1.evaluate(xi, k)
+        F1, F2 = _ratios(-arr["tau"][k], 1.0 + arr["Bnu"][k] * (1.0 - xi), m, sub)
+        return -F2 / arr["eps_alpha"][k], F1
+
+    span = a2["xi0"] - a2["xi1"]
+    r2, P_far, t_far = _spin_pass(rate_source, a2["xi1"], span, a2["eps"], rtol)
+    eps_K = a2["eps"] * a2["K"]
+    sym = a2["sym"]
+    # velocity constants (docs/numerics.md): u = u_s - w_s P
+    det_sym = a2["eps"] * (a2["K_up"] + a2["K_low"]) - 2.0 * P_far
+    det = np.where(sym, det_sym, P_far - a2["s"] * eps_K)
+    u_s = np.where(
+        sym,
+        (a2["eps"] * a2["K_low"] - 2.0 * P_far) / det,
+        (-a2["U_n"] * a2["s"] * eps_K + P_far * a2["U_s"]) / det,
+    )
+    w_s = np.where(sym, -1.0 / det, (a2["U_s"] - a2["U_n"]) / det)
+    u0 = np.where(sym, u_s - w_s * P_far, a2["U_n"])
+    j_all = np.arange(fin.size)
+
+    def g(d: FloatArray) -> FloatArray:
+        P = r2.evaluate(np.minimum(d / np.abs(span), t_far), j_all)[:, 1]
+        return (u_s - w_s * P - u0) / (u_s - u0) - f  # 1 - f at the wall, -f far away
+
+    d = _bisect_distance(g, np.abs(span))
+    for j, k in enumerate(fin):
+        if r2.status[j] in (FINISHED, STOPPED) and math.isfinite(d[j]):
+            out[ok[k]] = WallResult(
+                "ok",
+                float(d[j] / a2["eps"][j]),
+                float(abs(u_s[j] - a2["U_s"][j])),
+                float(w_s[j]),
+                float(-a2["tau"][j]),
+            )
+    return out
+
+
+def _plane_arrays(ps: list[PlaneShear]) -> dict[str, FloatArray]:
+    cols: dict[str, list[Any]] = {
+        k: []
+        for k in (
+            "A",
+            "sin_phi",
+            "eps",
+            "eps_alpha",
+            "tau",
+            "Bnu",
+            "xi0",
+            "xi1",
+            "m0",
+            "sym",
+            "K",
+            "K_up",
+            "K_low",
+            "s",
+            "U_s",
+            "U_n",
+        )
+    }
+    for p in ps:
+        sym = p.case is PlaneShearCase.SYMMETRIC
+        xs = p.slip_wall
+        cols["A"].append(p.material.A)
+        cols["sin_phi"].append(p.material.sin_phi)
+        cols["eps"].append(p.eps)
+        cols["eps_alpha"].append(p.eps * p.material.alpha)
+        cols["tau"].append(-p.sigma_yx)
+        cols["Bnu"].append(p.B * p.nu)
+        cols["xi0"].append(0.5 if sym else p.fixed_wall)
+        cols["xi1"].append(xs)
+        cols["m0"].append(0.0 if sym else p.m_at_fixed_wall)
+        cols["sym"].append(sym)
+        cols["K"].append(p.slipping.K)
+        cols["K_up"].append(p.upper.K)
+        cols["K_low"].append(p.lower_wall.K)
+        cols["s"].append(p.slip_sign(xs))
+        cols["U_s"].append(p.wall_velocity(xs))
+        cols["U_n"].append(0.0 if sym else p.wall_velocity(p.fixed_wall))  # type: ignore[arg-type]
+    return {k: np.asarray(v, dtype=bool if k == "sym" else float) for k, v in cols.items()}
+
+
+# ---------------------------------------------------------------------- Couette flow
+def _couette_batch(problems: list[CouetteFlow], rtol: float, f: float) -> list[WallResult | None]:
+    n = len(problems)
+    A = np.array([p.material.A for p in problems])
+    sin_phi = np.array([p.material.sin_phi for p in problems])
+    eps = np.array([p.eps for p in problems])
+    ea = eps * np.array([p.material.alpha for p in problems])
+    tan_d = np.array([p.tan_delta for p in problems])
+    Ri = np.array([p.Ri for p in problems])
+    K = np.array([p.wall.K for p in problems])
+    gfac = 2.0 * (A + 1.0) * ea
+
+    def shear(xi: FloatArray, m: FloatArray, mu: FloatArray, idx: FloatArray) -> FloatArray:
+        r = Ri[idx] + xi
+        return -tan_d[idx] * (Ri[idx] / r) ** 2 + gfac[idx] * (m / r - mu * Ri[idx] / r**2)
+
+    def m_outer(mu: FloatArray, idx: FloatArray) -> FloatArray:
+        """m(1) from s_rt = s_tr (CouetteFlow.outer_wall_couple_stress, vectorised)."""
+        r1 = Ri[idx] + 1.0
+        beta = gfac[idx] / r1
+        s0 = -tan_d[idx] * (Ri[idx] / r1) ** 2 - gfac[idx] * mu * Ri[idx] / r1**2
+        qa = beta**2 + 2.0 * (A[idx] + 1.0)
+        disc = -2.0 * (A[idx] + 1.0) * s0**2 + qa * sin_phi[idx] ** 2
+        return (-s0 * beta - np.sqrt(np.maximum(disc, 0.0))) / qa
+
+    def pass1(mu: FloatArray, idx: FloatArray):  # type: ignore[no-untyped-def]
+        def fun(t: FloatArray, m: FloatArray, j: FloatArray) -> FloatArray:
+            k = idx[j]
+            sub = _Mat(A[k], sin_phi[k])
+            syx = shear(t, m, mu[j], k)
+            return _torque(syx, np.ones_like(t), m, sub) / ea[k] - m / (Ri[k] + t)
+
+        def stop(t: FloatArray, m: FloatArray, j: FloatArray) -> FloatArray:
+            k = idx[j]
+            return _margin(shear(t, m, mu[j], k), np.ones_like(t), m, _Mat(A[k], sin_phi[k]))
+
+        return radau_scalar_batch(
+            fun,
+            None,
+            np.ones(idx.size),
+            np.zeros(idx.size),
+            m_outer(mu, idx),
+            rtol * 0.1,
+            rtol * 1e-3,
+            stop=stop,
+        )
+
+    # lock-step secant on m(0) (as the scalar _couette_shooting, without its bracketing)
+    mu = np.array([float(p.outer_couple_stress(np.array([0.0]))[0]) for p in problems])
+    tol = np.maximum(rtol * 1e-2, rtol * np.abs(mu))
+    alive = np.ones(n, bool)
+    done = np.zeros(n, bool)
+    mu_prev = np.full(n, np.nan)
+    g_prev = np.full(n, np.nan)
+    final: dict[int, tuple[Any, int]] = {}
+    for _ in range(12):
+        act = np.flatnonzero(alive & ~done)
+        if act.size == 0:
+            break
+        r = pass1(mu[act], act)
+        m0 = r.y_final
+        ok_run = r.status == FINISHED
+        alive[act[~ok_run]] = False
+        g = m0 - mu[act]
+        for j, k in enumerate(act):
+            if not ok_run[j]:
+                continue
+            if abs(g[j]) <= tol[k]:
+                done[k] = True
+                final[k] = (r, j)
+                continue
+            if np.isnan(mu_prev[k]):
+                new = mu[k] + g[j]
+            else:
+                slope = (g[j] - g_prev[k]) / (mu[k] - mu_prev[k]) if mu[k] != mu_prev[k] else -1.0
+                new = mu[k] - g[j] / (slope if slope < 0.0 else -1.0)
+            mu_prev[k], g_prev[k], mu[k] = mu[k], g[j], new
+    conv = np.flatnonzero(done)
+    out: list[WallResult | None] = [None] * n
+    if conv.size == 0:
+        return out
+    # each converged problem keeps the dense couple stress of its last secant iterate
+    owner = [final[k] for k in conv]
+
+    def m_of(xi: FloatArray, j: FloatArray) -> FloatArray:
+        m = np.empty_like(xi)
+        for res in {id(r): r for r, _ in owner}.values():
+            sel = np.array([owner[jj][0] is res for jj in j])
+            if sel.any():
+                m[sel] = res.evaluate(xi[sel], np.array([owner[jj][1] for jj in j[sel]]))
+        return m
+
+    def rate_source(xi: FloatArray, j: FloatArray) -> tuple[FloatArray, FloatArray]:
+        k = conv[j]
+        m = m_of(xi, j)
+        F1, F2 = _ratios(shear(xi, m, mu[k], k), np.ones_like(xi), m, _Mat(A[k], sin_phi[k]))
+        kappa = 1.0 / (Ri[k] + xi)
+        return -F2 / ea[k] - kappa * F1, F1 * kappa
+
+    c = conv
+    r2, P1, t_far = _spin_pass(rate_source, np.zeros(c.size), np.ones(c.size), eps[c], rtol)
+    epsK = eps[c] * K[c]
+    # [[1/Ri, -P], [1 - eps K/Ri, eps K]] (u_s, w_s) = (0, -1)   (u = -1 - eps K omega at 0)
+    det = epsK / Ri[c] + P1 * (1.0 - epsK / Ri[c])
+    u_s = -P1 / det
+    w_s = -(1.0 / Ri[c]) / det
+    j_all = np.arange(c.size)
+
+    def g_d(d: FloatArray) -> FloatArray:
+        P = r2.evaluate(np.minimum(d, t_far), j_all)[:, 1]
+        u = (Ri[c] + d) * (u_s / Ri[c] - w_s * P)
+        return u / u_s - f  # 1 - f at the inner wall, -f at the outer
+
+    d = _bisect_distance(g_d, np.ones(c.size))
+    for j, k in enumerate(c):
+        if r2.status[j] in (FINISHED, STOPPED) and math.isfinite(d[j]):
+            out[k] = WallResult(
+                "ok",
+                float(d[j] / eps[k]),
+                float(abs(u_s[j] + 1.0)),
+                float(w_s[j] - u_s[j] / Ri[k]),
+                float(-tan_d[k]),
+            )
+    return out
+
+
+__all__ = ["WallResult", "wall_quantities"]
