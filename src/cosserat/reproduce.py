@@ -121,14 +121,15 @@ def _claims(figures: dict[int, FigureData]) -> list[Claim]:
             )
         )
     if 6 in figures:
-        d = figures[6].extra["Delta"]
+        B, d = figures[6].extra["B"], figures[6].extra["Delta"]
         claims.append(
             Claim(
                 "the layer thins as B grows (fig. 6)",
                 "qualitative",
-                ", ".join(f"{x:.3g}" for x in d),
+                ", ".join(f"{x:.3g}" for b, x in zip(B, d, strict=True) if b > 0),
                 "fig. 6",
-                "Delta for B = 0, 0.1, 0.3, 1",
+                "Delta for B = 0.1, 0.3, 1 (B = 0 shears uniformly; its Delta is measured "
+                "from u_0 = 1/2)",
             )
         )
     return claims
