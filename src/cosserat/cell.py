@@ -142,9 +142,8 @@ class CouetteCell:
         The same at every r (module docstring); at r = R_i it is the driving torque.
         """
         p = _couette(profile)
-        g = 2.0 * (p.material.A + 1.0) * p.eps * p.material.alpha
         r = p.Ri + profile.xi
-        bracket = -(r**2) * profile.sigma_yx + g * r * profile.m
+        bracket = -(r**2) * profile.sigma_yx + p.couple_factor * r * profile.m
         return 2.0 * math.pi * self.mean_stress(depth) * self.gap**2 * bracket
 
     def torque(self, profile: Profile) -> float:

@@ -413,7 +413,8 @@ def cmd_sweep(args: argparse.Namespace) -> None:
         spec, workers=args.workers, scheduler=args.scheduler, progress=_progress_bar("sweep")
     )
     write_table(rows, out, spec.columns)
-    counts = {s: sum(r.get("status") == s for r in rows) for s in ("ok", "no-solution", "invalid")}
+    states = ("ok", "no-solution", "error", "invalid")
+    counts = {s: sum(r.get("status") == s for r in rows) for s in states}
     print(
         f"{len(rows)} cases in {time.perf_counter() - start:.1f} s -> {out} "
         f"({', '.join(f'{k}: {v}' for k, v in counts.items())})"

@@ -24,6 +24,9 @@ parallel to the walls (``sigma_r_theta`` in Couette flow), ``sigma_xy`` the othe
 
 from __future__ import annotations
 
+import math
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -34,6 +37,8 @@ FloatArray = NDArray[np.float64]
 
 # Relative round-off allowance on the radicand S before "no real solution" is declared.
 RADICAND_ROUNDOFF = 1e-12
+# Floor on sqrt(S), the denominator of the flow-rule ratios; S = 0 only on the yield bound.
+SQRT_S_FLOOR = 1e-150
 
 
 def radicand(
@@ -55,7 +60,7 @@ def radicand(
 
 def radicand_scale(sigma_c: ArrayLike, material: Material) -> FloatArray:
     """The size of the terms of S, for round-off comparisons [-]."""
-    return 2.0 * (material.A + 1.0) * (np.asarray(sigma_c, dtype=float) * material.sin_phi) ** 2
+    return 2.0 * (material.A + 1.0) * (sigma_c * material.sin_phi) ** 2  # type: ignore[operator]
 
 
 def check_radicand(
@@ -76,6 +81,72 @@ def check_radicand(
     return np.maximum(S, 0.0)
 
 
+def _scalars(*values: Any) -> bool:
+    return all(isinstance(v, float | int) for v in values)
+
+
+def torque(sigma_yx: Any, sigma_c: Any, m: Any, material: Any) -> Any:
+    """(syx - sxy)/(2(A+1)) on the paper's root, free of cancellation [-].
+
+    The right side of the couple-stress balance (``eqn-nd_zangmom``). Directly,
+    ``syx - sxy = sqrt(S) - (1+A) tau`` with tau = -syx, which cancels near a fully rough wall
+    (both terms equal (1+A) sin phi there). With the conjugate,
+    ``S - (1+A)^2 tau^2 = 2(A+1)[(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2]``, so for
+    tau > 0 (``docs/derivation_plane.md`` section 3)::
+
+        (syx - sxy)/(2(A+1)) = [(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2]
+                               / (sqrt(S) + (1+A) tau)
+
+    S is clipped at 0 (the callers check the real domain). Python floats take a path without
+    NumPy (the ODE right-hand sides call this per stage); arrays are vectorised; ``material``
+    may carry array-valued ``A`` and ``sin_phi`` (the batched engine).
+    """
+    A, sin_phi = material.A, material.sin_phi
+    S = radicand(sigma_yx, sigma_c, m, material)
+    if _scalars(sigma_yx, sigma_c, m, A):
+        root = math.sqrt(S) if S > 0.0 else 0.0
+        tau = -sigma_yx
+        if tau > 0.0:
+            sc_sin = sigma_c * sin_phi
+            return ((sc_sin - tau) * (sc_sin + tau) - 2.0 * (A + 1.0) * m * m) / (
+                root + (1.0 + A) * tau
+            )
+        return (root - (1.0 + A) * tau) / (2.0 * (A + 1.0))
+    root = np.sqrt(np.maximum(S, 0.0))
+    tau = -np.asarray(sigma_yx, dtype=float)
+    sc_sin = np.asarray(sigma_c, dtype=float) * sin_phi
+    with np.errstate(divide="ignore", invalid="ignore"):
+        conj = ((sc_sin - tau) * (sc_sin + tau) - 2.0 * (A + 1.0) * m * m) / (
+            root + (1.0 + A) * tau
+        )
+    direct = (root - (1.0 + A) * tau) / (2.0 * (A + 1.0))
+    return np.where(tau > 0.0, conj, direct)
+
+
+def flow_ratios(sigma_yx: Any, sigma_c: Any, m: Any, material: Any) -> tuple[Any, Any]:
+    """(F1, F2) of ``eqn-nd_fr1``, ``eqn-nd_fr2`` on the paper's root [-].
+
+    There ``sxy + A syx = -sqrt(S)``, used as the denominator directly, floored away from 0
+    (S = 0 only exactly on the yield bound). Floats without NumPy, arrays vectorised.
+    """
+    A = material.A
+    S = radicand(sigma_yx, sigma_c, m, material)
+    if _scalars(sigma_yx, sigma_c, m, A):
+        denom = -max(math.sqrt(S) if S > 0.0 else 0.0, SQRT_S_FLOOR)
+    else:
+        denom = -np.maximum(np.sqrt(np.maximum(S, 0.0)), SQRT_S_FLOOR)
+    sxy = denom - A * sigma_yx
+    return (
+        velocity_ratio(sxy, sigma_yx, material, denom),
+        spin_ratio(sxy, sigma_yx, m, material, denom),
+    )
+
+
+def yield_margin(sigma_yx: Any, sigma_c: Any, m: Any, material: Any) -> Any:
+    """S over the size of its terms: >= 0 iff ``eqn-nd_sigxy`` is real (the solvers' event)."""
+    return radicand(sigma_yx, sigma_c, m, material) / radicand_scale(sigma_c, material)
+
+
 def second_shear_stress(
     sigma_yx: ArrayLike,
     sigma_c: ArrayLike,
@@ -87,8 +158,11 @@ def second_shear_stress(
 
     Raises :class:`NoSolutionError` (saying where) if the root is complex.
     """
-    S = check_radicand(radicand(sigma_yx, sigma_c, m, material), sigma_c, m, material, xi)
-    return -material.A * np.asarray(sigma_yx, dtype=float) - np.sqrt(S)
+    check_radicand(radicand(sigma_yx, sigma_c, m, material), sigma_c, m, material, xi)
+    syx = np.asarray(sigma_yx, dtype=float)
+    return syx - 2.0 * (material.A + 1.0) * torque(
+        syx, np.asarray(sigma_c, float), np.asarray(m, float), material
+    )
 
 
 def velocity_ratio(

@@ -24,9 +24,11 @@ Parameters: phi, L, A [material]; delta, K [the moving wall; "fully-rough" allow
 delta_lower, K_lower, B, nu, m_wall [plane]; Ri [Couette]; eps. Defaults are the paper's.
 
 Every case gives a row: its parameters, Delta, wall_slip, wall_omega, wall_stress, and
-``status`` ("ok", "no-solution" or "invalid") with the reason in ``message``: failed cases are
-recorded, never dropped. Cases run in chunks in local worker processes, or on a Dask cluster
-(``scheduler="tcp://..."``); the rows are the same either way.
+``status`` ("ok"; "no-solution": the model has no real solution; "error": the solver could not
+finish, e.g. a singular start on the yield bound; "invalid": a parameter out of bounds) with the
+reason in ``message``: failed cases are recorded, never dropped. Cases run in chunks in local
+worker processes, or on a Dask cluster (``scheduler="tcp://..."``); the rows are the same either
+way.
 """
 
 from __future__ import annotations

@@ -26,7 +26,6 @@ The problem classes (:mod:`cosserat.problems.plane`, :mod:`cosserat.problems.cou
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -34,27 +33,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..constitutive import (
-    FloatArray,
-    radicand,
-    spin_ratio,
-    velocity_ratio,
-)
+from ..constitutive import FloatArray, flow_ratios, radicand, torque, yield_margin
 from ..parameters import Material
-
-# Floor on sqrt(S), the denominator of the flow-rule ratios; S = 0 only on the yield bound.
-_SQRT_S_FLOOR = 1e-150
-
-
-def _torque_conjugate(tau: Any, sc: Any, m: Any, root: Any, material: Material) -> Any:
-    """[(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2] / (sqrt(S) + (1+A) tau)."""
-    A, sc_sin = material.A, sc * material.sin_phi
-    return ((sc_sin - tau) * (sc_sin + tau) - 2.0 * (A + 1.0) * m * m) / (root + (1.0 + A) * tau)
-
-
-def _torque_direct(tau: Any, root: Any, material: Material) -> Any:
-    """(sqrt(S) - (1+A) tau)/(2(A+1)), used only where tau <= 0 (no cancellation there)."""
-    return (root - (1.0 + material.A) * tau) / (2.0 * (material.A + 1.0))
 
 
 @dataclass(frozen=True)
@@ -71,6 +51,10 @@ class Stresses:
 class Formulation:
     """The ODEs of one problem: stress closure and curvature (see module docstring).
 
+    Every method works on Python floats (the ODE right-hand sides call them per stage, where
+    NumPy's per-call overhead would dominate) and on arrays. ``material`` may also be an
+    array-valued stand-in with ``A``, ``sin_phi`` and ``alpha`` (the batched engine).
+
     Parameters
     ----------
     material : Material
@@ -84,24 +68,24 @@ class Formulation:
         Curvature 1/(Ri + xi) [-]; None for plane shear.
     """
 
-    material: Material
-    eps: float
-    sigma_yx: Callable[[FloatArray, FloatArray], FloatArray]
-    sigma_c: Callable[[FloatArray], FloatArray]
-    kappa: Callable[[FloatArray], FloatArray] | None = None
+    material: Material | Any
+    eps: float | Any
+    sigma_yx: Callable[[Any, Any], Any]
+    sigma_c: Callable[[Any], Any]
+    kappa: Callable[[Any], Any] | None = None
 
     @property
-    def eps_alpha(self) -> float:
+    def eps_alpha(self) -> Any:
         return self.eps * self.material.alpha
 
-    def curvature(self, xi: ArrayLike) -> FloatArray:
-        x = np.asarray(xi, dtype=float)
-        return np.zeros_like(x) if self.kappa is None else self.kappa(x)
+    def curvature(self, xi: Any) -> Any:
+        if self.kappa is None:
+            return 0.0 * xi
+        return self.kappa(xi)
 
-    def velocity_weight(self, xi: ArrayLike) -> FloatArray:
+    def velocity_weight(self, xi: Any) -> Any:
         """h of ``d(h u)/dxi = -w F1 h``: 1 in plane shear, 1/(Ri + xi) in Couette flow."""
-        x = np.asarray(xi, dtype=float)
-        return np.ones_like(x) if self.kappa is None else self.kappa(x)
+        return 1.0 + 0.0 * xi if self.kappa is None else self.kappa(xi)
 
     def stresses(self, xi: ArrayLike, m: ArrayLike) -> Stresses:
         """Stresses with the paper's root of ``eqn-nd_sigxy``; S clipped at 0 (no raising).
@@ -111,88 +95,37 @@ class Formulation:
         """
         x = np.asarray(xi, dtype=float)
         mm = np.asarray(m, dtype=float)
-        syx = np.broadcast_to(self.sigma_yx(x, mm), np.broadcast(x, mm).shape)
-        sc = np.broadcast_to(self.sigma_c(x), syx.shape)
+        syx = np.broadcast_to(self.sigma_yx(x, mm), np.broadcast(x, mm).shape).astype(float)
+        sc = np.broadcast_to(self.sigma_c(x), syx.shape).astype(float)
         S = radicand(syx, sc, mm, self.material)
-        sxy = syx - 2.0 * (self.material.A + 1.0) * self.torque(syx, sc, mm, S)
-        return Stresses(np.asarray(syx, float), sxy, np.asarray(sc, float), S)
+        sxy = syx - 2.0 * (self.material.A + 1.0) * torque(syx, sc, mm, self.material)
+        return Stresses(syx, sxy, sc, S)
 
-    def torque(self, syx: FloatArray, sc: FloatArray, m: FloatArray, S: FloatArray) -> FloatArray:
-        """(syx - sxy)/(2(A+1)) on the paper's root, free of cancellation [-].
-
-        Directly, ``(syx - sxy) = sqrt(S) - (1+A) tau`` with tau = -syx, which cancels near
-        a fully rough wall (there both terms equal (1+A) sin phi). Multiplying by the
-        conjugate, ``S - (1+A)^2 tau^2 = 2(A+1)[(sc sin phi - tau)(sc sin phi + tau) - 2(A+1)m^2]``,
-        so for tau > 0 (``docs/numerics.md``)::
-
-            (syx - sxy)/(2(A+1)) = [(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2]
-                                   / (sqrt(S) + (1+A) tau)
-        """
-        root = np.sqrt(np.maximum(S, 0.0))
-        tau = -syx
-        with np.errstate(divide="ignore", invalid="ignore"):
-            conj = _torque_conjugate(tau, sc, m, root, self.material)
-        direct = _torque_direct(tau, root, self.material)
-        return np.where(tau > 0.0, conj, direct)
-
-    def dm_dxi(self, xi: ArrayLike, m: ArrayLike) -> FloatArray:
+    def dm_dxi(self, xi: Any, m: Any) -> Any:
         """Couple-stress balance solved for dm/dxi (module docstring) [-]."""
-        x = np.asarray(xi, dtype=float)
-        mm = np.asarray(m, dtype=float)
-        syx = np.broadcast_to(self.sigma_yx(x, mm), np.broadcast(x, mm).shape)
-        sc = np.broadcast_to(self.sigma_c(x), syx.shape)
-        S = radicand(syx, sc, mm, self.material)
-        return self.torque(syx, sc, mm, S) / self.eps_alpha - self.curvature(x) * mm
+        t = torque(self.sigma_yx(xi, m), self.sigma_c(xi), m, self.material)
+        return t / self.eps_alpha - self.curvature(xi) * m
 
-    # ------------------------------------------------------------ fast paths on Python floats
-    # The ODE solvers call these once per stage on scalars; NumPy's per-call overhead would
-    # dominate (~40 us against ~3 us). They evaluate the same formulas (the helpers below and
-    # constitutive.radicand) with math.sqrt.
-    def dm_dxi_scalar(self, xi: float, m: float) -> float:
-        """:meth:`dm_dxi` for one point [-]."""
-        syx = float(self.sigma_yx(xi, m))
-        sc = float(self.sigma_c(xi))
-        S = float(radicand(syx, sc, m, self.material))
-        root = math.sqrt(S) if S > 0.0 else 0.0
-        tau = -syx
-        if tau > 0.0:
-            t = _torque_conjugate(tau, sc, m, root, self.material)
-        else:
-            t = _torque_direct(tau, root, self.material)
-        kappa = 0.0 if self.kappa is None else float(self.kappa(xi))
-        return float(t) / self.eps_alpha - kappa * m
+    def yield_margin(self, xi: Any, m: Any) -> Any:
+        """>= 0 where the second shear stress is real (:func:`constitutive.yield_margin`)."""
+        return yield_margin(self.sigma_yx(xi, m), self.sigma_c(xi), m, self.material)
 
-    def spin_rates_scalar(self, xi: float, m: float) -> tuple[float, float]:
-        """(d ln w/dxi, G) of :meth:`log_spin_rate` and :meth:`velocity_source` at one point."""
-        syx = float(self.sigma_yx(xi, m))
-        sc = float(self.sigma_c(xi))
-        S = float(radicand(syx, sc, m, self.material))
-        denom = -max(math.sqrt(S) if S > 0.0 else 0.0, _SQRT_S_FLOOR)
-        sxy = denom - self.material.A * syx
-        F1 = float(velocity_ratio(sxy, syx, self.material, denom))
-        F2 = float(spin_ratio(sxy, syx, m, self.material, denom))
+    def flow_ratios(self, xi: Any, m: Any) -> tuple[Any, Any]:
+        """(F1, F2) of the flow rule at (xi, m)."""
+        return flow_ratios(self.sigma_yx(xi, m), self.sigma_c(xi), m, self.material)
+
+    def spin_rates(self, xi: Any, m: Any) -> tuple[Any, Any]:
+        """(d ln w / dxi, G) = (-F2/(eps alpha) - kappa F1, F1 h) [-] (module docstring)."""
+        F1, F2 = self.flow_ratios(xi, m)
         if self.kappa is None:
             return -F2 / self.eps_alpha, F1
-        kappa = float(self.kappa(xi))
+        kappa = self.kappa(xi)
         return -F2 / self.eps_alpha - kappa * F1, F1 * kappa
 
-    def flow_ratios(self, xi: ArrayLike, m: ArrayLike) -> tuple[FloatArray, FloatArray]:
-        """(F1, F2) of the flow rule at (xi, m), with sqrt(S) floored away from 0."""
-        st = self.stresses(xi, m)
-        A = self.material.A
-        # sxy + A syx = -sqrt(S); the floor only matters exactly on the yield bound.
-        denom = -np.maximum(np.sqrt(np.maximum(st.radicand, 0.0)), _SQRT_S_FLOOR)
-        sxy = denom - A * st.sigma_yx
-        F1 = velocity_ratio(sxy, st.sigma_yx, self.material, denom)
-        F2 = spin_ratio(sxy, st.sigma_yx, m, self.material, denom)
-        return F1, F2
-
-    def log_spin_rate(self, xi: ArrayLike, m: ArrayLike) -> FloatArray:
+    def log_spin_rate(self, xi: Any, m: Any) -> Any:
         """d ln w / dxi = -F2/(eps alpha) - kappa F1 [-]."""
-        F1, F2 = self.flow_ratios(xi, m)
-        return -F2 / self.eps_alpha - self.curvature(xi) * F1
+        return self.spin_rates(xi, m)[0]
 
-    def velocity_source(self, xi: ArrayLike, m: ArrayLike) -> FloatArray:
+    def velocity_source(self, xi: Any, m: Any) -> Any:
         """G = F1 h of ``d(h u)/dxi = -w G`` [-]."""
-        F1, _ = self.flow_ratios(xi, m)
-        return F1 * self.velocity_weight(xi)
+        return self.spin_rates(xi, m)[1]

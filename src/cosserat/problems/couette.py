@@ -34,13 +34,44 @@ from typing import Any
 import numpy as np
 
 from ..constitutive import FloatArray
-from ..errors import ParameterError
+from ..errors import NoSolutionError, ParameterError
 from ..grids import layered_grid
 from ..parameters import Material, Wall, require_finite
 from .base import Formulation
 from .plane import WallConstants, validate_eps, wall_constants
 
 RI_MIN, RI_MAX = 1e-3, 1e6
+
+
+def shear_stress(
+    xi: Any, m: Any, m_inner: Any, *, tan_delta: Any, Ri: Any, couple_factor: Any
+) -> Any:
+    """s_rt from ``eqn-nd_shsts_cyl`` given m(xi) and m(0) = ``m_inner`` [-].
+
+    ``couple_factor`` = 2(A+1) eps alpha. Floats or arrays (the batched engine).
+    """
+    r = Ri + xi
+    return -tan_delta * (Ri / r) ** 2 + couple_factor * (m / r - m_inner * Ri / r**2)
+
+
+def outer_wall_couple_stress(
+    m_inner: Any, *, tan_delta: Any, Ri: Any, couple_factor: Any, A: Any, sin_phi: Any
+) -> tuple[Any, Any]:
+    """m(1) from s_rt = s_tr at the outer cylinder (``eqn-nd_bc1_cyl``), the negative root,
+    and the discriminant (negative: no real m(1)) [-].
+
+    With s_rt(1) = s0 + beta m (``eqn-nd_shsts_cyl``) and the yield condition at a symmetric
+    stress, ``s_rt^2 + 2(A+1) m^2 = sin^2 phi``: a quadratic in m.
+    """
+    r1 = Ri + 1.0
+    beta = couple_factor / r1
+    s0 = -tan_delta * (Ri / r1) ** 2 - couple_factor * m_inner * Ri / r1**2
+    qa = beta**2 + 2.0 * (A + 1.0)
+    disc = -2.0 * (A + 1.0) * s0**2 + qa * sin_phi**2
+    root = (
+        math.sqrt(disc) if isinstance(disc, float) and disc > 0 else np.sqrt(np.maximum(disc, 0.0))
+    )
+    return (-s0 * beta - root) / qa, disc
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -109,13 +140,13 @@ class CouetteFlow:
         return 1.0 + 0.0 * xi
 
     def shear_stress(self, xi: FloatArray, m: FloatArray, m_inner: float) -> FloatArray:
-        """s_rt from ``eqn-nd_shsts_cyl`` given m(xi) and m(0) = ``m_inner`` [-]."""
-        r = self.Ri + xi
-        g = self._couple_factor
-        return -self.tan_delta * (self.Ri / r) ** 2 + g * (m / r - m_inner * self.Ri / r**2)
+        """s_rt from ``eqn-nd_shsts_cyl`` (:func:`shear_stress`) [-]."""
+        return shear_stress(
+            xi, m, m_inner, tan_delta=self.tan_delta, Ri=self.Ri, couple_factor=self.couple_factor
+        )
 
     @functools.cached_property
-    def _couple_factor(self) -> float:
+    def couple_factor(self) -> float:
         """2(A+1) eps alpha: the weight of the couple stress in eqn-nd_shsts_cyl [-]."""
         return 2.0 * (self.material.A + 1.0) * self.eps * self.material.alpha
 
@@ -130,25 +161,21 @@ class CouetteFlow:
         )
 
     def outer_wall_couple_stress(self, m_inner: float) -> float:
-        """m(1) from s_rt = s_tr there (``eqn-nd_bc1_cyl``), the negative root [-].
-
-        With s_rt(1) = s0 + beta m (``eqn-nd_shsts_cyl``) and the yield condition at a symmetric
-        stress, ``s_rt^2 + 2(A+1) m^2 = sin^2 phi``: a quadratic in m.
-        """
-        A, r1 = self.material.A, self.Ri + 1.0
-        g = 2.0 * (A + 1.0) * self.eps * self.material.alpha
-        beta = g / r1
-        s0 = -self.tan_delta * (self.Ri / r1) ** 2 - g * m_inner * self.Ri / r1**2
-        qa = beta**2 + 2.0 * (A + 1.0)
-        disc = -2.0 * (A + 1.0) * s0**2 + qa * self.material.sin_phi**2
+        """m(1) from s_rt = s_tr there (:func:`outer_wall_couple_stress`) [-]."""
+        m1, disc = outer_wall_couple_stress(
+            m_inner,
+            tan_delta=self.tan_delta,
+            Ri=self.Ri,
+            couple_factor=self.couple_factor,
+            A=self.material.A,
+            sin_phi=self.material.sin_phi,
+        )
         if disc < 0.0:
-            from ..errors import NoSolutionError
-
             raise NoSolutionError(
                 "no real solution: the outer-wall condition s_rt = s_tr (eqn-nd_bc1_cyl) has no "
                 f"real couple stress for m(0) = {m_inner:.6g}"
             )
-        return (-s0 * beta - math.sqrt(disc)) / qa
+        return float(m1)
 
     @property
     def slip_constants(self) -> WallConstants:

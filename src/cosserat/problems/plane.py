@@ -67,6 +67,11 @@ def wall_constants(tau: float, sigma_c: float, material: Material) -> WallConsta
     return WallConstants(a, b, m0, m0 / (material.alpha * a))
 
 
+def mean_stress(xi: Any, B_nu: Any) -> Any:
+    """sigma_c = sigma_yy = 1 + B nu (1 - xi): ``eqn-nd_ymom`` with ``eqn-nd_bc1`` [-]."""
+    return 1.0 + B_nu * (1.0 - xi)
+
+
 def validate_eps(eps: float) -> float:
     x = require_finite("eps", eps)
     if not 0.0 < x <= 0.5:
@@ -178,8 +183,8 @@ class PlaneShear:
         return self.lower_wall if self.case is PlaneShearCase.LOWER else self.upper
 
     def sigma_c(self, xi: FloatArray) -> FloatArray:
-        """Mean stress = sigma_yy = 1 + B nu (1 - xi), ``eqn-nd_ymom`` with ``eqn-nd_bc1`` [-]."""
-        return 1.0 + self.B * self.nu * (1.0 - xi)
+        """Mean stress = sigma_yy (:func:`mean_stress`) [-]."""
+        return mean_stress(xi, self.B * self.nu)
 
     @property
     def sigma_yx(self) -> float:

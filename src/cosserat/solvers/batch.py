@@ -23,19 +23,22 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ..analysis.thickness import DEFAULT_F, shear_layer_thickness, wall_omega, wall_slip
-from ..constitutive import FloatArray, radicand
-from ..errors import NoSolutionError
+from ..constitutive import FloatArray
+from ..errors import CosseratError, NoSolutionError
 from ..problems import CouetteFlow, PlaneShear, PlaneShearCase, Problem
-from ..problems.base import _torque_conjugate
+from ..problems.base import Formulation
+from ..problems.couette import outer_wall_couple_stress
+from ..problems.couette import shear_stress as couette_shear_stress
+from ..problems.plane import mean_stress
 from .batch_ode import FINISHED, STOPPED, dop853_batch, radau_scalar_batch
-from .engine import LOG_UNDERFLOW
+from .engine import LOG_UNDERFLOW, symmetric_wall_constants, wall_constants_from_conditions
 
 
 @dataclass(frozen=True)
 class WallResult:
     """Wall quantities of one problem (dimensionless; ``None`` where there is no solution)."""
 
-    status: str  # "ok" or "no-solution"
+    status: str  # "ok", "no-solution", or "error" (the solver could not finish; see message)
     Delta: float | None
     wall_slip: float | None
     wall_omega: float | None
@@ -44,10 +47,11 @@ class WallResult:
 
 
 class _Mat(NamedTuple):
-    """Array-valued stand-in for Material inside the vectorised formulas."""
+    """Array-valued stand-in for Material: what the formulas of Formulation read."""
 
     A: FloatArray
     sin_phi: FloatArray
+    alpha: FloatArray
 
 
 def _scalar(problem: Problem, rtol: float, f: float) -> WallResult:
@@ -57,6 +61,8 @@ def _scalar(problem: Problem, rtol: float, f: float) -> WallResult:
         prof = solve(problem, check=False, points=3, rtol=rtol)
     except NoSolutionError as exc:
         return WallResult("no-solution", None, None, None, None, str(exc))
+    except CosseratError as exc:  # e.g. a stalled integration: recorded with its reason
+        return WallResult("error", None, None, None, None, str(exc))
     stress = float(prof.evaluate([prof.slip_wall]).sigma_yx[0])
     return WallResult(
         "ok", shear_layer_thickness(prof, f), wall_slip(prof), wall_omega(prof), stress
@@ -81,43 +87,20 @@ def wall_quantities(
 
 
 # ---------------------------------------------------------------------- shared pieces
-def _torque(syx: FloatArray, sc: FloatArray, m: FloatArray, mat: _Mat) -> FloatArray:
-    S = radicand(syx, sc, m, mat)  # type: ignore[arg-type]
-    root = np.sqrt(np.maximum(S, 0.0))
-    tau = -syx
-    conj = _torque_conjugate(tau, sc, m, root, mat)  # type: ignore[arg-type]
-    direct = (root - (1.0 + mat.A) * tau) / (2.0 * (mat.A + 1.0))
-    return np.where(tau > 0.0, conj, direct)
-
-
-def _margin(syx: FloatArray, sc: FloatArray, m: FloatArray, mat: _Mat) -> FloatArray:
-    S = radicand(syx, sc, m, mat)  # type: ignore[arg-type]
-    return S / (2.0 * (mat.A + 1.0) * (sc * mat.sin_phi) ** 2)
-
-
-def _ratios(
-    syx: FloatArray, sc: FloatArray, m: FloatArray, mat: _Mat
-) -> tuple[FloatArray, FloatArray]:
-    """(F1, F2) of the flow rule, sxy + A syx = -sqrt(S) (as Formulation.flow_ratios)."""
-    S = radicand(syx, sc, m, mat)  # type: ignore[arg-type]
-    denom = -np.maximum(np.sqrt(np.maximum(S, 0.0)), 1e-150)
-    sxy = denom - mat.A * syx
-    return (mat.A + 1.0) * (sxy + syx) / denom, 2.0 * (mat.A + 1.0) * m / denom
-
-
 def _spin_pass(
-    rate_source,
+    form_of,
+    m_of,
     xi_slip: FloatArray,
     span: FloatArray,
     eps: FloatArray,  # type: ignore[no-untyped-def]
     rtol: float,
 ):
-    """Batched pass 2 in t in [0, 1], xi = xi_slip + span t; returns (result, P_far, t_far)."""
+    """Batched pass 2 in t in [0, 1], xi = xi_slip + span t (as engine.integrate_spin)."""
     n = xi_slip.size
 
     def fun(t: FloatArray, y: FloatArray, idx: FloatArray) -> FloatArray:
         xi = xi_slip[idx] + span[idx] * t
-        rate, source = rate_source(xi, idx)
+        rate, source = form_of(idx).spin_rates(xi, m_of(xi, idx))
         ell = y[:, 0]
         gain = np.where(ell > LOG_UNDERFLOW, np.exp(np.minimum(ell, 700.0)), 0.0)
         return np.stack([span[idx] * rate, span[idx] * gain * source], axis=1)
@@ -140,6 +123,18 @@ def _bisect_distance(g, upper: FloatArray, iterations: int = 64) -> FloatArray: 
     return 0.5 * (lo + hi)
 
 
+def _materials(problems: Sequence[Problem]) -> _Mat:
+    return _Mat(
+        np.array([p.material.A for p in problems]),
+        np.array([p.material.sin_phi for p in problems]),
+        np.array([p.material.alpha for p in problems]),
+    )
+
+
+def _sub(mat: _Mat, idx: FloatArray) -> _Mat:
+    return _Mat(mat.A[idx], mat.sin_phi[idx], mat.alpha[idx])
+
+
 # ---------------------------------------------------------------------- plane shear
 def _plane_batch(problems: list[PlaneShear], rtol: float, f: float) -> list[WallResult | None]:
     out: list[WallResult | None] = [None] * len(problems)
@@ -154,49 +149,56 @@ def _plane_batch(problems: list[PlaneShear], rtol: float, f: float) -> list[Wall
         return out
     ps = [problems[i] for i in ok]
     arr = _plane_arrays(ps)
-    mat = _Mat(arr["A"], arr["sin_phi"])
+    mat = _materials(ps)
 
-    def fun(t: FloatArray, m: FloatArray, idx: FloatArray) -> FloatArray:
-        sub = _Mat(mat.A[idx], mat.sin_phi[idx])
-        sc = 1.0 + arr["Bnu"][idx] * (1.0 - t)
-        return _torque(-arr["tau"][idx], sc, m, sub) / arr["eps_alpha"][idx]
-
-    def stop(t: FloatArray, m: FloatArray, idx: FloatArray) -> FloatArray:
-        sub = _Mat(mat.A[idx], mat.sin_phi[idx])
-        return _margin(-arr["tau"][idx], 1.0 + arr["Bnu"][idx] * (1.0 - t), m, sub)
+    def form_of(idx: FloatArray) -> Formulation:
+        tau, B_nu = arr["tau"][idx], arr["Bnu"][idx]
+        return Formulation(
+            material=_sub(mat, idx),
+            eps=arr["eps"][idx],
+            sigma_yx=lambda xi, m: -tau + 0.0 * m,
+            sigma_c=lambda xi: mean_stress(xi, B_nu),
+        )
 
     r1 = radau_scalar_batch(
-        fun, None, arr["xi0"], arr["xi1"], arr["m0"], rtol, rtol * 1e-2, stop=stop
+        lambda t, m, idx: form_of(idx).dm_dxi(t, m),
+        None,
+        arr["xi0"],
+        arr["xi1"],
+        arr["m0"],
+        rtol,
+        rtol * 1e-2,
+        stop=lambda t, m, idx: form_of(idx).yield_margin(t, m),
     )
-
     # pass 2 only for the problems whose couple stress reached the slipping wall; the others
-    # (no real solution) go to the scalar path, which words the reason
+    # (no real solution, or a stalled step) go to the scalar path, which words the reason
     fin = np.flatnonzero(r1.status == FINISHED)
     if fin.size == 0:
         return out
     a2 = {key: value[fin] for key, value in arr.items()}
-
-    def rate_source(xi: FloatArray, j: FloatArray) -> tuple[FloatArray, FloatArray]:
-        k = fin[j]
-        sub = _Mat(mat.A[k], mat.sin_phi[k])
-        m = r1.evaluate(xi, k)
-        F1, F2 = _ratios(-arr["tau"][k], 1.0 + arr["Bnu"][k] * (1.0 - xi), m, sub)
-        return -F2 / arr["eps_alpha"][k], F1
-
     span = a2["xi0"] - a2["xi1"]
-    r2, P_far, t_far = _spin_pass(rate_source, a2["xi1"], span, a2["eps"], rtol)
-    eps_K = a2["eps"] * a2["K"]
-    sym = a2["sym"]
-    # velocity constants (docs/numerics.md): u = u_s - w_s P
-    det_sym = a2["eps"] * (a2["K_up"] + a2["K_low"]) - 2.0 * P_far
-    det = np.where(sym, det_sym, P_far - a2["s"] * eps_K)
-    u_s = np.where(
-        sym,
-        (a2["eps"] * a2["K_low"] - 2.0 * P_far) / det,
-        (-a2["U_n"] * a2["s"] * eps_K + P_far * a2["U_s"]) / det,
+    r2, P_far, t_far = _spin_pass(
+        lambda j: form_of(fin[j]),
+        lambda xi, j: r1.evaluate(xi, fin[j]),
+        a2["xi1"],
+        span,
+        a2["eps"],
+        rtol,
     )
-    w_s = np.where(sym, -1.0 / det, (a2["U_s"] - a2["U_n"]) / det)
-    u0 = np.where(sym, u_s - w_s * P_far, a2["U_n"])
+    sym = a2["sym"]
+    us_sym, ws_sym, uc_sym = symmetric_wall_constants(P_far, a2["eps"], a2["K_up"], a2["K_low"])
+    us_one, ws_one = wall_constants_from_conditions(
+        h_slip=1.0,
+        kappa_slip=0.0,
+        P_fixed=P_far,
+        h_fixed=1.0,
+        u_fixed=a2["U_n"],
+        u_wall_slip=a2["U_s"],
+        slip_sign=a2["s"],
+        eps_K=a2["eps"] * a2["K"],
+    )
+    u_s, w_s = np.where(sym, us_sym, us_one), np.where(sym, ws_sym, ws_one)
+    u0 = np.where(sym, uc_sym, a2["U_n"])
     j_all = np.arange(fin.size)
 
     def g(d: FloatArray) -> FloatArray:
@@ -220,10 +222,7 @@ def _plane_arrays(ps: list[PlaneShear]) -> dict[str, FloatArray]:
     cols: dict[str, list[Any]] = {
         k: []
         for k in (
-            "A",
-            "sin_phi",
             "eps",
-            "eps_alpha",
             "tau",
             "Bnu",
             "xi0",
@@ -241,10 +240,7 @@ def _plane_arrays(ps: list[PlaneShear]) -> dict[str, FloatArray]:
     for p in ps:
         sym = p.case is PlaneShearCase.SYMMETRIC
         xs = p.slip_wall
-        cols["A"].append(p.material.A)
-        cols["sin_phi"].append(p.material.sin_phi)
         cols["eps"].append(p.eps)
-        cols["eps_alpha"].append(p.eps * p.material.alpha)
         cols["tau"].append(-p.sigma_yx)
         cols["Bnu"].append(p.B * p.nu)
         cols["xi0"].append(0.5 if sym else p.fixed_wall)
@@ -263,49 +259,45 @@ def _plane_arrays(ps: list[PlaneShear]) -> dict[str, FloatArray]:
 # ---------------------------------------------------------------------- Couette flow
 def _couette_batch(problems: list[CouetteFlow], rtol: float, f: float) -> list[WallResult | None]:
     n = len(problems)
-    A = np.array([p.material.A for p in problems])
-    sin_phi = np.array([p.material.sin_phi for p in problems])
+    mat = _materials(problems)
     eps = np.array([p.eps for p in problems])
-    ea = eps * np.array([p.material.alpha for p in problems])
     tan_d = np.array([p.tan_delta for p in problems])
     Ri = np.array([p.Ri for p in problems])
     K = np.array([p.wall.K for p in problems])
-    gfac = 2.0 * (A + 1.0) * ea
+    factor = np.array([p.couple_factor for p in problems])
 
-    def shear(xi: FloatArray, m: FloatArray, mu: FloatArray, idx: FloatArray) -> FloatArray:
-        r = Ri[idx] + xi
-        return -tan_d[idx] * (Ri[idx] / r) ** 2 + gfac[idx] * (m / r - mu * Ri[idx] / r**2)
-
-    def m_outer(mu: FloatArray, idx: FloatArray) -> FloatArray:
-        """m(1) from s_rt = s_tr (CouetteFlow.outer_wall_couple_stress, vectorised)."""
-        r1 = Ri[idx] + 1.0
-        beta = gfac[idx] / r1
-        s0 = -tan_d[idx] * (Ri[idx] / r1) ** 2 - gfac[idx] * mu * Ri[idx] / r1**2
-        qa = beta**2 + 2.0 * (A[idx] + 1.0)
-        disc = -2.0 * (A[idx] + 1.0) * s0**2 + qa * sin_phi[idx] ** 2
-        return (-s0 * beta - np.sqrt(np.maximum(disc, 0.0))) / qa
+    def form_of(idx: FloatArray, mu: FloatArray) -> Formulation:
+        td, ri, cf = tan_d[idx], Ri[idx], factor[idx]
+        return Formulation(
+            material=_sub(mat, idx),
+            eps=eps[idx],
+            sigma_yx=lambda xi, m: couette_shear_stress(
+                xi, m, mu, tan_delta=td, Ri=ri, couple_factor=cf
+            ),
+            sigma_c=lambda xi: 1.0 + 0.0 * xi,
+            kappa=lambda xi: 1.0 / (ri + xi),
+        )
 
     def pass1(mu: FloatArray, idx: FloatArray):  # type: ignore[no-untyped-def]
-        def fun(t: FloatArray, m: FloatArray, j: FloatArray) -> FloatArray:
-            k = idx[j]
-            sub = _Mat(A[k], sin_phi[k])
-            syx = shear(t, m, mu[j], k)
-            return _torque(syx, np.ones_like(t), m, sub) / ea[k] - m / (Ri[k] + t)
-
-        def stop(t: FloatArray, m: FloatArray, j: FloatArray) -> FloatArray:
-            k = idx[j]
-            return _margin(shear(t, m, mu[j], k), np.ones_like(t), m, _Mat(A[k], sin_phi[k]))
-
-        return radau_scalar_batch(
-            fun,
+        m1, disc = outer_wall_couple_stress(
+            mu,
+            tan_delta=tan_d[idx],
+            Ri=Ri[idx],
+            couple_factor=factor[idx],
+            A=mat.A[idx],
+            sin_phi=mat.sin_phi[idx],
+        )
+        res = radau_scalar_batch(
+            lambda t, m, j: form_of(idx[j], mu[j]).dm_dxi(t, m),
             None,
             np.ones(idx.size),
             np.zeros(idx.size),
-            m_outer(mu, idx),
+            m1,
             rtol * 0.1,
             rtol * 1e-3,
-            stop=stop,
+            stop=lambda t, m, j: form_of(idx[j], mu[j]).yield_margin(t, m),
         )
+        return res, disc >= 0.0
 
     # lock-step secant on m(0) (as the scalar _couette_shooting, without its bracketing)
     mu = np.array([float(p.outer_couple_stress(np.array([0.0]))[0]) for p in problems])
@@ -319,11 +311,10 @@ def _couette_batch(problems: list[CouetteFlow], rtol: float, f: float) -> list[W
         act = np.flatnonzero(alive & ~done)
         if act.size == 0:
             break
-        r = pass1(mu[act], act)
-        m0 = r.y_final
-        ok_run = r.status == FINISHED
+        r, real = pass1(mu[act], act)
+        ok_run = (r.status == FINISHED) & real
         alive[act[~ok_run]] = False
-        g = m0 - mu[act]
+        g = r.y_final - mu[act]
         for j, k in enumerate(act):
             if not ok_run[j]:
                 continue
@@ -337,35 +328,35 @@ def _couette_batch(problems: list[CouetteFlow], rtol: float, f: float) -> list[W
                 slope = (g[j] - g_prev[k]) / (mu[k] - mu_prev[k]) if mu[k] != mu_prev[k] else -1.0
                 new = mu[k] - g[j] / (slope if slope < 0.0 else -1.0)
             mu_prev[k], g_prev[k], mu[k] = mu[k], g[j], new
-    conv = np.flatnonzero(done)
+    c = np.flatnonzero(done)
     out: list[WallResult | None] = [None] * n
-    if conv.size == 0:
+    if c.size == 0:
         return out
     # each converged problem keeps the dense couple stress of its last secant iterate
-    owner = [final[k] for k in conv]
+    owners = [final[k] for k in c]
+    groups = {id(r): r for r, _ in owners}
 
     def m_of(xi: FloatArray, j: FloatArray) -> FloatArray:
         m = np.empty_like(xi)
-        for res in {id(r): r for r, _ in owner}.values():
-            sel = np.array([owner[jj][0] is res for jj in j])
+        for res in groups.values():
+            sel = np.array([owners[jj][0] is res for jj in j])
             if sel.any():
-                m[sel] = res.evaluate(xi[sel], np.array([owner[jj][1] for jj in j[sel]]))
+                m[sel] = res.evaluate(xi[sel], np.array([owners[jj][1] for jj in j[sel]]))
         return m
 
-    def rate_source(xi: FloatArray, j: FloatArray) -> tuple[FloatArray, FloatArray]:
-        k = conv[j]
-        m = m_of(xi, j)
-        F1, F2 = _ratios(shear(xi, m, mu[k], k), np.ones_like(xi), m, _Mat(A[k], sin_phi[k]))
-        kappa = 1.0 / (Ri[k] + xi)
-        return -F2 / ea[k] - kappa * F1, F1 * kappa
-
-    c = conv
-    r2, P1, t_far = _spin_pass(rate_source, np.zeros(c.size), np.ones(c.size), eps[c], rtol)
-    epsK = eps[c] * K[c]
-    # [[1/Ri, -P], [1 - eps K/Ri, eps K]] (u_s, w_s) = (0, -1)   (u = -1 - eps K omega at 0)
-    det = epsK / Ri[c] + P1 * (1.0 - epsK / Ri[c])
-    u_s = -P1 / det
-    w_s = -(1.0 / Ri[c]) / det
+    r2, P1, t_far = _spin_pass(
+        lambda j: form_of(c[j], mu[c[j]]), m_of, np.zeros(c.size), np.ones(c.size), eps[c], rtol
+    )
+    u_s, w_s = wall_constants_from_conditions(
+        h_slip=1.0 / Ri[c],
+        kappa_slip=1.0 / Ri[c],
+        P_fixed=P1,
+        h_fixed=1.0 / (Ri[c] + 1.0),
+        u_fixed=0.0,
+        u_wall_slip=-1.0,
+        slip_sign=-1.0,
+        eps_K=eps[c] * K[c],
+    )
     j_all = np.arange(c.size)
 
     def g_d(d: FloatArray) -> FloatArray:

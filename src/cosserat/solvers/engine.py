@@ -25,14 +25,15 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from ..constitutive import FloatArray, radicand, radicand_scale
+from ..constitutive import FloatArray, radicand_scale
 from ..errors import ConvergenceError, NoSolutionError
 from ..problems.base import Formulation
 from .dop853_small import SmallSolution, dop853_small
-from .radau_scalar import ScalarSolution, radau_scalar
+from .radau_scalar import ScalarSolution, StepFailedError, radau_scalar
 
 # exp(l) underflows below this; the spin is then exactly zero in double precision.
 LOG_UNDERFLOW = -745.0
@@ -70,20 +71,23 @@ def integrate_couple_stress(
     Radau IIA (order 5) specialised to a scalar equation (:mod:`.radau_scalar`); a terminal
     event on the yield radicand S stops it where the solution leaves the real domain.
     """
-    material = form.material
-    scale = float(radicand_scale(1.0, material))
-
-    def yield_margin(xi: float, m: float) -> float:
-        syx = float(form.sigma_yx(xi, m))
-        sc = float(form.sigma_c(xi))
-        return float(radicand(syx, sc, m, material)) / (scale * sc * sc)
-
     try:
         sol = radau_scalar(
-            form.dm_dxi_scalar, xi_start, xi_end, m_start, rtol, atol, event=yield_margin
+            form.dm_dxi, xi_start, xi_end, m_start, rtol, atol, event=form.yield_margin
         )
-    except RuntimeError as exc:
-        raise ConvergenceError(f"couple-stress integration failed: {exc}") from None
+    except StepFailedError as exc:
+        margin = float(form.yield_margin(exc.t, exc.y))
+        why = (
+            f"; the couple stress is within {margin:.1e} (relative) of its yield bound there, "
+            f"where the couple-stress equation is singular (dF/dm ~ 1/sqrt(S)): the problem is "
+            f"at the edge of the model's real domain (e.g. a nearly frictionless wall, or a very "
+            f"small inner cylinder with a small eps)"
+            if margin < 1e-6
+            else ""
+        )
+        raise ConvergenceError(
+            f"couple-stress integration stalled at xi = {exc.t:.6g} (m = {exc.y:.6g}): {exc}{why}"
+        ) from None
     if sol.status == 1:
         xi_r = float(sol.t_event)  # type: ignore[arg-type]
         m_r = float(sol.y[-1])
@@ -148,7 +152,7 @@ def integrate_spin(
             xi, jac = xi_slip + span * (2.0 * tau - tau * tau), span * 2.0 * (1.0 - tau)
         else:
             xi, jac = xi_slip + span * tau, span
-        rate, source = form.spin_rates_scalar(xi, m_scalar(xi))
+        rate, source = form.spin_rates(xi, m_scalar(xi))
         ell = y[0]
         # a trial stage may overshoot; l <= 0 on the solution (w is largest at the wall)
         gain = math.exp(min(ell, 700.0)) if ell > LOG_UNDERFLOW else 0.0
@@ -172,32 +176,46 @@ def integrate_spin(
 
 def wall_constants_from_conditions(
     *,
-    h_slip: float,
-    kappa_slip: float,
-    P_fixed: float,
-    h_fixed: float,
-    u_fixed: float,
-    u_wall_slip: float,
-    slip_sign: float,
-    eps_K: float,
-) -> tuple[float, float]:
-    """(u_s, w_s) at the slipping wall from the two velocity conditions.
+    h_slip: Any,
+    kappa_slip: Any,
+    P_fixed: Any,
+    h_fixed: Any,
+    u_fixed: Any,
+    u_wall_slip: Any,
+    slip_sign: Any,
+    eps_K: Any,
+) -> tuple[Any, Any]:
+    """(u_s, w_s) at the slipping wall from the two velocity conditions (floats or arrays).
 
     With ``h u = (h u)_s - w_s P``: no slip at the fixed wall, ``h_f u_f = h_s u_s - w_s P_f``;
-    slip ``u_s = u_wall + s eps K omega_s`` with ``omega_s = w_s - kappa_s u_s``.
+    slip ``u_s = u_wall + s eps K omega_s`` with ``omega_s = w_s - kappa_s u_s``. Cramer's rule
+    on the 2x2 system.
     """
-    u_s, w_s = solve_linear_2x2(
-        [[h_slip, -P_fixed], [1.0 + slip_sign * eps_K * kappa_slip, -slip_sign * eps_K]],
-        [h_fixed * u_fixed, u_wall_slip],
-        "wall conditions",
-    )
-    return float(u_s), float(w_s)
+    a11, a12 = h_slip, -P_fixed
+    a21, a22 = 1.0 + slip_sign * eps_K * kappa_slip, -slip_sign * eps_K
+    b1, b2 = h_fixed * u_fixed, u_wall_slip
+    det = _checked_det(a11 * a22 - a12 * a21)
+    return (b1 * a22 - a12 * b2) / det, (a11 * b2 - a21 * b1) / det
 
 
-def solve_linear_2x2(matrix: list[list[float]], rhs: list[float], what: str) -> FloatArray:
-    """Solve the velocity conditions; a singular system is reported, not propagated as NaN."""
-    a = np.asarray(matrix, dtype=float)
-    det = a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]
-    if not np.isfinite(det) or abs(det) < 1e-300:
-        raise ConvergenceError(f"the velocity boundary conditions are singular ({what})")
-    return np.linalg.solve(a, np.asarray(rhs, dtype=float))
+def symmetric_wall_constants(
+    P_centre: Any, eps: Any, K_upper: Any, K_lower: Any
+) -> tuple[Any, Any, Any]:
+    """(u_s, w_s, u_c) between identical walls that both slip (floats or arrays).
+
+    Upper half: ``u = u_s - w_s P``; u - u_c is odd and omega even about xi = 1/2, so with
+    ``u_c = u_s - w_s P_c``: ``u_s = 1 + eps K_u w_s`` (``eqn-nd_bc3u``) and
+    ``u(0) = 2 u_c - u_s = -eps K_l w_s`` (``eqn-nd_bc3l``).
+    """
+    det = _checked_det(eps * (K_upper + K_lower) - 2.0 * P_centre)
+    u_s = (eps * K_lower - 2.0 * P_centre) / det
+    w_s = -1.0 / det
+    return u_s, w_s, u_s - w_s * P_centre
+
+
+def _checked_det(det: Any) -> Any:
+    """A singular velocity system is reported, not propagated as inf/NaN."""
+    bad = ~np.isfinite(det) | (np.abs(det) < 1e-300)
+    if np.any(bad) and np.ndim(det) == 0:
+        raise ConvergenceError("the velocity boundary conditions are singular")
+    return np.where(bad, np.nan, det) if np.ndim(det) else det

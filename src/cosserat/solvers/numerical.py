@@ -16,7 +16,7 @@ from .assemble import fields_from_state, make_profile
 from .engine import (
     integrate_couple_stress,
     integrate_spin,
-    solve_linear_2x2,
+    symmetric_wall_constants,
     wall_constants_from_conditions,
 )
 
@@ -54,10 +54,7 @@ def solve_plane(
         K_up, K_low = problem.upper.K, problem.lower_wall.K
         # u(xi) = u_s - w_s P(xi) on the upper half, mirrored (u - u_c odd, omega even):
         #   u_s = 1 + eps K_up w_s  (eqn-nd_bc3u);  u(0) = 2 u_c - u_s = -eps K_low w_s.
-        u_s, w_s = solve_linear_2x2(
-            [[1.0, -eps * K_up], [1.0, eps * K_low - 2.0 * P_c]], [1.0, 0.0], "symmetric plane"
-        )
-        u_c = u_s - w_s * P_c
+        u_s, w_s, u_c = symmetric_wall_constants(P_c, eps, K_up, K_low)
 
         def upper_half(x: FloatArray) -> Fields:
             m = cs(x)

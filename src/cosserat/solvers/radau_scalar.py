@@ -36,6 +36,14 @@ MIN_FACTOR, MAX_FACTOR = 0.2, 10.0
 _SQRT3 = math.sqrt(3.0)
 
 
+class StepFailedError(RuntimeError):
+    """The integration could not continue; ``t`` and ``y`` say where it stopped."""
+
+    def __init__(self, message: str, t: float, y: float) -> None:
+        super().__init__(f"{message} at t = {t:.6g}")
+        self.t, self.y = t, y
+
+
 @dataclass(frozen=True, eq=False)
 class ScalarSolution:
     """Step points and the cubic dense output of each step.
@@ -103,12 +111,15 @@ def radau_scalar(
     rtol: float,
     atol: float,
     event: Callable[[float, float], float] | None = None,
-    max_steps: int = 100_000,
+    max_steps: int = 20_000,
 ) -> ScalarSolution:
     """Integrate y' = fun(t, y) from t0 to t1 (either direction).
 
     ``event(t, y)``: terminal, when it goes from > 0 to <= 0 along the integration (located
-    on the dense output by bisection). Raises RuntimeError if the step size underflows.
+    on the dense output by bisection). Raises :class:`StepFailedError` (with the point reached) if
+    the step size falls below 1e-13 of the interval or more than ``max_steps`` steps are
+    needed: the equation is then singular there (for the couple stress: a start within
+    round-off of the yield bound, where dF/dm ~ 1/sqrt(S)).
     """
     direction = 1.0 if t1 >= t0 else -1.0
     nfev = njev = 0
@@ -149,13 +160,13 @@ def radau_scalar(
 
     while direction * (t1 - t) > 0.0:
         if len(ts) > max_steps:
-            raise RuntimeError(f"radau_scalar: more than {max_steps} steps")
-        min_step = 10.0 * abs(math.nextafter(t, direction * math.inf) - t)
+            raise StepFailedError(f"more than {max_steps} steps", t, y)
+        min_step = max(10.0 * abs(math.nextafter(t, direction * math.inf) - t), 1e-13 * interval)
         h_abs = max(h_abs, min_step)
         rejected = False
         while True:
             if h_abs < min_step:
-                raise RuntimeError("Required step size is less than spacing between numbers.")
+                raise StepFailedError(f"the step size fell below {min_step:.1e}", t, y)
             h = h_abs * direction
             t_new = t + h
             if direction * (t_new - t1) > 0:
