@@ -8,7 +8,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.special import airy
 
-from cosserat import Material, PlaneShear, Wall, solve
+from cosserat import CouetteFlow, Material, MethodNotAvailableError, PlaneShear, Wall, solve
 from cosserat.solvers.airy import I_INFINITY, velocity_fraction, xi_hat_at_fraction
 
 MAT = Material(28.5)
@@ -20,9 +20,12 @@ def order_of(errors, eps):
     return np.polyfit(np.log(eps), np.log(errors), 1)[0]
 
 
-@pytest.mark.parametrize("lower", [None, Wall(25.0), Wall(10.0)])
+@pytest.mark.parametrize(
+    "lower", [None, Wall(25.0), Wall(10.0), Wall(20.0, K=0.0), Wall(20.0, K=5.0)]
+)
 def test_zero_gravity_asymptotics_are_exact_up_to_exponentially_small_terms(lower):
-    """eqn-asymp_soln_vels_g0 / _g0_aw differ from the exact solution by O(exp(-k/(2 eps)))."""
+    """eqn-asymp_soln_vels_g0 / _g0_aw differ from the exact solution by O(exp(-k/(2 eps)));
+    between identical walls with different K the mid-plane velocity is not 1/2."""
     problem = PlaneShear(material=MAT, upper=Wall(20.0), lower=lower, eps=1e-3)
     exact = solve(problem, method="closed-form")
     asym = solve(problem, method="asymptotic", xi=exact.xi)
@@ -72,3 +75,24 @@ def test_fully_rough_identical_walls_shear_uniformly_at_leading_order():
     np.testing.assert_allclose(uniform.omega, -0.5)
     exact = solve(problem, method="closed-form", xi=uniform.xi)
     assert np.max(np.abs(exact.u - uniform.u)) < 2 * problem.eps  # vel_g0: O(eps K) slip
+
+
+@pytest.mark.parametrize(
+    ("problem", "needle"),
+    [
+        (PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=1e-3, B=1e-12), "B nu >> eps"),
+        (CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=0.04, Ri=1e6), "thinner than"),
+        (PlaneShear(material=Material(28.5, L=1e8), upper=Wall(20.0), eps=1e-3), "thinner than"),
+        (PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3, B=1e6), "changes too fast"),
+        (CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=0.04, Ri=1.0), "thinner than"),
+        (
+            PlaneShear(
+                material=MAT, upper=Wall(20.0), lower=Wall(25.0), eps=1e-3, m_fixed_wall=0.1
+            ),
+            "m_fixed_wall",
+        ),
+    ],
+)
+def test_the_asymptotic_route_refuses_where_the_expansion_does_not_apply(problem, needle):
+    with pytest.raises(MethodNotAvailableError, match=needle):
+        solve(problem, method="asymptotic")

@@ -7,6 +7,7 @@ import subprocess
 import sys
 
 import pytest
+from reference import delta_limit_by_hand
 
 from cosserat.cli import main
 
@@ -43,7 +44,7 @@ def test_solve_plane_json_contract(capsys):
     assert len(record["xi"]) == len(record["u"]) <= 41
     assert record["parameters"]["phi"] == 28.5 and record["parameters"]["upper"]["delta"] == 20.0
     assert record["parameters"]["L"] == 10.0 and record["parameters"]["upper"]["K"] == 0.5
-    assert record["thickness"] == pytest.approx(17.6688, rel=1e-4)
+    assert record["thickness"] == pytest.approx(delta_limit_by_hand(), rel=1e-6)
     assert record["wall_omega"] < 0 and record["wall_slip"] > 0
     assert record["diagnostics"]["method"] == "numerical"
 
@@ -98,8 +99,8 @@ def test_thickness_json(capsys):
     record = json.loads(out)
     assert record["eps"] == [1e-2, 1e-4]
     assert len(record["Delta"]) == 2
-    assert record["Delta_asymptote"] == pytest.approx(17.6688, rel=1e-4)
-    assert record["Delta"][1] == pytest.approx(17.6688, rel=1e-4)
+    assert record["Delta_asymptote"] == pytest.approx(delta_limit_by_hand(), rel=1e-12)
+    assert record["Delta"][1] == pytest.approx(delta_limit_by_hand(), rel=1e-6)
 
 
 def test_solve_and_thickness_couette(capsys):

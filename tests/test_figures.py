@@ -6,6 +6,7 @@ import json
 
 import numpy as np
 import pytest
+from reference import delta_limit_by_hand
 
 from cosserat.figures import FIGURES, make_figure
 
@@ -75,11 +76,13 @@ def test_fig6_the_layer_thins_as_B_grows():
     assert np.max(np.abs(rough.x)) < 1e-12
 
 
-def test_fig7_asymptotics_agree_to_their_order():
+def test_fig7_asymptotic_symbols_are_within_their_order_of_the_lines():
+    """Fully rough walls: the leading-order Airy solution is O(eps^(1/3)) = 0.1 off at 1e-3."""
     for panel in (0, 1):
         c = list(curves(7, panel).values())
         for line, symbols in ((c[0], c[1]), (c[2], c[3])):
-            assert np.max(np.abs(np.interp(symbols.y, line.y, line.x) - symbols.x)) < 0.05
+            gap = np.max(np.abs(np.interp(symbols.y, line.y, line.x) - symbols.x))
+            assert gap < 0.5 * 1e-3 ** (1 / 3)
 
 
 def test_fig9_localisation_grows_as_the_inner_radius_shrinks():
@@ -98,7 +101,10 @@ def test_experiment_figures_decay_from_the_inner_wall(number):
 
 def test_fig12_existence_bound_and_weak_dependence_on_A():
     extra = data_of(12).extra
-    assert -1 < extra["A_bound"] < extra["A"][-1]
+    # computed by bisection at the caption's eps = 0.04 (the paper states -0.57, which the
+    # model gives at eps B nu = 0.02: test_sensitivity.py); a regression pin with its tolerance
+    assert extra["A_bound"] == pytest.approx(-0.3208, abs=1e-3)
+    assert extra["A_bound_tol"] < 1e-4
     u = list(curves(12, 0).values())
     assert np.max(np.abs(u[0].x - u[1].x)) < 0.1  # A = 1/3 and 0.9: "not much variation"
 
@@ -115,7 +121,7 @@ def test_fig14_limits():
     table = data_of(14).extra["table"]
     for name, row in table.items():
         if name.startswith("a:"):
-            assert row["Delta"][-1] == pytest.approx(17.6688, abs=3e-3), name
+            assert row["Delta"][-1] == pytest.approx(delta_limit_by_hand(), abs=3e-3), name
         elif "identical" not in name:
             assert row["Delta"][-1] / row["Delta_asymptotic"][-1] == pytest.approx(1, abs=2e-3)
 

@@ -57,7 +57,8 @@ def test_wall_rougher_than_fully_rough_is_rejected_with_the_bound():
     [
         ({"eps": 0.0}, r"eps = d_p/H must satisfy 0 < eps <= 0.5.*got 0"),
         ({"eps": 0.6}, r"eps = d_p/H must satisfy 0 < eps <= 0.5.*got 0.6"),
-        ({"eps": 0.1, "B": -1.0}, r"B = rho_p g H / N must satisfy B >= 0; got -1"),
+        ({"eps": 0.1, "B": -1.0}, r"B = rho_p g H / N must satisfy 0 <= B <= 1e\+06.*got -1"),
+        ({"eps": 0.1, "B": 1e300}, r"B = rho_p g H / N must satisfy 0 <= B <= 1e\+06.*got 1e\+300"),
         ({"eps": 0.1, "nu": 0.0}, r"nu \(solids fraction\) must satisfy 0 < nu <= 1; got 0"),
         ({"eps": 0.1, "nu": 1.5}, r"nu .* got 1.5"),
         ({"eps": float("nan")}, r"eps must be finite"),

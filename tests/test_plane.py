@@ -6,11 +6,15 @@ import math
 
 import numpy as np
 import pytest
+from reference import delta_limit_by_hand
 
 from cosserat import (
+    ConvergenceError,
+    CouetteFlow,
     Material,
     MethodNotAvailableError,
     NoSolutionError,
+    ParameterError,
     PlaneShear,
     PlaneShearCase,
     Wall,
@@ -27,17 +31,22 @@ def scaled_error(num, ref, name, rtol):
     return np.max(np.abs(a - b)) / (rtol * max(np.max(np.abs(b)), 1e-300) + 1e-300)
 
 
-@pytest.mark.parametrize("eps", [0.04, 1e-3])
-@pytest.mark.parametrize("delta", [10.0, 20.0, 25.5])
+@pytest.mark.parametrize("eps", [0.5, 0.04, 1e-3, 1e-6])
+@pytest.mark.parametrize("delta", [1.0, 10.0, 20.0, 25.5])
 @pytest.mark.parametrize("lower", [None, "rougher", "smoother"])
-def test_numerical_matches_closed_form_to_tolerance(eps, delta, lower):
-    lower_wall = {None: None, "rougher": Wall.fully_rough(), "smoother": Wall(5.0)}[lower]
+@pytest.mark.parametrize("rtol", [1e-6, 1e-10])
+def test_numerical_matches_closed_form_to_tolerance(eps, delta, lower, rtol):
+    """The claim of docs/numerics.md: within 10 rtol for m, u, omega (relative to their size).
+
+    Local error control does not bound the global error; measured over this grid the worst
+    case is 5.8 rtol (delta = 1 deg, eps = 0.04, rtol = 1e-10), typical 0.1-3 rtol.
+    """
+    lower_wall = {None: None, "rougher": Wall.fully_rough(), "smoother": Wall(0.5)}[lower]
     problem = PlaneShear(material=MAT, upper=Wall(delta), lower=lower_wall, eps=eps)
-    rtol = 1e-8
-    num = solve(problem, rtol=rtol)
-    ref = solve(problem, method="closed-form", xi=num.xi)
+    num = solve(problem, rtol=rtol, check=False)
+    ref = solve(problem, method="closed-form", xi=num.xi, check=False)
     for name in FIELDS:
-        assert scaled_error(num, ref, name, rtol) < 5.0, name
+        assert scaled_error(num, ref, name, rtol) < 10.0, name
 
 
 def test_lower_layer_closed_form_is_the_mirror_image():
@@ -62,12 +71,10 @@ def test_closed_form_spin_and_velocity_satisfy_the_flow_rule_independently():
     r_m = eps * alpha * np.gradient(f.m, x) + (sxy - syx) / (2 * (A + 1))
     r_u = np.gradient(f.u, x) + (A + 1) * (sxy + syx) * f.omega / (sxy + A * syx)
     r_w = eps * alpha * np.gradient(f.omega, x) + 2 * (A + 1) * f.m * f.omega / (sxy + A * syx)
-    h = x[1] - x[0]
-    # second-order differences: the residual is the truncation error O(h^2)
+    # second-order differences on h = 2.5e-5: the residual is the truncation error O(h^2)
     assert np.max(np.abs(r_m[1:-1])) < 1e-6
     assert np.max(np.abs(r_u[1:-1])) < 1e-6 * max(1.0, np.max(np.abs(f.omega)))
     assert np.max(np.abs(r_w[1:-1])) < 1e-5 * np.max(np.abs(f.omega))
-    assert h < 1e-4
 
 
 def test_fully_rough_symmetric_is_uniform_shear_vel_g0():
@@ -199,8 +206,14 @@ def test_routes_that_do_not_exist_say_so():
     gravity = PlaneShear(material=MAT, upper=Wall(20.0), eps=0.01, B=1.0)
     with pytest.raises(MethodNotAvailableError, match="no closed form for plane shear under"):
         solve(gravity, method="closed-form")
-    with pytest.raises(Exception, match="method must be one of"):
+    with pytest.raises(ParameterError, match="method must be one of"):
         solve(gravity, method="shooting")
+    with pytest.raises(MethodNotAvailableError, match="no closed-form route for CouetteFlow"):
+        solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.1, Ri=1.0), method="closed-form")
+    with pytest.raises(ParameterError, match="rtol do not apply to method='closed-form'"):
+        solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1), method="closed-form", rtol=1e-6)
+    with pytest.raises(ParameterError, match="rtol must satisfy 1e-13 <= rtol <= 1e-2"):
+        solve(gravity, rtol=1.0)
 
 
 def test_export_round_trip(tmp_path):
@@ -209,7 +222,7 @@ def test_export_round_trip(tmp_path):
     prof = solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3), points=51)
     record = json.loads(prof.to_json(tmp_path / "p.json"))
     assert record["xi"][0] == 0.0 and record["xi"][-1] == 1.0
-    assert math.isclose(record["thickness"], 17.6688, rel_tol=1e-4)
+    assert math.isclose(record["thickness"], delta_limit_by_hand(), rel_tol=1e-6)
     text = prof.to_csv(tmp_path / "p.csv")
     data = np.loadtxt(tmp_path / "p.csv", delimiter=",", comments="#", skiprows=3)
     assert data.shape == (len(prof.xi), 9)
@@ -221,3 +234,10 @@ def test_quick_plot_has_four_panels():
     prof = solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.04), points=51)
     fig = prof.plot()
     assert len(fig.axes) == 4
+
+
+def test_nearly_frictionless_wall_fails_fast_and_says_why():
+    """A couple stress starting within round-off of its yield bound makes the couple-stress
+    equation singular; the solver stops with a reason instead of grinding."""
+    with pytest.raises(ConvergenceError, match=r"within .* of its yield bound"):
+        solve(PlaneShear(material=MAT, upper=Wall(1e-5), eps=1e-3))

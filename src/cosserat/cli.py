@@ -14,12 +14,8 @@ from pathlib import Path
 from typing import Any, NoReturn
 
 from . import __version__
-from .analysis import (
-    DEFAULT_F,
-    asymptotic_thickness,
-    thickness_curve,
-    thickness_limit,
-)
+from .analysis import DEFAULT_F, thickness_curve, thickness_limit
+from .analysis.laws import thickness_curve_asymptote
 from .errors import CosseratError
 from .parameters import FULLY_ROUGH, Material, Wall
 from .problems import CouetteFlow, PlaneShear, Problem
@@ -196,7 +192,7 @@ def cmd_thickness(args: argparse.Namespace) -> None:
         **_solver_options(args),
     )
     limit = thickness_limit(problem, args.f)
-    asym = [asymptotic_thickness(replace(problem, eps=e), args.f) for e in eps_values]
+    asym = thickness_curve_asymptote(problem, eps_values, args.f)
     record = {
         "problem": problem.parameters()["geometry"],
         "parameters": {k: v for k, v in problem.parameters().items() if k != "eps"},
@@ -335,7 +331,7 @@ def _data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
         m_wall=args.m_wall,
     )
     if args.delta is None and not args.fully_rough and preset is not None:
-        ns.delta = preset.material.fully_rough_delta - 2.0  # the paper's solid lines
+        ns.delta = preset.default_delta
     return measured, build_problem(ns, float(eps))  # type: ignore[arg-type]
 
 
@@ -509,8 +505,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except UsageError as exc:
         print(str(exc), file=sys.stderr)
         return 2
-    except (CosseratError, ValueError) as exc:
-        message = " ".join(str(exc).split())
+    except (CosseratError, ValueError, ArithmeticError) as exc:
+        message = " ".join(str(exc).split()) or type(exc).__name__
         print(f"cosserat: error: {message}", file=sys.stderr)
         return 2
     return 0

@@ -32,9 +32,15 @@ class ExperimentPreset:
     def material(self) -> Material:
         return Material(self.phi, L=self.L, A=self.A)
 
-    def problem(self, delta: float | None = None) -> CouetteFlow:
-        """The preset cell with wall friction ``delta`` [deg] (default: fully rough)."""
-        wall = Wall.fully_rough(self.K) if delta is None else Wall(delta, self.K)
+    @property
+    def default_delta(self) -> float:
+        """atan(sin phi) - 2 deg: the paper's solid lines, which fit the data better [deg]."""
+        return self.material.fully_rough_delta - 2.0
+
+    def problem(self, delta: float | str | None = None) -> CouetteFlow:
+        """The preset cell with wall friction ``delta`` [deg] or "fully-rough"
+        (default: :attr:`default_delta`)."""
+        wall = Wall(self.default_delta if delta is None else delta, self.K)
         return CouetteFlow(material=self.material, wall=wall, eps=self.eps, Ri=self.Ri)
 
 

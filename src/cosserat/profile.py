@@ -57,7 +57,7 @@ class Diagnostics:
     residuals : dict
         Largest defect of each ODE, recomputed on the returned profile in integral form over
         the intervals of a layer-resolving check grid (:func:`cosserat.diagnostics.residuals`):
-        "couple_stress" (relative to the stress scale), "spin" (relative to the local spin),
+        "couple_stress" (relative to the stress scale), "spin" (relative to the wall spin),
         "velocity" (relative to the wall speed).
     bc_errors : dict
         Each boundary condition written as ``lhs - rhs`` and evaluated on the profile.

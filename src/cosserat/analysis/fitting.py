@@ -144,9 +144,6 @@ class _Coordinates:
             else (self.base.material.phi)
         )
 
-    def t_bounds(self) -> tuple[float, float]:
-        return 1e-6, 1.0
-
     def to_natural(self, theta: FloatArray) -> dict[str, float]:
         out = {}
         phi = self.phi_of(theta)

@@ -25,7 +25,7 @@ def thickness_limit(problem: Problem, f: float = DEFAULT_F) -> float | None:
 
 def asymptotic_thickness(problem: Problem, f: float = DEFAULT_F) -> float:
     """The leading-order small-eps law for Delta at the problem's eps [grain diameters]."""
-    from ..solvers.airy import plane_inner_scale, xi_hat_at_fraction
+    from ..solvers.airy import xi_hat_at_fraction
 
     limit = thickness_limit(problem, f)
     if limit is not None:
@@ -34,7 +34,7 @@ def asymptotic_thickness(problem: Problem, f: float = DEFAULT_F) -> float:
     if isinstance(problem, CouetteFlow):  # eqn-delta_soln_fr (b)
         return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * problem.inner_scale()
     if problem.B > 0.0:  # eqn-delta_soln_fr (a)
-        return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * plane_inner_scale(problem)
+        return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * problem.inner_scale()
     u0 = 0.5 if problem.case is PlaneShearCase.SYMMETRIC else 0.0
     return (1.0 - u0) * (1.0 - f) / eps
 

@@ -13,8 +13,7 @@ from typing import Any
 import numpy as np
 
 from ..analysis import asymptotic_thickness, shear_layer_thickness, thickness_curve
-from ..errors import NoSolutionError
-from ..parameters import Material, Wall
+from ..parameters import FULLY_ROUGH, Material, Wall
 from ..problems import CouetteFlow, PlaneShear, Problem
 from ..profile import Profile
 from ..solvers import solve
@@ -262,24 +261,17 @@ def compute_cyl_couette() -> FigureData:
 
 # --------------------------------------------------------------------------- 10, 11: experiments
 def experiment_curves(preset: str, data: Any = None) -> Panel:
-    """-u against xi for a preset cell: fully rough (dot-dash) and 2 deg below (solid)."""
+    """-u against xi for a preset cell: fully rough (dot-dash) and the preset's default wall,
+    2 deg below atan(sin phi) (solid)."""
     from ..experiments import PRESETS
 
     cell = PRESETS[preset]
-    material = Material(cell.phi, L=cell.L, A=cell.A)
     panel = Panel(xlabel=XI, ylabel=r"$-u$", title=cell.description)
-    walls = [
-        (
-            Wall(material.fully_rough_delta - 2.0, cell.K),
-            r"$\delta = \tan^{-1}\sin\phi - 2^\circ$",
-            "-",
-        ),
-        (Wall.fully_rough(cell.K), "fully rough", "-."),
-    ]
-    for wall, label, ls in walls:
-        prof = solve(
-            CouetteFlow(material=material, wall=wall, eps=cell.eps, Ri=cell.Ri), points=POINTS
-        )
+    for delta, label, ls in (
+        (None, r"$\delta = \tan^{-1}\sin\phi - 2^\circ$", "-"),
+        (FULLY_ROUGH, "fully rough", "-."),
+    ):
+        prof = solve(cell.problem(delta), points=POINTS)
         panel.add(label, prof.xi, -prof.u, color="k", linestyle=ls)
     if data is not None:
         panel.add(
@@ -487,10 +479,3 @@ def plot_default(data: FigureData):  # type: ignore[no-untyped-def]
         for ax in fig.axes:
             ax.set_ylim(0.95, 1.0)
     return fig
-
-
-def safe_solve(problem: Problem, **kw: Any) -> Profile | None:
-    try:
-        return solve(problem, **kw)
-    except NoSolutionError:
-        return None

@@ -226,7 +226,8 @@ class CouetteFlow:
 
     def output_grid(self, n: int) -> FloatArray:
         w = self.layer_width()
-        return layered_grid(n, [(0.0, w), (1.0, w)])
+        w_m = max(w, min(1.0, 10.0 * self.eps * self.material.alpha))
+        return layered_grid(n, [(0.0, w), (1.0, w_m)])
 
     def describe(self) -> str:
         return (

@@ -30,7 +30,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..constitutive import FloatArray, symmetric_couple_stress
+from ..constitutive import FloatArray, radicand, symmetric_couple_stress
 from ..errors import ParameterError
 from ..grids import layered_grid
 from ..parameters import Material, Wall, require_finite
@@ -65,6 +65,9 @@ def wall_constants(tau: float, sigma_c: float, material: Material) -> WallConsta
     m0 = symmetric_couple_stress(-tau, sigma_c, material)
     b = math.sqrt(a * a + m0 * m0)
     return WallConstants(a, b, m0, m0 / (material.alpha * a))
+
+
+B_MAX = 1e6  # beyond, stresses of order (B sin phi)^2 leave the range of doubles soon
 
 
 def mean_stress(xi: Any, B_nu: Any) -> Any:
@@ -125,8 +128,11 @@ class PlaneShear:
             raise ParameterError(f"lower must be a Wall; got {type(self.lower).__name__}")
         object.__setattr__(self, "eps", validate_eps(self.eps))
         B = require_finite("B", self.B)
-        if B < 0.0:
-            raise ParameterError(f"B = rho_p g H / N must satisfy B >= 0; got {B:g}")
+        if not 0.0 <= B <= B_MAX:
+            raise ParameterError(
+                f"B = rho_p g H / N must satisfy 0 <= B <= {B_MAX:g} (weight of the layer at most "
+                f"{B_MAX:g} times the applied normal stress); got {B:g}"
+            )
         object.__setattr__(self, "B", B)
         nu = require_finite("nu", self.nu)
         if not 0.0 < nu <= 1.0:
@@ -215,13 +221,12 @@ class PlaneShear:
         return self.slip_constants.m0 == 0.0
 
     def couple_stress_bound(self, xi: float) -> float:
-        """Largest |m| at xi for which ``eqn-nd_sigxy`` is real [-]."""
-        A, syx = self.material.A, self.sigma_yx
-        sc = float(self.sigma_c(xi))
-        arg = (2 * (A + 1) * (sc * self.material.sin_phi) ** 2 + (A * A - 1) * syx**2) / (
-            4 * (A + 1) ** 2
-        )
-        return math.sqrt(max(arg, 0.0))
+        """Largest |m| at xi for which ``eqn-nd_sigxy`` is real [-].
+
+        S is S(m = 0) - 4(A+1)^2 m^2 (``constitutive.radicand``), zero at the bound.
+        """
+        S0 = float(radicand(self.sigma_yx, float(self.sigma_c(xi)), 0.0, self.material))
+        return math.sqrt(max(S0, 0.0)) / (2.0 * (self.material.A + 1.0))
 
     @property
     def m_at_fixed_wall(self) -> float:
@@ -332,11 +337,19 @@ class PlaneShear:
     def output_grid(self, n: int) -> FloatArray:
         """About ``n`` points across the gap, resolving the layers (:mod:`cosserat.grids`)."""
         w = self.layer_width()
+        # where m leaves its start value (centre or fixed wall): ~eps/k near m0, but a rise
+        # over ~eps alpha when the wall is nearly frictionless (a << m0)
+        w_m = max(w, min(0.5, 10.0 * self.eps * self.material.alpha))
         if self.case is PlaneShearCase.SYMMETRIC:
-            zones = [(0.0, w), (0.5, w), (1.0, w)]
+            zones = [(0.0, w), (0.5, w_m), (1.0, w)]
         else:
-            zones = [(self.slip_wall, w), (1.0 - self.slip_wall, w)]
+            zones = [(self.slip_wall, w), (1.0 - self.slip_wall, w_m)]
         return layered_grid(n, zones)
+
+    def inner_scale(self) -> float:
+        """(L^2 / (2 B nu))^(1/3): 1 - xi = eps^(2/3) scale x_hat in the Airy layer of a fully
+        rough upper wall under gravity (Appendix, "Plane shear under gravity") [-]."""
+        return (self.material.L**2 / (2.0 * self.B * self.nu)) ** (1.0 / 3.0)
 
     def layer_width(self) -> float:
         """A distance from the slipping wall beyond which u is within ~1e-10 of u_0 [-].
@@ -349,8 +362,7 @@ class PlaneShear:
         if const.k > 0.0:
             return min(half, 24.0 * self.eps / const.k)
         if self.B > 0.0:
-            scale = (self.material.L**2 / (2.0 * self.B * self.nu)) ** (1.0 / 3.0)
-            return min(half, 6.0 * self.eps ** (2.0 / 3.0) * scale)
+            return min(half, 6.0 * self.eps ** (2.0 / 3.0) * self.inner_scale())
         return half
 
     def describe(self) -> str:

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable
 from typing import Any
 
-from ..errors import ParameterError
+from ..errors import MethodNotAvailableError, ParameterError
 from ..problems import CouetteFlow, PlaneShear, Problem
 from ..profile import Profile
 from . import asymptotic, closed_form, numerical
@@ -39,11 +40,14 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
     Raises
     ------
     ParameterError
-        Unknown method.
+        Unknown method or option, or a problem that is neither PlaneShear nor CouetteFlow.
     MethodNotAvailableError
-        The route does not exist for this problem (e.g. no closed form under gravity).
+        The route does not exist for this problem (no closed form under gravity or in
+        Couette flow; the asymptotics where the layer is not thin), with the route to use.
     NoSolutionError
         The model has no real solution for these parameters.
+    ConvergenceError
+        The numerical route did not converge (saying where); see ``docs/numerics.md``.
     """
     try:
         routes = _ROUTES[method]
@@ -51,9 +55,24 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
         raise ParameterError(
             f"method must be one of {', '.join(repr(m) for m in METHODS)}; got {method!r}"
         ) from None
+    if not isinstance(problem, PlaneShear | CouetteFlow):
+        raise ParameterError(
+            f"cannot solve a {type(problem).__name__}: give a PlaneShear or a CouetteFlow"
+        )
     route = routes.get(type(problem))
     if route is None:
-        raise ParameterError(f"cannot solve a {type(problem).__name__}")
+        available = [m for m, r in _ROUTES.items() if type(problem) in r]
+        raise MethodNotAvailableError(
+            f"no {method} route for {type(problem).__name__}: use one of "
+            f"{', '.join(repr(m) for m in available)}"
+        )
+    accepted = [p for p in inspect.signature(route).parameters if p != "problem"]
+    unknown = sorted(set(options) - set(accepted))
+    if unknown:
+        raise ParameterError(
+            f"option(s) {', '.join(unknown)} do not apply to method={method!r}; it accepts "
+            f"{', '.join(accepted)}"
+        )
     return route(problem, **options)
 
 

@@ -24,10 +24,10 @@ from scipy.optimize import brentq
 from scipy.special import airy, airye
 
 from ..constitutive import FloatArray
+from ..errors import MethodNotAvailableError
 from ..problems.couette import CouetteFlow
 from ..problems.plane import PlaneShear
 from ..profile import Fields, Profile
-from .assemble import make_profile
 
 _AI0, _AIP0, _, _ = (float(v) for v in airy(0.0))
 I_INFINITY = (_AIP0 / _AI0) ** 2
@@ -73,11 +73,6 @@ def xi_hat_at_fraction(f: float) -> float:
     )
 
 
-def plane_inner_scale(problem: PlaneShear) -> float:
-    """(L^2 / (2 B nu))^(1/3): 1 - xi = eps^(2/3) scale * x_hat (plane shear under gravity)."""
-    return (problem.material.L**2 / (2.0 * problem.B * problem.nu)) ** (1.0 / 3.0)
-
-
 def airy_layer(
     x_hat: FloatArray, *, eps: float, scale: float, u_wall: float, slip_sign: float
 ) -> tuple[FloatArray, FloatArray]:
@@ -96,10 +91,19 @@ def solve_plane_fully_rough(
 ) -> Profile:
     """Plane shear under gravity, fully rough upper wall (``eqn-eta_g_unif``,
     ``eqn-asymp_soln_vels_g_fr``, ``eqn-asymp_soln_vels_g__fr_consts``, ``eqn-vel_g_unif``)."""
+    from ..analysis.laws import asymptotic_thickness
+    from .asymptotic import _profile, require_valid
+
     eps, mat = problem.eps, problem.material
     B_nu = problem.B * problem.nu
+    if B_nu < 10.0 * eps:
+        raise MethodNotAvailableError(
+            f"the Airy inner layer needs B nu >> eps (the paper: not valid when B nu ~ eps); "
+            f"got B nu = {B_nu:g}, eps = {eps:g}: use method='numerical'"
+        )
+    require_valid(problem, eps * asymptotic_thickness(problem))
     a = 0.5 * problem.tan_delta_upper
-    scale = plane_inner_scale(problem)
+    scale = problem.inner_scale()
     inner_amp = (4.0 * a * mat.alpha * B_nu * mat.c2) ** (1.0 / 3.0) * eps ** (1.0 / 3.0)
     sigma_yx = problem.sigma_yx
 
@@ -123,11 +127,10 @@ def solve_plane_fully_rough(
             kappa=np.zeros_like(x),
         )
 
-    return make_profile(
+    return _profile(
         problem,
         problem.formulation(),
         evaluate,
-        method="asymptotic",
         points=points,
         xi=xi,
         reference_velocity=0.0,
@@ -141,8 +144,10 @@ def solve_couette_fully_rough(
 ) -> Profile:
     """Couette flow, fully rough cylinders: the Airy inner layer at the inner cylinder with
     x_hat = xi eps^(-2/3) (L^2 Ri/4)^(-1/3) and the composite couple stress of the Appendix."""
-    from .asymptotic import couette_leading_order_fields
+    from ..analysis.laws import asymptotic_thickness
+    from .asymptotic import _profile, couette_leading_order_fields, require_valid
 
+    require_valid(problem, problem.eps * asymptotic_thickness(problem))
     eps, Ri = problem.eps, problem.Ri
     scale = problem.inner_scale()
     d = problem.tan_delta / math.sqrt(2.0 * (problem.material.A + 1.0))
@@ -161,11 +166,10 @@ def solve_couette_fully_rough(
         return couette_leading_order_fields(problem, x, m, u, omega)
 
     form = problem.formulation(float(evaluate(np.array([0.0])).m[0]))
-    return make_profile(
+    return _profile(
         problem,
         form,
         evaluate,
-        method="asymptotic",
         points=points,
         xi=xi,
         reference_velocity=0.0,

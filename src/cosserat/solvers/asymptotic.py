@@ -21,14 +21,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.laws import asymptotic_thickness
 from ..constitutive import FloatArray, symmetric_couple_stress
+from ..errors import MethodNotAvailableError, NoSolutionError
+from ..problems import Problem
 from ..problems.couette import CouetteFlow
 from ..problems.plane import PlaneShear, PlaneShearCase
 from ..profile import Fields, Profile
 from .assemble import make_profile
 
 
-def outer_couple_stress(problem: PlaneShear, xi: FloatArray) -> FloatArray:
+def plane_outer_couple_stress(problem: PlaneShear, xi: FloatArray) -> FloatArray:
     """m^(0): the couple stress at which sigma_xy = sigma_yx, with the case's sign [-].
 
     ``eqn-asymp_soln_eta_g0`` (m0) without gravity, ``eqn-asymp_eta_g`` (a) with it.
@@ -64,6 +67,77 @@ def exponential_layer(
     return u, omega
 
 
+# The expansion needs a layer much thinner than the gap: eps * Delta (where u falls to 5%)
+# at most this fraction of the gap.
+THIN_LAYER = 0.1
+
+
+def require_valid(problem: Problem, thickness: float) -> None:
+    """Raise :class:`MethodNotAvailableError` unless the small-eps expansion applies.
+
+    Checks that the layer is thin (``thickness`` = eps Delta of the leading-order law at most
+    ``THIN_LAYER`` of the gap), that no couple stress is prescribed at a wall (the expansion
+    uses eqn-nd_bc4), and that the outer couple stress m^(0) is attainable outside the layer:
+    the couple-stress balance can lower m at most at the rate a/(eps alpha) (where
+    sqrt(S) = 0), so eps alpha |dm0/dxi + kappa m0| must stay well below a = |sigma_yx|/2
+    (``docs/derivation_plane.md`` section 6).
+    """
+    if getattr(problem, "m_fixed_wall", None) is not None:
+        raise MethodNotAvailableError(
+            "the asymptotic route assumes sigma_xy = sigma_yx at the fixed wall (eqn-nd_bc4); "
+            "with m_fixed_wall use method='numerical'"
+        )
+    if thickness > THIN_LAYER:
+        raise MethodNotAvailableError(
+            f"the small-eps asymptotics need a layer much thinner than the gap, but the "
+            f"leading-order layer is {thickness:.3g} gap widths thick (> {THIN_LAYER:g}): use "
+            f"method='numerical'"
+        )
+    x = np.linspace(0.0, 1.0, 401)
+    layers = [problem.slip_wall]  # and the inner layer at the centre between identical walls
+    if isinstance(problem, PlaneShear) and problem.case is PlaneShearCase.SYMMETRIC:
+        layers += [0.0, 0.5]
+    for centre in layers:
+        x = x[np.abs(x - centre) > 3.0 * thickness + 0.01]
+    m0 = outer_couple_stress(problem, x)
+    form = (
+        problem.formulation(float(m0[0]))
+        if isinstance(problem, CouetteFlow)
+        else (problem.formulation())
+    )
+    need = (
+        problem.eps * problem.material.alpha * np.abs(np.gradient(m0, x) + form.curvature(x) * m0)
+    )
+    a = 0.5 * np.abs(np.asarray(form.sigma_yx(x, m0), dtype=float))
+    if np.any(need > 0.5 * a):
+        i = int(np.argmax(need / np.maximum(a, 1e-300)))
+        raise MethodNotAvailableError(
+            f"the leading-order couple stress changes too fast for the couple-stress balance "
+            f"near xi = {x[i]:.3g} (eps alpha |dm0/dxi| = {need[i]:.3g} against a = {a[i]:.3g}): "
+            f"the expansion does not apply; method='numerical' says whether a real solution "
+            f"exists"
+        )
+
+
+def outer_couple_stress(problem: Problem, xi: FloatArray) -> FloatArray:
+    """m^(0) of either geometry: the couple stress at which the stress is symmetric [-]."""
+    if isinstance(problem, CouetteFlow):
+        return problem.outer_couple_stress(xi)
+    return plane_outer_couple_stress(problem, xi)
+
+
+def _profile(problem: Problem, form, evaluate, **kw):  # type: ignore[no-untyped-def]
+    """make_profile, with a composite that leaves the yield surface reported as the
+    expansion's failure, not the model's."""
+    try:
+        return make_profile(problem, form, evaluate, method="asymptotic", **kw)
+    except NoSolutionError as exc:
+        raise MethodNotAvailableError(
+            f"the leading-order asymptotic profile leaves the yield surface ({exc}); eps is "
+            f"too large for the expansion: use method='numerical'"
+        ) from None
+
+
 def solve_plane(
     problem: PlaneShear,
     *,
@@ -84,16 +158,16 @@ def solve_plane(
             from .airy import solve_plane_fully_rough
 
             return solve_plane_fully_rough(problem, points=points, xi=xi, check=check)
+        require_valid(problem, 0.0)
 
-        def evaluate(x: FloatArray) -> Fields:
+        def uniform(x: FloatArray) -> Fields:
             x = np.asarray(x, dtype=float)
             return _fields(x, np.zeros_like(x), x.copy(), np.full_like(x, -0.5), sigma_yx, problem)
 
-        return make_profile(
+        return _profile(
             problem,
             problem.formulation(),
-            evaluate,
-            method="asymptotic",
+            uniform,
             points=points,
             xi=xi,
             reference_velocity=0.5,
@@ -101,35 +175,53 @@ def solve_plane(
             message="leading order of vel_g0: uniform shear (fully rough walls, m = 0)",
         )
 
-    xs = problem.slip_wall
-    u0 = 0.5 if case is PlaneShearCase.SYMMETRIC else problem.reference_velocity
-    layer = {
-        "eps": eps,
-        "k": const.k,
-        "K": problem.slipping.K,
-        "u_wall": problem.wall_velocity(xs),
-        "u_ref": u0,
-        "slip_sign": problem.slip_sign(xs),
-    }
+    k = const.k
+    require_valid(problem, eps * asymptotic_thickness(problem))
+    if case is PlaneShearCase.SYMMETRIC:
+        # both walls slip; omega even, u - u_c odd; the layers each carry 2 omega_1 eps/k of
+        # velocity, so u(1) - u(0) = 1 + eps (K_u + K_l) omega_1 gives omega_1, and the sum of
+        # the slip conditions u_c (as the closed form's symmetric_wall_constants)
+        K_u, K_l = problem.upper.K, problem.lower_wall.K
+        omega_1 = -1.0 / (eps * (4.0 / k + K_u + K_l))
+        u0 = 0.5 * (1.0 + eps * (K_u - K_l) * omega_1)
 
-    def evaluate(x: FloatArray) -> Fields:
-        x = np.asarray(x, dtype=float)
-        u, omega = exponential_layer(xs - x, **layer)
-        if case is PlaneShearCase.SYMMETRIC:  # the mirror layer at the lower wall
-            u_low, omega_low = exponential_layer(x, **layer)
-            u, omega = u - (u_low - u0), omega + omega_low
-        return _fields(x, outer_couple_stress(problem, x), u, omega, sigma_yx, problem)
+        def evaluate(x: FloatArray) -> Fields:
+            x = np.asarray(x, dtype=float)
+            with np.errstate(under="ignore"):
+                up, low = np.exp(-k * (1.0 - x) / eps), np.exp(-k * x / eps)
+            u = u0 - 2.0 * omega_1 * (eps / k) * (up - low)
+            return _fields(
+                x, plane_outer_couple_stress(problem, x), u, omega_1 * (up + low), sigma_yx, problem
+            )
 
-    return make_profile(
+        message = f"eqn-asymp_soln_vels_g0 (both walls), k = {k:.6g}, u_c = {u0:.6g}"
+    else:
+        xs = problem.slip_wall
+        u0 = problem.reference_velocity
+        layer = {
+            "eps": eps,
+            "k": k,
+            "K": problem.slipping.K,
+            "u_wall": problem.wall_velocity(xs),
+            "u_ref": u0,
+            "slip_sign": problem.slip_sign(xs),
+        }
+
+        def evaluate(x: FloatArray) -> Fields:
+            x = np.asarray(x, dtype=float)
+            u, omega = exponential_layer(xs - x, **layer)
+            return _fields(x, plane_outer_couple_stress(problem, x), u, omega, sigma_yx, problem)
+
+        message = f"eqn-asymp_vels at leading order in eps (k = {k:.6g}, u_0 = {u0:g})"
+    return _profile(
         problem,
         problem.formulation(),
         evaluate,
-        method="asymptotic",
         points=points,
         xi=xi,
         reference_velocity=u0,
         check=check,
-        message=f"eqn-asymp_vels at leading order in eps (k = {const.k:.6g}, u_0 = {u0:g})",
+        message=message,
     )
 
 
@@ -151,6 +243,7 @@ def solve_couette(
         from .airy import solve_couette_fully_rough
 
         return solve_couette_fully_rough(problem, points=points, xi=xi, check=check)
+    require_valid(problem, problem.eps * asymptotic_thickness(problem))
     layer = {
         "eps": problem.eps,
         "k": const.k,
@@ -166,11 +259,10 @@ def solve_couette(
         u, omega = exponential_layer(x, **layer)
         return couette_leading_order_fields(problem, x, problem.outer_couple_stress(x), u, omega)
 
-    return make_profile(
+    return _profile(
         problem,
         form,
         evaluate,
-        method="asymptotic",
         points=points,
         xi=xi,
         reference_velocity=0.0,

@@ -94,8 +94,10 @@ def _spin_pass(
     span: FloatArray,
     eps: FloatArray,  # type: ignore[no-untyped-def]
     rtol: float,
+    h_min: FloatArray | float = 1.0,
 ):
-    """Batched pass 2 in t in [0, 1], xi = xi_slip + span t (as engine.integrate_spin)."""
+    """Batched pass 2 in t in [0, 1], xi = xi_slip + span t (as engine.integrate_spin, whose
+    comment explains the velocity weight ``h_min`` in the absolute tolerance of P)."""
     n = xi_slip.size
 
     def fun(t: FloatArray, y: FloatArray, idx: FloatArray) -> FloatArray:
@@ -108,7 +110,7 @@ def _spin_pass(
     def stop(t: FloatArray, y: FloatArray, idx: FloatArray) -> FloatArray:
         return y[:, 0] - LOG_UNDERFLOW
 
-    atol = np.stack([np.full(n, rtol), rtol * 1e-2 * eps], axis=1)
+    atol = np.stack([np.full(n, rtol), rtol * 1e-2 * eps * h_min], axis=1)
     res = dop853_batch(fun, np.zeros(n), np.ones(n), np.zeros((n, 2)), rtol, atol, stop=stop)
     return res, res.y_final[:, 1], res.t_final
 
@@ -345,7 +347,13 @@ def _couette_batch(problems: list[CouetteFlow], rtol: float, f: float) -> list[W
         return m
 
     r2, P1, t_far = _spin_pass(
-        lambda j: form_of(c[j], mu[c[j]]), m_of, np.zeros(c.size), np.ones(c.size), eps[c], rtol
+        lambda j: form_of(c[j], mu[c[j]]),
+        m_of,
+        np.zeros(c.size),
+        np.ones(c.size),
+        eps[c],
+        rtol,
+        h_min=1.0 / (Ri[c] + 1.0),
     )
     u_s, w_s = wall_constants_from_conditions(
         h_slip=1.0 / Ri[c],

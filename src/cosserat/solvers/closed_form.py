@@ -204,19 +204,25 @@ def _solve_log_gap(X: FloatArray, c: float, r: float) -> FloatArray:
         log_term = np.log(2.0 * c - s)
         g = 2.0 * np.arctan(t) + (log_term - y) / r - X
         slope = -2.0 * s / (1.0 + t * t) - (s / (2.0 * c - s) + 1.0) / r
-        size = 2.0 * np.abs(t) + (np.abs(log_term) + np.abs(y)) / r + X
+        # size of the terms of g, for its round-off: t = c - s cancels, so count c + s
+        size = 2.0 * (c + s) + (np.abs(log_term) + np.abs(y)) / r + X
         return g, slope, size
 
     converged = np.zeros(X.shape, dtype=bool)
     for _ in range(200):
         g, slope, size = g_and_slope(y)
-        # |g| at the round-off level of its terms, or a bracket a few ulps wide.
-        converged |= (np.abs(g) <= 1e-15 * size) | (hi - lo <= 1e-15 * np.abs(y))
+        step = y - g / slope
+        # |g| at the round-off level of its terms, a bracket a few ulps wide, or a Newton
+        # step that no longer moves y by more than a few ulps
+        converged |= (
+            (np.abs(g) <= 4e-16 * size)
+            | (hi - lo <= 4.0 * np.spacing(np.abs(y)))
+            | (np.abs(step - y) <= 4.0 * np.spacing(np.abs(y)))
+        )
         if np.all(converged):
             return y
         lo = np.where(g > 0.0, y, lo)
         hi = np.where(g <= 0.0, y, hi)
-        step = y - g / slope
         inside = (step >= lo) & (step <= hi)
         y = np.where(converged, y, np.where(inside, step, 0.5 * (lo + hi)))
     raise ConvergenceError("closed form: inversion of eqn-eta_soln_g0 did not converge")

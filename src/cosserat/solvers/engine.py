@@ -161,9 +161,13 @@ def integrate_spin(
     def underflow(tau: float, y: list[float]) -> float:
         return y[0] - LOG_UNDERFLOW
 
+    # P ~ eps G and G carries the velocity weight h (1/(Ri + xi) in Couette flow): its absolute
+    # tolerance must scale with h, or at large Ri the velocity u = (u_s h_s - w_s P)/h, a
+    # difference of O(h) terms divided by h, loses the digits atol did not ask for.
+    h_min = min(float(form.velocity_weight(xi_slip)), float(form.velocity_weight(xi_far)))
     try:
         sol = dop853_small(
-            rhs, 0.0, 1.0, [0.0, 0.0], rtol, [rtol, atol * form.eps], event=underflow
+            rhs, 0.0, 1.0, [0.0, 0.0], rtol, [rtol, atol * form.eps * h_min], event=underflow
         )
     except RuntimeError as exc:
         raise ConvergenceError(f"spin/velocity quadrature failed: {exc}") from None

@@ -8,7 +8,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..constitutive import FloatArray
-from ..errors import ConvergenceError, NoSolutionError
+from ..errors import NoSolutionError, ParameterError
 from ..problems.couette import CouetteFlow
 from ..problems.plane import PlaneShear, PlaneShearCase
 from ..profile import Fields, Profile
@@ -25,7 +25,7 @@ DEFAULT_RTOL = 1e-8
 
 def _tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
     if not 1e-13 <= rtol <= 1e-2:
-        raise ValueError(f"rtol must satisfy 1e-13 <= rtol <= 1e-2; got {rtol:g}")
+        raise ParameterError(f"rtol must satisfy 1e-13 <= rtol <= 1e-2; got {rtol:g}")
     return rtol, (rtol * 1e-2 if atol is None else atol)
 
 
@@ -204,8 +204,8 @@ def _couette_shooting(  # type: ignore[no-untyped-def]
     F(mu) = m(0; mu) - mu decreases with mu. mu enters only through s_rt, with weight
     2(A+1) eps alpha Ri/(Ri + xi)^2, so F is nearly linear and a secant iteration from the
     leading-order value m^(0)(0) usually converges in a few steps. Trials whose couple stress
-    leaves the real domain (``NoSolutionError``) bound the admissible mu from below; if F < 0
-    all the way to that bound, no mu satisfies the conditions and the model has no real
+    leaves the real domain (``NoSolutionError``) bound the admissible mu; if F keeps its sign
+    all the way to such a bound, no mu satisfies the conditions and the model has no real
     solution, which is reported as such.
     """
     cache: dict[float, tuple[float, Any, Any] | None] = {}
@@ -270,13 +270,25 @@ def _couette_shooting(  # type: ignore[no-untyped-def]
     mu_s = min(ok, key=lambda m: abs(ok[m]))
     g_s = ok[mu_s]
     step = max(0.05 * bound, abs(g_s))
-    if g_s > 0.0:  # go up to bracket the root
-        mu_b = mu_s + step
-        while (g_b := shoot(mu_b)) is not None and g_b > 0.0:
-            mu_s, mu_b, step = mu_b, mu_b + 2 * step, 2 * step
-        if g_b is None:
-            raise ConvergenceError(f"Couette: cannot bracket m(0) for {problem.describe()}")
-        lo, hi = mu_s, mu_b
+    if g_s > 0.0:  # go up until F < 0, or until the trials stop being real
+        mu_f = None
+        while True:
+            trial = mu_s + step if mu_f is None else 0.5 * (mu_s + mu_f)
+            g_t = shoot(trial)
+            if g_t is None:
+                mu_f = trial
+            elif g_t < 0.0:
+                lo, hi = mu_s, trial
+                break
+            else:
+                mu_s, step = trial, 2 * step
+            if mu_f is not None and mu_f - mu_s < tol:
+                raise NoSolutionError(
+                    f"no real solution for {problem.describe()}: the couple stress at the "
+                    f"inner cylinder would have to exceed m(0) = {mu_s:.6g}, where the "
+                    f"couple-stress balance integrated from the outer cylinder already leaves "
+                    f"the yield surface inside the gap"
+                )
     else:  # go down until F > 0, or until the trials stop being real
         mu_f = max([m for m in low if m < mu_s], default=None)
         while True:
@@ -296,6 +308,6 @@ def _couette_shooting(  # type: ignore[no-untyped-def]
                     f"couple-stress balance integrated from the outer cylinder already leaves "
                     f"the yield surface inside the gap"
                 )
-    root = brentq(lambda mu: float(shoot(mu)), lo, hi, xtol=tol, rtol=4e-16)  # type: ignore[arg-type]
+    root = brentq(lambda mu: float(shoot(mu)), lo, hi, xtol=tol, rtol=4.0 * np.finfo(float).eps)  # type: ignore[arg-type]
     shoot(root)
     return done(root)
