@@ -8,7 +8,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..constitutive import FloatArray
-from ..errors import NoSolutionError, ParameterError
+from ..errors import ConvergenceError, NoSolutionError, ParameterError
 from ..problems.couette import CouetteFlow
 from ..problems.plane import PlaneShear, PlaneShearCase
 from ..profile import Fields, Profile
@@ -266,48 +266,34 @@ def _couette_shooting(  # type: ignore[no-untyped-def]
                 f"balance integrated from the outer cylinder leaves the yield surface inside "
                 f"the gap"
             )
-    low = [mu for mu, v in cache.items() if v is None]
+    failed = [mu for mu, v in cache.items() if v is None]
     mu_s = min(ok, key=lambda m: abs(ok[m]))
     g_s = ok[mu_s]
     step = max(0.05 * bound, abs(g_s))
-    if g_s > 0.0:  # go up until F < 0, or until the trials stop being real
-        mu_f = None
-        while True:
-            trial = mu_s + step if mu_f is None else 0.5 * (mu_s + mu_f)
-            g_t = shoot(trial)
-            if g_t is None:
-                mu_f = trial
-            elif g_t < 0.0:
-                lo, hi = mu_s, trial
-                break
-            else:
-                mu_s, step = trial, 2 * step
-            if mu_f is not None and mu_f - mu_s < tol:
-                raise NoSolutionError(
-                    f"no real solution for {problem.describe()}: the couple stress at the "
-                    f"inner cylinder would have to exceed m(0) = {mu_s:.6g}, where the "
-                    f"couple-stress balance integrated from the outer cylinder already leaves "
-                    f"the yield surface inside the gap"
-                )
-    else:  # go down until F > 0, or until the trials stop being real
-        mu_f = max([m for m in low if m < mu_s], default=None)
-        while True:
-            trial = mu_s - step if mu_f is None else 0.5 * (mu_s + mu_f)
-            g_t = shoot(trial)
-            if g_t is None:
-                mu_f = trial
-            elif g_t > 0.0:
-                lo, hi = trial, mu_s
-                break
-            else:
-                mu_s, step = trial, 2 * step
-            if mu_f is not None and mu_s - mu_f < tol:
-                raise NoSolutionError(
-                    f"no real solution for {problem.describe()}: the couple stress at the "
-                    f"inner cylinder would have to be below m(0) = {mu_s:.6g}, where the "
-                    f"couple-stress balance integrated from the outer cylinder already leaves "
-                    f"the yield surface inside the gap"
-                )
+    # walk towards the root (up if F > 0) until F changes sign, doubling the step; once a
+    # trial leaves the real domain, bisect between it and the last real trial instead
+    up = 1.0 if g_s > 0.0 else -1.0
+    beyond = [m for m in failed if up * (m - mu_s) > 0.0]
+    mu_f = min(beyond, key=lambda m: abs(m - mu_s)) if beyond else None
+    for _ in range(200):  # doubling, then bisection to tol: ~60 trials at most in practice
+        trial = mu_s + up * step if mu_f is None else 0.5 * (mu_s + mu_f)
+        g_t = shoot(trial)
+        if g_t is None:
+            mu_f = trial
+        elif up * g_t <= 0.0:
+            lo, hi = sorted((mu_s, trial))
+            break
+        else:
+            mu_s, step = trial, 2 * step
+        if mu_f is not None and abs(mu_f - mu_s) < tol:
+            raise NoSolutionError(
+                f"no real solution for {problem.describe()}: the couple stress at the inner "
+                f"cylinder would have to be {'above' if up > 0 else 'below'} m(0) = {mu_s:.6g}, "
+                f"where the couple-stress balance integrated from the outer cylinder already "
+                f"leaves the yield surface inside the gap"
+            )
+    else:
+        raise ConvergenceError(f"Couette: cannot bracket m(0) for {problem.describe()}")
     root = brentq(lambda mu: float(shoot(mu)), lo, hi, xtol=tol, rtol=4.0 * np.finfo(float).eps)  # type: ignore[arg-type]
     shoot(root)
     return done(root)
