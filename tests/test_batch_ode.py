@@ -119,6 +119,20 @@ def test_radau_stiff_forward_backward(use_jac: bool) -> None:
     assert scaled_err(res.y_final, exact(t1, np.arange(n)), rtol, atol).max() < 10
 
 
+def scipy_radau(L, t0, t1, y0, rtol, atol):  # type: ignore[no-untyped-def]
+    """SciPy's Radau on the same test equation y' = -L (y - cos t) - sin t, the reference."""
+    return solve_ivp(
+        lambda t, y: -L * (y - np.cos(t)) - np.sin(t),
+        (t0, t1),
+        [y0],
+        method="Radau",
+        rtol=rtol,
+        atol=atol,
+        jac=lambda t, y: [[-L]],
+        dense_output=True,
+    )
+
+
 def test_radau_dense_output_like_scipy() -> None:
     """Where the collocation dense output is poor, SciPy's is equally poor."""
     rtol, atol = 1e-6, 1e-9
@@ -127,16 +141,7 @@ def test_radau_dense_output_like_scipy() -> None:
     ours = dense_errors(res, exact, rtol, atol, t0, t1, npts=500)
     for i in np.flatnonzero(lam >= 1e3):
         L = sgn[i] * lam[i]
-        sol = solve_ivp(
-            lambda t, y, L=L: -L * (y - np.cos(t)) - np.sin(t),
-            (t0[i], t1[i]),
-            [y0[i]],
-            method="Radau",
-            rtol=rtol,
-            atol=atol,
-            jac=lambda t, y, L=L: [[-L]],
-            dense_output=True,
-        )
+        sol = scipy_radau(L, t0[i], t1[i], y0[i], rtol, atol)
         tq = np.linspace(t0[i], t1[i], 2001)
         ref = scaled_err(sol.sol(tq)[0], exact(tq, i), rtol, atol).max()
         mine = scaled_err(res.evaluate(tq, i), exact(tq, i), rtol, atol).max()
@@ -150,15 +155,7 @@ def test_radau_step_counts_like_scipy() -> None:
     res = radau_scalar_batch(fun, jac, t0, t1, y0, rtol, atol)
     for i in (0, 6, 12, 13, 25):  # lam = 1, 1e3, 1e6 forward; 1, 1e6 backward
         L = sgn[i] * lam[i]
-        sol = solve_ivp(
-            lambda t, y, L=L: -L * (y - np.cos(t)) - np.sin(t),
-            (t0[i], t1[i]),
-            [y0[i]],
-            method="Radau",
-            rtol=rtol,
-            atol=atol,
-            jac=lambda t, y, L=L: [[-L]],
-        )
+        sol = scipy_radau(L, t0[i], t1[i], y0[i], rtol, atol)
         ns = len(sol.t) - 1
         # identical controller: equal up to round-off-induced divergence
         assert abs(res.nsteps[i] - ns) <= max(2, 0.1 * ns), (i, res.nsteps[i], ns)

@@ -37,16 +37,20 @@ def test_parameter_bounds():
         CouetteFlow(material=MAT, wall=Wall(30.0), eps=0.1, Ri=1.0)
 
 
+def fine_profile(wall: Wall):  # type: ignore[no-untyped-def]
+    """(xi, fields, r = Ri + xi) at eps = 0.04, Ri = 1, rtol = 1e-10, on a grid fine enough
+    for second-order finite differences."""
+    prof = solve(CouetteFlow(material=MAT, wall=wall, eps=0.04, Ri=1.0), rtol=1e-10)
+    x = np.linspace(0.0, 1.0, 40001)
+    return x, prof.evaluate(x), 1.0 + x
+
+
 @pytest.mark.parametrize("wall", [Wall(20.0), Wall.fully_rough()])
 def test_balances_hold_by_finite_differences(wall):
     """theta-momentum and the couple-stress balance with the factor 2(A+1) alpha that the
     printed eqn-nd_zangmom_cyl lacks (eqn-nd_shsts_cyl has it)."""
-    problem = CouetteFlow(material=MAT, wall=wall, eps=0.04, Ri=1.0)
-    prof = solve(problem, rtol=1e-10)
-    x = np.linspace(0.0, 1.0, 40001)
-    f = prof.evaluate(x)
-    r = problem.Ri + x
-    A, alpha, eps = MAT.A, MAT.alpha, problem.eps
+    x, f, r = fine_profile(wall)
+    A, alpha, eps = MAT.A, MAT.alpha, 0.04
     theta_mom = np.gradient(f.sigma_yx, x) + (f.sigma_yx + f.sigma_xy) / r
     couple = 2 * (A + 1) * eps * alpha * (np.gradient(f.m, x) + f.m / r)
     imbalance = couple - (f.sigma_yx - f.sigma_xy)
@@ -60,12 +64,8 @@ def test_balances_hold_by_finite_differences(wall):
 @pytest.mark.parametrize("wall", [Wall(20.0), Wall.fully_rough()])
 def test_flow_rule_holds_by_finite_differences(wall):
     """eqn-nd_fr1_cyl and eqn-nd_fr2_cyl as printed (paper's signs), checked on the profile."""
-    problem = CouetteFlow(material=MAT, wall=wall, eps=0.04, Ri=1.0)
-    prof = solve(problem, rtol=1e-10)
-    x = np.linspace(0.0, 1.0, 40001)
-    f = prof.evaluate(x)
-    r = problem.Ri + x
-    A, alpha, eps = MAT.A, MAT.alpha, problem.eps
+    x, f, r = fine_profile(wall)
+    A, alpha, eps = MAT.A, MAT.alpha, 0.04
     srt, str_ = f.sigma_yx, f.sigma_xy
     rel = f.omega + f.u / r
     fr1 = np.gradient(f.u, x) - f.u / r + rel * (A + 1) * (str_ + srt) / (str_ + A * srt)

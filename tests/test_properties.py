@@ -71,6 +71,15 @@ def explained(exc: Exception) -> bool:
     return False
 
 
+def numerical_or_explained(problem, **options):  # type: ignore[no-untyped-def]
+    """The numerical profile, or None when the solver said in words why there is none."""
+    try:
+        return solve(problem, **options)
+    except (NoSolutionError, ConvergenceError) as exc:
+        assert explained(exc), repr(exc)
+        return None
+
+
 def check_profile(prof) -> None:  # type: ignore[no-untyped-def]
     for values in prof.columns().values():
         assert np.all(np.isfinite(values))
@@ -85,23 +94,16 @@ def check_profile(prof) -> None:  # type: ignore[no-untyped-def]
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(problem=plane_problems())
 def test_plane_numerical_profiles_are_finite_and_satisfy_their_conditions(problem):
-    try:
-        prof = solve(problem, points=61)
-    except (NoSolutionError, ConvergenceError) as exc:
-        assert explained(exc), repr(exc)
-        return
-    check_profile(prof)
+    prof = numerical_or_explained(problem, points=61)
+    if prof is not None:
+        check_profile(prof)
 
 
 @settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(problem=plane_problems())
 def test_closed_form_agrees_with_numerical_and_asymptotic_never_returns_nan(problem):
     rtol = 1e-8
-    try:
-        num = solve(problem, points=41, check=False, rtol=rtol)
-    except (NoSolutionError, ConvergenceError) as exc:
-        assert explained(exc), repr(exc)
-        num = None
+    num = numerical_or_explained(problem, points=41, check=False, rtol=rtol)
     try:
         cf = solve(problem, method="closed-form", points=41, check=False)
     except MethodNotAvailableError:
@@ -124,9 +126,6 @@ def test_closed_form_agrees_with_numerical_and_asymptotic_never_returns_nan(prob
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(problem=couette_problems())
 def test_couette_profiles_are_finite_and_satisfy_their_conditions(problem):
-    try:
-        prof = solve(problem, points=61)
-    except (NoSolutionError, ConvergenceError) as exc:
-        assert explained(exc), repr(exc)
-        return
-    check_profile(prof)
+    prof = numerical_or_explained(problem, points=61)
+    if prof is not None:
+        check_profile(prof)

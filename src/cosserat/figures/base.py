@@ -50,6 +50,13 @@ class Panel:
     def add(self, label: str, x: FloatArray, y: FloatArray, **style_kw: Any) -> None:
         self.curves.append(Curve(label, np.asarray(x, float), np.asarray(y, float), style_kw))
 
+    def add_symbols(
+        self, label: str, x: FloatArray, y: FloatArray, marker: str, **style_kw: Any
+    ) -> None:
+        """Open black symbols, no line: the paper's style for data and asymptotics."""
+        style = {"color": "k", "linestyle": "none", "marker": marker, "markerfacecolor": "none"}
+        self.add(label, x, y, **(style | style_kw))
+
 
 @dataclass
 class FigureData:

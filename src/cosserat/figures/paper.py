@@ -127,15 +127,7 @@ def compute_asymp_g0() -> FigureData:
         asym = solve(problem, method="asymptotic", points=POINTS).evaluate(xi_sym)
         for panel, a, b in ((panels[0], num.u, asym.u), (panels[1], num.omega, asym.omega)):
             panel.add(f"numerical, {name}", a, xi, color="k", linestyle=LINESTYLES[i])
-            panel.add(
-                f"asymptotic, {name}",
-                b,
-                xi_sym,
-                color="k",
-                linestyle="none",
-                marker=MARKERS[i],
-                markerfacecolor="none",
-            )
+            panel.add_symbols(f"asymptotic, {name}", b, xi_sym, MARKERS[i])
     return FigureData(
         "fig-asymp_g0",
         4,
@@ -211,15 +203,7 @@ def compute_asymp_g_c() -> FigureData:
         asym = solve(problem, method="asymptotic", points=POINTS).evaluate(xs)
         for panel, a, b in ((panels[0], num.u, asym.u), (panels[1], num.m, asym.m)):
             panel.add(f"numerical, {name}", a, num.xi, color="k", linestyle=LINESTYLES[i])
-            panel.add(
-                f"asymptotic, {name}",
-                b,
-                xs,
-                color="k",
-                linestyle="none",
-                marker=MARKERS[i],
-                markerfacecolor="none",
-            )
+            panel.add_symbols(f"asymptotic, {name}", b, xs, MARKERS[i])
     return FigureData(
         "fig-asymp_g_c",
         7,
@@ -274,15 +258,7 @@ def experiment_curves(preset: str, data: Any = None) -> Panel:
         prof = solve(cell.problem(delta), points=POINTS)
         panel.add(label, prof.xi, -prof.u, color="k", linestyle=ls)
     if data is not None:
-        panel.add(
-            data.label,
-            data.xi(cell.eps),
-            data.u_over_uw,
-            color="k",
-            linestyle="none",
-            marker="o",
-            markerfacecolor="none",
-        )
+        panel.add_symbols(data.label, data.xi(cell.eps), data.u_over_uw, "o")
     return panel
 
 
@@ -431,16 +407,7 @@ def compute_slt() -> FigureData:
             ok = [j for j, d in enumerate(curve.Delta) if d is not None]
             eps_ok = np.array([EPS_SLT[j] for j in ok])
             delta_ok = np.array([curve.Delta[j] for j in ok])
-            panel.add(
-                name,
-                eps_ok,
-                delta_ok,
-                color="k",
-                linestyle="none",
-                marker=SLT_MARKERS[name],
-                markerfacecolor="none",
-                markersize=6,
-            )
+            panel.add_symbols(name, eps_ok, delta_ok, SLT_MARKERS[name], markersize=6)
             fine = np.geomspace(EPS_SLT[-1], EPS_SLT[0], 60)
             asym = [asymptotic_thickness(replace(problem, eps=e)) for e in fine]
             panel.add(
