@@ -35,7 +35,7 @@ from baselines import (
 
 from cosserat import CouetteFlow, Material, PlaneShear, Wall, solve
 from cosserat.analysis import thickness_curve
-from cosserat.solvers.batch import wall_quantities
+from cosserat.routes.batch import wall_quantities
 
 MAT = Material(28.5)
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 import time
 
-from cosserat.sweep import parse_spec, run_sweep
+from cosserat.studies.sweep import parse_spec, run_sweep
 
 
 def spec(n_eps: int = 25):  # type: ignore[no-untyped-def]

@@ -17,8 +17,8 @@ import numpy as np
 
 from cosserat import Material, PlaneShear, Wall
 from cosserat.analysis.fitting import fit, model_at, model_profile
-from cosserat.measurements import MeasuredProfile
-from cosserat.plotting import new_figure, style
+from cosserat.analysis.measurements import MeasuredProfile
+from cosserat.viz.plotting import new_figure, style
 
 TRUE = {"delta": 20.0, "K": 0.5}
 SIGMA = 0.01

@@ -13,7 +13,7 @@ import numpy as np
 
 from cosserat import CouetteFlow, Material, Wall
 from cosserat.analysis.fitting import model_at, model_profile
-from cosserat.measurements import MeasuredProfile, write_profile
+from cosserat.analysis.measurements import MeasuredProfile, write_profile
 
 TRUE = {"delta": 23.0, "K": 0.3}
 SIGMA = 0.01

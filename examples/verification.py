@@ -13,8 +13,8 @@ import numpy as np
 
 from cosserat import CouetteFlow, Material, PlaneShear, Wall, shear_layer_thickness, solve
 from cosserat.analysis import asymptotic_thickness
-from cosserat.cell import CouetteCell
-from cosserat.solvers.airy import xi_hat_at_fraction
+from cosserat.analysis.cell import CouetteCell
+from cosserat.routes.airy import xi_hat_at_fraction
 
 MAT = Material(28.5)
 

@@ -9,7 +9,7 @@ from scipy.optimize import brentq
 from scipy.special import airy
 
 from cosserat import CouetteFlow, Material, MethodNotAvailableError, PlaneShear, Wall, solve
-from cosserat.solvers.airy import I_INFINITY, velocity_fraction, xi_hat_at_fraction
+from cosserat.routes.airy import I_INFINITY, velocity_fraction, xi_hat_at_fraction
 
 MAT = Material(28.5)
 EPS = [1e-3, 1e-4, 1e-5, 1e-6]

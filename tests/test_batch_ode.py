@@ -7,13 +7,7 @@ import pytest
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from cosserat.solvers.batch_ode import (
-    FAILED,
-    FINISHED,
-    STOPPED,
-    dop853_batch,
-    radau_scalar_batch,
-)
+from cosserat.routes.batch_ode import FAILED, FINISHED, STOPPED, dop853_batch, radau_scalar_batch
 
 # ----------------------------------------------------------------- helpers
 A_, B_, ALPHA = 0.18198511713310117, 0.2552829152620393, 8.660254037844386

@@ -157,7 +157,7 @@ def test_bad_input_one_line_exit_2(capsys, args, needle):
 
 def test_console_script_entry_point_runs_as_a_process():
     proc = subprocess.run(
-        [sys.executable, "-m", "cosserat.cli", "solve", "plane", "--eps", "0.9"],
+        [sys.executable, "-m", "cosserat", "solve", "plane", "--eps", "0.9"],
         capture_output=True,
         text=True,
         check=False,

@@ -6,15 +6,13 @@ import numpy as np
 import pytest
 
 from cosserat import Material, NoSolutionError, PlaneShear, Wall
-from cosserat.constitutive import (
+from cosserat.model.constitutive import (
     second_shear_stress,
     spin_ratio,
     symmetric_couple_stress,
     velocity_ratio,
 )
-from cosserat.constitutive import (
-    torque as cancellation_free_torque,
-)
+from cosserat.model.constitutive import torque as cancellation_free_torque
 
 MAT = Material(28.5)
 

@@ -20,8 +20,8 @@ from cosserat import (
     solve,
 )
 from cosserat.analysis import asymptotic_thickness
-from cosserat.cell import CouetteCell
-from cosserat.solvers.airy import xi_hat_at_fraction
+from cosserat.analysis.cell import CouetteCell
+from cosserat.routes.airy import xi_hat_at_fraction
 
 MAT = Material(28.5)
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from reference import delta_limit_by_hand
 
-from cosserat.figures import FIGURES, make_figure
+from cosserat.paper.figures import FIGURES, make_figure
 
 _CACHE: dict[int, object] = {}
 
@@ -127,7 +127,7 @@ def test_fig14_limits():
 
 
 def test_reproduce_smoke(tmp_path):
-    from cosserat.reproduce import reproduce
+    from cosserat.paper.reproduce import reproduce
 
     out = reproduce(tmp_path, figures=[1, 2, 13], workers=1)
     report = (out / "report.md").read_text()
@@ -139,8 +139,8 @@ def test_reproduce_smoke(tmp_path):
 
 def test_measured_profile_overlay(tmp_path):
     from cosserat.analysis.fitting import model_at, model_profile
-    from cosserat.experiments import PRESETS
-    from cosserat.measurements import MeasuredProfile
+    from cosserat.analysis.measurements import MeasuredProfile
+    from cosserat.studies.experiments import PRESETS
 
     truth = PRESETS["glass"].problem(delta=23.0)
     d = np.linspace(0.5, 8.0, 10)

@@ -10,8 +10,8 @@ import pytest
 
 from cosserat import CouetteFlow, Material, PlaneShear, Wall
 from cosserat.analysis.fitting import compare, fit, model_at, model_profile
+from cosserat.analysis.measurements import MeasuredProfile, write_profile
 from cosserat.cli import main
-from cosserat.measurements import MeasuredProfile, write_profile
 
 MAT = Material(28.5)
 TRUE = {"delta": 20.0, "K": 0.5}
@@ -133,7 +133,7 @@ def test_fit_cli_json_contract(tmp_path, capsys):
 
 
 def test_compare_cli_with_a_preset(tmp_path, capsys):
-    from cosserat.experiments import PRESETS
+    from cosserat.studies.experiments import PRESETS
 
     truth = PRESETS["glass"].problem(delta=23.0)
     meas = synthetic(2, truth, np.linspace(0.5, 10, 12), method="numerical")

@@ -8,7 +8,7 @@ from types import MappingProxyType
 import numpy as np
 import pytest
 
-from cosserat.measurements import MeasurementError, read_profile, write_profile
+from cosserat.analysis.measurements import MeasurementError, read_profile, write_profile
 
 MINIMAL = "distance_d,u_over_uw,u_err\n0.5,0.81,0.02\n1.5,0.52,0.02\n3.0,0.2,0.01\n"
 

@@ -17,7 +17,7 @@ from cosserat import (
     Wall,
     solve,
 )
-from cosserat.solvers.numerical import DEFAULT_RTOL
+from cosserat.routes.numerical import DEFAULT_RTOL
 
 fractions = st.floats(min_value=0.01, max_value=1.0)
 log_eps = st.floats(-6.0, float(np.log10(0.5)))

@@ -11,8 +11,8 @@ import pytest
 from cosserat import CouetteFlow, Material, ParameterError, PlaneShear, Wall, solve
 from cosserat.analysis import shear_layer_thickness, wall_omega, wall_slip
 from cosserat.cli import main
-from cosserat.solvers.batch import wall_quantities
-from cosserat.sweep import load_spec, parse_spec, run_sweep
+from cosserat.routes.batch import wall_quantities
+from cosserat.studies.sweep import load_spec, parse_spec, run_sweep
 
 MAT = Material(28.5)
 SPEC = """

@@ -11,7 +11,9 @@ couple-stress profiles, the shear-layer thickness and the wall slip::
     17.67
 """
 
-from .analysis import DEFAULT_F, shear_layer_thickness, wall_omega, wall_slip
+from ._version import __version__
+from .analysis import shear_layer_thickness, wall_omega, wall_slip
+from .config import DEFAULT_F
 from .errors import (
     ConvergenceError,
     CosseratError,
@@ -19,12 +21,10 @@ from .errors import (
     NoSolutionError,
     ParameterError,
 )
-from .parameters import FULLY_ROUGH, Material, Wall
-from .problems import CouetteFlow, PlaneShear, PlaneShearCase, Problem
-from .profile import Diagnostics, Fields, Profile
-from .solvers import METHODS, solve
-
-__version__ = "0.1.0"
+from .model import CouetteFlow, PlaneShear, PlaneShearCase, Problem
+from .model.parameters import FULLY_ROUGH, Material, Wall
+from .results.profile import Diagnostics, Fields, Profile
+from .routes import METHODS, solve
 
 __all__ = [
     "DEFAULT_F",

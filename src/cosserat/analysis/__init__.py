@@ -1,14 +1,9 @@
 """Analysis of profiles: shear-layer thickness, wall slip and spin, thickness laws."""
 
-from .laws import asymptotic_thickness, thickness_limit
-from .thickness import (
-    DEFAULT_F,
-    ThicknessCurve,
-    shear_layer_thickness,
-    thickness_curve,
-    wall_omega,
-    wall_slip,
-)
+from ..config import DEFAULT_F
+from ..results.wall import shear_layer_thickness, wall_omega, wall_slip
+from ..routes.laws import asymptotic_thickness, thickness_limit
+from .thickness import ThicknessCurve, thickness_curve
 
 __all__ = [
     "DEFAULT_F",

@@ -23,12 +23,13 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq, least_squares
 
-from ..constitutive import FloatArray
 from ..errors import NoSolutionError, ParameterError
-from ..measurements import MeasuredProfile
-from ..parameters import FULLY_ROUGH, Material, Wall
-from ..problems import CouetteFlow, Problem
-from ..profile import Profile
+from ..model import CouetteFlow, Problem
+from ..model.constitutive import FloatArray
+from ..model.parameters import FULLY_ROUGH, Material, Wall
+from ..results.profile import Profile
+from ..routes import solve
+from .measurements import MeasuredProfile
 
 FREE_PARAMETERS = ("delta", "K", "L", "phi", "A")
 BOUNDS = {"K": (0.0, 10.0), "L": (0.5, 100.0), "phi": (10.0, 60.0), "A": (-0.95, 0.95)}
@@ -41,8 +42,6 @@ def moving_wall(problem: Problem) -> tuple[float, float]:
 
 
 def model_profile(problem: Problem, method: str = "numerical", **options: Any) -> Profile:
-    from ..solvers import solve
-
     return solve(problem, method=method, check=False, points=3, **options)
 
 
@@ -64,6 +63,10 @@ class Comparison:
     residuals: FloatArray
     rms: float
     chi2: float | None
+
+    def model_curve(self, distance_d: FloatArray) -> FloatArray:
+        """The model's u / u_wall at distances from the moving wall [d_p] (for plots)."""
+        return model_at(self.profile, distance_d)
 
     def to_dict(self) -> dict[str, Any]:
         return {

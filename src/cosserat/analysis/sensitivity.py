@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from ..errors import NoSolutionError
-from ..parameters import Material
-from ..problems import Problem
+from ..model import Problem
+from ..model.parameters import Material
 
 
 @dataclass(frozen=True)
@@ -21,7 +21,7 @@ class Bound:
 
 def has_solution(problem: Problem, **options: object) -> bool:
     """True if the numerical route finds a real solution (no :class:`NoSolutionError`)."""
-    from ..solvers import solve
+    from ..routes import solve
 
     try:
         solve(problem, check=False, points=3, **options)  # type: ignore[arg-type]

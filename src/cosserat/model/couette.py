@@ -1,0 +1,250 @@
+"""Cylindrical Couette flow at leading order in the Froude number (section "Cylindrical Couette
+flow"; derivation in ``docs/derivation_couette.md``).
+
+The inner cylinder (radius R_i, xi = 0) turns, the outer one (R_i + H, xi = 1) is fixed.
+Variables: ``xi = (r - R_i)/H``, ``Ri = R_i/H``, stresses over the local mean stress sigma_c
+(hydrostatic at leading order in C = V_i^2/(R_i g), so profiles do not depend on depth),
+``m = M_rz/(sigma_c d_p L sqrt(2(A+1)))``. Signs are the paper's, which are the literal ones with
+the azimuthal direction reversed for u and the shear stresses: the inner cylinder turns
+anticlockwise about the upward z axis at surface speed V_i, ``u = -v_theta/V_i`` (so u = -1 at
+the inner wall), ``sigma_r_theta = -sigma_(r theta)/sigma_c``, while ``omega = omega_z H/V_i``
+and m are about +z. In these variables every equation is the plane-shear one with the
+curvature kappa = 1/(Ri + xi):
+
+* couple stress: ``eps alpha (dm/dxi + m/(Ri+xi)) = (s_rt - s_tr)/(2(A+1))`` (the printed
+  ``eqn-nd_zangmom_cyl`` lacks the factor 2(A+1) alpha; ``eqn-nd_shsts_cyl`` has it);
+* shear stress, integrated from theta-momentum and the couple-stress balance
+  (``eqn-nd_shsts_cyl``), with the friction condition ``s_rt(0) = -tan delta``::
+
+      s_rt = -tan(delta)/(1 + xi/Ri)^2 + 2(A+1) eps alpha (m/(Ri+xi) - m(0) Ri/(Ri+xi)^2)
+
+  whose unknown m(0) is fixed by one scalar root-find;
+* conditions: ``s_rt = s_tr`` and ``u = 0`` at the outer cylinder (``eqn-nd_bc1_cyl``), friction
+  and ``u = -1 - eps K omega`` at the inner one (``eqn-nd_bc2_cyl``).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import NoSolutionError, ParameterError
+from .constitutive import FloatArray
+from .formulation import Formulation
+from .grids import layered_grid
+from .parameters import Material, Wall, require_finite
+from .plane import WallConstants, validate_eps, wall_constants
+
+RI_MIN, RI_MAX = 1e-3, 1e6
+
+
+def shear_stress(
+    xi: Any, m: Any, m_inner: Any, *, tan_delta: Any, Ri: Any, couple_factor: Any
+) -> Any:
+    """s_rt from ``eqn-nd_shsts_cyl`` given m(xi) and m(0) = ``m_inner`` [-].
+
+    ``couple_factor`` = 2(A+1) eps alpha. Floats or arrays (the batched engine).
+    """
+    r = Ri + xi
+    return -tan_delta * (Ri / r) ** 2 + couple_factor * (m / r - m_inner * Ri / r**2)
+
+
+def outer_wall_couple_stress(
+    m_inner: Any, *, tan_delta: Any, Ri: Any, couple_factor: Any, A: Any, sin_phi: Any
+) -> tuple[Any, Any]:
+    """m(1) from s_rt = s_tr at the outer cylinder (``eqn-nd_bc1_cyl``), the negative root,
+    and the discriminant (negative: no real m(1)) [-].
+
+    With s_rt(1) = s0 + beta m (``eqn-nd_shsts_cyl``) and the yield condition at a symmetric
+    stress, ``s_rt^2 + 2(A+1) m^2 = sin^2 phi``: a quadratic in m.
+    """
+    r1 = Ri + 1.0
+    beta = couple_factor / r1
+    s0 = -tan_delta * (Ri / r1) ** 2 - couple_factor * m_inner * Ri / r1**2
+    qa = beta**2 + 2.0 * (A + 1.0)
+    disc = -2.0 * (A + 1.0) * s0**2 + qa * sin_phi**2
+    root = (
+        math.sqrt(disc) if isinstance(disc, float) and disc > 0 else np.sqrt(np.maximum(disc, 0.0))
+    )
+    return (-s0 * beta - root) / qa, disc
+
+
+@dataclass(frozen=True, kw_only=True)
+class CouetteFlow:
+    """Granular Couette flow between coaxial cylinders, inner one turning.
+
+    Parameters
+    ----------
+    material : Material
+    wall : Wall
+        The cylinders' walls (the paper takes both of the same roughness): angle of wall
+        friction delta [deg] and slip coefficient K [-]. Friction is mobilised at the inner
+        cylinder only: |s_rt| falls like (1 + xi/Ri)^-2 outwards.
+    eps : float
+        Grain diameter over gap d_p / H, ``0 < eps <= 0.5`` [-].
+    Ri : float
+        Inner radius over gap R_i / H, ``1e-3 <= Ri <= 1e6`` [-].
+    """
+
+    material: Material
+    wall: Wall
+    eps: float
+    Ri: float
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.material, Material):
+            raise ParameterError(f"material must be a Material; got {type(self.material).__name__}")
+        if not isinstance(self.wall, Wall):
+            raise ParameterError(f"wall must be a Wall; got {type(self.wall).__name__}")
+        object.__setattr__(self, "eps", validate_eps(self.eps))
+        Ri = require_finite("Ri", self.Ri)
+        if not RI_MIN <= Ri <= RI_MAX:
+            raise ParameterError(
+                f"Ri = R_i/H must satisfy {RI_MIN:g} <= Ri <= {RI_MAX:g}; got {Ri:g}"
+            )
+        object.__setattr__(self, "Ri", Ri)
+        self.wall.tan_delta(self.material, "delta")
+
+    # ----------------------------------------------------------------- equations
+    @functools.cached_property
+    def tan_delta(self) -> float:
+        return self.wall.tan_delta(self.material, "delta")
+
+    slip_wall = 0.0
+    fixed_wall = 1.0
+    reference_velocity = 0.0
+
+    @staticmethod
+    def wall_velocity(xi_wall: float) -> float:
+        """u of the wall: -1 at the turning inner cylinder, 0 at the outer one [-]."""
+        return -1.0 if xi_wall == 0.0 else 0.0
+
+    @staticmethod
+    def slip_sign(xi_wall: float) -> float:
+        """s in ``u = u_wall + s eps K omega`` at the inner cylinder (``eqn-nd_bc2_cyl``): -1.
+
+        From ``eqn-bc3`` with n = e_r: v_theta - V_i = K d_p omega_z, i.e. u = -1 - eps K omega.
+        """
+        return -1.0
+
+    def curvature(self, xi: FloatArray) -> FloatArray:
+        return 1.0 / (self.Ri + xi)
+
+    def sigma_c(self, xi: FloatArray) -> FloatArray:
+        """sigma_rr = sigma_c = 1 in the scaling ``newdimless`` [-]."""
+        return 1.0 + 0.0 * xi
+
+    def shear_stress(self, xi: FloatArray, m: FloatArray, m_inner: float) -> FloatArray:
+        """s_rt from ``eqn-nd_shsts_cyl`` (:func:`shear_stress`) [-]."""
+        return shear_stress(
+            xi, m, m_inner, tan_delta=self.tan_delta, Ri=self.Ri, couple_factor=self.couple_factor
+        )
+
+    @functools.cached_property
+    def couple_factor(self) -> float:
+        """2(A+1) eps alpha: the weight of the couple stress in eqn-nd_shsts_cyl [-]."""
+        return 2.0 * (self.material.A + 1.0) * self.eps * self.material.alpha
+
+    def formulation(self, m_inner: float) -> Formulation:
+        """The ODEs of :mod:`cosserat.problems.base` for a trial m(0) = ``m_inner``."""
+        return Formulation(
+            material=self.material,
+            eps=self.eps,
+            sigma_yx=lambda xi, m: self.shear_stress(xi, m, m_inner),
+            sigma_c=self.sigma_c,
+            kappa=self.curvature,
+        )
+
+    def outer_wall_couple_stress(self, m_inner: float) -> float:
+        """m(1) from s_rt = s_tr there (:func:`outer_wall_couple_stress`) [-]."""
+        m1, disc = outer_wall_couple_stress(
+            m_inner,
+            tan_delta=self.tan_delta,
+            Ri=self.Ri,
+            couple_factor=self.couple_factor,
+            A=self.material.A,
+            sin_phi=self.material.sin_phi,
+        )
+        if disc < 0.0:
+            raise NoSolutionError(
+                "no real solution: the outer-wall condition s_rt = s_tr (eqn-nd_bc1_cyl) has no "
+                f"real couple stress for m(0) = {m_inner:.6g}"
+            )
+        return float(m1)
+
+    @property
+    def slip_constants(self) -> WallConstants:
+        """a, b, m0, k at the inner cylinder (s_rt = -tan delta, sigma_c = 1)."""
+        return wall_constants(self.tan_delta, 1.0, self.material)
+
+    @property
+    def is_fully_rough(self) -> bool:
+        return self.slip_constants.m0 == 0.0
+
+    def outer_couple_stress(self, xi: FloatArray) -> FloatArray:
+        """Leading-order couple stress (Appendix, Couette m^(0)) [-].
+
+        m^(0) = -(m0^2 + d^2 [1 - (1 + xi/Ri)^-4])^(1/2) with d^2 = tan^2(delta)/(2(A+1)): the
+        value at which the stress is symmetric for s_rt = -tan(delta)/(1 + xi/Ri)^2.
+        """
+        x = np.asarray(xi, dtype=float)
+        d2 = self.tan_delta**2 / (2.0 * (self.material.A + 1.0))
+        m0 = self.slip_constants.m0
+        return -np.sqrt(m0**2 + d2 * (1.0 - (1.0 + x / self.Ri) ** -4))
+
+    def inner_scale(self) -> float:
+        """(L^2 Ri / 4)^(1/3): xi = eps^(2/3) scale * x_hat in the Airy layer (fully rough)."""
+        return (self.material.L**2 * self.Ri / 4.0) ** (1.0 / 3.0)
+
+    # ----------------------------------------------------------------- checks and output
+    def boundary_errors(self, evaluate: Callable[[FloatArray], Any]) -> dict[str, float]:
+        """Every boundary condition as ``lhs - rhs`` on an evaluator [-]."""
+        ends = evaluate(np.array([0.0, 1.0]))
+        return {
+            "sigma_rtheta(0) + tan(delta) [eqn-nd_bc2_cyl]": float(
+                ends.sigma_yx[0] + self.tan_delta
+            ),
+            "u(0) + 1 + eps K omega(0) [eqn-nd_bc2_cyl]": float(
+                ends.u[0] + 1.0 + self.eps * self.wall.K * ends.omega[0]
+            ),
+            "sigma_rtheta(1) - sigma_thetar(1) [eqn-nd_bc1_cyl]": float(
+                ends.sigma_yx[1] - ends.sigma_xy[1]
+            ),
+            "u(1) [eqn-nd_bc1_cyl]": float(ends.u[1]),
+        }
+
+    def layer_width(self) -> float:
+        const = self.slip_constants
+        if const.k > 0.0:
+            return min(1.0, 24.0 * self.eps / const.k)
+        return min(1.0, 6.0 * self.eps ** (2.0 / 3.0) * self.inner_scale())
+
+    def output_grid(self, n: int) -> FloatArray:
+        w = self.layer_width()
+        w_m = max(w, min(1.0, 10.0 * self.eps * self.material.alpha))
+        return layered_grid(n, [(0.0, w), (1.0, w_m)])
+
+    def describe(self) -> str:
+        return (
+            f"Couette flow: phi = {self.material.phi:g} deg, L = {self.material.L:g}, "
+            f"A = {self.material.A:g}, eps = {self.eps:g}, Ri = {self.Ri:g}; "
+            f"walls {self.wall.describe()}"
+        )
+
+    def parameters(self) -> dict[str, Any]:
+        return {
+            "geometry": "couette",
+            "phi": self.material.phi,
+            "L": self.material.L,
+            "A": self.material.A,
+            "eps": self.eps,
+            "Ri": self.Ri,
+            "delta": self.wall.delta,
+            "tan_delta": self.tan_delta,
+            "K": self.wall.K,
+        }

@@ -1,0 +1,155 @@
+"""Material and wall parameters (immutable, validated on construction).
+
+Units and conventions, used everywhere in the package:
+
+* angles (``phi``, ``delta``) are given in degrees ``[deg]``;
+* every other parameter here is dimensionless ``[-]``;
+* ``L`` and ``A = a2/a1`` are the constants of the yield condition ``eqn-yc2`` with
+  ``a1 + a2 = 1/2``, so ``a1 = 1/(2(1+A))``;
+* ``K`` is the slip coefficient of the kinematic wall condition ``eqn-bc3``.
+
+Vary a parameter with :func:`dataclasses.replace`; the copy is validated again.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+from ..errors import ParameterError
+
+FULLY_ROUGH: Literal["fully-rough"] = "fully-rough"
+"""Value of ``Wall.delta`` for a fully rough wall, tan(delta) = sin(phi) (``eqn-bc_fullyrough``)."""
+
+
+def require_finite(name: str, value: float) -> float:
+    """Return ``float(value)``, or raise :class:`ParameterError` if it is not a finite number."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number; got {value!r}") from None
+    if not math.isfinite(x):
+        raise ParameterError(f"{name} must be finite; got {value!r}")
+    return x
+
+
+def require_open_interval(name: str, value: float, lo: float, hi: float, unit: str = "") -> float:
+    """Validate ``lo < value < hi``; the error names the parameter, the bound and the value."""
+    x = require_finite(name, value)
+    if not lo < x < hi:
+        raise ParameterError(f"{name} must satisfy {lo:g} < {name} < {hi:g}{unit}; got {x:g}")
+    return x
+
+
+@dataclass(frozen=True)
+class Material:
+    """A granular material.
+
+    Parameters
+    ----------
+    phi : float
+        Angle of internal friction, ``0 < phi < 90`` [deg].
+    L : float
+        Ratio of the material length scale to the grain diameter in ``eqn-yc2``, ``L > 0`` [-].
+        The paper uses 10.
+    A : float
+        Ratio ``a2/a1`` of the yield-condition constants, ``-1 < A < 1`` [-] (the quadratic
+        form in ``eqn-yc2`` must be positive). The paper uses 1/3.
+    """
+
+    phi: float
+    L: float = 10.0
+    A: float = 1.0 / 3.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "phi", require_open_interval("phi", self.phi, 0.0, 90.0, " [deg]"))
+        L = require_finite("L", self.L)
+        if L <= 0.0:
+            raise ParameterError(f"L must satisfy L > 0; got {L:g}")
+        object.__setattr__(self, "L", L)
+        object.__setattr__(self, "A", require_open_interval("A", self.A, -1.0, 1.0))
+
+    @functools.cached_property
+    def sin_phi(self) -> float:
+        """sin(phi) [-]."""
+        return math.sin(math.radians(self.phi))
+
+    @functools.cached_property
+    def alpha(self) -> float:
+        """alpha = L / sqrt(2(A+1)), the coefficient of eps in ``eqn-nd_zangmom`` [-]."""
+        return self.L / math.sqrt(2.0 * (self.A + 1.0))
+
+    @functools.cached_property
+    def c2(self) -> float:
+        """c^2 = sin^2(phi) / (2(A+1)) of ``eqn-eta_g`` [-]."""
+        return self.sin_phi**2 / (2.0 * (self.A + 1.0))
+
+    @functools.cached_property
+    def fully_rough_delta(self) -> float:
+        """The wall-friction angle of a fully rough wall, atan(sin phi) [deg]."""
+        return math.degrees(math.atan(self.sin_phi))
+
+
+@dataclass(frozen=True)
+class Wall:
+    """A wall bounding the granular material.
+
+    Parameters
+    ----------
+    delta : float or "fully-rough"
+        Angle of wall friction ``0 < delta < 90`` [deg], or :data:`FULLY_ROUGH` for a wall with
+        tan(delta) = sin(phi) exactly (``eqn-bc_fullyrough``). That tan(delta) <= sin(phi) is
+        checked where the wall meets a material (in the problem classes).
+    K : float
+        Slip coefficient of ``eqn-bc3``, ``K >= 0`` [-]: 0 means no slip relative to the wall,
+        1/2 a grain rolling without sliding. The paper uses 0.5.
+    """
+
+    delta: float | Literal["fully-rough"]
+    K: float = 0.5
+
+    def __post_init__(self) -> None:
+        if self.delta != FULLY_ROUGH:
+            object.__setattr__(
+                self, "delta", require_open_interval("delta", self.delta, 0.0, 90.0, " [deg]")
+            )
+        K = require_finite("K", self.K)
+        if K < 0.0:
+            raise ParameterError(f"K must satisfy K >= 0; got {K:g}")
+        object.__setattr__(self, "K", K)
+
+    @classmethod
+    def fully_rough(cls, K: float = 0.5) -> Wall:
+        """A fully rough wall, tan(delta) = sin(phi) (``eqn-bc_fullyrough``)."""
+        return cls(FULLY_ROUGH, K)
+
+    @property
+    def is_fully_rough(self) -> bool:
+        """True if the wall was declared fully rough."""
+        return self.delta == FULLY_ROUGH
+
+    def tan_delta(self, material: Material, name: str = "delta") -> float:
+        """tan(delta) against ``material``, validated ``tan(delta) <= sin(phi)`` [-].
+
+        A value within 1e-12 (relative) of sin(phi) is taken as fully rough, so that
+        ``Wall(material.fully_rough_delta)`` behaves like ``Wall.fully_rough()`` despite
+        round-off in atan/tan.
+        """
+        s = material.sin_phi
+        if self.is_fully_rough:
+            return s
+        t = math.tan(math.radians(float(self.delta)))
+        if t > s * (1.0 + 1e-12):
+            raise ParameterError(
+                f"{name} must satisfy tan({name}) <= sin(phi), i.e. {name} <= "
+                f"{material.fully_rough_delta:.6g} deg for phi = {material.phi:g} deg "
+                f"(a wall cannot be rougher than fully rough, eqn-bc_fullyrough); "
+                f"got {name} = {self.delta:g} deg"
+            )
+        return s if t > s * (1.0 - 1e-12) else t
+
+    def describe(self) -> str:
+        d = "fully rough" if self.is_fully_rough else f"delta = {self.delta:g} deg"
+        return f"{d}, K = {self.K:g}"

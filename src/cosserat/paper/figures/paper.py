@@ -1,0 +1,448 @@
+"""The paper's figures, each as ``compute_<key>() -> FigureData`` and ``plot_<key>(data)``.
+
+Numbers follow the order of the figures in the paper's source (1 plane-shear schematic, ...,
+8 Couette schematic, ..., 14 shear-layer thickness). Parameters are the captions'; where a
+caption does not give a value (which delta, which B), the choice is stated in the figure's notes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from ...analysis import asymptotic_thickness, shear_layer_thickness, thickness_curve
+from ...model import CouetteFlow, PlaneShear, Problem
+from ...model.parameters import FULLY_ROUGH, Material, Wall
+from ...results.profile import Profile
+from ...routes import solve
+from .base import LINESTYLES, MARKERS, FigureData, Panel, draw
+
+PHI, EPS, L, A, K = 28.5, 0.04, 10.0, 1.0 / 3.0, 0.5
+MATERIAL = Material(PHI, L=L, A=A)
+POINTS = 401
+
+XI = r"$\xi$"
+U = r"$u$"
+OMEGA = r"$\omega$"
+M = r"$m$"
+SPIN = r"$\omega + \frac{1}{2}\,\mathrm{d}u/\mathrm{d}\xi$"
+SPIN_CYL = r"$\omega + \frac{1}{2}(\mathrm{d}u/\mathrm{d}\xi + u/(\bar R_i + \xi))$"
+ASYM = r"$\bar\sigma_{yx} - \bar\sigma_{xy}$"
+ASYM_CYL = r"$\bar\sigma_{r\theta} - \bar\sigma_{\theta r}$"
+
+FIELD = {
+    "u": (U, lambda p: p.u),
+    "omega": (OMEGA, lambda p: p.omega),
+    "spin": (SPIN, lambda p: p.spin_minus_half_vorticity),
+    "spin_cyl": (SPIN_CYL, lambda p: p.spin_minus_half_vorticity),
+    "asym": (ASYM, lambda p: p.asymmetry),
+    "asym_cyl": (ASYM_CYL, lambda p: p.asymmetry),
+    "m": (M, lambda p: p.m),
+}
+
+
+def _delta_label(wall: Wall) -> str:
+    return "fully rough" if wall.is_fully_rough else rf"$\delta = {wall.delta:g}^\circ$"
+
+
+def profile_panels(
+    curves: list[tuple[str, Profile]], fields: list[str], markers: bool = False
+) -> list[Panel]:
+    """Panels of ``fields`` against xi (vertical, as in the paper), one curve per profile."""
+    panels = []
+    for name in fields:
+        label, get = FIELD[name]
+        panel = Panel(xlabel=label, ylabel=XI)
+        for i, (curve_label, prof) in enumerate(curves):
+            panel.add(
+                curve_label,
+                get(prof),
+                prof.xi,
+                color="k",
+                linestyle=LINESTYLES[i % len(LINESTYLES)],
+            )
+        panels.append(panel)
+    return panels
+
+
+# --------------------------------------------------------------------------- 2: fig-zero_g
+def compute_zero_g() -> FigureData:
+    walls = [Wall.fully_rough(K), Wall(25.0, K), Wall(20.0, K), Wall(10.0, K)]
+    curves = [
+        (_delta_label(w), solve(PlaneShear(material=MATERIAL, upper=w, eps=EPS), points=POINTS))
+        for w in walls
+    ]
+    return FigureData(
+        "fig-zero_g",
+        2,
+        "identical walls, no gravity",
+        "Shear between identical walls without gravity for several delta; phi = 28.5 deg, "
+        "eps = 0.04, L = 10, A = 1/3, K = 0.5.",
+        profile_panels(curves, ["u", "spin", "asym", "m"]),
+        notes=["delta values (not given in the caption): fully rough, 25, 20, 10 deg"],
+    )
+
+
+# --------------------------------------------------------------------------- 3: fig-zero_g_aw
+def compute_zero_g_aw() -> FigureData:
+    rough = Wall.fully_rough(K)
+    walls = [Wall(25.5, K), Wall(20.0, K), Wall(10.0, K)]
+    curves = [
+        (
+            _delta_label(w),
+            solve(PlaneShear(material=MATERIAL, upper=w, lower=rough, eps=EPS), points=POINTS),
+        )
+        for w in walls
+    ]
+    return FigureData(
+        "fig-zero_g_aw",
+        3,
+        "rougher lower wall, no gravity",
+        "Velocity and spin with a rougher lower wall (delta_L > delta), no gravity; other "
+        "parameters as figure 2.",
+        profile_panels(curves, ["u", "omega"]),
+        notes=[
+            "lower wall fully rough; delta = 25.5 deg stands for the fully rough limit "
+            "(the upper wall cannot be as rough as a rougher lower wall)"
+        ],
+    )
+
+
+# --------------------------------------------------------------------------- 4: fig-asymp_g0
+def compute_asymp_g0() -> FigureData:
+    eps = 1e-3
+    cases = {
+        "identical walls": PlaneShear(material=MATERIAL, upper=Wall(20.0, K), eps=eps),
+        "rougher lower wall": PlaneShear(
+            material=MATERIAL, upper=Wall(20.0, K), lower=Wall.fully_rough(K), eps=eps
+        ),
+    }
+    xi = np.linspace(0.95, 1.0, 301)
+    xi_sym = np.linspace(0.95, 1.0, 21)
+    panels = [Panel(xlabel=U, ylabel=XI), Panel(xlabel=OMEGA, ylabel=XI)]
+    for i, (name, problem) in enumerate(cases.items()):
+        num = solve(problem, points=POINTS).evaluate(xi)
+        asym = solve(problem, method="asymptotic", points=POINTS).evaluate(xi_sym)
+        for panel, a, b in ((panels[0], num.u, asym.u), (panels[1], num.omega, asym.omega)):
+            panel.add(f"numerical, {name}", a, xi, color="k", linestyle=LINESTYLES[i])
+            panel.add_symbols(f"asymptotic, {name}", b, xi_sym, MARKERS[i])
+    return FigureData(
+        "fig-asymp_g0",
+        4,
+        "asymptotic vs numerical, no gravity",
+        "Asymptotic (symbols) and numerical (lines) u and omega, no gravity; phi = 28.5 deg, "
+        "delta = 20 deg, eps = 1e-3, L = 10, A = 1/3, K = 0.5.",
+        panels,
+        notes=["xi restricted to the layer, 0.95 <= xi <= 1"],
+    )
+
+
+# --------------------------------------------------------------------------- 5: fig-bc
+def compute_bc() -> FigureData:
+    base = PlaneShear(material=MATERIAL, upper=Wall(10.0, K), lower=Wall.fully_rough(K), eps=EPS)
+    b = base.slip_constants.b
+    fractions = [1.0, 0.7, 0.4, 0.1]
+    curves = [
+        (rf"$m(0) = {f:g}\,b$", solve(replace(base, m_fixed_wall=f * b), points=POINTS))
+        for f in fractions
+    ]
+    return FigureData(
+        "fig-bc",
+        5,
+        "effect of the couple stress at the lower wall",
+        "Couple stress and velocity for four m(0) in 0 < m(0) <= b (solid: m(0) = b); "
+        "delta = 10 deg, delta_L > delta, other parameters as figure 2.",
+        profile_panels(curves, ["m", "u"]),
+        notes=[f"b = {b:.6g}; m0 = {base.slip_constants.m0:.6g} (the value eqn-nd_bc4 gives)"],
+        extra={"b": b, "fractions": fractions},
+    )
+
+
+# --------------------------------------------------------------------------- 6: fig-finite_g
+def compute_finite_g() -> FigureData:
+    B_values = [0.0, 0.1, 0.3, 1.0]
+    curves = [
+        (
+            rf"$B = {B:g}$",
+            solve(
+                PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=B),
+                points=POINTS,
+            ),
+        )
+        for B in B_values
+    ]
+    return FigureData(
+        "fig-finite_g",
+        6,
+        "fully rough walls under gravity",
+        "Fully rough walls under gravity for four B = rho_p g H / N; other parameters as figure 2.",
+        profile_panels(curves, ["u", "spin", "asym", "m"]),
+        notes=[
+            "B values (not given in the caption): 0, 0.1, 0.3, 1; B = 10 has no real "
+            "solution at eps = 0.04"
+        ],
+        extra={"B": B_values, "Delta": [shear_layer_thickness(p) for _, p in curves]},
+    )
+
+
+# --------------------------------------------------------------------------- 7: fig-asymp_g_c
+def compute_asymp_g_c() -> FigureData:
+    eps = 1e-3
+    cases = {
+        "plane, B = 1": PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=eps, B=1.0),
+        r"Couette, $\bar R_i = 1$": CouetteFlow(
+            material=MATERIAL, wall=Wall.fully_rough(K), eps=eps, Ri=1.0
+        ),
+    }
+    panels = [Panel(xlabel=U, ylabel=XI), Panel(xlabel=M, ylabel=XI)]
+    for i, (name, problem) in enumerate(cases.items()):
+        num = solve(problem, points=POINTS)
+        xs = num.xi[:: max(1, len(num.xi) // 45)]  # layered grid: symbols in the layer too
+        asym = solve(problem, method="asymptotic", points=POINTS).evaluate(xs)
+        for panel, a, b in ((panels[0], num.u, asym.u), (panels[1], num.m, asym.m)):
+            panel.add(f"numerical, {name}", a, num.xi, color="k", linestyle=LINESTYLES[i])
+            panel.add_symbols(f"asymptotic, {name}", b, xs, MARKERS[i])
+    return FigureData(
+        "fig-asymp_g_c",
+        7,
+        "asymptotic vs numerical, fully rough walls",
+        "Asymptotic (symbols) and numerical (lines) u and m for plane shear under gravity "
+        "(B = 1) and Couette flow (Ri = 1), fully rough walls; eps = 1e-3, other parameters "
+        "as figure 2.",
+        panels,
+    )
+
+
+# --------------------------------------------------------------------------- 9: fig-cyl_couette
+def compute_cyl_couette() -> FigureData:
+    radii = [1e6, 100.0, 10.0, 1.0]
+    curves = [
+        (
+            r"$\bar R_i = \infty$" if R > 1e5 else rf"$\bar R_i = {R:g}$",
+            solve(
+                CouetteFlow(material=MATERIAL, wall=Wall.fully_rough(K), eps=EPS, Ri=R),
+                points=POINTS,
+            ),
+        )
+        for R in radii
+    ]
+    return FigureData(
+        "fig-cyl_couette",
+        9,
+        "Couette flow, fully rough walls",
+        "Fully rough Couette cell for four Ri = R_i/H; phi = 28.5 deg, eps = 0.04, L = 10, "
+        "A = 1/3, K = 0.5.",
+        profile_panels(curves, ["u", "spin_cyl", "asym_cyl", "m"]),
+        notes=[
+            "Ri values (not given in the caption): 1e6 (for infinity), 100, 10, 1. With "
+            "the paper's outer-wall conditions the Ri -> infinity limit is uniform shear "
+            "with no slip at the outer wall (docs/derivation_couette.md, section 6)"
+        ],
+    )
+
+
+# --------------------------------------------------------------------------- 10, 11: experiments
+def experiment_curves(preset: str, data: Any = None) -> Panel:
+    """-u against xi for a preset cell: fully rough (dot-dash) and the preset's default wall,
+    2 deg below atan(sin phi) (solid)."""
+    from ...studies.experiments import PRESETS
+
+    cell = PRESETS[preset]
+    panel = Panel(xlabel=XI, ylabel=r"$-u$", title=cell.description)
+    for delta, label, ls in (
+        (None, r"$\delta = \tan^{-1}\sin\phi - 2^\circ$", "-"),
+        (FULLY_ROUGH, "fully rough", "-."),
+    ):
+        prof = solve(cell.problem(delta), points=POINTS)
+        panel.add(label, prof.xi, -prof.u, color="k", linestyle=ls)
+    if data is not None:
+        panel.add_symbols(data.label, data.xi(cell.eps), data.u_over_uw, "o")
+    return panel
+
+
+def compute_mueth(data: dict[str, Any] | None = None) -> FigureData:
+    data = data or {}
+    panels = [
+        experiment_curves("mustard", data.get("mustard")),
+        experiment_curves("poppy", data.get("poppy")),
+    ]
+    return FigureData(
+        "fig-mueth",
+        10,
+        "mustard and poppy seeds (Mueth et al. 2000)",
+        "Model predictions for (a) mustard seeds (phi = 25 deg, eps = 0.15, Ri = 2.29, "
+        "K = 0.65) and (b) poppy seeds (phi = 31 deg, eps = 0.058, Ri = 1.89, K = 0); "
+        "dot-dash: fully rough walls; solid: delta 2 deg below atan(sin phi).",
+        panels,
+        notes=[
+            "measured points are not public; pass a profile file to overlay it "
+            "(cosserat figures --data mustard=FILE)"
+        ],
+    )
+
+
+def compute_bocquet(data: dict[str, Any] | None = None) -> FigureData:
+    data = data or {}
+    return FigureData(
+        "fig-bocquet",
+        11,
+        "glass beads (Bocquet et al. 2001)",
+        "Model predictions for glass beads (phi = 28.5 deg, eps = 0.067, Ri = 4.25, K = 0); "
+        "dot-dash: fully rough walls; solid: delta 2 deg below atan(sin phi).",
+        [experiment_curves("glass", data.get("glass"))],
+        notes=["measured points are not public; pass a profile file to overlay it"],
+    )
+
+
+# --------------------------------------------------------------------------- 12: A sensitivity
+def compute_A_sensitivity() -> FigureData:
+    from ...analysis.sensitivity import existence_bound_A
+
+    bound = existence_bound_A(
+        PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=1.0)
+    )
+    A_values = [1.0 / 3.0, 0.9, 0.0, round(bound.value + 0.02, 2)]
+    curves = [
+        (
+            rf"$A = {a:.3g}$",
+            solve(
+                PlaneShear(
+                    material=Material(PHI, L=L, A=a), upper=Wall.fully_rough(K), eps=EPS, B=1.0
+                ),
+                points=POINTS,
+            ),
+        )
+        for a in A_values
+    ]
+    return FigureData(
+        "fig-A_sensitivity",
+        12,
+        "sensitivity to A",
+        "Plane shear between fully rough walls under gravity, B = 1, for several A; no "
+        "solution below the existence bound; other parameters as figure 2.",
+        profile_panels(curves, ["u", "m"]),
+        notes=[
+            f"computed existence bound A* = {bound.value:.4f} +- {bound.tolerance:.1e} "
+            f"(paper: -0.57)"
+        ],
+        extra={"A_bound": bound.value, "A_bound_tol": bound.tolerance, "A": A_values},
+    )
+
+
+# --------------------------------------------------------------------------- 13: K sensitivity
+def compute_K_sensitivity() -> FigureData:
+    K_values = [0.0, 0.5, 1.0, 2.0]
+    curves = [
+        (
+            rf"$K = {k:g}$",
+            solve(
+                PlaneShear(material=MATERIAL, upper=Wall.fully_rough(k), eps=EPS, B=1.0),
+                points=POINTS,
+            ),
+        )
+        for k in K_values
+    ]
+    return FigureData(
+        "fig-K_sensitivity",
+        13,
+        "sensitivity to K",
+        "Plane shear between fully rough walls under gravity, B = 1, for several K; other "
+        "parameters as figure 2.",
+        profile_panels(curves, ["u", "omega"]),
+        notes=["K values (not given in the caption): 0, 0.5, 1, 2"],
+        extra={"K": K_values},
+    )
+
+
+# --------------------------------------------------------------------------- 14: fig-slt
+EPS_SLT = [1e-1, 5e-2, 2e-2, 1e-2, 5e-3, 2e-3, 1e-3, 1e-4, 1e-5, 1e-6]
+
+
+def thickness_problems(fully_rough: bool) -> dict[str, Problem]:
+    """The four problems of figure 14 (panel b: fully rough walls)."""
+    wall = Wall.fully_rough(K) if fully_rough else Wall(20.0, K)
+    problems: dict[str, Problem] = {
+        "plane, identical walls": PlaneShear(material=MATERIAL, upper=wall, eps=EPS),
+        "plane, rougher lower wall": PlaneShear(
+            material=MATERIAL, upper=wall, lower=Wall.fully_rough(K), eps=EPS
+        ),
+        "plane, gravity B = 1": PlaneShear(material=MATERIAL, upper=wall, eps=EPS, B=1.0),
+        r"Couette, $\bar R_i = 1$": CouetteFlow(material=MATERIAL, wall=wall, eps=EPS, Ri=1.0),
+    }
+    if fully_rough:  # no wall is rougher than fully rough
+        problems.pop("plane, rougher lower wall")
+    return problems
+
+
+SLT_MARKERS = {
+    "plane, identical walls": "o",
+    "plane, rougher lower wall": "x",
+    "plane, gravity B = 1": "*",
+    r"Couette, $\bar R_i = 1$": "D",
+}
+
+
+SLT_MARKERS = {
+    "plane, identical walls": "o",
+    "plane, rougher lower wall": "x",
+    "plane, gravity B = 1": "*",
+    r"Couette, $\bar R_i = 1$": "D",
+}
+
+
+def compute_slt() -> FigureData:
+    panels = []
+    table: dict[str, dict[str, list[Any]]] = {}
+    for fully_rough in (False, True):
+        panel = Panel(
+            xlabel=r"$\varepsilon$",
+            ylabel=r"$\Delta$",
+            xscale="log",
+            yscale="log" if fully_rough else "linear",
+        )
+        for i, (name, problem) in enumerate(thickness_problems(fully_rough).items()):
+            curve = thickness_curve(problem, EPS_SLT)
+            ok = [j for j, d in enumerate(curve.Delta) if d is not None]
+            eps_ok = np.array([EPS_SLT[j] for j in ok])
+            delta_ok = np.array([curve.Delta[j] for j in ok])
+            panel.add_symbols(name, eps_ok, delta_ok, SLT_MARKERS[name], markersize=6)
+            fine = np.geomspace(EPS_SLT[-1], EPS_SLT[0], 60)
+            asym = [asymptotic_thickness(replace(problem, eps=e)) for e in fine]
+            panel.add(
+                f"_asymptote {name}",
+                fine,
+                asym,
+                color="k",
+                linestyle=LINESTYLES[i % len(LINESTYLES)],
+                linewidth=0.8,
+            )
+            table[f"{'b' if fully_rough else 'a'}: {name}"] = {
+                "eps": list(EPS_SLT),
+                "Delta": curve.Delta,
+                "Delta_asymptotic": [
+                    asymptotic_thickness(replace(problem, eps=e)) for e in EPS_SLT
+                ],
+            }
+        panels.append(panel)
+    return FigureData(
+        "fig-slt",
+        14,
+        "shear-layer thickness against eps",
+        "Delta against eps: (a) delta = 20 deg, (b) fully rough walls (delta = atan(sin phi) "
+        "= 25.5 deg); symbols numerical, lines the small-eps laws; phi = 28.5 deg, L = 10, "
+        "A = 1/3, K = 0.5, B = 1 (gravity), Ri = 1 (Couette).",
+        panels,
+        notes=["missing symbols: no real solution at that eps (e.g. gravity B = 1 at eps = 0.1)"],
+        extra={"table": table},
+    )
+
+
+# --------------------------------------------------------------------------- registry
+def plot_default(data: FigureData):  # type: ignore[no-untyped-def]
+    fig = draw(data, ncols=2)
+    if data.key == "fig-asymp_g0":
+        for ax in fig.axes:
+            ax.set_ylim(0.95, 1.0)
+    return fig

@@ -1,0 +1,112 @@
+"""Turn a route's dense evaluator into a checked :class:`~cosserat.profile.Profile`."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+
+from ..errors import ConvergenceError
+from ..model import Problem
+from ..model.constitutive import FloatArray, check_radicand, radicand
+from ..model.formulation import Formulation
+from ..results.diagnostics import residuals
+from ..results.profile import Diagnostics, Evaluator, Fields, Profile
+
+CHECK_POINTS = 801
+
+
+def make_profile(
+    problem: Problem,
+    form: Formulation,
+    evaluate: Evaluator,
+    *,
+    method: str,
+    points: int | None,
+    xi: FloatArray | None = None,
+    reference_velocity: float,
+    rtol: float | None = None,
+    atol: float | None = None,
+    message: str = "",
+    stats: Mapping[str, Any] | None = None,
+    check: bool = True,
+    velocity: Callable[[FloatArray], FloatArray] | None = None,
+) -> Profile:
+    """Evaluate on the output grid, verify, and package.
+
+    ``check`` computes the ODE residuals on a layer-resolving check grid and the boundary
+    errors; sweeps that need only wall quantities may skip it.
+    """
+    grid = problem.output_grid(points or 201) if xi is None else np.asarray(xi, dtype=float)
+    if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
+        raise ValueError("xi must be a strictly increasing 1-D array of at least two points")
+    if grid[0] < 0.0 or grid[-1] > 1.0:
+        raise ValueError("xi must lie in [0, 1]")
+    f = evaluate(grid)
+    # The returned stresses must be real: a profile never carries a clipped radicand.
+    check_radicand(
+        radicand(f.sigma_yx, f.sigma_yy, f.m, problem.material),
+        f.sigma_yy,
+        f.m,
+        problem.material,
+        grid,
+    )
+    for name, values in f._asdict().items():
+        if not np.all(np.isfinite(values)):
+            raise ConvergenceError(
+                f"the {method} solution produced non-finite {name} for {problem.describe()}"
+            )
+    if check:
+        res = residuals(form, evaluate, problem.output_grid(CHECK_POINTS))
+        bc = problem.boundary_errors(evaluate)
+    else:
+        res, bc = {}, {}
+    diag = Diagnostics(
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        residuals=res,
+        bc_errors=bc,
+        message=message,
+        stats=dict(stats or {}),
+    )
+    return Profile(
+        problem=problem,
+        xi=grid,
+        u=f.u,
+        omega=f.omega,
+        m=f.m,
+        sigma_xy=f.sigma_xy,
+        sigma_yx=f.sigma_yx,
+        sigma_yy=f.sigma_yy,
+        du_dxi=f.du_dxi,
+        kappa=f.kappa,
+        slip_wall=float(problem.slip_wall),
+        reference_velocity=float(reference_velocity),
+        diagnostics=diag,
+        evaluator=evaluate,
+        velocity=velocity,
+    )
+
+
+def fields_from_state(
+    form: Formulation, xi: FloatArray, m: FloatArray, u: FloatArray, w: FloatArray
+) -> Fields:
+    """Fields from (m, u, w) using the constitutive law for the stresses and du/dxi.
+
+    ``w = omega + kappa u``; the flow rule gives ``du/dxi = -w F1 + kappa u``.
+    """
+    st = form.stresses(xi, m)
+    F1, _ = form.flow_ratios(xi, m)
+    kappa = form.curvature(xi)
+    return Fields(
+        u=u,
+        omega=w - kappa * u,
+        m=np.asarray(m, dtype=float),
+        sigma_xy=st.sigma_xy,
+        sigma_yx=st.sigma_yx,
+        sigma_yy=st.sigma_c,
+        du_dxi=-w * F1 + kappa * u,
+        kappa=kappa,
+    )

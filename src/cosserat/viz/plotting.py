@@ -1,0 +1,155 @@
+"""Plotting primitives: one Matplotlib style for the package, a quick profile plot, the
+data-beside-model plot.
+
+A leaf of the package: it imports nothing from ``cosserat`` at run time and works on any object
+with the attributes it reads, so every layer may draw with it (``docs/architecture.md``).
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from ..results.profile import Profile
+
+STYLE = {
+    "figure.figsize": (6.4, 4.8),
+    "figure.dpi": 100,
+    "savefig.dpi": 200,
+    "savefig.bbox": "tight",
+    "font.size": 10,
+    "axes.labelsize": 11,
+    "axes.titlesize": 10,
+    "legend.fontsize": 8,
+    "legend.frameon": False,
+    "lines.linewidth": 1.4,
+    "lines.markersize": 4,
+    "axes.spines.top": True,
+    "axes.spines.right": True,
+    "xtick.direction": "in",
+    "ytick.direction": "in",
+    "xtick.top": True,
+    "ytick.right": True,
+    "mathtext.fontset": "cm",
+    "font.family": "serif",
+    "pdf.fonttype": 42,
+}
+"""The package's Matplotlib style (used by every figure)."""
+
+FIELD_LABELS = {
+    "xi": r"$\xi$",
+    "u": r"$u$",
+    "omega": r"$\omega$",
+    "m": r"$m$",
+    "sigma_xy": r"$\bar\sigma_{xy}$",
+    "sigma_yx": r"$\bar\sigma_{yx}$",
+    "sigma_yy": r"$\bar\sigma_{yy}$",
+    "asymmetry": r"$\bar\sigma_{yx}-\bar\sigma_{xy}$",
+    "spin_minus_half_vorticity": r"$\omega + \frac{1}{2}\,\mathrm{d}u/\mathrm{d}\xi$",
+}
+"""Axis labels of the profile fields (mathtext: for figures only)."""
+
+
+@contextmanager
+def style() -> Iterator[None]:
+    """Context manager applying :data:`STYLE`."""
+    import matplotlib as mpl
+
+    # fontTools (font subsetting for the PDF) logs harmless warnings about font timestamps
+    logging.getLogger("fontTools").setLevel(logging.ERROR)
+
+    with mpl.rc_context(STYLE):
+        yield
+
+
+def new_figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float | None = None):
+    """A styled figure and its axes (headless: no pyplot state)."""
+    from matplotlib.figure import Figure
+
+    height = height if height is not None else 2.9 * nrows
+    with style():
+        fig = Figure(figsize=(width, height))
+        axes = fig.subplots(nrows, ncols, squeeze=False)
+    return fig, axes
+
+
+def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
+    """u, omega + du/dxi/2, sigma_yx - sigma_xy and m against xi (as the paper's figure 2)."""
+    with style():
+        if fig is None:
+            fig, axes = new_figure(2, 2, height=5.6)
+        else:
+            axes = fig.subplots(2, 2, squeeze=False)
+        panels = [
+            ("u", profile.u),
+            ("spin_minus_half_vorticity", profile.spin_minus_half_vorticity),
+            ("asymmetry", profile.asymmetry),
+            ("m", profile.m),
+        ]
+        for ax, (name, values) in zip(axes.ravel(), panels, strict=True):
+            ax.plot(values, profile.xi, color="k")
+            ax.set_xlabel(FIELD_LABELS[name])
+            ax.set_ylabel(FIELD_LABELS["xi"])
+        fig.suptitle(profile.problem.describe(), fontsize=7)
+        fig.tight_layout()
+    return fig
+
+
+def comparison_plot(comparison, title: str = "", residual_panel: bool = False):  # type: ignore[no-untyped-def]
+    """Data beside the model: linear and log velocity axes (the log axis shows the
+    exponential tail), and optionally the residuals."""
+    import numpy as np
+
+    meas = comparison.measured
+    d_max = float(meas.distance_d.max()) * 1.05 + 1e-9
+    eps = comparison.profile.problem.eps
+    d_fine = np.linspace(0.0, min(d_max, 1.0 / eps), 400)
+    model = comparison.model_curve(d_fine)
+    ncols = 3 if residual_panel else 2
+    fig, axes = new_figure(1, ncols, width=3.3 * ncols, height=3.0)
+    with style():
+        for k, ax in enumerate(axes[0, :2]):
+            ax.plot(d_fine, model, "k-", label="model")
+            if meas.u_err is not None:
+                ax.errorbar(
+                    meas.distance_d,
+                    meas.u_over_uw,
+                    yerr=meas.u_err,
+                    fmt="o",
+                    color="k",
+                    markerfacecolor="none",
+                    label=meas.label,
+                    capsize=2,
+                )
+            else:
+                ax.plot(
+                    meas.distance_d,
+                    meas.u_over_uw,
+                    "o",
+                    color="k",
+                    markerfacecolor="none",
+                    label=meas.label,
+                )
+            ax.set_xlabel(r"distance from the moving wall [$d_p$]")
+            ax.set_ylabel(r"$u/u_w$")
+            if k == 1:
+                positive = meas.u_over_uw[meas.u_over_uw > 0]
+                floor = max(float(positive.min()) / 3 if positive.size else 1e-4, 1e-8)
+                ax.set_yscale("log")
+                ax.set_ylim(floor, 1.5)
+            ax.legend()
+        if residual_panel:
+            ax = axes[0, 2]
+            ax.axhline(0.0, color="0.6", linewidth=0.8)
+            ax.plot(meas.distance_d, comparison.residuals, "o", color="k", markerfacecolor="none")
+            ax.set_xlabel(r"distance from the moving wall [$d_p$]")
+            ax.set_ylabel("data - model")
+        if title:
+            fig.suptitle(title, fontsize=8)
+        fig.tight_layout()
+    return fig
