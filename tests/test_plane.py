@@ -212,7 +212,7 @@ def test_routes_that_do_not_exist_say_so():
         solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.1, Ri=1.0), method="closed-form")
     with pytest.raises(ParameterError, match="rtol do not apply to method='closed-form'"):
         solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1), method="closed-form", rtol=1e-6)
-    with pytest.raises(ParameterError, match="rtol must satisfy 1e-13 <= rtol <= 1e-2"):
+    with pytest.raises(ParameterError, match=r"rtol must satisfy 1e-13 <= rtol <= 0.01"):
         solve(gravity, rtol=1.0)
 
 
@@ -239,5 +239,5 @@ def test_quick_plot_has_four_panels():
 def test_nearly_frictionless_wall_fails_fast_and_says_why():
     """A couple stress starting within round-off of its yield bound makes the couple-stress
     equation singular; the solver stops with a reason instead of grinding."""
-    with pytest.raises(ConvergenceError, match=r"within .* of its yield bound"):
+    with pytest.raises(ConvergenceError, match=r"within the tolerance of its yield bound"):
         solve(PlaneShear(material=MAT, upper=Wall(1e-5), eps=1e-3))

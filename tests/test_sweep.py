@@ -11,7 +11,7 @@ import pytest
 from cosserat import CouetteFlow, Material, ParameterError, PlaneShear, Wall, solve
 from cosserat.analysis import shear_layer_thickness, wall_omega, wall_slip
 from cosserat.cli import main
-from cosserat.routes.batch import wall_quantities
+from cosserat.routes.numerical import wall_quantities
 from cosserat.studies.sweep import load_spec, parse_spec, run_sweep
 
 MAT = Material(28.5)

@@ -20,6 +20,11 @@ parallel to the walls (``sigma_r_theta`` in Couette flow), ``sigma_xy`` the othe
 
       du/dxi = -F1 omega,    eps alpha domega/dxi = -F2 omega,
       F1 = (A+1)(sxy + syx)/(sxy + A syx),   F2 = 2 (A+1) m / (sxy + A syx).
+
+Each formula is written once, as a compiled function of plain numbers ``k_*(syx, sigma_c, m, A,
+sin_phi)`` that the solver kernels (:mod:`cosserat.numerics`) call inside their step loops. The
+NumPy ufuncs ``v_*`` apply them to arrays, and the functions below, which take a
+:class:`Material`, call those.
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ import math
 from typing import Any
 
 import numpy as np
+from numba import njit, vectorize
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import NoSolutionError
@@ -41,26 +47,133 @@ RADICAND_ROUNDOFF = 1e-12
 SQRT_S_FLOOR = 1e-150
 
 
+_F8x5 = ["float64(float64, float64, float64, float64, float64)"]
+_F8x6 = ["float64(float64, float64, float64, float64, float64, float64)"]
+_KERNEL = {"cache": True, "nogil": True}
+
+
+@njit(**_KERNEL)
+def k_radicand(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """S of ``eqn-nd_sigxy`` (module docstring) [-]."""
+    sc_sin = sc * sin_phi
+    return (
+        (A * A - 1.0) * syx * syx + 2.0 * (A + 1.0) * sc_sin * sc_sin - 4.0 * (A + 1.0) ** 2 * m * m
+    )
+
+
+@njit(**_KERNEL)
+def k_torque(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """(syx - sxy)/(2(A+1)) on the paper's root, free of cancellation [-].
+
+    The right side of the couple-stress balance (``eqn-nd_zangmom``). On the paper's root
+    ``syx - sxy = (1+A) syx + sqrt(S)``, which for tau = -syx > 0 subtracts two nearly equal
+    numbers near a fully rough wall (both are (1+A) sin phi there). With the conjugate,
+    ``S - (1+A)^2 tau^2 = 2(A+1)[(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2]``
+    (``docs/derivation_plane.md`` section 3)::
+
+        (syx - sxy)/(2(A+1)) = [(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2]
+                               / (sqrt(S) + (1+A) tau)
+
+    S is clipped at 0 (callers check the real domain).
+    """
+    S = k_radicand(syx, sc, m, A, sin_phi)
+    root = math.sqrt(S) if S > 0.0 else 0.0
+    tau = -syx
+    if tau > 0.0:
+        sc_sin = sc * sin_phi
+        return ((sc_sin - tau) * (sc_sin + tau) - 2.0 * (A + 1.0) * m * m) / (
+            root + (1.0 + A) * tau
+        )
+    return (root - (1.0 + A) * tau) / (2.0 * (A + 1.0))
+
+
+@njit(**_KERNEL)
+def k_torque_dm(syx: float, sc: float, m: float, A: float, sin_phi: float, floor: float) -> float:
+    """d/dm of :func:`k_torque` at fixed syx: ``-2(A+1) m / sqrt(S)`` [-].
+
+    From ``k_torque = ((1+A) syx + sqrt(S))/(2(A+1))`` and ``dS/dm = -8(A+1)^2 m``. sqrt(S) is
+    floored at ``floor`` (S = 0 on the yield bound, where the derivative is infinite).
+    """
+    S = k_radicand(syx, sc, m, A, sin_phi)
+    return -2.0 * (A + 1.0) * m / max(math.sqrt(S) if S > 0.0 else 0.0, floor)
+
+
+@njit(**_KERNEL)
+def k_torque_dsyx(syx: float, sc: float, m: float, A: float, sin_phi: float, floor: float) -> float:
+    """d/dsyx of :func:`k_torque` at fixed m: ``1/2 + (A-1) syx / (2 sqrt(S))`` [-].
+
+    From ``dS/dsyx = 2(A^2-1) syx``; used where the shear stress depends on m (Couette flow).
+    sqrt(S) floored at ``floor`` as in :func:`k_torque_dm`.
+    """
+    S = k_radicand(syx, sc, m, A, sin_phi)
+    return 0.5 + (A - 1.0) * syx / (2.0 * max(math.sqrt(S) if S > 0.0 else 0.0, floor))
+
+
+@njit(**_KERNEL)
+def k_velocity_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """F1 = (A+1)(sxy + syx)/(sxy + A syx) of ``eqn-nd_fr1`` on the paper's root [-].
+
+    There ``sxy + A syx = -sqrt(S)``, used as the denominator directly, floored away from 0.
+    """
+    S = k_radicand(syx, sc, m, A, sin_phi)
+    denom = -max(math.sqrt(S) if S > 0.0 else 0.0, SQRT_S_FLOOR)
+    sxy = denom - A * syx
+    return (A + 1.0) * (sxy + syx) / denom
+
+
+@njit(**_KERNEL)
+def k_spin_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """F2 = 2(A+1) m/(sxy + A syx) of ``eqn-nd_fr2`` on the paper's root [-]."""
+    S = k_radicand(syx, sc, m, A, sin_phi)
+    return -2.0 * (A + 1.0) * m / max(math.sqrt(S) if S > 0.0 else 0.0, SQRT_S_FLOOR)
+
+
+@vectorize(_F8x5, cache=True)
+def v_radicand(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """:func:`k_radicand` on arrays (a NumPy ufunc)."""
+    return k_radicand(syx, sc, m, A, sin_phi)
+
+
+@vectorize(_F8x5, cache=True)
+def v_torque(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """:func:`k_torque` on arrays (a NumPy ufunc)."""
+    return k_torque(syx, sc, m, A, sin_phi)
+
+
+@vectorize(_F8x6, cache=True)
+def v_torque_dm(syx: float, sc: float, m: float, A: float, sin_phi: float, floor: float) -> float:
+    """:func:`k_torque_dm` on arrays (a NumPy ufunc)."""
+    return k_torque_dm(syx, sc, m, A, sin_phi, floor)
+
+
+@vectorize(_F8x6, cache=True)
+def v_torque_dsyx(syx: float, sc: float, m: float, A: float, sin_phi: float, floor: float) -> float:
+    """:func:`k_torque_dsyx` on arrays (a NumPy ufunc)."""
+    return k_torque_dsyx(syx, sc, m, A, sin_phi, floor)
+
+
+@vectorize(_F8x5, cache=True)
+def v_velocity_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """:func:`k_velocity_ratio` on arrays (a NumPy ufunc)."""
+    return k_velocity_ratio(syx, sc, m, A, sin_phi)
+
+
+@vectorize(_F8x5, cache=True)
+def v_spin_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
+    """:func:`k_spin_ratio` on arrays (a NumPy ufunc)."""
+    return k_spin_ratio(syx, sc, m, A, sin_phi)
+
+
 def radicand(
     sigma_yx: ArrayLike, sigma_c: ArrayLike, m: ArrayLike, material: Material
 ) -> FloatArray:
-    """S of ``eqn-nd_sigxy``: the yield condition has a real ``sigma_xy`` iff ``S >= 0`` [-].
-
-    Plain arithmetic, so that it is as fast on Python floats (inside ODE right-hand sides) as
-    it is vectorised on arrays.
-    """
-    A = material.A
-    sc_sin = sigma_c * material.sin_phi  # type: ignore[operator]
-    return (  # type: ignore[no-any-return]
-        (A * A - 1.0) * sigma_yx * sigma_yx  # type: ignore[operator]
-        + 2.0 * (A + 1.0) * sc_sin * sc_sin
-        - 4.0 * (A + 1.0) ** 2 * m * m  # type: ignore[operator]
-    )
+    """S of ``eqn-nd_sigxy``: the yield condition has a real ``sigma_xy`` iff ``S >= 0`` [-]."""
+    return v_radicand(sigma_yx, sigma_c, m, material.A, material.sin_phi)  # type: ignore[no-any-return]
 
 
 def radicand_scale(sigma_c: ArrayLike, material: Material) -> FloatArray:
     """The size of the terms of S, for round-off comparisons [-]."""
-    return 2.0 * (material.A + 1.0) * (sigma_c * material.sin_phi) ** 2  # type: ignore[operator]
+    return 2.0 * (material.A + 1.0) * (np.asarray(sigma_c) * material.sin_phi) ** 2  # type: ignore[no-any-return]
 
 
 def check_radicand(
@@ -81,65 +194,15 @@ def check_radicand(
     return np.maximum(S, 0.0)
 
 
-def _scalars(*values: Any) -> bool:
-    return all(isinstance(v, float | int) for v in values)
+def torque(sigma_yx: Any, sigma_c: Any, m: Any, material: Material) -> Any:
+    """(syx - sxy)/(2(A+1)) on the paper's root, free of cancellation (:func:`k_torque`) [-]."""
+    return v_torque(sigma_yx, sigma_c, m, material.A, material.sin_phi)
 
 
-def torque(sigma_yx: Any, sigma_c: Any, m: Any, material: Any) -> Any:
-    """(syx - sxy)/(2(A+1)) on the paper's root, free of cancellation [-].
-
-    The right side of the couple-stress balance (``eqn-nd_zangmom``). Directly,
-    ``syx - sxy = sqrt(S) - (1+A) tau`` with tau = -syx, which cancels near a fully rough wall
-    (both terms equal (1+A) sin phi there). With the conjugate,
-    ``S - (1+A)^2 tau^2 = 2(A+1)[(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2]``, so for
-    tau > 0 (``docs/derivation_plane.md`` section 3)::
-
-        (syx - sxy)/(2(A+1)) = [(sc sin phi - tau)(sc sin phi + tau) - 2(A+1) m^2]
-                               / (sqrt(S) + (1+A) tau)
-
-    S is clipped at 0 (the callers check the real domain). Python floats take a path without
-    NumPy (the ODE right-hand sides call this per stage); arrays are vectorised; ``material``
-    may carry array-valued ``A`` and ``sin_phi`` (the batched engine).
-    """
-    A, sin_phi = material.A, material.sin_phi
-    S = radicand(sigma_yx, sigma_c, m, material)
-    if _scalars(sigma_yx, sigma_c, m, A):
-        root = math.sqrt(S) if S > 0.0 else 0.0
-        tau = -sigma_yx
-        if tau > 0.0:
-            sc_sin = sigma_c * sin_phi
-            return ((sc_sin - tau) * (sc_sin + tau) - 2.0 * (A + 1.0) * m * m) / (
-                root + (1.0 + A) * tau
-            )
-        return (root - (1.0 + A) * tau) / (2.0 * (A + 1.0))
-    root = np.sqrt(np.maximum(S, 0.0))
-    tau = -np.asarray(sigma_yx, dtype=float)
-    sc_sin = np.asarray(sigma_c, dtype=float) * sin_phi
-    with np.errstate(divide="ignore", invalid="ignore"):
-        conj = ((sc_sin - tau) * (sc_sin + tau) - 2.0 * (A + 1.0) * m * m) / (
-            root + (1.0 + A) * tau
-        )
-    direct = (root - (1.0 + A) * tau) / (2.0 * (A + 1.0))
-    return np.where(tau > 0.0, conj, direct)
-
-
-def flow_ratios(sigma_yx: Any, sigma_c: Any, m: Any, material: Any) -> tuple[Any, Any]:
-    """(F1, F2) of ``eqn-nd_fr1``, ``eqn-nd_fr2`` on the paper's root [-].
-
-    There ``sxy + A syx = -sqrt(S)``, used as the denominator directly, floored away from 0
-    (S = 0 only exactly on the yield bound). Floats without NumPy, arrays vectorised.
-    """
-    A = material.A
-    S = radicand(sigma_yx, sigma_c, m, material)
-    if _scalars(sigma_yx, sigma_c, m, A):
-        denom = -max(math.sqrt(S) if S > 0.0 else 0.0, SQRT_S_FLOOR)
-    else:
-        denom = -np.maximum(np.sqrt(np.maximum(S, 0.0)), SQRT_S_FLOOR)
-    sxy = denom - A * sigma_yx
-    return (
-        velocity_ratio(sxy, sigma_yx, material, denom),
-        spin_ratio(sxy, sigma_yx, m, material, denom),
-    )
+def flow_ratios(sigma_yx: Any, sigma_c: Any, m: Any, material: Material) -> tuple[Any, Any]:
+    """(F1, F2) of ``eqn-nd_fr1``, ``eqn-nd_fr2`` on the paper's root [-]."""
+    args = (sigma_yx, sigma_c, m, material.A, material.sin_phi)
+    return v_velocity_ratio(*args), v_spin_ratio(*args)
 
 
 def yield_margin(sigma_yx: Any, sigma_c: Any, m: Any, material: Any) -> Any:

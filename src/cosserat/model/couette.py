@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numba import njit
 
 from ..errors import NoSolutionError, ParameterError
 from .constitutive import FloatArray
@@ -43,20 +44,29 @@ from .plane import WallConstants, validate_eps, wall_constants
 RI_MIN, RI_MAX = 1e-3, 1e6
 
 
+@njit(cache=True, nogil=True)
 def shear_stress(
-    xi: Any, m: Any, m_inner: Any, *, tan_delta: Any, Ri: Any, couple_factor: Any
+    xi: Any, m: Any, m_inner: float, tan_delta: float, Ri: float, couple_factor: float
 ) -> Any:
     """s_rt from ``eqn-nd_shsts_cyl`` given m(xi) and m(0) = ``m_inner`` [-].
 
-    ``couple_factor`` = 2(A+1) eps alpha. Floats or arrays (the batched engine).
+    ``couple_factor`` = 2(A+1) eps alpha. Compiled (numbers in the solver kernels, arrays
+    here); its derivative in m is :func:`shear_stress_dm`.
     """
     r = Ri + xi
-    return -tan_delta * (Ri / r) ** 2 + couple_factor * (m / r - m_inner * Ri / r**2)
+    return -tan_delta * (Ri / r) ** 2 + couple_factor * (m / r - m_inner * Ri / (r * r))
 
 
+@njit(cache=True)
+def shear_stress_dm(xi: float, Ri: float, couple_factor: float) -> float:
+    """d s_rt / dm at fixed m(0): ``couple_factor / (Ri + xi)`` (:func:`shear_stress`) [-]."""
+    return couple_factor / (Ri + xi)
+
+
+@njit(cache=True)
 def outer_wall_couple_stress(
-    m_inner: Any, *, tan_delta: Any, Ri: Any, couple_factor: Any, A: Any, sin_phi: Any
-) -> tuple[Any, Any]:
+    m_inner: float, tan_delta: float, Ri: float, couple_factor: float, A: float, sin_phi: float
+) -> tuple[float, float]:
     """m(1) from s_rt = s_tr at the outer cylinder (``eqn-nd_bc1_cyl``), the negative root,
     and the discriminant (negative: no real m(1)) [-].
 
@@ -65,12 +75,10 @@ def outer_wall_couple_stress(
     """
     r1 = Ri + 1.0
     beta = couple_factor / r1
-    s0 = -tan_delta * (Ri / r1) ** 2 - couple_factor * m_inner * Ri / r1**2
-    qa = beta**2 + 2.0 * (A + 1.0)
-    disc = -2.0 * (A + 1.0) * s0**2 + qa * sin_phi**2
-    root = (
-        math.sqrt(disc) if isinstance(disc, float) and disc > 0 else np.sqrt(np.maximum(disc, 0.0))
-    )
+    s0 = -tan_delta * (Ri / r1) ** 2 - couple_factor * m_inner * Ri / (r1 * r1)
+    qa = beta * beta + 2.0 * (A + 1.0)
+    disc = -2.0 * (A + 1.0) * s0 * s0 + qa * sin_phi * sin_phi
+    root = math.sqrt(disc) if disc > 0.0 else 0.0
     return (-s0 * beta - root) / qa, disc
 
 
@@ -141,9 +149,8 @@ class CouetteFlow:
 
     def shear_stress(self, xi: FloatArray, m: FloatArray, m_inner: float) -> FloatArray:
         """s_rt from ``eqn-nd_shsts_cyl`` (:func:`shear_stress`) [-]."""
-        return shear_stress(
-            xi, m, m_inner, tan_delta=self.tan_delta, Ri=self.Ri, couple_factor=self.couple_factor
-        )
+        x, mm = np.broadcast_arrays(np.asarray(xi, dtype=float), np.asarray(m, dtype=float))
+        return shear_stress(x, mm, float(m_inner), self.tan_delta, self.Ri, self.couple_factor)
 
     @functools.cached_property
     def couple_factor(self) -> float:
@@ -163,12 +170,12 @@ class CouetteFlow:
     def outer_wall_couple_stress(self, m_inner: float) -> float:
         """m(1) from s_rt = s_tr there (:func:`outer_wall_couple_stress`) [-]."""
         m1, disc = outer_wall_couple_stress(
-            m_inner,
-            tan_delta=self.tan_delta,
-            Ri=self.Ri,
-            couple_factor=self.couple_factor,
-            A=self.material.A,
-            sin_phi=self.material.sin_phi,
+            float(m_inner),
+            self.tan_delta,
+            self.Ri,
+            self.couple_factor,
+            self.material.A,
+            self.material.sin_phi,
         )
         if disc < 0.0:
             raise NoSolutionError(

@@ -29,6 +29,7 @@ from enum import StrEnum
 from typing import Any, NamedTuple
 
 import numpy as np
+from numba import njit
 
 from ..errors import ParameterError
 from .constitutive import FloatArray, radicand, symmetric_couple_stress
@@ -70,8 +71,12 @@ def wall_constants(tau: float, sigma_c: float, material: Material) -> WallConsta
 B_MAX = 1e6  # beyond, stresses of order (B sin phi)^2 leave the range of doubles soon
 
 
-def mean_stress(xi: Any, B_nu: Any) -> Any:
-    """sigma_c = sigma_yy = 1 + B nu (1 - xi): ``eqn-nd_ymom`` with ``eqn-nd_bc1`` [-]."""
+@njit(cache=True, nogil=True)
+def mean_stress(xi: Any, B_nu: float) -> Any:
+    """sigma_c = sigma_yy = 1 + B nu (1 - xi): ``eqn-nd_ymom`` with ``eqn-nd_bc1`` [-].
+
+    Compiled: the solver kernels call it on numbers, the problem on arrays.
+    """
     return 1.0 + B_nu * (1.0 - xi)
 
 

@@ -14,13 +14,14 @@ import logging
 import os
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import as_completed
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from ..analysis.sensitivity import existence_bound_A
 from ..model import PlaneShear
 from ..model.parameters import Material, Wall
+from ..numerics.runtime import process_pool
 from ..routes.airy import xi_hat_at_fraction
 from .figures import FIGURES, FigureData, make_figure
 from .figures.paper import MATERIAL
@@ -156,7 +157,7 @@ def reproduce(
             if progress:
                 progress("figures", i + 1, len(order))
     else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
+        with process_pool(workers) as pool:
             futures = {pool.submit(_figure_job, n, str(out)): n for n in order}
             for i, fut in enumerate(as_completed(futures)):
                 results[futures[fut]] = fut.result()

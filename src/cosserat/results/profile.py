@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..errors import ConvergenceError, ParameterError
 from ..model.constitutive import FloatArray
 from .wall import shear_layer_thickness, wall_omega, wall_slip
 
@@ -129,6 +130,38 @@ class Profile:
     diagnostics: Diagnostics
     evaluator: Evaluator = field(repr=False)
     velocity: Callable[[FloatArray], FloatArray] | None = field(default=None, repr=False)
+    recipe: tuple[Callable[..., Profile], Mapping[str, Any]] | None = field(
+        default=None, repr=False
+    )
+
+    # ----------------------------------------------------------------- pickling and display
+    def __getstate__(self) -> dict[str, Any]:
+        """Everything but a route's dense evaluator when it is a closure: that is rebuilt
+        from ``recipe`` (the route function and its options) on first use after unpickling.
+        The numerical route's evaluator is plain arrays and travels as it is."""
+        state = dict(self.__dict__)
+        if self.recipe is not None:
+            state["evaluator"] = None
+            state["velocity"] = None
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        if state.get("evaluator") is None and state.get("recipe") is not None:
+            state["evaluator"] = _Rebuilt(state["problem"], state["recipe"])
+        self.__dict__.update(state)
+
+    def __repr__(self) -> str:
+        d = self.diagnostics
+        n = self.xi.size
+        lines = [
+            f"<Profile: {self.problem.describe()}",
+            f"  {d.method}, {n} points, xi in [{self.xi[0]:g}, {self.xi[-1]:g}]"
+            + ("" if d.rtol is None else f", rtol = {d.rtol:g}"),
+            f"  u in [{self.u.min():.6g}, {self.u.max():.6g}], "
+            f"omega in [{self.omega.min():.6g}, {self.omega.max():.6g}], "
+            f"m in [{self.m.min():.6g}, {self.m.max():.6g}]>",
+        ]
+        return "\n".join(lines)
 
     @property
     def method(self) -> str:
@@ -152,7 +185,9 @@ class Profile:
         """The fields at arbitrary points of [0, 1] (dense output of the route)."""
         x = np.atleast_1d(np.asarray(xi, dtype=float))
         if np.any((x < 0.0) | (x > 1.0)):
-            raise ValueError("evaluate: xi must lie in [0, 1]")
+            raise ParameterError(
+                f"evaluate: xi must lie in [0, 1]; got [{x.min():g}, {x.max():g}]"
+            )
         return self.evaluator(x)
 
     def velocity_at(self, xi: ArrayLike) -> FloatArray:
@@ -221,9 +256,26 @@ class Profile:
 def _finite(obj: Any) -> Any:
     """Check recursively that every float is finite (NaN never leaves the package)."""
     if isinstance(obj, float) and not math.isfinite(obj):
-        raise ValueError("profile contains a non-finite number")
+        raise ConvergenceError("profile contains a non-finite number")
     if isinstance(obj, dict):
         return {k: _finite(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
         return [_finite(v) for v in obj]
     return obj
+
+
+class _Rebuilt:
+    """A dense evaluator rebuilt from its recipe on first use (see :meth:`Profile.__getstate__`)."""
+
+    def __init__(self, problem: Any, recipe: tuple[Callable[..., Profile], Mapping[str, Any]]):
+        self._problem, self._recipe = problem, recipe
+        self._evaluate: Evaluator | None = None
+
+    def __call__(self, xi: FloatArray) -> Fields:
+        if self._evaluate is None:
+            route, options = self._recipe
+            self._evaluate = route(self._problem, **{**options, "check": False, "points": 3}).evaluator
+        return self._evaluate(xi)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_Rebuilt, (self._problem, self._recipe))

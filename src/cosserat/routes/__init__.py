@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 from ..errors import MethodNotAvailableError, ParameterError
@@ -17,6 +18,8 @@ _ROUTES: dict[str, dict[type, Callable[..., Profile]]] = {
     "asymptotic": {PlaneShear: asymptotic.solve_plane, CouetteFlow: asymptotic.solve_couette},
 }
 METHODS = tuple(_ROUTES)
+# routes whose dense evaluator is plain data (it pickles as it is)
+_PICKLABLE = {numerical.solve_plane, numerical.solve_couette}
 
 
 def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profile:
@@ -73,7 +76,11 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
             f"option(s) {', '.join(unknown)} do not apply to method={method!r}; it accepts "
             f"{', '.join(accepted)}"
         )
-    return route(problem, **options)
+    profile = route(problem, **options)
+    if route not in _PICKLABLE:
+        # closures: the profile pickles as its arrays and this recipe (Profile.__getstate__)
+        profile = replace(profile, recipe=(route, {k: v for k, v in options.items() if k != "xi"}))
+    return profile
 
 
 __all__ = ["METHODS", "solve"]

@@ -21,6 +21,7 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import airy, airye
 
+from ..errors import ParameterError
 from ..model.constitutive import FloatArray
 
 _AI0, _AIP0, _, _ = (float(v) for v in airy(0.0))
@@ -58,7 +59,7 @@ def inner_couple_stress(x: FloatArray) -> FloatArray:
 def xi_hat_at_fraction(f: float) -> float:
     """The inner coordinate at which u/u_w = f (1.2748 for f = 0.05; paper: 1.275) [-]."""
     if not 0.0 < f < 1.0:
-        raise ValueError(f"f must satisfy 0 < f < 1; got {f:g}")
+        raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
     hi = 1.0
     while velocity_fraction(np.array(hi)) > f:
         hi *= 2.0

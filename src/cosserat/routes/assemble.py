@@ -7,14 +7,13 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ConvergenceError
+from .. import config
+from ..errors import ConvergenceError, ParameterError
 from ..model import Problem
 from ..model.constitutive import FloatArray, check_radicand, radicand
 from ..model.formulation import Formulation
 from ..results.diagnostics import residuals
 from ..results.profile import Diagnostics, Evaluator, Fields, Profile
-
-CHECK_POINTS = 801
 
 
 def make_profile(
@@ -38,11 +37,15 @@ def make_profile(
     ``check`` computes the ODE residuals on a layer-resolving check grid and the boundary
     errors; sweeps that need only wall quantities may skip it.
     """
-    grid = problem.output_grid(points or 201) if xi is None else np.asarray(xi, dtype=float)
+    grid = (
+        problem.output_grid(points or config.OUTPUT_POINTS)
+        if xi is None
+        else np.asarray(xi, dtype=float)
+    )
     if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
-        raise ValueError("xi must be a strictly increasing 1-D array of at least two points")
+        raise ParameterError("xi must be a strictly increasing 1-D array of at least two points")
     if grid[0] < 0.0 or grid[-1] > 1.0:
-        raise ValueError("xi must lie in [0, 1]")
+        raise ParameterError(f"xi must lie in [0, 1]; got [{grid[0]:g}, {grid[-1]:g}]")
     f = evaluate(grid)
     # The returned stresses must be real: a profile never carries a clipped radicand.
     check_radicand(
@@ -58,7 +61,7 @@ def make_profile(
                 f"the {method} solution produced non-finite {name} for {problem.describe()}"
             )
     if check:
-        res = residuals(form, evaluate, problem.output_grid(CHECK_POINTS))
+        res = residuals(form, evaluate, problem.output_grid(config.CHECK_POINTS))
         bc = problem.boundary_errors(evaluate)
     else:
         res, bc = {}, {}

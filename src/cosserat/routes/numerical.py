@@ -1,32 +1,254 @@
-"""Numerical route: every problem, every eps in (0, 0.5] (engine in :mod:`.engine`)."""
+"""Numerical route: every problem, every eps in (0, 0.5], on the compiled core.
+
+This layer only validates, translates a problem into the kernel's parameter vector, calls
+:func:`cosserat.numerics.cosserat.solve_one` (one problem) or ``solve_batch`` (many), turns
+status codes into the package's errors and wraps the result as a
+:class:`~cosserat.results.profile.Profile` (``docs/numerics.md``).
+"""
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
+from .. import config
 from ..errors import ConvergenceError, NoSolutionError, ParameterError
+from ..model import CouetteFlow, PlaneShear, PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
-from ..model.couette import CouetteFlow
-from ..model.plane import PlaneShear, PlaneShearCase
+from ..model.formulation import Formulation
+from ..numerics import cosserat as kernel
+from ..numerics.radau import dense_eval
 from ..results.profile import Fields, Profile
 from .assemble import fields_from_state, make_profile
-from .engine import (
-    integrate_couple_stress,
-    integrate_spin,
-    symmetric_wall_constants,
-    wall_constants_from_conditions,
-)
 
-DEFAULT_RTOL = 1e-8
+DEFAULT_RTOL = config.RTOL
+
+_CASES = {
+    PlaneShearCase.SYMMETRIC: kernel.SYMMETRIC,
+    PlaneShearCase.UPPER: kernel.UPPER,
+    PlaneShearCase.LOWER: kernel.LOWER,
+}
 
 
-def _tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
-    if not 1e-13 <= rtol <= 1e-2:
-        raise ParameterError(f"rtol must satisfy 1e-13 <= rtol <= 1e-2; got {rtol:g}")
-    return rtol, (rtol * 1e-2 if atol is None else atol)
+def tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
+    """Validated (rtol, atol); atol defaults to ``config.ATOL_OVER_RTOL`` times rtol."""
+    lo, hi = config.RTOL_RANGE
+    if not (isinstance(rtol, int | float) and lo <= rtol <= hi):
+        raise ParameterError(
+            f"rtol must satisfy {lo:g} <= rtol <= {hi:g} (relative tolerance of the "
+            f"integration); got {rtol!r}"
+        )
+    if atol is None:
+        return float(rtol), float(rtol) * config.ATOL_OVER_RTOL
+    if not (isinstance(atol, int | float) and 0.0 < atol <= 1.0):
+        raise ParameterError(f"atol must satisfy 0 < atol <= 1; got {atol!r}")
+    return float(rtol), float(atol)
+
+
+def parameter_vector(problem: Problem, mu_guess: float | None = None) -> FloatArray:
+    """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.cosserat`)."""
+    p = np.zeros(kernel.N_PARAMS)
+    mat = problem.material
+    p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
+    p[kernel.P_EPS] = problem.eps
+    const = problem.slip_constants
+    p[kernel.P_M0], p[kernel.P_B_BOUND] = const.m0, const.b
+    p[kernel.P_MU_GUESS] = math.nan if mu_guess is None else float(mu_guess)
+    if isinstance(problem, CouetteFlow):
+        p[kernel.P_GEOMETRY] = kernel.COUETTE
+        p[kernel.P_TAN_DELTA] = problem.tan_delta
+        p[kernel.P_RI] = problem.Ri
+        p[kernel.P_COUPLE] = problem.couple_factor
+        p[kernel.P_K_SLIP] = problem.wall.K
+        return p
+    case = problem.case
+    p[kernel.P_GEOMETRY] = kernel.PLANE
+    p[kernel.P_CASE] = _CASES[case]
+    p[kernel.P_SIGMA_YX] = problem.sigma_yx
+    p[kernel.P_B_NU] = problem.B * problem.nu
+    p[kernel.P_M_START] = 0.0 if case is PlaneShearCase.SYMMETRIC else problem.m_at_fixed_wall
+    p[kernel.P_K_SLIP] = problem.slipping.K
+    p[kernel.P_K_OTHER] = problem.lower_wall.K
+    return p
+
+
+def raise_for_status(problem: Problem, status: int, info: FloatArray) -> None:
+    """Turn a kernel status code into the package's error, saying where and why."""
+    if status == kernel.OK:
+        return
+    xi, m = float(info[kernel.I_XI_FAIL]), float(info[kernel.I_M_FAIL])
+    if status == kernel.NO_SOLUTION:
+        if isinstance(problem, CouetteFlow):
+            raise NoSolutionError(
+                f"no real solution for {problem.describe()}: for no couple stress m(0) at the "
+                f"inner cylinder does the couple-stress balance, integrated from the outer "
+                f"cylinder (eqn-nd_bc1_cyl), stay inside the yield surface across the gap (the "
+                f"last admissible trial left it at xi = {xi:.6g}, m = {m:.6g}); see "
+                f"docs/derivation_couette.md, 'existence'"
+            )
+        raise NoSolutionError(
+            f"no real solution for {problem.describe()}: the couple stress reaches the yield "
+            f"bound at xi = {xi:.6g} (m = {m:.6g}), beyond which the second shear stress of "
+            f"eqn-nd_sigxy is complex; the couple-stress balance cannot be continued to the "
+            f"slipping wall"
+        )
+    if status == kernel.AT_YIELD_EDGE:
+        raise ConvergenceError(
+            f"cannot decide whether {problem.describe()} has a real solution: the computed "
+            f"couple stress crossed its yield bound (the radicand of eqn-nd_sigxy) at xi = "
+            f"{xi:.6g} (m = {m:.6g}) while relaxing towards the value where the stress is "
+            f"symmetric, which an exact solution cannot do; that value lies within the "
+            f"tolerance of its yield bound, at the edge of the model's real domain (a nearly "
+            f"frictionless wall; docs/numerics.md, 'Where it stops working')"
+        )
+    if status == kernel.SINGULAR_VELOCITY:
+        raise ConvergenceError(
+            f"the velocity boundary conditions are singular for {problem.describe()}"
+        )
+    if status == kernel.NO_BRACKET:
+        raise ConvergenceError(
+            f"Couette: cannot bracket the inner-wall couple stress m(0) for {problem.describe()}"
+        )
+    budget = "ran out of its step budget" if status == kernel.TOO_MANY_STEPS else "stalled"
+    raise ConvergenceError(
+        f"the integration {budget} at xi = {xi:.6g} (m = {m:.6g}) for {problem.describe()}: "
+        f"the couple stress is close to its yield bound there, where the couple-stress equation "
+        f"is singular (dF/dm ~ 1/sqrt(S)); the problem is at the edge of the model's real "
+        f"domain (a nearly frictionless wall, or a very small inner cylinder at small eps; "
+        f"docs/numerics.md, 'Where it stops working')"
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class NumericalSolution:
+    """The dense solution of the compiled kernel: the fields anywhere in [0, 1].
+
+    Plain arrays and the problem, so it pickles (Dask and multiprocessing ship profiles).
+
+    Attributes
+    ----------
+    problem : PlaneShear or CouetteFlow
+    params, info : ndarray
+        The kernel's parameter and result vectors (``P_*``, ``I_*``).
+    couple : tuple of ndarray
+        Radau dense output (ts, hs, ys, Q) of the couple stress, in xi.
+    spin : tuple of ndarray
+        Radau dense output of (l, P), in the pass variable tau with xi(tau) from ``geometry``.
+    geometry : ndarray
+        [xi of the slipping wall, span, singular] of the spin pass.
+    """
+
+    problem: Problem
+    params: FloatArray
+    info: FloatArray
+    couple: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+    spin: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+    geometry: FloatArray
+
+    @property
+    def mu(self) -> float:
+        return float(self.info[kernel.I_MU])
+
+    def formulation(self) -> Formulation:
+        if isinstance(self.problem, CouetteFlow):
+            return self.problem.formulation(self.mu)
+        return self.problem.formulation()
+
+    @property
+    def symmetric(self) -> bool:
+        return (
+            isinstance(self.problem, PlaneShear) and self.problem.case is PlaneShearCase.SYMMETRIC
+        )
+
+    def _half(self, x: FloatArray) -> FloatArray:
+        """Points mapped onto the solved half (symmetric case) [-]."""
+        return np.where(x >= 0.5, x, 1.0 - x) if self.symmetric else x
+
+    def _state(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(m, u, w) at points x of the solved part of the gap."""
+        m = dense_eval(*self.couple, x)[:, 0]
+        ell, P = kernel.spin_pass_at(x, self.geometry, *self.spin)
+        u = _velocity(self.params, self.info, x, P)
+        with np.errstate(under="ignore"):
+            w = self.info[kernel.I_W_S] * np.exp(ell)
+        return m, u, w
+
+    def __call__(self, xi: FloatArray) -> Fields:
+        x = np.asarray(xi, dtype=float)
+        h = self._half(x)
+        m, u, w = self._state(h)
+        f = fields_from_state(self.formulation(), h, m, u, w)
+        if not self.symmetric:
+            return f
+        # u - u_c odd and omega even about xi = 1/2, m odd (eqn-nd_bc6)
+        low = x < 0.5
+        u_c = self.info[kernel.I_U_REF]
+        return f._replace(
+            u=np.where(low, 2.0 * u_c - f.u, f.u),
+            m=np.where(low, -f.m, f.m),
+            du_dxi=f.du_dxi,
+        )
+
+    def velocity(self, xi: FloatArray) -> FloatArray:
+        """u only (cheaper than the fields) [-]."""
+        x = np.asarray(xi, dtype=float)
+        h = self._half(x)
+        _, P = kernel.spin_pass_at(h, self.geometry, *self.spin)
+        u = _velocity(self.params, self.info, h, P)
+        if self.symmetric:
+            u = np.where(x < 0.5, 2.0 * self.info[kernel.I_U_REF] - u, u)
+        return u
+
+    def thickness(self, f: float) -> float:
+        """Delta for the velocity fraction f (``eqn-delta_defn``), by the compiled kernel."""
+        if f == self.info_f and self.info[kernel.I_DELTA_OK]:
+            return float(self.info[kernel.I_DELTA])
+        delta, ok = kernel.thickness_of(self.params, self.geometry, *self.spin, self.info, float(f))
+        if not ok:
+            raise ParameterError(
+                f"f = {f:g}: the velocity does not fall to this fraction of its wall value "
+                f"within the gap, so Delta (eqn-delta_defn) is not defined; choose a larger f"
+            )
+        return float(delta)
+
+    info_f: float = config.DEFAULT_F
+
+
+def _velocity(params: FloatArray, info: FloatArray, x: FloatArray, P: FloatArray) -> FloatArray:
+    """u from the spin-pass quadrature: ``h u = (h u)_s - w_s P`` (vectorised kernel.velocity)."""
+    if params[kernel.P_GEOMETRY] == kernel.COUETTE:
+        Ri = params[kernel.P_RI]
+        return (Ri + x) * (info[kernel.I_U_S] / Ri - info[kernel.I_W_S] * P)
+    return info[kernel.I_U_S] - info[kernel.I_W_S] * P
+
+
+def run_kernel(
+    problem: Problem,
+    rtol: float,
+    atol: float,
+    mu_guess: float | None = None,
+    f: float = config.DEFAULT_F,
+) -> NumericalSolution:
+    """Solve ``problem`` on the compiled core; raise the package's error if it fails."""
+    p = parameter_vector(problem, mu_guess)
+    status, info, couple, spin, geometry = kernel.solve_one(p, rtol, atol, f, config.MAX_STEPS)
+    raise_for_status(problem, int(status), info)
+    return NumericalSolution(problem, p, info, couple, spin, geometry, float(f))
+
+
+def _stats(info: FloatArray) -> dict[str, Any]:
+    return {
+        "nfev": int(info[kernel.I_NFEV]),
+        "steps": int(info[kernel.I_NSTEPS]),
+        "lu_decompositions": int(info[kernel.I_NLU]),
+        "couple_stress_steps": int(info[kernel.I_STEPS_COUPLE]),
+        "spin_steps": int(info[kernel.I_STEPS_SPIN]),
+        "spin_cutoff_xi": float(info[kernel.I_XI_CUT]),
+    }
 
 
 def solve_plane(
@@ -44,88 +266,22 @@ def solve_plane(
     m(1/2) = 0 in the symmetric case) to the slipping wall; spin and velocity from the slipping
     wall back.
     """
-    rtol, atol = _tolerances(rtol, atol)
-    form = problem.formulation()
-    eps = problem.eps
-    if problem.case is PlaneShearCase.SYMMETRIC:
-        cs = integrate_couple_stress(form, 0.5, 1.0, 0.0, rtol, atol)
-        sq = integrate_spin(form, cs, 1.0, 0.5, rtol, atol)
-        P_c = float(sq(np.array([0.5]))[1][0])
-        K_up, K_low = problem.upper.K, problem.lower_wall.K
-        # u(xi) = u_s - w_s P(xi) on the upper half, mirrored (u - u_c odd, omega even):
-        #   u_s = 1 + eps K_up w_s  (eqn-nd_bc3u);  u(0) = 2 u_c - u_s = -eps K_low w_s.
-        u_s, w_s, u_c = symmetric_wall_constants(P_c, eps, K_up, K_low)
-
-        def upper_half(x: FloatArray) -> Fields:
-            m = cs(x)
-            ell, P = sq(x)
-            with np.errstate(under="ignore"):
-                w = w_s * np.exp(ell)
-            return fields_from_state(form, x, m, u_s - w_s * P, w)
-
-        def evaluate(x: FloatArray) -> Fields:
-            x = np.asarray(x, dtype=float)
-            f = upper_half(np.where(x >= 0.5, x, 1.0 - x))
-            low = x < 0.5
-            return f._replace(u=np.where(low, 2.0 * u_c - f.u, f.u), m=np.where(low, -f.m, f.m))
-
-        def velocity(x: FloatArray) -> FloatArray:
-            x = np.asarray(x, dtype=float)
-            upper = u_s - w_s * sq(np.where(x >= 0.5, x, 1.0 - x))[1]
-            return np.where(x < 0.5, 2.0 * u_c - upper, upper)
-
-        reference = u_c
-    else:
-        xs, xn = problem.slip_wall, problem.fixed_wall
-        assert xn is not None
-        cs = integrate_couple_stress(form, xn, xs, problem.m_at_fixed_wall, rtol, atol)
-        sq = integrate_spin(form, cs, xs, xn, rtol, atol)
-        P_n = float(sq(np.array([xn]))[1][0])
-        K = problem.slipping.K
-        # u = u_s - w_s P(xi): no slip at xn; u_s = u_wall + s eps K w_s (eqn-nd_bc3u/3l)
-        u_s, w_s = wall_constants_from_conditions(
-            h_slip=1.0,
-            kappa_slip=0.0,
-            P_fixed=P_n,
-            h_fixed=1.0,
-            u_fixed=problem.wall_velocity(xn),
-            u_wall_slip=problem.wall_velocity(xs),
-            slip_sign=problem.slip_sign(xs),
-            eps_K=eps * K,
-        )
-
-        def evaluate(x: FloatArray) -> Fields:
-            x = np.asarray(x, dtype=float)
-            ell, P = sq(x)
-            with np.errstate(under="ignore"):
-                w = w_s * np.exp(ell)
-            return fields_from_state(form, x, cs(x), u_s - w_s * P, w)
-
-        def velocity(x: FloatArray) -> FloatArray:
-            return u_s - w_s * sq(np.asarray(x, dtype=float))[1]
-
-        reference = problem.reference_velocity
-
-    stats = {
-        "couple_stress_nfev": cs.nfev,
-        "couple_stress_steps": cs.steps,
-        "spin_nfev": sq.nfev,
-        "spin_cutoff_xi": sq.xi_cut,
-    }
+    rtol, atol = tolerances(rtol, atol)
+    sol = run_kernel(problem, rtol, atol)
     return make_profile(
         problem,
-        form,
-        evaluate,
+        sol.formulation(),
+        sol,
         method="numerical",
         points=points,
         xi=xi,
-        reference_velocity=reference,
+        reference_velocity=float(sol.info[kernel.I_U_REF]),
         rtol=rtol,
         atol=atol,
-        message="Radau IIA couple stress (stable direction) + DOP853 spin/velocity quadrature",
-        stats=stats,
+        message="compiled Radau IIA: couple stress (stable direction), then spin and velocity",
+        stats=_stats(sol.info),
         check=check,
-        velocity=velocity,
+        velocity=sol.velocity,
     )
 
 
@@ -139,161 +295,110 @@ def solve_couette(
     check: bool = True,
     m_inner_guess: float | None = None,
 ) -> Profile:
-    """Couette flow: the couple stress from the outer cylinder inwards for a trial m(0), with
-    m(0) fixed by a secant iteration on ``m(0; mu) - mu`` (``eqn-nd_shsts_cyl``); then spin and
-    velocity from the inner cylinder outwards. ``m_inner_guess`` (e.g. from a neighbouring
-    eps in a sweep) replaces the leading-order starting value."""
-    rtol, atol = _tolerances(rtol, atol)
-    mu, cs, form, iterations = _couette_shooting(problem, rtol, atol, m_inner_guess)
-    sq = integrate_spin(form, cs, 0.0, 1.0, rtol, atol)
-    P_1 = float(sq(np.array([1.0]))[1][0])
-    Ri, eps, K = problem.Ri, problem.eps, problem.wall.K
-    u_s, w_s = wall_constants_from_conditions(
-        h_slip=1.0 / Ri,
-        kappa_slip=1.0 / Ri,
-        P_fixed=P_1,
-        h_fixed=1.0 / (Ri + 1.0),
-        u_fixed=problem.wall_velocity(1.0),
-        u_wall_slip=problem.wall_velocity(0.0),
-        slip_sign=problem.slip_sign(0.0),
-        eps_K=eps * K,
-    )
-
-    def evaluate(x: FloatArray) -> Fields:
-        x = np.asarray(x, dtype=float)
-        ell, P = sq(x)
-        with np.errstate(under="ignore"):
-            w = w_s * np.exp(ell)
-        u = (Ri + x) * (u_s / Ri - w_s * P)
-        return fields_from_state(form, x, cs(x), u, w)
-
-    def velocity(x: FloatArray) -> FloatArray:
-        x = np.asarray(x, dtype=float)
-        return (Ri + x) * (u_s / Ri - w_s * sq(x)[1])
-
-    stats = {
-        "couple_stress_nfev": cs.nfev,
-        "couple_stress_steps": cs.steps,
-        "spin_nfev": sq.nfev,
-        "spin_cutoff_xi": sq.xi_cut,
-        "m_inner": mu,
-        "shooting_iterations": iterations,
-    }
+    """Couette flow: m(0) by a compiled secant/Brent iteration on ``m(0; mu) - mu``
+    (``eqn-nd_shsts_cyl``), the couple stress from the outer cylinder inwards for each trial;
+    then spin and velocity from the inner cylinder outwards. ``m_inner_guess`` (e.g. from a
+    neighbouring eps in a sweep) replaces the leading-order starting value."""
+    rtol, atol = tolerances(rtol, atol)
+    if m_inner_guess is not None and not math.isfinite(float(m_inner_guess)):
+        raise ParameterError(f"m_inner_guess must be finite; got {m_inner_guess!r}")
+    sol = run_kernel(problem, rtol, atol, m_inner_guess)
+    stats = _stats(sol.info)
+    stats["m_inner"] = sol.mu
+    stats["shooting_iterations"] = int(sol.info[kernel.I_ITERATIONS])
     return make_profile(
         problem,
-        form,
-        evaluate,
+        sol.formulation(),
+        sol,
         method="numerical",
         points=points,
         xi=xi,
-        reference_velocity=problem.reference_velocity,
+        reference_velocity=0.0,
         rtol=rtol,
         atol=atol,
-        message="secant on m(0); Radau IIA couple stress (outer to inner) + DOP853 spin",
+        message="compiled: secant/Brent on m(0); Radau IIA couple stress (outer to inner), "
+        "then spin and velocity",
         stats=stats,
         check=check,
-        velocity=velocity,
+        velocity=sol.velocity,
     )
 
 
-def _couette_shooting(  # type: ignore[no-untyped-def]
-    problem: CouetteFlow, rtol: float, atol: float, guess: float | None = None
-):
-    """Find mu = m(0) with m(0; mu) = mu. Returns (mu, couple stress, formulation, iterations).
+# ----------------------------------------------------------------- many problems at once
+@dataclass(frozen=True)
+class WallResult:
+    """Wall quantities of one problem (dimensionless; ``None`` where there is no solution).
 
-    F(mu) = m(0; mu) - mu decreases with mu. mu enters only through s_rt, with weight
-    2(A+1) eps alpha Ri/(Ri + xi)^2, so F is nearly linear and a secant iteration from the
-    leading-order value m^(0)(0) usually converges in a few steps. Trials whose couple stress
-    leaves the real domain (``NoSolutionError``) bound the admissible mu; if F keeps its sign
-    all the way to such a bound, no mu satisfies the conditions and the model has no real
-    solution, which is reported as such.
+    ``status`` is "ok", "no-solution" (the model has no real solution) or "error" (the solver
+    could not finish; ``message`` says why).
     """
-    cache: dict[float, tuple[float, Any, Any] | None] = {}
 
-    def shoot(mu: float) -> float | None:
-        if mu not in cache:
-            form = problem.formulation(mu)
-            try:
-                cs = integrate_couple_stress(
-                    form,
-                    1.0,
-                    0.0,
-                    problem.outer_wall_couple_stress(mu),
-                    rtol * 0.1,
-                    atol * 0.1,
-                )
-            except NoSolutionError:
-                cache[mu] = None
-            else:
-                cache[mu] = (float(cs(np.array([0.0]))[0]) - mu, cs, form)
-        hit = cache[mu]
-        return None if hit is None else hit[0]
+    status: str
+    Delta: float | None
+    wall_slip: float | None
+    wall_omega: float | None
+    wall_stress: float | None  # sigma_yx (sigma_r_theta) at the slipping wall
+    message: str = ""
+    m_inner: float | None = None
 
-    mu0 = float(problem.outer_couple_stress(np.array([0.0]))[0]) if guess is None else guess
-    tol = max(atol, rtol * abs(mu0))
 
-    def done(mu: float):  # type: ignore[no-untyped-def]
-        _, cs, form = cache[mu]  # type: ignore[misc]
-        return mu, cs, form, len(cache)
+def wall_quantities(
+    problems: Sequence[Problem],
+    rtol: float = DEFAULT_RTOL,
+    f: float = config.DEFAULT_F,
+    *,
+    atol: float | None = None,
+) -> list[WallResult]:
+    """Delta, wall slip, wall spin and wall stress for every problem, in parallel.
 
-    # 1. secant from the leading-order value
-    g0 = shoot(mu0)
-    if g0 is not None:
-        mu1 = mu0 + g0
-        for _ in range(12):
-            if abs(g0) <= tol:  # type: ignore[arg-type]
-                return done(mu0)
-            g1 = shoot(mu1)
-            if g1 is None:
-                break
-            if abs(g1) <= tol:
-                return done(mu1)
-            slope = (g1 - g0) / (mu1 - mu0) if mu1 != mu0 else -1.0  # type: ignore[operator]
-            mu0, g0, mu1 = mu1, g1, mu1 - g1 / (slope if slope < 0.0 else -1.0)
-
-    # 2. bracket, using that F decreases and failures lie below the admissible mu
-    bound = problem.slip_constants.b
-    ok = {mu: v[0] for mu, v in cache.items() if v is not None}
-    if not ok:
-        for trial in np.linspace(-2.0 * bound, bound, 13):
-            if (g := shoot(float(trial))) is not None:
-                ok[float(trial)] = g
-                break
-        else:
-            raise NoSolutionError(
-                f"no real solution for {problem.describe()}: for every trial couple stress at "
-                f"the inner cylinder, m(0) in [{-2 * bound:.3g}, {bound:.3g}], the couple-stress "
-                f"balance integrated from the outer cylinder leaves the yield surface inside "
-                f"the gap"
+    The same compiled kernel as :func:`solve`, called once for the whole batch
+    (``solve_batch``, a ``prange`` over the cases). A case that fails is reported with its
+    status and the message :func:`solve` would raise; no NaN stands in for an answer.
+    """
+    rtol, atol = tolerances(rtol, atol)
+    if not 0.0 < f < 1.0:
+        raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
+    if not problems:
+        return []
+    for pr in problems:
+        if not isinstance(pr, PlaneShear | CouetteFlow):
+            raise ParameterError(
+                f"cannot solve a {type(pr).__name__}: give a PlaneShear or a CouetteFlow"
             )
-    failed = [mu for mu, v in cache.items() if v is None]
-    mu_s = min(ok, key=lambda m: abs(ok[m]))
-    g_s = ok[mu_s]
-    step = max(0.05 * bound, abs(g_s))
-    # walk towards the root (up if F > 0) until F changes sign, doubling the step; once a
-    # trial leaves the real domain, bisect between it and the last real trial instead
-    up = 1.0 if g_s > 0.0 else -1.0
-    beyond = [m for m in failed if up * (m - mu_s) > 0.0]
-    mu_f = min(beyond, key=lambda m: abs(m - mu_s)) if beyond else None
-    for _ in range(200):  # doubling, then bisection to tol: ~60 trials at most in practice
-        trial = mu_s + up * step if mu_f is None else 0.5 * (mu_s + mu_f)
-        g_t = shoot(trial)
-        if g_t is None:
-            mu_f = trial
-        elif up * g_t <= 0.0:
-            lo, hi = sorted((mu_s, trial))
-            break
-        else:
-            mu_s, step = trial, 2 * step
-        if mu_f is not None and abs(mu_f - mu_s) < tol:
-            raise NoSolutionError(
-                f"no real solution for {problem.describe()}: the couple stress at the inner "
-                f"cylinder would have to be {'above' if up > 0 else 'below'} m(0) = {mu_s:.6g}, "
-                f"where the couple-stress balance integrated from the outer cylinder already "
-                f"leaves the yield surface inside the gap"
-            )
-    else:
-        raise ConvergenceError(f"Couette: cannot bracket m(0) for {problem.describe()}")
-    root = brentq(lambda mu: float(shoot(mu)), lo, hi, xtol=tol, rtol=4.0 * np.finfo(float).eps)  # type: ignore[arg-type]
-    shoot(root)
-    return done(root)
+    params = np.stack([parameter_vector(pr) for pr in problems])
+    status, info = kernel.solve_batch(params, rtol, atol, float(f), config.MAX_STEPS)
+    out = []
+    for pr, code, row in zip(problems, status, info, strict=True):
+        out.append(_wall_result(pr, int(code), row, f))
+    return out
+
+
+def _wall_result(problem: Problem, code: int, row: FloatArray, f: float) -> WallResult:
+    if code != kernel.OK:
+        try:
+            raise_for_status(problem, code, row)
+        except NoSolutionError as exc:
+            return WallResult("no-solution", None, None, None, None, str(exc))
+        except ConvergenceError as exc:
+            return WallResult("error", None, None, None, None, str(exc))
+    m_inner = float(row[kernel.I_MU]) if isinstance(problem, CouetteFlow) else None
+    if not row[kernel.I_DELTA_OK]:
+        return WallResult(
+            "error",
+            None,
+            float(row[kernel.I_WALL_SLIP]),
+            float(row[kernel.I_WALL_OMEGA]),
+            float(row[kernel.I_WALL_STRESS]),
+            f"f = {f:g}: the velocity does not fall to this fraction of its wall value within "
+            f"the gap, so Delta is not defined",
+            m_inner,
+        )
+    return WallResult(
+        "ok",
+        float(row[kernel.I_DELTA]),
+        float(row[kernel.I_WALL_SLIP]),
+        float(row[kernel.I_WALL_OMEGA]),
+        float(row[kernel.I_WALL_STRESS]),
+        "",
+        m_inner,
+    )

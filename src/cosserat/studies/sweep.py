@@ -38,7 +38,7 @@ import itertools
 import math
 import tomllib
 from collections.abc import Callable, Iterable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -48,6 +48,7 @@ import numpy as np
 from ..errors import CosseratError, ParameterError
 from ..model import CouetteFlow, PlaneShear, Problem
 from ..model.parameters import FULLY_ROUGH, Material, Wall
+from ..numerics.runtime import process_pool
 
 DEFAULTS: dict[str, Any] = {
     "geometry": "plane",
@@ -179,8 +180,8 @@ def build_problem(case: dict[str, Any]) -> Problem:
 
 
 def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[dict[str, Any]]:
-    """Solve a chunk of cases with the batched engine; one row per case, in order."""
-    from ..routes.batch import wall_quantities
+    """Solve a chunk of cases with the compiled batch kernel; one row per case, in order."""
+    from ..routes.numerical import wall_quantities
 
     rows: list[dict[str, Any]] = []
     problems: list[Problem] = []
@@ -244,7 +245,7 @@ def run_sweep(
         for i, c in enumerate(chunks):
             collect(i, run_chunk(c, spec.rtol, spec.f))
     else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
+        with process_pool(workers) as pool:
             futs = {pool.submit(run_chunk, c, spec.rtol, spec.f): i for i, c in enumerate(chunks)}
             for fut in as_completed(futs):
                 collect(futs[fut], fut.result())

@@ -1,0 +1,714 @@
+"""Compiled kernels of the frictional Cosserat model on its two cells (plane shear, Couette).
+
+One path for every numerical computation: a profile, a thickness curve and a sweep all call
+:func:`solve_case` (:func:`solve_one` from Python for one problem, :func:`solve_batch` for many
+in parallel). It does what ``docs/numerics.md`` describes:
+
+1. **Couple stress** (``eqn-nd_zangmom``, ``eqn-nd_zangmom_cyl``), integrated with Radau IIA
+   from the wall that does not slip (the centre in the symmetric case) to the slipping wall,
+   its stable direction, stopped by an event where the yield radicand S of ``eqn-nd_sigxy``
+   reaches zero (no real solution). In Couette flow the inner-wall couple stress mu = m(0) of
+   ``eqn-nd_shsts_cyl`` is unknown: a secant iteration from the leading-order value, then a
+   bracket and Brent's method, find the mu for which the integration returns m(0) = mu.
+2. **Spin and velocity**: ``l = ln(w / w_s)`` and ``P = int e^l G`` from the slipping wall
+   inwards (the same integrator), stopped where e^l underflows.
+3. **Velocity constants** (u_s, w_s) from the two linear velocity conditions, then the
+   **thickness** Delta (``eqn-delta_defn``) by Brent's method on the dense output.
+
+The problem arrives as a parameter vector (indices below, filled by
+:func:`cosserat.routes.numerical.parameter_vector`); results leave as a status code and a
+vector of scalars (indices ``I_*``), never as NaN in place of an answer. The equations are
+those of :mod:`cosserat.model` (the constitutive ufuncs and the cells' statics), called here on
+numbers.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from ..model.constitutive import (
+    RADICAND_ROUNDOFF,
+    k_radicand,
+    k_spin_ratio,
+    k_torque,
+    k_torque_dm,
+    k_torque_dsyx,
+    k_velocity_ratio,
+)
+from ..model.couette import outer_wall_couple_stress, shear_stress, shear_stress_dm
+from ..model.plane import mean_stress
+from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1, radau5
+from .roots import B as ROOT
+from .roots import brackets, brent_accept, brent_next, brent_start
+
+# ----------------------------------------------------------------- parameter vector
+P_A = 0  # A of eqn-yc2 [-]
+P_SIN_PHI = 1  # sin(phi) [-]
+P_ALPHA = 2  # L / sqrt(2(A+1)) [-]
+P_EPS = 3  # d_p / H [-]
+P_GEOMETRY = 4  # PLANE or COUETTE
+P_CASE = 5  # plane: SYMMETRIC, UPPER, LOWER (Couette: UPPER is unused, LOWER... see below)
+P_SIGMA_YX = 6  # plane: the constant shear stress [-]
+P_B_NU = 7  # plane: B nu [-]
+P_TAN_DELTA = 8  # Couette: tan(delta) of the walls [-]
+P_RI = 9  # Couette: R_i / H [-]
+P_COUPLE = 10  # Couette: 2(A+1) eps alpha [-]
+P_M_START = 11  # plane: m at the wall that does not slip (0 at the centre if symmetric) [-]
+P_K_SLIP = 12  # slip coefficient K of the slipping wall [-]
+P_K_OTHER = 13  # K of the other wall (symmetric case) [-]
+P_M0 = 14  # m0 of eqn-a_b_def at the slipping wall (Couette: start of the m(0) search) [-]
+P_B_BOUND = 15  # b of eqn-a_b_def at the slipping wall (Couette: scale of the search) [-]
+P_MU_GUESS = 16  # Couette: a guess of m(0), or NaN for the leading-order value [-]
+N_PARAMS = 17
+
+PLANE = 0.0
+COUETTE = 1.0
+SYMMETRIC = 0.0  # no gravity, identical walls: both slip, m(1/2) = 0
+UPPER = 1.0  # layer at the upper wall (which slips), lower wall fixed
+LOWER = 2.0  # layer at the lower wall (which slips), upper wall fixed
+
+# ----------------------------------------------------------------- status codes
+OK = 0
+NO_SOLUTION = 1  # the couple stress reaches the yield bound inside the gap (or no m(0))
+STALLED = 2  # the integrator could not continue (step size underflow, Newton failure)
+TOO_MANY_STEPS = 3  # the step budget ran out
+SINGULAR_VELOCITY = 4  # the velocity conditions are singular
+NO_BRACKET = 5  # Couette: no sign change of m(0; mu) - mu could be bracketed
+AT_YIELD_EDGE = 6  # the bound was crossed by round-off (an equilibrium on the bound)
+
+# ----------------------------------------------------------------- result vector
+I_U_S = 0  # velocity at the slipping wall [-]
+I_W_S = 1  # spin relative to rigid rotation at the slipping wall, w = omega + kappa u [-]
+I_U_REF = 2  # u_0 of eqn-delta_defn [-]
+I_DELTA = 3  # Delta [d_p], NaN only if DELTA_OK is 0 (see I_DELTA_OK)
+I_DELTA_OK = 4  # 1 if the velocity falls to f of its wall value inside the gap
+I_MU = 5  # Couette: m(0) [-]
+I_XI_FAIL = 6  # where the couple stress left the real domain / the integration stalled [-]
+I_M_FAIL = 7  # m there [-]
+I_NFEV = 8  # right-hand side evaluations, both passes and every shooting trial
+I_NSTEPS = 9  # accepted steps, both passes and every shooting trial
+I_NLU = 10  # LU decompositions
+I_ITERATIONS = 11  # Couette: trials of m(0)
+I_XI_CUT = 12  # where the spin pass stopped (e^l underflows beyond) [-]
+I_SINGULAR = 13  # 1 if the couple stress sits on the yield bound at the far end
+I_WALL_SLIP = 14  # |u - u_wall| at the slipping wall [-]
+I_WALL_OMEGA = 15  # omega at the slipping wall [-]
+I_WALL_STRESS = 16  # sigma_yx (s_rt) at the slipping wall [-]
+I_STEPS_COUPLE = 17  # accepted steps of the final couple-stress pass
+I_STEPS_SPIN = 18  # accepted steps of the spin pass
+N_INFO = 19
+
+LOG_UNDERFLOW = -745.0  # e^l underflows below this: the spin is exactly 0 in double precision
+SINGULAR_MARGIN = 1e-8  # S below this fraction of its scale at the far end: 1/sqrt singularity
+SECANT_STEPS = 12
+# floor on sqrt(S) in the Jacobian, relative to sigma_c sin(phi) (couple_jac)
+JACOBIAN_ROOT_FLOOR = 1e-6
+# a torque below this fraction of sigma_c sin(phi) is round-off (_crossed_by_round_off)
+ROUND_OFF_TORQUE = 1e-10
+
+
+# ----------------------------------------------------------------- the cells' statics
+@njit(cache=True, nogil=True)
+def _shear_stress(xi: float, m: float, p: np.ndarray, mu: float) -> float:
+    if p[P_GEOMETRY] == PLANE:
+        return p[P_SIGMA_YX]
+    return shear_stress(xi, m, mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE])
+
+
+@njit(cache=True, nogil=True)
+def _shear_stress_dm(xi: float, p: np.ndarray) -> float:
+    if p[P_GEOMETRY] == PLANE:
+        return 0.0
+    return shear_stress_dm(xi, p[P_RI], p[P_COUPLE])
+
+
+@njit(cache=True, nogil=True)
+def _mean_stress(xi: float, p: np.ndarray) -> float:
+    if p[P_GEOMETRY] == PLANE:
+        return mean_stress(xi, p[P_B_NU])
+    return 1.0  # sigma_c scales the Couette stresses (newdimless)
+
+
+@njit(cache=True, nogil=True)
+def _curvature(xi: float, p: np.ndarray) -> float:
+    if p[P_GEOMETRY] == PLANE:
+        return 0.0
+    return 1.0 / (p[P_RI] + xi)
+
+
+# ----------------------------------------------------------------- pass 1: couple stress
+# args = (p, mu): the parameters and the trial m(0) (Couette; unused in plane shear)
+
+
+@njit(cache=True, nogil=True)
+def couple_rhs(xi, y, args):
+    """dm/dxi = torque / (eps alpha) - kappa m (``formulation`` module docstring) [-]."""
+    p, mu = args
+    m = y[0]
+    syx = _shear_stress(xi, m, p, mu)
+    out = np.empty(1)
+    out[0] = (
+        k_torque(syx, _mean_stress(xi, p), m, p[P_A], p[P_SIN_PHI]) / (p[P_EPS] * p[P_ALPHA])
+        - _curvature(xi, p) * m
+    )
+    return out
+
+
+@njit(cache=True, nogil=True)
+def couple_jac(xi, y, args):
+    """d(dm/dxi)/dm, analytic (:func:`k_torque_dm`, :func:`k_torque_dsyx`)."""
+    p, mu = args
+    m = y[0]
+    syx = _shear_stress(xi, m, p, mu)
+    sc = _mean_stress(xi, p)
+    A, sp = p[P_A], p[P_SIN_PHI]
+    # Near the yield bound dT/dm ~ 1/sqrt(S) is unbounded; Newton needs only an approximate
+    # Jacobian, and a bounded one lets a step cross S = 0, where the event stops the pass.
+    floor = JACOBIAN_ROOT_FLOOR * sc * sp
+    dT_dm = k_torque_dm(syx, sc, m, A, sp, floor)
+    dT_dsyx = k_torque_dsyx(syx, sc, m, A, sp, floor)
+    dT = dT_dm + dT_dsyx * _shear_stress_dm(xi, p)
+    out = np.empty((1, 1))
+    out[0, 0] = dT / (p[P_EPS] * p[P_ALPHA]) - _curvature(xi, p)
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _yield_margin(xi: float, m: float, p: np.ndarray, mu: float) -> float:
+    """S over the size of its terms, plus the round-off allowance: <= 0 is no real solution."""
+    sc = _mean_stress(xi, p)
+    scale = 2.0 * (p[P_A] + 1.0) * (sc * p[P_SIN_PHI]) ** 2
+    S = k_radicand(_shear_stress(xi, m, p, mu), sc, m, p[P_A], p[P_SIN_PHI])
+    return S / scale + RADICAND_ROUNDOFF
+
+
+@njit(cache=True, nogil=True)
+def couple_event(xi, y, args):
+    p, mu = args
+    return _yield_margin(xi, y[0], p, mu)
+
+
+# ----------------------------------------------------------------- pass 2: spin and velocity
+# args = (p, mu, geometry of the pass [xi_slip, span, singular], the couple-stress solution)
+
+
+@njit(cache=True, nogil=True)
+def _map(tau: float, g: np.ndarray) -> tuple[float, float]:
+    """xi(tau) and dxi/dtau: linear, or with a square-root Jacobian if the far end is singular."""
+    if g[2] != 0.0:
+        return g[0] + g[1] * (2.0 * tau - tau * tau), g[1] * 2.0 * (1.0 - tau)
+    return g[0] + g[1] * tau, g[1]
+
+
+@njit(cache=True, nogil=True)
+def _spin_rates(xi: float, p: np.ndarray, mu: float, cs) -> tuple[float, float]:
+    """(d ln w/dxi, G) = (-F2/(eps alpha) - kappa F1, F1 h) at xi (``formulation``)."""
+    ts, hs, ys, Q = cs
+    m = dense_eval1(ts, hs, ys, Q, xi, 0)
+    syx = _shear_stress(xi, m, p, mu)
+    sc = _mean_stress(xi, p)
+    F1 = k_velocity_ratio(syx, sc, m, p[P_A], p[P_SIN_PHI])
+    F2 = k_spin_ratio(syx, sc, m, p[P_A], p[P_SIN_PHI])
+    kappa = _curvature(xi, p)
+    h = 1.0 if p[P_GEOMETRY] == PLANE else kappa
+    return -F2 / (p[P_EPS] * p[P_ALPHA]) - kappa * F1, F1 * h
+
+
+@njit(cache=True, nogil=True)
+def spin_rhs(tau, y, args):
+    p, mu, g, cs = args
+    xi, jac = _map(tau, g)
+    rate, source = _spin_rates(xi, p, mu, cs)
+    ell = y[0]
+    # a trial stage may overshoot; l <= 0 on the solution (w is largest at the wall)
+    gain = math.exp(min(ell, 700.0)) if ell > LOG_UNDERFLOW else 0.0
+    out = np.empty(2)
+    out[0] = jac * rate
+    out[1] = jac * gain * source
+    return out
+
+
+@njit(cache=True, nogil=True)
+def spin_jac(tau, y, args):
+    p, mu, g, cs = args
+    xi, jac = _map(tau, g)
+    _, source = _spin_rates(xi, p, mu, cs)
+    ell = y[0]
+    gain = math.exp(min(ell, 700.0)) if ell > LOG_UNDERFLOW else 0.0
+    out = np.zeros((2, 2))
+    out[1, 0] = jac * gain * source
+    return out
+
+
+@njit(cache=True, nogil=True)
+def spin_event(tau, y, args):
+    return y[0] - LOG_UNDERFLOW
+
+
+# ----------------------------------------------------------------- velocity conditions
+@njit(cache=True, nogil=True)
+def wall_constants(
+    h_slip: float,
+    kappa_slip: float,
+    P_fixed: float,
+    h_fixed: float,
+    u_fixed: float,
+    u_wall_slip: float,
+    slip_sign: float,
+    eps_K: float,
+) -> tuple[float, float, bool]:
+    """(u_s, w_s, ok) at the slipping wall from the two velocity conditions.
+
+    With ``h u = (h u)_s - w_s P``: no slip at the fixed wall, ``h_f u_f = h_s u_s - w_s P_f``;
+    slip ``u_s = u_wall + s eps K omega_s`` (``eqn-nd_bc3u``, ``eqn-nd_bc3l``,
+    ``eqn-nd_bc2_cyl``) with ``omega_s = w_s - kappa_s u_s``: Cramer's rule on the 2x2 system.
+    """
+    a11, a12 = h_slip, -P_fixed
+    a21, a22 = 1.0 + slip_sign * eps_K * kappa_slip, -slip_sign * eps_K
+    b1, b2 = h_fixed * u_fixed, u_wall_slip
+    det = a11 * a22 - a12 * a21
+    if not (math.isfinite(det) and abs(det) > 1e-300):
+        return 0.0, 0.0, False
+    return (b1 * a22 - a12 * b2) / det, (a11 * b2 - a21 * b1) / det, True
+
+
+@njit(cache=True, nogil=True)
+def symmetric_wall_constants(
+    P_centre: float, eps: float, K_upper: float, K_lower: float
+) -> tuple[float, float, float, bool]:
+    """(u_s, w_s, u_c, ok) between identical walls that both slip.
+
+    Upper half: ``u = u_s - w_s P``; u - u_c is odd and omega even about xi = 1/2, so with
+    ``u_c = u_s - w_s P_c``: ``u_s = 1 + eps K_u w_s`` (``eqn-nd_bc3u``) and
+    ``u(0) = 2 u_c - u_s = -eps K_l w_s`` (``eqn-nd_bc3l``).
+    """
+    det = eps * (K_upper + K_lower) - 2.0 * P_centre
+    if not (math.isfinite(det) and abs(det) > 1e-300):
+        return 0.0, 0.0, 0.0, False
+    u_s = (eps * K_lower - 2.0 * P_centre) / det
+    w_s = -1.0 / det
+    return u_s, w_s, u_s - w_s * P_centre, True
+
+
+# ----------------------------------------------------------------- geometry of a case
+@njit(cache=True, nogil=True)
+def walls(p: np.ndarray) -> tuple[float, float]:
+    """(xi of the slipping wall, xi where the couple-stress pass starts)."""
+    if p[P_GEOMETRY] == COUETTE:
+        return 0.0, 1.0
+    case = p[P_CASE]
+    if case == SYMMETRIC:
+        return 1.0, 0.5
+    if case == UPPER:
+        return 1.0, 0.0
+    return 0.0, 1.0
+
+
+@njit(cache=True, nogil=True)
+def velocity(xi: float, P: float, p: np.ndarray, info: np.ndarray) -> float:
+    """u from the spin-pass quadrature P at xi: ``h u = (h u)_s - w_s P`` [-]."""
+    if p[P_GEOMETRY] == COUETTE:
+        Ri = p[P_RI]
+        return (Ri + xi) * (info[I_U_S] / Ri - info[I_W_S] * P)
+    return info[I_U_S] - info[I_W_S] * P
+
+
+# ----------------------------------------------------------------- one couple-stress pass
+@njit(cache=True, nogil=True)
+def couple_pass(p, mu, m_start, x_start, x_end, rtol, atol, max_steps):
+    """Pass 1 from ``x_start`` to ``x_end``: (status, ts, hs, ys, Q, t_event, nfev, nsteps, nlu)."""
+    status, ts, hs, ys, Q, t_event, nfev, _, nlu, nsteps = radau5(
+        couple_rhs,
+        couple_jac,
+        couple_event,
+        x_start,
+        x_end,
+        np.array([m_start]),
+        rtol,
+        np.array([atol]),
+        (p, mu),
+        max_steps,
+        0.0,
+    )
+    return status, ts, hs, ys, Q, t_event, nfev, nsteps, nlu
+
+
+@njit(cache=True, nogil=True)
+def _fatal(code: int) -> bool:
+    """A shooting trial that stalled or ran out of steps ends the search (it is not a bound)."""
+    return code in (STALLED, TOO_MANY_STEPS)
+
+
+@njit(cache=True, nogil=True)
+def _pass_status(status: int) -> int:
+    if status == SUCCESS:
+        return OK
+    if status == EVENT:
+        return NO_SOLUTION
+    if status == MAX_STEPS:
+        return TOO_MANY_STEPS
+    return STALLED
+
+
+# ----------------------------------------------------------------- Couette: m(0)
+@njit(cache=True, nogil=True)
+def _shoot(mu, args):
+    """m(0; mu) - mu, and the pass's status (NO_SOLUTION: mu is not admissible)."""
+    p, rtol, atol, max_steps, counters = args
+    m1, disc = outer_wall_couple_stress(
+        mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+    )
+    counters[3] += 1.0
+    if disc < 0.0:
+        return 0.0, NO_SOLUTION, 1.0, m1
+    status, ts, _, ys, _, _, nfev, nsteps, nlu = couple_pass(
+        p, mu, m1, 1.0, 0.0, rtol, atol, max_steps
+    )
+    counters[0] += nfev
+    counters[1] += nsteps
+    counters[2] += nlu
+    code = _pass_status(status)
+    if code != OK:
+        return 0.0, code, ts[-1], ys[-1, 0]
+    return ys[-1, 0] - mu, OK, 0.0, 0.0
+
+
+@njit(cache=True, nogil=True)
+def couette_inner_couple_stress(p, rtol, atol, max_steps, counters):
+    """(status, mu, xi_fail, m_fail): the m(0) for which the couple-stress pass returns m(0).
+
+    F(mu) = m(0; mu) - mu decreases with mu; mu enters only through s_rt with weight
+    2(A+1) eps alpha Ri/(Ri + xi)^2, so F is nearly linear and a secant iteration from the
+    leading-order value (or a guess) usually converges in a few trials. Trials whose couple
+    stress leaves the real domain bound the admissible mu; if F keeps its sign up to such a
+    bound, no mu satisfies the conditions: the model has no real solution.
+    """
+    args = (p, rtol * 0.1, atol * 0.1, max_steps, counters)
+    mu0 = p[P_MU_GUESS] if math.isfinite(p[P_MU_GUESS]) else -p[P_M0]
+    tol = max(atol, rtol * abs(mu0))
+    bound = p[P_B_BOUND]
+    # trials kept for the bracket phase
+    n_max = 400
+    mus = np.empty(n_max)
+    gs = np.empty(n_max)
+    oks = np.zeros(n_max, dtype=np.bool_)
+    n = 0
+    xi_fail, m_fail = 0.0, 0.0
+
+    # 1. secant from the start value
+    g0, c0, xf, mf = _shoot(mu0, args)
+    if _fatal(c0):
+        return c0, mu0, xf, mf
+    mus[n], gs[n], oks[n] = mu0, g0, c0 == OK
+    n += 1
+    if c0 == OK:
+        if abs(g0) <= tol:
+            return OK, mu0, 0.0, 0.0
+        mu1 = mu0 + g0
+        for _ in range(SECANT_STEPS):
+            g1, c1, xf, mf = _shoot(mu1, args)
+            if _fatal(c1):
+                return c1, mu1, xf, mf
+            mus[n], gs[n], oks[n] = mu1, g1, c1 == OK
+            n += 1
+            if c1 != OK:
+                xi_fail, m_fail = xf, mf
+                break
+            if abs(g1) <= tol:
+                return OK, mu1, 0.0, 0.0
+            slope = (g1 - g0) / (mu1 - mu0) if mu1 != mu0 else -1.0
+            mu0, g0 = mu1, g1
+            mu1 = mu1 - g1 / (slope if slope < 0.0 else -1.0)
+    else:
+        xi_fail, m_fail = xf, mf
+
+    # 2. bracket, using that F decreases and failures lie beyond the admissible mu
+    have_ok = False
+    for i in range(n):
+        have_ok = have_ok or oks[i]
+    if not have_ok:
+        for j in range(13):
+            trial = -2.0 * bound + 3.0 * bound * j / 12.0
+            g, c, xf, mf = _shoot(trial, args)
+            if _fatal(c):
+                return c, trial, xf, mf
+            mus[n], gs[n], oks[n] = trial, g, c == OK
+            n += 1
+            if c == OK:
+                have_ok = True
+                break
+            xi_fail, m_fail = xf, mf
+        if not have_ok:
+            return NO_SOLUTION, mu0, xi_fail, m_fail
+    best = -1
+    for i in range(n):
+        if oks[i] and (best < 0 or abs(gs[i]) < abs(gs[best])):
+            best = i
+    mu_s, g_s = mus[best], gs[best]
+    step = max(0.05 * bound, abs(g_s))
+    up = 1.0 if g_s > 0.0 else -1.0
+    have_f = False
+    mu_f = 0.0
+    for i in range(n):
+        beyond = not oks[i] and up * (mus[i] - mu_s) > 0.0
+        if beyond and (not have_f or abs(mus[i] - mu_s) < abs(mu_f - mu_s)):
+            mu_f, have_f = mus[i], True
+    lo = hi = g_lo = g_hi = 0.0
+    found = False
+    for _ in range(200):  # doubling, then bisection to tol: ~60 trials at most in practice
+        trial = mu_s + up * step if not have_f else 0.5 * (mu_s + mu_f)
+        g_t, c_t, xf, mf = _shoot(trial, args)
+        if _fatal(c_t):
+            return c_t, trial, xf, mf
+        if c_t != OK:
+            mu_f, have_f = trial, True
+            xi_fail, m_fail = xf, mf
+        elif up * g_t <= 0.0:
+            if mu_s < trial:
+                lo, hi, g_lo, g_hi = mu_s, trial, g_s, g_t
+            else:
+                lo, hi, g_lo, g_hi = trial, mu_s, g_t, g_s
+            found = True
+            break
+        else:
+            mu_s, g_s, step = trial, g_t, 2.0 * step
+        if have_f and abs(mu_f - mu_s) < tol:
+            return NO_SOLUTION, mu_s, xi_fail, m_fail
+    if not found:
+        return NO_BRACKET, mu_s, 0.0, 0.0
+    state = brent_start(lo, hi, g_lo, g_hi)
+    for _ in range(200):
+        trial, done = brent_next(state, tol)
+        if done:
+            return OK, state[ROOT], 0.0, 0.0
+        g_t, c_t, xf, mf = _shoot(trial, args)
+        if c_t != OK:  # inside a bracket of admissible trials: not expected
+            return (c_t if c_t != NO_SOLUTION else NO_BRACKET), trial, xf, mf
+        brent_accept(state, trial, g_t)
+    return NO_BRACKET, state[ROOT], 0.0, 0.0
+
+
+# ----------------------------------------------------------------- thickness
+@njit(cache=True, nogil=True)
+def _excess(tau, args):
+    """u(xi(tau)) - u_0 - f (u_s - u_0): zero at the thickness (``eqn-delta_defn``)."""
+    p, g, sp, info, f = args
+    ts, hs, ys, Q = sp
+    xi, _ = _map(tau, g)
+    P = ys[-1, 1] if tau >= ts[-1] else dense_eval1(ts, hs, ys, Q, tau, 1)
+    u0 = info[I_U_REF]
+    return velocity(xi, P, p, info) - u0 - f * (info[I_U_S] - u0)
+
+
+@njit(cache=True, nogil=True)
+def thickness(p, g, sp, info, f):
+    """(Delta [d_p], ok): distance from the slipping wall, over eps, where the velocity
+    relative to u_0 has fallen to the fraction f of its wall value (``eqn-delta_defn``)."""
+    args = (p, g, sp, info, f)
+    g0 = _excess(0.0, args)
+    if g0 == 0.0:
+        return 0.0, True
+    # the far end of the pass: the centre (symmetric) or the fixed wall
+    g1 = _excess(1.0, args)
+    if not brackets(g0, g1):
+        return math.nan, False
+    state = brent_start(0.0, 1.0, g0, g1)
+    ok = False
+    for _ in range(400):
+        tau, ok = brent_next(state, 4e-16)
+        if ok:
+            break
+        brent_accept(state, tau, _excess(tau, args))
+    xi, _ = _map(state[ROOT], g)
+    return abs(xi - g[0]) / p[P_EPS], ok
+
+
+@njit(cache=True, nogil=True)
+def _crossed_by_round_off(ts: np.ndarray, ys: np.ndarray, p: np.ndarray) -> bool:
+    """True if the couple stress reached the yield bound while drifting towards it.
+
+    In plane shear the couple stress relaxes towards the value where the stress is symmetric
+    (torque 0), which lies inside the bound (``S = ((1+A) syx)^2 >= 0`` there). An exact
+    solution drifting outwards is below that equilibrium and cannot cross it, so it cannot
+    reach the bound: if the computed one does, the equilibrium is within the tolerance of the
+    bound (a nearly frictionless wall) and round-off decided, not the model. A genuine crossing
+    (under gravity the bound closes in on a couple stress that lags behind) arrives drifting
+    inwards. Judged at the last accepted point before the event.
+    """
+    if p[P_GEOMETRY] != PLANE or ts.size < 2:
+        return False
+    xi, m = ts[-2], ys[-2, 0]
+    direction = 1.0 if ts[-1] > ts[0] else -1.0
+    rate = k_torque(p[P_SIGMA_YX], _mean_stress(xi, p), m, p[P_A], p[P_SIN_PHI])
+    outward = rate * direction * (1.0 if m >= 0.0 else -1.0)
+    # a start at the equilibrium (the fixed wall, eqn-nd_bc4) has a torque of round-off size
+    return outward > ROUND_OFF_TORQUE * _mean_stress(xi, p) * p[P_SIN_PHI]
+
+
+# ----------------------------------------------------------------- one case
+@njit(cache=True, nogil=True)
+def solve_case(p, rtol, atol, f, max_steps):
+    """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
+
+    ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
+    :func:`~cosserat.numerics.radau.radau5`, the spin one in the pass variable tau with
+    xi(tau) given by the pass geometry ``[xi_slip, span, singular]``.
+    """
+    info = np.zeros(N_INFO)
+    info[I_DELTA] = math.nan
+    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
+    empty1 = np.zeros(1)
+    empty2 = np.zeros((1, 1))
+    empty3 = np.zeros((0, 1, 3))
+    no_spin = (empty1, np.zeros(0), np.zeros((1, 2)), np.zeros((0, 2, 3)))
+    g = np.zeros(3)
+    xs, x0 = walls(p)
+    mu = 0.0
+    if p[P_GEOMETRY] == COUETTE:
+        code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
+        info[I_MU] = mu
+        info[I_ITERATIONS] = counters[3]
+        if code != OK:
+            info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
+            return code, info, (empty1, np.zeros(0), empty2, empty3), no_spin, g
+        m1, _ = outer_wall_couple_stress(
+            mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+        )
+        m_start = m1
+        pass_rtol, pass_atol = rtol * 0.1, atol * 0.1
+    else:
+        m_start = p[P_M_START]
+        pass_rtol, pass_atol = rtol, atol
+    status, ts1, hs1, ys1, Q1, _, nfev, nsteps, nlu = couple_pass(
+        p, mu, m_start, x0, xs, pass_rtol, pass_atol, max_steps
+    )
+    counters[0] += nfev
+    counters[1] += nsteps
+    counters[2] += nlu
+    info[I_STEPS_COUPLE] = nsteps
+    cs = (ts1, hs1, ys1, Q1)
+    code = _pass_status(status)
+    if code == NO_SOLUTION and _crossed_by_round_off(ts1, ys1, p):
+        code = AT_YIELD_EDGE
+    if code != OK:
+        info[I_XI_FAIL], info[I_M_FAIL] = ts1[-1], ys1[-1, 0]
+        info[I_NFEV], info[I_NSTEPS], info[I_NLU] = counters[0], counters[1], counters[2]
+        return code, info, cs, no_spin, g
+
+    # pass 2 from the slipping wall to the far end (x0)
+    sc0 = _mean_stress(x0, p)
+    S0 = k_radicand(_shear_stress(x0, m_start, p, mu), sc0, m_start, p[P_A], p[P_SIN_PHI])
+    singular = S0 <= SINGULAR_MARGIN * 2.0 * (p[P_A] + 1.0) * (sc0 * p[P_SIN_PHI]) ** 2
+    g[0], g[1], g[2] = xs, x0 - xs, 1.0 if singular else 0.0
+    info[I_SINGULAR] = g[2]
+    # P ~ eps G and G carries the velocity weight h (1/(Ri + xi) in Couette flow): its absolute
+    # tolerance scales with h, or at large Ri the velocity u = (u_s h_s - w_s P)/h loses the
+    # digits atol did not ask for.
+    h_min = 1.0 if p[P_GEOMETRY] == PLANE else min(_curvature(xs, p), _curvature(x0, p))
+    status2, ts2, hs2, ys2, Q2, _, nfev2, _, nlu2, nsteps2 = radau5(
+        spin_rhs,
+        spin_jac,
+        spin_event,
+        0.0,
+        1.0,
+        np.zeros(2),
+        rtol,
+        np.array([rtol, atol * p[P_EPS] * h_min]),
+        (p, mu, g, cs),
+        max_steps,
+        0.0,
+    )
+    counters[0] += nfev2
+    counters[1] += nsteps2
+    counters[2] += nlu2
+    info[I_NFEV], info[I_NSTEPS], info[I_NLU] = counters[0], counters[1], counters[2]
+    info[I_STEPS_SPIN] = nsteps2
+    sp = (ts2, hs2, ys2, Q2)
+    if status2 != SUCCESS and status2 != EVENT:
+        info[I_XI_FAIL] = _map(ts2[-1], g)[0]
+        return (TOO_MANY_STEPS if status2 == MAX_STEPS else STALLED), info, cs, sp, g
+    info[I_XI_CUT] = _map(ts2[-1], g)[0]
+    P_far = ys2[-1, 1]  # at the far end, or constant beyond the underflow cut
+
+    eps = p[P_EPS]
+    if p[P_GEOMETRY] == COUETTE:
+        Ri = p[P_RI]
+        u_s, w_s, ok = wall_constants(
+            1.0 / Ri, 1.0 / Ri, P_far, 1.0 / (Ri + 1.0), 0.0, -1.0, -1.0, eps * p[P_K_SLIP]
+        )
+        u_ref, u_wall = 0.0, -1.0
+    elif p[P_CASE] == SYMMETRIC:
+        u_s, w_s, u_ref, ok = symmetric_wall_constants(P_far, eps, p[P_K_SLIP], p[P_K_OTHER])
+        u_wall = 1.0
+    else:
+        upper = p[P_CASE] == UPPER
+        u_fixed = 0.0 if upper else 1.0
+        u_wall = 1.0 - u_fixed
+        u_s, w_s, ok = wall_constants(
+            1.0, 0.0, P_far, 1.0, u_fixed, u_wall, 1.0 if upper else -1.0, eps * p[P_K_SLIP]
+        )
+        u_ref = u_fixed
+    if not ok:
+        return SINGULAR_VELOCITY, info, cs, sp, g
+    info[I_U_S], info[I_W_S], info[I_U_REF] = u_s, w_s, u_ref
+    kappa_s = _curvature(xs, p)
+    info[I_WALL_SLIP] = abs(u_s - u_wall)
+    info[I_WALL_OMEGA] = w_s - kappa_s * u_s
+    info[I_WALL_STRESS] = _shear_stress(xs, ys1[-1, 0], p, mu)
+    delta, delta_ok = thickness(p, g, sp, info, f)
+    info[I_DELTA] = delta
+    info[I_DELTA_OK] = 1.0 if delta_ok else 0.0
+    return OK, info, cs, sp, g
+
+
+@njit(cache=True, nogil=True)
+def solve_one(p, rtol, atol, f, max_steps):
+    """:func:`solve_case` for one problem, from Python (a cached entry point)."""
+    return solve_case(p, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, parallel=True)
+def solve_batch(params, rtol, atol, f, max_steps):
+    """Wall quantities of many problems (rows of ``params``) in parallel.
+
+    Returns (status[n], info[n, N_INFO]); a failed case has its status code and the info
+    gathered before it stopped, never NaN in place of an answer that was computed.
+    """
+    n = params.shape[0]
+    status = np.empty(n, dtype=np.int64)
+    info = np.zeros((n, N_INFO))
+    for i in prange(n):
+        code, row, _, _, _ = solve_case(params[i], rtol, atol, f, max_steps)
+        status[i] = code
+        info[i, :] = row
+    return status, info
+
+
+@njit(cache=True, nogil=True)
+def thickness_of(p, g, ts, hs, ys, Q, info, f):
+    """Delta for another fraction f from a solved case (a cached entry point)."""
+    return thickness(p, g, (ts, hs, ys, Q), info, f)
+
+
+@njit(cache=True, nogil=True)
+def spin_pass_at(xi, g, ts, hs, ys, Q):
+    """(l, P) of the spin pass at points xi (the far side of the cut: -inf, P_cut) [-]."""
+    n = xi.size
+    ell = np.empty(n)
+    P = np.empty(n)
+    reach = abs(_map(ts[-1], g)[0] - g[0])
+    for i in range(n):
+        d = abs(xi[i] - g[0])
+        if d > reach * (1.0 + 1e-15) and reach < abs(g[1]):
+            ell[i] = -np.inf
+            P[i] = ys[-1, 1]
+            continue
+        frac = min(max((xi[i] - g[0]) / g[1], 0.0), 1.0)
+        tau = 1.0 - math.sqrt(1.0 - frac) if g[2] != 0.0 else frac
+        tau = min(tau, ts[-1])
+        ell[i] = dense_eval1(ts, hs, ys, Q, tau, 0)
+        P[i] = dense_eval1(ts, hs, ys, Q, tau, 1)
+    return ell, P
