@@ -182,5 +182,5 @@ def test_a_thin_cylinder_without_a_real_solution_says_so():
 
 def test_step_budget_is_reported_as_a_convergence_error():
     p = parameter_vector(PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3))
-    status, _, _, _, _ = kernel.solve_one(p, 1e-10, 1e-12, 0.05, 3)
+    status, _, _, _, _ = kernel.solve_case(p, 1e-10, 1e-12, 0.05, 3)
     assert status == kernel.TOO_MANY_STEPS

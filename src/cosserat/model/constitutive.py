@@ -47,8 +47,6 @@ RADICAND_ROUNDOFF = 1e-12
 SQRT_S_FLOOR = 1e-150
 
 
-_F8x5 = ["float64(float64, float64, float64, float64, float64)"]
-_F8x6 = ["float64(float64, float64, float64, float64, float64, float64)"]
 _KERNEL = {"cache": True, "nogil": True}
 
 
@@ -128,37 +126,37 @@ def k_spin_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> f
     return -2.0 * (A + 1.0) * m / max(math.sqrt(S) if S > 0.0 else 0.0, SQRT_S_FLOOR)
 
 
-@vectorize(_F8x5, cache=True)
+@vectorize(cache=True)
 def v_radicand(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
     """:func:`k_radicand` on arrays (a NumPy ufunc)."""
     return k_radicand(syx, sc, m, A, sin_phi)
 
 
-@vectorize(_F8x5, cache=True)
+@vectorize(cache=True)
 def v_torque(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
     """:func:`k_torque` on arrays (a NumPy ufunc)."""
     return k_torque(syx, sc, m, A, sin_phi)
 
 
-@vectorize(_F8x6, cache=True)
+@vectorize(cache=True)
 def v_torque_dm(syx: float, sc: float, m: float, A: float, sin_phi: float, floor: float) -> float:
     """:func:`k_torque_dm` on arrays (a NumPy ufunc)."""
     return k_torque_dm(syx, sc, m, A, sin_phi, floor)
 
 
-@vectorize(_F8x6, cache=True)
+@vectorize(cache=True)
 def v_torque_dsyx(syx: float, sc: float, m: float, A: float, sin_phi: float, floor: float) -> float:
     """:func:`k_torque_dsyx` on arrays (a NumPy ufunc)."""
     return k_torque_dsyx(syx, sc, m, A, sin_phi, floor)
 
 
-@vectorize(_F8x5, cache=True)
+@vectorize(cache=True)
 def v_velocity_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
     """:func:`k_velocity_ratio` on arrays (a NumPy ufunc)."""
     return k_velocity_ratio(syx, sc, m, A, sin_phi)
 
 
-@vectorize(_F8x5, cache=True)
+@vectorize(cache=True)
 def v_spin_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
     """:func:`k_spin_ratio` on arrays (a NumPy ufunc)."""
     return k_spin_ratio(syx, sc, m, A, sin_phi)

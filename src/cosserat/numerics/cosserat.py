@@ -1,8 +1,8 @@
 """Compiled kernels of the frictional Cosserat model on its two cells (plane shear, Couette).
 
 One path for every numerical computation: a profile, a thickness curve and a sweep all call
-:func:`solve_case` (:func:`solve_one` from Python for one problem, :func:`solve_batch` for many
-in parallel). It does what ``docs/numerics.md`` describes:
+:func:`solve_case` (from Python for one problem; :func:`solve_batch` for many).
+It does what ``docs/numerics.md`` describes:
 
 1. **Couple stress** (``eqn-nd_zangmom``, ``eqn-nd_zangmom_cyl``), integrated with Radau IIA
    from the wall that does not slip (the centre in the symmetric case) to the slipping wall,
@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from ..model.constitutive import (
     RADICAND_ROUNDOFF,
@@ -665,22 +665,19 @@ def solve_case(p, rtol, atol, f, max_steps):
 
 
 @njit(cache=True, nogil=True)
-def solve_one(p, rtol, atol, f, max_steps):
-    """:func:`solve_case` for one problem, from Python (a cached entry point)."""
-    return solve_case(p, rtol, atol, f, max_steps)
-
-
-@njit(cache=True, parallel=True)
 def solve_batch(params, rtol, atol, f, max_steps):
-    """Wall quantities of many problems (rows of ``params``) in parallel.
+    """Wall quantities of many problems (rows of ``params``).
 
     Returns (status[n], info[n, N_INFO]); a failed case has its status code and the info
-    gathered before it stopped, never NaN in place of an answer that was computed.
+    gathered before it stopped, never NaN in place of an answer that was computed. It releases
+    the GIL, so threads run batches in parallel (:func:`cosserat.numerics.runtime.map_batches`):
+    the parallelism of a ``prange``, without compiling the solver a second time for numba's
+    parallel target (~10 s on a machine's first run).
     """
     n = params.shape[0]
     status = np.empty(n, dtype=np.int64)
     info = np.zeros((n, N_INFO))
-    for i in prange(n):
+    for i in range(n):
         code, row, _, _, _ = solve_case(params[i], rtol, atol, f, max_steps)
         status[i] = code
         info[i, :] = row

@@ -185,9 +185,7 @@ class Profile:
         """The fields at arbitrary points of [0, 1] (dense output of the route)."""
         x = np.atleast_1d(np.asarray(xi, dtype=float))
         if np.any((x < 0.0) | (x > 1.0)):
-            raise ParameterError(
-                f"evaluate: xi must lie in [0, 1]; got [{x.min():g}, {x.max():g}]"
-            )
+            raise ParameterError(f"evaluate: xi must lie in [0, 1]; got [{x.min():g}, {x.max():g}]")
         return self.evaluator(x)
 
     def velocity_at(self, xi: ArrayLike) -> FloatArray:
@@ -274,7 +272,8 @@ class _Rebuilt:
     def __call__(self, xi: FloatArray) -> Fields:
         if self._evaluate is None:
             route, options = self._recipe
-            self._evaluate = route(self._problem, **{**options, "check": False, "points": 3}).evaluator
+            rebuilt = route(self._problem, **{**options, "check": False, "points": 3})
+            self._evaluate = rebuilt.evaluator
         return self._evaluate(xi)
 
     def __reduce__(self) -> tuple[Any, ...]:

@@ -1,7 +1,7 @@
 """Numerical route: every problem, every eps in (0, 0.5], on the compiled core.
 
 This layer only validates, translates a problem into the kernel's parameter vector, calls
-:func:`cosserat.numerics.cosserat.solve_one` (one problem) or ``solve_batch`` (many), turns
+:func:`cosserat.numerics.cosserat.solve_case` (one problem) or ``solve_batch`` (many), turns
 status codes into the package's errors and wraps the result as a
 :class:`~cosserat.results.profile.Profile` (``docs/numerics.md``).
 """
@@ -22,6 +22,7 @@ from ..model.constitutive import FloatArray
 from ..model.formulation import Formulation
 from ..numerics import cosserat as kernel
 from ..numerics.radau import dense_eval
+from ..numerics.runtime import map_batches
 from ..results.profile import Fields, Profile
 from .assemble import fields_from_state, make_profile
 
@@ -235,7 +236,7 @@ def run_kernel(
 ) -> NumericalSolution:
     """Solve ``problem`` on the compiled core; raise the package's error if it fails."""
     p = parameter_vector(problem, mu_guess)
-    status, info, couple, spin, geometry = kernel.solve_one(p, rtol, atol, f, config.MAX_STEPS)
+    status, info, couple, spin, geometry = kernel.solve_case(p, rtol, atol, f, config.MAX_STEPS)
     raise_for_status(problem, int(status), info)
     return NumericalSolution(problem, p, info, couple, spin, geometry, float(f))
 
@@ -351,8 +352,8 @@ def wall_quantities(
 ) -> list[WallResult]:
     """Delta, wall slip, wall spin and wall stress for every problem, in parallel.
 
-    The same compiled kernel as :func:`solve`, called once for the whole batch
-    (``solve_batch``, a ``prange`` over the cases). A case that fails is reported with its
+    The same compiled kernel as :func:`solve`, called for the whole batch (``solve_batch``,
+    on as many threads as cores). A case that fails is reported with its
     status and the message :func:`solve` would raise; no NaN stands in for an answer.
     """
     rtol, atol = tolerances(rtol, atol)
@@ -366,7 +367,7 @@ def wall_quantities(
                 f"cannot solve a {type(pr).__name__}: give a PlaneShear or a CouetteFlow"
             )
     params = np.stack([parameter_vector(pr) for pr in problems])
-    status, info = kernel.solve_batch(params, rtol, atol, float(f), config.MAX_STEPS)
+    status, info = map_batches(params, rtol, atol, float(f), config.MAX_STEPS)
     out = []
     for pr, code, row in zip(problems, status, info, strict=True):
         out.append(_wall_result(pr, int(code), row, f))
