@@ -193,6 +193,10 @@ class PlaneShear:
         """The wall at which friction is mobilised."""
         return self.lower_wall if self.case is PlaneShearCase.LOWER else self.upper
 
+    def curvature(self, xi: FloatArray) -> FloatArray:
+        """0: plane walls (the Couette cell's is 1/(Ri + xi)) [-]."""
+        return np.zeros_like(np.asarray(xi, dtype=float))
+
     def sigma_c(self, xi: FloatArray) -> FloatArray:
         """Mean stress = sigma_yy (:func:`mean_stress`) [-]."""
         return mean_stress(xi, self.B * self.nu)

@@ -9,17 +9,44 @@ from typing import Any
 
 from ..errors import MethodNotAvailableError, ParameterError
 from ..model import CouetteFlow, PlaneShear, Problem
+from ..model.rheology import Rheology
 from ..results.profile import Profile
 from . import asymptotic, closed_form, numerical
 
-_ROUTES: dict[str, dict[type, Callable[..., Profile]]] = {
-    "numerical": {PlaneShear: numerical.solve_plane, CouetteFlow: numerical.solve_couette},
-    "closed-form": {PlaneShear: closed_form.solve_plane},
-    "asymptotic": {PlaneShear: asymptotic.solve_plane, CouetteFlow: asymptotic.solve_couette},
-}
+COSSERAT = Rheology(
+    name="cosserat",
+    title="frictional Cosserat model",
+    reference=(
+        "Mohan, Kesava Rao & Nott, A frictional Cosserat model for the slow shearing of "
+        "granular materials, J. Fluid Mech. 457 (2002) 377-409"
+    ),
+    cells={"plane": PlaneShear, "couette": CouetteFlow},
+    routes={
+        "numerical": {PlaneShear: numerical.solve_plane, CouetteFlow: numerical.solve_couette},
+        "closed-form": {PlaneShear: closed_form.solve_plane},
+        "asymptotic": {PlaneShear: asymptotic.solve_plane, CouetteFlow: asymptotic.solve_couette},
+    },
+    picklable=frozenset({numerical.solve_plane, numerical.solve_couette}),
+)
+"""The frictional Cosserat model on its two cells, through the seam every rheology uses."""
+
+RHEOLOGIES: dict[str, Rheology] = {}
+_ROUTES: dict[str, dict[type, Callable[..., Profile]]] = {}
+_PICKLABLE: set[Callable[..., Profile]] = set()
+
+
+def register(rheology: Rheology) -> None:
+    """Make ``rheology``'s problem classes solvable by :func:`solve` (``docs/architecture.md``)."""
+    if rheology.name in RHEOLOGIES:
+        raise ParameterError(f"a rheology named {rheology.name!r} is already registered")
+    RHEOLOGIES[rheology.name] = rheology
+    for method, table in rheology.routes.items():
+        _ROUTES.setdefault(method, {}).update(table)
+    _PICKLABLE.update(rheology.picklable)
+
+
+register(COSSERAT)
 METHODS = tuple(_ROUTES)
-# routes whose dense evaluator is plain data (it pickles as it is)
-_PICKLABLE = {numerical.solve_plane, numerical.solve_couette}
 
 
 def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profile:
@@ -58,10 +85,10 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
         raise ParameterError(
             f"method must be one of {', '.join(repr(m) for m in METHODS)}; got {method!r}"
         ) from None
-    if not isinstance(problem, PlaneShear | CouetteFlow):
-        raise ParameterError(
-            f"cannot solve a {type(problem).__name__}: give a PlaneShear or a CouetteFlow"
-        )
+    solvable = {t for table in _ROUTES.values() for t in table}
+    if type(problem) not in solvable:
+        names = ", ".join(sorted(t.__name__ for t in solvable))
+        raise ParameterError(f"cannot solve a {type(problem).__name__}: give one of {names}")
     route = routes.get(type(problem))
     if route is None:
         available = [m for m, r in _ROUTES.items() if type(problem) in r]
@@ -83,4 +110,4 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
     return profile
 
 
-__all__ = ["METHODS", "solve"]
+__all__ = ["COSSERAT", "METHODS", "RHEOLOGIES", "register", "solve"]
