@@ -7,9 +7,10 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from ..config import DEFAULT_F
-from ..errors import NoSolutionError
+from ..errors import ConvergenceError, NoSolutionError, ParameterError
 from ..results.wall import shear_layer_thickness
 from ..routes import solve
+from ..routes.numerical import wall_quantities
 
 if TYPE_CHECKING:
     from ..model import Problem
@@ -36,29 +37,39 @@ def thickness_curve(
     """Delta at each eps of ``eps_values`` for ``problem`` (other parameters fixed).
 
     An eps at which the model has no real solution (:class:`NoSolutionError`) gives None and
-    its reason in ``failures``; other errors propagate. ``progress(i, n)`` is called after each
-    solve. Residual checks are skipped: only the dense velocity near the wall is needed.
+    its reason in ``failures``; other errors propagate. The numerical route solves the whole
+    curve in one call of the compiled batch kernel (the same kernel as a single solve);
+    the other routes solve eps by eps, calling ``progress(i, n)`` after each.
     """
-    deltas: list[float | None] = []
-    failures: dict[float, str] = {}
-    guess: dict[str, float] = {}
-    for i, eps in enumerate(eps_values):
-        try:
-            profile = solve(
-                replace(problem, eps=eps),
-                method=method,
-                check=False,
-                points=3,
-                **options,
-                **guess,
+    problems = [replace(problem, eps=eps) for eps in eps_values]
+    eps_list = [float(e) for e in eps_values]
+    if method == "numerical":
+        unknown = sorted(set(options) - {"rtol", "atol"})
+        if unknown:
+            raise ParameterError(
+                f"option(s) {', '.join(unknown)} do not apply to a numerical thickness curve; "
+                f"it accepts rtol, atol"
             )
+        results = wall_quantities(problems, f=f, **options)
+        failures = {
+            e: r.message for e, r in zip(eps_list, results, strict=True) if r.status != "ok"
+        }
+        errors = [r.message for r in results if r.status == "error"]
+        if errors:
+            raise ConvergenceError(errors[0])
+        if progress is not None:
+            progress(len(problems), len(problems))
+        return ThicknessCurve(eps_list, [r.Delta for r in results], failures)
+    deltas: list[float | None] = []
+    failures = {}
+    for i, pr in enumerate(problems):
+        try:
+            profile = solve(pr, method=method, check=False, points=3, **options)
         except NoSolutionError as exc:
             deltas.append(None)
-            failures[float(eps)] = str(exc)
+            failures[eps_list[i]] = str(exc)
         else:
             deltas.append(shear_layer_thickness(profile, f))
-            if "m_inner" in profile.diagnostics.stats:  # continuation in eps (Couette)
-                guess = {"m_inner_guess": profile.diagnostics.stats["m_inner"]}
         if progress is not None:
-            progress(i + 1, len(eps_values))
-    return ThicknessCurve([float(e) for e in eps_values], deltas, failures)
+            progress(i + 1, len(problems))
+    return ThicknessCurve(eps_list, deltas, failures)
