@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from .. import config
-from ..errors import ConvergenceError, ParameterError
+from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
 from ..model import Problem
 from ..model.constitutive import FloatArray, check_radicand, radicand
 from ..model.formulation import Formulation
@@ -57,6 +57,12 @@ def make_profile(
     )
     for name, values in f._asdict().items():
         if not np.all(np.isfinite(values)):
+            if method == "asymptotic":
+                raise MethodNotAvailableError(
+                    f"the leading-order expansion gives non-finite {name} for "
+                    f"{problem.describe()} (its terms leave the range of doubles): use "
+                    f"method='numerical'"
+                )
             raise ConvergenceError(
                 f"the {method} solution produced non-finite {name} for {problem.describe()}"
             )
