@@ -127,3 +127,22 @@ def test_m_fixed_wall_range():
         PlaneShear(material=MAT, upper=Wall(10.0), lower=Wall(20.0), eps=0.04, m_fixed_wall=-0.01)
     with pytest.raises(ParameterError, match=r"both walls slip"):
         PlaneShear(material=MAT, upper=Wall(10.0), eps=0.04, m_fixed_wall=0.1)
+
+
+def test_defaults_are_the_papers_from_config():
+    from cosserat import config
+
+    assert Material() == Material(config.PHI, config.L, config.A)
+    assert (Material().phi, Material().L, Material().A) == (config.PHI, config.L, config.A)
+    assert (Wall().delta, Wall().K) == (config.DELTA, config.K)
+    assert Wall.fully_rough().K == config.K
+
+
+def test_positional_use_still_works():
+    assert Material(28.5) == Material(phi=28.5)
+    assert Material(30.0, 5.0, 0.0) == Material(phi=30.0, L=5.0, A=0.0)
+    assert Wall(20.0, 0.5) == Wall(delta=20.0, K=0.5)
+    assert Wall(15.0) == Wall(delta=15.0)
+    assert Wall("fully-rough") == Wall.fully_rough()
+    assert Wall("fully-rough", 0.2) == Wall.fully_rough(0.2)
+    assert Wall.fully_rough().is_fully_rough

@@ -7,6 +7,7 @@ angles in degrees, everything else dimensionless.
 
 from __future__ import annotations
 
+from fractions import Fraction
 from typing import Final
 
 # ----------------------------------------------------------------- the paper's parameters
@@ -46,3 +47,32 @@ OUTPUT_POINTS: Final = 201
 """Default number of points of a returned profile."""
 CHECK_POINTS: Final = 801
 """Points of the layer-resolving grid on which the residuals are recomputed."""
+FULLY_ROUGH_RTOL: Final = 1e-12
+"""A wall with tan(delta) within this relative distance of sin(phi) is fully rough [-]
+(absorbs the round-off of atan/tan, so that ``Wall(material.fully_rough_delta)`` is fully rough).
+"""
+
+# ----------------------------------------------------------------- fitting and bounds
+FIT_XTOL: Final = 1e-8
+"""``xtol`` of the least-squares fit (relative change of the parameters) [-]."""
+FIT_FTOL: Final = 1e-10
+"""``ftol`` of the least-squares fit (relative change of the cost) [-]."""
+FIT_GTOL: Final = 1e-10
+"""``gtol`` of the least-squares fit (norm of the scaled gradient) [-]."""
+FIT_DIFF_STEP: Final = 1e-4
+"""Finite-difference step of the fit's Jacobian, relative to the parameter (least squares) or
+to its range (standard errors) [-]; well above :data:`RTOL`, well below the ranges."""
+FIT_MAX_NFEV: Final = 200
+"""Budget of model solves of one least-squares fit."""
+EXISTENCE_BOUND_TOL: Final = 1e-4
+"""Width to which the bisection for the existence bound in A is carried [-]."""
+
+
+def text(value: float) -> str:
+    """A value as help texts and captions show it: ``{value:g}`` if that is exact, else a
+    simple fraction if one is (``1/3`` for :data:`A`), else ``{value:g}``."""
+    short = f"{value:g}"
+    if float(short) == value:
+        return short
+    frac = Fraction(value).limit_denominator(12)
+    return f"{frac.numerator}/{frac.denominator}" if float(frac) == value else short

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq, least_squares
 
+from .. import config
 from ..errors import NoSolutionError, ParameterError
 from ..model import CouetteFlow, Problem
 from ..model.constitutive import FloatArray
@@ -123,7 +124,8 @@ def with_values(problem: Problem, values: dict[str, float]) -> Problem:
     delta: float | str = old.delta
     if "delta" in values:
         tan_d = math.tan(math.radians(values["delta"]))
-        delta = FULLY_ROUGH if tan_d >= material.sin_phi * (1 - 1e-12) else values["delta"]
+        rough = tan_d >= material.sin_phi * (1.0 - config.FULLY_ROUGH_RTOL)
+        delta = FULLY_ROUGH if rough else values["delta"]
     elif not old.is_fully_rough and math.tan(math.radians(float(old.delta))) > material.sin_phi:
         delta = FULLY_ROUGH  # phi changed below the wall's friction: clamp
     wall = Wall(delta, values.get("K", old.K))
@@ -267,11 +269,11 @@ def _least_squares(obj: _Objective, theta0: FloatArray) -> Any:
         bounds=(lo, hi),
         method="trf",
         x_scale="jac",
-        diff_step=1e-4,  # relative; the model is solved to rtol = 1e-8
-        xtol=1e-8,
-        ftol=1e-10,
-        gtol=1e-10,
-        max_nfev=200,
+        diff_step=config.FIT_DIFF_STEP,  # relative; well above the model's rtol
+        xtol=config.FIT_XTOL,
+        ftol=config.FIT_FTOL,
+        gtol=config.FIT_GTOL,
+        max_nfev=config.FIT_MAX_NFEV,
     )
 
 
@@ -309,7 +311,7 @@ def fit(
         raise ParameterError(f"{measured.n} points cannot determine {len(names)} parameters")
     measured.xi(problem.eps, moving_wall(problem)[0])
     if "rtol" not in options and method == "numerical":
-        options["rtol"] = 1e-8  # well below the finite-difference steps (1e-4 of the range)
+        options["rtol"] = config.RTOL  # well below the finite-difference steps
     coords = _Coordinates(names, problem)
     start = {n: natural_value(problem, n) for n in names}
     obj = _Objective(measured, problem, coords, {}, method, options)
@@ -384,7 +386,7 @@ def _jacobian(obj: _Objective, theta: FloatArray, f0: FloatArray) -> FloatArray:
     lo, hi = obj.coords.bounds()
     J = np.empty((f0.size, theta.size))
     for j in range(theta.size):
-        h = 1e-4 * (hi[j] - lo[j])  # >> the model's tolerance, << the parameter's range
+        h = config.FIT_DIFF_STEP * (hi[j] - lo[j])  # >> the model's rtol, << the range
         if theta[j] + h > hi[j]:
             h = -h
         th = theta.copy()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from .. import config
 from ..errors import NoSolutionError
 from ..model import Problem
 from ..model.parameters import Material
@@ -31,9 +32,10 @@ def has_solution(problem: Problem, **options: object) -> bool:
 
 
 def existence_bound_A(
-    problem: Problem, lo: float = -0.999, hi: float = 0.99, tol: float = 1e-4
+    problem: Problem, lo: float = -0.999, hi: float = 0.99, tol: float = config.EXISTENCE_BOUND_TOL
 ) -> Bound:
-    """The smallest A (yield-condition a2/a1) with a real solution, by bisection.
+    """The smallest A (yield-condition a2/a1) with a real solution, by bisection to ``tol``
+    (default :data:`cosserat.config.EXISTENCE_BOUND_TOL`) [-].
 
     The paper: "the shear stress sigma_xy assumes complex values when A < -0.57" (plane shear
     under gravity, fully rough walls, B = 1). Solutions are assumed to exist at ``hi`` and the

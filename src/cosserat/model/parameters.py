@@ -8,6 +8,9 @@ Units and conventions, used everywhere in the package:
   ``a1 + a2 = 1/2``, so ``a1 = 1/(2(1+A))``;
 * ``K`` is the slip coefficient of the kinematic wall condition ``eqn-bc3``.
 
+``Material()`` and ``Wall()`` are the paper's material and smooth wall: their defaults are those
+of :mod:`cosserat.config` (``PHI``, ``L``, ``A``; ``DELTA``, ``K``).
+
 Vary a parameter with :func:`dataclasses.replace`; the copy is validated again.
 """
 
@@ -18,6 +21,7 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
+from .. import config
 from ..errors import ParameterError
 
 FULLY_ROUGH: Literal["fully-rough"] = "fully-rough"
@@ -45,23 +49,27 @@ def require_open_interval(name: str, value: float, lo: float, hi: float, unit: s
 
 @dataclass(frozen=True)
 class Material:
-    """A granular material.
+    """A granular material; ``Material()`` is the paper's (glass beads).
 
     Parameters
     ----------
-    phi : float
+    phi : float, default :data:`cosserat.config.PHI`
         Angle of internal friction, ``0 < phi < 90`` [deg].
-    L : float
+    L : float, default :data:`cosserat.config.L`
         Ratio of the material length scale to the grain diameter in ``eqn-yc2``, ``L > 0`` [-].
-        The paper uses 10.
-    A : float
+    A : float, default :data:`cosserat.config.A`
         Ratio ``a2/a1`` of the yield-condition constants, ``-1 < A < 1`` [-] (the quadratic
-        form in ``eqn-yc2`` must be positive). The paper uses 1/3.
+        form in ``eqn-yc2`` must be positive).
+
+    Raises
+    ------
+    ParameterError
+        A value out of its bounds or not a finite number (the message names it).
     """
 
-    phi: float
-    L: float = 10.0
-    A: float = 1.0 / 3.0
+    phi: float = config.PHI
+    L: float = config.L
+    A: float = config.A
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "phi", require_open_interval("phi", self.phi, 0.0, 90.0, " [deg]"))
@@ -94,21 +102,26 @@ class Material:
 
 @dataclass(frozen=True)
 class Wall:
-    """A wall bounding the granular material.
+    """A wall bounding the granular material; ``Wall()`` is the paper's smooth wall.
 
     Parameters
     ----------
-    delta : float or "fully-rough"
+    delta : float or "fully-rough", default :data:`cosserat.config.DELTA`
         Angle of wall friction ``0 < delta < 90`` [deg], or :data:`FULLY_ROUGH` for a wall with
         tan(delta) = sin(phi) exactly (``eqn-bc_fullyrough``). That tan(delta) <= sin(phi) is
         checked where the wall meets a material (in the problem classes).
-    K : float
+    K : float, default :data:`cosserat.config.K`
         Slip coefficient of ``eqn-bc3``, ``K >= 0`` [-]: 0 means no slip relative to the wall,
-        1/2 a grain rolling without sliding. The paper uses 0.5.
+        1/2 a grain rolling without sliding.
+
+    Raises
+    ------
+    ParameterError
+        A value out of its bounds or not a finite number (the message names it).
     """
 
-    delta: float | Literal["fully-rough"]
-    K: float = 0.5
+    delta: float | Literal["fully-rough"] = config.DELTA
+    K: float = config.K
 
     def __post_init__(self) -> None:
         if self.delta != FULLY_ROUGH:
@@ -121,8 +134,9 @@ class Wall:
         object.__setattr__(self, "K", K)
 
     @classmethod
-    def fully_rough(cls, K: float = 0.5) -> Wall:
-        """A fully rough wall, tan(delta) = sin(phi) (``eqn-bc_fullyrough``)."""
+    def fully_rough(cls, K: float = config.K) -> Wall:
+        """A fully rough wall, tan(delta) = sin(phi) (``eqn-bc_fullyrough``), slip coefficient
+        ``K`` [-] (default :data:`cosserat.config.K`)."""
         return cls(FULLY_ROUGH, K)
 
     @property
@@ -133,22 +147,22 @@ class Wall:
     def tan_delta(self, material: Material, name: str = "delta") -> float:
         """tan(delta) against ``material``, validated ``tan(delta) <= sin(phi)`` [-].
 
-        A value within 1e-12 (relative) of sin(phi) is taken as fully rough, so that
-        ``Wall(material.fully_rough_delta)`` behaves like ``Wall.fully_rough()`` despite
-        round-off in atan/tan.
+        A value within :data:`cosserat.config.FULLY_ROUGH_RTOL` (relative) of sin(phi) is taken
+        as fully rough, so that ``Wall(material.fully_rough_delta)`` behaves like
+        ``Wall.fully_rough()`` despite round-off in atan/tan.
         """
         s = material.sin_phi
         if self.is_fully_rough:
             return s
         t = math.tan(math.radians(float(self.delta)))
-        if t > s * (1.0 + 1e-12):
+        if t > s * (1.0 + config.FULLY_ROUGH_RTOL):
             raise ParameterError(
                 f"{name} must satisfy tan({name}) <= sin(phi), i.e. {name} <= "
                 f"{material.fully_rough_delta:.6g} deg for phi = {material.phi:g} deg "
                 f"(a wall cannot be rougher than fully rough, eqn-bc_fullyrough); "
                 f"got {name} = {self.delta:g} deg"
             )
-        return s if t > s * (1.0 - 1e-12) else t
+        return s if t > s * (1.0 - config.FULLY_ROUGH_RTOL) else t
 
     def describe(self) -> str:
         d = "fully rough" if self.is_fully_rough else f"delta = {self.delta:g} deg"

@@ -3,7 +3,8 @@ experimental data").
 
 Walls are taken at the outer edges of the glued grain layers, as in the paper. phi, eps, Ri and
 K are the paper's choices (phi from the literature, K matched to the reported wall slip); L and
-A keep the paper's values, 10 and 1/3. The measured points are not public: load your own with
+A keep the paper's values (``config.L``, ``config.A``); the glass beads' phi is the paper's
+default, ``config.PHI``. The measured points are not public: load your own with
 :func:`cosserat.measurements.read_profile` and overlay or fit them.
 """
 
@@ -11,13 +12,29 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .. import config
 from ..model import CouetteFlow
 from ..model.parameters import Material, Wall
 
 
 @dataclass(frozen=True)
 class ExperimentPreset:
-    """A Couette experiment of the paper [angles in deg, everything else dimensionless]."""
+    """A Couette experiment of the paper.
+
+    Parameters
+    ----------
+    name, description : str
+    phi : float
+        Angle of internal friction [deg].
+    eps : float
+        Grain diameter over gap, d_p/H [-].
+    Ri : float
+        Inner radius over gap, R_i/H [-].
+    K : float
+        Slip coefficient of both walls [-].
+    L, A : float, default :data:`cosserat.config.L`, :data:`cosserat.config.A`
+        Yield-condition constants [-].
+    """
 
     name: str
     description: str
@@ -25,8 +42,8 @@ class ExperimentPreset:
     eps: float
     Ri: float
     K: float
-    L: float = 10.0
-    A: float = 1.0 / 3.0
+    L: float = config.L
+    A: float = config.A
 
     @property
     def material(self) -> Material:
@@ -54,7 +71,7 @@ PRESETS = {
     "glass": ExperimentPreset(
         "glass",
         "glass beads, free-surface video (Bocquet et al. 2001)",
-        phi=28.5,
+        phi=config.PHI,
         eps=0.067,
         Ri=4.25,
         K=0.0,

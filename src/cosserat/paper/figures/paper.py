@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from ... import config
 from ...analysis import asymptotic_thickness, shear_layer_thickness, thickness_curve
 from ...model import CouetteFlow, PlaneShear, Problem
 from ...model.parameters import FULLY_ROUGH, Material, Wall
@@ -19,9 +20,15 @@ from ...results.profile import Profile
 from ...routes import solve
 from .base import LINESTYLES, MARKERS, FigureData, Panel, draw
 
-PHI, EPS, L, A, K = 28.5, 0.04, 10.0, 1.0 / 3.0, 0.5
+# the paper's parameters (cosserat.config), as the captions state them
+PHI, EPS, L, A, K = config.PHI, config.EPS, config.L, config.A, config.K
+DELTA, RI = config.DELTA, config.RI
 MATERIAL = Material(PHI, L=L, A=A)
 POINTS = 401
+_t = config.text
+PAPER = f"phi = {_t(PHI)} deg, eps = {_t(EPS)}, L = {_t(L)}, A = {_t(A)}, K = {_t(K)}"
+"""The caption's statement of the paper's parameters."""
+COUETTE = rf"Couette, $\bar R_i = {_t(RI)}$"
 
 XI = r"$\xi$"
 U = r"$u$"
@@ -69,7 +76,7 @@ def profile_panels(
 
 # --------------------------------------------------------------------------- 2: fig-zero_g
 def compute_zero_g() -> FigureData:
-    walls = [Wall.fully_rough(K), Wall(25.0, K), Wall(20.0, K), Wall(10.0, K)]
+    walls = [Wall.fully_rough(K), Wall(25.0, K), Wall(DELTA, K), Wall(10.0, K)]
     curves = [
         (_delta_label(w), solve(PlaneShear(material=MATERIAL, upper=w, eps=EPS), points=POINTS))
         for w in walls
@@ -78,8 +85,7 @@ def compute_zero_g() -> FigureData:
         "fig-zero_g",
         2,
         "identical walls, no gravity",
-        "Shear between identical walls without gravity for several delta; phi = 28.5 deg, "
-        "eps = 0.04, L = 10, A = 1/3, K = 0.5.",
+        f"Shear between identical walls without gravity for several delta; {PAPER}.",
         profile_panels(curves, ["u", "spin", "asym", "m"]),
         notes=["delta values (not given in the caption): fully rough, 25, 20, 10 deg"],
     )
@@ -114,9 +120,9 @@ def compute_zero_g_aw() -> FigureData:
 def compute_asymp_g0() -> FigureData:
     eps = 1e-3
     cases = {
-        "identical walls": PlaneShear(material=MATERIAL, upper=Wall(20.0, K), eps=eps),
+        "identical walls": PlaneShear(material=MATERIAL, upper=Wall(DELTA, K), eps=eps),
         "rougher lower wall": PlaneShear(
-            material=MATERIAL, upper=Wall(20.0, K), lower=Wall.fully_rough(K), eps=eps
+            material=MATERIAL, upper=Wall(DELTA, K), lower=Wall.fully_rough(K), eps=eps
         ),
     }
     xi = np.linspace(0.95, 1.0, 301)
@@ -132,8 +138,9 @@ def compute_asymp_g0() -> FigureData:
         "fig-asymp_g0",
         4,
         "asymptotic vs numerical, no gravity",
-        "Asymptotic (symbols) and numerical (lines) u and omega, no gravity; phi = 28.5 deg, "
-        "delta = 20 deg, eps = 1e-3, L = 10, A = 1/3, K = 0.5.",
+        "Asymptotic (symbols) and numerical (lines) u and omega, no gravity; "
+        f"phi = {_t(PHI)} deg, delta = {_t(DELTA)} deg, eps = 1e-3, L = {_t(L)}, A = {_t(A)}, "
+        f"K = {_t(K)}.",
         panels,
         notes=["xi restricted to the layer, 0.95 <= xi <= 1"],
     )
@@ -181,7 +188,7 @@ def compute_finite_g() -> FigureData:
         profile_panels(curves, ["u", "spin", "asym", "m"]),
         notes=[
             "B values (not given in the caption): 0, 0.1, 0.3, 1; B = 10 has no real "
-            "solution at eps = 0.04"
+            f"solution at eps = {_t(EPS)}"
         ],
         extra={"B": B_values, "Delta": [shear_layer_thickness(p) for _, p in curves]},
     )
@@ -192,9 +199,7 @@ def compute_asymp_g_c() -> FigureData:
     eps = 1e-3
     cases = {
         "plane, B = 1": PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=eps, B=1.0),
-        r"Couette, $\bar R_i = 1$": CouetteFlow(
-            material=MATERIAL, wall=Wall.fully_rough(K), eps=eps, Ri=1.0
-        ),
+        COUETTE: CouetteFlow(material=MATERIAL, wall=Wall.fully_rough(K), eps=eps, Ri=RI),
     }
     panels = [Panel(xlabel=U, ylabel=XI), Panel(xlabel=M, ylabel=XI)]
     for i, (name, problem) in enumerate(cases.items()):
@@ -209,8 +214,8 @@ def compute_asymp_g_c() -> FigureData:
         7,
         "asymptotic vs numerical, fully rough walls",
         "Asymptotic (symbols) and numerical (lines) u and m for plane shear under gravity "
-        "(B = 1) and Couette flow (Ri = 1), fully rough walls; eps = 1e-3, other parameters "
-        "as figure 2.",
+        f"(B = 1) and Couette flow (Ri = {_t(RI)}), fully rough walls; eps = 1e-3, other "
+        "parameters as figure 2.",
         panels,
     )
 
@@ -232,8 +237,7 @@ def compute_cyl_couette() -> FigureData:
         "fig-cyl_couette",
         9,
         "Couette flow, fully rough walls",
-        "Fully rough Couette cell for four Ri = R_i/H; phi = 28.5 deg, eps = 0.04, L = 10, "
-        "A = 1/3, K = 0.5.",
+        f"Fully rough Couette cell for four Ri = R_i/H; {PAPER}.",
         profile_panels(curves, ["u", "spin_cyl", "asym_cyl", "m"]),
         notes=[
             "Ri values (not given in the caption): 1e6 (for infinity), 100, 10, 1. With "
@@ -262,6 +266,14 @@ def experiment_curves(preset: str, data: Any = None) -> Panel:
     return panel
 
 
+def _preset_text(name: str) -> str:
+    """The parameters of a preset cell as the captions state them."""
+    from ...studies.experiments import PRESETS
+
+    c = PRESETS[name]
+    return f"phi = {_t(c.phi)} deg, eps = {_t(c.eps)}, Ri = {_t(c.Ri)}, K = {_t(c.K)}"
+
+
 def compute_mueth(data: dict[str, Any] | None = None) -> FigureData:
     data = data or {}
     panels = [
@@ -272,9 +284,9 @@ def compute_mueth(data: dict[str, Any] | None = None) -> FigureData:
         "fig-mueth",
         10,
         "mustard and poppy seeds (Mueth et al. 2000)",
-        "Model predictions for (a) mustard seeds (phi = 25 deg, eps = 0.15, Ri = 2.29, "
-        "K = 0.65) and (b) poppy seeds (phi = 31 deg, eps = 0.058, Ri = 1.89, K = 0); "
-        "dot-dash: fully rough walls; solid: delta 2 deg below atan(sin phi).",
+        f"Model predictions for (a) mustard seeds ({_preset_text('mustard')}) and (b) poppy "
+        f"seeds ({_preset_text('poppy')}); dot-dash: fully rough walls; solid: delta 2 deg "
+        "below atan(sin phi).",
         panels,
         notes=[
             "measured points are not public; pass a profile file to overlay it "
@@ -289,8 +301,8 @@ def compute_bocquet(data: dict[str, Any] | None = None) -> FigureData:
         "fig-bocquet",
         11,
         "glass beads (Bocquet et al. 2001)",
-        "Model predictions for glass beads (phi = 28.5 deg, eps = 0.067, Ri = 4.25, K = 0); "
-        "dot-dash: fully rough walls; solid: delta 2 deg below atan(sin phi).",
+        f"Model predictions for glass beads ({_preset_text('glass')}); dot-dash: fully rough "
+        "walls; solid: delta 2 deg below atan(sin phi).",
         [experiment_curves("glass", data.get("glass"))],
         notes=["measured points are not public; pass a profile file to overlay it"],
     )
@@ -303,7 +315,7 @@ def compute_A_sensitivity() -> FigureData:
     bound = existence_bound_A(
         PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=1.0)
     )
-    A_values = [1.0 / 3.0, 0.9, 0.0, round(bound.value + 0.02, 2)]
+    A_values = [A, 0.9, 0.0, round(bound.value + 0.02, 2)]
     curves = [
         (
             rf"$A = {a:.3g}$",
@@ -362,14 +374,14 @@ EPS_SLT = [1e-1, 5e-2, 2e-2, 1e-2, 5e-3, 2e-3, 1e-3, 1e-4, 1e-5, 1e-6]
 
 def thickness_problems(fully_rough: bool) -> dict[str, Problem]:
     """The four problems of figure 14 (panel b: fully rough walls)."""
-    wall = Wall.fully_rough(K) if fully_rough else Wall(20.0, K)
+    wall = Wall.fully_rough(K) if fully_rough else Wall(DELTA, K)
     problems: dict[str, Problem] = {
         "plane, identical walls": PlaneShear(material=MATERIAL, upper=wall, eps=EPS),
         "plane, rougher lower wall": PlaneShear(
             material=MATERIAL, upper=wall, lower=Wall.fully_rough(K), eps=EPS
         ),
         "plane, gravity B = 1": PlaneShear(material=MATERIAL, upper=wall, eps=EPS, B=1.0),
-        r"Couette, $\bar R_i = 1$": CouetteFlow(material=MATERIAL, wall=wall, eps=EPS, Ri=1.0),
+        COUETTE: CouetteFlow(material=MATERIAL, wall=wall, eps=EPS, Ri=RI),
     }
     if fully_rough:  # no wall is rougher than fully rough
         problems.pop("plane, rougher lower wall")
@@ -380,15 +392,7 @@ SLT_MARKERS = {
     "plane, identical walls": "o",
     "plane, rougher lower wall": "x",
     "plane, gravity B = 1": "*",
-    r"Couette, $\bar R_i = 1$": "D",
-}
-
-
-SLT_MARKERS = {
-    "plane, identical walls": "o",
-    "plane, rougher lower wall": "x",
-    "plane, gravity B = 1": "*",
-    r"Couette, $\bar R_i = 1$": "D",
+    COUETTE: "D",
 }
 
 
@@ -430,9 +434,10 @@ def compute_slt() -> FigureData:
         "fig-slt",
         14,
         "shear-layer thickness against eps",
-        "Delta against eps: (a) delta = 20 deg, (b) fully rough walls (delta = atan(sin phi) "
-        "= 25.5 deg); symbols numerical, lines the small-eps laws; phi = 28.5 deg, L = 10, "
-        "A = 1/3, K = 0.5, B = 1 (gravity), Ri = 1 (Couette).",
+        f"Delta against eps: (a) delta = {_t(DELTA)} deg, (b) fully rough walls (delta = "
+        f"atan(sin phi) = {MATERIAL.fully_rough_delta:.1f} deg); symbols numerical, lines the "
+        f"small-eps laws; phi = {_t(PHI)} deg, L = {_t(L)}, A = {_t(A)}, K = {_t(K)}, B = 1 "
+        f"(gravity), Ri = {_t(RI)} (Couette).",
         panels,
         notes=["missing symbols: no real solution at that eps (e.g. gravity B = 1 at eps = 0.1)"],
         extra={"table": table},
