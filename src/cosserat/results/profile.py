@@ -9,6 +9,7 @@ Variables and signs are the paper's (``docs/model.md``).
 from __future__ import annotations
 
 import csv
+import html
 import io
 import json
 import math
@@ -20,7 +21,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ConvergenceError, ParameterError
+from ..errors import ConvergenceError, CosseratError, ParameterError
 from ..model.constitutive import FloatArray
 from .wall import shear_layer_thickness, wall_omega, wall_slip
 
@@ -87,6 +88,20 @@ class Diagnostics:
             "message": self.message,
             "stats": dict(self.stats),
         }
+
+
+FIELD_MEANINGS = {
+    "xi": "distance from the lower wall (inner cylinder) over the gap, y/H or (r - R_i)/H",
+    "u": "velocity over the moving wall's speed",
+    "omega": "grain spin omega_z H / V",
+    "m": "couple stress M_yz / (L sqrt(2(A+1)) sigma d_p)",
+    "sigma_xy": "shear stress sigma_xy (Couette: sigma_theta_r) over the normal stress scale",
+    "sigma_yx": "shear stress on wall-parallel planes sigma_yx (Couette: sigma_r_theta)",
+    "sigma_yy": "normal stress sigma_yy (Couette: sigma_rr) over its scale",
+    "asymmetry": "stress asymmetry sigma_yx - sigma_xy",
+    "spin_minus_half_vorticity": "grain spin minus half the vorticity",
+}
+"""What each column means (all dimensionless; ``docs/model.md``)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -243,6 +258,64 @@ class Profile:
         if path is not None:
             Path(path).write_text(text)
         return text
+
+    # ----------------------------------------------------------------- notebooks
+    def to_dataframe(self) -> Any:
+        """The columns as a :class:`pandas.DataFrame` indexed by position; the parameters,
+        method and units (every field is dimensionless, ``docs/model.md``) in ``attrs``."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("Profile.to_dataframe needs pandas: pip install pandas") from None
+        frame = pd.DataFrame(self.columns())
+        frame.attrs.update(self._attrs())
+        return frame
+
+    def to_xarray(self) -> Any:
+        """The fields as an :class:`xarray.Dataset` on the coordinate ``xi``, with each
+        variable's meaning and unit in its attributes."""
+        try:
+            import xarray as xr
+        except ImportError:
+            raise ImportError("Profile.to_xarray needs xarray: pip install xarray") from None
+        cols = self.columns()
+        xi = cols.pop("xi")
+        data = {
+            name: ("xi", values, {"long_name": FIELD_MEANINGS[name], "units": "1"})
+            for name, values in cols.items()
+        }
+        coords = {"xi": ("xi", xi, {"long_name": FIELD_MEANINGS["xi"], "units": "1"})}
+        attrs = {k: json.dumps(v) if isinstance(v, dict) else v for k, v in self._attrs().items()}
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def _attrs(self) -> dict[str, Any]:
+        return {
+            "description": self.problem.describe(),
+            "method": self.method,
+            "parameters": self.problem.parameters(),
+            "units": "every field is dimensionless; scalings in docs/model.md",
+        }
+
+    def _repr_html_(self) -> str:
+        """A short HTML summary for notebooks: parameters, Delta, slip, a few rows."""
+        rows = np.unique(np.linspace(0, self.xi.size - 1, 7).round().astype(int))
+        cols = ["xi", "u", "omega", "m", "asymmetry"]
+        table = "".join(
+            "<tr>" + "".join(f"<td>{self.columns()[c][i]:.6g}</td>" for c in cols) + "</tr>"
+            for i in rows
+        )
+        head = "".join(f"<th>{c}</th>" for c in cols)
+        try:
+            delta = f"{shear_layer_thickness(self):.6g} grain diameters"
+        except CosseratError as exc:
+            delta = html.escape(str(exc))
+        return (
+            f"<div><b>Profile</b> ({html.escape(self.method)}): "
+            f"{html.escape(self.problem.describe())}<br>"
+            f"Delta = {delta}; wall slip = {wall_slip(self):.6g}; "
+            f"{self.xi.size} points"
+            f"<table><thead><tr>{head}</tr></thead><tbody>{table}</tbody></table></div>"
+        )
 
     def plot(self, fig: Figure | None = None) -> Figure:
         """A quick four-panel plot (u, omega + du/dxi/2, asymmetry, m against xi)."""
