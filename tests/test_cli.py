@@ -164,3 +164,139 @@ def test_console_script_entry_point_runs_as_a_process():
     )
     assert proc.returncode == 2
     assert proc.stderr.count("\n") == 1 and "eps" in proc.stderr
+
+
+# --------------------------------------------------------------------------- errors contract
+def _one_line_exit_2(capsys, *args):
+    code, out, err = run(capsys, *args)
+    assert code == 2, err
+    assert out == ""
+    assert len(err.strip().splitlines()) == 1
+    assert "Traceback" not in err
+    return err
+
+
+PROFILE = "# geometry: plane\n# eps: 0.05\ndistance_d,u_over_uw\n0.5,0.8\n1.5,0.5\n2.5,0.3\n"
+
+
+@pytest.mark.parametrize("command", ["compare", "fit"])
+def test_a_missing_measured_profile_names_the_file(capsys, tmp_path, command):
+    missing = tmp_path / "nope.csv"
+    err = _one_line_exit_2(capsys, command, str(missing))
+    assert f"cannot read the measured profile {missing}: no such file or directory" in err
+
+
+@pytest.mark.parametrize("command", ["compare", "fit"])
+def test_a_directory_as_measured_profile_names_it(capsys, tmp_path, command):
+    err = _one_line_exit_2(capsys, command, str(tmp_path))
+    assert f"cannot read the measured profile {tmp_path}: is a directory" in err
+
+
+def test_figures_data_file_that_does_not_exist(capsys, tmp_path):
+    missing = tmp_path / "nope.csv"
+    err = _one_line_exit_2(
+        capsys, "figures", "--out", str(tmp_path / "f"), "--only", "1", "--data", f"glass={missing}"
+    )
+    assert f"{missing}: no such file or directory" in err
+
+
+def test_a_malformed_measured_profile_names_the_file_and_the_line(capsys, tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text(PROFILE + "3.5,abc\n")
+    err = _one_line_exit_2(capsys, "compare", str(bad))
+    assert f"{bad}: line 7, column 'u_over_uw': 'abc' is not a number" in err
+    binary = tmp_path / "binary.csv"
+    binary.write_bytes(b"\xff\xfe\x00\x81")
+    assert "not a text (CSV) file" in _one_line_exit_2(capsys, "compare", str(binary))
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["solve", "plane", "--eps", "0.1"],
+        ["thickness", "plane", "--eps", "0.1"],
+        ["compare", "{profile}"],
+        ["fit", "{profile}"],
+    ],
+)
+@pytest.mark.parametrize("where", ["missing-folder", "directory"])
+def test_an_unwritable_out_is_reported_before_any_work(capsys, tmp_path, argv, where):
+    profile = tmp_path / "p.csv"
+    profile.write_text(PROFILE)
+    out = tmp_path / "no" / "such" / "x.json" if where == "missing-folder" else tmp_path
+    args = [a.format(profile=profile) for a in argv] + ["--out", str(out)]
+    err = _one_line_exit_2(capsys, *args)
+    assert f"cannot write --out {out}" in err
+    assert ("no such folder" if where == "missing-folder" else "it is a directory") in err
+
+
+def test_an_unwritable_plot_or_unknown_format(capsys, tmp_path):
+    err = _one_line_exit_2(capsys, "solve", "plane", "--eps", "0.1", "--plot", str(tmp_path))
+    assert f"cannot write --plot {tmp_path}: it is a directory" in err
+    bad = tmp_path / "p.xyz"
+    err = _one_line_exit_2(capsys, "solve", "plane", "--eps", "0.1", "--plot", str(bad))
+    assert "unknown image format 'xyz'" in err and not bad.exists()
+
+
+def test_an_out_folder_that_is_a_file(capsys, tmp_path):
+    a_file = tmp_path / "f"
+    a_file.write_text("")
+    for command in ("figures", "reproduce"):
+        err = _one_line_exit_2(capsys, command, "--out", str(a_file), "--only", "1")
+        assert f"cannot use --out {a_file} as the output folder: it is a file" in err
+
+
+def test_sweep_spec_and_table_that_cannot_be_used(capsys, tmp_path):
+    err = _one_line_exit_2(capsys, "sweep", str(tmp_path / "nope.toml"))
+    assert "cannot read the sweep spec" in err and "no such file or directory" in err
+    err = _one_line_exit_2(capsys, "sweep", str(tmp_path))
+    assert "is a directory" in err
+    spec = tmp_path / "s.toml"
+    spec.write_text("[fixed]\neps = 0.1\n")
+    out = tmp_path / "no" / "t.csv"
+    err = _one_line_exit_2(capsys, "sweep", str(spec), "--out", str(out), "--workers", "1")
+    assert f"cannot write --out {out}: no such folder" in err
+    spec.write_text("chunk = 'x'\n[fixed]\neps = 0.1\n")
+    assert "chunk must be a whole number" in _one_line_exit_2(capsys, "sweep", str(spec))
+    spec.write_text("fixed = 3\n")
+    assert "[fixed] must be a table" in _one_line_exit_2(capsys, "sweep", str(spec))
+    assert "--workers: must be at least 1" in _one_line_exit_2(
+        capsys, "sweep", str(spec), "--workers", "0"
+    )
+
+
+def test_a_model_error_from_a_file_header_names_the_parameter(capsys, tmp_path):
+    bad = tmp_path / "h.csv"
+    bad.write_text(PROFILE.replace("# eps: 0.05", "# eps: abc"))
+    assert "eps must be a number; got 'abc'" in _one_line_exit_2(capsys, "compare", str(bad))
+    assert "B applies to geometry 'plane' only" in _one_line_exit_2(
+        capsys, "compare", str(bad), "--preset", "glass", "--geometry", "couette", "--B", "1"
+    )
+
+
+@pytest.mark.parametrize("error", [RuntimeError, ValueError, ZeroDivisionError, KeyError, OSError])
+def test_a_programming_error_is_not_swallowed(monkeypatch, capsys, error):
+    """Only CosseratError (and usage errors) become exit status 2; a bug propagates."""
+    import cosserat.cli as cli
+
+    def broken(*args, **kwargs):
+        raise error("a bug")
+
+    monkeypatch.setattr(cli, "solve", broken)
+    with pytest.raises(error, match="a bug"):
+        main(["solve", "plane", "--eps", "0.1"])
+    assert capsys.readouterr().err == ""
+
+
+def test_a_bug_in_a_command_shows_as_a_traceback_in_a_process(tmp_path):
+    script = (
+        "import sys, cosserat.cli as c\n"
+        "def broken(args):\n    raise RuntimeError('a bug')\n"
+        "c.cmd_solve = broken\n"
+        "sys.exit(c.main(['solve', 'plane', '--eps', '0.1']))\n"
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=False
+    )
+    assert proc.returncode == 1
+    assert "Traceback" in proc.stderr and "RuntimeError: a bug" in proc.stderr

@@ -118,3 +118,131 @@ def test_sweep_cli(tmp_path, capsys):
     assert len(rows) == 26
     assert set(rows[0]) >= {"delta", "eps", "B", "Delta", "wall_slip", "status", "message"}
     assert "26 cases" in capsys.readouterr().out
+
+
+# --------------------------------------------------------------------------- one build_problem
+SAME = [
+    {"geometry": "plane", "eps": 0.01},
+    {"geometry": "plane", "eps": 0.02, "phi": 30.0, "L": 5.0, "A": 0.0, "delta": 15.0, "K": 0.2},
+    {"geometry": "plane", "eps": 0.04, "delta": "fully-rough", "B": 1.0, "nu": 0.6},
+    {"geometry": "plane", "eps": 0.04, "delta": 10.0, "delta_lower": "fully-rough"},
+    {"geometry": "plane", "eps": 0.04, "delta": 20.0, "delta_lower": 25.0, "K_lower": 0.1},
+    {"geometry": "plane", "eps": 0.04, "delta": 10.0, "delta_lower": 20.0, "m_wall": 0.1},
+    {"geometry": "couette", "eps": 0.05, "Ri": 2.0, "delta": "fully-rough", "K": 0.0},
+]
+OPTION = {"delta_lower": "--delta-lower", "K_lower": "--K-lower", "m_wall": "--m-wall"}
+
+
+def _cli_problem(params):
+    from cosserat.cli import make_parser, problem_from_args
+
+    argv = ["solve", params["geometry"]]
+    for key, value in params.items():
+        if key != "geometry":
+            argv += [OPTION.get(key, f"--{key}"), str(value)]
+    args = make_parser().parse_args(argv)
+    return problem_from_args(args, args.eps)
+
+
+@pytest.mark.parametrize("params", SAME)
+def test_the_cli_and_the_sweep_build_the_same_problem(params):
+    from cosserat.model import build_problem
+
+    from_cli = _cli_problem(params)
+    (case,) = parse_spec({"fixed": dict(params)}).cases
+    from_sweep = build_problem(case)
+    assert from_cli == from_sweep == build_problem(params)
+    assert type(from_cli) is type(from_sweep)
+    assert from_cli.parameters() == from_sweep.parameters()
+
+
+def test_there_is_one_build_problem():
+    import cosserat.cli as cli
+    import cosserat.studies.sweep as sweep
+    from cosserat.model import build_problem
+    from cosserat.model.build import build_problem as built
+
+    assert sweep.build_problem is cli.build_problem is build_problem is built
+
+
+def test_the_defaults_are_the_papers():
+    from cosserat.model import build_problem
+
+    assert build_problem({"eps": 0.1}) == PlaneShear(material=Material(), upper=Wall(), eps=0.1)
+    assert build_problem({"geometry": "couette", "eps": 0.1}) == CouetteFlow(
+        material=Material(), wall=Wall(), eps=0.1, Ri=1.0
+    )
+    assert build_problem({"eps": 0.1, "phi": None, "K_lower": None}) == build_problem({"eps": 0.1})
+
+
+@pytest.mark.parametrize(
+    ("params", "pattern"),
+    [
+        (
+            {"geometry": "annulus", "eps": 0.1},
+            r"geometry must be one of 'plane', 'couette'; got 'annulus'",
+        ),
+        ({"eps": 0.1, "zeta": 1.0}, r"unknown parameter\(s\) zeta; known: geometry, phi"),
+        ({"eps": 0.1, "Phi": 30.0}, r"unknown parameter\(s\) Phi"),
+        ({"phi": 30.0}, r"eps .* must be given"),
+        (
+            {"eps": 0.1, "delta": "smooth"},
+            r"delta must be an angle in degrees or 'fully-rough'; got 'smooth'",
+        ),
+        ({"eps": 0.1, "delta_lower": "x"}, r"delta_lower must be an angle"),
+        ({"eps": 0.1, "phi": True}, r"phi must be a number; got True"),
+        ({"eps": 0.1, "phi": "abc"}, r"phi must be a number; got 'abc'"),
+        ({"eps": 0.1, "K_lower": -1.0}, r"lower wall .*K must satisfy K >= 0; got -1"),
+        ({"eps": 0.1, "geometry": "couette", "B": 1.0}, r"B applies to geometry 'plane' only"),
+        ({"eps": 0.1, "geometry": "couette", "delta_lower": 10.0}, r"delta_lower applies to"),
+        ({"eps": 0.1, "Ri": 2.0}, r"Ri applies to geometry 'couette' only; got Ri = 2.0"),
+    ],
+)
+def test_build_problem_errors_name_the_key(params, pattern):
+    from cosserat.model import build_problem
+
+    with pytest.raises(ParameterError, match=pattern):
+        build_problem(params)
+
+
+def test_a_bad_case_is_an_invalid_row_naming_the_key():
+    spec = parse_spec({"fixed": {"eps": 0.1}, "cases": [{"geometry": "annulus"}, {"phi": "x"}]})
+    rows = run_sweep(spec, workers=1)
+    assert [r["status"] for r in rows] == ["invalid", "invalid"]
+    assert "geometry must be one of 'plane', 'couette'" in rows[0]["message"]
+    assert "phi must be a number" in rows[1]["message"]
+
+
+@pytest.mark.parametrize(
+    ("data", "pattern"),
+    [
+        ({"fixed": 3}, r"\[fixed\] must be a table"),
+        ({"grid": [1]}, r"\[grid\] must be a table"),
+        ({"cases": [1]}, r"\[cases\] must be a table"),
+        ({"cases": "x"}, r"cases must be an array of tables"),
+        ({"fixed": {"eps": 0.1}, "grid": {"delta": []}}, r"grid entry 'delta' is an empty list"),
+        ({"grid": {"eps": {"geomspace": [0, 1, 3]}}}, r"geomspace needs a and b nonzero"),
+        ({"grid": {"eps": {"linspace": [0, 1, "a"]}}}, r"linspace = \[a, b, n\] needs numbers"),
+        ({"fixed": {"eps": 0.1}, "rtol": "x"}, r"rtol must be a number; got 'x'"),
+        ({"fixed": {"eps": 0.1}, "rtol": 1.0}, r"rtol must satisfy 1e-13 <= rtol <= 0.01"),
+        ({"fixed": {"eps": 0.1}, "f": 1.5}, r"f must satisfy 0 < f < 1"),
+        ({"fixed": {"eps": 0.1}, "chunk": 0}, r"chunk must be a whole number >= 1; got 0"),
+        ({"fixed": {"eps": 0.1}, "output": 3}, r"output must be a file name"),
+    ],
+)
+def test_malformed_specs_raise_parameter_error_naming_the_key(data, pattern):
+    with pytest.raises(ParameterError, match=pattern):
+        parse_spec(data)
+
+
+def test_spec_files_that_cannot_be_read(tmp_path):
+    from cosserat.errors import InputError
+
+    with pytest.raises(InputError, match=r"cannot read the sweep spec .*nope.toml: no such file"):
+        load_spec(tmp_path / "nope.toml")
+    with pytest.raises(InputError, match=r"cannot read the sweep spec .*: is a directory"):
+        load_spec(tmp_path)
+    binary = tmp_path / "b.toml"
+    binary.write_bytes(b"\xff\xfe\x00\x81")
+    with pytest.raises(InputError, match=r"not a text \(TOML\) file"):
+        load_spec(binary)

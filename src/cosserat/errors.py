@@ -32,3 +32,10 @@ class MethodNotAvailableError(CosseratError, ValueError):
 
 class ConvergenceError(CosseratError, RuntimeError):
     """A numerical method failed to reach the requested tolerance."""
+
+
+class InputError(CosseratError, ValueError):
+    """An input or output the user named (a file, a folder, an address) cannot be used.
+
+    The message names it and says why (no such file, a directory, permission denied, ...).
+    """

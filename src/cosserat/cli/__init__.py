@@ -1,6 +1,9 @@
 """The ``cosserat`` command line: a thin layer over the API (no physics here).
 
-Bad input exits with status 2 and one line on stderr saying what is wrong.
+Bad input (a :class:`~cosserat.errors.CosseratError`, or a usage error) exits with status 2 and
+one line on stderr saying what is wrong; anything else is a bug and shows as one (a traceback,
+exit status 1). Defaults are the paper's, from :mod:`cosserat.config`, filled in by
+:func:`cosserat.model.build_problem` (the same as for sweeps).
 """
 
 from __future__ import annotations
@@ -13,30 +16,24 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any, NoReturn
 
+from .. import config
 from .._version import __version__
 from ..analysis import thickness_curve, thickness_limit
 from ..analysis.laws import thickness_curve_asymptote
-from ..config import DEFAULT_F
 from ..errors import CosseratError
-from ..model import CouetteFlow, PlaneShear, Problem
-from ..model.parameters import FULLY_ROUGH, Material, Wall
+from ..model import Problem, build_problem
+from ..model.build import DEFAULTS, ROUGH_WORDS
+from ..model.parameters import FULLY_ROUGH
 from ..routes import METHODS, solve
-
-PAPER_DEFAULTS = {
-    "phi": 28.5,
-    "delta": 20.0,
-    "L": 10.0,
-    "A": 1.0 / 3.0,
-    "K": 0.5,
-    "B": 0.0,
-    "nu": 1.0,
-}
-
+from . import files
 
 GEOMETRIES = {
     "plane": "plane shear between parallel walls",
     "couette": "cylindrical Couette flow, inner cylinder turning",
 }
+PRESETS = ("mustard", "poppy", "glass")
+MAX_POINTS = 1_000_000
+"""Most output points ``solve --points`` accepts (more would only exhaust memory)."""
 
 
 class UsageError(Exception):
@@ -49,7 +46,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _angle_or_rough(text: str) -> float | str:
-    if text.lower() in ("rough", "fully-rough", "fully_rough"):
+    if text.strip().lower() in ROUGH_WORDS:
         return FULLY_ROUGH
     try:
         return float(text)
@@ -59,79 +56,82 @@ def _angle_or_rough(text: str) -> float | str:
         ) from None
 
 
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number; got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1; got {value}")
+    return value
+
+
+def _default(name: str) -> str:
+    """The default of parameter ``name`` as help texts show it."""
+    return config.text(DEFAULTS[name])
+
+
 def _add_material_and_walls(p: argparse.ArgumentParser, plane: bool) -> None:
     g = p.add_argument_group("material and walls (defaults: the paper's)")
     g.add_argument(
-        "--phi",
-        type=float,
-        default=PAPER_DEFAULTS["phi"],
-        help="angle of internal friction [deg] (28.5)",
+        "--phi", type=float, help=f"angle of internal friction [deg] ({_default('phi')})"
     )
     wall = g.add_mutually_exclusive_group()
     wall.add_argument(
         "--delta",
         type=_angle_or_rough,
-        default=PAPER_DEFAULTS["delta"],
-        help="angle of wall friction [deg] or 'fully-rough' (20)",
+        help=f"angle of wall friction [deg] or 'fully-rough' ({_default('delta')})",
     )
     wall.add_argument(
         "--fully-rough", action="store_true", help="fully rough wall(s): tan(delta) = sin(phi)"
     )
-    g.add_argument("--L", type=float, default=PAPER_DEFAULTS["L"], help="yield-condition L (10)")
-    g.add_argument(
-        "--A", type=float, default=PAPER_DEFAULTS["A"], help="yield-condition A = a2/a1 (1/3)"
-    )
-    g.add_argument(
-        "--K", type=float, default=PAPER_DEFAULTS["K"], help="wall slip coefficient (0.5)"
-    )
+    g.add_argument("--L", type=float, help=f"yield-condition L ({_default('L')})")
+    g.add_argument("--A", type=float, help=f"yield-condition A = a2/a1 ({_default('A')})")
+    g.add_argument("--K", type=float, help=f"wall slip coefficient ({_default('K')})")
     if not plane:
-        g.add_argument("--Ri", type=float, default=1.0, help="inner radius / gap R_i/H (1)")
+        g.add_argument("--Ri", type=float, help=f"inner radius / gap R_i/H ({_default('Ri')})")
     if plane:
         g.add_argument(
             "--delta-lower",
             type=_angle_or_rough,
-            default=None,
             help="lower wall's delta [deg] or 'fully-rough' (default: = delta)",
         )
-        g.add_argument("--K-lower", type=float, default=None, help="lower wall's K (default: = K)")
+        g.add_argument("--K-lower", type=float, help="lower wall's K (default: = K)")
         g.add_argument(
             "--B",
             type=float,
-            default=PAPER_DEFAULTS["B"],
-            help="gravity parameter rho_p g H / N (0: no gravity)",
+            help=f"gravity parameter rho_p g H / N ({_default('B')}: no gravity)",
         )
-        g.add_argument("--nu", type=float, default=PAPER_DEFAULTS["nu"], help="solids fraction (1)")
+        g.add_argument("--nu", type=float, help=f"solids fraction ({_default('nu')})")
         g.add_argument(
             "--m-wall",
             type=float,
-            default=None,
             help="couple stress m at the non-slipping wall (instead of eqn-nd_bc4)",
         )
 
 
 def _add_solution(p: argparse.ArgumentParser) -> None:
     p.add_argument("--method", choices=METHODS, default="numerical")
-    p.add_argument("--rtol", type=float, default=None, help="numerical tolerance (1e-8)")
-
-
-def build_problem(args: argparse.Namespace, eps: float) -> Problem:
-    """The problem the options describe (geometry from the sub-command)."""
-    material = Material(phi=args.phi, L=args.L, A=args.A)
-    delta = FULLY_ROUGH if args.fully_rough else args.delta
-    upper = Wall(delta, args.K)
-    if args.geometry == "couette":
-        return CouetteFlow(material=material, wall=upper, eps=eps, Ri=args.Ri)
-    lower_delta = delta if args.delta_lower is None else args.delta_lower
-    lower_K = args.K if args.K_lower is None else args.K_lower
-    return PlaneShear(
-        material=material,
-        upper=upper,
-        lower=Wall(lower_delta, lower_K),
-        eps=eps,
-        B=args.B,
-        nu=args.nu,
-        m_fixed_wall=args.m_wall,
+    p.add_argument(
+        "--rtol", type=float, default=None, help=f"numerical tolerance ({config.text(config.RTOL)})"
     )
+
+
+def problem_parameters(args: argparse.Namespace, eps: Any) -> dict[str, Any]:
+    """The named parameters the options give (None: not given, the default applies)."""
+    params: dict[str, Any] = {
+        "geometry": args.geometry,
+        "delta": FULLY_ROUGH if args.fully_rough else args.delta,
+        "eps": eps,
+    }
+    for name in ("phi", "L", "A", "K", "delta_lower", "K_lower", "B", "nu", "m_wall", "Ri"):
+        params[name] = getattr(args, name, None)
+    return params
+
+
+def problem_from_args(args: argparse.Namespace, eps: Any) -> Problem:
+    """The problem the options describe (geometry from the sub-command)."""
+    return build_problem(problem_parameters(args, eps))
 
 
 def _solver_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -145,9 +145,17 @@ def _solver_options(args: argparse.Namespace) -> dict[str, Any]:
 
 def _emit(text: str, out: str | None) -> None:
     if out:
-        Path(out).write_text(text if text.endswith("\n") else text + "\n")
+        files.write_text(text, out)
     else:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """Fail on an unusable --out or --plot before any computation."""
+    if getattr(args, "out", None):
+        files.check_output_file(args.out)
+    if getattr(args, "plot", None):
+        files.check_plot_file(args.plot)
 
 
 def _progress_bar(label: str):  # type: ignore[no-untyped-def]
@@ -167,12 +175,13 @@ def _progress_bar(label: str):  # type: ignore[no-untyped-def]
 
 
 def cmd_solve(args: argparse.Namespace) -> None:
-    problem = build_problem(args, args.eps)
-    if args.points < 3:
-        raise UsageError("--points must be at least 3")
+    problem = problem_from_args(args, args.eps)
+    if not 3 <= args.points <= MAX_POINTS:
+        raise UsageError(f"--points must satisfy 3 <= points <= {MAX_POINTS}; got {args.points}")
+    _check_outputs(args)
     profile = solve(problem, method=args.method, points=args.points, **_solver_options(args))
     if args.plot:
-        profile.plot().savefig(args.plot)
+        files.save_figure(profile.plot(), args.plot)
     if args.format == "csv":
         _emit(profile.to_csv(), args.out)
     else:
@@ -181,9 +190,10 @@ def cmd_solve(args: argparse.Namespace) -> None:
 
 def cmd_thickness(args: argparse.Namespace) -> None:
     eps_values = list(args.eps)
-    problem = build_problem(args, eps_values[0])
+    problem = problem_from_args(args, eps_values[0])
     for e in eps_values[1:]:
         replace(problem, eps=e)  # validate every eps before any solve
+    _check_outputs(args)
     curve = thickness_curve(
         problem,
         eps_values,
@@ -228,20 +238,21 @@ def _stage_bar():  # type: ignore[no-untyped-def]
 def cmd_reproduce(args: argparse.Namespace) -> None:
     from ..paper.reproduce import reproduce
 
+    files.output_folder(args.out)
     out = reproduce(args.out, figures=args.only, workers=args.workers, progress=_stage_bar())
     print(f"wrote {out}/index.html and {out}/report.md")
 
 
 def cmd_figures(args: argparse.Namespace) -> None:
-    from ..analysis.measurements import read_profile
     from ..paper.figures import FIGURES, make_figure
 
     data = {}
     for item in args.data or []:
         key, sep, path = item.partition("=")
-        if not sep or key not in ("mustard", "poppy", "glass"):
+        if not sep or key not in PRESETS:
             raise UsageError(f"--data takes mustard=FILE, poppy=FILE or glass=FILE; got {item!r}")
-        data[key] = read_profile(path)
+        data[key] = files.read_measured(path)
+    files.output_folder(args.out)
     numbers = args.only or list(FIGURES)
     bar = _progress_bar("figures")
     for i, n in enumerate(numbers):
@@ -256,9 +267,11 @@ def _add_data_model(p: argparse.ArgumentParser) -> None:
     p.add_argument("data", help="measured profile CSV (see docs/measurements.md)")
     p.add_argument(
         "--preset",
-        choices=("mustard", "poppy", "glass"),
+        choices=PRESETS,
         default=None,
-        help="the paper's experiments: phi, eps, Ri, K (L = 10, A = 1/3)",
+        help=(
+            f"the paper's experiments: phi, eps, Ri, K (L = {_default('L')}, A = {_default('A')})"
+        ),
     )
     p.add_argument("--geometry", choices=tuple(GEOMETRIES), default=None)
     p.add_argument("--eps", type=float, default=None, help="d_p/H (default: file header)")
@@ -281,59 +294,47 @@ def _add_data_model(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", default=None)
 
 
+# header keys (lower case) of a measured-profile file that describe the cell, by parameter
+_HEADER_KEYS = {"geometry": "geometry", "eps": "eps", "Ri": "ri", "B": "b", "nu": "nu"}
+
+
 def _data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     """The measured profile and the model problem: command line > preset > file header >
-    the paper's defaults."""
-    from ..analysis.measurements import read_profile
-    from ..studies.experiments import PRESETS
+    the paper's defaults (those of :func:`cosserat.model.build_problem`). The header's Ri is
+    used for Couette flow only, its B and nu for plane shear only."""
+    from ..model.build import APPLIES_TO
+    from ..studies.experiments import PRESETS as PRESET_CELLS
 
-    measured = read_profile(args.data)
+    _check_outputs(args)
+    measured = files.read_measured(args.data)
     header = measured.meta
-    preset = PRESETS[args.preset] if args.preset else None
+    preset = PRESET_CELLS[args.preset] if args.preset else None
+    given = problem_parameters(args, args.eps)
 
-    def pick(
-        name: str,
-        header_key: str | None = None,
-        preset_attr: str | None = None,
-        default: object = None,
-    ) -> object:
-        value = getattr(args, name)
-        if value is not None:
-            return value
-        if preset is not None and preset_attr is not None:
-            return getattr(preset, preset_attr)
-        if header_key is not None and header_key in header:
-            return header[header_key]
-        return default
+    def from_file(name: str) -> Any:
+        if preset is not None and name in ("phi", "L", "A", "K", "eps", "Ri"):
+            return getattr(preset, name)
+        return header.get(_HEADER_KEYS.get(name, ""))
 
-    geometry = pick("geometry", "geometry", None, None)
+    geometry = given["geometry"] or from_file("geometry")
+    if geometry is None and preset is not None:
+        geometry = "couette"
     if geometry is None:
-        geometry = "couette" if preset is not None else None
-    if geometry not in GEOMETRIES:
         raise UsageError(
             "give --geometry plane|couette (or a 'geometry:' header line, or --preset)"
         )
-    eps = pick("eps", "eps", "eps")
-    if eps is None:
+    params = {"geometry": geometry}
+    for name, value in given.items():
+        if name == "geometry":
+            continue
+        if value is None and APPLIES_TO.get(name, geometry) == geometry:
+            value = from_file(name)
+        params[name] = value
+    if params["eps"] is None:
         raise UsageError("give --eps (or an 'eps:' header line, or --preset)")
-    ns = argparse.Namespace(
-        geometry=geometry,
-        phi=pick("phi", None, "phi", PAPER_DEFAULTS["phi"]),
-        L=pick("L", None, "L", PAPER_DEFAULTS["L"]),
-        A=pick("A", None, "A", PAPER_DEFAULTS["A"]),
-        K=pick("K", None, "K", PAPER_DEFAULTS["K"]),
-        delta=args.delta if args.delta is not None else PAPER_DEFAULTS["delta"],
-        fully_rough=args.fully_rough,
-        Ri=pick("Ri", "ri", "Ri", 1.0),
-        B=pick("B", "b", None, 0.0),
-        nu=pick("nu", "nu", None, 1.0),
-        delta_lower=args.delta_lower,
-        K_lower=args.K_lower,
-        m_wall=args.m_wall,
-    )
-    if args.delta is None and not args.fully_rough and preset is not None:
-        ns.delta = preset.default_delta
-    return measured, build_problem(ns, float(eps))  # type: ignore[arg-type]
+    if params["delta"] is None and preset is not None:
+        params["delta"] = preset.default_delta
+    return measured, build_problem(params)
 
 
 def cmd_compare(args: argparse.Namespace) -> None:
@@ -344,7 +345,8 @@ def cmd_compare(args: argparse.Namespace) -> None:
     if args.plot:
         from ..viz.plotting import comparison_plot
 
-        comparison_plot(comparison, problem.describe(), residual_panel=True).savefig(args.plot)
+        fig = comparison_plot(comparison, problem.describe(), residual_panel=True)
+        files.save_figure(fig, args.plot)
     if args.format == "json":
         _emit(json.dumps(comparison.to_dict(), allow_nan=False), args.out)
     else:
@@ -379,9 +381,10 @@ def cmd_fit(args: argparse.Namespace) -> None:
     if args.plot:
         from ..viz.plotting import comparison_plot
 
-        comparison_plot(
+        fig = comparison_plot(
             result.comparison, "fit: " + result.problem.describe(), residual_panel=True
-        ).savefig(args.plot)
+        )
+        files.save_figure(fig, args.plot)
     if args.format == "json":
         _emit(json.dumps(result.to_dict(), allow_nan=False), args.out)
     else:
@@ -401,10 +404,12 @@ def cmd_fit(args: argparse.Namespace) -> None:
 def cmd_sweep(args: argparse.Namespace) -> None:
     import time
 
-    from ..studies.sweep import load_spec, run_sweep, write_table
+    from ..studies.sweep import check_table_format, load_spec, run_sweep, write_table
 
     spec = load_spec(args.spec)
     out = args.out or spec.output or str(Path(args.spec).with_suffix(".csv"))
+    check_table_format(out)
+    files.check_output_file(out, "--out" if args.out else "the sweep table")
     start = time.perf_counter()
     rows = run_sweep(
         spec, workers=args.workers, scheduler=args.scheduler, progress=_progress_bar("sweep")
@@ -430,7 +435,12 @@ def make_parser() -> argparse.ArgumentParser:
         _add_material_and_walls(sp, plane=geometry == "plane")
         sp.add_argument("--eps", type=float, required=True, help="grain diameter / gap d_p/H")
         _add_solution(sp)
-        sp.add_argument("--points", type=int, default=201, help="output points (layers resolved)")
+        sp.add_argument(
+            "--points",
+            type=int,
+            default=config.OUTPUT_POINTS,
+            help=f"output points, layers resolved ({config.OUTPUT_POINTS})",
+        )
         sp.add_argument("--format", choices=("json", "csv"), default="json")
         sp.add_argument("--out", default=None, help="write to this file instead of stdout")
         sp.add_argument("--plot", default=None, help="also save a quick plot (PNG/PDF)")
@@ -442,7 +452,12 @@ def make_parser() -> argparse.ArgumentParser:
         tp = th_geo.add_parser(geometry, help=helptext)
         _add_material_and_walls(tp, plane=geometry == "plane")
         tp.add_argument("--eps", type=float, nargs="+", required=True)
-        tp.add_argument("--f", type=float, default=DEFAULT_F, help="fraction defining Delta (0.05)")
+        tp.add_argument(
+            "--f",
+            type=float,
+            default=config.DEFAULT_F,
+            help=f"fraction defining Delta ({config.text(config.DEFAULT_F)})",
+        )
         _add_solution(tp)
         tp.add_argument("--format", choices=("json", "csv"), default="json")
         tp.add_argument("--out", default=None)
@@ -458,7 +473,9 @@ def make_parser() -> argparse.ArgumentParser:
         metavar="N",
         help="only these figures (1-14)",
     )
-    rp.add_argument("--workers", type=int, default=None, help="worker processes (default: cores)")
+    rp.add_argument(
+        "--workers", type=_positive_int, default=None, help="worker processes (default: cores)"
+    )
     rp.set_defaults(func=cmd_reproduce)
 
     cp = sub.add_parser("compare", help="the model beside a measured velocity profile")
@@ -475,7 +492,9 @@ def make_parser() -> argparse.ArgumentParser:
     sw = sub.add_parser("sweep", help="run a parameter sweep from a TOML spec")
     sw.add_argument("spec", help="TOML file (see cosserat.sweep)")
     sw.add_argument("--out", default=None, help="table to write (.csv or .parquet)")
-    sw.add_argument("--workers", type=int, default=None, help="local processes (default: cores)")
+    sw.add_argument(
+        "--workers", type=_positive_int, default=None, help="local processes (default: cores)"
+    )
     sw.add_argument(
         "--scheduler",
         default=None,
@@ -504,9 +523,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise UsageError(f"--f must satisfy 0 < f < 1; got {args.f:g}")
         args.func(args)
     except UsageError as exc:
-        print(str(exc), file=sys.stderr)
+        print(" ".join(str(exc).split()), file=sys.stderr)
         return 2
-    except (CosseratError, ValueError, ArithmeticError) as exc:
+    except CosseratError as exc:  # a model or input problem; anything else is a bug
         message = " ".join(str(exc).split()) or type(exc).__name__
         print(f"cosserat: error: {message}", file=sys.stderr)
         return 2

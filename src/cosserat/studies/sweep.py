@@ -21,7 +21,10 @@ Spec (``cosserat sweep SPEC.toml``)::
     delta = 22.0
 
 Parameters: phi, L, A [material]; delta, K [the moving wall; "fully-rough" allowed];
-delta_lower, K_lower, B, nu, m_wall [plane]; Ri [Couette]; eps. Defaults are the paper's.
+delta_lower, K_lower, B, nu, m_wall [plane]; Ri [Couette]; eps. Defaults are the paper's
+(:data:`cosserat.model.build.DEFAULTS`, from :mod:`cosserat.config`), and every case is built
+by :func:`cosserat.model.build_problem`, as on the command line. ``rtol`` and ``f`` default to
+``config.RTOL`` and ``config.DEFAULT_F``.
 
 Every case gives a row: its parameters, Delta, wall_slip, wall_omega, wall_stress, and
 ``status`` ("ok"; "no-solution": the model has no real solution; "error": the solver could not
@@ -45,37 +48,12 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import CosseratError, ParameterError
-from ..model import CouetteFlow, PlaneShear, Problem
-from ..model.parameters import FULLY_ROUGH, Material, Wall
+from .. import config
+from ..errors import CosseratError, InputError, ParameterError
+from ..model import Problem, build_problem
+from ..model.build import DEFAULTS, PARAMETERS
 from ..numerics.runtime import process_pool
 
-DEFAULTS: dict[str, Any] = {
-    "geometry": "plane",
-    "phi": 28.5,
-    "L": 10.0,
-    "A": 1.0 / 3.0,
-    "delta": 20.0,
-    "K": 0.5,
-    "B": 0.0,
-    "nu": 1.0,
-    "Ri": 1.0,
-}
-PARAMETERS = (
-    "geometry",
-    "phi",
-    "L",
-    "A",
-    "delta",
-    "K",
-    "delta_lower",
-    "K_lower",
-    "B",
-    "nu",
-    "m_wall",
-    "Ri",
-    "eps",
-)
 RESULTS = ("Delta", "wall_slip", "wall_omega", "wall_stress", "status", "message")
 
 
@@ -84,21 +62,40 @@ class SweepSpec:
     """A parsed sweep: the cases (parameter dicts) and how to run them."""
 
     cases: list[dict[str, Any]]
-    rtol: float = 1e-8
-    f: float = 0.05
+    rtol: float = config.RTOL
+    f: float = config.DEFAULT_F
     output: str | None = None
     chunk: int = 64
     columns: list[str] = field(default_factory=list)
 
 
 def _values(name: str, spec: Any) -> list[Any]:
+    """The values of grid entry ``name``: a list, one value, or {geomspace|linspace = [a, b, n]}."""
     if isinstance(spec, list):
+        if not spec:
+            raise ParameterError(f"grid entry {name!r} is an empty list: give at least one value")
         return spec
     if isinstance(spec, dict) and len(spec) == 1:
         ((kind, args),) = spec.items()
         if kind in ("geomspace", "linspace") and isinstance(args, list) and len(args) == 3:
+            a, b, n = args
+            if (
+                any(isinstance(v, bool) or not isinstance(v, int | float) for v in (a, b))
+                or isinstance(n, bool)
+                or not isinstance(n, int)
+                or n < 1
+            ):
+                raise ParameterError(
+                    f"grid entry {name!r}: {kind} = [a, b, n] needs numbers a, b and a whole "
+                    f"number n >= 1; got {args!r}"
+                )
+            if kind == "geomspace" and (a == 0 or b == 0 or (a < 0) != (b < 0)):
+                raise ParameterError(
+                    f"grid entry {name!r}: geomspace needs a and b nonzero and of the same sign; "
+                    f"got {args!r}"
+                )
             fn = np.geomspace if kind == "geomspace" else np.linspace
-            return [float(v) for v in fn(float(args[0]), float(args[1]), int(args[2]))]
+            return [float(v) for v in fn(float(a), float(b), n)]
     if isinstance(spec, int | float | str):
         return [spec]
     raise ParameterError(
@@ -107,17 +104,49 @@ def _values(name: str, spec: Any) -> list[Any]:
     )
 
 
+def _table(where: str, value: Any) -> dict[str, Any]:
+    if not isinstance(value, dict):
+        raise ParameterError(
+            f"[{where}] must be a table of parameter = value; got {type(value).__name__} {value!r}"
+        )
+    return value
+
+
+def _number(key: str, value: Any, lo: float, hi: float, closed: bool = False) -> float:
+    """A top-level number of the spec, ``lo < value < hi`` (``<=`` if ``closed``)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ParameterError(f"{key} must be a number; got {value!r}")
+    x = float(value)
+    ok = lo <= x <= hi if closed else lo < x < hi
+    if not ok:
+        op = "<=" if closed else "<"
+        raise ParameterError(f"{key} must satisfy {lo:g} {op} {key} {op} {hi:g}; got {x:g}")
+    return x
+
+
 def parse_spec(data: dict[str, Any]) -> SweepSpec:
-    """Build a :class:`SweepSpec` from the parsed TOML (errors name the offending key)."""
+    """Build a :class:`SweepSpec` from the parsed TOML (errors name the offending key).
+
+    Raises
+    ------
+    ParameterError
+        An unknown key or parameter, a table or grid entry of the wrong form, a case without
+        eps, or ``rtol`` (within ``config.RTOL_RANGE``), ``f`` (0 < f < 1), ``chunk`` (>= 1) or
+        ``output`` (a file name) out of bounds. A parameter *value* out of bounds is not an
+        error here: that case gives a row with status "invalid".
+    """
     known = {"geometry", "rtol", "f", "output", "chunk", "fixed", "grid", "cases"}
     unknown = set(data) - known
     if unknown:
         raise ParameterError(f"unknown top-level key(s) in the sweep spec: {sorted(unknown)}")
-    fixed = dict(data.get("fixed", {}))
+    fixed = dict(_table("fixed", data.get("fixed", {})))
     if "geometry" in data:
         fixed.setdefault("geometry", data["geometry"])
-    grid = data.get("grid", {})
+    grid = _table("grid", data.get("grid", {}))
     listed = data.get("cases", [])
+    if not isinstance(listed, list):
+        raise ParameterError(f"cases must be an array of tables ([[cases]]); got {listed!r}")
+    listed = [_table("cases", c) for c in listed]
     for where, table in [("fixed", fixed), ("grid", grid), *[("cases", c) for c in listed]]:
         bad = set(table) - set(PARAMETERS)
         if bad:
@@ -136,47 +165,44 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
         if "eps" not in c:
             raise ParameterError(f"case {i}: no eps (give it in [fixed], [grid] or [[cases]])")
     columns = [p for p in PARAMETERS if any(p in c for c in cases)]
-    return SweepSpec(
-        cases,
-        float(data.get("rtol", 1e-8)),
-        float(data.get("f", 0.05)),
-        data.get("output"),
-        int(data.get("chunk", 64)),
-        columns,
-    )
+    rtol = _number("rtol", data.get("rtol", config.RTOL), *config.RTOL_RANGE, closed=True)
+    f = _number("f", data.get("f", config.DEFAULT_F), 0.0, 1.0)
+    chunk = data.get("chunk", 64)
+    if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
+        raise ParameterError(f"chunk must be a whole number >= 1; got {chunk!r}")
+    output = data.get("output")
+    if output is not None and (not isinstance(output, str) or not output.strip()):
+        raise ParameterError(f"output must be a file name (.csv or .parquet); got {output!r}")
+    return SweepSpec(cases, rtol, f, output, chunk, columns)
 
 
 def load_spec(path: str | Path) -> SweepSpec:
+    """Read and parse a sweep spec (TOML).
+
+    Raises
+    ------
+    InputError
+        The file cannot be read (missing, a directory, no permission, not text).
+    ParameterError
+        Not valid TOML, or a spec :func:`parse_spec` rejects.
+    """
     try:
-        data = tomllib.loads(Path(path).read_text())
+        text = Path(path).read_text()
+    except OSError as exc:
+        raise InputError(f"cannot read the sweep spec {path}: {_reason(exc)}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"cannot read the sweep spec {path}: not a text (TOML) file") from None
+    try:
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ParameterError(f"{path}: not valid TOML: {exc}") from None
     return parse_spec(data)
 
 
-def build_problem(case: dict[str, Any]) -> Problem:
-    """The problem of one case (raises ParameterError naming the bad value)."""
-    material = Material(case["phi"], L=case["L"], A=case["A"])
-    delta = FULLY_ROUGH if str(case["delta"]).lower() in ("fully-rough", "rough") else case["delta"]
-    wall = Wall(delta, case["K"])
-    if case["geometry"] == "couette":
-        return CouetteFlow(material=material, wall=wall, eps=case["eps"], Ri=case["Ri"])
-    if case["geometry"] != "plane":
-        raise ParameterError(f"geometry must be 'plane' or 'couette'; got {case['geometry']!r}")
-    lower = None
-    if case.get("delta_lower") is not None or case.get("K_lower") is not None:
-        dl = case.get("delta_lower", case["delta"])
-        dl = FULLY_ROUGH if str(dl).lower() in ("fully-rough", "rough") else dl
-        lower = Wall(dl, case.get("K_lower", case["K"]))
-    return PlaneShear(
-        material=material,
-        upper=wall,
-        lower=lower,
-        eps=case["eps"],
-        B=case["B"],
-        nu=case["nu"],
-        m_fixed_wall=case.get("m_wall"),
-    )
+def _reason(exc: OSError) -> str:
+    """The operating system's reason, lower case ("no such file or directory")."""
+    reason = exc.strerror or str(exc) or type(exc).__name__
+    return reason[:1].lower() + reason[1:]
 
 
 def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[dict[str, Any]]:
@@ -191,7 +217,7 @@ def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[di
         try:
             problems.append(build_problem(case))
             slots.append(len(rows))
-        except (CosseratError, KeyError, TypeError) as exc:
+        except CosseratError as exc:  # build_problem raises ParameterError for any bad value
             row.update(status="invalid", message=" ".join(str(exc).split()))
         rows.append(row)
     for slot, res in zip(slots, wall_quantities(problems, rtol=rtol, f=f), strict=True):
@@ -236,7 +262,13 @@ def run_sweep(
             raise ParameterError(
                 "--scheduler needs Dask: pip install 'cosserat-granular[dask]'"
             ) from None
-        with Client(scheduler) as client:
+        try:
+            client = Client(scheduler)
+        except (OSError, ValueError, TypeError) as exc:  # includes timeouts and bad addresses
+            raise InputError(
+                f"cannot connect to the Dask scheduler at {scheduler!r}: {exc}"
+            ) from None
+        with client:
             futures = [client.submit(run_chunk, c, spec.rtol, spec.f, pure=False) for c in chunks]
             index = {fut.key: i for i, fut in enumerate(futures)}
             for fut in dask_completed(futures):
@@ -252,27 +284,47 @@ def run_sweep(
     return [row for rows in results for row in (rows or [])]
 
 
-def write_table(rows: Iterable[dict[str, Any]], path: str | Path, columns: Sequence[str]) -> Path:
-    """Tidy table, one row per case: CSV, or Parquet for a ``.parquet`` path (pyarrow)."""
-    path = Path(path)
-    cols = [*columns, *RESULTS]
-    rows = list(rows)
-    if path.suffix == ".parquet":
+def check_table_format(path: str | Path) -> None:
+    """Raise :class:`ParameterError` now if :func:`write_table` could not write this format
+    (``.parquet`` without pyarrow), so that a long sweep does not fail at its end."""
+    if Path(path).suffix == ".parquet":
         try:
-            import pyarrow as pa
-            import pyarrow.parquet as pq
+            import pyarrow.parquet  # noqa: F401
         except ImportError:
             raise ParameterError(
                 "writing .parquet needs pyarrow (pip install pyarrow); or write .csv"
             ) from None
-        table = pa.table({c: [r.get(c) for r in rows] for c in cols})
-        pq.write_table(table, path)
-        return path
-    with path.open("w", newline="") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(cols)
-        for r in rows:
-            writer.writerow(["" if r.get(c) is None else _fmt(r.get(c)) for c in cols])
+
+
+def write_table(rows: Iterable[dict[str, Any]], path: str | Path, columns: Sequence[str]) -> Path:
+    """Tidy table, one row per case: CSV, or Parquet for a ``.parquet`` path (pyarrow).
+
+    Raises
+    ------
+    ParameterError
+        ``.parquet`` without pyarrow installed.
+    InputError
+        The file cannot be written (no such folder, a directory, permission denied).
+    """
+    path = Path(path)
+    cols = [*columns, *RESULTS]
+    rows = list(rows)
+    check_table_format(path)
+    try:
+        if path.suffix == ".parquet":
+            import pyarrow as pa
+            import pyarrow.parquet as pq
+
+            table = pa.table({c: [r.get(c) for r in rows] for c in cols})
+            pq.write_table(table, path)
+            return path
+        with path.open("w", newline="") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(cols)
+            for r in rows:
+                writer.writerow(["" if r.get(c) is None else _fmt(r.get(c)) for c in cols])
+    except OSError as exc:
+        raise InputError(f"cannot write the sweep table {path}: {_reason(exc)}") from None
     return path
 
 

@@ -1,0 +1,97 @@
+"""Files the command line reads and writes, with the operating system's failures turned into
+:class:`~cosserat.errors.InputError` naming the file and the reason (exit status 2, one line).
+
+Outputs are checked before any computation (``check_*``), so that a long run does not fail at
+its end for a mistyped path; the writes themselves are guarded too.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputError
+
+
+def reason(exc: OSError) -> str:
+    """The operating system's reason, lower case ("no such file or directory")."""
+    text = exc.strerror or str(exc) or type(exc).__name__
+    return text[:1].lower() + text[1:]
+
+
+def read_measured(path: str, what: str = "measured profile") -> Any:
+    """:func:`cosserat.analysis.measurements.read_profile` of the file ``path``.
+
+    Raises
+    ------
+    InputError
+        The file does not exist, is a directory, cannot be read, or is not text.
+    MeasurementError
+        Its content is malformed (the message starts with the file name).
+    """
+    from ..analysis.measurements import MeasurementError, read_profile
+
+    try:
+        return read_profile(Path(path))
+    except OSError as exc:
+        raise InputError(f"cannot read the {what} {path}: {reason(exc)}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"cannot read the {what} {path}: not a text (CSV) file") from None
+    except MeasurementError as exc:
+        raise MeasurementError(f"{path}: {exc}") from None
+
+
+def check_output_file(path: str, option: str = "--out") -> None:
+    """Raise :class:`InputError` unless ``path`` can be created or overwritten as a file."""
+    p = Path(path)
+    folder = p.parent
+    if p.is_dir():
+        raise InputError(f"cannot write {option} {path}: it is a directory")
+    if not folder.is_dir():
+        raise InputError(f"cannot write {option} {path}: no such folder {folder}")
+    if not os.access(folder, os.W_OK | os.X_OK) or (p.exists() and not os.access(p, os.W_OK)):
+        raise InputError(f"cannot write {option} {path}: permission denied")
+
+
+def write_text(text: str, path: str, option: str = "--out") -> None:
+    """Write ``text`` (ending in a newline) to ``path``; failures as :class:`InputError`."""
+    try:
+        Path(path).write_text(text if text.endswith("\n") else text + "\n")
+    except OSError as exc:
+        raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
+
+
+def check_plot_file(path: str, option: str = "--plot") -> None:
+    """Raise :class:`InputError` unless matplotlib can write ``path`` (format and folder)."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    suffix = Path(path).suffix.lower().lstrip(".")
+    formats = FigureCanvasBase.get_supported_filetypes()
+    if suffix and suffix not in formats:
+        raise InputError(
+            f"cannot write {option} {path}: unknown image format {suffix!r}; use one of "
+            f"{', '.join(sorted(formats))}"
+        )
+    check_output_file(path, option)
+
+
+def save_figure(fig: Any, path: str, option: str = "--plot") -> None:
+    """``fig.savefig(path)``; failures to write as :class:`InputError`."""
+    try:
+        fig.savefig(path)
+    except OSError as exc:
+        raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
+
+
+def output_folder(path: str, option: str = "--out") -> Path:
+    """Create the folder ``path`` if needed; :class:`InputError` if it cannot be written."""
+    p = Path(path)
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        why = "it is a file" if isinstance(exc, FileExistsError) else reason(exc)
+        raise InputError(f"cannot use {option} {path} as the output folder: {why}") from None
+    if not os.access(p, os.W_OK | os.X_OK):
+        raise InputError(f"cannot use {option} {path} as the output folder: permission denied")
+    return p
