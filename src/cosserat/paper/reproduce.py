@@ -18,9 +18,10 @@ from concurrent.futures import as_completed
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from .. import config
 from ..analysis.sensitivity import existence_bound_A
 from ..model import PlaneShear
-from ..model.parameters import Material, Wall
+from ..model.parameters import Wall
 from ..numerics.runtime import process_pool
 from ..routes.airy import xi_hat_at_fraction
 from .figures import FIGURES, FigureData, make_figure
@@ -95,7 +96,7 @@ def _claims(figures: dict[int, FigureData]) -> list[Claim]:
             "25.5",
             f"{MATERIAL.fully_rough_delta:.4f}",
             "fig. 14 caption",
-            "atan(sin 28.5 deg)",
+            f"atan(sin {config.text(config.PHI)} deg)",
         )
     )
     if 12 in figures:
@@ -110,7 +111,7 @@ def _claims(figures: dict[int, FigureData]) -> list[Claim]:
             )
         )
         alt = existence_bound_A(
-            PlaneShear(material=Material(28.5), upper=Wall.fully_rough(0.5), eps=0.02, B=1.0)
+            PlaneShear(material=MATERIAL, upper=Wall.fully_rough(), eps=0.02, B=1.0)
         )
         claims.append(
             Claim(
