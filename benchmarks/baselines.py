@@ -13,10 +13,19 @@ non-finite values, are reported as success=False with a message.
 
 Functions
 ---------
-bvp_plane_gravity(problem, tol, *, xi=None)       solve_bvp, plane shear under gravity
-bvp_couette(problem, tol, *, xi=None)             solve_bvp with unknown parameter m(0), Couette
+bvp_plane_gravity(problem, tol, *, xi=None, naive=False)   solve_bvp, plane shear (layer at
+                                                  the upper wall, lower wall fixed), any B
+bvp_plane_symmetric(problem, tol, *, xi=None)     solve_bvp on the upper half, both walls slip
+bvp_couette(problem, tol, *, xi=None, naive=False)  solve_bvp with unknown parameter m(0), Couette
+                                                  (naive: True or "outer-m")
 lsoda_shooting_plane_gravity(problem, rtol, *, xi=None)   one LSODA pass + linear rescaling
 lsoda_shooting_couette(problem, rtol, *, xi=None)         LSODA from the outer wall + secant on m(0)
+
+``naive=True`` (and ``bvp_plane_symmetric`` always) is the plain use of ``solve_bvp`` the way a
+user would write it: a uniform mesh of 101 points across the gap and a crude start (uniform shear:
+u linear between the wall velocities, omega = -1/2, m constant at its one known boundary value, or
+0), nothing from the asymptotics. Without it, the start is the package's leading-order asymptotic
+solution on a mesh graded into the layer, which is what makes solve_bvp converge at small eps.
 
 ``x0`` (optional, solve_bvp only): initial mesh instead of the default graded one (uniform
 bulk points plus points at spacing eps/(2k) across 40 eps/k at the slipping wall).
@@ -225,6 +234,61 @@ def bvp_plane_gravity(problem, tol, *, xi=None, x0=None, naive=False):
         return _failure(f"exception: {exc!r}\n{traceback.format_exc(limit=3)}")
 
 
+def bvp_plane_symmetric(problem, tol, *, xi=None):
+    """solve_bvp for plane shear without gravity where both walls slip (the symmetric case).
+
+    The plain formulation of the paper (eqn-nd_bc6): the upper half [1/2, 1] with m(1/2) = 0,
+    u(1/2) = u_c = (1 + eps (K_u - K_l) omega(1))/2 and u(1) = 1 + eps K_u omega(1); the lower half
+    by symmetry (m and u - u_c odd, omega even about 1/2). Crude start: m = 0, u = xi,
+    omega = -1/2 on a uniform mesh of 51 points (101 across the gap). ``tol`` as in
+    :func:`bvp_plane_gravity`.
+    """
+    try:
+        mat = problem.material
+        if float(problem.B) != 0.0 or getattr(problem.case, "name", "") != "SYMMETRIC":
+            raise ValueError("bvp_plane_symmetric needs the symmetric case (no gravity)")
+        P = dict(
+            A=float(mat.A),
+            alpha=float(mat.alpha),
+            sphi=float(mat.sin_phi),
+            eps=float(problem.eps),
+            Bnu=0.0,
+            syx=float(problem.sigma_yx),
+        )
+        rhs, radicand = _plane_rhs_factory(P)
+        eps = P["eps"]
+        Ku, Kl = float(problem.upper.K), float(problem.lower_wall.K)
+        x0 = np.linspace(0.5, 1.0, 51)
+        y0 = np.vstack([np.zeros_like(x0), x0.copy(), np.full_like(x0, -0.5)])
+
+        def bc(ya, yb):
+            u_c = 0.5 * (1.0 + eps * (Ku - Kl) * yb[2])
+            return np.array([ya[0], ya[1] - u_c, yb[1] - 1.0 - eps * Ku * yb[2]])
+
+        with np.errstate(all="ignore"):
+            sol = solve_bvp(rhs, bc, x0, y0, tol=tol, bc_tol=tol, max_nodes=100000)
+            if xi is None:
+                x = np.concatenate([1.0 - sol.x[::-1][:-1], sol.x])
+            else:
+                x = np.asarray(xi, dtype=float)
+            h = np.where(x >= 0.5, x, 1.0 - x)
+            y = sol.sol(h)
+            low = x < 0.5
+            u_c = float(sol.y[1, 0])
+            m = np.where(low, -y[0], y[0])
+            u = np.where(low, 2.0 * u_c - y[1], y[1])
+            S_min = float(np.min(radicand(sol.x, sol.y[0])))
+        success = sol.status == 0
+        msg = f"solve_bvp status {sol.status}: {sol.message}"
+        scale = 2.0 * (P["A"] + 1.0) * P["sphi"] ** 2
+        if success and S_min < -_RADICAND_TOL * scale:
+            success = False
+            msg += f"; but the radicand is negative (min S = {S_min:.3g}): not a real solution"
+        return _result(x, u, y[2], m, success, msg, sol.x.size, S_min=S_min, niter=int(sol.niter))
+    except Exception as exc:  # never raise
+        return _failure(f"exception: {exc!r}\n{traceback.format_exc(limit=3)}")
+
+
 def _fine_grid(eps, k, layer_at, n=2001):
     return _graded_mesh(eps, k, layer_at, n_bulk=n // 2 + 1, n_layer=n // 2, span=60.0)
 
@@ -335,21 +399,36 @@ def _couette_funcs(P):
     return rhs, m_rhs, outer_m, s_rt, radicand
 
 
-def bvp_couette(problem, tol, *, xi=None, x0=None):
+def bvp_couette(problem, tol, *, xi=None, x0=None, naive=False):
     """solve_bvp for Couette flow: y = [m, u, omega], parameter p = [m(0)].
 
     BCs: m(0) = p; s_rt(1) = s_tr(1); u(1) = 0; u(0) = -1 - eps K omega(0).
+    ``naive``: start from uniform shear (u = xi - 1, omega = -1/2) on a uniform 101-point mesh
+    instead of the leading-order asymptotic solution on a graded mesh, with m = p = 0 (True) or
+    m = the leading-order outer couple stress, p its value at xi = 0 (``"outer-m"``).
     """
     try:
         P = _couette_params(problem)
         rhs, _, _, s_rt, radicand = _couette_funcs(P)
         A, alpha, sphi, eps, tand, K = (P[k] for k in ("A", "alpha", "sphi", "eps", "tand", "K"))
         _, _, k = _wall_k(tand, A, sphi, alpha)
-        x0 = _graded_mesh(eps, k, layer_at=0.0) if x0 is None else np.asarray(x0, dtype=float)
-        m_init = np.asarray(problem.outer_couple_stress(x0), dtype=float)
-        e = np.exp(-k * x0 / eps)
-        y0 = np.vstack([m_init, -(2.0 / k) / (K + 2.0 / k) * e, -1.0 / (eps * (K + 2.0 / k)) * e])
-        p0 = np.array([m_init[0]])
+        if naive:
+            x0 = np.linspace(0.0, 1.0, 101)
+            m_init = (
+                np.asarray(problem.outer_couple_stress(x0), dtype=float)
+                if naive == "outer-m"
+                else np.zeros_like(x0)
+            )
+            y0 = np.vstack([m_init, x0 - 1.0, np.full_like(x0, -0.5)])
+            p0 = np.array([m_init[0]])
+        else:
+            x0 = _graded_mesh(eps, k, layer_at=0.0) if x0 is None else np.asarray(x0, float)
+            m_init = np.asarray(problem.outer_couple_stress(x0), dtype=float)
+            e = np.exp(-k * x0 / eps)
+            y0 = np.vstack(
+                [m_init, -(2.0 / k) / (K + 2.0 / k) * e, -1.0 / (eps * (K + 2.0 / k)) * e]
+            )
+            p0 = np.array([m_init[0]])
 
         def fun(x, y, p):
             return rhs(x, y, p[0])

@@ -7,8 +7,10 @@ One scalar stiff problem, y' = -(y - cos t) / 1e-3 on [0, 1], y(0) = 0, integrat
 * the same kernel called in a compiled loop (the cost of the integration alone, without the
   Python call and the boxing of the returned arrays);
 * ``scipy.integrate.solve_ivp(method="Radau")`` with the analytic Jacobian;
-* the pure-Python ``cosserat.solvers.radau_scalar.radau_scalar`` (finite-difference Jacobian,
-  as it always uses), if that module is still present.
+* v0.1.0's pure-Python ``cosserat.solvers.radau_scalar.radau_scalar`` (finite-difference
+  Jacobian, as it always uses), which the compiled core replaced: loaded from a v0.1.0 checkout
+  (``$COSSERAT_V010`` or /work/v010/src) under another package name, so that it sits beside the
+  new ``cosserat``; its row is left out if there is no such checkout.
 
 Prints, for a few tolerances, the accepted steps of each and the time per call and per step.
 """
@@ -17,7 +19,10 @@ from __future__ import annotations
 
 import importlib
 import math
+import os
+import sys
 import time
+import types
 from collections.abc import Callable
 from functools import partial
 
@@ -74,20 +79,34 @@ def per_call(fn: Callable[[], object], budget: float = 0.5) -> float:
     return best
 
 
+def v010_radau_scalar() -> Callable[..., object] | None:
+    """v0.1.0's pure-Python radau_scalar, imported from a v0.1.0 checkout as ``cosserat_v010``.
+
+    Only the modules it needs run (its package ``__init__`` files are replaced by empty
+    modules), so nothing of the old package shadows the new one.
+    """
+    root = os.path.join(os.environ.get("COSSERAT_V010", "/work/v010/src"), "cosserat")
+    if not os.path.isfile(os.path.join(root, "solvers", "radau_scalar.py")):
+        return None
+    for name, path in (("cosserat_v010", root), ("cosserat_v010.solvers", f"{root}/solvers")):
+        if name not in sys.modules:
+            module = types.ModuleType(name)
+            module.__path__ = [path]
+            sys.modules[name] = module
+    try:
+        return importlib.import_module("cosserat_v010.solvers.radau_scalar").radau_scalar  # type: ignore[no-any-return]
+    except ImportError:
+        return None
+
+
 def main() -> None:
     t = time.perf_counter()
     solve(1e-6, 1e-8)
     solve_many(1e-6, 1e-8, 1)
     print(f"first calls (cache load or compilation): {time.perf_counter() - t:.2f} s")
-    radau_scalar = None
-    for module in ("cosserat.routes.radau_scalar", "cosserat.solvers.radau_scalar"):
-        try:  # the pure-Python integrator that radau5 replaces, while it still exists
-            radau_scalar = importlib.import_module(module).radau_scalar
-            break
-        except ImportError:
-            pass
+    radau_scalar = v010_radau_scalar()
     if radau_scalar is None:
-        print("radau_scalar not found in this checkout: its row is left out")
+        print("no v0.1.0 checkout with radau_scalar ($COSSERAT_V010): its row is left out")
 
     def f_py(t: float, y: np.ndarray) -> np.ndarray:
         return -(y - math.cos(t)) / EPS_STIFF
@@ -116,7 +135,7 @@ def main() -> None:
         rows.append(("solve_ivp(method='Radau')", len(sol.t) - 1, per_call(partial(ivp, jac=j_py))))
         if radau_scalar is not None:
             call = partial(radau_scalar, f_scalar, 0.0, T_END, 0.0, rtol, atol)
-            rows.append(("radau_scalar (pure Python)", call().steps, per_call(call)))
+            rows.append(("radau_scalar (v0.1.0, pure Python)", call().steps, per_call(call)))
         rows[1] = (rows[1][0], steps, rows[1][2] / reps)
         for name, n_steps, sec in rows:
             us = sec * 1e6

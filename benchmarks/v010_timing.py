@@ -38,6 +38,23 @@ What is timed (all on one core, numerical route, phi = 28.5 deg, L = 10, A = 1/3
    * 200 Couette cases: delta in (10, 15, 20, 25) x Ri in (0.5, 1, 2, 5, 10) x eps in
      geomspace(0.05, 1e-6, 10).
 
+``--serve`` instead answers timing requests, one JSON object a line on stdin, one a line on
+stdout, so that ``benchmarks/run.py`` can interleave v0.1.0's timings with the new code's
+(new, old, new, old, ...: a shared machine's load moves both alike). Requests::
+
+    {"op": "profile", "case": "P1", "eps": 0.04, "kind": "cheap" | "full", "min_time": 0.2}
+        -> {"seconds": per-call mean of one timeit run, "number": calls in it}
+    {"op": "stats", "case": "P1", "eps": 0.04}
+        -> {"stats": the diagnostics' statistics of the cheap solve}
+    {"op": "curve", "route": "thickness_curve" | "wall_quantities", "rtol": 1e-8}
+        -> {"seconds": one run, "solved": Delta found}
+    {"op": "sweep", "plane": [[delta, eps, B], ...], "couette": [[delta, eps, Ri], ...]}
+        -> {"seconds": one wall_quantities call, "status": {status: count}}
+    {"op": "quit"}
+
+The number of calls of a profile request is chosen by ``timeit.Timer.autorange`` on its first
+request and kept for the later ones. Anything v0.1.0 prints goes to stderr.
+
 Prints Markdown tables in the style of ``benchmarks/run.py``; ``--json`` writes
 ``{case: seconds}`` with the keys ``"P1/eps=0.04/cheap"``, ``"P1/eps=0.04/full"``, ...,
 ``"curve/thickness_curve/rtol=1e-08"``, ``"curve/wall_quantities/rtol=1e-08"``, ...,
@@ -247,11 +264,90 @@ def sweeps(results: dict[str, float], repeat: int) -> None:
     print(table(rows, ["geometry", "cases", "time [s]", "cases per second", "status"]))
 
 
+def serve() -> None:
+    """Answer timing requests on stdin/stdout (module docstring, ``--serve``)."""
+    from cosserat import CouetteFlow, Material, PlaneShear, Wall, solve
+    from cosserat.analysis import thickness_curve
+
+    wall_quantities = batched()
+    out = os.fdopen(os.dup(sys.stdout.fileno()), "w", buffering=1)
+    sys.stdout = sys.stderr  # keep the protocol channel clean
+    base = problems()
+    numbers: dict[tuple[str, float, str], int] = {}
+    everything = [replace(p, eps=e) for p in base.values() for e in CURVE_EPS]
+    mat = Material(phi=28.5)
+    out.write(json.dumps({"ready": True, "where": str(Path(require_v010().__file__).parent)}))
+    out.write("\n")
+    for line in sys.stdin:
+        req = json.loads(line)
+        op = req.get("op")
+        if op == "quit":
+            break
+        if op == "profile":
+            p = replace(base[req["case"]], eps=float(req["eps"]))
+            if req["kind"] == "cheap":
+                fn = lambda p=p: solve(p, check=False, points=3, rtol=RTOL)  # noqa: E731
+            else:
+                fn = lambda p=p: solve(p)  # noqa: E731
+            key = (req["case"], float(req["eps"]), req["kind"])
+            timer = timeit.Timer(fn)
+            if key not in numbers:
+                fn()
+                number, total = 1, 0.0
+                while True:  # autorange to min_time
+                    total = timer.timeit(number)
+                    if total >= float(req.get("min_time", 0.2)):
+                        break
+                    number *= 2
+                numbers[key] = number
+                reply = {"seconds": total / number, "number": number}
+            else:
+                number = numbers[key]
+                reply = {"seconds": timer.timeit(number) / number, "number": number}
+        elif op == "stats":
+            p = replace(base[req["case"]], eps=float(req["eps"]))
+            stats = solve(p, check=False, points=3, rtol=RTOL).diagnostics.stats
+            reply = {"stats": {k: v for k, v in stats.items() if isinstance(v, int | float)}}
+        elif op == "curve":
+            rtol = float(req["rtol"])
+            t = time.perf_counter()
+            if req["route"] == "thickness_curve":
+                res = [thickness_curve(p, CURVE_EPS, rtol=rtol) for p in base.values()]
+                solved = sum(d is not None for c in res for d in c.Delta)
+            else:
+                rows = wall_quantities(everything, rtol=rtol)
+                solved = sum(r.status == "ok" for r in rows)
+            reply = {"seconds": time.perf_counter() - t, "solved": solved}
+        elif op == "sweep":
+            cases = [
+                PlaneShear(material=mat, upper=Wall(delta=d, K=0.5), eps=e, B=b)
+                for d, e, b in req.get("plane", [])
+            ] + [
+                CouetteFlow(material=mat, wall=Wall(delta=d, K=0.5), eps=e, Ri=ri)
+                for d, e, ri in req.get("couette", [])
+            ]
+            t = time.perf_counter()
+            rows = wall_quantities(cases, rtol=RTOL)
+            seconds = time.perf_counter() - t
+            status = [r.status for r in rows]
+            reply = {"seconds": seconds, "status": {k: status.count(k) for k in set(status)}}
+        else:
+            reply = {"error": f"unknown op {op!r}"}
+        out.write(json.dumps(reply) + "\n")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", metavar="PATH", help="write {case: seconds} here")
     parser.add_argument("--quick", action="store_true", help="one repeat each (smoke test)")
+    parser.add_argument(
+        "--serve", action="store_true", help="answer timing requests on stdin (for run.py)"
+    )
     args = parser.parse_args()
+    if args.serve:
+        require_v010()
+        serve()
+        return
     cosserat = require_v010()
     import scipy
 
