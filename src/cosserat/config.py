@@ -7,6 +7,7 @@ angles in degrees, everything else dimensionless.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Final
 
@@ -66,6 +67,29 @@ FIT_MAX_NFEV: Final = 200
 """Budget of model solves of one least-squares fit."""
 EXISTENCE_BOUND_TOL: Final = 1e-4
 """Width to which the bisection for the existence bound in A is carried [-]."""
+
+
+# ----------------------------------------------------------------- local mu(I) rheology
+# mu(I) = mu_s + (mu_2 - mu_s)/(I_0/I + 1) with I = gamma_dot d / sqrt(p / rho_s): GDR MiDi,
+# Eur. Phys. J. E 14, 341 (2004); the glass-bead values of Jop, Forterre & Pouliquen,
+# Nature 441, 727 (2006) (``docs/derivation_mui.md``).
+MUI_ANGLE_S: Final = 20.9
+"""Static friction angle of glass beads, mu_s = tan(20.9 deg) (Jop et al. 2006) [deg]."""
+MUI_ANGLE_2: Final = 32.76
+"""Limiting friction angle of glass beads, mu_2 = tan(32.76 deg) (Jop et al. 2006) [deg]."""
+MUI_MU_S: Final = math.tan(math.radians(MUI_ANGLE_S))
+"""Static friction coefficient mu_s of mu(I), tan(:data:`MUI_ANGLE_S`) [-]."""
+MUI_MU_2: Final = math.tan(math.radians(MUI_ANGLE_2))
+"""Limiting friction coefficient mu_2 of mu(I) (mu -> mu_2 as I -> infinity) [-]."""
+MUI_I0: Final = 0.279
+"""Inertial number I_0 of mu(I) at which mu is halfway from mu_s to mu_2 (Jop et al. 2006) [-]."""
+MUI_I_W: Final = 0.01
+"""Inertial number of the wall speed, I_w = V d / (H sqrt(N / rho_s)), of a mu(I) cell [-]:
+slow, dense shear (mu(I) is calibrated for I up to about 0.5)."""
+MUI_I_W_MAX: Final = 1.0
+"""Largest admissible I_w [-]: beyond, the flow is no longer dense (mu(I)'s range)."""
+MUI_RTOL: Final = 1e-12
+"""Relative tolerance of the mu(I) routes' quadratures and stress-level root-find [-]."""
 
 
 def text(value: float) -> str:

@@ -12,6 +12,7 @@ from ..model import CouetteFlow, PlaneShear, Problem
 from ..model.rheology import Rheology
 from ..results.profile import Profile
 from . import asymptotic, closed_form, numerical
+from .mui import MUI
 
 COSSERAT = Rheology(
     name="cosserat",
@@ -46,6 +47,7 @@ def register(rheology: Rheology) -> None:
 
 
 register(COSSERAT)
+register(MUI)
 METHODS = tuple(_ROUTES)
 
 
@@ -110,4 +112,4 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
     return profile
 
 
-__all__ = ["COSSERAT", "METHODS", "RHEOLOGIES", "register", "solve"]
+__all__ = ["COSSERAT", "METHODS", "MUI", "RHEOLOGIES", "register", "solve"]
