@@ -40,6 +40,7 @@ from ..model.constitutive import (
 )
 from ..model.couette import outer_wall_couple_stress, shear_stress, shear_stress_dm
 from ..model.plane import mean_stress
+from .dop853 import dop853, dop853_eval1
 from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1, radau5
 from .roots import B as ROOT
 from .roots import brackets, brent_accept, brent_next, brent_start
@@ -228,18 +229,6 @@ def spin_rhs(tau, y, args):
     out = np.empty(2)
     out[0] = jac * rate
     out[1] = jac * gain * source
-    return out
-
-
-@njit(cache=True, nogil=True)
-def spin_jac(tau, y, args):
-    p, mu, g, cs = args
-    xi, jac = _map(tau, g)
-    _, source = _spin_rates(xi, p, mu, cs)
-    ell = y[0]
-    gain = math.exp(min(ell, 700.0)) if ell > LOG_UNDERFLOW else 0.0
-    out = np.zeros((2, 2))
-    out[1, 0] = jac * gain * source
     return out
 
 
@@ -496,9 +485,9 @@ def couette_inner_couple_stress(p, rtol, atol, max_steps, counters):
 def _excess(tau, args):
     """u(xi(tau)) - u_0 - f (u_s - u_0): zero at the thickness (``eqn-delta_defn``)."""
     p, g, sp, info, f = args
-    ts, hs, ys, Q = sp
+    ts, ys, F = sp
     xi, _ = _map(tau, g)
-    P = ys[-1, 1] if tau >= ts[-1] else dense_eval1(ts, hs, ys, Q, tau, 1)
+    P = ys[-1, 1] if tau >= ts[-1] else dop853_eval1(ts, ys, F, tau, 1)
     u0 = info[I_U_REF]
     return velocity(xi, P, p, info) - u0 - f * (info[I_U_S] - u0)
 
@@ -554,7 +543,8 @@ def solve_case(p, rtol, atol, f, max_steps):
     """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
 
     ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
-    :func:`~cosserat.numerics.radau.radau5`, the spin one in the pass variable tau with
+    :func:`~cosserat.numerics.radau.radau5`, the spin one (ts, ys, F) of
+    :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
     xi(tau) given by the pass geometry ``[xi_slip, span, singular]``.
     """
     info = np.zeros(N_INFO)
@@ -563,7 +553,7 @@ def solve_case(p, rtol, atol, f, max_steps):
     empty1 = np.zeros(1)
     empty2 = np.zeros((1, 1))
     empty3 = np.zeros((0, 1, 3))
-    no_spin = (empty1, np.zeros(0), np.zeros((1, 2)), np.zeros((0, 2, 3)))
+    no_spin = (empty1, np.zeros((1, 2)), np.zeros((0, 7, 2)))
     g = np.zeros(3)
     xs, x0 = walls(p)
     mu = 0.0
@@ -608,9 +598,8 @@ def solve_case(p, rtol, atol, f, max_steps):
     # tolerance scales with h, or at large Ri the velocity u = (u_s h_s - w_s P)/h loses the
     # digits atol did not ask for.
     h_min = 1.0 if p[P_GEOMETRY] == PLANE else min(_curvature(xs, p), _curvature(x0, p))
-    status2, ts2, hs2, ys2, Q2, _, nfev2, _, nlu2, nsteps2 = radau5(
+    status2, ts2, ys2, F2, nfev2, nsteps2 = dop853(
         spin_rhs,
-        spin_jac,
         spin_event,
         0.0,
         1.0,
@@ -619,14 +608,12 @@ def solve_case(p, rtol, atol, f, max_steps):
         np.array([rtol, atol * p[P_EPS] * h_min]),
         (p, mu, g, cs),
         max_steps,
-        0.0,
     )
     counters[0] += nfev2
     counters[1] += nsteps2
-    counters[2] += nlu2
     info[I_NFEV], info[I_NSTEPS], info[I_NLU] = counters[0], counters[1], counters[2]
     info[I_STEPS_SPIN] = nsteps2
-    sp = (ts2, hs2, ys2, Q2)
+    sp = (ts2, ys2, F2)
     if status2 != SUCCESS and status2 != EVENT:
         info[I_XI_FAIL] = _map(ts2[-1], g)[0]
         return (TOO_MANY_STEPS if status2 == MAX_STEPS else STALLED), info, cs, sp, g
@@ -685,13 +672,13 @@ def solve_batch(params, rtol, atol, f, max_steps):
 
 
 @njit(cache=True, nogil=True)
-def thickness_of(p, g, ts, hs, ys, Q, info, f):
+def thickness_of(p, g, ts, ys, F, info, f):
     """Delta for another fraction f from a solved case (a cached entry point)."""
-    return thickness(p, g, (ts, hs, ys, Q), info, f)
+    return thickness(p, g, (ts, ys, F), info, f)
 
 
 @njit(cache=True, nogil=True)
-def spin_pass_at(xi, g, ts, hs, ys, Q):
+def spin_pass_at(xi, g, ts, ys, F):
     """(l, P) of the spin pass at points xi (the far side of the cut: -inf, P_cut) [-]."""
     n = xi.size
     ell = np.empty(n)
@@ -706,6 +693,6 @@ def spin_pass_at(xi, g, ts, hs, ys, Q):
         frac = min(max((xi[i] - g[0]) / g[1], 0.0), 1.0)
         tau = 1.0 - math.sqrt(1.0 - frac) if g[2] != 0.0 else frac
         tau = min(tau, ts[-1])
-        ell[i] = dense_eval1(ts, hs, ys, Q, tau, 0)
-        P[i] = dense_eval1(ts, hs, ys, Q, tau, 1)
+        ell[i] = dop853_eval1(ts, ys, F, tau, 0)
+        P[i] = dop853_eval1(ts, ys, F, tau, 1)
     return ell, P

@@ -138,7 +138,8 @@ class NumericalSolution:
     couple : tuple of ndarray
         Radau dense output (ts, hs, ys, Q) of the couple stress, in xi.
     spin : tuple of ndarray
-        Radau dense output of (l, P), in the pass variable tau with xi(tau) from ``geometry``.
+        DOP853 dense output (ts, ys, F) of (l, P), in the pass variable tau with xi(tau) from
+        ``geometry``.
     geometry : ndarray
         [xi of the slipping wall, span, singular] of the spin pass.
     """
@@ -147,7 +148,7 @@ class NumericalSolution:
     params: FloatArray
     info: FloatArray
     couple: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
-    spin: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+    spin: tuple[FloatArray, FloatArray, FloatArray]
     geometry: FloatArray
 
     @property
@@ -279,7 +280,7 @@ def solve_plane(
         reference_velocity=float(sol.info[kernel.I_U_REF]),
         rtol=rtol,
         atol=atol,
-        message="compiled Radau IIA: couple stress (stable direction), then spin and velocity",
+        message="compiled: Radau IIA couple stress (stable direction), DOP853 spin and velocity",
         stats=_stats(sol.info),
         check=check,
         velocity=sol.velocity,
@@ -318,7 +319,7 @@ def solve_couette(
         rtol=rtol,
         atol=atol,
         message="compiled: secant/Brent on m(0); Radau IIA couple stress (outer to inner), "
-        "then spin and velocity",
+        "DOP853 spin and velocity",
         stats=stats,
         check=check,
         velocity=sol.velocity,
