@@ -184,3 +184,23 @@ def test_step_budget_is_reported_as_a_convergence_error():
     p = parameter_vector(PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3))
     status, _, _, _, _ = kernel.solve_case(p, 1e-10, 1e-12, 0.05, 3)
     assert status == kernel.TOO_MANY_STEPS
+
+
+def test_without_a_writable_cache_folder_the_kernels_go_to_a_temporary_one(monkeypatch):
+    import numba
+
+    from cosserat import _jit_cache
+
+    monkeypatch.setattr(_jit_cache, "_writable", lambda folder: False)
+    monkeypatch.setattr(numba.config, "CACHE_DIR", numba.config.CACHE_DIR)
+    with pytest.warns(RuntimeWarning, match="set NUMBA_CACHE_DIR to a writable folder"):
+        folder = _jit_cache.ensure_cache()
+    assert folder is not None
+    assert numba.config.CACHE_DIR == folder
+    assert Path(folder).is_dir()
+
+
+def test_with_a_writable_cache_folder_nothing_changes():
+    from cosserat import _jit_cache
+
+    assert _jit_cache.ensure_cache() is None

@@ -11,6 +11,7 @@ couple-stress profiles, the shear-layer thickness and the wall slip::
     17.67
 """
 
+from . import _jit_cache  # noqa: F401  (before any compiled function is defined)
 from ._version import __version__
 from .analysis import shear_layer_thickness, wall_omega, wall_slip
 from .config import DEFAULT_F
