@@ -22,6 +22,7 @@ because ``|sigma_yx|`` is the same everywhere. Three cases result:
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -155,15 +156,15 @@ class PlaneShear:
         assert self.lower is not None  # set in __post_init__
         return self.lower
 
-    @property
+    @functools.cached_property
     def tan_delta_upper(self) -> float:
         return self.upper.tan_delta(self.material, "delta")
 
-    @property
+    @functools.cached_property
     def tan_delta_lower(self) -> float:
         return self.lower_wall.tan_delta(self.material, "delta_lower")
 
-    @property
+    @functools.cached_property
     def case(self) -> PlaneShearCase:
         """Which wall slips, from the friction angles and gravity (module docstring)."""
         upper_limit = self.tan_delta_upper
@@ -201,7 +202,7 @@ class PlaneShear:
         """Mean stress = sigma_yy (:func:`mean_stress`) [-]."""
         return mean_stress(xi, self.B * self.nu)
 
-    @property
+    @functools.cached_property
     def sigma_yx(self) -> float:
         """The constant shear stress, -tan(delta) at the slipping wall times sigma_yy there [-]."""
         if self.case is PlaneShearCase.LOWER:
@@ -219,7 +220,7 @@ class PlaneShear:
         )
 
     # ----------------------------------------------------------------- wall constants
-    @property
+    @functools.cached_property
     def slip_constants(self) -> WallConstants:
         """a, b, m0, k at the slipping wall (``eqn-a_b_def``, ``eqn-k_def``)."""
         return wall_constants(-self.sigma_yx, float(self.sigma_c(self.slip_wall)), self.material)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import inspect
 from collections.abc import Callable
 from dataclasses import replace
@@ -51,6 +52,12 @@ register(MUI)
 METHODS = tuple(_ROUTES)
 
 
+@functools.cache
+def _options(route: Callable[..., Profile]) -> list[str]:
+    """The keyword options a route accepts (read once per route)."""
+    return [p for p in inspect.signature(route).parameters if p != "problem"]
+
+
 def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profile:
     """Solve ``problem`` by the route ``method``.
 
@@ -98,7 +105,7 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
             f"no {method} route for {type(problem).__name__}: use one of "
             f"{', '.join(repr(m) for m in available)}"
         )
-    accepted = [p for p in inspect.signature(route).parameters if p != "problem"]
+    accepted = _options(route)
     unknown = sorted(set(options) - set(accepted))
     if unknown:
         raise ParameterError(
