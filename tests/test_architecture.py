@@ -15,7 +15,13 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "cosserat"
 
 # lowest first; a module may import from its own layer and the layers before it
 LAYERS = [
-    ["cosserat.errors", "cosserat.config", "cosserat._version", "cosserat._jit_cache"],
+    [
+        "cosserat.errors",
+        "cosserat.config",
+        "cosserat._version",
+        "cosserat._jit_cache",
+        "cosserat._atomic",
+    ],
     ["cosserat.viz"],
     ["cosserat.model"],
     ["cosserat.numerics"],

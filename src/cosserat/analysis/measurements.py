@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from .._atomic import atomic_open
 from ..errors import CosseratError
 from ..model.constitutive import FloatArray
 
@@ -255,7 +256,7 @@ def _assemble(
 def write_profile(profile: MeasuredProfile, path: str | Path) -> Path:
     """Write ``profile`` in the minimal format, with its header block."""
     path = Path(path)
-    with path.open("w", newline="") as fh:
+    with atomic_open(path, newline="") as fh:
         for key, value in profile.meta.items():
             fh.write(f"# {key}: {value}\n")
         writer = csv.writer(fh)

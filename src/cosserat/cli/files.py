@@ -11,6 +11,7 @@ import os
 from pathlib import Path
 from typing import Any
 
+from .. import _atomic as atomic
 from ..errors import InputError
 
 
@@ -57,7 +58,7 @@ def check_output_file(path: str, option: str = "--out") -> None:
 def write_text(text: str, path: str, option: str = "--out") -> None:
     """Write ``text`` (ending in a newline) to ``path``; failures as :class:`InputError`."""
     try:
-        Path(path).write_text(text if text.endswith("\n") else text + "\n")
+        atomic.write_text(path, text if text.endswith("\n") else text + "\n")
     except OSError as exc:
         raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
 
@@ -79,7 +80,7 @@ def check_plot_file(path: str, option: str = "--plot") -> None:
 def save_figure(fig: Any, path: str, option: str = "--plot") -> None:
     """``fig.savefig(path)``; failures to write as :class:`InputError`."""
     try:
-        fig.savefig(path)
+        atomic.save_figure(fig, path)
     except OSError as exc:
         raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
 

@@ -19,6 +19,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from .. import config
+from .._atomic import atomic_open, write_text
 from ..analysis.sensitivity import existence_bound_A
 from ..model import PlaneShear
 from ..model.parameters import Wall
@@ -165,7 +166,7 @@ def reproduce(
                 if progress:
                     progress("figures", i + 1, len(order))
     claims = _claims(results)
-    with (out / "claims.csv").open("w", newline="") as fh:
+    with atomic_open(out / "claims.csv", newline="") as fh:
         writer = csv.DictWriter(fh, fieldnames=list(asdict(claims[0])))
         writer.writeheader()
         writer.writerows(asdict(c) for c in claims)
@@ -222,8 +223,9 @@ def _write_report(
             + f" [<a href='{stem}.csv'>csv</a>, <a href='{stem}.pdf'>pdf</a>]</figcaption>"
             "</figure>"
         )
-    (out / "report.md").write_text("\n".join(md) + "\n")
-    (out / "index.html").write_text(
+    write_text(out / "report.md", "\n".join(md) + "\n")
+    write_text(
+        out / "index.html",
         "<!doctype html><html><head><meta charset='utf-8'><title>cosserat: reproduction"
         "</title><style>body{font-family:serif;max-width:60em;margin:auto}"
         "img{max-width:100%}td,th{border:1px solid #ccc;padding:3px}"
@@ -233,11 +235,12 @@ def _write_report(
         f"<p>Computed by <code>cosserat reproduce</code> in {elapsed:.0f} s.</p>"
         "<h2>Stated versus computed</h2><table><tr><th>quantity</th><th>paper</th>"
         f"<th>computed</th><th>where</th><th>how</th></tr>{rows}</table>"
-        f"<h2>Figures</h2>{''.join(blocks)}</body></html>\n"
+        f"<h2>Figures</h2>{''.join(blocks)}</body></html>\n",
     )
-    (out / "figures.json").write_text(
+    write_text(
+        out / "figures.json",
         json.dumps(
             {n: {"key": d.key, "title": d.title, "notes": d.notes} for n, d in figures.items()},
             indent=1,
-        )
+        ),
     )

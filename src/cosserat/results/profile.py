@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._atomic import write_text
 from ..errors import ConvergenceError, CosseratError, ParameterError
 from ..model.constitutive import FloatArray
 from .wall import shear_layer_thickness, wall_omega, wall_slip
@@ -240,7 +241,7 @@ class Profile:
         """JSON text (written to ``path`` if given). Non-finite numbers are an error."""
         text = json.dumps(_finite(self.to_dict()), indent=indent, allow_nan=False)
         if path is not None:
-            Path(path).write_text(text + "\n")
+            write_text(path, text + "\n")
         return text
 
     def to_csv(self, path: str | Path | None = None) -> str:
@@ -256,7 +257,7 @@ class Profile:
             writer.writerow([repr(float(v)) for v in row])
         text = buf.getvalue()
         if path is not None:
-            Path(path).write_text(text)
+            write_text(path, text)
         return text
 
     # ----------------------------------------------------------------- notebooks

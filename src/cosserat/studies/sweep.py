@@ -49,6 +49,7 @@ from typing import Any
 import numpy as np
 
 from .. import config
+from .._atomic import atomic_open
 from ..errors import CosseratError, InputError, ParameterError
 from ..model import Problem, build_problem
 from ..model.build import DEFAULTS, PARAMETERS
@@ -318,7 +319,7 @@ def write_table(rows: Iterable[dict[str, Any]], path: str | Path, columns: Seque
             table = pa.table({c: [r.get(c) for r in rows] for c in cols})
             pq.write_table(table, path)
             return path
-        with path.open("w", newline="") as fh:
+        with atomic_open(path, newline="") as fh:
             writer = csv.writer(fh)
             writer.writerow(cols)
             for r in rows:

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..._atomic import atomic_open, save_figure
 from ...model.constitutive import FloatArray
 from ...viz.plotting import new_figure, style
 
@@ -73,7 +74,7 @@ class FigureData:
     def to_csv(self, path: str | Path) -> Path:
         """Tidy table: one row per point (panel, curve, x, y)."""
         path = Path(path)
-        with path.open("w", newline="") as fh:
+        with atomic_open(path, newline="") as fh:
             fh.write(f"# {self.key} (figure {self.number}): {self.title}\n")
             for note in self.notes:
                 fh.write(f"# {note}\n")
@@ -132,7 +133,7 @@ def save(data: FigureData, fig: Figure, out: str | Path) -> list[Path]:
     with style():
         for ext in ("png", "pdf"):
             path = out / f"{stem}.{ext}"
-            fig.savefig(path)
+            save_figure(fig, path)
             paths.append(path)
     paths.append(data.to_csv(out / f"{stem}.csv"))
     return paths
