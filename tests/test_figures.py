@@ -151,3 +151,23 @@ def test_measured_profile_overlay(tmp_path):
     overlay = data.panels[0].curves[-1]
     assert overlay.label == "test points (synthetic)"
     np.testing.assert_allclose(overlay.x, d * truth.eps)
+
+
+def test_reproduce_only_updates_the_report_instead_of_replacing_it(tmp_path):
+    from cosserat.paper.reproduce import reproduce
+
+    reproduce(tmp_path, figures=[1, 6], workers=1)
+    claims_before = (tmp_path / "claims.csv").read_text()
+    assert "the layer thins as B grows" in claims_before
+    out = reproduce(tmp_path, figures=[13], workers=1)
+    assert set(json.loads((out / "figures.json").read_text())) == {"1", "6", "13"}
+    index = (out / "index.html").read_text()
+    assert index.count("<figure>") == 3
+    assert "fig06" in index and "fig13" in index
+    # figure 6's claim is kept from the first run; the figure-free claims are recomputed once
+    claims = (out / "claims.csv").read_text()
+    assert "the layer thins as B grows" in claims
+    assert claims.count("x_hat where u = 0.05") == 1
+    # a second run of the same figure replaces its entry, not duplicates it
+    reproduce(tmp_path, figures=[13], workers=1)
+    assert (out / "index.html").read_text().count("<figure>") == 3

@@ -17,6 +17,7 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import as_completed
 from dataclasses import asdict, dataclass
 from pathlib import Path
+from typing import Any
 
 from .. import config
 from .._atomic import atomic_open, write_text
@@ -53,7 +54,7 @@ def _figure_job(number: int, out: str) -> FigureData:
     return data
 
 
-def _claims(figures: dict[int, FigureData]) -> list[Claim]:
+def _claims(figures: dict[int, FigureData], independent: bool = True) -> list[Claim]:
     claims = []
     table = figures[14].extra["table"] if 14 in figures else {}
     for name, row in table.items():
@@ -82,6 +83,8 @@ def _claims(figures: dict[int, FigureData]) -> list[Claim]:
                     "numerical / Airy law",
                 )
             )
+    if not independent:
+        return claims + _later_claims(figures)
     claims.append(
         Claim(
             "x_hat where u = 0.05 in the Airy inner layer",
@@ -100,6 +103,11 @@ def _claims(figures: dict[int, FigureData]) -> list[Claim]:
             f"atan(sin {config.text(config.PHI)} deg)",
         )
     )
+    return claims + _later_claims(figures)
+
+
+def _later_claims(figures: dict[int, FigureData]) -> list[Claim]:
+    claims = []
     if 12 in figures:
         extra = figures[12].extra
         claims.append(
@@ -165,15 +173,58 @@ def reproduce(
                 results[futures[fut]] = fut.result()
                 if progress:
                     progress("figures", i + 1, len(order))
-    claims = _claims(results)
+    # a partial run (--only) updates what an earlier run wrote instead of replacing it
+    previous, previous_claims = _previous_state(out) if figures is not None else ({}, [])
+    entries = {n: e for n, e in previous.items() if n not in results}
+    entries.update({n: _entry(d) for n, d in results.items()})
+    tagged = _tagged_claims(results)
+    tagged += [(s, c) for s, c in previous_claims if s in entries and s not in results and s]
+    tagged.sort(key=lambda sc: _SOURCE_ORDER[sc[0]])
+    claims = [c for _, c in tagged]
     with atomic_open(out / "claims.csv", newline="") as fh:
         writer = csv.DictWriter(fh, fieldnames=list(asdict(claims[0])))
         writer.writeheader()
         writer.writerows(asdict(c) for c in claims)
+    write_text(
+        out / "claims.json",
+        json.dumps([{"source": s, **asdict(c)} for s, c in tagged], indent=1) + "\n",
+    )
     elapsed = time.perf_counter() - start
-    _write_report(out, results, claims, elapsed)
+    _write_report(out, entries, claims, elapsed)
     log.info("reproduced %d figures into %s in %.1f s", len(results), out, elapsed)
     return out
+
+
+# the report lists the claims in this order of their source figure (0: none)
+_SOURCE_ORDER = {14: 0, 0: 1, 12: 2, 6: 3}
+
+
+def _tagged_claims(figures: dict[int, FigureData]) -> list[tuple[int, Claim]]:
+    """The claims of :func:`_claims`, each with the figure it comes from (0: none)."""
+    tagged = [(n, c) for n in (14, 12, 6) if n in figures for c in _claims({n: figures[n]}, False)]
+    tagged += [(0, c) for c in _claims({}, True)]
+    return sorted(tagged, key=lambda sc: _SOURCE_ORDER[sc[0]])
+
+
+def _entry(data: FigureData) -> dict[str, Any]:
+    return {
+        "key": data.key,
+        "title": data.title,
+        "caption": data.caption,
+        "notes": data.notes,
+        "stem": _stem(data),
+    }
+
+
+def _previous_state(out: Path) -> tuple[dict[int, dict[str, Any]], list[tuple[int, Claim]]]:
+    """What an earlier run wrote into ``out`` (``figures.json``, ``claims.json``), if any."""
+    try:
+        figures = json.loads((out / "figures.json").read_text())
+        claims = json.loads((out / "claims.json").read_text())
+        entries = {int(n): e for n, e in figures.items() if {"stem", "caption"} <= set(e)}
+        return entries, [(int(c.pop("source")), Claim(**c)) for c in claims]
+    except (OSError, ValueError, TypeError, KeyError):
+        return {}, []
 
 
 def _stem(data: FigureData) -> str:
@@ -181,7 +232,7 @@ def _stem(data: FigureData) -> str:
 
 
 def _write_report(
-    out: Path, figures: dict[int, FigureData], claims: list[Claim], elapsed: float
+    out: Path, figures: dict[int, dict[str, Any]], claims: list[Claim], elapsed: float
 ) -> None:
     md = [
         "# Mohan, Kesava Rao & Nott: the paper's results, reproduced",
@@ -204,21 +255,21 @@ def _write_report(
     blocks = []
     for n in sorted(figures):
         d = figures[n]
-        stem = _stem(d)
-        notes = " ".join(d.notes)
+        stem, key, caption = d["stem"], d["key"], d["caption"]
+        notes = " ".join(d["notes"])
         md += [
-            f"### Figure {n} ({d.key}): {d.title}",
+            f"### Figure {n} ({key}): {d['title']}",
             "",
-            f"![{d.key}]({stem}.png)",
+            f"![{key}]({stem}.png)",
             "",
-            d.caption + (f" *Notes: {notes}*" if notes else ""),
+            caption + (f" *Notes: {notes}*" if notes else ""),
             "",
             f"Data: [`{stem}.csv`]({stem}.csv), vector: [`{stem}.pdf`]({stem}.pdf)",
             "",
         ]
         blocks.append(
-            f"<figure><img src='{stem}.png' alt='{d.key}'><figcaption><b>Figure {n}</b> "
-            f"({html.escape(d.key)}). {html.escape(d.caption)}"
+            f"<figure><img src='{stem}.png' alt='{key}'><figcaption><b>Figure {n}</b> "
+            f"({html.escape(key)}). {html.escape(caption)}"
             + (f" <i>{html.escape(notes)}</i>" if notes else "")
             + f" [<a href='{stem}.csv'>csv</a>, <a href='{stem}.pdf'>pdf</a>]</figcaption>"
             "</figure>"
@@ -240,7 +291,7 @@ def _write_report(
     write_text(
         out / "figures.json",
         json.dumps(
-            {n: {"key": d.key, "title": d.title, "notes": d.notes} for n, d in figures.items()},
+            {n: figures[n] for n in sorted(figures)},
             indent=1,
         ),
     )
