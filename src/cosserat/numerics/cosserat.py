@@ -305,6 +305,15 @@ def velocity(xi: float, P: float, p: np.ndarray, info: np.ndarray) -> float:
     return info[I_U_S] - info[I_W_S] * P
 
 
+@njit(cache=True, nogil=True)
+def velocities(xi, P, p, info):
+    """:func:`velocity` at points xi with their quadratures P [-] (a cached entry point)."""
+    u = np.empty(xi.size)
+    for i in range(xi.size):
+        u[i] = velocity(xi[i], P[i], p, info)
+    return u
+
+
 # ----------------------------------------------------------------- one couple-stress pass
 @njit(cache=True, nogil=True)
 def couple_pass(p, mu, m_start, x_start, x_end, rtol, atol, max_steps):

@@ -174,7 +174,7 @@ class NumericalSolution:
         """(m, u, w) at points x of the solved part of the gap."""
         m = dense_eval(*self.couple, x)[:, 0]
         ell, P = kernel.spin_pass_at(x, self.geometry, *self.spin)
-        u = _velocity(self.params, self.info, x, P)
+        u = kernel.velocities(x, P, self.params, self.info)
         with np.errstate(under="ignore"):
             w = self.info[kernel.I_W_S] * np.exp(ell)
         return m, u, w
@@ -200,7 +200,7 @@ class NumericalSolution:
         x = np.asarray(xi, dtype=float)
         h = self._half(x)
         _, P = kernel.spin_pass_at(h, self.geometry, *self.spin)
-        u = _velocity(self.params, self.info, h, P)
+        u = kernel.velocities(h, P, self.params, self.info)
         if self.symmetric:
             u = np.where(x < 0.5, 2.0 * self.info[kernel.I_U_REF] - u, u)
         return u
@@ -218,14 +218,6 @@ class NumericalSolution:
         return float(delta)
 
     info_f: float = config.DEFAULT_F
-
-
-def _velocity(params: FloatArray, info: FloatArray, x: FloatArray, P: FloatArray) -> FloatArray:
-    """u from the spin-pass quadrature: ``h u = (h u)_s - w_s P`` (vectorised kernel.velocity)."""
-    if params[kernel.P_GEOMETRY] == kernel.COUETTE:
-        Ri = params[kernel.P_RI]
-        return (Ri + x) * (info[kernel.I_U_S] / Ri - info[kernel.I_W_S] * P)
-    return info[kernel.I_U_S] - info[kernel.I_W_S] * P
 
 
 def run_kernel(
@@ -270,21 +262,8 @@ def solve_plane(
     """
     rtol, atol = tolerances(rtol, atol)
     sol = run_kernel(problem, rtol, atol)
-    return make_profile(
-        problem,
-        sol.formulation(),
-        sol,
-        method="numerical",
-        points=points,
-        xi=xi,
-        reference_velocity=float(sol.info[kernel.I_U_REF]),
-        rtol=rtol,
-        atol=atol,
-        message="compiled: Radau IIA couple stress (stable direction), DOP853 spin and velocity",
-        stats=_stats(sol.info),
-        check=check,
-        velocity=sol.velocity,
-    )
+    message = "compiled: Radau IIA couple stress (stable direction), DOP853 spin and velocity"
+    return _profile(sol, rtol, atol, points, xi, check, message, _stats(sol.info))
 
 
 def solve_couette(
@@ -308,18 +287,35 @@ def solve_couette(
     stats = _stats(sol.info)
     stats["m_inner"] = sol.mu
     stats["shooting_iterations"] = int(sol.info[kernel.I_ITERATIONS])
+    message = (
+        "compiled: secant/Brent on m(0); Radau IIA couple stress (outer to inner), "
+        "DOP853 spin and velocity"
+    )
+    return _profile(sol, rtol, atol, points, xi, check, message, stats)
+
+
+def _profile(
+    sol: NumericalSolution,
+    rtol: float,
+    atol: float,
+    points: int | None,
+    xi: FloatArray | None,
+    check: bool,
+    message: str,
+    stats: dict[str, Any],
+) -> Profile:
+    """The checked :class:`Profile` of a kernel solution (``routes/assemble.py``)."""
     return make_profile(
-        problem,
+        sol.problem,
         sol.formulation(),
         sol,
         method="numerical",
         points=points,
         xi=xi,
-        reference_velocity=0.0,
+        reference_velocity=float(sol.info[kernel.I_U_REF]),
         rtol=rtol,
         atol=atol,
-        message="compiled: secant/Brent on m(0); Radau IIA couple stress (outer to inner), "
-        "DOP853 spin and velocity",
+        message=message,
         stats=stats,
         check=check,
         velocity=sol.velocity,
