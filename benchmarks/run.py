@@ -866,11 +866,12 @@ def sweeps(rep: Report, old: V010 | None, n_plane: int, n_couette: int, repeat: 
 # ----------------------------------------------------------------- 6. fit
 def fitting(rep: Report, repeat: int) -> None:
     from cosserat.analysis.fitting import fit
-    from cosserat.cli import _data_problem, make_parser
+    from cosserat.cli import make_parser
+    from cosserat.cli.data import data_problem
 
     data = ROOT / "src" / "cosserat" / "data" / "synthetic_couette.csv"
     args = make_parser().parse_args(["fit", str(data)])
-    measured, problem = _data_problem(args)  # exactly what `cosserat fit` builds
+    measured, problem = data_problem(args)  # exactly what `cosserat fit` builds
     rep.out(
         f"\n## 6. Fit of delta, K to `{data.relative_to(ROOT)}` (as `cosserat fit` runs it: "
         f"{problem.describe()}; best of {repeat})\n"

@@ -277,7 +277,7 @@ def test_a_model_error_from_a_file_header_names_the_parameter(capsys, tmp_path):
 @pytest.mark.parametrize("error", [RuntimeError, ValueError, ZeroDivisionError, KeyError, OSError])
 def test_a_programming_error_is_not_swallowed(monkeypatch, capsys, error):
     """Only CosseratError (and usage errors) become exit status 2; a bug propagates."""
-    import cosserat.cli as cli
+    import cosserat.cli.solve as cli
 
     def broken(*args, **kwargs):
         raise error("a bug")
@@ -290,9 +290,9 @@ def test_a_programming_error_is_not_swallowed(monkeypatch, capsys, error):
 
 def test_a_bug_in_a_command_shows_as_a_traceback_in_a_process(tmp_path):
     script = (
-        "import sys, cosserat.cli as c\n"
+        "import sys, cosserat.cli as c, cosserat.cli.solve as s\n"
         "def broken(args):\n    raise RuntimeError('a bug')\n"
-        "c.cmd_solve = broken\n"
+        "s.cmd_solve = broken\n"
         "sys.exit(c.main(['solve', 'plane', '--eps', '0.1']))\n"
     )
     proc = subprocess.run(

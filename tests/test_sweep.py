@@ -157,7 +157,7 @@ def test_the_cli_and_the_sweep_build_the_same_problem(params):
 
 
 def test_there_is_one_build_problem():
-    import cosserat.cli as cli
+    import cosserat.cli.common as cli
     import cosserat.studies.sweep as sweep
     from cosserat.model import build_problem
     from cosserat.model.build import build_problem as built

@@ -1,0 +1,74 @@
+"""``cosserat reproduce`` and ``cosserat figures``: the paper's results."""
+
+from __future__ import annotations
+
+import argparse
+
+from . import files
+from .common import PRESETS, UsageError, positive_int, progress_bar
+
+
+def _stage_bar():  # type: ignore[no-untyped-def]
+    bar = progress_bar("reproduce")
+
+    def progress(stage: str, i: int, n: int) -> None:
+        if bar is not None:
+            bar(i, n)
+
+    return progress
+
+
+def cmd_reproduce(args: argparse.Namespace) -> None:
+    from ..paper.reproduce import reproduce
+
+    files.output_folder(args.out)
+    out = reproduce(args.out, figures=args.only, workers=args.workers, progress=_stage_bar())
+    print(f"wrote {out}/index.html and {out}/report.md")
+
+
+def cmd_figures(args: argparse.Namespace) -> None:
+    from ..paper.figures import FIGURES, make_figure
+
+    data = {}
+    for item in args.data or []:
+        key, sep, path = item.partition("=")
+        if not sep or key not in PRESETS:
+            raise UsageError(f"--data takes mustard=FILE, poppy=FILE or glass=FILE; got {item!r}")
+        data[key] = files.read_measured(path)
+    files.output_folder(args.out)
+    numbers = args.only or list(FIGURES)
+    bar = progress_bar("figures")
+    for i, n in enumerate(numbers):
+        make_figure(n, out=args.out, data=data)
+        if bar is not None:
+            bar(i + 1, len(numbers))
+    print(f"wrote {len(numbers)} figures to {args.out}")
+
+
+def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add this module's commands to the ``cosserat`` parser."""
+    rp = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
+    rp.add_argument("--out", required=True, help="output folder")
+    rp.add_argument(
+        "--only",
+        type=int,
+        nargs="+",
+        choices=range(1, 15),
+        metavar="N",
+        help="only these figures (1-14)",
+    )
+    rp.add_argument(
+        "--workers", type=positive_int, default=None, help="worker processes (default: cores)"
+    )
+    rp.set_defaults(func=cmd_reproduce)
+
+    fp = sub.add_parser("figures", help="write every paper figure (PNG, PDF, CSV)")
+    fp.add_argument("--out", required=True, help="output folder")
+    fp.add_argument("--only", type=int, nargs="+", choices=range(1, 15), metavar="N")
+    fp.add_argument(
+        "--data",
+        nargs="+",
+        metavar="KEY=FILE",
+        help="overlay measured profiles on figures 10-11 (mustard, poppy, glass)",
+    )
+    fp.set_defaults(func=cmd_figures)
