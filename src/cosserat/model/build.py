@@ -86,7 +86,7 @@ _NUMBERS = ("phi", "L", "A", "K", "K_lower", "B", "nu", "m_wall", "Ri", "eps")
 
 def wall_angle(name: str, value: Any) -> float | Literal["fully-rough"]:
     """``value`` as a :class:`Wall` takes it: an angle [deg] (validated by the wall), or
-    :data:`FULLY_ROUGH` for any of :data:`ROUGH_WORDS`.
+    :data:`FULLY_ROUGH` for any of ``ROUGH_WORDS`` ("fully-rough", "fully_rough", "rough").
 
     Raises
     ------

@@ -158,7 +158,7 @@ class CouetteFlow:
         return 2.0 * (self.material.A + 1.0) * self.eps * self.material.alpha
 
     def formulation(self, m_inner: float) -> Formulation:
-        """The ODEs of :mod:`cosserat.problems.base` for a trial m(0) = ``m_inner``."""
+        """The ODEs of :mod:`cosserat.model.formulation` for a trial m(0) = ``m_inner``."""
         return Formulation(
             material=self.material,
             eps=self.eps,

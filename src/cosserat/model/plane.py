@@ -210,7 +210,7 @@ class PlaneShear:
         return -self.tan_delta_upper
 
     def formulation(self) -> Formulation:
-        """The ODEs of :mod:`cosserat.problems.base` for this problem."""
+        """The ODEs of :mod:`cosserat.model.formulation` for this problem."""
         syx = self.sigma_yx
         return Formulation(
             material=self.material,
@@ -345,7 +345,7 @@ class PlaneShear:
 
     # ----------------------------------------------------------------- output helpers
     def output_grid(self, n: int) -> FloatArray:
-        """About ``n`` points across the gap, resolving the layers (:mod:`cosserat.grids`)."""
+        """About ``n`` points across the gap, resolving the layers (:mod:`cosserat.model.grids`)."""
         w = self.layer_width()
         # where m leaves its start value (centre or fixed wall): ~eps/k near m0, but a rise
         # over ~eps alpha when the wall is nearly frictionless (a << m0)
