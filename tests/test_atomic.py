@@ -64,4 +64,4 @@ def test_a_profile_export_is_atomic(tmp_path, monkeypatch):
     with pytest.raises(OSError, match="disk full"):
         solve(PlaneShear(material=Material(), upper=Wall(), eps=0.01)).to_csv(target)
     assert target.read_text() == before
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["profile.csv"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["profile.csv", "profile.json"]

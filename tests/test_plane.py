@@ -221,13 +221,13 @@ def test_export_round_trip(tmp_path):
 
     prof = solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3), points=51)
     record = json.loads(prof.to_json(tmp_path / "p.json"))
-    assert record["xi"][0] == 0.0 and record["xi"][-1] == 1.0
+    assert record["y"][0] == 0.0 and record["y"][-1] == 1.0
     assert math.isclose(record["thickness"], delta_limit_by_hand(), rel_tol=1e-6)
     text = prof.to_csv(tmp_path / "p.csv")
-    data = np.loadtxt(tmp_path / "p.csv", delimiter=",", comments="#", skiprows=3)
+    data = np.loadtxt(tmp_path / "p.csv", delimiter=",", skiprows=1)
     assert data.shape == (len(prof.xi), 9)
     np.testing.assert_array_equal(data[:, 1], prof.u)
-    assert text.splitlines()[2].startswith("xi,u,omega,m,sigma_xy")
+    assert text.splitlines()[0].startswith("y,u,omega,m,sigma_xy")
 
 
 def test_quick_plot_has_four_panels():

@@ -102,7 +102,81 @@ FIELD_MEANINGS = {
     "asymmetry": "stress asymmetry sigma_yx - sigma_xy",
     "spin_minus_half_vorticity": "grain spin minus half the vorticity",
 }
-"""What each column means (all dimensionless; ``docs/model.md``)."""
+"""What each field of the profile means (all dimensionless; ``docs/model.md``). The exports
+(:meth:`Profile.columns` and everything built on it) name them in the cell's own coordinates:
+:data:`CELL_NAMES`."""
+
+COSSERAT_ONLY = ("m", "asymmetry", "spin_minus_half_vorticity")
+"""Fields a local rheology (no couple stress, symmetric stress) has identically zero: its
+profiles do not export them."""
+
+
+@dataclass(frozen=True)
+class CellNames:
+    """The names and meanings an export uses for one cell.
+
+    Attributes
+    ----------
+    coordinate : str
+        Name of the wall-normal coordinate column.
+    coordinate_meaning : str
+        What it holds, with its scaling.
+    position : callable
+        ``position(problem, xi)``: the coordinate at the gap fractions ``xi`` [-].
+    fields : mapping of str to (str, str)
+        Profile field -> (export name, meaning) where the cell renames it.
+    """
+
+    coordinate: str
+    coordinate_meaning: str
+    position: Callable[[Any, FloatArray], FloatArray]
+    fields: Mapping[str, tuple[str, str]] = field(default_factory=dict)
+
+
+CELL_NAMES: dict[str, CellNames] = {
+    "plane": CellNames(
+        "y",
+        "height above the fixed lower wall over the gap, y/H (0 to 1)",
+        lambda problem, xi: xi,
+        {
+            "u": ("u", "velocity u_x over the moving upper wall's speed V"),
+            "omega": ("omega", "grain spin omega_z H / V"),
+            "sigma_xy": ("sigma_xy", "shear stress sigma_xy over the normal stress N"),
+            "sigma_yx": ("sigma_yx", "shear stress on wall-parallel planes sigma_yx over N"),
+            "sigma_yy": ("sigma_yy", "normal stress sigma_yy over N"),
+        },
+    ),
+    "couette": CellNames(
+        "r",
+        "radius over the gap, r/H (inner cylinder at r/H = R_i/H, outer at R_i/H + 1)",
+        lambda problem, xi: problem.Ri + xi,
+        {
+            "u": ("u", "velocity -v_theta over the inner cylinder's speed V_i (-1 at it)"),
+            "omega": ("omega", "grain spin omega_z H / V_i"),
+            "m": ("m", "couple stress M_rz / (L sqrt(2(A+1)) sigma_c d_p)"),
+            "sigma_xy": ("sigma_theta_r", "shear stress sigma_theta_r over the mean stress"),
+            "sigma_yx": (
+                "sigma_r_theta",
+                "shear stress on cylinders sigma_r_theta over the mean stress",
+            ),
+            "sigma_yy": ("sigma_rr", "radial normal stress sigma_rr over the mean stress"),
+            "asymmetry": ("asymmetry", "stress asymmetry sigma_r_theta - sigma_theta_r"),
+        },
+    ),
+}
+"""Export names by cell (the ``geometry`` of ``problem.parameters()``). A cell not listed
+here exports ``xi`` and the plane names: add it here with its own coordinate."""
+
+
+def cell_names(problem: Any) -> CellNames:
+    """The :class:`CellNames` of ``problem``'s cell (the generic ``xi`` names if unknown)."""
+    geometry = problem.parameters().get("geometry")
+    return CELL_NAMES.get(geometry, CellNames("xi", FIELD_MEANINGS["xi"], lambda problem, xi: xi))
+
+
+def is_local(problem: Any) -> bool:
+    """True for a rheology without couple stress or independent spin (not the Cosserat one)."""
+    return problem.parameters().get("rheology", "cosserat") != "cosserat"
 
 
 @dataclass(frozen=True, eq=False)
@@ -211,21 +285,71 @@ class Profile:
         return self.velocity(x) if self.velocity is not None else self.evaluate(x).u
 
     def columns(self) -> dict[str, FloatArray]:
-        """The profile as named columns (the export format)."""
-        return {
-            "xi": self.xi,
-            "u": self.u,
-            "omega": self.omega,
-            "m": self.m,
-            "sigma_xy": self.sigma_xy,
-            "sigma_yx": self.sigma_yx,
-            "sigma_yy": self.sigma_yy,
-            "asymmetry": self.asymmetry,
-            "spin_minus_half_vorticity": self.spin_minus_half_vorticity,
+        """The profile as named columns in the cell's own coordinates (the export format).
+
+        Plane shear: ``y`` (= y/H), ``u``, ``omega``, ``m``, ``sigma_xy``, ``sigma_yx``,
+        ``sigma_yy``, ``asymmetry``, ``spin_minus_half_vorticity``; Couette flow: ``r``
+        (= r/H), ..., ``sigma_theta_r``, ``sigma_r_theta``, ``sigma_rr``, ... (meanings:
+        :meth:`column_meanings`). A local rheology has no ``m``, ``asymmetry`` or
+        ``spin_minus_half_vorticity`` (identically zero), and its ``omega`` is half the
+        vorticity.
+        """
+        names = cell_names(self.problem)
+        out = {names.coordinate: np.asarray(names.position(self.problem, self.xi), dtype=float)}
+        for name in FIELD_MEANINGS:
+            if name == "xi" or (name in COSSERAT_ONLY and is_local(self.problem)):
+                continue
+            out[names.fields.get(name, (name, ""))[0]] = getattr(self, name)
+        return out
+
+    def column_meanings(self) -> dict[str, str]:
+        """What each column of :meth:`columns` holds, with its scaling (all dimensionless)."""
+        names = cell_names(self.problem)
+        out = {names.coordinate: names.coordinate_meaning}
+        for name, meaning in FIELD_MEANINGS.items():
+            if name == "xi" or (name in COSSERAT_ONLY and is_local(self.problem)):
+                continue
+            export, cell_meaning = names.fields.get(name, (name, meaning))
+            if name == "omega" and is_local(self.problem):
+                cell_meaning = "material spin, half the vorticity (no independent grain spin)"
+            out[export] = cell_meaning
+        return out
+
+    def summary(self) -> dict[str, Any]:
+        """Metadata of an export: cell, rheology, method, parameters, Delta, wall slip and
+        spin, what each column means and its unit, and the diagnostics (JSON-ready)."""
+        from .._version import __version__
+
+        params = self.problem.parameters()
+        out: dict[str, Any] = {
+            "description": self.problem.describe(),
+            "cell": params.get("geometry"),
+            "rheology": params.get("rheology", "cosserat"),
+            "method": self.method,
+            "parameters": params,
+            "coordinate": cell_names(self.problem).coordinate,
+            "points": int(self.xi.size),
         }
+        try:
+            out["Delta"] = shear_layer_thickness(self)
+        except CosseratError as exc:
+            out["Delta"] = None
+            out["Delta_undefined"] = " ".join(str(exc).split())
+        out["Delta_unit"] = "grain diameters (f = 0.1 of eqn-delta_defn)"
+        out["wall_slip"] = wall_slip(self)
+        out["wall_omega"] = wall_omega(self)
+        out["columns"] = {
+            name: {"meaning": meaning, "unit": "1"}
+            for name, meaning in self.column_meanings().items()
+        }
+        out["units"] = "every column is dimensionless (unit 1); scalings in docs/model.md"
+        out["diagnostics"] = self.diagnostics.to_dict()
+        out["cosserat_version"] = __version__
+        return _finite(out)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready record: parameters, columns, derived wall quantities and diagnostics."""
+        """JSON-ready record: parameters, columns (cell's own names), derived wall quantities,
+        what each column means, and diagnostics."""
         out: dict[str, Any] = {
             "problem": self.problem.parameters()["geometry"],
             "parameters": self.problem.parameters(),
@@ -234,6 +358,7 @@ class Profile:
         out["thickness"] = shear_layer_thickness(self)
         out["wall_slip"] = wall_slip(self)
         out["wall_omega"] = wall_omega(self)
+        out["columns"] = self.column_meanings()
         out["diagnostics"] = self.diagnostics.to_dict()
         return out
 
@@ -245,11 +370,15 @@ class Profile:
         return text
 
     def to_csv(self, path: str | Path | None = None) -> str:
-        """CSV text of :meth:`columns` with a commented header of parameters."""
+        """Plain CSV of :meth:`columns`: one header row of column names, then the values
+        (``pandas.read_csv(path)`` reads it with no options).
+
+        With ``path`` (``profile.csv``), the metadata (:meth:`summary`: parameters, method,
+        Delta, slip, diagnostics, each column's meaning and unit) go to a JSON sidecar
+        beside it with the suffix ``.json`` (``profile.json``); both are written atomically,
+        the CSV first. Returns the CSV text.
+        """
         buf = io.StringIO()
-        params = self.problem.parameters()
-        buf.write(f"# cosserat profile, method = {self.method}\n")
-        buf.write(f"# parameters = {json.dumps(params)}\n")
         cols = self.columns()
         writer = csv.writer(buf, lineterminator="\n")
         writer.writerow(cols.keys())
@@ -257,13 +386,18 @@ class Profile:
             writer.writerow([repr(float(v)) for v in row])
         text = buf.getvalue()
         if path is not None:
-            write_text(path, text)
+            target = Path(path)
+            sidecar = sidecar_path(target)
+            meta = json.dumps({"file": target.name, **self.summary()}, indent=1, allow_nan=False)
+            write_text(target, text)
+            write_text(sidecar, meta + "\n")
         return text
 
     # ----------------------------------------------------------------- notebooks
     def to_dataframe(self) -> Any:
-        """The columns as a :class:`pandas.DataFrame` indexed by position; the parameters,
-        method and units (every field is dimensionless, ``docs/model.md``) in ``attrs``."""
+        """The columns (:meth:`columns`: the cell's own names, ``y`` or ``r`` first) as a
+        :class:`pandas.DataFrame` indexed by position; the parameters, method, each column's
+        meaning and the units (every field is dimensionless, ``docs/model.md``) in ``attrs``."""
         try:
             import pandas as pd
         except ImportError:
@@ -273,19 +407,22 @@ class Profile:
         return frame
 
     def to_xarray(self) -> Any:
-        """The fields as an :class:`xarray.Dataset` on the coordinate ``xi``, with each
-        variable's meaning and unit in its attributes."""
+        """The fields as an :class:`xarray.Dataset` on the cell's coordinate (``y`` in plane
+        shear, ``r`` in Couette flow: :meth:`columns`), with each variable's meaning and unit
+        in its attributes."""
         try:
             import xarray as xr
         except ImportError:
             raise ImportError("Profile.to_xarray needs xarray: pip install xarray") from None
         cols = self.columns()
-        xi = cols.pop("xi")
+        meanings = self.column_meanings()
+        coord = cell_names(self.problem).coordinate
+        position = cols.pop(coord)
         data = {
-            name: ("xi", values, {"long_name": FIELD_MEANINGS[name], "units": "1"})
+            name: (coord, values, {"long_name": meanings[name], "units": "1"})
             for name, values in cols.items()
         }
-        coords = {"xi": ("xi", xi, {"long_name": FIELD_MEANINGS["xi"], "units": "1"})}
+        coords = {coord: (coord, position, {"long_name": meanings[coord], "units": "1"})}
         attrs = {k: json.dumps(v) if isinstance(v, dict) else v for k, v in self._attrs().items()}
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
@@ -294,16 +431,17 @@ class Profile:
             "description": self.problem.describe(),
             "method": self.method,
             "parameters": self.problem.parameters(),
+            "columns": self.column_meanings(),
             "units": "every field is dimensionless; scalings in docs/model.md",
         }
 
     def _repr_html_(self) -> str:
         """A short HTML summary for notebooks: parameters, Delta, slip, a few rows."""
         rows = np.unique(np.linspace(0, self.xi.size - 1, 7).round().astype(int))
-        cols = ["xi", "u", "omega", "m", "asymmetry"]
+        columns = self.columns()
+        cols = [c for c in columns if c in (*CELL_COORDINATES, "u", "omega", "m", "asymmetry")]
         table = "".join(
-            "<tr>" + "".join(f"<td>{self.columns()[c][i]:.6g}</td>" for c in cols) + "</tr>"
-            for i in rows
+            "<tr>" + "".join(f"<td>{columns[c][i]:.6g}</td>" for c in cols) + "</tr>" for i in rows
         )
         head = "".join(f"<th>{c}</th>" for c in cols)
         try:
@@ -323,6 +461,18 @@ class Profile:
         from ..viz.plotting import quick_profile_plot
 
         return quick_profile_plot(self, fig)
+
+
+CELL_COORDINATES = ("xi", *(names.coordinate for names in CELL_NAMES.values()))
+
+
+def sidecar_path(path: str | Path) -> Path:
+    """The JSON sidecar of a CSV export: ``profile.csv`` -> ``profile.json`` (a name without
+    suffix, or ending in ``.json`` itself, gets ``.json`` appended)."""
+    target = Path(path)
+    if target.suffix and target.suffix.lower() != ".json":
+        return target.with_suffix(".json")
+    return target.with_name(target.name + ".json")
 
 
 def _finite(obj: Any) -> Any:
