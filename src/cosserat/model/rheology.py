@@ -8,7 +8,7 @@ fluidity next. A cell times a rheology is a one-dimensional boundary-value probl
 a rheology provides, for each cell it supports, the problem class and its solution routes.
 
 Adding a rheology is one model module (its parameter class and problem classes, the 1-D
-equations derived in ``docs/``), one compiled kernel on :mod:`cosserat.numerics.radau` and one
+equations derived in ``docs/``), one compiled kernel on ``cosserat.numerics.radau`` and one
 routes module that builds a :class:`Rheology`, listed once in :mod:`cosserat.routes`.
 Nothing else changes: :func:`cosserat.solve`, the profile, the analysis and the command line
 work on any registered problem class.
