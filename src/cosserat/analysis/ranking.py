@@ -1,0 +1,830 @@
+"""Rank the registered rheologies against one measured velocity profile.
+
+Each model (a name of :data:`cosserat.routes.RHEOLOGIES`) is put on the measured cell, its free
+parameters are fitted to the profile by bounded nonlinear least squares (SciPy
+``least_squares``, trust-region reflective, on ``(u_model - u_data)/sigma``), and the models
+are ranked by the Akaike and Bayesian information criteria.
+
+Information criteria, k free parameters, n points (:func:`information_criteria`):
+
+* with the points' uncertainties sigma given (taken as absolute, Gaussian): ``-2 ln L =
+  chi^2`` up to a constant, so ``AIC = chi^2 + 2k`` and ``BIC = chi^2 + k ln n``;
+* without them (sigma unknown, estimated by its maximum-likelihood value RSS/n):
+  ``AIC = n ln(RSS/n) + 2k`` and ``BIC = n ln(RSS/n) + k ln n``.
+
+The constant dropped is the same for every model fitted to the same data, so differences
+between models are meaningful and the values themselves are not.
+
+Uncertainties come from the Jacobian at the optimum (forward differences stepping away from any
+bound), propagated to the natural units of each parameter. Where a parameter is not
+identifiable (at a bound of its range, or the Jacobian is singular along it) its uncertainty is
+None and the reason is given, never NaN.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import itertools
+import math
+import typing
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, fields, is_dataclass, replace
+from typing import Any
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from .. import config
+from ..errors import (
+    ConvergenceError,
+    MethodNotAvailableError,
+    NoSolutionError,
+    ParameterError,
+)
+from ..model import CouetteFlow, PlaneShear
+from ..model.build import GEOMETRIES, build_problem
+from ..model.constitutive import FloatArray
+from ..results.profile import Profile
+from ..routes import RHEOLOGIES, solve
+from .fitting import FREE_PARAMETERS as COSSERAT_PARAMETERS
+from .fitting import natural_value, with_values
+from .measurements import MeasuredProfile
+
+DEFAULT_FREE: dict[str, tuple[str, ...]] = {
+    "cosserat": ("delta", "K"),
+    "mui": ("mu_s", "I_w"),
+    "ngf": ("A", "I_w"),
+}
+"""Parameters fitted by default for each model known when this was written. A model registered
+later without an entry here gets the numeric fields of its own parameter class."""
+
+BOUNDS: dict[str, tuple[float, float]] = {
+    "K": (0.0, 10.0),
+    "L": (0.5, 100.0),
+    "phi": (10.0, 60.0),
+    "A": (-0.95, 0.95),
+    "mu_s": (0.05, 1.2),
+    "mu_2": (0.06, 2.0),
+    "I_0": (1e-4, 10.0),
+    "I_w": (1e-7, 1.0),
+    "b": (1e-2, 10.0),
+}
+"""Search ranges of fittable parameters [their units]. delta's is (1 deg, fully rough); a
+parameter not listed searches between 1e-3 and 1e3 times its starting value."""
+
+NGF_BOUNDS = {"A": (1e-3, 5.0)}
+"""NGF's nonlocal amplitude A is positive (it shares its name with the Cosserat A = a2/a1)."""
+
+CELL_PARAMETERS = ("eps", "Ri", "B", "nu")
+"""Parameters of the cell rather than of the material: d/H, R_i/H, rho_s g H/N, nu [-]."""
+
+NO_SOLUTION_RESIDUAL = 1e3
+"""Residual of every point where the model has no solution for trial parameters."""
+
+_SOLVE_ERRORS = (NoSolutionError, ParameterError, ConvergenceError)
+
+
+# --------------------------------------------------------------------------- the models
+def rheology_and_cell(problem: Any) -> tuple[str, str]:
+    """(model name, cell name) of a problem of a registered rheology.
+
+    Raises
+    ------
+    ParameterError
+        No registered rheology has this problem class.
+    """
+    for name, rheology in RHEOLOGIES.items():
+        for cell, cls in rheology.cells.items():
+            if type(problem) is cls:
+                return name, cell
+    raise ParameterError(f"{type(problem).__name__} is not a problem of a registered rheology")
+
+
+def problem_class(model: str, cell: str) -> type:
+    """The problem class of ``model`` on ``cell``.
+
+    Raises
+    ------
+    ParameterError
+        Unknown model name (the message lists the registered ones).
+    MethodNotAvailableError
+        The model is not defined on this cell (the message lists its cells).
+    """
+    if model not in RHEOLOGIES:
+        raise ParameterError(f"unknown model {model!r}: registered are {', '.join(RHEOLOGIES)}")
+    cells = RHEOLOGIES[model].cells
+    if cell not in cells:
+        raise MethodNotAvailableError(
+            f"model {model!r} has no {cell!r} cell; it is defined on {', '.join(cells)}"
+        )
+    return cells[cell]
+
+
+def _nested(problem: Any) -> dict[str, Any]:
+    """The parameter objects inside a problem (its dataclass-valued fields)."""
+    return {
+        f.name: getattr(problem, f.name)
+        for f in fields(problem)
+        if is_dataclass(getattr(problem, f.name, None))
+    }
+
+
+def parameter_names(problem: Any) -> list[str]:
+    """Every numeric parameter name :func:`set_parameters` accepts for ``problem``."""
+    names = [f.name for f in fields(problem) if not is_dataclass(getattr(problem, f.name, None))]
+    for sub in _nested(problem).values():
+        names += [f.name for f in fields(sub)]
+    if isinstance(problem, PlaneShear | CouetteFlow):
+        names += list(COSSERAT_PARAMETERS)
+    return list(dict.fromkeys(names))
+
+
+def get_parameter(problem: Any, name: str) -> Any:
+    """Value of parameter ``name`` of ``problem`` (its own field, or one of a parameter object).
+
+    For the Cosserat model ``delta`` is the moving wall's friction angle [deg] (the fully rough
+    wall as its angle) and ``K`` its slip coefficient.
+    """
+    if isinstance(problem, PlaneShear | CouetteFlow) and name in COSSERAT_PARAMETERS:
+        return natural_value(problem, name)
+    if name in {f.name for f in fields(problem)}:
+        return getattr(problem, name)
+    for sub in _nested(problem).values():
+        if name in {f.name for f in fields(sub)}:
+            return getattr(sub, name)
+    raise ParameterError(
+        f"{type(problem).__name__} has no parameter {name!r}; it has "
+        f"{', '.join(parameter_names(problem))}"
+    )
+
+
+def set_parameters(problem: Any, values: Mapping[str, Any]) -> Any:
+    """``problem`` with parameters replaced by name (validated again by the classes).
+
+    Names are the problem's own fields (``eps``, ``B``, ``Ri``, ``I_w``, ...) or the fields of
+    its parameter objects (``phi``, ``mu_s``, ...); for the Cosserat model ``delta`` and ``K``
+    are the moving wall's (both walls when the plane walls are identical,
+    :func:`cosserat.analysis.fitting.with_values`).
+
+    Raises
+    ------
+    ParameterError
+        A name the problem does not have, or a value out of its bounds.
+    """
+    rest = dict(values)
+    if isinstance(problem, PlaneShear | CouetteFlow):
+        wall = {k: float(rest.pop(k)) for k in list(rest) if k in COSSERAT_PARAMETERS}
+        if wall:
+            problem = with_values(problem, wall)
+    if not rest:
+        return problem
+    own = {f.name for f in fields(problem)}
+    direct = {k: rest.pop(k) for k in list(rest) if k in own}
+    for attr, sub in _nested(problem).items():
+        mine = {k: rest.pop(k) for k in list(rest) if k in {f.name for f in fields(sub)}}
+        if mine:
+            direct[attr] = replace(sub, **mine)
+    if rest:
+        raise ParameterError(
+            f"{type(problem).__name__} has no parameter(s) {', '.join(rest)}; it has "
+            f"{', '.join(parameter_names(problem))}"
+        )
+    return replace(problem, **direct)
+
+
+def model_problem(model: str, cell: str, parameters: Mapping[str, Any] | None = None) -> Any:
+    """The problem of ``model`` on ``cell`` with ``parameters``, the model's defaults elsewhere.
+
+    Parameters
+    ----------
+    model : str
+        A registered rheology (``cosserat``, ``mui``, ...).
+    cell : str
+        ``plane``, ``couette`` (``channel`` where registered).
+    parameters : mapping
+        ``eps`` (required by every cell) and any other parameter by name
+        (:func:`set_parameters`); None values are left at the defaults. For the Cosserat model
+        ``delta`` may be "fully-rough".
+
+    Raises
+    ------
+    ParameterError, MethodNotAvailableError
+        Unknown model, a cell the model lacks, a parameter this problem does not have.
+    """
+    cls = problem_class(model, cell)
+    params = {k: v for k, v in (parameters or {}).items() if v is not None}
+    if "eps" not in params:
+        raise ParameterError("the cell parameters need eps = d/H")
+    if model == "cosserat" and cell in GEOMETRIES:
+        return build_problem({"geometry": cell, **params})
+    hints = typing.get_type_hints(cls)
+    kwargs: dict[str, Any] = {}
+    for f in fields(cls):
+        if f.name in params:
+            kwargs[f.name] = params.pop(f.name)
+        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+            kind = hints.get(f.name)
+            if isinstance(kind, type) and is_dataclass(kind):
+                kwargs[f.name] = kind()  # the parameter class's defaults
+            else:
+                raise ParameterError(f"{cls.__name__} needs {f.name!r}")
+    return set_parameters(cls(**kwargs), params)
+
+
+def moving_wall(problem: Any) -> tuple[float, float]:
+    """(xi, u) of the wall that drives the flow: (1, 1) plane shear, (0, -1) Couette.
+
+    Raises
+    ------
+    MethodNotAvailableError
+        No wall moves (a gravity-driven cell): a velocity over the wall speed is undefined.
+    """
+    for xi in (1.0, 0.0) if not hasattr(problem, "moving_wall") else (problem.moving_wall,):
+        u = float(problem.wall_velocity(xi))
+        if u != 0.0:
+            return float(xi), u
+    raise MethodNotAvailableError(
+        f"{type(problem).__name__}: no wall moves, so a profile over the wall speed cannot be "
+        "compared with it (the gravity-driven cell needs its own velocity scale)"
+    )
+
+
+def model_velocity(profile: Profile, distance_d: FloatArray) -> FloatArray:
+    """u / u_wall of ``profile`` at distances from the moving wall in grain diameters [-]."""
+    xw, uw = moving_wall(profile.problem)
+    d = np.asarray(distance_d, dtype=float) * profile.problem.eps
+    xi = d if xw == 0.0 else 1.0 - d
+    return profile.velocity_at(np.clip(xi, 0.0, 1.0)) / uw
+
+
+def model_solve(problem: Any, points: int = 3, **options: Any) -> Profile:
+    """The model's profile, in closed form where its rheology has one for this problem, else
+    by its numerical route at ``rtol`` = :data:`cosserat.config.RTOL` (unless given): the fit's
+    finite-difference steps are far above that. A coarse output grid: the fit evaluates the
+    dense solution at the data points."""
+    model, _ = rheology_and_cell(problem)
+    routes = RHEOLOGIES[model].routes
+    if type(problem) in routes.get("closed-form", {}) and not options:
+        try:
+            return solve(problem, method="closed-form", check=False, points=points)
+        except MethodNotAvailableError:
+            pass
+    route = routes["numerical"][type(problem)]
+    if "rtol" in inspect.signature(route).parameters:
+        options = {"rtol": config.RTOL, **options}
+    return solve(problem, method="numerical", check=False, points=points, **options)
+
+
+def default_free(model: str, problem: Any) -> tuple[str, ...]:
+    """The parameters fitted by default: :data:`DEFAULT_FREE`, or for a model registered
+    later the numeric fields of its parameter class."""
+    if model in DEFAULT_FREE:
+        names = tuple(n for n in DEFAULT_FREE[model] if n in parameter_names(problem))
+        if names:
+            return names
+    subs = [s for a, s in _nested(problem).items() if a not in ("material",)]
+    out = []
+    for sub in subs:
+        out += [f.name for f in fields(sub) if isinstance(getattr(sub, f.name), float)]
+    return tuple(out)
+
+
+# --------------------------------------------------------------------------- statistics
+def information_criteria(
+    residuals: FloatArray, k: int, absolute_sigma: bool
+) -> tuple[float, float | None, float | None]:
+    """(chi^2 or RSS, AIC, BIC) of weighted residuals for k free parameters.
+
+    ``residuals`` are ``(model - data)/sigma`` (sigma = 1 without uncertainties). With
+    ``absolute_sigma``: AIC = chi^2 + 2k, BIC = chi^2 + k ln n. Without: AIC = n ln(RSS/n) + 2k,
+    BIC = n ln(RSS/n) + k ln n; None when RSS = 0 (a perfect fit has no finite likelihood
+    with an estimated sigma).
+    """
+    r = np.asarray(residuals, dtype=float)
+    n = r.size
+    s = float(np.sum(r * r))
+    if absolute_sigma:
+        return s, s + 2.0 * k, s + k * math.log(n)
+    if s == 0.0:
+        return s, None, None
+    base = n * math.log(s / n)
+    return s, base + 2.0 * k, base + k * math.log(n)
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """A fitted parameter: its value and standard error, or why the error is not given."""
+
+    value: float
+    stderr: float | None
+    reason: str | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"value": self.value, "stderr": self.stderr, "reason": self.reason}
+
+    def text(self) -> str:
+        if self.stderr is None:
+            return f"{self.value:.5g} (no error: {self.reason})"
+        return f"{self.value:.5g} +- {self.stderr:.2g}"
+
+
+@dataclass
+class ModelFit:
+    """One model fitted to the measured profile (``status`` "ok"), or why it could not be."""
+
+    model: str
+    cell: str
+    status: str
+    message: str = ""
+    problem: Any = None
+    profile: Profile | None = None
+    parameters: dict[str, Estimate] = field(default_factory=dict)
+    n: int = 0
+    k: int = 0
+    chi2: float | None = None
+    reduced_chi2: float | None = None
+    aic: float | None = None
+    bic: float | None = None
+    absolute_sigma: bool = False
+    model_u: FloatArray | None = None
+    residuals: FloatArray | None = None
+    warnings: list[str] = field(default_factory=list)
+    solves: int = 0
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+    def curve(self, distance_d: FloatArray) -> FloatArray:
+        """The fitted model's u/u_wall at distances from the moving wall [d] (for plots)."""
+        if self.profile is None:
+            raise ParameterError(f"model {self.model!r} was not fitted: {self.message}")
+        return model_velocity(self.profile, distance_d)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "model": self.model,
+            "cell": self.cell,
+            "status": self.status,
+            "message": self.message,
+            "n": self.n,
+            "k": self.k,
+            "chi2": self.chi2,
+            "reduced_chi2": self.reduced_chi2,
+            "aic": self.aic,
+            "bic": self.bic,
+            "absolute_sigma": self.absolute_sigma,
+            "parameters": {k: v.to_dict() for k, v in self.parameters.items()},
+            "problem": None if self.problem is None else self.problem.parameters(),
+            "warnings": list(self.warnings),
+            "solves": self.solves,
+        }
+
+
+def _bounds(name: str, problem: Any, start: float, model: str) -> tuple[float, float]:
+    if name == "delta" and isinstance(problem, PlaneShear | CouetteFlow):
+        return 1.0, problem.material.fully_rough_delta
+    if model == "ngf" and name in NGF_BOUNDS:
+        return NGF_BOUNDS[name]
+    if name in BOUNDS:
+        return BOUNDS[name]
+    if start > 0.0:
+        return start * 1e-3, start * 1e3
+    if start < 0.0:
+        return start * 1e3, start * 1e-3
+    return -1.0, 1.0
+
+
+class _Coordinates:
+    """Internal coordinates: the logarithm for a positive range wider than a factor of 100."""
+
+    def __init__(self, names: Sequence[str], bounds: Sequence[tuple[float, float]]):
+        self.names = list(names)
+        self.log = np.array([lo > 0.0 and hi / lo > 100.0 for lo, hi in bounds])
+        lo = np.array([b[0] for b in bounds], dtype=float)
+        hi = np.array([b[1] for b in bounds], dtype=float)
+        self.lo = np.where(self.log, np.log(np.where(self.log, lo, 1.0)), lo)
+        self.hi = np.where(self.log, np.log(np.where(self.log, hi, 1.0)), hi)
+
+    def natural(self, theta: FloatArray) -> FloatArray:
+        return np.where(self.log, np.exp(theta), theta)
+
+    def internal(self, values: FloatArray) -> FloatArray:
+        v = np.asarray(values, dtype=float)
+        return np.clip(np.where(self.log, np.log(np.where(self.log, v, 1.0)), v), self.lo, self.hi)
+
+    def dnatural(self, theta: FloatArray) -> FloatArray:
+        """d natural / d internal for each coordinate."""
+        return np.where(self.log, np.exp(theta), 1.0)
+
+
+class _Objective:
+    def __init__(self, measured: MeasuredProfile, base: Any, coords: _Coordinates, options: dict):
+        self.measured, self.base, self.coords, self.options = measured, base, coords, options
+        self.sigma = measured.u_err if measured.u_err is not None else np.ones(measured.n)
+        self.solves = 0
+
+    def problem(self, theta: FloatArray) -> Any:
+        values = self.coords.natural(theta)
+        return set_parameters(self.base, dict(zip(self.coords.names, values, strict=True)))
+
+    def __call__(self, theta: FloatArray) -> FloatArray:
+        self.solves += 1
+        try:
+            prof = model_solve(self.problem(theta), **self.options)
+            u = model_velocity(prof, self.measured.distance_d)
+        except _SOLVE_ERRORS:
+            return np.full(self.measured.n, NO_SOLUTION_RESIDUAL)
+        return (u - self.measured.u_over_uw) / self.sigma
+
+
+def _start(obj: _Objective, theta0: FloatArray, grid: int) -> FloatArray:
+    """The best of the model's defaults and a coarse grid over the ranges (a fit of a
+    nonlinear model from one start can stop in a local minimum)."""
+    best, cost = theta0, float(np.sum(obj(theta0) ** 2))
+    c = obj.coords
+    axes = [np.linspace(lo, hi, grid + 2)[1:-1] for lo, hi in zip(c.lo, c.hi, strict=True)]
+    for point in itertools.product(*axes):
+        th = np.asarray(point, dtype=float)
+        value = float(np.sum(obj(th) ** 2))
+        if value < cost:
+            best, cost = th, value
+    return best
+
+
+def _jacobian(obj: _Objective, theta: FloatArray, f0: FloatArray) -> FloatArray:
+    """Forward differences at the optimum, stepping away from any bound."""
+    c = obj.coords
+    J = np.empty((f0.size, theta.size))
+    for j in range(theta.size):
+        h = config.FIT_DIFF_STEP * (c.hi[j] - c.lo[j])
+        if theta[j] + h > c.hi[j]:
+            h = -h
+        th = theta.copy()
+        th[j] += h
+        J[:, j] = (obj(th) - f0) / h
+    return J
+
+
+def fit_model(
+    measured: MeasuredProfile,
+    problem: Any,
+    free: Sequence[str] | None = None,
+    *,
+    grid: int = 3,
+    **options: Any,
+) -> ModelFit:
+    """Fit the ``free`` parameters of ``problem`` (any registered rheology) to ``measured``.
+
+    Parameters
+    ----------
+    measured : MeasuredProfile
+        u over the moving wall's velocity against the distance from it [d].
+    problem : problem of a registered rheology
+        The cell and the starting values; parameters not in ``free`` stay fixed.
+    free : sequence of str, optional
+        Parameter names (:func:`parameter_names`); default :func:`default_free`. Empty: the
+        model is compared as it is (k = 0).
+    grid : int
+        Points per parameter of the coarse start grid (0: start from the defaults only).
+    **options
+        Passed to the model's numerical route (e.g. ``rtol``).
+
+    Returns
+    -------
+    ModelFit
+        ``status`` "ok"; a model with no solution anywhere on the start grid raises.
+
+    Raises
+    ------
+    ParameterError
+        Unknown parameter name, or too few points for the free parameters.
+    NoSolutionError
+        The model has no solution at the best start found.
+    """
+    model, cell = rheology_and_cell(problem)
+    names = list(dict.fromkeys(default_free(model, problem) if free is None else free))
+    known = parameter_names(problem)
+    bad = [n for n in names if n not in known]
+    if bad:
+        raise ParameterError(
+            f"model {model!r} has no parameter(s) {', '.join(bad)}; it has {', '.join(known)}"
+        )
+    if measured.n <= len(names):
+        raise ParameterError(f"{measured.n} points cannot determine {len(names)} parameters")
+    measured.xi(problem.eps, moving_wall(problem)[0])  # the points lie in the gap
+    start = np.array([float(get_parameter(problem, n)) for n in names], dtype=float)
+    bounds = [_bounds(n, problem, s, model) for n, s in zip(names, start, strict=True)]
+    coords = _Coordinates(names, bounds)
+    obj = _Objective(measured, problem, coords, dict(options))
+    absolute = measured.u_err is not None
+    warnings: list[str] = []
+    if names:
+        theta0 = _start(obj, coords.internal(start), grid) if grid else coords.internal(start)
+        res = least_squares(
+            obj,
+            theta0,
+            bounds=(coords.lo, coords.hi),
+            method="trf",
+            x_scale="jac",
+            diff_step=config.FIT_DIFF_STEP,
+            xtol=config.FIT_XTOL,
+            ftol=config.FIT_FTOL,
+            gtol=config.FIT_GTOL,
+            max_nfev=config.FIT_MAX_NFEV,
+        )
+        theta = res.x
+        if not res.success:
+            warnings.append(f"the least-squares search stopped: {res.message}")
+    else:
+        theta = np.zeros(0)
+    best = obj.problem(theta)
+    profile = model_solve(best, points=201, **options)
+    u = model_velocity(profile, measured.distance_d)
+    sigma = obj.sigma
+    resid = (u - measured.u_over_uw) / sigma
+    if np.all(np.abs(resid) >= NO_SOLUTION_RESIDUAL * 0.999):
+        raise NoSolutionError(f"model {model!r} has no solution near the data")
+    n, k = measured.n, len(names)
+    chi2, aic, bic = information_criteria(resid, k, absolute)
+    dof = n - k
+    params = _estimates(obj, theta, resid, chi2 / dof, absolute, warnings)
+    if aic is None:
+        warnings.append("the residuals are exactly zero: AIC and BIC are undefined")
+    if absolute and chi2 / dof > 3.0:
+        warnings.append(
+            f"poor fit: reduced chi-square {chi2 / dof:.3g} >> 1: the model does not describe "
+            "these data within their uncertainties"
+        )
+    return ModelFit(
+        model=model,
+        cell=cell,
+        status="ok",
+        problem=best,
+        profile=profile,
+        parameters=params,
+        n=n,
+        k=k,
+        chi2=chi2,
+        reduced_chi2=chi2 / dof,
+        aic=aic,
+        bic=bic,
+        absolute_sigma=absolute,
+        model_u=u,
+        residuals=u - measured.u_over_uw,
+        warnings=warnings,
+        solves=obj.solves + 1,
+    )
+
+
+def _estimates(
+    obj: _Objective,
+    theta: FloatArray,
+    resid: FloatArray,
+    reduced: float,
+    absolute: bool,
+    warnings: list[str],
+) -> dict[str, Estimate]:
+    """Values and standard errors in natural units (None with the reason where not defined)."""
+    c = obj.coords
+    values = c.natural(theta)
+    if not c.names:
+        return {}
+    J = _jacobian(obj, theta, resid)
+    scale = 1.0 if absolute else reduced
+    reasons: dict[int, str] = {}
+    span = c.hi - c.lo
+    for j in range(theta.size):
+        if theta[j] <= c.lo[j] + 1e-6 * span[j] or theta[j] >= c.hi[j] - 1e-6 * span[j]:
+            lo, hi = c.natural(c.lo)[j], c.natural(c.hi)[j]
+            reasons[j] = f"at a bound of its range [{lo:.4g}, {hi:.4g}]"
+    _, sv, vt = np.linalg.svd(J, full_matrices=False)
+    stderr = np.full(theta.size, np.nan)
+    if sv.size and sv[0] > 0.0 and sv[-1] > 1e-8 * sv[0]:
+        cov = (vt.T / sv**2) @ vt * scale
+        d = c.dnatural(theta)
+        stderr = np.sqrt(np.abs(np.diag(cov))) * d
+    else:
+        weak = np.abs(vt[-1]) > 0.3 if sv.size else np.ones(theta.size, bool)
+        for j in np.flatnonzero(weak):
+            reasons.setdefault(
+                int(j),
+                "not identifiable: the profile does not change along it (singular Jacobian)",
+            )
+        if not np.all(weak):
+            warnings.append(
+                "the free parameters are not all identifiable together: fix one of "
+                + ", ".join(c.names[j] for j in np.flatnonzero(weak))
+            )
+    out = {}
+    for j, name in enumerate(c.names):
+        e = float(stderr[j])
+        if j in reasons or not math.isfinite(e):
+            out[name] = Estimate(float(values[j]), None, reasons.get(j, "not identifiable"))
+        else:
+            out[name] = Estimate(float(values[j]), e)
+    return out
+
+
+# --------------------------------------------------------------------------- ranking
+@dataclass
+class Ranking:
+    """Every model's fit to one profile, best (lowest AIC) first."""
+
+    measured: MeasuredProfile
+    cell: str
+    fits: list[ModelFit]
+
+    @property
+    def ranked(self) -> list[ModelFit]:
+        """The fitted models by AIC (then BIC), failures last."""
+        ok = [f for f in self.fits if f.ok and f.aic is not None]
+        rest = [f for f in self.fits if f not in ok]
+        return sorted(ok, key=lambda f: (f.aic, f.bic)) + rest
+
+    @property
+    def best(self) -> ModelFit | None:
+        r = self.ranked
+        return r[0] if r and r[0].ok and r[0].aic is not None else None
+
+    def by_bic(self) -> list[ModelFit]:
+        ok = [f for f in self.fits if f.ok and f.bic is not None]
+        return sorted(ok, key=lambda f: f.bic)  # type: ignore[arg-type,return-value]
+
+    def weights(self) -> dict[str, float]:
+        """Akaike weights exp(-dAIC/2), normalised over the fitted models."""
+        ok = [f for f in self.fits if f.ok and f.aic is not None]
+        if not ok:
+            return {}
+        a0 = min(f.aic for f in ok)  # type: ignore[type-var]
+        w = {f.model: math.exp(-0.5 * (f.aic - a0)) for f in ok}  # type: ignore[operator]
+        total = sum(w.values())
+        return {k: v / total for k, v in w.items()}
+
+    def to_dict(self) -> dict[str, Any]:
+        best = self.best
+        return {
+            "cell": self.cell,
+            "n_points": self.measured.n,
+            "uncertainties": self.measured.u_err is not None,
+            "best": None if best is None else best.model,
+            "akaike_weights": self.weights(),
+            "fits": [f.to_dict() for f in self.ranked],
+        }
+
+    def to_text(self) -> str:
+        w = self.weights()
+        a0 = min((f.aic for f in self.fits if f.ok and f.aic is not None), default=0.0)
+        what = "chi2" if self.measured.u_err is not None else "RSS"
+        lines = [
+            f"{self.measured.n} points on the {self.cell} cell; "
+            + (
+                "uncertainties given: chi2 = sum((model - data)/u_err)^2, AIC = chi2 + 2k, "
+                "BIC = chi2 + k ln n"
+                if self.measured.u_err is not None
+                else "no uncertainties: RSS = sum((model - data)^2), AIC = n ln(RSS/n) + 2k, "
+                "BIC = n ln(RSS/n) + k ln n"
+            ),
+            f"{'rank':<5}{'model':<10}{'k':>3}{what:>12}{'red.' + what:>11}{'AIC':>11}"
+            f"{'dAIC':>9}{'BIC':>11}{'weight':>8}",
+        ]
+        for i, f in enumerate(self.ranked, start=1):
+            if not f.ok:
+                lines.append(f"{'-':<5}{f.model:<10}not fitted: {f.message}")
+                continue
+            lines.append(
+                f"{i:<5}{f.model:<10}{f.k:>3}{f.chi2:>12.5g}{f.reduced_chi2:>11.4g}"
+                + (
+                    f"{f.aic:>11.5g}{f.aic - a0:>9.3g}{f.bic:>11.5g}{w.get(f.model, 0.0):>8.3f}"
+                    if f.aic is not None
+                    else f"{'undefined':>11}"
+                )
+            )
+        for f in self.ranked:
+            if not f.ok:
+                continue
+            lines.append(
+                f"  {f.model}: " + "; ".join(f"{k} = {v.text()}" for k, v in f.parameters.items())
+                if f.parameters
+                else f"  {f.model}: no free parameter"
+            )
+            lines += [f"    note: {w_}" for w_ in f.warnings]
+        return "\n".join(lines) + "\n"
+
+    def plot(self, title: str = ""):  # type: ignore[no-untyped-def]
+        """The data with error bars and every fitted model (linear and log velocity axes)."""
+        from ..viz.plotting import new_figure, style
+
+        meas = self.measured
+        fitted = [f for f in self.ranked if f.ok]
+        d_max = float(meas.distance_d.max()) * 1.05 + 1e-9
+        eps = min(f.problem.eps for f in fitted) if fitted else 1.0
+        d = np.linspace(0.0, min(d_max, 1.0 / eps), 300)
+        fig, axes = new_figure(1, 2, width=6.6, height=3.0)
+        with style():
+            for j, ax in enumerate(axes[0]):
+                ax.errorbar(
+                    meas.distance_d,
+                    meas.u_over_uw,
+                    yerr=meas.u_err,
+                    fmt="o",
+                    color="k",
+                    markerfacecolor="none",
+                    capsize=2,
+                    label=meas.label,
+                )
+                for i, f in enumerate(fitted):
+                    ax.plot(
+                        d,
+                        f.curve(d),
+                        linestyle=["-", "--", "-.", ":"][i % 4],
+                        label=f"{f.model} (AIC {f.aic:.4g})" if f.aic is not None else f.model,
+                    )
+                ax.set_xlabel(r"distance from the moving wall [$d$]")
+                ax.set_ylabel(r"$u/u_w$")
+                if j == 1:
+                    pos = meas.u_over_uw[meas.u_over_uw > 0]
+                    ax.set_yscale("log")
+                    ax.set_ylim(max(float(pos.min()) / 3 if pos.size else 1e-4, 1e-8), 1.5)
+                else:
+                    ax.legend()
+            if title:
+                fig.suptitle(title, fontsize=8)
+            fig.tight_layout()
+        return fig
+
+
+def rank_models(
+    measured: MeasuredProfile,
+    cell_parameters: Mapping[str, Any],
+    models: Sequence[str] | None = None,
+    free: Mapping[str, Sequence[str]] | None = None,
+    *,
+    cell: str | None = None,
+    model_parameters: Mapping[str, Mapping[str, Any]] | None = None,
+    grid: int = 3,
+) -> Ranking:
+    """Fit every model to ``measured`` and rank them by AIC and BIC.
+
+    Parameters
+    ----------
+    measured : MeasuredProfile
+        Distance from the moving wall [d], u over the wall's velocity [-], optional errors.
+    cell_parameters : mapping
+        ``geometry`` (plane | couette; or give ``cell``), ``eps`` = d/H, and ``Ri`` (Couette),
+        ``B`` and ``nu`` (plane) as they apply [-].
+    models : sequence of str, optional
+        Registered rheologies; default every one defined on the cell.
+    free : mapping of model name to parameter names, optional
+        Parameters to fit for each model (default :func:`default_free`).
+    model_parameters : mapping of model name to mapping, optional
+        Fixed values or starting values of model parameters (e.g. ``{"cosserat":
+        {"delta": "fully-rough"}}``).
+    grid : int
+        Points per free parameter of the coarse start grid.
+
+    Returns
+    -------
+    Ranking
+        A model that cannot be fitted (no such cell, no solution) is listed with the reason.
+    """
+    cell = cell or str(cell_parameters.get("geometry") or measured.meta.get("geometry") or "")
+    if not cell:
+        raise ParameterError("say which cell: geometry = plane | couette in the cell parameters")
+    params = {k: v for k, v in cell_parameters.items() if k != "geometry"}
+    names = (
+        [m for m, r in RHEOLOGIES.items() if cell in r.cells] if models is None else list(models)
+    )
+    for m in names:
+        if m not in RHEOLOGIES:
+            raise ParameterError(f"unknown model {m!r}: registered are {', '.join(RHEOLOGIES)}")
+    fits = []
+    for m in names:
+        try:
+            start = {**params, **dict((model_parameters or {}).get(m, {}))}
+            problem = model_problem(m, cell, start)
+            fits.append(
+                fit_model(measured, problem, None if free is None else free.get(m), grid=grid)
+            )
+        except (MethodNotAvailableError, NoSolutionError, ConvergenceError) as exc:
+            fits.append(ModelFit(model=m, cell=cell, status="failed", message=str(exc)))
+    return Ranking(measured, cell, fits)
+
+
+__all__ = [
+    "DEFAULT_FREE",
+    "Estimate",
+    "ModelFit",
+    "Ranking",
+    "fit_model",
+    "get_parameter",
+    "information_criteria",
+    "model_problem",
+    "model_velocity",
+    "moving_wall",
+    "parameter_names",
+    "problem_class",
+    "rank_models",
+    "set_parameters",
+]
