@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 from ..config import DEFAULT_F
 from ..errors import ConvergenceError, NoSolutionError, ParameterError
 from ..results.wall import shear_layer_thickness
-from ..routes import solve
+from ..routes import COSSERAT, solve
 from ..routes.numerical import wall_quantities
 
 if TYPE_CHECKING:
@@ -37,13 +37,14 @@ def thickness_curve(
     """Delta at each eps of ``eps_values`` for ``problem`` (other parameters fixed).
 
     An eps at which the model has no real solution (:class:`NoSolutionError`) gives None and
-    its reason in ``failures``; other errors propagate. The numerical route solves the whole
-    curve in one call of the compiled batch kernel (the same kernel as a single solve);
-    the other routes solve eps by eps, calling ``progress(i, n)`` after each.
+    its reason in ``failures``; other errors propagate. The numerical route of the Cosserat
+    model solves the whole curve in one call of the compiled batch kernel (the same kernel as
+    a single solve); the other routes and rheologies solve eps by eps, calling
+    ``progress(i, n)`` after each.
     """
     problems = [replace(problem, eps=eps) for eps in eps_values]
     eps_list = [float(e) for e in eps_values]
-    if method == "numerical":
+    if method == "numerical" and type(problem) in COSSERAT.cells.values():
         unknown = sorted(set(options) - {"rtol", "atol"})
         if unknown:
             raise ParameterError(
