@@ -1,0 +1,390 @@
+"""Routes for the vertical channel (:class:`~cosserat.model.channel.Channel`).
+
+* ``solve_numerical``: the compiled kernel :mod:`cosserat.numerics.channel` on the upper half,
+  mirrored onto the lower half (u and m even, omega and the shear stresses odd about xi = 1/2).
+* ``solve_asymptotic``: the leading order in eps -> 0 (``docs/derivation_channel.md``
+  sections 5-6): an exponential layer of constant thickness at walls that are not fully rough,
+  the Airy layer of thickness ~ eps^(2/3) at fully rough ones.
+
+The residuals of a profile are recomputed on the upper half in the mapped variables (plane shear
+with ``sigma_yx = -tau(xi)``), where the shared :func:`~cosserat.results.diagnostics.residuals`
+applies; the lower half is the mirror image by construction.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from .. import config
+from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
+from ..model.channel import Channel
+from ..model.constitutive import FloatArray
+from ..numerics import channel as kernel
+from ..numerics.radau import dense_eval
+from ..results.diagnostics import residuals
+from ..results.profile import Fields, Profile
+from .airy import I_INFINITY, airy_layer, inner_couple_stress, xi_hat_at_fraction
+from .assemble import make_profile
+from .numerical import tolerances
+
+START_OFFSET = 1e-4
+"""s_0 = xi_0 - 1/2 where the couple-stress pass leaves the centre-line series (its error
+~ s_0^4 is below round-off, and decays further as the pass relaxes) [-]."""
+
+
+def parameter_vector(problem: Channel) -> FloatArray:
+    """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.channel`)."""
+    mat = problem.material
+    p = np.zeros(kernel.N_PARAMS)
+    p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
+    p[kernel.P_EPS] = problem.eps
+    p[kernel.P_B_NU] = problem.B_nu
+    p[kernel.P_WALL_GAP] = problem.wall_gap
+    p[kernel.P_C] = problem.c
+    p[kernel.P_MU] = problem.centre_expansion()  # raises NoSolutionError in words
+    p[kernel.P_S0] = START_OFFSET
+    p[kernel.P_EPS_K] = problem.eps * problem.wall.K if problem.slips else 0.0
+    return p
+
+
+def raise_for_status(problem: Channel, status: int, info: FloatArray) -> None:
+    if status == kernel.OK:
+        return
+    xi, m = float(info[kernel.I_XI_FAIL]), float(info[kernel.I_M_FAIL])
+    if status == kernel.NO_SOLUTION:
+        raise NoSolutionError(
+            f"no real solution for {problem.describe()}: integrated from the centre line, the "
+            f"couple stress reaches the yield bound at xi = {xi:.6g} (|m| = {abs(m):.6g}), "
+            f"beyond which the second shear stress of eqn-nd_sigxy is complex "
+            f"(docs/derivation_channel.md, section 4)"
+        )
+    if status == kernel.SINGULAR_VELOCITY:
+        raise ConvergenceError(f"the velocity conditions are singular for {problem.describe()}")
+    budget = "ran out of its step budget" if status == kernel.TOO_MANY_STEPS else "stalled"
+    raise ConvergenceError(
+        f"the channel integration {budget} at xi = {xi:.6g} for {problem.describe()}"
+    )
+
+
+def _mirror(x: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """(points on the upper half, +1 where x >= 1/2 else -1)."""
+    upper = x >= 0.5
+    return np.where(upper, x, 1.0 - x), np.where(upper, 1.0, -1.0)
+
+
+def physical_fields(
+    x: FloatArray,
+    u_hat: FloatArray,
+    w_hat: FloatArray,
+    m_hat: FloatArray,
+    sigma_xy_hat: FloatArray,
+    du_hat: FloatArray,
+    problem: Channel,
+    sign: FloatArray,
+) -> Fields:
+    """Channel fields at x from mapped ones at the mirrored points (u, m even; omega,
+    shear stresses and du/dxi odd about 1/2; mapped -> physical: u = 1 - u_hat and every
+    other field changes sign)."""
+    return Fields(
+        u=1.0 - u_hat,
+        omega=-sign * w_hat,
+        m=-m_hat,
+        sigma_xy=-sign * sigma_xy_hat,
+        sigma_yx=problem.sigma_yx(x),
+        sigma_yy=np.ones_like(x),
+        du_dxi=-sign * du_hat,
+        kappa=np.zeros_like(x),
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class ChannelSolution:
+    """Dense solution of the channel kernel on [0, 1] (plain arrays: it pickles)."""
+
+    problem: Channel
+    params: FloatArray
+    info: FloatArray
+    couple: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+    spin: tuple[FloatArray, FloatArray, FloatArray]
+    info_f: float = config.DEFAULT_F
+
+    def _deficit(self, h: FloatArray) -> FloatArray:
+        """y = c - m_hat on the upper half (the series inside xi_0)."""
+        p = self.params
+        s = h - 0.5
+        series = p[kernel.P_MU] * s * s
+        inner = s < p[kernel.P_S0]
+        dense = dense_eval(*self.couple, np.where(inner, 0.5 + p[kernel.P_S0], h))[:, 0]
+        return np.where(inner, series, dense)
+
+    def mapped(self, h: FloatArray) -> Fields:
+        """Fields in the mapped variables at points h of [1/2, 1]."""
+        p, info = self.params, self.info
+        y = self._deficit(h)
+        ell, P = kernel.spin_pass_at(h, p, *self.spin, info)
+        tau, sqrt_S, F1 = kernel.arrays_at(h, y, p)
+        with np.errstate(under="ignore"):
+            w_hat = info[kernel.I_W_S] * np.exp(ell)
+        u_hat = info[kernel.I_U_S] - info[kernel.I_W_S] * P
+        A = self.problem.material.A
+        return Fields(
+            u=u_hat,
+            omega=w_hat,
+            m=p[kernel.P_C] - y,
+            sigma_xy=A * tau - sqrt_S,
+            sigma_yx=-tau,
+            sigma_yy=np.ones_like(h),
+            du_dxi=-w_hat * F1,
+            kappa=np.zeros_like(h),
+        )
+
+    def __call__(self, xi: FloatArray) -> Fields:
+        x = np.asarray(xi, dtype=float)
+        h, sign = _mirror(x)
+        f = self.mapped(h)
+        return physical_fields(x, f.u, f.omega, f.m, f.sigma_xy, f.du_dxi, self.problem, sign)
+
+    def velocity(self, xi: FloatArray) -> FloatArray:
+        h, _ = _mirror(np.asarray(xi, dtype=float))
+        _, P = kernel.spin_pass_at(h, self.params, *self.spin, self.info)
+        return 1.0 - (self.info[kernel.I_U_S] - self.info[kernel.I_W_S] * P)
+
+    def thickness(self, f: float) -> float:
+        """Delta for the fraction f (``eqn-delta_defn`` with u_0 = u(1/2)) [d_p]."""
+        if f == self.info_f and self.info[kernel.I_DELTA_OK]:
+            return float(self.info[kernel.I_DELTA])
+        delta, ok = kernel.thickness_of(self.params, *self.spin, self.info, float(f))
+        if not ok:
+            raise ParameterError(
+                f"f = {f:g}: the velocity does not fall to this fraction of its wall value "
+                f"within the half channel, so Delta (eqn-delta_defn) is not defined"
+            )
+        return float(delta)
+
+
+def check_grid(problem: Channel) -> FloatArray:
+    """Points of the upper half for the residual check: the layer-resolving grid, and a
+    geometric grading towards the centre line, where the spin rate grows like 1/s."""
+    grid = problem.output_grid(config.CHECK_POINTS)
+    grid = grid[grid >= 0.5]
+    near = 0.5 + np.geomspace(10.0 * START_OFFSET, 0.05, 60)
+    return np.unique(np.concatenate([near, grid[grid > near[-1]]]))
+
+
+def _mapped_evaluator(evaluate: Any) -> Any:
+    """The mapped fields on the upper half from a channel evaluator (physical fields)."""
+
+    def mapped(h: FloatArray) -> Fields:
+        f = evaluate(h)
+        return Fields(
+            u=1.0 - f.u,
+            omega=-f.omega,
+            m=-f.m,
+            sigma_xy=-f.sigma_xy,
+            sigma_yx=-f.sigma_yx,
+            sigma_yy=f.sigma_yy,
+            du_dxi=-f.du_dxi,
+            kappa=f.kappa,
+        )
+
+    return mapped
+
+
+def _finish(
+    problem: Channel, evaluate: Any, *, method: str, points: int | None,
+    xi: FloatArray | None, check: bool, **kw: Any,
+) -> Profile:  # fmt: skip
+    """make_profile, then the channel's own residuals (mapped upper half) and wall errors."""
+    profile = make_profile(
+        problem,  # type: ignore[arg-type]
+        problem.mapped_formulation(),
+        evaluate,
+        method=method,
+        points=points,
+        xi=xi,
+        reference_velocity=problem.reference_velocity,
+        check=False,
+        **kw,
+    )
+    if not check:
+        return profile
+    res = residuals(problem.mapped_formulation(), _mapped_evaluator(evaluate), check_grid(problem))
+    bc = problem.boundary_errors(evaluate)
+    return replace(profile, diagnostics=replace(profile.diagnostics, residuals=res, bc_errors=bc))
+
+
+def solve_numerical(
+    problem: Channel,
+    *,
+    rtol: float = config.RTOL,
+    atol: float | None = None,
+    points: int | None = None,
+    xi: FloatArray | None = None,
+    check: bool = True,
+) -> Profile:
+    """The channel on the compiled core (module docstring; ``docs/derivation_channel.md``)."""
+    rtol, atol = tolerances(rtol, atol)
+    sol = run_kernel(problem, rtol, atol)
+    info = sol.info
+    stats = {
+        "nfev": int(info[kernel.I_NFEV]),
+        "steps": int(info[kernel.I_NSTEPS]),
+        "lu_decompositions": int(info[kernel.I_NLU]),
+        "couple_stress_steps": int(info[kernel.I_STEPS_COUPLE]),
+        "spin_steps": int(info[kernel.I_STEPS_SPIN]),
+        "spin_cutoff_xi": float(info[kernel.I_XI_CUT]),
+        "centre_exponent": float(info[kernel.I_P_EXP]),
+    }
+    return _finish(
+        problem,
+        sol,
+        method="numerical",
+        points=points,
+        xi=xi,
+        check=check,
+        rtol=rtol,
+        atol=atol,
+        message=(
+            "compiled: Radau IIA couple stress from the centre line (series start), DOP853 "
+            "spin and velocity from the wall; velocity scaled by the centre-line velocity"
+        ),
+        stats=stats,
+        velocity=sol.velocity,
+    )
+
+
+def run_kernel(
+    problem: Channel, rtol: float, atol: float, f: float = config.DEFAULT_F
+) -> ChannelSolution:
+    """Solve on the compiled kernel; raise the package's error if it fails."""
+    p = parameter_vector(problem)
+    status, info, couple, spin = kernel.solve_case(p, rtol, atol, f, config.MAX_STEPS)
+    raise_for_status(problem, int(status), info)
+    return ChannelSolution(problem, p, info, couple, spin, float(f))
+
+
+# ----------------------------------------------------------------- asymptotic route
+THIN_LAYER = 0.1
+"""The expansion needs eps Delta at most this fraction of the channel width."""
+
+
+def asymptotic_thickness(problem: Channel, f: float = config.DEFAULT_F) -> float:
+    """Leading-order Delta [d_p]: -ln f / k (walls not fully rough: independent of eps), or
+    x_f eps^(-1/3) (L^2/4)^(1/3) at fully rough slipping walls (doc sections 5-6)."""
+    k = problem.slip_constants.k
+    if k > 0.0:
+        return -math.log(f) / k
+    return xi_hat_at_fraction(f) * problem.eps ** (-1.0 / 3.0) * problem.inner_scale()
+
+
+class _AsymptoticEvaluator:
+    """Leading-order fields with the channel's thickness law attached."""
+
+    def __init__(self, problem: Channel) -> None:
+        self.problem = problem
+
+    def thickness(self, f: float) -> float:
+        """Delta of the leading-order profile for the fraction f [d_p]."""
+        if not 0.0 < f < 1.0:
+            raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
+        if self.problem.is_fully_rough:
+            return asymptotic_thickness(self.problem, f)
+        # the exponential layer: u_hat = u_hat_w e^(-k d/eps) falls to f u_hat_w at d = eps Delta
+        return asymptotic_thickness(self.problem, f)
+
+    def mapped(self, h: FloatArray) -> Fields:
+        pr = self.problem
+        mat, eps = pr.material, pr.eps
+        d = 1.0 - h
+        tau = pr.B_nu * (h - 0.5)
+        m_outer = -pr.outer_couple_stress(h)
+        if pr.is_fully_rough:
+            scale = pr.inner_scale()
+            x_hat = d * eps ** (-2.0 / 3.0) / scale
+            a = 0.5 * mat.sin_phi
+            gamma = 4.0 * mat.c2  # m_outer^2 ~ gamma d at the wall (doc section 6)
+            amp = (2.0 * a * mat.alpha * gamma * eps) ** (1.0 / 3.0)
+            m_hat = m_outer + amp * inner_couple_stress(x_hat) - np.sqrt(gamma * d)
+            u_hat, w_hat = airy_layer(x_hat, eps=eps, scale=scale, u_wall=1.0, slip_sign=1.0)
+        else:
+            k = pr.slip_constants.k
+            K = pr.wall.K if pr.slips else 0.0
+            with np.errstate(under="ignore"):
+                decay = np.exp(-k * d / eps)
+            u_hat = (2.0 / k) / (K + 2.0 / k) * decay
+            w_hat = -decay / (eps * (K + 2.0 / k))
+            m_hat = m_outer
+        return Fields(
+            u=u_hat,
+            omega=w_hat,
+            m=m_hat,
+            sigma_xy=-tau,
+            sigma_yx=-tau,
+            sigma_yy=np.ones_like(h),
+            du_dxi=-2.0 * w_hat,
+            kappa=np.zeros_like(h),
+        )
+
+    def __call__(self, xi: FloatArray) -> Fields:
+        x = np.asarray(xi, dtype=float)
+        h, sign = _mirror(x)
+        f = self.mapped(h)
+        return physical_fields(x, f.u, f.omega, f.m, f.sigma_xy, f.du_dxi, self.problem, sign)
+
+
+def solve_asymptotic(
+    problem: Channel,
+    *,
+    points: int | None = None,
+    xi: FloatArray | None = None,
+    check: bool = True,
+) -> Profile:
+    """Leading order in eps (``docs/derivation_channel.md`` sections 5-6).
+
+    Raises
+    ------
+    MethodNotAvailableError
+        The layer is not thin (eps Delta > 0.1 of the width), or the leading-order profile
+        leaves the yield surface.
+    """
+    thickness = problem.eps * asymptotic_thickness(problem)
+    if thickness > THIN_LAYER:
+        raise MethodNotAvailableError(
+            f"the small-eps asymptotics need a layer much thinner than the channel, but the "
+            f"leading-order layer is {thickness:.3g} widths thick (> {THIN_LAYER:g}): use "
+            f"method='numerical'"
+        )
+    order = (
+        "Airy inner layer of thickness ~ eps^(2/3) at the fully rough walls"
+        if problem.is_fully_rough
+        else "exponential layer of constant thickness eps/k at the walls"
+    )
+    try:
+        return _finish(
+            problem,
+            _AsymptoticEvaluator(problem),
+            method="asymptotic",
+            points=points,
+            xi=xi,
+            check=check,
+            message=f"leading order in eps: {order}; velocity scaled by the centre-line velocity",
+        )
+    except NoSolutionError as exc:
+        raise MethodNotAvailableError(
+            f"the leading-order asymptotic profile leaves the yield surface ({exc}): use "
+            f"method='numerical'"
+        ) from None
+
+
+__all__ = [
+    "I_INFINITY",
+    "ChannelSolution",
+    "asymptotic_thickness",
+    "parameter_vector",
+    "solve_asymptotic",
+    "solve_numerical",
+]
