@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from cosserat import ParameterError, shear_layer_thickness, solve, wall_slip
-from cosserat.model import CouetteFlow, PlaneShear
+from cosserat.model import Channel, CouetteFlow, PlaneShear
 from cosserat.model.rheology import Cell, Rheology
 from cosserat.results.profile import Diagnostics, Fields, Profile
 from cosserat.routes import COSSERAT, RHEOLOGIES, register
@@ -84,7 +84,7 @@ def registered():
 
 def test_the_cosserat_model_comes_through_the_seam():
     assert RHEOLOGIES["cosserat"] is COSSERAT
-    assert COSSERAT.cells == {"plane": PlaneShear, "couette": CouetteFlow}
+    assert COSSERAT.cells == {"plane": PlaneShear, "couette": CouetteFlow, "channel": Channel}
     for cls in COSSERAT.cells.values():
         assert {"sigma_c", "curvature", "wall_velocity", "describe", "parameters"} <= set(dir(cls))
 

@@ -22,7 +22,7 @@ from .errors import (
     NoSolutionError,
     ParameterError,
 )
-from .model import CouetteFlow, PlaneShear, PlaneShearCase, Problem
+from .model import Channel, CouetteFlow, PlaneShear, PlaneShearCase, Problem
 from .model.parameters import FULLY_ROUGH, Material, Wall
 from .results.profile import Diagnostics, Fields, Profile
 from .routes import METHODS, solve
@@ -31,6 +31,7 @@ __all__ = [
     "DEFAULT_F",
     "FULLY_ROUGH",
     "METHODS",
+    "Channel",
     "ConvergenceError",
     "CosseratError",
     "CouetteFlow",

@@ -6,9 +6,18 @@ from __future__ import annotations
 from typing import TypeAlias
 
 from .build import build_problem
+from .channel import Channel, ChannelCase
 from .couette import CouetteFlow
 from .plane import PlaneShear, PlaneShearCase
 
 Problem: TypeAlias = PlaneShear | CouetteFlow
 
-__all__ = ["CouetteFlow", "PlaneShear", "PlaneShearCase", "Problem", "build_problem"]
+__all__ = [
+    "Channel",
+    "ChannelCase",
+    "CouetteFlow",
+    "PlaneShear",
+    "PlaneShearCase",
+    "Problem",
+    "build_problem",
+]

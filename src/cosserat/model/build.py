@@ -4,12 +4,15 @@ sweeps and any other front end share.
 The names are those of the command line and of sweep specs (``docs/model.md`` gives the
 symbols and units)::
 
-    geometry      "plane" (default) or "couette"
+    geometry      "plane" (default), "couette" or "channel"
     phi, L, A     the material [deg, -, -]
-    delta, K      the moving wall (the upper plate, or both cylinders) [deg or "fully-rough", -]
+    delta, K      the moving wall (the upper plate, or both cylinders), or both channel walls
+                    [deg or "fully-rough", -]
     delta_lower,  the fixed lower plate (plane; default: as the upper wall) [deg or
     K_lower         "fully-rough", -]
-    B, nu         gravity parameter and solids fraction (plane) [-]
+    B, nu         gravity parameter and solids fraction (plane, channel) [-]; in the channel
+                    B = rho_p g H / N with N the wall normal stress, and its default (absent,
+                    None or 0) is B nu = 2 tan(delta): wall friction fully mobilised
     m_wall        couple stress at the wall that does not slip (plane; default eqn-nd_bc4) [-]
     Ri            inner radius over gap (Couette) [-]
     eps           grain diameter over gap, d_p/H [-] (required)
@@ -26,11 +29,12 @@ from typing import Any, Literal
 
 from .. import config
 from ..errors import ParameterError
+from .channel import Channel
 from .couette import CouetteFlow
 from .parameters import FULLY_ROUGH, Material, Wall
 from .plane import PlaneShear
 
-GEOMETRIES: tuple[str, ...] = ("plane", "couette")
+GEOMETRIES: tuple[str, ...] = ("plane", "couette", "channel")
 """The cells a problem can be built for."""
 
 PARAMETERS: tuple[str, ...] = (
@@ -78,6 +82,11 @@ APPLIES_TO: Mapping[str, str] = MappingProxyType(
 )
 """Parameters of one geometry only; given for the other, they must be None or the default."""
 
+ALSO_APPLIES_TO: Mapping[str, tuple[str, ...]] = MappingProxyType(
+    {"B": ("channel",), "nu": ("channel",)}
+)
+"""Further geometries a parameter of :data:`APPLIES_TO` applies to (the channel's B and nu)."""
+
 ROUGH_WORDS = ("fully-rough", "fully_rough", "rough")
 """Spellings of a fully rough wall accepted for ``delta`` and ``delta_lower`` (any case)."""
 
@@ -117,7 +126,7 @@ def _is_default(name: str, value: Any) -> bool:
         return False
 
 
-def build_problem(parameters: Mapping[str, Any]) -> PlaneShear | CouetteFlow:
+def build_problem(parameters: Mapping[str, Any]) -> PlaneShear | CouetteFlow | Channel:
     """The :class:`PlaneShear` or :class:`CouetteFlow` that ``parameters`` describe.
 
     Parameters
@@ -163,7 +172,9 @@ def build_problem(parameters: Mapping[str, Any]) -> PlaneShear | CouetteFlow:
         if isinstance(given.get(name), bool):
             raise ParameterError(f"{name} must be a number; got {given[name]!r}")
     for name, where in APPLIES_TO.items():
-        if where != geometry and name in given and not _is_default(name, given[name]):
+        if where != geometry and geometry not in ALSO_APPLIES_TO.get(name, ()):
+            if name not in given or _is_default(name, given[name]):
+                continue
             raise ParameterError(
                 f"{name} applies to geometry {where!r} only; got {name} = {given[name]!r} for "
                 f"geometry {geometry!r}"
@@ -174,6 +185,9 @@ def build_problem(parameters: Mapping[str, Any]) -> PlaneShear | CouetteFlow:
     upper = Wall(delta, p["K"])
     if geometry == "couette":
         return CouetteFlow(material=material, wall=upper, eps=p["eps"], Ri=p["Ri"])
+    if geometry == "channel":  # B absent or at the plane default (0): friction mobilised
+        B = None if _is_default("B", p["B"]) else p["B"]
+        return Channel(material=material, wall=upper, eps=p["eps"], B=B, nu=p["nu"])
     lower = None
     if "delta_lower" in given or "K_lower" in given:
         delta_lower = wall_angle("delta_lower", given.get("delta_lower", delta))
@@ -192,4 +206,12 @@ def build_problem(parameters: Mapping[str, Any]) -> PlaneShear | CouetteFlow:
     )
 
 
-__all__ = ["APPLIES_TO", "DEFAULTS", "GEOMETRIES", "PARAMETERS", "build_problem", "wall_angle"]
+__all__ = [
+    "ALSO_APPLIES_TO",
+    "APPLIES_TO",
+    "DEFAULTS",
+    "GEOMETRIES",
+    "PARAMETERS",
+    "build_problem",
+    "wall_angle",
+]

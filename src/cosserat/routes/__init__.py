@@ -9,11 +9,12 @@ from dataclasses import replace
 from typing import Any
 
 from ..errors import MethodNotAvailableError, ParameterError
-from ..model import CouetteFlow, PlaneShear, Problem
+from ..model import Channel, CouetteFlow, PlaneShear, Problem
 from ..model.rheology import Rheology
 from ..results.profile import Profile
-from . import asymptotic, closed_form, numerical
+from . import asymptotic, channel, closed_form, numerical
 from .mui import MUI
+from .ngf import NGF_RHEOLOGY
 
 COSSERAT = Rheology(
     name="cosserat",
@@ -22,13 +23,21 @@ COSSERAT = Rheology(
         "Mohan, Kesava Rao & Nott, A frictional Cosserat model for the slow shearing of "
         "granular materials, J. Fluid Mech. 457 (2002) 377-409"
     ),
-    cells={"plane": PlaneShear, "couette": CouetteFlow},
+    cells={"plane": PlaneShear, "couette": CouetteFlow, "channel": Channel},
     routes={
-        "numerical": {PlaneShear: numerical.solve_plane, CouetteFlow: numerical.solve_couette},
+        "numerical": {
+            PlaneShear: numerical.solve_plane,
+            CouetteFlow: numerical.solve_couette,
+            Channel: channel.solve_numerical,
+        },
         "closed-form": {PlaneShear: closed_form.solve_plane},
-        "asymptotic": {PlaneShear: asymptotic.solve_plane, CouetteFlow: asymptotic.solve_couette},
+        "asymptotic": {
+            PlaneShear: asymptotic.solve_plane,
+            CouetteFlow: asymptotic.solve_couette,
+            Channel: channel.solve_asymptotic,
+        },
     },
-    picklable=frozenset({numerical.solve_plane, numerical.solve_couette}),
+    picklable=frozenset({numerical.solve_plane, numerical.solve_couette, channel.solve_numerical}),
 )
 """The frictional Cosserat model on its two cells, through the seam every rheology uses."""
 
@@ -49,6 +58,7 @@ def register(rheology: Rheology) -> None:
 
 register(COSSERAT)
 register(MUI)
+register(NGF_RHEOLOGY)
 METHODS = tuple(_ROUTES)
 
 
@@ -119,4 +129,4 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
     return profile
 
 
-__all__ = ["COSSERAT", "METHODS", "MUI", "RHEOLOGIES", "register", "solve"]
+__all__ = ["COSSERAT", "METHODS", "MUI", "NGF_RHEOLOGY", "RHEOLOGIES", "register", "solve"]
