@@ -1,0 +1,141 @@
+"""``cosserat dem``: DEM decks for LAMMPS, runs, and the corpus (optional extra ``dem``)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+
+from .common import positive_int
+
+CELLS = ("plane", "couette", "channel")
+
+
+def _require_lammps() -> None:
+    from ..dem.runner import lammps_module
+
+    lammps_module()  # raises MethodNotAvailableError with the one-line install hint
+
+
+def _cell(args: argparse.Namespace):
+    from ..dem import ChannelDEM, Contact, CouetteDEM, PlaneShearDEM, RunLength, WallRoughness
+
+    wall = WallRoughness(
+        args.wall,
+        glued_diameter=args.glued_diameter,
+        glued_spacing=args.glued_spacing,
+        friction=args.wall_friction,
+    )
+    contact = Contact(
+        model=args.contact,
+        kn=args.kn,
+        friction=args.friction,
+        restitution=args.restitution,
+        rolling_friction=args.rolling_friction,
+    )
+    run = RunLength(settle_steps=args.settle, steps=args.steps, dump_every=args.dump_every)
+    common = {"gap": args.gap, "wall": wall, "contact": contact, "run": run, "seed": args.seed}
+    if args.cell == "plane":
+        speed = {} if args.speed is None else {"wall_speed": args.speed}
+        return PlaneShearDEM(width=args.width, B=args.B, **speed, **common)
+    if args.cell == "couette":
+        speed = {} if args.speed is None else {"wall_speed": args.speed}
+        return CouetteDEM(inner_radius=args.Ri, nu_fill=args.nu_fill, **speed, **common)
+    return ChannelDEM(length=args.width, shear_ratio=args.shear_ratio, **common)
+
+
+def cmd_dem(args: argparse.Namespace) -> None:
+    _require_lammps()
+    args.dem_parser.print_help()
+
+
+def cmd_deck(args: argparse.Namespace) -> None:
+    from ..dem import build_deck
+
+    deck = build_deck(_cell(args))
+    path = deck.write(args.out)
+    print(
+        f"{path} ({deck.layout.n_free} grains, sha256 {deck.sha256[:16]}...); run it here with "
+        f"'cosserat dem run', or on a cluster with 'NP=64 sh {Path(args.out) / 'job.sh'}'"
+    )
+
+
+def cmd_run(args: argparse.Namespace) -> None:
+    _require_lammps()
+    from ..dem.corpus import run_cell
+
+    profile, seconds = run_cell(
+        _cell(args), args.out, np=args.np, keep_dumps=args.keep_dumps, engine=args.engine
+    )
+    csv, side = profile.write(args.out, "profile")
+    s = profile.sidecar
+    print(
+        f"{csv} and {side.name}: {seconds:.1f} s of LAMMPS; steady window "
+        f"{s['steady_window']} (dropped {s['dropped_steps']} steps), gap {s['gap_d']} d, "
+        f"mean I {s['inertial_number']:.3g}"
+    )
+
+
+def cmd_corpus(args: argparse.Namespace) -> None:
+    _require_lammps()
+    from ..dem.corpus import generate_corpus
+
+    start = time.perf_counter()
+    work = args.work or str(Path(args.out) / "work")
+    times = generate_corpus(args.out, work, names=args.only, np=args.np)
+    print(json.dumps({"runs_s": times, "total_s": round(time.perf_counter() - start, 1)}))
+
+
+def _cell_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("cell", choices=CELLS)
+    p.add_argument("--out", required=True, help="folder for the deck (and the run's outputs)")
+    p.add_argument("--gap", type=float, default=20.0, help="gap H [d] (default 20)")
+    p.add_argument("--width", type=float, default=30.0, help="periodic length [d] (plane, channel)")
+    p.add_argument("--B", type=float, default=1.0, help="plane: rho_s nu g H / N (0: no gravity)")
+    p.add_argument("--Ri", type=float, default=20.0, help="couette: inner radius [d]")
+    p.add_argument("--nu-fill", type=float, default=0.81, help="couette: solids fraction")
+    p.add_argument("--shear-ratio", type=float, default=0.32, help="channel: rho_s nu g H/(2N)")
+    p.add_argument("--speed", type=float, default=None, help="wall speed [sqrt(N/rho_s)]")
+    p.add_argument("--wall", choices=("glued-grains", "smooth-frictional"), default="glued-grains")
+    p.add_argument("--glued-diameter", type=float, default=1.0, help="[d]")
+    p.add_argument("--glued-spacing", type=float, default=1.0, help="centre spacing [d]")
+    p.add_argument("--wall-friction", type=float, default=None)
+    p.add_argument("--contact", choices=("hooke", "hertz"), default="hooke")
+    p.add_argument("--kn", type=float, default=1000.0, help="normal stiffness [N]")
+    p.add_argument("--friction", type=float, default=0.5)
+    p.add_argument("--restitution", type=float, default=0.5)
+    p.add_argument("--rolling-friction", type=float, default=0.0)
+    p.add_argument("--settle", type=int, default=20_000, help="preparation steps")
+    p.add_argument("--steps", type=positive_int, default=200_000, help="sheared steps")
+    p.add_argument("--dump-every", type=positive_int, default=1_000)
+    p.add_argument("--seed", type=positive_int, default=1)
+
+
+def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add ``cosserat dem`` and its subcommands."""
+    dem = sub.add_parser(
+        "dem",
+        help="DEM virtual experiments with LAMMPS (needs the 'dem' extra)",
+        description=(
+            "DEM decks for LAMMPS (2-D disks), runs and the shipped corpus. Needs LAMMPS: "
+            'pip install "cosserat-granular[dem]".'
+        ),
+    )
+    dem.set_defaults(func=cmd_dem, dem_parser=dem)
+    dsub = dem.add_subparsers(dest="dem_command", parser_class=type(dem))
+    deck = dsub.add_parser("deck", help="write a deck and a job script for your own MPI build")
+    _cell_options(deck)
+    deck.set_defaults(func=cmd_deck)
+    run = dsub.add_parser("run", help="write a deck, run it with LAMMPS here, coarse-grain it")
+    _cell_options(run)
+    run.add_argument("--np", type=positive_int, default=1, help="MPI processes")
+    run.add_argument("--engine", choices=("subprocess", "python"), default="subprocess")
+    run.add_argument("--keep-dumps", action="store_true", help="keep atoms/contacts dumps")
+    run.set_defaults(func=cmd_run)
+    corpus = dsub.add_parser("corpus", help="regenerate the shipped corpus")
+    corpus.add_argument("--out", required=True, help="folder for the CSV + JSON files")
+    corpus.add_argument("--work", default=None, help="folder for decks and logs (OUT/work)")
+    corpus.add_argument("--only", nargs="+", default=None, help="only these runs")
+    corpus.add_argument("--np", type=positive_int, default=1, help="MPI processes per run")
+    corpus.set_defaults(func=cmd_corpus)

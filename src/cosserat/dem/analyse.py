@@ -1,0 +1,370 @@
+"""From a finished run's dumps to a profile in the corpus format (CSV + JSON sidecar).
+
+:func:`read_samples` turns every sample of ``atoms.dump`` and ``contacts.dump`` into per-bin
+sums in the cell's frame (fine bins of :data:`FINE_BIN` d, merged into bins of about 1 d once
+the steady gap is known) and the wall and flow series; :func:`steady_profile` drops the
+transient (MSER-5 on the flow rate and on the gap), block-averages the rest and scales it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .._atomic import write_text
+from ..errors import InputError
+from .coarse import (
+    SUMS,
+    Grains2D,
+    Samples,
+    bin_sums,
+    block_fields,
+    inertial_number,
+    mean_and_error,
+    mser_truncation,
+)
+from .decks import Deck
+from .dumps import iter_frames
+from .geometry import FREE, LOWER_WALL, UPPER_WALL
+from .params import ChannelDEM, CouetteDEM, PlaneShearDEM
+
+FORMAT = "cosserat-corpus/1"
+FINE_BIN = 0.25
+"""Width of the fine bins the samples are summed in [d]."""
+BIN_WIDTH = 1.0
+"""Width of the profile bins [d] (the last bin before the far wall may be narrower)."""
+BLOCKS = 10
+"""Number of averaging blocks over the steady window."""
+
+
+@dataclass
+class RunSamples:
+    """Everything read from a run's dumps: fine-bin sums and the per-sample series."""
+
+    samples: Samples
+    flow: np.ndarray  # mean velocity of the free grains along the flow [velocity]
+    gap: np.ndarray  # gap between the wall surfaces [d]
+    wall_normal: np.ndarray  # compressive normal stress on the moving / inner wall [N]
+    wall_shear: np.ndarray  # shear stress on that wall (force along the flow / length) [N]
+    wall_speed_measured: np.ndarray  # mean flow-direction speed of that wall's disks
+    n_free: int
+    extra: dict = field(default_factory=dict)
+
+
+def _per_grain_contacts(atoms: np.ndarray, contacts: np.ndarray, polar: bool):
+    """Per-atom sums of l_a f_b (4 components, cell frame), and the force on every atom."""
+    n = atoms.shape[0]
+    radius = atoms[:, 2]
+    pos = atoms[:, 3:5]
+    lf = np.zeros((n, 4))
+    force = np.zeros((n, 2))
+    # pair/local also lists neighbours within the cutoff that do not touch: their vector
+    # (set by the contact model only) is zero
+    contacts = contacts[np.any(contacts[:, 6:8] != 0.0, axis=1)]
+    if contacts.shape[0] == 0:
+        return lf, force
+    i = contacts[:, 0].astype(np.int64) - 1
+    j = contacts[:, 1].astype(np.int64) - 1
+    f = contacts[:, 2:4] + contacts[:, 4:6]
+    dvec = contacts[:, 6:8]
+    dist = np.hypot(dvec[:, 0], dvec[:, 1])
+    nhat = dvec / dist[:, None]
+    overlap = radius[i] + radius[j] - dist
+    l_i = -nhat * (radius[i] - 0.5 * overlap)[:, None]
+    l_j = nhat * (radius[j] - 0.5 * overlap)[:, None]
+    for who, ell, fo in ((i, l_i, f), (j, l_j, -f)):
+        if polar:
+            r = np.hypot(pos[who, 0], pos[who, 1])
+            er = pos[who] / r[:, None]
+            et = np.stack([-er[:, 1], er[:, 0]], axis=1)
+            lt, ln = np.sum(ell * et, 1), np.sum(ell * er, 1)
+            ft, fn = np.sum(fo * et, 1), np.sum(fo * er, 1)
+        else:
+            lt, ln, ft, fn = ell[:, 0], ell[:, 1], fo[:, 0], fo[:, 1]
+        for k, w in enumerate((lt * ft, ln * fn, ln * ft, lt * fn)):
+            lf[:, k] += np.bincount(who, weights=w, minlength=n)
+        force[:, 0] += np.bincount(who, weights=fo[:, 0], minlength=n)
+        force[:, 1] += np.bincount(who, weights=fo[:, 1], minlength=n)
+    return lf, force
+
+
+def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
+    """Read a finished run's dumps into fine-bin sums and series (see the module doc)."""
+    cell, info = deck.cell, deck.layout.info
+    polar = isinstance(cell, CouetteDEM)
+    density = cell.grains.density
+    off = info["surface_offset"]
+    if polar:
+        lo, hi = info["inner_radius"] - 1.0, info["outer_radius"] + 1.0
+        length = 2.0 * math.pi * info["inner_radius"]
+    else:
+        lo, hi = -1.0, info["initial_gap"] + 2.0
+        length = info["length"]
+    fine = lo + FINE_BIN * np.arange(math.ceil((hi - lo) / FINE_BIN) + 1)
+    steps, sums, flow, gap, wn, ws, wv = [], [], [], [], [], [], []
+    n_free = 0
+    for step, atoms, contacts in iter_frames(folder):
+        kind = atoms[:, 1].astype(int)
+        free = kind == FREE
+        n_free = int(free.sum())
+        lf, force = _per_grain_contacts(atoms, contacts, polar)
+        x, y, vx, vy = atoms[:, 3], atoms[:, 4], atoms[:, 5], atoms[:, 6]
+        rad = atoms[:, 2]
+        mass = density * math.pi * rad**2
+        if polar:
+            r = np.hypot(x, y)
+            s = r
+            vt = (-y * vx + x * vy) / r
+            vn = (x * vx + y * vy) / r
+        else:
+            s = y - off
+            vt, vn = vx, vy
+        g = Grains2D(s[free], vt[free], vn[free], atoms[free, 7], mass[free],
+                     math.pi * rad[free] ** 2, lf[free])  # fmt: skip
+        steps.append(step)
+        sums.append(bin_sums(g, fine))
+        flow.append(vt[free].mean())
+        if polar:
+            inner = kind == LOWER_WALL
+            fr = (x[inner] * force[inner, 0] + y[inner] * force[inner, 1]) / r[inner]
+            torque = x[inner] * force[inner, 1] - y[inner] * force[inner, 0]
+            wn.append(-fr.sum() / length)
+            ws.append(torque.sum() / (length * info["inner_radius"]))
+            wv.append(vt[inner].mean() * info["inner_radius"] / r[inner].mean())
+            gap.append(info["outer_radius"] - info["inner_radius"])
+        else:
+            upper = kind == UPPER_WALL
+            gap.append(y[upper].mean() - 2.0 * off)
+            wn.append(force[upper, 1].sum() / length)
+            ws.append(force[upper, 0].sum() / length)
+            wv.append(vx[upper].mean())
+    if len(steps) < 2 * BLOCKS:
+        raise InputError(f"{folder}: {len(steps)} samples; at least {2 * BLOCKS} are needed")
+    area_fine = math.pi * (fine[1:] ** 2 - fine[:-1] ** 2) if polar else np.diff(fine) * length
+    samples = Samples(np.array(steps), np.array(sums), fine, area_fine)
+    return RunSamples(samples, np.array(flow), np.array(gap), np.array(wn), np.array(ws),
+                      np.array(wv), n_free)  # fmt: skip
+
+
+def merge_bins(samples: Samples, lo: float, hi: float, width: float = BIN_WIDTH) -> Samples:
+    """Merge fine bins into bins of ``width`` spanning [lo, hi] (fine-bin sums outside go to the
+    end bins; the bins' areas are those of [lo, hi] only)."""
+    fine = samples.edges
+    k_lo = int(np.argmin(np.abs(fine - lo)))
+    k_hi = int(np.argmin(np.abs(fine - hi)))
+    per = max(1, round(width / (fine[1] - fine[0])))
+    cuts = [*range(k_lo, k_hi, per), k_hi]
+    if cuts[-1] - cuts[-2] < per / 2 and len(cuts) > 2:
+        cuts.pop(-2)
+    nb = len(cuts) - 1
+    out = np.zeros((samples.sums.shape[0], nb, samples.sums.shape[2]))
+    area = np.zeros(nb)
+    for b in range(nb):
+        a, z = cuts[b], cuts[b + 1]
+        if b == 0:
+            a = 0
+        if b == nb - 1:
+            z = samples.sums.shape[1]
+        out[:, b] = samples.sums[:, a:z].sum(axis=1)
+        area[b] = samples.bin_area[cuts[b] : cuts[b + 1]].sum()
+    return Samples(samples.steps, out, fine[cuts], area)
+
+
+def drift(series: np.ndarray) -> float:
+    """Change of a series' mean from the first to the second half of the window [its units]:
+    near zero (within the flow's noise) in a steady state, of the sign of the trend if not."""
+    half = series.size // 2
+    return float(series[half:].mean() - series[:half].mean())
+
+
+def steady_start(run: RunSamples) -> int:
+    """Index of the first steady sample: the largest MSER-5 truncation of the series of the
+    flow rate, the gap and the wall's normal and shear stresses."""
+    series = (run.flow, run.gap, run.wall_normal, run.wall_shear)
+    return max(mser_truncation(x) for x in series)
+
+
+@dataclass(frozen=True)
+class DEMProfile:
+    """A steady profile in the corpus format: ``columns`` (name -> array) and ``sidecar``."""
+
+    columns: dict[str, np.ndarray]
+    sidecar: dict
+
+    def write(self, folder: str | Path, stem: str) -> tuple[Path, Path]:
+        """Write ``<stem>.csv`` and ``<stem>.json`` into ``folder``."""
+        out = Path(folder)
+        out.mkdir(parents=True, exist_ok=True)
+        names = list(self.columns)
+        rows = [",".join(names)]
+        for k in range(len(self.columns[names[0]])):
+            rows.append(",".join(_fmt(self.columns[n][k]) for n in names))
+        csv = write_text(out / f"{stem}.csv", "\n".join(rows) + "\n")
+        side = write_text(out / f"{stem}.json", json.dumps(self.sidecar, indent=1) + "\n")
+        return csv, side
+
+
+def _fmt(v: float) -> str:
+    return "" if not np.isfinite(v) else f"{v:.6g}"
+
+
+def _gradient(s: np.ndarray, f: np.ndarray) -> np.ndarray:
+    return np.gradient(f, s) if s.size > 2 else np.full_like(f, np.nan)
+
+
+def steady_profile(
+    run: RunSamples, deck: Deck, *, lammps_version: str, first: int | None = None,
+    blocks: int = BLOCKS,
+) -> DEMProfile:  # fmt: skip
+    """Drop the transient, block-average the steady samples and scale them (corpus format)."""
+    cell, info = deck.cell, deck.layout.info
+    polar = isinstance(cell, CouetteDEM)
+    first = steady_start(run) if first is None else first
+    gap_mean = float(run.gap[first:].mean())
+    if polar:
+        lo, hi = info["inner_radius"], info["outer_radius"]
+    else:
+        lo, hi = 0.0, gap_mean
+    samples = merge_bins(run.samples, lo, hi)
+    s = samples.centres
+    s[0] = 0.5 * (lo + samples.edges[1])
+    s[-1] = 0.5 * (samples.edges[-2] + hi)
+    per_block = block_fields(samples, first, blocks)
+    density = cell.grains.density
+    # scales
+    if isinstance(cell, CouetteDEM):
+        V, stress = cell.wall_speed, float(run.wall_normal[first:].mean())
+    elif isinstance(cell, ChannelDEM):
+        V, stress = cell.wall_speed, 1.0
+    else:
+        V, stress = cell.wall_speed, 1.0
+    for f in per_block:
+        u = f["u"]
+        if polar:
+            f["half_vorticity"] = 0.5 * _gradient(s, s * u) / s
+            f["gamma_dot"] = s * _gradient(s, u / s)
+        else:
+            f["half_vorticity"] = -0.5 * _gradient(s, u)
+            f["gamma_dot"] = _gradient(s, u)
+        p = 0.5 * (f["sigma_tt"] + f["sigma_nn"])
+        f["inertial_number"] = inertial_number(f["gamma_dot"], p, density)
+    stats = mean_and_error(per_block)
+    coord = "r" if polar else "y"
+    t, n = ("t", "r") if polar else ("x", "y")
+    columns: dict[str, np.ndarray] = {coord: s}
+    desc: dict[str, str] = {}
+    vel_text = {
+        "plane": "x-velocity / V (V the upper wall's speed)",
+        "couette": "azimuthal velocity / V (V = Omega_i R_i, the inner ring's surface speed)",
+        "channel": "downward velocity / sqrt(g d)",
+    }[cell.cell]
+    desc[coord] = (
+        "distance from the axis [d]" if polar else "distance from the lower wall's surface [d]"
+    )
+    for name, key, scale, text in (
+        ("u", "u", V, vel_text),
+        ("omega", "omega", V, "grain spin x d / velocity scale, counter-clockwise positive"),
+        ("half_vorticity", "half_vorticity", V, "half the vorticity of u, d / velocity scale"),
+        ("nu", "nu", 1.0, "solids (area) fraction"),
+        (f"sigma_{t}{t}", "sigma_tt", stress, "stress along the flow / stress scale"),
+        (f"sigma_{n}{n}", "sigma_nn", stress, "stress across the gap / stress scale"),
+        (f"sigma_{n}{t}", "sigma_nt", stress, "flow-direction force across the gap's planes"),
+        (f"sigma_{t}{n}", "sigma_tn", stress, "gap-direction force across flow-normal planes"),
+        ("inertial_number", "inertial_number", 1.0, "local I = gamma_dot d / sqrt(p / rho_s)"),
+    ):
+        mean, se = stats[key]
+        columns[name] = mean / scale
+        columns[f"{name}_se"] = se / scale
+        unit = "[-]" if scale == 1.0 or name.startswith("sigma") else "[velocity scale]"
+        desc[name] = f"{text} {unit}"
+        desc[f"{name}_se"] = f"standard error of {name} from {blocks} blocks {unit}"
+    finite_I = columns["inertial_number"][np.isfinite(columns["inertial_number"])]
+    I_mean = float(finite_I.mean()) if finite_I.size else None
+    steps = samples.steps
+    every = int(steps[1] - steps[0])
+    sidecar = _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, lammps_version,
+                       steps, first, every, blocks)  # fmt: skip
+    return DEMProfile(columns, sidecar)
+
+
+def _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, version, steps, first, every,
+             blocks) -> dict:  # fmt: skip
+    plane = isinstance(cell, PlaneShearDEM)
+    channel = isinstance(cell, ChannelDEM)
+    nu_bulk = cell.nu_nominal if not isinstance(cell, CouetteDEM) else cell.nu_fill
+    if plane:
+        gravity = cell.gravity / V**2
+        gnote = (
+            f"g d / V^2 with g = {cell.gravity:.6g} N/(rho_s d) along -y; B = rho_s nu g H / N "
+            f"with the nominal nu = {nu_bulk:g} and the nominal H = {cell.gap:g} d"
+        )
+    elif channel:
+        gravity = cell.shear_ratio
+        gnote = (
+            f"rho_s nu g H / (2 N) with the nominal nu = {nu_bulk:g} and H = {cell.gap:g} d; "
+            f"g = {cell.gravity:.6g} N/(rho_s d) along +x (the deck's downward direction)"
+        )
+    else:
+        gravity, gnote = 0.0, "no gravity (a horizontal annulus)"
+    scale_v = {
+        "plane": f"V = {V:.6g} sqrt(N/rho_s), the upper wall's speed",
+        "couette": f"V = Omega_i R_i = {V:.6g} sqrt(N/rho_s), the inner ring's surface speed",
+        "channel": f"sqrt(g d) = {V:.6g} sqrt(N/rho_s)",
+    }[cell.cell]
+    scale_s = {
+        "plane": "N, the normal stress applied on the upper wall (N = 1 in the deck)",
+        "couette": f"the mean radial stress on the inner ring, {stress:.6g} N",
+        "channel": "N, the normal stress applied on the wall at y = H (N = 1 in the deck)",
+    }[cell.cell]
+    return {
+        "format": FORMAT,
+        "cell": cell.cell,
+        "gap_d": round(gap_mean, 4),
+        "Ri_d": cell.inner_radius if isinstance(cell, CouetteDEM) else None,
+        "gravity": gravity,
+        "gravity_note": gnote,
+        "B": cell.B if plane else 0.0,
+        "wall": cell.wall.describe(cell.contact),
+        "grains": cell.grains.describe(run.n_free),
+        "contact": cell.contact.describe(),
+        "seed": cell.seed,
+        "lammps_version": version,
+        "deck_sha256": deck.sha256,
+        "steps": int(steps[-1]),
+        "settle_steps": cell.run.settle_steps,
+        "timestep": deck.timestep,
+        "dump_every": every,
+        "steady_window": [int(steps[first]), int(steps[-1])],
+        "dropped_steps": int(steps[first] - steps[0]),
+        "blocks": blocks,
+        "wall_speed": V,
+        "velocity_scale": scale_v,
+        "stress_scale": scale_s,
+        "inertial_number": I_mean,
+        "wall_stress": {
+            "normal": float(run.wall_normal[first:].mean()),
+            "shear": float(run.wall_shear[first:].mean()),
+            "note": "on the moving (plane), inner (couette) or free (channel) wall, from its "
+            "contacts, in units of N; shear: force along the flow on the wall / length",
+        },
+        "moving_wall_speed": float(run.wall_speed_measured[first:].mean()),
+        "steady_drift": drift(run.flow[first:]) / (V if V else 1.0),
+        "sign_convention": (
+            "x (or the azimuth t) along the flow, y (or r) across the gap; spin and "
+            "vorticity counter-clockwise positive in the deck's (x, y) plane; stresses "
+            "compressive positive, sigma_ij = (1/A)[sum m dv_i dv_j - sum_c l_i f_j], i the "
+            "normal of the plane (the direction from a grain's centre to its contact), j the "
+            "force component: the shear stress carried across the gap is sigma_yx (sigma_rt); "
+            "it is negative when the upper wall drags the grains along +x (plane) and positive "
+            "when the inner ring drags them along +t (couette)"
+        ),
+        "columns": desc,
+        "source": "DEM",
+    }
+
+
+__all__ = ["FORMAT", "SUMS", "DEMProfile", "read_samples", "steady_profile"]

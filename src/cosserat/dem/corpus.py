@@ -1,0 +1,93 @@
+"""The shipped DEM corpus: which runs it holds, and how one run goes from deck to profile.
+
+``cosserat dem corpus --out DIR`` (or :func:`generate_corpus`) regenerates it; the files shipped
+in ``cosserat/data/corpus/`` came from that command (docs/dem.md: what was run, its time).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from dataclasses import replace
+from pathlib import Path
+
+from .._atomic import write_text
+from .analyse import DEMProfile, read_samples, steady_profile
+from .decks import build_deck
+from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength, WallRoughness
+
+ROUGH = WallRoughness("glued-grains", glued_diameter=1.0, glued_spacing=1.0)
+SMOOTH = WallRoughness("smooth-frictional")
+CORPUS_RUN = RunLength(settle_steps=30_000, steps=400_000, dump_every=1_000)
+"""Run length of every corpus run: 400 samples of the sheared state, 0.996e-3 time step."""
+
+
+def corpus_cells(run: RunLength = CORPUS_RUN) -> dict[str, Cell]:
+    """The corpus's runs by name (plane shear under gravity at three gaps for a rough and a
+    smooth wall, plus one run at half the wall speed; Couette at two gaps; one channel)."""
+    cells: dict[str, Cell] = {}
+    for label, wall in (("rough", ROUGH), ("smooth", SMOOTH)):
+        for gap in (20, 40, 80):
+            cells[f"plane_{label}_H{gap}"] = PlaneShearDEM(gap=gap, width=30.0, B=1.0,
+                                                           wall=wall, run=run)  # fmt: skip
+    cells["plane_rough_H20_halfspeed"] = replace(cells["plane_rough_H20"], wall_speed=0.05)
+    for gap in (10, 20):
+        cells[f"couette_Ri20_H{gap}"] = CouetteDEM(gap=gap, inner_radius=20.0, wall=ROUGH,
+                                                    run=run)  # fmt: skip
+    cells["channel_rough_H20"] = ChannelDEM(gap=20, length=30.0, wall=ROUGH, run=run)
+    return cells
+
+
+def run_cell(
+    cell: Cell, folder: str | Path, *, np: int = 1, keep_dumps: bool = False,
+    engine: str = "subprocess",
+) -> tuple[DEMProfile, float]:  # fmt: skip
+    """Write a cell's deck in ``folder``, run it, coarse-grain it; returns the profile and
+    the LAMMPS wall time [s]. The dumps are deleted afterwards unless ``keep_dumps``."""
+    from .runner import run_deck  # LAMMPS only on demand
+
+    deck = build_deck(cell)
+    folder = Path(folder)
+    deck.write(folder)
+    record = run_deck(folder, np=np, engine=engine)
+    samples = read_samples(folder, deck)
+    profile = steady_profile(samples, deck, lammps_version=record.lammps_version)
+    profile.sidecar["wall_time_s"] = round(record.seconds, 1)
+    if not keep_dumps:
+        for name in ("atoms.dump", "contacts.dump"):
+            (folder / name).unlink(missing_ok=True)
+    return profile, record.seconds
+
+
+def generate_corpus(
+    out: str | Path, work: str | Path, *, names: list[str] | None = None, np: int = 1,
+    run: RunLength = CORPUS_RUN, log: Callable[[str], None] = print,
+) -> dict[str, float]:  # fmt: skip
+    """Run the corpus's cells (or ``names`` of them) and write ``<name>.csv/.json`` into
+    ``out``; the decks and LAMMPS logs stay in ``work/<name>``. Returns the wall times [s]."""
+    cells = corpus_cells(run)
+    chosen = list(cells) if names is None else names
+    unknown = [n for n in chosen if n not in cells]
+    if unknown:
+        from ..errors import InputError
+
+        raise InputError(f"unknown corpus runs {unknown}; known: {sorted(cells)}")
+    out, work = Path(out), Path(work)
+    out.mkdir(parents=True, exist_ok=True)
+    times: dict[str, float] = {}
+    start = time.perf_counter()
+    for name in chosen:
+        log(f"{name}: running in {work / name}")
+        profile, seconds = run_cell(cells[name], work / name, np=np)
+        profile.write(out, name)
+        times[name] = seconds
+        log(f"{name}: {seconds:.0f} s of LAMMPS, {time.perf_counter() - start:.0f} s so far")
+    write_text(out / "timing.json", json.dumps(
+        {"runs_s": times, "total_s": round(time.perf_counter() - start, 1), "np": np}, indent=1
+    ) + "\n")  # fmt: skip
+    return times
+
+
+__all__ = ["CORPUS_RUN", "corpus_cells", "generate_corpus", "run_cell"]
+_ = (ChannelDEM, CouetteDEM, PlaneShearDEM)

@@ -1,0 +1,140 @@
+"""Initial grain and wall positions of the DEM cells (NumPy only).
+
+Walls are rows of glued disks (type 2: the lower or inner wall, type 3: the upper or outer
+wall); the free grains (type 1) start on a triangular lattice, loose enough that no two overlap,
+and are compacted by the deck (settling under the wall load, or growing in place).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError
+from .params import ChannelDEM, CouetteDEM, PlaneShearDEM
+
+FREE, LOWER_WALL, UPPER_WALL = 1, 2, 3
+LATTICE_MARGIN = 1.02
+"""Triangular-lattice spacing over the largest diameter at the start [-]."""
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Initial positions: ``x``, ``y`` [d], diameters ``diameter`` [d], ``kind`` (1, 2, 3), the
+    box, and the geometric facts the deck and the coarse-graining need."""
+
+    x: np.ndarray
+    y: np.ndarray
+    diameter: np.ndarray
+    kind: np.ndarray
+    box: tuple[float, float, float, float]
+    info: dict
+
+    @property
+    def n_free(self) -> int:
+        return int(np.count_nonzero(self.kind == FREE))
+
+
+def _diameters(rng: np.random.Generator, n: int, polydispersity: float) -> np.ndarray:
+    return rng.uniform(1.0 - polydispersity, 1.0 + polydispersity, n)
+
+
+def _wall_row(length: float, spacing: float) -> tuple[int, float]:
+    n = max(3, round(length / spacing))
+    return n, length / n
+
+
+def planar_layout(cell: PlaneShearDEM | ChannelDEM) -> Layout:
+    """Walls along x at y = 0 (centres of the lower row) and above; free grains between.
+
+    The lower wall's surface (top of its disks) is at y = dw / 2: the profiles' y = 0.
+    """
+    rng = np.random.default_rng(cell.seed)
+    length = cell.width if isinstance(cell, PlaneShearDEM) else cell.length
+    dw = cell.wall.glued_diameter
+    n_wall, s = _wall_row(length, cell.wall.glued_spacing)
+    n_free = round(cell.nu_nominal * length * cell.gap / cell.grains.mean_area)
+    a = cell.grains.d_max * LATTICE_MARGIN
+    per_row = math.floor(length / a)
+    if per_row < 2:
+        raise ParameterError(f"the cell is narrower than two grains ({length:g} d)")
+    dx = length / per_row
+    rows = math.ceil(n_free / per_row)
+    dy = a * math.sqrt(3.0) / 2.0
+    y0 = dw / 2.0 + a / 2.0 + 0.02
+    sites_y = y0 + dy * np.arange(rows)
+    xs, ys = [], []
+    for k, yk in enumerate(sites_y):
+        xs.append((np.arange(per_row) + 0.5 * (k % 2)) * dx)
+        ys.append(np.full(per_row, yk))
+    x = np.concatenate(xs)[:n_free]
+    y = np.concatenate(ys)[:n_free]
+    d = _diameters(rng, n_free, cell.grains.polydispersity)
+    y_top = sites_y[-1] + a / 2.0 + dw / 2.0 + 0.02
+    shift = rng.uniform(0.0, s)
+    wx = np.arange(n_wall) * s
+    all_x = np.concatenate([x, wx, (wx + shift) % length])
+    all_y = np.concatenate([y, np.zeros(n_wall), np.full(n_wall, y_top)])
+    all_d = np.concatenate([d, np.full(2 * n_wall, dw)])
+    kind = np.concatenate(
+        [np.full(n_free, FREE), np.full(n_wall, LOWER_WALL), np.full(n_wall, UPPER_WALL)]
+    )
+    box = (0.0, length, -dw, y_top + dw)
+    info = {
+        "length": length,
+        "wall_count": n_wall,
+        "wall_spacing": s,
+        "surface_offset": dw / 2.0,
+        "initial_gap": y_top - dw,
+    }
+    return Layout(all_x, all_y, all_d, kind, box, info)
+
+
+def annular_layout(cell: CouetteDEM) -> Layout:
+    """Rings centred on the origin; free grains on a lattice inside the annulus, shrunk by the
+    factor ``info["shrink"]`` (the deck grows them back to their diameters)."""
+    rng = np.random.default_rng(cell.seed)
+    dw = cell.wall.glued_diameter
+    ri, ro = cell.inner_radius, cell.inner_radius + cell.gap
+    area = math.pi * (ro**2 - ri**2)
+    n_free = round(cell.nu_fill * area / cell.grains.mean_area)
+    rows = []
+    for radius, kind in ((ri - dw / 2.0, LOWER_WALL), (ro + dw / 2.0, UPPER_WALL)):
+        n_wall, _ = _wall_row(2.0 * math.pi * radius, cell.wall.glued_spacing)
+        t = 2.0 * math.pi * (np.arange(n_wall) + rng.uniform()) / n_wall
+        rows.append((radius * np.cos(t), radius * np.sin(t), np.full(n_wall, kind)))
+    # lattice spacing a0 such that the annulus (less a margin) holds 10% more sites than grains
+    usable = math.pi * ((ro - 0.5) ** 2 - (ri + 0.5) ** 2)
+    a0 = math.sqrt(usable / (1.1 * n_free * math.sqrt(3) / 2))
+    shrink = min(1.0, a0 / (cell.grains.d_max * LATTICE_MARGIN))
+    half = ro + 1.0
+    nx = math.ceil(2 * half / a0) + 1
+    ny = math.ceil(2 * half / (a0 * math.sqrt(3) / 2)) + 1
+    jj, ii = np.meshgrid(np.arange(ny), np.arange(nx), indexing="ij")
+    px = (-half + (ii + 0.5 * (jj % 2)) * a0).ravel()
+    py = (-half + jj * a0 * math.sqrt(3) / 2).ravel()
+    pr = np.hypot(px, py)
+    margin = 0.5 * cell.grains.d_max * shrink + 0.02
+    inside = (pr > ri + margin) & (pr < ro - margin)
+    px, py = px[inside], py[inside]
+    if px.size < n_free:
+        raise ParameterError(
+            f"nu_fill {cell.nu_fill:g} leaves no room to place {n_free} grains in the annulus"
+        )
+    pick = np.sort(rng.choice(px.size, n_free, replace=False))
+    d = _diameters(rng, n_free, cell.grains.polydispersity)
+    x = np.concatenate([px[pick], rows[0][0], rows[1][0]])
+    y = np.concatenate([py[pick], rows[0][1], rows[1][1]])
+    diam = np.concatenate([d * shrink, np.full(rows[0][0].size + rows[1][0].size, dw)])
+    kind = np.concatenate([np.full(n_free, FREE), rows[0][2], rows[1][2]])
+    box = (-(ro + dw + 1.0), ro + dw + 1.0, -(ro + dw + 1.0), ro + dw + 1.0)
+    info = {
+        "shrink": shrink,
+        "inner_radius": ri,
+        "outer_radius": ro,
+        "wall_count": [int(rows[0][0].size), int(rows[1][0].size)],
+        "surface_offset": dw / 2.0,
+    }
+    return Layout(x, y, diam, kind, box, info)

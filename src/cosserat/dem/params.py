@@ -1,0 +1,356 @@
+"""Parameters of the DEM cells: frozen, validated records with defaults.
+
+Units are "grain units": lengths in the mean grain diameter d, masses through the grain
+density rho_s (mass per area of a disk, 2-D), stresses in the applied normal stress N of the
+plane cell (N = 1), so velocities are in sqrt(N / rho_s) and times in d sqrt(rho_s / N).
+LAMMPS runs in ``units lj`` with d = rho_s = N = 1.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Literal
+
+from ..errors import ParameterError
+
+ContactModel = Literal["hooke", "hertz"]
+WallKind = Literal["glued-grains", "smooth-frictional"]
+
+SMOOTH_SPACING_D = 0.1
+"""Centre spacing of the glued disks (diameter 1 d) that make a smooth frictional wall [d]:
+bumps 0.0025 d high, about the contact overlap at the wall's normal stress."""
+
+
+def _check(name: str, value: float, low: float, high: float = math.inf, *, open_low=True) -> None:
+    ok = (value > low if open_low else value >= low) and value <= high
+    if not (math.isfinite(value) and ok):
+        bound = f"{'>' if open_low else '>='} {low:g}" + (
+            f" and <= {high:g}" if math.isfinite(high) else ""
+        )
+        raise ParameterError(f"{name} must be {bound}; got {value!r}")
+
+
+@dataclass(frozen=True)
+class Grains:
+    """Polydisperse disks: diameters uniform in [1 - p, 1 + p] d (mean 1 d).
+
+    Parameters
+    ----------
+    polydispersity : float
+        Half-width p of the diameter distribution [d]; 0.2 avoids crystallisation in 2-D.
+    density : float
+        Mass per area of a disk rho_s [mass / d^2].
+    """
+
+    polydispersity: float = 0.2
+    density: float = 1.0
+
+    def __post_init__(self) -> None:
+        _check("polydispersity", self.polydispersity, 0.0, 0.5, open_low=False)
+        _check("density", self.density, 0.0)
+
+    @property
+    def d_min(self) -> float:
+        """Smallest diameter [d]."""
+        return 1.0 - self.polydispersity
+
+    @property
+    def d_max(self) -> float:
+        """Largest diameter [d]."""
+        return 1.0 + self.polydispersity
+
+    @property
+    def mean_area(self) -> float:
+        """Mean disk area pi <D^2> / 4 [d^2] of the uniform diameter distribution."""
+        return math.pi / 4.0 * (1.0 + self.polydispersity**2 / 3.0)
+
+    def describe(self, n: int) -> dict:
+        return {
+            "n": int(n),
+            "polydispersity": f"diameters uniform in [{self.d_min:g}, {self.d_max:g}] d",
+            "diameter_range_d": [self.d_min, self.d_max],
+            "density": self.density,
+        }
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Contact law of LAMMPS's ``pair_style granular`` between two grains.
+
+    Parameters
+    ----------
+    model : {"hooke", "hertz"}
+        Linear spring with history (``hooke`` + ``linear_history``) or Hertz-Mindlin
+        (``hertz`` + ``mindlin``); for ``hertz`` kn is in [N d^-1/2] (force = kn delta^3/2 in 2-D
+        force per length units).
+    kn : float
+        Normal stiffness [N] (force per length per overlap in 2-D: kn / N is the stiffness
+        number kappa, 1000 by default).
+    kt_ratio : float
+        Tangential over normal stiffness [-].
+    friction : float
+        Coulomb friction coefficient between grains [-].
+    restitution : float
+        Normal coefficient of restitution [-] (``damping coeff_restitution``).
+    rolling_friction : float
+        Rolling-resistance coefficient of the ``sds`` rolling model [-]; 0: none.
+    """
+
+    model: ContactModel = "hooke"
+    kn: float = 1000.0
+    kt_ratio: float = 0.5
+    friction: float = 0.5
+    restitution: float = 0.5
+    rolling_friction: float = 0.0
+
+    def __post_init__(self) -> None:
+        if self.model not in ("hooke", "hertz"):
+            raise ParameterError(f"contact model must be 'hooke' or 'hertz'; got {self.model!r}")
+        _check("kn", self.kn, 0.0)
+        _check("kt_ratio", self.kt_ratio, 0.0, 1.0)
+        _check("friction", self.friction, 0.0, 10.0, open_low=False)
+        _check("restitution", self.restitution, 0.0, 1.0)
+        _check("rolling_friction", self.rolling_friction, 0.0, 1.0, open_low=False)
+
+    def collision_time(self, grains: Grains) -> float:
+        """Undamped duration of a contact between two of the smallest grains [time]."""
+        m = grains.density * math.pi / 4.0 * grains.d_min**2
+        return math.pi * math.sqrt(0.5 * m / self.kn)
+
+    def describe(self) -> dict:
+        return {
+            "model": "linear spring-dashpot with history (LAMMPS pair granular hooke, "
+            "linear_history)"
+            if self.model == "hooke"
+            else "Hertz-Mindlin (LAMMPS pair granular hertz, mindlin)",
+            "kn": self.kn,
+            "kt": self.kn * self.kt_ratio,
+            "friction": self.friction,
+            "restitution": self.restitution,
+            "rolling_friction": self.rolling_friction,
+        }
+
+
+@dataclass(frozen=True)
+class WallRoughness:
+    """A wall: a row of glued disks, or a smooth frictional line.
+
+    Parameters
+    ----------
+    kind : {"glued-grains", "smooth-frictional"}
+        ``smooth-frictional`` is a row of glued disks of diameter 1 d at spacing
+        :data:`SMOOTH_SPACING_D` (geometrically flat to 0.0025 d).
+    glued_diameter : float
+        Diameter of the glued disks [d].
+    glued_spacing : float
+        Centre-to-centre spacing of the glued disks [d]; at most their diameter plus 0.7 of the
+        smallest free grain so no grain falls through.
+    friction : float or None
+        Grain-wall friction coefficient [-]; None: the grains' own.
+    """
+
+    kind: WallKind = "glued-grains"
+    glued_diameter: float = 1.0
+    glued_spacing: float = 1.0
+    friction: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in ("glued-grains", "smooth-frictional"):
+            raise ParameterError(
+                f"wall kind must be 'glued-grains' or 'smooth-frictional'; got {self.kind!r}"
+            )
+        if self.kind == "smooth-frictional":
+            object.__setattr__(self, "glued_diameter", 1.0)
+            object.__setattr__(self, "glued_spacing", SMOOTH_SPACING_D)
+        _check("glued_diameter", self.glued_diameter, 0.0, 5.0)
+        _check("glued_spacing", self.glued_spacing, 0.0, 10.0)
+        if self.glued_spacing > self.glued_diameter + 0.7 * 0.5:
+            raise ParameterError(
+                "glued_spacing must be <= glued_diameter + 0.35 d (no grain may pass between "
+                f"glued disks); got spacing {self.glued_spacing:g}, diameter "
+                f"{self.glued_diameter:g}"
+            )
+        if self.friction is not None:
+            _check("wall friction", self.friction, 0.0, 10.0, open_low=False)
+
+    def wall_friction(self, contact: Contact) -> float:
+        return contact.friction if self.friction is None else self.friction
+
+    def describe(self, contact: Contact) -> dict:
+        return {
+            "kind": self.kind,
+            "glued_diameter_d": self.glued_diameter,
+            "glued_spacing_d": self.glued_spacing,
+            "friction": self.wall_friction(contact),
+        }
+
+
+@dataclass(frozen=True)
+class RunLength:
+    """How long a cell runs and how often it is sampled.
+
+    Parameters
+    ----------
+    settle_steps : int
+        Steps of preparation (settling under load, or growing the grains) before shearing.
+    steps : int
+        Steps of shear after the preparation (the transient and the steady state).
+    dump_every : int
+        Steps between two samples of the grains and contacts.
+    dt_fraction : float
+        Time step as a fraction of the smallest grains' collision time [-].
+    """
+
+    settle_steps: int = 20_000
+    steps: int = 200_000
+    dump_every: int = 1_000
+    dt_fraction: float = 0.02
+
+    def __post_init__(self) -> None:
+        for name in ("settle_steps", "steps", "dump_every"):
+            value = getattr(self, name)
+            if not isinstance(value, int) or value < (0 if name == "settle_steps" else 1):
+                raise ParameterError(f"{name} must be a whole number >= 1; got {value!r}")
+        if self.steps < 10 * self.dump_every:
+            raise ParameterError(
+                f"steps ({self.steps}) must hold at least 10 samples of dump_every "
+                f"({self.dump_every})"
+            )
+        _check("dt_fraction", self.dt_fraction, 0.0, 0.1)
+
+
+@dataclass(frozen=True)
+class PlaneShearDEM:
+    """Plane shear between two walls, periodic along x; the upper wall is driven at speed
+    ``wall_speed`` along +x under the normal stress N = 1, the lower one is fixed.
+
+    Parameters
+    ----------
+    gap : float
+        Nominal gap H between the walls' glued-disk surfaces [d] (the settled gap is measured
+        and reported).
+    width : float
+        Periodic length along the flow [d].
+    B : float
+        Gravity parameter rho_s nu g H / N [-] with nu = ``nu_nominal``; gravity along -y; 0: none.
+    wall_speed : float
+        Upper-wall speed V [sqrt(N / rho_s)].
+    """
+
+    gap: float = 20.0
+    width: float = 30.0
+    B: float = 1.0
+    wall_speed: float = 0.1
+    wall: WallRoughness = field(default_factory=WallRoughness)
+    grains: Grains = field(default_factory=Grains)
+    contact: Contact = field(default_factory=Contact)
+    run: RunLength = field(default_factory=RunLength)
+    seed: int = 1
+    nu_nominal: float = 0.8
+
+    cell = "plane"
+
+    def __post_init__(self) -> None:
+        _check("gap", self.gap, 2.0, 2000.0)
+        _check("width", self.width, 4.0, 5000.0)
+        _check("B", self.B, 0.0, 100.0, open_low=False)
+        _check("wall_speed", self.wall_speed, 0.0, 10.0)
+        _check("nu_nominal", self.nu_nominal, 0.3, 0.91)
+        if not isinstance(self.seed, int) or self.seed < 1:
+            raise ParameterError(f"seed must be a whole number >= 1; got {self.seed!r}")
+
+    @property
+    def gravity(self) -> float:
+        """g [N / (rho_s d)] from B = rho_s nu g H / N."""
+        return self.B / (self.grains.density * self.nu_nominal * self.gap)
+
+
+@dataclass(frozen=True)
+class CouetteDEM:
+    """Annular Couette flow: a rough inner ring of radius R_i turning at tangential speed V
+    (counter-clockwise), a fixed rough outer ring at R_i + H; no gravity; the grains fill the
+    annulus at the solids fraction ``nu_fill`` (volume control: the stress is measured).
+
+    Parameters
+    ----------
+    gap : float
+        Gap H between the rings' glued-disk surfaces [d].
+    inner_radius : float
+        R_i, radius of the inner ring's surface [d].
+    nu_fill : float
+        Area of the grains over the area of the annulus between the ring surfaces [-].
+    wall_speed : float
+        Tangential speed of the inner ring's surface V = Omega_i R_i [sqrt(N / rho_s)].
+    """
+
+    gap: float = 20.0
+    inner_radius: float = 20.0
+    nu_fill: float = 0.81
+    wall_speed: float = 0.2
+    wall: WallRoughness = field(default_factory=WallRoughness)
+    grains: Grains = field(default_factory=Grains)
+    contact: Contact = field(default_factory=Contact)
+    run: RunLength = field(default_factory=RunLength)
+    seed: int = 1
+
+    cell = "couette"
+
+    def __post_init__(self) -> None:
+        _check("gap", self.gap, 2.0, 2000.0)
+        _check("inner_radius", self.inner_radius, 2.0, 5000.0)
+        _check("nu_fill", self.nu_fill, 0.3, 0.88)
+        _check("wall_speed", self.wall_speed, 0.0, 10.0)
+        if not isinstance(self.seed, int) or self.seed < 1:
+            raise ParameterError(f"seed must be a whole number >= 1; got {self.seed!r}")
+
+
+@dataclass(frozen=True)
+class ChannelDEM:
+    """Vertical channel: gravity along +x (the deck's "down"), periodic along x, two rough walls
+    at y = 0 (fixed) and y = H (free to move along y only, under the normal stress N = 1, so
+    the grains' dilation is free).
+
+    Parameters
+    ----------
+    gap : float
+        Nominal gap between the walls' glued-disk surfaces [d].
+    length : float
+        Periodic length along the flow [d].
+    shear_ratio : float
+        Wall shear stress over wall normal stress if the weight were carried by the walls,
+        rho_s nu g H / (2 N) with nu = ``nu_nominal`` [-]: the driving parameter.
+    """
+
+    gap: float = 20.0
+    length: float = 30.0
+    shear_ratio: float = 0.32
+    wall: WallRoughness = field(default_factory=WallRoughness)
+    grains: Grains = field(default_factory=Grains)
+    contact: Contact = field(default_factory=Contact)
+    run: RunLength = field(default_factory=RunLength)
+    seed: int = 1
+    nu_nominal: float = 0.8
+
+    cell = "channel"
+
+    def __post_init__(self) -> None:
+        _check("gap", self.gap, 2.0, 2000.0)
+        _check("length", self.length, 4.0, 5000.0)
+        _check("shear_ratio", self.shear_ratio, 0.0, 5.0)
+        _check("nu_nominal", self.nu_nominal, 0.3, 0.91)
+        if not isinstance(self.seed, int) or self.seed < 1:
+            raise ParameterError(f"seed must be a whole number >= 1; got {self.seed!r}")
+
+    @property
+    def gravity(self) -> float:
+        """g [N / (rho_s d)] from shear_ratio = rho_s nu g H / (2 N)."""
+        return 2.0 * self.shear_ratio / (self.grains.density * self.nu_nominal * self.gap)
+
+    @property
+    def wall_speed(self) -> float:
+        """The velocity scale sqrt(g d) [sqrt(N / rho_s)]."""
+        return math.sqrt(self.gravity)
+
+
+Cell = PlaneShearDEM | CouetteDEM | ChannelDEM
