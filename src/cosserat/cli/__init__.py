@@ -17,10 +17,10 @@ from collections.abc import Sequence
 
 from .._version import __version__
 from ..errors import CosseratError
-from . import data, dem, paper, solve, sweep
+from . import data, dem, models, paper, solve, sweep
 from .common import Parser, UsageError, problem_from_args
 
-COMMANDS = (solve, paper, data, sweep, dem)
+COMMANDS = (solve, paper, data, sweep, dem, models)
 """The command modules, each with ``add_parsers(sub)``."""
 
 __all__ = ["COMMANDS", "UsageError", "main", "make_parser", "problem_from_args"]
