@@ -123,6 +123,17 @@ def _sampling(every: int) -> list[str]:
     ]
 
 
+def _wall_density(cell: Cell) -> list[str]:
+    """Glued disks get the density that gives a wall the mass per length of one row of touching
+    unit disks, rho_s pi d / 4, whatever their size and spacing (a smooth wall of many
+    overlapping disks would otherwise be heavy and bounce on the grains)."""
+    w = cell.wall
+    density = cell.grains.density * w.glued_spacing / w.glued_diameter**2
+    if density == cell.grains.density:
+        return []
+    return [f"set type {LOWER_WALL}*{UPPER_WALL} density/disc {density:.10g}"]
+
+
 def _header(cell: Cell, data_sha: str, layout: Layout, dt: float, boundary: str) -> list[str]:
     return [
         f"# cosserat.dem deck: {cell.cell} cell",
@@ -136,6 +147,7 @@ def _header(cell: Cell, data_sha: str, layout: Layout, dt: float, boundary: str)
         "newton off",
         "read_data grains.data",
         f"set type * density/disc {cell.grains.density:.10g}",
+        *_wall_density(cell),
         f"group free type {FREE}",
         f"group lower type {LOWER_WALL}",
         f"group upper type {UPPER_WALL}",
