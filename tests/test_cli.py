@@ -14,7 +14,7 @@ from cosserat.cli import main
 KEYS = {
     "problem",
     "parameters",
-    "xi",
+    "y",
     "u",
     "omega",
     "m",
@@ -24,7 +24,14 @@ KEYS = {
     "thickness",
     "wall_slip",
     "wall_omega",
+    "columns",
     "diagnostics",
+}
+COUETTE_KEYS = (KEYS - {"y", "sigma_xy", "sigma_yx", "sigma_yy"}) | {
+    "r",
+    "sigma_theta_r",
+    "sigma_r_theta",
+    "sigma_rr",
 }
 
 
@@ -35,13 +42,15 @@ def run(capsys, *args):
 
 
 def test_solve_plane_json_contract(capsys):
-    code, out, err = run(capsys, "solve", "plane", "--eps", "1e-3", "--points", "41")
+    code, out, err = run(
+        capsys, "solve", "plane", "--eps", "1e-3", "--points", "41", "--format", "json"
+    )
     assert code == 0 and err == ""
     record = json.loads(out)
     assert set(record) >= KEYS
     assert record["problem"] == "plane"
-    assert record["xi"][0] == 0.0 and record["xi"][-1] == 1.0  # whole gap, symmetric case too
-    assert len(record["xi"]) == len(record["u"]) <= 41
+    assert record["y"][0] == 0.0 and record["y"][-1] == 1.0  # whole gap, symmetric case too
+    assert len(record["y"]) == len(record["u"]) <= 41
     assert record["parameters"]["phi"] == 28.5 and record["parameters"]["upper"]["delta"] == 20.0
     assert record["parameters"]["L"] == 10.0 and record["parameters"]["upper"]["K"] == 0.5
     assert record["thickness"] == pytest.approx(delta_limit_by_hand(), rel=1e-6)
@@ -66,7 +75,9 @@ def test_solve_plane_csv_and_methods(capsys, tmp_path):
     )
     assert code == 0 and out == ""
     lines = out_file.read_text().splitlines()
-    assert lines[0].startswith("# cosserat profile, method = closed-form")
+    assert lines[0].startswith("y,u,omega,m,sigma_xy")
+    sidecar = json.loads((tmp_path / "p.json").read_text())
+    assert sidecar["method"] == "closed-form" and sidecar["file"] == "p.csv"
     code, out, _ = run(
         capsys,
         "solve",
@@ -78,6 +89,8 @@ def test_solve_plane_csv_and_methods(capsys, tmp_path):
         "1",
         "--method",
         "asymptotic",
+        "--format",
+        "json",
     )
     assert code == 0 and json.loads(out)["diagnostics"]["method"] == "asymptotic"
 
@@ -104,14 +117,35 @@ def test_thickness_json(capsys):
 
 
 def test_solve_and_thickness_couette(capsys):
-    code, out, _ = run(capsys, "solve", "couette", "--eps", "1e-3", "--Ri", "1", "--points", "31")
+    code, out, _ = run(
+        capsys,
+        "solve",
+        "couette",
+        "--eps",
+        "1e-3",
+        "--Ri",
+        "1",
+        "--points",
+        "31",
+        "--format",
+        "json",
+    )
     record = json.loads(out)
-    assert code == 0 and KEYS <= set(record)
+    assert code == 0 and COUETTE_KEYS <= set(record)
     assert record["problem"] == "couette" and record["parameters"]["Ri"] == 1.0
-    assert record["xi"][0] == 0.0 and record["xi"][-1] == 1.0
+    assert record["r"][0] == 1.0 and record["r"][-1] == 2.0  # r/H from R_i/H to R_i/H + 1
     assert record["u"][0] < -0.9  # the inner cylinder moves at u = -1 (paper's sign)
     code, out, _ = run(
-        capsys, "thickness", "couette", "--eps", "1e-3", "--fully-rough", "--method", "asymptotic"
+        capsys,
+        "thickness",
+        "couette",
+        "--eps",
+        "1e-3",
+        "--fully-rough",
+        "--method",
+        "asymptotic",
+        "--format",
+        "json",
     )
     record = json.loads(out)
     assert code == 0 and record["Delta_asymptote"] is None
@@ -119,7 +153,9 @@ def test_solve_and_thickness_couette(capsys):
 
 
 def test_thickness_reports_eps_without_solution(capsys):
-    code, out, _ = run(capsys, "thickness", "plane", "--eps", "0.1", "0.01", "--B", "1")
+    code, out, _ = run(
+        capsys, "thickness", "plane", "--eps", "0.1", "0.01", "--B", "1", "--format", "json"
+    )
     record = json.loads(out)
     assert code == 0 and record["Delta"][0] is None
     assert "no real solution" in record["failures"]["0.1"]

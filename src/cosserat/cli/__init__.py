@@ -17,10 +17,10 @@ from collections.abc import Sequence
 
 from .._version import __version__
 from ..errors import CosseratError
-from . import data, dem, models, paper, solve, sweep
-from .common import Parser, UsageError, problem_from_args
+from . import cell, data, dem, models, paper, solve, sweep
+from .common import Parser, UsageError, add_quiet, problem_from_args, set_quiet
 
-COMMANDS = (solve, paper, data, sweep, dem, models)
+COMMANDS = (solve, cell, paper, data, sweep, dem, models)
 """The command modules, each with ``add_parsers(sub)``."""
 
 __all__ = ["COMMANDS", "UsageError", "main", "make_parser", "problem_from_args"]
@@ -30,6 +30,7 @@ def make_parser() -> argparse.ArgumentParser:
     """The ``cosserat`` argument parser with every command of :data:`COMMANDS`."""
     parser = Parser(prog="cosserat", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="version", version=f"cosserat {__version__}")
+    add_quiet(parser)
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for module in COMMANDS:
         module.add_parsers(sub)
@@ -41,6 +42,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = make_parser()
     try:
         args = parser.parse_args(argv)
+        set_quiet(getattr(args, "quiet", False))
         if getattr(args, "f", None) is not None and not 0.0 < args.f < 1.0:
             raise UsageError(f"--f must satisfy 0 < f < 1; got {args.f:g}")
         args.func(args)

@@ -1,18 +1,24 @@
-"""What every command shares: the parser class, usage errors, the material and wall options,
-output and progress helpers."""
+"""What every command shares: the parser class, usage errors, the model, material and wall
+options, the output options (``--format``, ``--out``, ``--plot``, ``--quiet``) and progress
+bars."""
 
 from __future__ import annotations
 
 import argparse
+import json
 import sys
+from collections.abc import Callable
+from dataclasses import MISSING
+from pathlib import Path
 from typing import Any, NoReturn
 
 from .. import config
 from ..model import Problem, build_problem
 from ..model.build import DEFAULTS, ROUGH_WORDS
 from ..model.parameters import FULLY_ROUGH
-from ..routes import METHODS
-from . import files
+from ..routes import METHODS, RHEOLOGIES
+from . import files, params
+from .params import UsageError
 
 GEOMETRIES = {
     "plane": "plane shear between parallel walls",
@@ -21,10 +27,9 @@ GEOMETRIES = {
 PRESETS = ("mustard", "poppy", "glass")
 MAX_POINTS = 1_000_000
 """Most output points ``solve --points`` accepts (more would only exhaust memory)."""
+FORMATS = ("text", "json", "csv")
 
-
-class UsageError(Exception):
-    """Bad command-line usage (reported in one line, exit status 2)."""
+_STATE = {"quiet": False}
 
 
 class Parser(argparse.ArgumentParser):
@@ -58,67 +63,215 @@ def default_text(name: str) -> str:
     return config.text(DEFAULTS[name])
 
 
-def add_material_and_walls(p: argparse.ArgumentParser, plane: bool) -> None:
-    g = p.add_argument_group("material and walls (defaults: the paper's)")
+def _help(name: str, default: str) -> str:
+    meaning, unit = params.COSSERAT_PARAMS[name]
+    return f"{meaning} [{unit}] (default: {default})"
+
+
+def cell_help(cell: str) -> str:
+    """One line on a cell for ``--help`` (its problem classes' docstrings for a new cell)."""
+    if cell in GEOMETRIES:
+        return GEOMETRIES[cell]
+    for rheology in RHEOLOGIES.values():
+        cls = rheology.cells.get(cell)
+        if cls is not None and cls.__doc__:
+            return cls.__doc__.strip().splitlines()[0].rstrip(".")
+    return cell
+
+
+# --------------------------------------------------------------------------- the model
+def add_model(p: argparse.ArgumentParser, cell: str | None = None) -> None:
+    """``--model`` and ``--param`` (``cell``: the sub-command's cell, for the help text)."""
+    g = p.add_argument_group("model")
+    models = [m for m in RHEOLOGIES if cell is None or cell in RHEOLOGIES[m].cells]
     g.add_argument(
-        "--phi", type=float, help=f"angle of internal friction [deg] ({default_text('phi')})"
+        "--model",
+        default=params.DEFAULT_MODEL,
+        metavar="NAME",
+        help=(
+            f"rheology: {', '.join(models)} (default: {params.DEFAULT_MODEL}; "
+            "`cosserat models` describes them)"
+        ),
     )
+    g.add_argument(
+        "--param",
+        action="append",
+        default=None,
+        metavar="KEY=VALUE",
+        help=(
+            "set a parameter of the model by name (repeatable), e.g. --param mu_s=0.4 with "
+            "--model mui; an unknown KEY lists the valid ones with their units"
+        ),
+    )
+
+
+def applies(name: str, cell: str) -> bool:
+    """True if the :func:`build_problem` parameter ``name`` applies to ``cell``."""
+    from ..model import build
+
+    where = build.APPLIES_TO.get(name)
+    also = getattr(build, "ALSO_APPLIES_TO", {}).get(name, ())
+    return where is None or where == cell or cell in also
+
+
+def add_material_and_walls(p: argparse.ArgumentParser, cell: str, ri: bool = True) -> None:
+    """The Cosserat model's options (``--model cosserat``) that apply to ``cell``, with the
+    paper's defaults (``ri=False``: no ``--Ri``, for a cell given in SI units)."""
+    g = p.add_argument_group("material and walls of the Cosserat model (defaults: the paper's)")
+    g.add_argument("--phi", type=float, help=_help("phi", f"{default_text('phi')} deg"))
     wall = g.add_mutually_exclusive_group()
     wall.add_argument(
         "--delta",
         type=angle_or_rough,
-        help=f"angle of wall friction [deg] or 'fully-rough' ({default_text('delta')})",
+        help=_help("delta", f"{default_text('delta')} deg"),
     )
     wall.add_argument(
         "--fully-rough", action="store_true", help="fully rough wall(s): tan(delta) = sin(phi)"
     )
-    g.add_argument("--L", type=float, help=f"yield-condition L ({default_text('L')})")
-    g.add_argument("--A", type=float, help=f"yield-condition A = a2/a1 ({default_text('A')})")
-    g.add_argument("--K", type=float, help=f"wall slip coefficient ({default_text('K')})")
-    if not plane:
-        g.add_argument("--Ri", type=float, help=f"inner radius / gap R_i/H ({default_text('Ri')})")
-    if plane:
+    g.add_argument("--L", type=float, help=_help("L", default_text("L")))
+    g.add_argument("--A", type=float, help=_help("A", default_text("A")))
+    g.add_argument("--K", type=float, help=_help("K", default_text("K")))
+    if applies("Ri", cell) and ri:
+        g.add_argument("--Ri", type=float, help=_help("Ri", default_text("Ri")))
+    if applies("delta_lower", cell):
         g.add_argument(
-            "--delta-lower",
-            type=angle_or_rough,
-            help="lower wall's delta [deg] or 'fully-rough' (default: = delta)",
+            "--delta-lower", type=angle_or_rough, help=_help("delta_lower", "as --delta")
         )
-        g.add_argument("--K-lower", type=float, help="lower wall's K (default: = K)")
-        g.add_argument(
-            "--B",
-            type=float,
-            help=f"gravity parameter rho_p g H / N ({default_text('B')}: no gravity)",
-        )
-        g.add_argument("--nu", type=float, help=f"solids fraction ({default_text('nu')})")
+    if applies("K_lower", cell):
+        g.add_argument("--K-lower", type=float, help=_help("K_lower", "as --K"))
+    if applies("B", cell):
+        default = f"{default_text('B')}: no gravity" if cell == "plane" else "the cell's"
+        g.add_argument("--B", type=float, help=_help("B", default))
+    if applies("nu", cell):
+        g.add_argument("--nu", type=float, help=_help("nu", default_text("nu")))
+    if applies("m_wall", cell):
         g.add_argument(
             "--m-wall",
             type=float,
-            help="couple stress m at the non-slipping wall (instead of eqn-nd_bc4)",
+            help=_help("m_wall", "the paper's condition sigma_xy = sigma_yx there"),
         )
 
 
 def add_solution(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--method", choices=METHODS, default="numerical")
-    p.add_argument(
-        "--rtol", type=float, default=None, help=f"numerical tolerance ({config.text(config.RTOL)})"
+    g = p.add_argument_group("solution")
+    g.add_argument(
+        "--method",
+        choices=METHODS,
+        default="numerical",
+        help="solution route (default: numerical; closed-form and asymptotic where they exist)",
+    )
+    g.add_argument(
+        "--rtol",
+        type=float,
+        default=None,
+        help=f"relative tolerance of --method numerical [-] (default: {config.text(config.RTOL)})",
     )
 
 
+def add_output(
+    p: argparse.ArgumentParser, formats: tuple[str, ...] = FORMATS, plot: str | None = None
+) -> None:
+    """``--format``, ``--out``, ``--plot`` (if ``plot`` describes the figure) and ``--quiet``."""
+    g = p.add_argument_group("output")
+    g.add_argument(
+        "--format",
+        choices=formats,
+        default="text",
+        help=(
+            "text: a readable summary (default); json: every number, for programs"
+            + ("; csv: a plain table with one header row" if "csv" in formats else "")
+        ),
+    )
+    g.add_argument(
+        "--out",
+        metavar="FILE",
+        default=None,
+        help=(
+            "write the results to FILE instead of stdout (csv: the metadata also, in a JSON "
+            "sidecar: profile.csv -> profile.json)"
+        ),
+    )
+    if plot:
+        g.add_argument(
+            "--plot",
+            metavar="FILE",
+            default=None,
+            help=(
+                f"save {plot} to FILE (png, pdf, svg: from the suffix) and print a one-line "
+                "summary instead of the results (give --out to keep them too)"
+            ),
+        )
+    add_quiet(g)
+
+
+def add_quiet(g: Any) -> None:
+    """``--quiet`` on a sub-command (it may also come before the command)."""
+    g.add_argument(
+        "-q",
+        "--quiet",
+        action="store_true",
+        default=argparse.SUPPRESS,
+        help="no progress bars (they show only when stderr is a terminal)",
+    )
+
+
+def set_quiet(quiet: bool) -> None:
+    """Silence (or allow) the progress bars of this process."""
+    _STATE["quiet"] = bool(quiet)
+
+
+# --------------------------------------------------------------------------- problems
 def problem_parameters(args: argparse.Namespace, eps: Any) -> dict[str, Any]:
     """The named parameters the options give (None: not given, the default applies)."""
-    params: dict[str, Any] = {
+    out: dict[str, Any] = {
         "geometry": args.geometry,
-        "delta": FULLY_ROUGH if args.fully_rough else args.delta,
+        "delta": FULLY_ROUGH if getattr(args, "fully_rough", False) else args.delta,
         "eps": eps,
     }
     for name in ("phi", "L", "A", "K", "delta_lower", "K_lower", "B", "nu", "m_wall", "Ri"):
-        params[name] = getattr(args, name, None)
-    return params
+        out[name] = getattr(args, name, None)
+    return out
+
+
+def model_problem(model: str, cell: str, given: dict[str, Any], extra: dict[str, str]) -> Problem:
+    """The problem of ``model`` on ``cell`` from the options ``given`` (None: not given) and
+    the ``--param`` values ``extra``.
+
+    The Cosserat model on the cells :func:`build_problem` knows is built by it (its names);
+    any other model or cell from its problem class's fields (:mod:`cosserat.cli.params`).
+    """
+    params.problem_class(model, cell)  # a known model on one of its cells
+    params.check_keys(model, cell, extra)
+    values = {k: v for k, v in given.items() if v is not None and k != "geometry"}
+    twice = sorted(set(values) & set(extra))
+    if twice:
+        raise UsageError(f"{', '.join(twice)} given both as an option and as --param")
+    if params.uses_build_problem(model, cell):
+        return build_problem({**values, **extra, "geometry": cell})
+    valid = {v.split(" [")[0] for v in params.valid_keys(model, cell)}
+    stray = sorted(k for k in values if k not in valid)
+    if stray:
+        flags = ", ".join("--" + k.replace("_", "-") for k in stray)
+        raise UsageError(
+            f"{flags} do(es) not apply to --model {model} on the {cell} cell; its parameters "
+            f"(--param KEY=VALUE): {', '.join(params.valid_keys(model, cell))}"
+        )
+    values = {**values, **extra}
+    for name, param in params.parameters_of(params.problem_class(model, cell)).items():
+        # a cell parameter the class leaves required takes the command line's default (Ri)
+        if name not in values and param.default is MISSING and name in DEFAULTS:
+            values[name] = DEFAULTS[name]
+    return params.build(model, cell, values)
 
 
 def problem_from_args(args: argparse.Namespace, eps: Any) -> Problem:
-    """The problem the options describe (geometry from the sub-command)."""
-    return build_problem(problem_parameters(args, eps))
+    """The problem the options describe (cell from the sub-command, model from --model)."""
+    return model_problem(
+        getattr(args, "model", params.DEFAULT_MODEL),
+        args.geometry,
+        problem_parameters(args, eps),
+        params.parse_params(getattr(args, "param", None)),
+    )
 
 
 def solver_options(args: argparse.Namespace) -> dict[str, Any]:
@@ -130,6 +283,7 @@ def solver_options(args: argparse.Namespace) -> dict[str, Any]:
     return opts
 
 
+# --------------------------------------------------------------------------- output
 def emit(text: str, out: str | None) -> None:
     if out:
         files.write_text(text, out)
@@ -137,25 +291,105 @@ def emit(text: str, out: str | None) -> None:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
 
 
+def emit_csv(text: str, meta: dict[str, Any], out: str | None) -> None:
+    """A plain CSV to ``out`` with ``meta`` in its JSON sidecar, or the CSV alone to stdout."""
+    emit(text, out)
+    if out:
+        from ..results.profile import sidecar_path
+
+        sidecar = str(sidecar_path(out))
+        record = {"file": Path(out).name, **meta}
+        files.write_text(json.dumps(record, indent=1, allow_nan=False), sidecar, "--out's sidecar")
+
+
+def deliver(args: argparse.Namespace, render: Callable[[str], str], meta: Any, line: str) -> None:
+    """Write the results as ``--format`` asks (``render(format)``), to ``--out`` or stdout.
+
+    With ``--plot`` (the figure already saved) stdout gets the one-line summary ``line``
+    instead of the results, which go to ``--out`` if given. ``meta`` (a callable or a dict)
+    is the JSON sidecar of a CSV written to ``--out``.
+    """
+    plot = getattr(args, "plot", None)
+    if plot and not args.out:
+        print(f"{line}; figure: {plot}")
+        return
+    text = render(args.format)
+    if args.format == "csv":
+        emit_csv(text, meta() if callable(meta) else meta, args.out)
+    else:
+        emit(text, args.out)
+    if plot:
+        print(f"{line}; figure: {plot}; results: {args.out}")
+
+
 def check_outputs(args: argparse.Namespace) -> None:
     """Fail on an unusable --out or --plot before any computation."""
     if getattr(args, "out", None):
         files.check_output_file(args.out)
+        if getattr(args, "format", None) == "csv":
+            from ..results.profile import sidecar_path
+
+            files.check_output_file(str(sidecar_path(args.out)), "--out's sidecar")
     if getattr(args, "plot", None):
         files.check_plot_file(args.plot)
 
 
-def progress_bar(label: str):  # type: ignore[no-untyped-def]
-    """A text progress bar on stderr (only when stderr is a terminal)."""
-    if not sys.stderr.isatty():
+def table(header: list[str], rows: list[list[Any]], digits: int = 6) -> list[str]:
+    """Aligned text table: numbers with ``digits`` significant digits, None as '-'."""
+
+    def cell(v: Any) -> str:
+        if v is None:
+            return "-"
+        if isinstance(v, float):
+            return f"{v + 0.0:.{digits}g}"  # + 0.0: no "-0"
+        return str(v)
+
+    cells = [header] + [[cell(v) for v in row] for row in rows]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(header))]
+    return ["  ".join(c.rjust(w) for c, w in zip(r, widths, strict=True)) for r in cells]
+
+
+# --------------------------------------------------------------------------- progress
+def _terminal() -> bool:
+    """True when progress may be drawn: stderr is a terminal and --quiet was not given."""
+    return not _STATE["quiet"] and sys.stderr.isatty()
+
+
+def progress_bar(label: str) -> Callable[[int, int], None] | None:
+    """A tqdm progress bar on stderr as a callable ``update(i, n)`` (i of n done), or None
+    when stderr is not a terminal or ``--quiet`` was given."""
+    if not _terminal():
         return None
+    from tqdm import tqdm
+
+    state: dict[str, Any] = {}
 
     def update(i: int, n: int) -> None:
-        width = 30
-        done = int(width * i / n)
-        sys.stderr.write(f"\r{label} [{'#' * done}{'.' * (width - done)}] {i}/{n}")
-        if i == n:
-            sys.stderr.write("\n")
-        sys.stderr.flush()
+        bar = state.get("bar")
+        if bar is None or bar.total != n:
+            if bar is not None:
+                bar.close()
+            bar = state["bar"] = tqdm(total=n, desc=label, file=sys.stderr, dynamic_ncols=True)
+        bar.update(max(0, i - bar.n))
+        if i >= n:
+            bar.close()
+            state.pop("bar", None)
 
     return update
+
+
+def progress_messages(label: str) -> Callable[[str], None] | None:
+    """A tqdm bar of unknown length on stderr as a callable ``step(message)`` (one tick per
+    stage, the message beside it), or None when silent (as :func:`progress_bar`)."""
+    if not _terminal():
+        return None
+    from tqdm import tqdm
+
+    bar = tqdm(total=None, desc=label, file=sys.stderr, dynamic_ncols=True, unit="stage")
+
+    def step(message: str) -> None:
+        bar.set_postfix_str(message, refresh=False)
+        bar.update(1)
+
+    step.close = bar.close  # type: ignore[attr-defined]
+    return step

@@ -4,65 +4,94 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
+import math
+from types import SimpleNamespace
 from typing import Any
 
-from ..model import build_problem
-from ..routes import METHODS
-from . import files
+from . import files, params
 from .common import (
     GEOMETRIES,
     PRESETS,
     UsageError,
+    add_model,
+    add_output,
+    add_solution,
     angle_or_rough,
     check_outputs,
     default_text,
-    emit,
+    deliver,
+    model_problem,
     problem_parameters,
+    progress_messages,
+    table,
 )
 
 
 def _add_data_model(p: argparse.ArgumentParser) -> None:
     """Options of compare/fit: the data file and the cell (None = take from file/preset)."""
-    p.add_argument("data", help="measured profile CSV (see docs/measurements.md)")
     p.add_argument(
+        "data",
+        help="measured profile: CSV of distance_d (from the moving wall [d_p]), u_over_uw "
+        "[-], optional u_err [-], header lines such as '# eps: 0.05' (docs/measurements.md)",
+    )
+    g = p.add_argument_group("the cell (command line > --preset > the file's header > defaults)")
+    g.add_argument(
         "--preset",
         choices=PRESETS,
         default=None,
         help=(
-            "the paper's experiments: phi, eps, Ri, K "
+            "the paper's experiments (Couette): phi, eps, Ri, K "
             f"(L = {default_text('L')}, A = {default_text('A')})"
         ),
     )
-    p.add_argument("--geometry", choices=tuple(GEOMETRIES), default=None)
-    p.add_argument("--eps", type=float, default=None, help="d_p/H (default: file header)")
-    p.add_argument("--Ri", type=float, default=None, help="R_i/H (Couette)")
-    p.add_argument("--B", type=float, default=None, help="gravity parameter (plane)")
-    p.add_argument("--nu", type=float, default=None)
-    p.add_argument("--phi", type=float, default=None)
-    wall = p.add_mutually_exclusive_group()
-    wall.add_argument("--delta", type=angle_or_rough, default=None)
-    wall.add_argument("--fully-rough", action="store_true")
-    p.add_argument("--delta-lower", type=angle_or_rough, default=None)
-    p.add_argument("--K-lower", type=float, default=None)
-    p.add_argument("--L", type=float, default=None)
-    p.add_argument("--A", type=float, default=None)
-    p.add_argument("--K", type=float, default=None)
-    p.add_argument("--m-wall", type=float, default=None)
-    p.add_argument("--method", choices=METHODS, default="numerical")
-    p.add_argument("--format", choices=("json", "text"), default="text")
-    p.add_argument("--plot", default=None, help="save a plot (PNG/PDF)")
-    p.add_argument("--out", default=None)
+    g.add_argument(
+        "--geometry", choices=tuple(GEOMETRIES), default=None, help="the cell (default: header)"
+    )
+    g.add_argument(
+        "--eps",
+        type=float,
+        default=None,
+        help="grain diameter over gap d_p/H [-] (default: header)",
+    )
+    g.add_argument(
+        "--Ri", type=float, default=None, help="inner radius over gap R_i/H [-] (Couette)"
+    )
+    g.add_argument(
+        "--B", type=float, default=None, help="gravity parameter rho_p g H / N [-] (plane)"
+    )
+    g.add_argument("--nu", type=float, default=None, help="solids fraction [-] (plane)")
+    m = p.add_argument_group("the Cosserat model's material and walls (defaults: the paper's)")
+    m.add_argument("--phi", type=float, default=None, help="angle of internal friction [deg]")
+    wall = m.add_mutually_exclusive_group()
+    wall.add_argument(
+        "--delta", type=angle_or_rough, default=None, help="angle of wall friction [deg]"
+    )
+    wall.add_argument("--fully-rough", action="store_true", help="fully rough walls")
+    m.add_argument(
+        "--delta-lower", type=angle_or_rough, default=None, help="lower wall's delta [deg] (plane)"
+    )
+    m.add_argument("--K-lower", type=float, default=None, help="lower wall's K [-] (plane)")
+    m.add_argument("--L", type=float, default=None, help="yield-condition constant L [-]")
+    m.add_argument("--A", type=float, default=None, help="yield-condition ratio A = a2/a1 [-]")
+    m.add_argument("--K", type=float, default=None, help="wall slip coefficient [-]")
+    m.add_argument(
+        "--m-wall", type=float, default=None, help="couple stress at the non-slipping wall [-]"
+    )
+    add_model(p)
+    add_solution(p)
+    add_output(p, plot="the data beside the model (linear and log axes, residuals)")
 
 
 # header keys (lower case) of a measured-profile file that describe the cell, by parameter
 _HEADER_KEYS = {"geometry": "geometry", "eps": "eps", "Ri": "ri", "B": "b", "nu": "nu"}
+_CELL_NAMES = ("eps", "Ri", "B", "nu")
 
 
 def data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     """The measured profile and the model problem: command line > preset > file header >
     the paper's defaults (those of :func:`cosserat.model.build_problem`). The header's Ri is
-    used for Couette flow only, its B and nu for plane shear only."""
+    used for Couette flow only, its B and nu for plane shear only. For a model other than the
+    Cosserat one, only the cell (eps, Ri, B, nu) comes from the preset and the header."""
     from ..model.build import APPLIES_TO
     from ..studies.experiments import PRESETS as PRESET_CELLS
 
@@ -71,56 +100,100 @@ def data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     header = measured.meta
     preset = PRESET_CELLS[args.preset] if args.preset else None
     given = problem_parameters(args, args.eps)
+    cosserat = args.model == params.DEFAULT_MODEL
 
     def from_file(name: str) -> Any:
+        if not cosserat and name not in _CELL_NAMES:
+            return None
         if preset is not None and name in ("phi", "L", "A", "K", "eps", "Ri"):
             return getattr(preset, name)
         return header.get(_HEADER_KEYS.get(name, ""))
 
-    geometry = given["geometry"] or from_file("geometry")
+    geometry = given["geometry"] or from_file("geometry") or header.get("geometry")
     if geometry is None and preset is not None:
         geometry = "couette"
     if geometry is None:
         raise UsageError(
             "give --geometry plane|couette (or a 'geometry:' header line, or --preset)"
         )
-    params = {"geometry": geometry}
+    values: dict[str, Any] = {}
     for name, value in given.items():
         if name == "geometry":
             continue
         if value is None and APPLIES_TO.get(name, geometry) == geometry:
             value = from_file(name)
-        params[name] = value
-    if params["eps"] is None:
+        values[name] = value
+    if values["eps"] is None:
         raise UsageError("give --eps (or an 'eps:' header line, or --preset)")
-    if params["delta"] is None and preset is not None:
-        params["delta"] = preset.default_delta
-    return measured, build_problem(params)
+    if cosserat and values["delta"] is None and preset is not None:
+        values["delta"] = preset.default_delta
+    extra = params.parse_params(args.param)
+    return measured, model_problem(args.model, geometry, values, extra)
+
+
+def _units(model: str, problem: Any) -> dict[str, str]:
+    """Units of the fittable parameters of ``problem`` (for the tables)."""
+    if model == params.DEFAULT_MODEL:
+        return {k: u for k, (_, u) in params.COSSERAT_PARAMS.items()}
+    return {k: p.unit for k, p in params.parameters_of(type(problem)).items()}
+
+
+def _figure(comparison: Any, title: str, path: str) -> None:
+    from ..viz.plotting import comparison_plot
+
+    files.save_figure(comparison_plot(comparison, title, residual_panel=True), path)
+
+
+def _compare_csv(measured: Any, model: Any, residuals: Any) -> str:
+    head = ["distance_d", "u_over_uw"] + (["u_err"] if measured.u_err is not None else [])
+    lines = [",".join([*head, "model", "residual"])]
+    for i in range(measured.n):
+        row = [measured.distance_d[i], measured.u_over_uw[i]]
+        if measured.u_err is not None:
+            row.append(measured.u_err[i])
+        row += [model[i], residuals[i]]
+        lines.append(",".join(repr(float(v)) for v in row))
+    return "\n".join(lines)
+
+
+_COMPARE_COLUMNS = {
+    "distance_d": {"meaning": "distance from the moving wall", "unit": "d_p"},
+    "u_over_uw": {"meaning": "measured velocity over the moving wall's", "unit": "1"},
+    "u_err": {"meaning": "its uncertainty (one standard deviation)", "unit": "1"},
+    "model": {"meaning": "the model's velocity over the moving wall's there", "unit": "1"},
+    "residual": {"meaning": "data minus model", "unit": "1"},
+}
 
 
 def cmd_compare(args: argparse.Namespace) -> None:
     from ..analysis.fitting import compare
 
     measured, problem = data_problem(args)
-    comparison = compare(problem, measured, method=args.method)
-    if args.plot:
-        from ..viz.plotting import comparison_plot
-
-        fig = comparison_plot(comparison, problem.describe(), residual_panel=True)
-        files.save_figure(fig, args.plot)
-    if args.format == "json":
-        emit(json.dumps(comparison.to_dict(), allow_nan=False), args.out)
+    opts = {} if args.rtol is None else {"rtol": args.rtol}
+    if args.model == params.DEFAULT_MODEL:
+        comparison = compare(problem, measured, method=args.method, **opts)
     else:
+        comparison = _local_comparison(measured, problem, args, opts)
+    if args.plot:
+        _figure(comparison, problem.describe(), args.plot)
+    record = comparison.to_dict()
+    record["model_name"] = args.model
+    record["description"] = problem.describe()
+
+    def render(fmt: str) -> str:
+        if fmt == "json":
+            return json.dumps(record, allow_nan=False)
+        if fmt == "csv":
+            return _compare_csv(measured, comparison.model, comparison.residuals)
         lines = [
             problem.describe(),
-            f"points: {measured.n}",
-            f"rms(data - model): {comparison.rms:.4g}",
+            f"model {args.model}, method {args.method}; {measured.n} points",
+            f"rms(data - model) = {comparison.rms:.4g} (of the wall speed)",
         ]
         if comparison.chi2 is not None:
-            lines.append(f"chi-square: {comparison.chi2:.4g} for {measured.n} points")
-        lines.append("distance_d,u_over_uw,model,residual")
-        lines += [
-            f"{d:g},{u:g},{m:.6g},{r:.3g}"
+            lines.append(f"chi-square = {comparison.chi2:.4g} for {measured.n} points")
+        rows = [
+            [float(d), float(u), float(m), float(r)]
             for d, u, m, r in zip(
                 measured.distance_d,
                 measured.u_over_uw,
@@ -129,37 +202,163 @@ def cmd_compare(args: argparse.Namespace) -> None:
                 strict=True,
             )
         ]
-        emit("\n".join(lines), args.out)
+        lines += ["", *table(["distance [d_p]", "u/u_wall", "model", "data - model"], rows, 4)]
+        return "\n".join(lines)
+
+    meta = {k: v for k, v in record.items() if k not in ("distance_d", "u_over_uw", "model")}
+    meta.pop("residuals", None)
+    meta["columns"] = {
+        k: v for k, v in _COMPARE_COLUMNS.items() if k != "u_err" or measured.u_err is not None
+    }
+    line = f"{args.model} beside {measured.n} points: rms(data - model) = {comparison.rms:.4g}"
+    deliver(args, render, meta, line)
+
+
+def _local_comparison(measured: Any, problem: Any, args: argparse.Namespace, opts: dict) -> Any:
+    """compare() for any registered rheology: the model as it is (no free parameter)."""
+    from ..analysis.ranking import fit_model
+
+    if args.method != "numerical":
+        raise UsageError(f"--model {args.model}: compare uses --method numerical")
+    fitted = fit_model(measured, problem, free=[], grid=0, **opts)
+    return _as_comparison(measured, fitted)
+
+
+def _as_comparison(measured: Any, fitted: Any) -> Any:
+    """A :class:`~cosserat.analysis.ranking.ModelFit` with the attributes of a Comparison."""
+    import numpy as np
+
+    residuals = -np.asarray(fitted.residuals)  # data minus model, as compare() gives
+    chi2 = fitted.chi2 if fitted.absolute_sigma else None
+    rms = float(np.sqrt(np.mean(residuals**2)))
+
+    def to_dict() -> dict[str, Any]:
+        return {
+            "problem": fitted.problem.parameters(),
+            "distance_d": measured.distance_d.tolist(),
+            "u_over_uw": measured.u_over_uw.tolist(),
+            "model": np.asarray(fitted.model_u).tolist(),
+            "residuals": residuals.tolist(),
+            "rms": rms,
+            "chi2": chi2,
+            "n_points": measured.n,
+        }
+
+    return SimpleNamespace(
+        measured=measured,
+        profile=fitted.profile,
+        model=np.asarray(fitted.model_u),
+        residuals=residuals,
+        rms=rms,
+        chi2=chi2,
+        model_curve=fitted.curve,
+        to_dict=to_dict,
+    )
+
+
+def _error_text(stderr: Any, reason: str | None = None) -> str:
+    if stderr is None or not math.isfinite(stderr):
+        return f"(no uncertainty{': ' + reason if reason else ''})"
+    return f"+- {stderr:.2g}"
 
 
 def cmd_fit(args: argparse.Namespace) -> None:
-    from ..analysis.fitting import fit
-
     measured, problem = data_problem(args)
-    free = [f.strip() for f in args.free.split(",") if f.strip()]
-    bar = (lambda msg: print(f"fit: {msg}", file=sys.stderr)) if sys.stderr.isatty() else None
-    result = fit(measured, problem, free=free, method=args.method, progress=bar)
-    if args.plot:
-        from ..viz.plotting import comparison_plot
+    free = [f.strip() for f in args.free.split(",") if f.strip()] if args.free else None
+    opts = {} if args.rtol is None else {"rtol": args.rtol}
+    units = _units(args.model, problem)
+    if args.model == params.DEFAULT_MODEL:
+        from ..analysis.fitting import fit
 
-        fig = comparison_plot(
-            result.comparison, "fit: " + result.problem.describe(), residual_panel=True
-        )
-        files.save_figure(fig, args.plot)
-    if args.format == "json":
-        emit(json.dumps(result.to_dict(), allow_nan=False), args.out)
-    else:
-        lines = [f"fit of {', '.join(free)} to {measured.n} points ({result.n_solves} solves)"]
-        for name, par in result.parameters.items():
-            interval = (
-                ""
-                if par.interval is None
-                else (f"  interval [{par.interval[0]:.4g}, {par.interval[1]:.4g}]")
+        bar = progress_messages("fit")
+        try:
+            result = fit(
+                measured,
+                problem,
+                free=free or ["delta", "K"],
+                method=args.method,
+                progress=bar,
+                **opts,
             )
-            lines.append(f"  {name} = {par.value:.5g} +- {par.stderr:.2g}{interval}")
-        lines.append(f"  rms = {result.rms:.4g}, reduced chi-square = {result.reduced_chi2:.3g}")
-        lines += [f"warning: {w}" for w in result.warnings]
-        emit("\n".join(lines), args.out)
+        finally:
+            if bar is not None:
+                bar.close()  # type: ignore[attr-defined]
+        record = result.to_dict()
+        comparison, best = result.comparison, result.problem
+        rows = [
+            (
+                name,
+                par.value,
+                getattr(par, "stderr", None),
+                getattr(par, "reason", None),
+                par.interval,
+            )
+            for name, par in result.parameters.items()
+        ]
+        n_solves, warnings = result.n_solves, list(result.warnings)
+        rms, rchi2 = result.rms, result.reduced_chi2
+    else:
+        from ..analysis.ranking import fit_model
+
+        if args.method != "numerical":
+            raise UsageError(f"--model {args.model}: fit uses --method numerical")
+        fitted = fit_model(measured, problem, free=free, **opts)
+        record = fitted.to_dict()
+        comparison, best = _as_comparison(measured, fitted), fitted.problem
+        rows = [
+            (name, est.value, est.stderr, est.reason, None)
+            for name, est in fitted.parameters.items()
+        ]
+        n_solves, warnings = fitted.solves, list(fitted.warnings)
+        rms, rchi2 = comparison.rms, fitted.reduced_chi2
+        record["rms"] = rms
+    record["model_name"] = args.model
+    if args.plot:
+        _figure(comparison, "fit: " + best.describe(), args.plot)
+    names = ", ".join(r[0] for r in rows)
+
+    def render(fmt: str) -> str:
+        if fmt == "json":
+            return json.dumps(record, allow_nan=False)
+        if fmt == "csv":
+            out = ["parameter,unit,value,stderr,interval_low,interval_high"]
+            for name, value, err, _, interval in rows:
+                cells = [name, units.get(name, ""), repr(float(value))]
+                cells.append("" if err is None or not math.isfinite(err) else repr(float(err)))
+                cells += ["", ""] if interval is None else [repr(float(v)) for v in interval]
+                out.append(",".join(cells))
+            return "\n".join(out)
+        lines = [
+            f"fit of {names} (model {args.model}) to {measured.n} points ({n_solves} solves)",
+            f"best fit: {best.describe()}",
+        ]
+        for name, value, err, reason, interval in rows:
+            unit = units.get(name, "")
+            unit = f" [{unit}]" if unit and unit not in ("-", "1") else ""
+            extra = "" if interval is None else f", interval [{interval[0]:.4g}, {interval[1]:.4g}]"
+            lines.append(f"  {name} = {value:.5g} {_error_text(err, reason)}{unit}{extra}")
+        tail = "" if rchi2 is None else f", reduced chi-square = {rchi2:.3g}"
+        lines.append(f"rms(data - model) = {rms:.4g}{tail}")
+        lines += [f"warning: {w}" for w in warnings]
+        return "\n".join(lines)
+
+    meta = {k: v for k, v in record.items() if k != "parameters"}
+    meta["columns"] = {
+        "parameter": {"meaning": "fitted parameter", "unit": ""},
+        "unit": {"meaning": "its unit ('-': dimensionless)", "unit": ""},
+        "value": {"meaning": "best-fit value", "unit": "the row's unit"},
+        "stderr": {"meaning": "standard error (empty: not identifiable)", "unit": "the row's unit"},
+        "interval_low": {
+            "meaning": "profile-likelihood interval, lower end",
+            "unit": "the row's unit",
+        },
+        "interval_high": {
+            "meaning": "profile-likelihood interval, upper end",
+            "unit": "the row's unit",
+        },
+    }
+    summary = ", ".join(f"{name} = {value:.4g}" for name, value, *_ in rows)
+    deliver(args, render, meta, f"fit ({args.model}): {summary}; rms {rms:.4g}")
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -168,9 +367,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     _add_data_model(cp)
     cp.set_defaults(func=cmd_compare)
 
-    fitp = sub.add_parser("fit", help="fit delta, K (and L, phi, A) to a measured profile")
+    fitp = sub.add_parser("fit", help="fit model parameters to a measured velocity profile")
     _add_data_model(fitp)
     fitp.add_argument(
-        "--free", default="delta,K", help="comma-separated free parameters among delta,K,L,phi,A"
+        "--free",
+        default=None,
+        help=(
+            "comma-separated parameters to fit (default: delta,K for the Cosserat model, "
+            "among delta [deg], K, L, phi [deg], A; another model's defaults otherwise)"
+        ),
     )
     fitp.set_defaults(func=cmd_fit)

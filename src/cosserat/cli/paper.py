@@ -5,15 +5,22 @@ from __future__ import annotations
 import argparse
 
 from . import files
-from .common import PRESETS, UsageError, positive_int, progress_bar
+from .common import PRESETS, UsageError, add_quiet, positive_int, progress_bar
 
 
 def _stage_bar():  # type: ignore[no-untyped-def]
-    bar = progress_bar("reproduce")
+    """``progress(stage, i, n)`` for :func:`cosserat.paper.reproduce`: one tqdm bar per stage
+    (None when silent: stderr not a terminal, or --quiet)."""
+    bars: dict[str, object] = {}
+    if progress_bar("reproduce") is None:
+        return None
 
     def progress(stage: str, i: int, n: int) -> None:
+        bar = bars.get(stage)
+        if bar is None:
+            bar = bars[stage] = progress_bar(f"reproduce: {stage}")
         if bar is not None:
-            bar(i, n)
+            bar(i, n)  # type: ignore[operator]
 
     return progress
 
@@ -48,27 +55,40 @@ def cmd_figures(args: argparse.Namespace) -> None:
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add this module's commands to the ``cosserat`` parser."""
     rp = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
-    rp.add_argument("--out", required=True, help="output folder")
+    rp.add_argument(
+        "--out",
+        required=True,
+        help="output folder (created if needed; index.html, report.md, the figures' PNG/PDF/CSV)",
+    )
     rp.add_argument(
         "--only",
         type=int,
         nargs="+",
         choices=range(1, 15),
         metavar="N",
-        help="only these figures (1-14)",
+        help="only these figures (1-14); the report keeps the others from earlier runs",
     )
     rp.add_argument(
         "--workers", type=positive_int, default=None, help="worker processes (default: cores)"
     )
+    add_quiet(rp)
     rp.set_defaults(func=cmd_reproduce)
 
     fp = sub.add_parser("figures", help="write every paper figure (PNG, PDF, CSV)")
     fp.add_argument("--out", required=True, help="output folder")
-    fp.add_argument("--only", type=int, nargs="+", choices=range(1, 15), metavar="N")
+    fp.add_argument(
+        "--only",
+        type=int,
+        nargs="+",
+        choices=range(1, 15),
+        metavar="N",
+        help="only these figures (1-14; default: all)",
+    )
     fp.add_argument(
         "--data",
         nargs="+",
         metavar="KEY=FILE",
         help="overlay measured profiles on figures 10-11 (mustard, poppy, glass)",
     )
+    add_quiet(fp)
     fp.set_defaults(func=cmd_figures)

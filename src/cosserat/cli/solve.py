@@ -4,26 +4,73 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 from dataclasses import replace
+from typing import Any
 
 from .. import config
 from ..analysis import thickness_curve, thickness_limit
 from ..analysis.laws import thickness_curve_asymptote
-from ..routes import solve
-from . import files
+from ..routes import RHEOLOGIES, solve
+from . import files, params
 from .common import (
-    GEOMETRIES,
     MAX_POINTS,
     Parser,
     UsageError,
     add_material_and_walls,
+    add_model,
+    add_output,
     add_solution,
+    cell_help,
     check_outputs,
-    emit,
+    deliver,
     problem_from_args,
     progress_bar,
     solver_options,
+    table,
 )
+
+TABLE_ROWS = 11
+"""Rows of the profile table in ``--format text``."""
+
+
+# --------------------------------------------------------------------------- solve
+def profile_text(profile: Any) -> str:
+    """A readable summary of a profile: the problem, Delta, slip, a short table."""
+    s = profile.summary()
+    d = s["diagnostics"]
+    lines = [s["description"]]
+    tol = "" if d["rtol"] is None else f", rtol {d['rtol']:g}"
+    residual = max(d["residuals"].values(), default=None)
+    check = "" if residual is None else f"; largest equation residual {residual:.2g}"
+    lines.append(f"model {s['rheology']}, method {s['method']}{tol}, {s['points']} points{check}")
+    if s["Delta"] is None:
+        lines.append(f"Delta: not defined ({s['Delta_undefined']})")
+    else:
+        lines.append(
+            f"Delta = {s['Delta']:.6g} grain diameters (where the velocity relative to the "
+            f"far field has fallen to {config.DEFAULT_F:g} of its wall value)"
+        )
+    lines.append(
+        f"wall slip = {s['wall_slip']:.6g}, wall spin = {s['wall_omega']:.6g} (in the scales "
+        "of u and omega)"
+    )
+    cols = profile.columns()
+    n = profile.xi.size
+    picks = sorted({round(k * (n - 1) / (TABLE_ROWS - 1)) for k in range(TABLE_ROWS)})
+    names = list(cols)[:5]
+    lines += ["", *table(names, [[float(cols[c][i]) for c in names] for i in picks])]
+    lines.append(
+        f"({len(picks)} of {n} points; every column with --format csv or json; meanings with "
+        "--format json)"
+    )
+    return "\n".join(lines)
+
+
+def one_line(profile: Any) -> str:
+    s = profile.summary()
+    delta = "Delta undefined" if s["Delta"] is None else f"Delta = {s['Delta']:.6g}"
+    return f"{s['cell']} ({s['rheology']}, {s['method']}): {delta}, wall slip {s['wall_slip']:.6g}"
 
 
 def cmd_solve(args: argparse.Namespace) -> None:
@@ -34,10 +81,82 @@ def cmd_solve(args: argparse.Namespace) -> None:
     profile = solve(problem, method=args.method, points=args.points, **solver_options(args))
     if args.plot:
         files.save_figure(profile.plot(), args.plot)
-    if args.format == "csv":
-        emit(profile.to_csv(), args.out)
-    else:
-        emit(profile.to_json(indent=None), args.out)
+
+    def render(fmt: str) -> str:
+        if fmt == "csv":
+            return str(profile.to_csv())
+        if fmt == "json":
+            return str(profile.to_json(indent=None))
+        return profile_text(profile)
+
+    deliver(args, render, profile.summary, one_line(profile))
+
+
+# --------------------------------------------------------------------------- thickness
+def _without_eps(text: str) -> str:
+    return re.sub(r",? ?eps = [^,;]+", "", text)
+
+
+def thickness_figure(record: dict[str, Any]) -> Any:
+    """Delta against eps on log axes, with the small-eps asymptote where the model has one."""
+    from ..viz.plotting import new_figure, style
+
+    fig, axes = new_figure(1, 1, width=4.8, height=3.6)
+    ax = axes[0, 0]
+    with style():
+        points = [(e, d) for e, d in zip(record["eps"], record["Delta"], strict=True) if d]
+        if points:
+            ax.loglog(*zip(*points, strict=True), "ko-", label="model")
+        asym = [
+            (e, a) for e, a in zip(record["eps"], record["Delta_asymptotic"] or [], strict=False)
+        ]
+        asym = [(e, a) for e, a in asym if a]
+        if asym:
+            ax.loglog(*zip(*asym, strict=True), "k--", label="small-eps asymptote")
+        if record["Delta_asymptote"]:
+            ax.axhline(record["Delta_asymptote"], color="0.5", lw=0.8, label="eps -> 0 limit")
+        from matplotlib.ticker import FuncFormatter
+
+        plain = FuncFormatter(lambda v, _: f"{v:g}")
+        ax.yaxis.set_major_formatter(plain)
+        ax.yaxis.set_minor_formatter(plain)
+        ax.set_xlabel(r"$\varepsilon = d_p/H$")
+        ax.set_ylabel(r"$\Delta$ (grain diameters)")
+        ax.legend(loc="best")
+        ax.set_title(_without_eps(record["description"]), fontsize=6)
+        fig.tight_layout()
+    return fig
+
+
+def thickness_text(record: dict[str, Any]) -> str:
+    lines = [
+        f"Delta against eps for: {_without_eps(record['description'])}",
+        f"model {record['model']}, method {record['method']}, f = {record['f']:g} "
+        "(Delta in grain diameters)",
+    ]
+    if record["Delta_asymptote"] is not None:
+        lines.append(f"eps -> 0 limit of Delta: {record['Delta_asymptote']:.6g}")
+    rows = [
+        [e, d, None if a is None else a]
+        for e, d, a in zip(
+            record["eps"],
+            record["Delta"],
+            record["Delta_asymptotic"] or [None] * len(record["eps"]),
+            strict=True,
+        )
+    ]
+    lines += ["", *table(["eps", "Delta", "asymptotic"], rows)]
+    for e, why in record["failures"].items():
+        lines.append(f"eps = {e}: {' '.join(why.split())}")
+    return "\n".join(lines)
+
+
+def thickness_csv(record: dict[str, Any]) -> str:
+    lines = ["eps,Delta,Delta_asymptotic"]
+    asym = record["Delta_asymptotic"] or [None] * len(record["eps"])
+    for e, d, a in zip(record["eps"], record["Delta"], asym, strict=True):
+        lines.append(",".join("" if v is None else repr(v) for v in (e, d, a)))
+    return "\n".join(lines)
 
 
 def cmd_thickness(args: argparse.Namespace) -> None:
@@ -51,13 +170,16 @@ def cmd_thickness(args: argparse.Namespace) -> None:
         eps_values,
         f=args.f,
         method=args.method,
-        progress=progress_bar("thickness"),
+        progress=progress_bar("thickness") if len(eps_values) > 1 else None,
         **solver_options(args),
     )
-    limit = thickness_limit(problem, args.f)
-    asym = thickness_curve_asymptote(problem, eps_values, args.f)
+    cosserat = type(problem) in RHEOLOGIES[params.DEFAULT_MODEL].cells.values()
+    limit = thickness_limit(problem, args.f) if cosserat else None
+    asym = thickness_curve_asymptote(problem, eps_values, args.f) if cosserat else None
     record = {
         "problem": problem.parameters()["geometry"],
+        "model": args.model,
+        "description": problem.describe(),
         "parameters": {k: v for k, v in problem.parameters().items() if k != "eps"},
         "method": args.method,
         "f": args.f,
@@ -66,50 +188,95 @@ def cmd_thickness(args: argparse.Namespace) -> None:
         "Delta_asymptote": limit,
         "Delta_asymptotic": asym,
         "failures": {repr(e): why for e, why in curve.failures.items()},
+        "units": "Delta in grain diameters; eps = d_p/H",
     }
-    if args.format == "csv":
-        lines = ["eps,Delta,Delta_asymptotic"]
-        lines += [
-            f"{e!r},{d!r},{a!r}" for e, d, a in zip(eps_values, curve.Delta, asym, strict=True)
-        ]
-        emit("\n".join(lines), args.out)
-    else:
-        emit(json.dumps(record, allow_nan=False), args.out)
+    if args.plot:
+        files.save_figure(thickness_figure(record), args.plot)
+
+    def render(fmt: str) -> str:
+        if fmt == "csv":
+            return thickness_csv(record)
+        if fmt == "json":
+            return json.dumps(record, allow_nan=False)
+        return thickness_text(record)
+
+    found = [d for d in curve.Delta if d is not None]
+    line = (
+        f"{record['problem']} ({args.model}): Delta from {min(found):.4g} to {max(found):.4g} "
+        f"over {len(found)} of {len(eps_values)} eps"
+        if found
+        else f"{record['problem']} ({args.model}): no eps with a solution"
+    )
+    meta = {k: v for k, v in record.items() if k not in ("eps", "Delta", "Delta_asymptotic")}
+    meta["columns"] = {
+        "eps": {"meaning": "grain diameter over gap d_p/H", "unit": "1"},
+        "Delta": {"meaning": "shear-layer thickness (empty: no solution)", "unit": "d_p"},
+        "Delta_asymptotic": {"meaning": "small-eps asymptotic Delta", "unit": "d_p"},
+    }
+    deliver(args, render, meta, line)
+
+
+# --------------------------------------------------------------------------- parsers
+def _add_cell_options(p: argparse.ArgumentParser, cell: str) -> None:
+    if params.DEFAULT_MODEL in params.cells().get(cell, []) and params.uses_build_problem(
+        params.DEFAULT_MODEL, cell
+    ):
+        add_material_and_walls(p, cell)
+    add_model(p, cell)
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add this module's commands to the ``cosserat`` parser."""
-    solve_p = sub.add_parser("solve", help="one profile across the gap")
+    cells = params.cells()
+    solve_p = sub.add_parser(
+        "solve",
+        help="one profile across the gap",
+        description="Solve one cell with one model; prints a summary, the profile as a table "
+        "(--format csv) or every number (--format json).",
+    )
     solve_geo = solve_p.add_subparsers(dest="geometry", required=True, parser_class=Parser)
-    for geometry, helptext in GEOMETRIES.items():
-        sp = solve_geo.add_parser(geometry, help=helptext)
-        add_material_and_walls(sp, plane=geometry == "plane")
-        sp.add_argument("--eps", type=float, required=True, help="grain diameter / gap d_p/H")
+    for cell in cells:
+        sp = solve_geo.add_parser(cell, help=cell_help(cell), description=cell_help(cell))
+        sp.add_argument(
+            "--eps", type=float, required=True, help="grain diameter over gap d_p/H [-]"
+        )
+        _add_cell_options(sp, cell)
         add_solution(sp)
         sp.add_argument(
             "--points",
             type=int,
             default=config.OUTPUT_POINTS,
-            help=f"output points, layers resolved ({config.OUTPUT_POINTS})",
+            help=f"output points across the gap, layers resolved (default: {config.OUTPUT_POINTS})",
         )
-        sp.add_argument("--format", choices=("json", "csv"), default="json")
-        sp.add_argument("--out", default=None, help="write to this file instead of stdout")
-        sp.add_argument("--plot", default=None, help="also save a quick plot (PNG/PDF)")
+        add_output(sp, plot="a quick plot of the profile")
         sp.set_defaults(func=cmd_solve)
 
-    th = sub.add_parser("thickness", help="shear-layer thickness Delta against eps")
+    th = sub.add_parser(
+        "thickness",
+        help="shear-layer thickness Delta against eps",
+        description="Delta (in grain diameters) at each eps, with the small-eps asymptote "
+        "where the model has one.",
+    )
     th_geo = th.add_subparsers(dest="geometry", required=True, parser_class=Parser)
-    for geometry, helptext in GEOMETRIES.items():
-        tp = th_geo.add_parser(geometry, help=helptext)
-        add_material_and_walls(tp, plane=geometry == "plane")
-        tp.add_argument("--eps", type=float, nargs="+", required=True)
+    for cell in cells:
+        tp = th_geo.add_parser(cell, help=cell_help(cell), description=cell_help(cell))
+        tp.add_argument(
+            "--eps",
+            type=float,
+            nargs="+",
+            required=True,
+            help="one or more grain diameter over gap d_p/H [-]",
+        )
+        _add_cell_options(tp, cell)
         tp.add_argument(
             "--f",
             type=float,
             default=config.DEFAULT_F,
-            help=f"fraction defining Delta ({config.text(config.DEFAULT_F)})",
+            help=(
+                "Delta is where the velocity relative to the far field has fallen to this "
+                f"fraction of its wall value [-] (default: {config.text(config.DEFAULT_F)})"
+            ),
         )
         add_solution(tp)
-        tp.add_argument("--format", choices=("json", "csv"), default="json")
-        tp.add_argument("--out", default=None)
+        add_output(tp, plot="Delta against eps on log axes")
         tp.set_defaults(func=cmd_thickness)

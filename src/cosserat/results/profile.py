@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._atomic import write_text
+from ..config import DEFAULT_F
 from ..errors import ConvergenceError, CosseratError, ParameterError
 from ..model.constitutive import FloatArray
 from .wall import shear_layer_thickness, wall_omega, wall_slip
@@ -161,6 +162,18 @@ CELL_NAMES: dict[str, CellNames] = {
             ),
             "sigma_yy": ("sigma_rr", "radial normal stress sigma_rr over the mean stress"),
             "asymmetry": ("asymmetry", "stress asymmetry sigma_r_theta - sigma_theta_r"),
+        },
+    ),
+    "channel": CellNames(
+        "y",
+        "distance across the channel over its width, y/H (walls at 0 and 1)",
+        lambda problem, xi: xi,
+        {
+            "u": ("u", "downward velocity over its centre-line value"),
+            "omega": ("omega", "grain spin omega_z H / u_centre"),
+            "sigma_xy": ("sigma_xy", "shear stress sigma_xy over the wall normal stress N"),
+            "sigma_yx": ("sigma_yx", "shear stress on wall-parallel planes sigma_yx over N"),
+            "sigma_yy": ("sigma_yy", "normal stress sigma_yy over N"),
         },
     ),
 }
@@ -335,7 +348,7 @@ class Profile:
         except CosseratError as exc:
             out["Delta"] = None
             out["Delta_undefined"] = " ".join(str(exc).split())
-        out["Delta_unit"] = "grain diameters (f = 0.1 of eqn-delta_defn)"
+        out["Delta_unit"] = f"grain diameters (f = {DEFAULT_F:g} in eqn-delta_defn)"
         out["wall_slip"] = wall_slip(self)
         out["wall_omega"] = wall_omega(self)
         out["columns"] = {
