@@ -1,0 +1,21 @@
+"""
+Profiles as tables: pandas and CSV
+==================================
+
+A :class:`~cosserat.results.profile.Profile` exports its columns (named in the cell's own
+coordinates) to pandas, xarray, CSV and JSON, so it drops into a notebook.
+"""
+
+import matplotlib.pyplot as plt
+
+from cosserat import Material, PlaneShear, Wall, solve
+
+profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.04), points=41)
+table = profile.to_dataframe()
+print(table.head())
+
+ax = table.plot(x=table.columns[1], y=table.columns[0], legend=False, figsize=(5, 4))
+ax.set_xlabel(table.columns[1])
+ax.set_ylabel(table.columns[0])
+ax.grid(alpha=0.3)
+plt.show()
