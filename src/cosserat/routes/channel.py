@@ -308,7 +308,13 @@ class _AsymptoticEvaluator:
             a = 0.5 * mat.sin_phi
             gamma = 4.0 * mat.c2  # m_outer^2 ~ gamma d at the wall (doc section 6)
             amp = (2.0 * a * mat.alpha * gamma * eps) ** (1.0 / 3.0)
-            m_hat = m_outer + amp * inner_couple_stress(x_hat) - np.sqrt(gamma * d)
+            # additive composite (as eqn-eta_g_unif); its Airy correction decays only like
+            # amp/(4 x_hat) = O(eps) outside the layer, and on the centre line the outer
+            # solution lies on the yield bound b, so the correction is kept below b - m^(0)
+            correction = amp * inner_couple_stress(x_hat) - np.sqrt(gamma * d)
+            b = np.sqrt(np.maximum(mat.c2 + tau**2 * (mat.A - 1.0) / (4.0 * (mat.A + 1.0)), 0.0))
+            room = np.maximum(b - m_outer, 0.0)
+            m_hat = m_outer + np.minimum(correction, room)
             u_hat, w_hat = airy_layer(x_hat, eps=eps, scale=scale, u_wall=1.0, slip_sign=1.0)
         else:
             k = pr.slip_constants.k
