@@ -83,7 +83,7 @@ def cmd_corpus(args: argparse.Namespace) -> None:
 
     start = time.perf_counter()
     work = args.work or str(Path(args.out) / "work")
-    times = generate_corpus(args.out, work, names=args.only, np=args.np)
+    times = generate_corpus(args.out, work, names=args.only, np=args.np, reanalyse=args.reanalyse)
     print(json.dumps({"runs_s": times, "total_s": round(time.perf_counter() - start, 1)}))
 
 
@@ -138,4 +138,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     corpus.add_argument("--work", default=None, help="folder for decks and logs (OUT/work)")
     corpus.add_argument("--only", nargs="+", default=None, help="only these runs")
     corpus.add_argument("--np", type=positive_int, default=1, help="MPI processes per run")
+    corpus.add_argument(
+        "--reanalyse", action="store_true", help="coarse-grain the runs in --work again, no LAMMPS"
+    )
     corpus.set_defaults(func=cmd_corpus)

@@ -286,13 +286,14 @@ def steady_profile(
     I_mean = float(finite_I.mean()) if finite_I.size else None
     steps = samples.steps
     every = int(steps[1] - steps[0])
+    nu_mean = float(np.average(columns["nu"], weights=samples.bin_area))
     sidecar = _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, lammps_version,
-                       steps, first, every, blocks)  # fmt: skip
+                       steps, first, every, blocks, nu_mean)  # fmt: skip
     return DEMProfile(columns, sidecar)
 
 
 def _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, version, steps, first, every,
-             blocks) -> dict:  # fmt: skip
+             blocks, nu_mean) -> dict:  # fmt: skip
     plane = isinstance(cell, PlaneShearDEM)
     channel = isinstance(cell, ChannelDEM)
     nu_bulk = cell.nu_nominal if not isinstance(cell, CouetteDEM) else cell.nu_fill
@@ -327,7 +328,11 @@ def _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, version, steps,
         "Ri_d": cell.inner_radius if isinstance(cell, CouetteDEM) else None,
         "gravity": gravity,
         "gravity_note": gnote,
-        "B": cell.B if plane else 0.0,
+        "B": (cell.grains.density * nu_mean * cell.gravity * gap_mean) if plane else 0.0,
+        "B_note": "rho_s nu g H / N with the measured mean solids fraction and gap; the deck "
+        f"set g from the nominal B = {cell.B:g} (nu = {nu_bulk:g}, H = {cell.gap:g} d)"
+        if plane
+        else "no gravity across the gap",
         "wall": cell.wall.describe(cell.contact),
         "grains": cell.grains.describe(run.n_free),
         "contact": cell.contact.describe(),

@@ -47,25 +47,41 @@ def run_cell(
     the LAMMPS wall time [s]. The dumps are deleted afterwards unless ``keep_dumps``."""
     from .runner import run_deck  # LAMMPS only on demand
 
-    deck = build_deck(cell)
-    folder = Path(folder)
-    deck.write(folder)
+    build_deck(cell).write(folder)
     record = run_deck(folder, np=np, engine=engine)
-    samples = read_samples(folder, deck)
-    profile = steady_profile(samples, deck, lammps_version=record.lammps_version)
-    profile.sidecar["wall_time_s"] = round(record.seconds, 1)
+    write_text(Path(folder) / "run.json", json.dumps(
+        {"seconds": round(record.seconds, 1), "lammps_version": record.lammps_version,
+         "command": record.command}, indent=1) + "\n")  # fmt: skip
+    profile = analyse_cell(cell, folder)
     if not keep_dumps:
         for name in ("atoms.dump", "contacts.dump"):
-            (folder / name).unlink(missing_ok=True)
+            (Path(folder) / name).unlink(missing_ok=True)
     return profile, record.seconds
+
+
+def analyse_cell(cell: Cell, folder: str | Path) -> DEMProfile:
+    """Coarse-grain a finished run of ``cell`` in ``folder`` (its dumps and ``run.json``)."""
+    deck = build_deck(cell)
+    folder = Path(folder)
+    written = (folder / "deck.lmp").read_text()
+    if written != deck.text:
+        from ..errors import InputError
+
+        raise InputError(f"{folder / 'deck.lmp'} is not the deck of this cell")
+    record = json.loads((folder / "run.json").read_text())
+    samples = read_samples(folder, deck)
+    profile = steady_profile(samples, deck, lammps_version=record["lammps_version"])
+    profile.sidecar["wall_time_s"] = record["seconds"]
+    return profile
 
 
 def generate_corpus(
     out: str | Path, work: str | Path, *, names: list[str] | None = None, np: int = 1,
-    run: RunLength = CORPUS_RUN, log: Callable[[str], None] = print,
+    run: RunLength = CORPUS_RUN, log: Callable[[str], None] = print, reanalyse: bool = False,
 ) -> dict[str, float]:  # fmt: skip
     """Run the corpus's cells (or ``names`` of them) and write ``<name>.csv/.json`` into
-    ``out``; the decks and LAMMPS logs stay in ``work/<name>``. Returns the wall times [s]."""
+    ``out``; the decks, LAMMPS logs and dumps stay in ``work/<name>``. With ``reanalyse``,
+    only coarse-grain the runs already in ``work`` again. Returns the LAMMPS wall times [s]."""
     cells = corpus_cells(run)
     chosen = list(cells) if names is None else names
     unknown = [n for n in chosen if n not in cells]
@@ -78,8 +94,12 @@ def generate_corpus(
     times: dict[str, float] = {}
     start = time.perf_counter()
     for name in chosen:
-        log(f"{name}: running in {work / name}")
-        profile, seconds = run_cell(cells[name], work / name, np=np)
+        if reanalyse:
+            profile = analyse_cell(cells[name], work / name)
+            seconds = profile.sidecar["wall_time_s"]
+        else:
+            log(f"{name}: running in {work / name}")
+            profile, seconds = run_cell(cells[name], work / name, np=np, keep_dumps=True)
         profile.write(out, name)
         times[name] = seconds
         log(f"{name}: {seconds:.0f} s of LAMMPS, {time.perf_counter() - start:.0f} s so far")
