@@ -296,3 +296,15 @@ def test_tiny_plane_shear_run_end_to_end(tmp_path):
     assert hi == 8000 and 0 <= lo < hi and meta["dropped_steps"] == lo
     _, json_path = profile.write(tmp_path, "tiny")
     assert json.loads(json_path.read_text())["deck_sha256"] == build_deck(cell).sha256
+
+
+def test_the_package_does_not_load_lammps_or_dem():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, cosserat, cosserat.cli; cosserat.cli.make_parser(); "
+        "print('lammps' in sys.modules, 'cosserat.dem' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "False"]
