@@ -13,10 +13,12 @@ from cosserat import CouetteFlow, Material, Wall, shear_layer_thickness, solve
 
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
 for Ri in (0.5, 1.0, 4.0, 20.0):
-    problem = CouetteFlow(material=Material(), wall=Wall(delta=20.0), eps=0.04, Ri=Ri)
+    wall = Wall(delta=20.0)
+    problem = CouetteFlow(material=Material(), wall=wall, eps=0.04, Ri=Ri)
     profile = solve(problem)
     Delta = shear_layer_thickness(profile)
-    ax.plot(-profile.u, profile.xi / problem.eps, label=f"Ri = {Ri:g}: Delta = {Delta:.1f} d")
+    label = f"Ri = {Ri:g}: Delta = {Delta:.1f} d"
+    ax.plot(-profile.u, profile.xi / problem.eps, label=label)
 ax.set_xlabel(r"$-u = v_\theta / V_i$")
 ax.set_ylabel("distance from the inner cylinder $(r - R_i)/d$")
 ax.legend(loc="upper right")

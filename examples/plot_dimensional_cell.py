@@ -13,12 +13,20 @@ import matplotlib.pyplot as plt
 from cosserat import Material, Wall, solve
 from cosserat.cell import CouetteCell
 
-cell = CouetteCell(rho_p=2500, d_p=1e-3, gap=0.02, R_i=0.02, fill_depth=0.1, rotation_rate=0.5)
+cell = CouetteCell(
+    rho_p=2500,  # grain density [kg/m^3]
+    d_p=1e-3,  # grain diameter [m]
+    gap=0.02,  # [m]
+    R_i=0.02,  # inner radius [m]
+    fill_depth=0.1,  # [m]
+    rotation_rate=0.5,  # inner cylinder [rad/s]
+)
 profile = solve(cell.problem(Material(phi=28.5), Wall(delta=20.0, K=0.5)))
 
-print(f"eps = d/H = {cell.eps:g}, Ri = R_i/H = {cell.Ri:g}, Froude number {cell.froude:.2g}")
+print(f"eps = d/H = {cell.eps:g}, Ri = R_i/H = {cell.Ri:g}, Froude {cell.froude:.2g}")
 print(f"torque on the inner cylinder: {cell.torque(profile):.4g} N m")
-print(f"wall shear stress at the bottom: {cell.wall_shear_stress(profile, depth=0.1):.4g} Pa")
+stress = cell.wall_shear_stress(profile, depth=0.1)
+print(f"wall shear stress at the bottom: {stress:.4g} Pa")
 print(f"slip velocity: {1e3 * cell.slip_velocity(profile):.3g} mm/s")
 
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")

@@ -12,14 +12,15 @@ import matplotlib.pyplot as plt
 
 from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve
 
-fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
+fig, ax = plt.subplots(figsize=(8, 4), layout="constrained")
 for B in (0.0, 0.5, 1.0, 2.0):
     problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.04, B=B)
     profile = solve(problem)
-    label = f"B = {B:g} ({problem.case.value}): Delta = {shear_layer_thickness(profile):.1f} d"
+    Delta = shear_layer_thickness(profile)
+    label = f"B = {B:g} ({problem.case.value}):\nDelta = {Delta:.1f} d"
     ax.plot(profile.u, profile.xi, label=label)
 ax.set_xlabel("velocity $u = v_x/V$")
 ax.set_ylabel(r"$\xi = y/H$")
-ax.legend(loc="upper left", fontsize="small")
+fig.legend(loc="outside right upper")
 ax.grid(alpha=0.3)
 plt.show()

@@ -20,7 +20,8 @@ cosserat = solve(CouetteFlow(material=Material(), wall=Wall(), **cell))
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
 for name, profile in (("mu(I), I_w = 0.01", mui), ("Cosserat", cosserat)):
     Delta = shear_layer_thickness(profile)
-    ax.plot(-profile.u, profile.xi / cell["eps"], label=f"{name}: Delta = {Delta:.2f} d")
+    label = f"{name}: Delta = {Delta:.2f} d"
+    ax.plot(-profile.u, profile.xi / cell["eps"], label=label)
 ax.set_xlabel(r"$v_\theta / V_i$")
 ax.set_ylabel("distance from the inner cylinder $(r - R_i)/d$")
 ax.legend(loc="upper right")

@@ -15,13 +15,16 @@ from cosserat.studies.sweep import parse_spec, run_sweep
 spec = parse_spec(
     {
         "geometry": "plane",
-        "grid": {"eps": {"geomspace": [0.05, 1e-5, 10]}, "delta": [12.0, 16.0, 20.0, 24.0]},
+        "grid": {
+            "eps": {"geomspace": [0.05, 1e-5, 10]},
+            "delta": [12.0, 16.0, 20.0, 24.0],
+        },
     }
 )
 rows = run_sweep(spec, workers=1)
 print(f"{len(rows)} cases, {sum(r['status'] != 'ok' for r in rows)} failed")
 
-fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
+fig, ax = plt.subplots(figsize=(7.5, 4), layout="constrained")
 for delta in (12.0, 16.0, 20.0, 24.0):
     sel = [r for r in rows if r["delta"] == delta and r["status"] == "ok"]
     ax.semilogx(
@@ -33,6 +36,6 @@ for delta in (12.0, 16.0, 20.0, 24.0):
     )
 ax.set_xlabel(r"$\varepsilon = d/H$")
 ax.set_ylabel(r"$\Delta$ [grain diameters]")
-ax.legend(loc="upper right")
+fig.legend(loc="outside right upper")
 ax.grid(alpha=0.3, which="both")
 plt.show()

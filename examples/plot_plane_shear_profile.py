@@ -12,7 +12,8 @@ import matplotlib.pyplot as plt
 
 from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve, wall_slip
 
-problem = PlaneShear(material=Material(phi=28.5), upper=Wall(delta=20.0, K=0.5), eps=0.01)
+wall = Wall(delta=20.0, K=0.5)  # angle of wall friction [deg], slip coefficient
+problem = PlaneShear(material=Material(phi=28.5), upper=wall, eps=0.01)
 profile = solve(problem)
 print(f"Delta = {shear_layer_thickness(profile):.2f} grain diameters")
 print(f"slip at the moving wall = {wall_slip(profile):.4f} V")

@@ -10,9 +10,11 @@ import matplotlib.pyplot as plt
 
 from cosserat import Material, PlaneShear, Wall, solve
 
-profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.04), points=41)
+problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.04)
+profile = solve(problem, points=41)
 table = profile.to_dataframe()
-print(table.head())
+print(list(table.columns))
+print(table.iloc[:5, :4])
 
 ax = table.plot(x=table.columns[1], y=table.columns[0], legend=False, figsize=(5, 4))
 ax.set_xlabel(table.columns[1])

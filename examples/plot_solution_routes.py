@@ -26,5 +26,6 @@ ax.grid(alpha=0.3)
 
 numerical = solve(problem)
 closed = solve(problem, method="closed-form", xi=numerical.xi)
-print(f"max |numerical - closed form| in u: {np.max(np.abs(numerical.u - closed.u)):.2e}")
+difference = np.max(np.abs(numerical.u - closed.u))
+print(f"max |numerical - closed form| in u: {difference:.2e}")
 plt.show()

@@ -16,16 +16,17 @@ from cosserat import Material, PlaneShear, Wall
 from cosserat.analysis import thickness_curve, thickness_limit
 
 eps_values = np.geomspace(0.05, 1e-6, 12)
-fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
+fig, ax = plt.subplots(figsize=(7.5, 4), layout="constrained")
 for delta in (15.0, 20.0, 25.0):
     problem = PlaneShear(material=Material(), upper=Wall(delta=delta), eps=0.01)
     curve = thickness_curve(problem, eps_values)
-    (line,) = ax.semilogx(curve.eps, curve.Delta, "o-", ms=3, label=f"delta = {delta:g} deg")
+    label = f"delta = {delta:g} deg"
+    (line,) = ax.semilogx(curve.eps, curve.Delta, "o-", ms=3, label=label)
     limit = thickness_limit(problem)
     ax.axhline(limit, color=line.get_color(), ls=":", lw=1)
-    print(f"delta = {delta:4.1f} deg: Delta(eps=1e-6) = {curve.Delta[-1]:.3f}, limit {limit:.3f}")
+    print(f"delta = {delta:4.1f} deg: Delta(1e-6) = {curve.Delta[-1]:.3f}, limit {limit:.3f}")
 ax.set_xlabel(r"$\varepsilon = d/H$")
 ax.set_ylabel(r"$\Delta$ [grain diameters]")
-ax.legend(title="dotted: eps -> 0 limit", loc="upper right")
+fig.legend(title="dotted: eps -> 0 limit", loc="outside right upper")
 ax.grid(alpha=0.3, which="both")
 plt.show()

@@ -9,6 +9,7 @@ layer spreads over the whole gap.
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.ticker import NullFormatter
 
 from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve, wall_slip
 
@@ -16,7 +17,8 @@ material = Material()
 deltas = np.linspace(8.0, 0.999 * material.fully_rough_delta, 14)
 Delta, slip = [], []
 for delta in deltas:
-    profile = solve(PlaneShear(material=material, upper=Wall(delta=delta), eps=0.01))
+    problem = PlaneShear(material=material, upper=Wall(delta=delta), eps=0.01)
+    profile = solve(problem)
     Delta.append(shear_layer_thickness(profile))
     slip.append(wall_slip(profile))
 
@@ -25,6 +27,7 @@ ax1.plot(deltas, Delta, "o-", ms=3)
 ax1.set_xlabel(r"wall friction angle $\delta$ [deg]")
 ax1.set_ylabel(r"$\Delta$ [grain diameters]")
 ax2.semilogy(deltas, slip, "o-", ms=3)
+ax2.yaxis.set_minor_formatter(NullFormatter())
 ax2.set_xlabel(r"wall friction angle $\delta$ [deg]")
 ax2.set_ylabel("slip velocity / V")
 for ax in (ax1, ax2):
