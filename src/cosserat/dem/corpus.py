@@ -20,22 +20,30 @@ from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength, Wall
 ROUGH = WallRoughness("glued-grains", glued_diameter=1.0, glued_spacing=1.0)
 SMOOTH = WallRoughness("smooth-frictional")
 CORPUS_RUN = RunLength(settle_steps=30_000, steps=400_000, dump_every=1_000)
-"""Run length of every corpus run: 400 samples of the sheared state, 0.996e-3 time step."""
+"""Run length of the corpus's smallest plane cells (H = 20 d): 400 samples of the sheared
+state at a 0.996e-3 time step."""
+SHORT_RUN = RunLength(settle_steps=30_000, steps=250_000, dump_every=1_000)
+"""Run length of the larger cells (plane H = 40, 80 d; the channel; Couette H = 10 d)."""
+COUETTE_RUN = RunLength(settle_steps=30_000, steps=200_000, dump_every=1_000)
+"""Run length of the largest cell (Couette H = 20 d, 3,837 grains)."""
 
 
-def corpus_cells(run: RunLength = CORPUS_RUN) -> dict[str, Cell]:
-    """The corpus's runs by name (plane shear under gravity at three gaps for a rough and a
-    smooth wall, plus one run at half the wall speed; Couette at two gaps; one channel)."""
+def corpus_cells() -> dict[str, Cell]:
+    """The corpus's runs by name: plane shear under gravity (B = 1) at three gaps for a rough
+    and a smooth wall, plus one run at half the wall speed (the rate check); annular Couette at
+    two gaps; one vertical channel. The run lengths fit the corpus into about an hour on a
+    shared 2-core machine (docs/dem.md)."""
     cells: dict[str, Cell] = {}
     for label, wall in (("rough", ROUGH), ("smooth", SMOOTH)):
         for gap in (20, 40, 80):
+            run = CORPUS_RUN if gap == 20 else SHORT_RUN
             cells[f"plane_{label}_H{gap}"] = PlaneShearDEM(gap=gap, width=30.0, B=1.0,
                                                            wall=wall, run=run)  # fmt: skip
     cells["plane_rough_H20_halfspeed"] = replace(cells["plane_rough_H20"], wall_speed=0.05)
-    for gap in (10, 20):
+    for gap, run in ((10, SHORT_RUN), (20, COUETTE_RUN)):
         cells[f"couette_Ri20_H{gap}"] = CouetteDEM(gap=gap, inner_radius=20.0, wall=ROUGH,
                                                     run=run)  # fmt: skip
-    cells["channel_rough_H20"] = ChannelDEM(gap=20, length=30.0, wall=ROUGH, run=run)
+    cells["channel_rough_H20"] = ChannelDEM(gap=20, length=30.0, wall=ROUGH, run=SHORT_RUN)
     return cells
 
 
@@ -68,21 +76,38 @@ def analyse_cell(cell: Cell, folder: str | Path) -> DEMProfile:
         from ..errors import InputError
 
         raise InputError(f"{folder / 'deck.lmp'} is not the deck of this cell")
-    record = json.loads((folder / "run.json").read_text())
+    record = _run_record(folder)
     samples = read_samples(folder, deck)
     profile = steady_profile(samples, deck, lammps_version=record["lammps_version"])
     profile.sidecar["wall_time_s"] = record["seconds"]
     return profile
 
 
+def _run_record(folder: Path) -> dict:
+    """``run.json``, or (a run made elsewhere, or whose driver was stopped) the wall time from
+    LAMMPS's log and the installed LAMMPS version."""
+    if (folder / "run.json").is_file():
+        return json.loads((folder / "run.json").read_text())
+    from .runner import lammps_version
+
+    seconds = float("nan")
+    log = folder / "log.lammps"
+    if log.is_file():
+        for line in log.read_text().splitlines():
+            if line.startswith("Total wall time:"):
+                h, m, sec = (int(x) for x in line.split()[-1].split(":"))
+                seconds = 3600.0 * h + 60.0 * m + sec
+    return {"seconds": seconds, "lammps_version": lammps_version()}
+
+
 def generate_corpus(
     out: str | Path, work: str | Path, *, names: list[str] | None = None, np: int = 1,
-    run: RunLength = CORPUS_RUN, log: Callable[[str], None] = print, reanalyse: bool = False,
+    log: Callable[[str], None] = print, reanalyse: bool = False,
 ) -> dict[str, float]:  # fmt: skip
     """Run the corpus's cells (or ``names`` of them) and write ``<name>.csv/.json`` into
     ``out``; the decks, LAMMPS logs and dumps stay in ``work/<name>``. With ``reanalyse``,
     only coarse-grain the runs already in ``work`` again. Returns the LAMMPS wall times [s]."""
-    cells = corpus_cells(run)
+    cells = corpus_cells()
     chosen = list(cells) if names is None else names
     unknown = [n for n in chosen if n not in cells]
     if unknown:
