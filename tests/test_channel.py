@@ -290,3 +290,63 @@ def test_build_problem_and_pickle():
     np.testing.assert_array_equal(back.evaluate([0.9]).u, prof.evaluate([0.9]).u)
     assert np.all(np.isfinite(np.concatenate(list(prof.columns().values()))))
     assert prof.to_dict()["parameters"]["velocity_scale"].startswith("centre-line")
+
+
+# ----------------------------------------------------------------- local mu(I) on the channel
+def mui_velocity_by_hand(problem, x):  # type: ignore[no-untyped-def]
+    """u from the rate written out here: I(mu) = I_0 (mu - mu_s)/(mu_2 - mu) with
+    mu = B nu t, integrated from the wall by scipy's quad and scaled by the centre line."""
+    from scipy.integrate import quad
+
+    law, Bn = problem.rheology, problem.B * problem.nu
+
+    def rate(t):  # type: ignore[no-untyped-def]
+        mu = Bn * t
+        return law.I_0 * (mu - law.mu_s) / (law.mu_2 - mu) if mu > law.mu_s else 0.0
+
+    t_s = law.mu_s / Bn
+
+    def J(t):  # type: ignore[no-untyped-def]
+        lo = max(t, t_s)
+        return quad(rate, lo, 0.5, epsabs=0, epsrel=1e-13)[0] if lo < 0.5 else 0.0
+
+    centre = J(0.0)
+    return np.array([J(abs(v - 0.5)) for v in x]) / centre, centre
+
+
+@pytest.mark.parametrize("B", [0.8, 1.0, 1.25])
+def test_mui_channel_closed_form(B):
+    from cosserat.model.mui import MuIChannel
+
+    problem = MuIChannel(eps=0.01, B=B)
+    prof = solve(problem, method="closed-form")
+    x = np.linspace(0.0, 1.0, 101)
+    u_hand, I_w = mui_velocity_by_hand(problem, x)
+    np.testing.assert_allclose(prof.evaluate(x).u, u_hand, rtol=0, atol=1e-12)
+    assert prof.diagnostics.stats["I_w"] == pytest.approx(I_w, rel=1e-12)
+    # the plug on the centre line: |xi - 1/2| <= mu_s/(B nu), u = 1 exactly there
+    t_s = problem.rheology.mu_s / B
+    inside = np.abs(x - 0.5) <= t_s
+    np.testing.assert_array_equal(prof.evaluate(x[inside]).u, 1.0)
+    assert np.all(prof.evaluate(x[~inside]).u < 1.0)
+    for name, value in prof.diagnostics.bc_errors.items():
+        assert abs(value) < 1e-14, name
+    assert prof.diagnostics.residuals["velocity"] < 1e-12
+    # the numerical route (quadrature) agrees with the closed form
+    num = solve(problem)
+    np.testing.assert_allclose(num.evaluate(x).u, prof.evaluate(x).u, rtol=0, atol=1e-12)
+    assert shear_layer_thickness(num) == pytest.approx(shear_layer_thickness(prof), rel=1e-10)
+    # stresses: symmetric, mu = B nu |xi - 1/2|; spin = half the vorticity
+    f = prof.evaluate(x)
+    np.testing.assert_allclose(f.sigma_yx, B * (x - 0.5))
+    np.testing.assert_array_equal(f.sigma_xy, f.sigma_yx)
+    np.testing.assert_allclose(f.omega, -0.5 * f.du_dxi)
+
+
+def test_mui_channel_without_flow_or_without_steady_rate():
+    from cosserat.model.mui import MuIChannel
+
+    with pytest.raises(NoSolutionError, match="plug"):
+        MuIChannel(eps=0.01, B=0.7)  # B nu/2 = 0.35 < mu_s = 0.382
+    with pytest.raises(NoSolutionError, match="mu_2"):
+        MuIChannel(eps=0.01, B=1.4)  # B nu/2 = 0.7 > mu_2 = 0.644

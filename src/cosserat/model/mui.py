@@ -418,4 +418,138 @@ class MuICouetteFlow(_MuICell):
 
 MuIProblem = MuIPlaneShear | MuICouetteFlow
 
-__all__ = ["GAP_MIN", "MuI", "MuICouetteFlow", "MuIPlaneShear", "MuIProblem"]
+
+@dataclass(frozen=True, kw_only=True)
+class MuIChannel:
+    """Fully developed gravity flow of a mu(I) material between two vertical walls.
+
+    The conventions of :class:`~cosserat.model.channel.Channel` (``docs/derivation_channel.md``
+    sections 0-1 and 7): x down, ``xi = y/H``, walls at rest at 0 and 1, p = N uniform and
+    ``mu(xi) = |tau|/p = B nu |xi - 1/2|``. A plug of half-width ``t_s = mu_s/(B nu)`` rides on
+    the centre line, the material shears where mu > mu_s, no slip at the walls. The velocity is
+    scaled by the centre-line velocity, ``u(1/2) = 1``; the inertial number of that velocity,
+    ``I_w = V d/(H sqrt(N/rho_s))``, is then fixed by the stress (an output of the routes).
+
+    Parameters
+    ----------
+    rheology : MuI
+    eps : float
+        Grain diameter over channel width d/H, ``0 < eps <= 0.5`` [-] (only Delta, in grain
+        diameters, uses it).
+    B : float
+        rho_p g H / N with N the wall normal stress [-]: the wall stress ratio is B nu / 2.
+    nu : float
+        Solids fraction, ``0 < nu <= 1`` [-]; only B nu enters.
+
+    Raises
+    ------
+    ParameterError
+        A parameter out of its bounds.
+    NoSolutionError
+        ``B nu/2 <= mu_s`` (the whole channel is a plug held by static friction: no flow, and
+        u = v/V is undefined) or ``B nu/2 >= mu_2`` (no steady rate carries the wall stress).
+    """
+
+    rheology: MuI = MuI()
+    eps: float
+    B: float
+    nu: float = 1.0
+
+    slip_wall = 1.0
+    reference_velocity = 1.0
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.rheology, MuI):
+            raise ParameterError(f"rheology must be a MuI; got {type(self.rheology).__name__}")
+        object.__setattr__(self, "eps", validate_eps(self.eps))
+        B = require_finite("B", self.B)
+        if not 0.0 < B <= B_MAX:
+            raise ParameterError(
+                f"B = rho_p g H / N must satisfy 0 < B <= {B_MAX:g} in the channel (gravity "
+                f"drives the flow); got {B:g}"
+            )
+        object.__setattr__(self, "B", B)
+        nu = require_finite("nu", self.nu)
+        if not 0.0 < nu <= 1.0:
+            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
+        object.__setattr__(self, "nu", nu)
+        law, mu_w = self.rheology, self.wall_stress_ratio
+        if mu_w >= law.mu_2:
+            law.inertial_number(np.array([mu_w]), "at the walls, where it is largest")
+        if mu_w <= law.mu_s:
+            raise NoSolutionError(
+                f"no flow: the wall stress ratio B nu/2 = {mu_w:.6g} <= mu_s = {law.mu_s:.6g}, so "
+                "|tau|/p <= mu_s everywhere and the whole channel is a plug held by static "
+                "friction; the centre-line velocity is 0 and u = v/V is undefined"
+            )
+
+    @property
+    def wall_stress_ratio(self) -> float:
+        """mu at the walls, B nu / 2 [-]."""
+        return 0.5 * self.B * self.nu
+
+    @property
+    def plug_half_width(self) -> float:
+        """t_s = mu_s/(B nu): the plug is |xi - 1/2| <= t_s [-]."""
+        return self.rheology.mu_s / (self.B * self.nu)
+
+    @staticmethod
+    def wall_velocity(xi_wall: float) -> float:
+        """The walls are at rest [-]."""
+        return 0.0
+
+    def curvature(self, xi: FloatArray) -> FloatArray:
+        return np.zeros_like(np.asarray(xi, dtype=float))
+
+    def sigma_c(self, xi: FloatArray) -> FloatArray:
+        """p/N = 1 across the channel (y-momentum) [-]."""
+        return np.ones_like(np.asarray(xi, dtype=float))
+
+    def sigma_yx(self, xi: FloatArray) -> FloatArray:
+        """tau/N = B nu (xi - 1/2) (x-momentum with symmetry) [-]."""
+        return self.B * self.nu * (np.asarray(xi, dtype=float) - 0.5)
+
+    def friction_ratio(self, xi: FloatArray) -> FloatArray:
+        """mu(xi) = B nu |xi - 1/2| [-]."""
+        return np.abs(self.sigma_yx(xi))
+
+    def plug(self, xi: FloatArray) -> FloatArray:
+        """True where mu <= mu_s: the plug on the centre line."""
+        return self.friction_ratio(xi) <= self.rheology.mu_s
+
+    def rate_times_I_w(self, xi: FloatArray) -> FloatArray:
+        """I_w |du/dxi| = I(mu(xi)) (p = N), 0 in the plug [-]."""
+        return self.rheology.inertial_number(self.friction_ratio(xi))
+
+    def closed_form_J(self, xi: FloatArray) -> FloatArray:
+        """J(xi) = I_w u(xi) in closed form (``docs/derivation_channel.md`` section 7) [-].
+
+        ``I_0 [-(1/2 - t_lo) + ((mu_2 - mu_s)/(B nu)) ln((mu_2 - B nu t_lo)/(mu_2 - B nu/2))]``
+        with ``t_lo = max(|xi - 1/2|, t_s)``; u is even about 1/2.
+        """
+        law, Bn = self.rheology, self.B * self.nu
+        t_lo = np.maximum(np.abs(np.asarray(xi, dtype=float) - 0.5), self.plug_half_width)
+        log = np.log1p(Bn * (0.5 - t_lo) / (law.mu_2 - 0.5 * Bn))
+        return law.I_0 * (-(0.5 - t_lo) + (law.mu_2 - law.mu_s) / Bn * log)
+
+    def describe(self) -> str:
+        return (
+            f"vertical channel, mu(I): {self.rheology.describe()}, eps = {self.eps:g}, "
+            f"B = {self.B:g}, nu = {self.nu:g}; no slip; velocity scaled by the centre line"
+        )
+
+    def parameters(self) -> dict[str, Any]:
+        return {
+            "geometry": "channel",
+            "rheology": "mui",
+            "mu_s": self.rheology.mu_s,
+            "mu_2": self.rheology.mu_2,
+            "I_0": self.rheology.I_0,
+            "eps": self.eps,
+            "B": self.B,
+            "nu": self.nu,
+            "velocity_scale": "centre-line velocity, u(1/2) = 1",
+        }
+
+
+__all__ = ["GAP_MIN", "MuI", "MuIChannel", "MuICouetteFlow", "MuIPlaneShear", "MuIProblem"]

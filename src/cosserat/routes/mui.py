@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
 from ..model.constitutive import FloatArray
-from ..model.mui import GAP_MIN, MuICouetteFlow, MuIPlaneShear, MuIProblem
+from ..model.mui import GAP_MIN, MuIChannel, MuICouetteFlow, MuIPlaneShear, MuIProblem
 from ..model.rheology import Rheology
 from ..results.profile import Diagnostics, Fields, Profile
 
@@ -412,22 +412,218 @@ def plug_mask(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
         The profile is not a mu(I) profile.
     """
     ev = profile.evaluator
-    if not isinstance(ev, _Evaluator):
+    if not isinstance(ev, _Evaluator | _ChannelEvaluator):
         raise ParameterError("plug_mask: not a mu(I) profile (plugs are a mu(I) notion)")
     return ev.plug(profile.xi if xi is None else np.asarray(xi, dtype=float))
+
+
+# ----------------------------------------------------------------- the vertical channel
+def _channel_J_numerical(problem: MuIChannel, x: FloatArray, rtol: float) -> FloatArray:
+    """I_w u(x) by adaptive quadrature of the rate I(mu) from the wall, piece by piece between
+    the sorted distances from the centre line (the plug edge a breakpoint) [-]."""
+    t_s = problem.plug_half_width
+    t = np.maximum(np.abs(np.asarray(x, dtype=float) - 0.5), t_s)
+    nodes = np.unique(np.concatenate([t, [0.5]]))[::-1]  # from the wall inwards
+    Bn = problem.B * problem.nu
+    law = problem.rheology
+
+    def rate(tt: float) -> float:
+        return float(law.inertial_number(np.array([Bn * tt]))[0])
+
+    pieces = [0.0]
+    for hi, lo in itertools.pairwise(nodes):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", IntegrationWarning)
+            try:
+                val, _ = quad(rate, lo, hi, epsabs=0.0, epsrel=rtol, limit=200)
+            except IntegrationWarning as exc:
+                raise ConvergenceError(
+                    f"mu(I) channel: the quadrature of the rate on [{lo:.6g}, {hi:.6g}] failed "
+                    f"({exc})"
+                ) from None
+        pieces.append(val)
+    J_nodes = np.cumsum(pieces)
+    return np.interp(t, nodes[::-1], J_nodes[::-1])
+
+
+class _ChannelEvaluator:
+    """Dense output of a mu(I) channel profile (plain data: the profile pickles as it is)."""
+
+    def __init__(self, problem: MuIChannel, numerical: bool, rtol: float) -> None:
+        self.problem, self.numerical, self.rtol = problem, numerical, rtol
+        self.I_w = float(self.J(np.array([0.5]))[0])
+
+    def J(self, x: FloatArray) -> FloatArray:
+        if self.numerical:
+            return _channel_J_numerical(self.problem, x, self.rtol)
+        return self.problem.closed_form_J(x)
+
+    def velocity(self, x: FloatArray) -> FloatArray:
+        return self.J(np.atleast_1d(np.asarray(x, dtype=float))) / self.I_w
+
+    def plug(self, x: FloatArray) -> FloatArray:
+        return self.problem.plug(np.atleast_1d(np.asarray(x, dtype=float)))
+
+    def thickness(self, f: float) -> float:
+        """Delta: distance from a wall, over eps, where 1 - u = f (u_0 = u(1/2) = 1) [d_p]."""
+        if not 0.0 < f < 1.0:
+            raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
+        span = 0.5 - self.problem.plug_half_width
+
+        def g(d: float) -> float:
+            return float(self.velocity(np.array([1.0 - d]))[0]) - (1.0 - f)
+
+        d = brentq(g, 0.0, span, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=400)
+        return float(d) / self.problem.eps
+
+    def __call__(self, x: FloatArray) -> Fields:
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        p = self.problem
+        u = self.velocity(x)
+        du = -np.sign(x - 0.5) * p.rate_times_I_w(x) / self.I_w
+        sigma = p.sigma_yx(x)
+        return Fields(
+            u=u,
+            omega=-0.5 * du,
+            m=np.zeros_like(x),
+            sigma_xy=sigma,
+            sigma_yx=sigma.copy(),
+            sigma_yy=p.sigma_c(x),
+            du_dxi=du,
+            kappa=np.zeros_like(x),
+        )
+
+
+def _channel_profile(
+    problem: MuIChannel, *, method: str, points: int | None, xi: FloatArray | None, check: bool,
+    rtol: float,
+) -> Profile:  # fmt: skip
+    numerical = method == "numerical"
+    ev = _ChannelEvaluator(problem, numerical, rtol)
+    t_s = problem.plug_half_width
+    if xi is None:
+        n = points or config.OUTPUT_POINTS
+        grid = np.unique(np.concatenate([np.linspace(0.0, 1.0, n), [0.5 - t_s, 0.5 + t_s]]))
+    else:
+        grid = np.asarray(xi, dtype=float)
+        if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
+            raise ParameterError("xi must be a strictly increasing 1-D array of >= 2 points")
+        if grid[0] < 0.0 or grid[-1] > 1.0:
+            raise ParameterError(f"xi must lie in [0, 1]; got [{grid[0]:g}, {grid[-1]:g}]")
+    f = ev(grid)
+    for name, values in f._asdict().items():
+        if not np.all(np.isfinite(values)):
+            raise ConvergenceError(f"the {method} mu(I) channel solution has non-finite {name}")
+    res: dict[str, float] = {}
+    bc: dict[str, float] = {}
+    if check:
+        # velocity: u(b) - u(a) - int_a^b du/dxi on intervals of the upper half (GL-12)
+        cg = np.unique(np.concatenate([np.linspace(0.5, 1.0, 401), [0.5 + t_s]]))
+        a, b = cg[:-1], cg[1:]
+        half = 0.5 * (b - a)
+        nodes = (0.5 * (a + b))[:, None] + half[:, None] * _GL_NODES[None, :]
+        integral = np.sum(half[:, None] * _GL_WEIGHTS[None, :] * ev(nodes.ravel()).du_dxi.reshape(
+            nodes.shape), axis=1)  # fmt: skip
+        res["velocity"] = float(np.max(np.abs(ev.velocity(b) - ev.velocity(a) - integral)))
+        ends = ev(np.array([0.0, 0.5, 1.0]))
+        probe = np.linspace(0.0, 0.5, 11)
+        bc = {
+            "u at the lower wall [no slip]": float(ends.u[0]),
+            "u at the upper wall [no slip]": float(ends.u[2]),
+            "u(1/2) - 1 [centre-line velocity scale]": float(ends.u[1] - 1.0),
+            "max |u(xi) - u(1 - xi)| [symmetry]": float(
+                np.max(np.abs(ev.velocity(probe) - ev.velocity(1.0 - probe)))
+            ),
+        }
+    how = (
+        "velocity by adaptive quadrature of the rate"
+        if numerical
+        else "velocity in closed form (docs/derivation_channel.md, section 7)"
+    )
+    message = (
+        f"local mu(I) (Jop et al. 2006) in the vertical channel, {how}; wall stress ratio "
+        f"B nu/2 = {problem.wall_stress_ratio:.12g}; plug at rest (|tau|/p <= mu_s) on "
+        f"|xi - 1/2| <= {t_s:.6g}; velocity scaled by the centre line, whose inertial number is "
+        f"I_w = {ev.I_w:.12g}. No grain spin or couple stress in this rheology: omega = "
+        "-(du/dxi)/2 is half the vorticity, m = 0, sigma_xy = sigma_yx."
+    )
+    return Profile(
+        problem=problem,  # type: ignore[arg-type]
+        xi=grid,
+        **f._asdict(),
+        slip_wall=1.0,
+        reference_velocity=problem.reference_velocity,
+        diagnostics=Diagnostics(
+            method=method,
+            rtol=rtol if numerical else None,
+            atol=None,
+            residuals=res,
+            bc_errors=bc,
+            message=message,
+            stats={"I_w": ev.I_w, "plug": [0.5 - t_s, 0.5 + t_s]},
+        ),
+        evaluator=ev,
+        velocity=ev.velocity,
+    )
+
+
+def solve_channel_numerical(
+    problem: MuIChannel,
+    *,
+    points: int | None = None,
+    xi: FloatArray | None = None,
+    check: bool = True,
+    rtol: float = config.MUI_RTOL,
+) -> Profile:
+    """The mu(I) channel by adaptive quadrature of the rate (``docs/derivation_channel.md``
+    section 7); the centre-line velocity scales u, and its inertial number I_w is reported."""
+    return _channel_profile(
+        problem, method="numerical", points=points, xi=xi, check=check, rtol=_rtol(rtol)
+    )
+
+
+def solve_channel_closed_form(
+    problem: MuIChannel,
+    *,
+    points: int | None = None,
+    xi: FloatArray | None = None,
+    check: bool = True,
+) -> Profile:
+    """The mu(I) channel in closed form (``docs/derivation_channel.md`` section 7)."""
+    return _channel_profile(
+        problem, method="closed-form", points=points, xi=xi, check=check, rtol=config.MUI_RTOL
+    )
 
 
 MUI = Rheology(
     name="mui",
     title="local mu(I) rheology",
     reference=REFERENCE,
-    cells={"plane": MuIPlaneShear, "couette": MuICouetteFlow},
+    cells={"plane": MuIPlaneShear, "couette": MuICouetteFlow, "channel": MuIChannel},
     routes={
-        "numerical": {MuIPlaneShear: solve_numerical, MuICouetteFlow: solve_numerical},
-        "closed-form": {MuIPlaneShear: solve_closed_form, MuICouetteFlow: solve_closed_form},
+        "numerical": {
+            MuIPlaneShear: solve_numerical,
+            MuICouetteFlow: solve_numerical,
+            MuIChannel: solve_channel_numerical,
+        },
+        "closed-form": {
+            MuIPlaneShear: solve_closed_form,
+            MuICouetteFlow: solve_closed_form,
+            MuIChannel: solve_channel_closed_form,
+        },
     },
-    picklable=frozenset({solve_numerical, solve_closed_form}),
+    picklable=frozenset(
+        {solve_numerical, solve_closed_form, solve_channel_numerical, solve_channel_closed_form}
+    ),
 )
 """Local mu(I) on plane shear and Couette flow, through the seam (``docs/architecture.md``)."""
 
-__all__ = ["MUI", "REFERENCE", "plug_mask", "solve_closed_form", "solve_numerical"]
+__all__ = [
+    "MUI",
+    "REFERENCE",
+    "plug_mask",
+    "solve_channel_closed_form",
+    "solve_channel_numerical",
+    "solve_closed_form",
+    "solve_numerical",
+]
