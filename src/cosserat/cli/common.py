@@ -225,7 +225,9 @@ def problem_parameters(args: argparse.Namespace, eps: Any) -> dict[str, Any]:
     """The named parameters the options give (None: not given, the default applies)."""
     out: dict[str, Any] = {
         "geometry": args.geometry,
-        "delta": FULLY_ROUGH if getattr(args, "fully_rough", False) else args.delta,
+        "delta": FULLY_ROUGH
+        if getattr(args, "fully_rough", False)
+        else getattr(args, "delta", None),
         "eps": eps,
     }
     for name in ("phi", "L", "A", "K", "delta_lower", "K_lower", "B", "nu", "m_wall", "Ri"):
