@@ -28,7 +28,7 @@ __all__ = ["COMMANDS", "UsageError", "main", "make_parser", "problem_from_args"]
 
 def make_parser() -> argparse.ArgumentParser:
     """The ``cosserat`` argument parser with every command of :data:`COMMANDS`."""
-    parser = Parser(prog="cosserat", description=__doc__.splitlines()[0])
+    parser = Parser(prog="cosserat", description=__doc__.splitlines()[0].replace("``", ""))
     parser.add_argument("--version", action="version", version=f"cosserat {__version__}")
     add_quiet(parser)
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
