@@ -1,0 +1,269 @@
+"""The NGF fluidity equation, compiled: second-order finite differences and Brent's method
+on the stress level (``docs/derivation_ngf.md`` section 5).
+
+On the uniform grid ``xi_j = j/n`` the equation ``(r F')' = r k (F - F_loc)`` is integrated
+over the control volume ``[xi_j - h/2, xi_j + h/2]`` of each node (half a cell at a wall),
+
+    -(r_{j+1/2} (F_{j+1} - F_j) - r_{j-1/2} (F_j - F_{j-1})) / h + K_j F_j = S_j,
+    K_j = int r k,   S_j = int r k F_loc   (Gauss-Legendre between the kinks of k and F_loc),
+
+with no flux through a wall for ``n . grad F = 0``, or ``F = F_loc`` there. The matrix is
+tridiagonal and diagonally dominant (k >= 0): the Thomas algorithm, O(n). The wall-speed
+integral of the cell (the trapezoidal rule, second order) is a smooth function of the stress
+level T; Brent's method (:mod:`cosserat.numerics.roots`) finds the T at which it equals the
+imposed I_w.
+
+Cells (``kind``): 0 plane shear (``shape`` = B nu), 1 Couette flow (``shape`` = Ri),
+2 vertical channel (``shape`` unused). The local law: ``mu_2 = 0`` is the linear one.
+Status codes of :func:`stress_level`: 0 converged, 1 no bracket found (the wall speed exceeds
+what any admissible stress level gives), 2 Brent did not converge.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .roots import brent_accept, brent_next, brent_start
+
+PLANE, COUETTE, CHANNEL = 0, 1, 2
+CONVERGED, NO_BRACKET, NO_CONVERGENCE = 0, 1, 2
+
+
+@njit(cache=True, nogil=True)
+def statics(kind: int, shape: float, T: float, x: float) -> tuple[float, float, float]:
+    """(mu, p/N, r) at xi = x for the stress level T."""
+    if kind == PLANE:
+        s = 1.0 + shape * (1.0 - x)
+        return T / s, s, 1.0
+    if kind == COUETTE:
+        q = shape / (shape + x)
+        return T * q * q, 1.0, shape + x
+    return 2.0 * T * abs(x - 0.5), 1.0, 1.0
+
+
+@njit(cache=True, nogil=True)
+def local_fluidity(mu: float, s: float, mu_s: float, b: float, mu_2: float) -> float:
+    """F_loc = sqrt(p/N) I_loc(mu)/mu, 0 for mu <= mu_s (mu_2 = 0: linear law)."""
+    excess = mu - mu_s
+    if excess <= 0.0:
+        return 0.0
+    i = excess / b if mu_2 == 0.0 else (mu_2 - mu_s) / b * excess / (mu_2 - mu)
+    return math.sqrt(s) * i / mu
+
+
+@njit(cache=True, nogil=True)
+def _weight(kind: int, shape: float, x: float) -> float:
+    """The factor of F mu in the wall-speed integral (Couette: Ri/(Ri + xi))."""
+    if kind == COUETTE:
+        return shape / (shape + x)
+    return 1.0
+
+
+_GL = np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
+_GW = np.array([5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0])
+
+
+@njit(cache=True, nogil=True)
+def kinks(kind: int, shape: float, T: float, mu_s: float) -> np.ndarray:
+    """Where k = |mu - mu_s|/(A eps)^2 or F_loc have a kink: mu = mu_s, and the channel's
+    centre line (mu = 0 there, |xi - 1/2| has a kink) [-]; points outside (0, 1) dropped."""
+    out = np.full(3, -1.0)
+    if kind == PLANE:
+        if shape > 0.0:
+            out[0] = 1.0 - (T / mu_s - 1.0) / shape
+    elif kind == COUETTE:
+        out[0] = shape * (math.sqrt(T / mu_s) - 1.0)
+    else:
+        out[0] = 0.5 - 0.5 * mu_s / T
+        out[1] = 0.5
+        out[2] = 0.5 + 0.5 * mu_s / T
+    out.sort()
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _piece(
+    kind: int,
+    shape: float,
+    T: float,
+    a: float,
+    c: float,
+    inv_a2: float,
+    mu_s: float,
+    b: float,
+    mu_2: float,
+) -> tuple[float, float]:
+    """int_a^c r k and int_a^c r k F_loc by 3-point Gauss-Legendre (no kink inside)."""
+    half = 0.5 * (c - a)
+    mid = 0.5 * (c + a)
+    K = 0.0
+    S = 0.0
+    for q in range(3):
+        mu, s, r = statics(kind, shape, T, mid + half * _GL[q])
+        rk = r * abs(mu - mu_s) * inv_a2 * half * _GW[q]
+        K += rk
+        S += rk * local_fluidity(mu, s, mu_s, b, mu_2)
+    return K, S
+
+
+@njit(cache=True, nogil=True)
+def _cell_integrals(
+    kind: int,
+    shape: float,
+    T: float,
+    a: float,
+    c: float,
+    cuts: np.ndarray,
+    inv_a2: float,
+    mu_s: float,
+    b: float,
+    mu_2: float,
+) -> tuple[float, float]:
+    """int_a^c r k and int_a^c r k F_loc, split at the kinks ``cuts`` (sorted): exact to
+    O(h^6) per cell, since the integrands are smooth on each piece."""
+    K = 0.0
+    S = 0.0
+    left = a
+    for i in range(cuts.size):
+        if left < cuts[i] < c:
+            dK, dS = _piece(kind, shape, T, left, cuts[i], inv_a2, mu_s, b, mu_2)
+            K += dK
+            S += dS
+            left = cuts[i]
+    dK, dS = _piece(kind, shape, T, left, c, inv_a2, mu_s, b, mu_2)
+    return K + dK, S + dS
+
+
+@njit(cache=True, nogil=True)
+def fluidity(
+    kind: int,
+    shape: float,
+    T: float,
+    n: int,
+    a_eps: float,
+    mu_s: float,
+    b: float,
+    mu_2: float,
+    dirichlet: bool,
+    F: np.ndarray,
+) -> float:
+    """Solve for F on the n + 1 nodes (into ``F``); return the wall-speed integral.
+
+    Vertex-centred finite volumes: on the control volume of node j (half cells at the walls)
+    ``-[r F']`` + ``(int r k) F_j = int r k F_loc``, the fluxes by central differences and the
+    coefficient integrals by Gauss-Legendre between the kinks (:func:`kinks`), so the error is
+    a regular O(h^2) wherever mu crosses mu_s. The integral is ``int_0^1 F mu`` (plane),
+    ``Ri int_0^1 F mu/(Ri + xi)`` (Couette) or ``int_0^{1/2} F mu`` (channel, n even), each by
+    the trapezoidal rule.
+    """
+    h = 1.0 / n
+    inv_a2 = 1.0 / (a_eps * a_eps)
+    cuts = kinks(kind, shape, T, mu_s)
+    lower = np.empty(n + 1)
+    diag = np.empty(n + 1)
+    upper = np.empty(n + 1)
+    rhs = np.empty(n + 1)
+    mus = np.empty(n + 1)
+    for j in range(n + 1):
+        x = j * h
+        mus[j] = statics(kind, shape, T, x)[0]
+        if (j == 0 or j == n) and dirichlet:
+            mu, s, _ = statics(kind, shape, T, x)
+            lower[j], diag[j], upper[j] = 0.0, 1.0, 0.0
+            rhs[j] = local_fluidity(mu, s, mu_s, b, mu_2)
+            continue
+        a = max(x - 0.5 * h, 0.0)
+        c = min(x + 0.5 * h, 1.0)
+        K, S = _cell_integrals(kind, shape, T, a, c, cuts, inv_a2, mu_s, b, mu_2)
+        rm = statics(kind, shape, T, a)[2] / h if j > 0 else 0.0
+        rp = statics(kind, shape, T, c)[2] / h if j < n else 0.0
+        lower[j] = -rm
+        upper[j] = -rp
+        diag[j] = rm + rp + K
+        rhs[j] = S
+    # Thomas algorithm (no pivoting: the matrix is diagonally dominant)
+    for j in range(1, n + 1):
+        w = lower[j] / diag[j - 1]
+        diag[j] -= w * upper[j - 1]
+        rhs[j] -= w * rhs[j - 1]
+    F[n] = rhs[n] / diag[n]
+    for j in range(n - 1, -1, -1):
+        F[j] = (rhs[j] - upper[j] * F[j + 1]) / diag[j]
+    last = n // 2 if kind == CHANNEL else n
+    total = 0.0
+    for j in range(last + 1):
+        f = F[j] * mus[j] * _weight(kind, shape, j * h)
+        total += 0.5 * f if (j == 0 or j == last) else f
+    return total * h
+
+
+@njit(cache=True, nogil=True)
+def stress_level(
+    kind: int,
+    shape: float,
+    n: int,
+    a_eps: float,
+    mu_s: float,
+    b: float,
+    mu_2: float,
+    dirichlet: bool,
+    target: float,
+    lo: float,
+    hi: float,
+    xtol: float,
+    maxiter: int,
+    F: np.ndarray,
+) -> tuple[float, int, int, int]:
+    """The stress level T in (lo, hi) whose wall-speed integral is ``target``, with F there.
+
+    ``lo`` is a level with integral 0 (mu_s: nothing flows) or a tighter lower bracket whose
+    integral is below target; ``hi`` an upper guess, doubled away from mu_s (linear law) until
+    the integral exceeds ``target``, or, with the saturating law, the largest level allowed.
+    Returns (T, status, Brent iterations, fluidity solves).
+    """
+    solves = 0
+    if lo > mu_s:
+        f_lo = fluidity(kind, shape, lo, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+        solves += 1
+        if f_lo > 0.0:
+            lo, f_lo = mu_s, -target
+    else:
+        f_lo = -target
+    f_hi = fluidity(kind, shape, hi, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+    solves += 1
+    grow = 0
+    while f_hi < 0.0:
+        if mu_2 != 0.0 or grow >= 60:
+            return hi, NO_BRACKET, 0, solves
+        lo, f_lo = hi, f_hi
+        hi = mu_s + 2.0 * (hi - mu_s)
+        f_hi = fluidity(kind, shape, hi, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+        solves += 1
+        grow += 1
+    state = brent_start(lo, hi, f_lo, f_hi)
+    for it in range(maxiter):
+        x, done = brent_next(state, xtol)
+        if done:
+            fluidity(kind, shape, x, n, a_eps, mu_s, b, mu_2, dirichlet, F)
+            return x, CONVERGED, it, solves + 1
+        fx = fluidity(kind, shape, x, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+        solves += 1
+        brent_accept(state, x, fx)
+    return state[1], NO_CONVERGENCE, maxiter, solves
+
+
+__all__ = [
+    "CHANNEL",
+    "CONVERGED",
+    "COUETTE",
+    "NO_BRACKET",
+    "NO_CONVERGENCE",
+    "PLANE",
+    "fluidity",
+    "local_fluidity",
+    "statics",
+    "stress_level",
+]
