@@ -308,3 +308,73 @@ def test_the_package_does_not_load_lammps_or_dem():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+def _write_dump(path, rows_per_step, header):
+    with path.open("w") as fh:
+        for step, rows in rows_per_step:
+            kind = "ATOMS" if header[0] == "id" else "ENTRIES"
+            count = "ATOMS" if kind == "ATOMS" else "ENTRIES"
+            fh.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF {count}\n{len(rows)}\n")
+            if kind == "ATOMS":
+                fh.write("ITEM: BOX BOUNDS ff ff pp\n-20 20\n-20 20\n-0.5 0.5\n")
+            fh.write(f"ITEM: {kind} {' '.join(header)}\n")
+            fh.writelines(" ".join(repr(float(v)) for v in r) + "\n" for r in rows)
+
+
+def test_dumps_to_profile_exact_on_a_rigidly_turning_annulus(tmp_path):
+    """Synthetic dumps: grains turning rigidly at Omega, one radial contact between two grains
+    and one between a grain and the inner ring; the polar coarse-graining reads them back."""
+    from cosserat.dem.analyse import read_samples, steady_profile
+    from cosserat.dem.decks import ATOM_COLUMNS, CONTACT_COLUMNS
+
+    V = 0.2
+    cell = CouetteDEM(gap=6.0, inner_radius=10.0, wall_speed=V,
+                      run=RunLength(settle_steps=0, steps=20_000, dump_every=1_000))  # fmt: skip
+    deck = build_deck(cell)
+    Omega = 0.013
+    R = 0.51
+    theta = [0.3, 1.1, 2.0, 2.9, 4.4, 5.5]
+    radii = [10.5, 12.2, 13.2, 14.5, 15.5, 11.5]
+    atoms = []
+    for k, (r, t) in enumerate(zip(radii, theta, strict=True)):
+        x, y = r * np.cos(t), r * np.sin(t)
+        atoms.append([k + 1, 1, R, x, y, -Omega * y, Omega * x, Omega])
+    # grains 2 and 3 on one ray, touching; grain 1 touches an inner-ring disk (id 7) on its ray
+    atoms[2][3:5] = [13.2 * np.cos(1.1), 13.2 * np.sin(1.1)]
+    atoms[2][5:7] = [-Omega * atoms[2][4], Omega * atoms[2][3]]
+    atoms[2][1] = 1
+    ring_r = 10.5 - 2 * R + 0.01
+    er1 = np.array([np.cos(0.3), np.sin(0.3)])
+    atoms.append([7, 2, R, *(ring_r * er1), 0.0, 0.0, 0.0])
+    F, G = 0.7, 1.3
+    er = np.array([np.cos(1.1), np.sin(1.1)])
+    d23 = np.array(atoms[1][3:5]) - np.array(atoms[2][3:5])  # x_i - x_j, i = 2 (inner)
+    d17 = np.array(atoms[0][3:5]) - np.array(atoms[6][3:5])
+    contacts = [
+        [2, 3, *(-F * er), 0.0, 0.0, *d23],  # force on 2 (inner grain): pushed inwards
+        [1, 7, *(G * er1), 0.0, 0.0, *d17],  # force on grain 1: pushed outwards by the ring
+    ]
+    steps = [(1000 * k, atoms) for k in range(21)]
+    _write_dump(tmp_path / "atoms.dump", steps, ATOM_COLUMNS)
+    _write_dump(tmp_path / "contacts.dump", [(s, contacts) for s, _ in steps], CONTACT_COLUMNS)
+    run = read_samples(tmp_path, deck)
+    # the ring is pushed inwards by G over its circumference
+    np.testing.assert_allclose(run.wall_normal, G / (2 * np.pi * 10.0), rtol=1e-12)
+    profile = steady_profile(run, deck, lammps_version="synthetic", first=0)
+    c = profile.columns
+    r = c["r"]
+    for radius in radii:  # one grain per bin: its azimuthal speed and spin, exactly
+        b = int(np.argmin(np.abs(r - radius)))
+        assert c["u"][b] == pytest.approx(Omega * radius / V, rel=1e-12)
+        assert c["omega"][b] == pytest.approx(Omega / V, rel=1e-12)
+        assert c["u_se"][b] == pytest.approx(0.0, abs=1e-15)
+    # contact stress: bin [12, 13) holds grain 2, [13, 14) grain 3, each F (R - overlap/2)
+    dist = np.hypot(*d23)
+    arm = R - 0.5 * (2 * R - dist)
+    scale = G / (2 * np.pi * 10.0)
+    for lo, hi in ((12.0, 13.0), (13.0, 14.0)):
+        b = int(np.argmin(np.abs(r - 0.5 * (lo + hi))))
+        area = np.pi * (hi**2 - lo**2)
+        np.testing.assert_allclose(c["sigma_rr"][b] * scale, F * arm / area, rtol=1e-9)
+        np.testing.assert_allclose(c["sigma_rt"][b], 0.0, atol=1e-12)

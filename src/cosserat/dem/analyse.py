@@ -238,6 +238,11 @@ def steady_profile(
     # scales
     if isinstance(cell, CouetteDEM):
         V, stress = cell.wall_speed, float(run.wall_normal[first:].mean())
+        if not stress > 0:
+            raise InputError(
+                "the grains do not press on the inner ring in the steady window (mean radial "
+                f"stress {stress:g}): the Couette stress scale is undefined"
+            )
     elif isinstance(cell, ChannelDEM):
         V, stress = cell.wall_speed, 1.0
     else:
