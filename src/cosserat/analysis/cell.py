@@ -56,6 +56,21 @@ class CouetteCell:
         Solids fraction [-] (default 0.6).
     g : float
         Gravitational acceleration [m/s^2] (default 9.81).
+
+    Examples
+    --------
+    >>> from cosserat import Material, Wall, solve
+    >>> from cosserat.cell import CouetteCell
+    >>> cell = CouetteCell(
+    ...     rho_p=2500, d_p=1e-3, gap=0.02, R_i=0.02, fill_depth=0.1, rotation_rate=0.5
+    ... )
+    >>> cell.eps, cell.Ri
+    (0.05, 1.0)
+    >>> profile = solve(cell.problem(Material(), Wall()))
+    >>> round(cell.torque(profile), 5)  # [N m]
+    0.02931
+    >>> round(cell.wall_shear_stress(profile, depth=0.1), 1)  # [Pa]
+    535.6
     """
 
     rho_p: float

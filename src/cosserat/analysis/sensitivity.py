@@ -21,7 +21,17 @@ class Bound:
 
 
 def has_solution(problem: Problem, **options: object) -> bool:
-    """True if the numerical route finds a real solution (no :class:`NoSolutionError`)."""
+    """True if the numerical route finds a real solution (no :class:`NoSolutionError`).
+
+    Examples
+    --------
+    >>> from cosserat import CouetteFlow, Material, Wall
+    >>> from cosserat.analysis.sensitivity import has_solution
+    >>> has_solution(CouetteFlow(material=Material(), wall=Wall(delta=20.0), eps=0.04, Ri=1.0))
+    True
+    >>> has_solution(CouetteFlow(material=Material(), wall=Wall(delta=5.0), eps=0.04, Ri=1.0))
+    False
+    """
     from ..routes import solve
 
     try:

@@ -41,6 +41,15 @@ def thickness_curve(
     model solves the whole curve in one call of the compiled batch kernel (the same kernel as
     a single solve); the other routes and rheologies solve eps by eps, calling
     ``progress(i, n)`` after each.
+
+    Examples
+    --------
+    >>> from cosserat import Material, PlaneShear, Wall
+    >>> from cosserat.analysis import thickness_curve
+    >>> problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01)
+    >>> curve = thickness_curve(problem, [1e-2, 1e-4, 1e-6])
+    >>> [round(D, 2) for D in curve.Delta]
+    [18.35, 17.67, 17.67]
     """
     problems = [replace(problem, eps=eps) for eps in eps_values]
     eps_list = [float(e) for e in eps_values]

@@ -115,6 +115,15 @@ class Channel:
     NoSolutionError
         ``B nu / 2 > tan(delta)``: wall friction cannot carry the weight; there is no steady
         fully developed flow.
+
+    Examples
+    --------
+    >>> from cosserat import Channel, Material, Wall, shear_layer_thickness, solve
+    >>> problem = Channel(material=Material(), wall=Wall(delta=20.0), eps=0.02)
+    >>> round(problem.B, 4)  # B nu = 2 tan(delta): friction fully mobilised
+    0.7279
+    >>> round(shear_layer_thickness(solve(problem)), 2)
+    7.75
     """
 
     material: Material

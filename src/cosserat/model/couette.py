@@ -97,6 +97,16 @@ class CouetteFlow:
         Grain diameter over gap d_p / H, ``0 < eps <= 0.5`` [-].
     Ri : float
         Inner radius over gap R_i / H, ``1e-3 <= Ri <= 1e6`` [-].
+
+    Examples
+    --------
+    >>> from cosserat import CouetteFlow, Material, Wall, shear_layer_thickness, solve
+    >>> problem = CouetteFlow(material=Material(), wall=Wall(), eps=0.04, Ri=1.0)
+    >>> profile = solve(problem)
+    >>> float(profile.u[0]) < -0.9  # u = -v_theta/V_i: about -1 at the turning inner cylinder
+    True
+    >>> round(shear_layer_thickness(profile), 2)
+    4.63
     """
 
     material: Material

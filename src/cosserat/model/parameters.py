@@ -65,6 +65,14 @@ class Material:
     ------
     ParameterError
         A value out of its bounds or not a finite number (the message names it).
+
+    Examples
+    --------
+    >>> from cosserat import Material
+    >>> Material()
+    Material(phi=28.5, L=10.0, A=0.3333333333333333)
+    >>> round(Material(phi=30.0).fully_rough_delta, 3)  # atan(sin(phi)) [deg]
+    26.565
     """
 
     phi: float = config.PHI
@@ -118,6 +126,14 @@ class Wall:
     ------
     ParameterError
         A value out of its bounds or not a finite number (the message names it).
+
+    Examples
+    --------
+    >>> from cosserat import Wall
+    >>> Wall()
+    Wall(delta=20.0, K=0.5)
+    >>> Wall.fully_rough().is_fully_rough
+    True
     """
 
     delta: float | Literal["fully-rough"] = config.DELTA

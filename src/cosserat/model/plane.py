@@ -113,6 +113,15 @@ class PlaneShear:
         (sigma_xy = sigma_yx) there; the paper's sensitivity study (figure 5). Admissible:
         ``0 <= m <= b`` when the layer is at the upper wall, ``-b <= m <= 0`` when at the lower
         wall, where ``b`` makes the radicand of ``eqn-nd_sigxy`` vanish at that wall [-].
+
+    Examples
+    --------
+    >>> from cosserat import Material, PlaneShear, Wall
+    >>> problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01)
+    >>> problem.case
+    <PlaneShearCase.SYMMETRIC: 'symmetric'>
+    >>> PlaneShear(material=Material(), upper=Wall(), eps=0.01, B=1.0).case
+    <PlaneShearCase.UPPER: 'layer-at-upper-wall'>
     """
 
     material: Material

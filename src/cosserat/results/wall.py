@@ -30,6 +30,15 @@ def shear_layer_thickness(profile: Profile, f: float = DEFAULT_F) -> float:
     u_0 is 1/2 between identical walls without gravity, the velocity of the non-slipping wall
     otherwise (0, or 1 for a layer at the lower wall). Solved with Brent's method on the
     profile's dense evaluator, so it does not depend on the output grid.
+
+    Examples
+    --------
+    >>> from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve
+    >>> profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01))
+    >>> round(shear_layer_thickness(profile), 2)
+    18.35
+    >>> round(shear_layer_thickness(profile, f=0.1), 2)
+    13.93
     """
     own = getattr(profile.evaluator, "thickness", None)
     if own is not None:  # the numerical route's compiled root-finder on its dense output
@@ -62,14 +71,30 @@ def shear_layer_thickness(profile: Profile, f: float = DEFAULT_F) -> float:
 
 
 def wall_slip(profile: Profile) -> float:
-    """|u - u_wall| at the slipping wall: slip velocity over the wall speed [-]."""
+    """|u - u_wall| at the slipping wall: slip velocity over the wall speed [-].
+
+    Examples
+    --------
+    >>> from cosserat import Material, PlaneShear, Wall, solve, wall_slip
+    >>> profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01))
+    >>> round(wall_slip(profile), 4)
+    0.0202
+    """
     xw = profile.slip_wall
     u = float(profile.velocity_at([xw])[0])
     return abs(u - profile.problem.wall_velocity(xw))
 
 
 def wall_omega(profile: Profile) -> float:
-    """omega at the slipping wall (paper's sign; negative for the cases shown) [-]."""
+    """omega at the slipping wall (paper's sign; negative for the cases shown) [-].
+
+    Examples
+    --------
+    >>> from cosserat import Material, PlaneShear, Wall, solve, wall_omega
+    >>> profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01))
+    >>> round(wall_omega(profile), 3)
+    -4.035
+    """
     value = float(profile.evaluate([profile.slip_wall]).omega[0])
     if not math.isfinite(value):
         raise ConvergenceError(f"non-finite wall spin {value!r}")

@@ -97,6 +97,19 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
         The model has no real solution for these parameters.
     ConvergenceError
         The numerical route did not converge (saying where); see ``docs/numerics.md``.
+
+    Examples
+    --------
+    >>> from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve
+    >>> problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01)
+    >>> profile = solve(problem)
+    >>> profile.xi.shape
+    (201,)
+    >>> closed = solve(problem, method="closed-form", xi=profile.xi)
+    >>> bool(abs(closed.u - profile.u).max() < 1e-6)
+    True
+    >>> round(shear_layer_thickness(closed), 2)
+    18.35
     """
     try:
         routes = _ROUTES[method]

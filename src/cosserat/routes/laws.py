@@ -18,7 +18,17 @@ from .airy import xi_hat_at_fraction
 
 
 def thickness_limit(problem: Problem, f: float = DEFAULT_F) -> float | None:
-    """The eps -> 0 limit of Delta, ``-ln f / k`` (``eqn-delta_soln``); None if it diverges."""
+    """The eps -> 0 limit of Delta, ``-ln f / k`` (``eqn-delta_soln``); None if it diverges.
+
+    Examples
+    --------
+    >>> from cosserat import Material, PlaneShear, Wall
+    >>> from cosserat.analysis import thickness_limit
+    >>> round(thickness_limit(PlaneShear(material=Material(), upper=Wall(), eps=0.01)), 2)
+    17.67
+    >>> print(thickness_limit(PlaneShear(material=Material(), upper=Wall.fully_rough(), eps=0.01)))
+    None
+    """
     k = problem.slip_constants.k
     return -math.log(f) / k if k > 0.0 else None
 
