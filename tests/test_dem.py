@@ -378,3 +378,13 @@ def test_dumps_to_profile_exact_on_a_rigidly_turning_annulus(tmp_path):
         area = np.pi * (hi**2 - lo**2)
         np.testing.assert_allclose(c["sigma_rr"][b] * scale, F * arm / area, rtol=1e-9)
         np.testing.assert_allclose(c["sigma_rt"][b], 0.0, atol=1e-12)
+
+
+def test_the_shipped_corpus_reads_with_the_corpus_reader():
+    reader = pytest.importorskip("cosserat.analysis.corpus")
+    if not _corpus_files():
+        pytest.skip("no corpus shipped yet")
+    corpus = reader.read_corpus()
+    assert sorted(r.name for r in corpus.runs) == sorted(
+        p.name.removesuffix(".json") for p in _corpus_files()
+    )
