@@ -246,3 +246,149 @@ def test_spec_files_that_cannot_be_read(tmp_path):
     binary.write_bytes(b"\xff\xfe\x00\x81")
     with pytest.raises(InputError, match=r"not a text \(TOML\) file"):
         load_spec(binary)
+
+
+# --------------------------------------------------------------------------- interruptions
+LONG = """
+geometry = "plane"
+chunk = 1
+[fixed]
+phi = 28.5
+[grid]
+delta = [10.0, 20.0, "fully-rough"]
+eps = { geomspace = [1e-1, 1e-5, 200] }
+B = [0.0, 1.0]
+"""
+
+
+def _cosserat(*args, **kw):
+    import subprocess
+    import sys
+
+    return subprocess.Popen(
+        [sys.executable, "-m", "cosserat.cli", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        **kw,
+    )
+
+
+def _interrupt_after(proc, journal, rows, sig):
+    """Send ``sig`` to ``proc`` once ``journal`` holds ``rows`` finished rows."""
+    import time
+
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and proc.poll() is None:
+        if journal.exists() and journal.read_bytes().count(b"\n") > rows:
+            proc.send_signal(sig)
+            break
+        time.sleep(0.005)
+    return proc.communicate(timeout=300)
+
+
+@pytest.mark.parametrize("sig", ["SIGINT", "SIGKILL"])
+def test_an_interrupted_sweep_keeps_its_rows_and_resume_computes_only_the_rest(tmp_path, sig):
+    import signal
+
+    from cosserat.studies.sweep import journal_path
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(LONG)
+    reference = tmp_path / "reference.csv"
+    assert main(["sweep", str(spec), "--out", str(reference), "--workers", "1"]) == 0
+    full = reference.read_text().splitlines()
+    out = tmp_path / "table.csv"
+    journal = journal_path(out)
+    proc = _cosserat("sweep", str(spec), "--out", str(out), "--workers", "1")
+    _, err = _interrupt_after(proc, journal, 50, getattr(signal, sig))
+    assert not out.exists(), "an interrupted sweep must not write a partial table"
+    kept = journal.read_text().splitlines()
+    assert 50 <= len(kept) - 1 < len(full) - 1, "interrupted too late: make LONG longer"
+    if sig == "SIGINT":
+        assert proc.returncode == 130 and "--resume" in err and "Traceback" not in err
+    else:
+        assert proc.returncode == -signal.SIGKILL
+        with journal.open("a") as fh:  # a row cut in the middle by the kill
+            fh.write("plane,28.5,10.0,0.33")
+    # every kept row is the uninterrupted run's row for that case (chunk = 1: in spec order)
+    assert kept[1:] == full[1 : len(kept)]
+    again = _cosserat("sweep", str(spec), "--out", str(out))  # refuses: rows would be lost
+    _, err = again.communicate(timeout=300)
+    assert again.returncode == 2 and "--resume" in err and len(err.strip().splitlines()) == 1
+    resumed = _cosserat("sweep", str(spec), "--out", str(out), "--workers", "1", "--resume")
+    stdout, err = resumed.communicate(timeout=300)
+    assert resumed.returncode == 0, err
+    assert f"{len(kept) - 1} reused from an earlier run" in stdout
+    assert out.read_text() == reference.read_text()
+    assert not journal.exists()
+
+
+def test_resume_reuses_a_finished_table_and_recomputes_nothing(tmp_path):
+    from cosserat.studies.sweep import run_sweep_to_table
+
+    spec = parse_spec(__import__("tomllib").loads(SPEC))
+    first = run_sweep_to_table(spec, tmp_path / "t.csv", workers=1)
+    text = (tmp_path / "t.csv").read_text()
+    assert (first.reused, first.computed) == (0, len(spec.cases))
+    again = run_sweep_to_table(spec, tmp_path / "t.csv", resume=True, workers=1)
+    assert (again.reused, again.computed) == (len(spec.cases), 0)
+    assert (tmp_path / "t.csv").read_text() == text
+    # a spec with more cases computes only the new ones
+    more = parse_spec(__import__("tomllib").loads(SPEC + "[[cases]]\neps = 0.03\n"))
+    grown = run_sweep_to_table(more, tmp_path / "t.csv", resume=True, workers=1)
+    assert (grown.reused, grown.computed) == (len(spec.cases), 1)
+    assert (tmp_path / "t.csv").read_text().startswith(text.rstrip("\r\n"))
+
+
+def test_resume_refuses_a_journal_of_another_spec(tmp_path):
+    from cosserat.errors import InputError
+    from cosserat.studies.sweep import journal_path, run_sweep_to_table
+
+    spec = parse_spec(__import__("tomllib").loads(SPEC))
+    journal_path(tmp_path / "t.csv").write_text("eps,Delta\n0.1,3.0\n")
+    with pytest.raises(InputError, match=r"its columns \(eps, Delta\) are not this sweep's"):
+        run_sweep_to_table(spec, tmp_path / "t.csv", resume=True, workers=1)
+
+
+@pytest.mark.parametrize("allowed_failures", [3, 0])
+def test_a_dask_worker_killed_mid_sweep_loses_no_row(allowed_failures):
+    """A worker process is killed (SIGKILL) while it holds tasks. With Dask's default retries
+    the scheduler reruns them; with none (allowed-failures = 0) the sweep resubmits the chunks
+    Dask gives up on. Either way every chunk arrives exactly once and the rows are a local
+    run's."""
+    import os
+    import signal
+
+    dask = pytest.importorskip("dask")
+    distributed = pytest.importorskip("distributed")
+    from cosserat.studies.sweep import _chunks, run_chunks
+
+    spec = parse_spec(__import__("tomllib").loads(LONG.replace("chunk = 1", "chunk = 12")))
+    chunks = _chunks(spec.cases, spec.chunk)
+    local = run_sweep(spec, workers=1)
+    arrived: list[int] = []
+    rows: dict[int, list] = {}
+    killed: dict[str, object] = {}
+    with (
+        dask.config.set({"distributed.scheduler.allowed-failures": allowed_failures}),
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+
+        def on_rows(i, chunk_rows):
+            arrived.append(i)
+            rows[i] = chunk_rows
+            if len(arrived) == 5:  # kill a worker that holds tasks now
+                busy = {w: t for w, t in client.processing().items() if t}
+                victim = next(iter(busy))
+                pid = client.run(os.getpid, workers=[victim])[victim]
+                killed.update(worker=victim, tasks=len(busy[victim]))
+                os.kill(pid, signal.SIGKILL)
+
+        run_chunks(chunks, spec.rtol, spec.f, on_rows, scheduler=cluster.scheduler_address)
+    assert killed["tasks"] >= 1
+    assert sorted(arrived) == list(range(len(chunks)))  # each chunk exactly once
+    assert [r for i in range(len(chunks)) for r in rows[i]] == local

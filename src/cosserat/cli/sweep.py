@@ -1,41 +1,78 @@
-"""``cosserat sweep``: a parameter sweep from a TOML spec."""
+"""``cosserat sweep``: a parameter sweep from a TOML spec, resumable after an interruption."""
 
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from . import files
 from .common import positive_int, progress_bar
 
+INTERRUPTED = 130
+"""Exit status after Ctrl-C (128 + SIGINT, the shell's convention)."""
+
 
 def cmd_sweep(args: argparse.Namespace) -> None:
     import time
 
-    from ..studies.sweep import check_table_format, load_spec, run_sweep, write_table
+    from ..studies.sweep import check_table_format, journal_path, load_spec, run_sweep_to_table
 
     spec = load_spec(args.spec)
     out = args.out or spec.output or str(Path(args.spec).with_suffix(".csv"))
     check_table_format(out)
     files.check_output_file(out, "--out" if args.out else "the sweep table")
     start = time.perf_counter()
-    rows = run_sweep(
-        spec, workers=args.workers, scheduler=args.scheduler, progress=progress_bar("sweep")
-    )
-    write_table(rows, out, spec.columns)
+    try:
+        run = run_sweep_to_table(
+            spec,
+            out,
+            resume=args.resume,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            progress=progress_bar("sweep"),
+        )
+    except KeyboardInterrupt:
+        print(
+            f"\ninterrupted: the finished rows are in {journal_path(out)}; run the same command "
+            f"with --resume to finish the sweep",
+            file=sys.stderr,
+        )
+        raise SystemExit(INTERRUPTED) from None
+    rows = run.rows
     states = ("ok", "no-solution", "error", "invalid")
     counts = {s: sum(r.get("status") == s for r in rows) for s in states}
+    reused = f", {run.reused} reused from an earlier run" if run.reused else ""
     print(
         f"{len(rows)} cases in {time.perf_counter() - start:.1f} s -> {out} "
-        f"({', '.join(f'{k}: {v}' for k, v in counts.items())})"
+        f"({', '.join(f'{k}: {v}' for k, v in counts.items())}{reused})"
     )
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add this module's commands to the ``cosserat`` parser."""
-    sw = sub.add_parser("sweep", help="run a parameter sweep from a TOML spec")
-    sw.add_argument("spec", help="TOML file (see cosserat.sweep)")
-    sw.add_argument("--out", default=None, help="table to write (.csv or .parquet)")
+    sw = sub.add_parser(
+        "sweep",
+        help="run a parameter sweep from a TOML spec",
+        description=(
+            "Run a parameter sweep. Finished rows are appended to OUT.part as they come, so an "
+            "interrupted sweep (Ctrl-C, a killed process) keeps them; --resume finishes it."
+        ),
+    )
+    sw.add_argument("spec", help="TOML file (see cosserat.studies.sweep)")
+    sw.add_argument(
+        "--out",
+        default=None,
+        help="table to write (.csv or .parquet; default: the spec's output, else SPEC.csv)",
+    )
+    sw.add_argument(
+        "--resume",
+        action="store_true",
+        help=(
+            "reuse the rows of an interrupted run (OUT.part) and of an existing CSV table OUT, "
+            "matched by their case parameters, and compute only the missing cases"
+        ),
+    )
     sw.add_argument(
         "--workers", type=positive_int, default=None, help="local processes (default: cores)"
     )

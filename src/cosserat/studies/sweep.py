@@ -31,14 +31,21 @@ Every case gives a row: its parameters, Delta, wall_slip, wall_omega, wall_stres
 finish, e.g. a singular start on the yield bound; "invalid": a parameter out of bounds) with the
 reason in ``message``: failed cases are recorded, never dropped. Cases run in chunks in local
 worker processes, or on a Dask cluster (``scheduler="tcp://..."``); the rows are the same either
-way.
+way, and a chunk whose Dask worker is lost is run again.
+
+:func:`run_sweep_to_table` (``cosserat sweep``) appends each finished chunk of rows to a journal
+``<table>.part`` beside the table, flushed at once, and writes the table atomically at the end:
+an interrupted sweep keeps every finished row, and ``resume=True`` (``--resume``) computes only
+the cases whose rows are missing (rows are matched by their case parameters).
 """
 
 from __future__ import annotations
 
 import csv
+import io
 import itertools
 import math
+import os
 import tomllib
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import as_completed
@@ -233,6 +240,10 @@ def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[di
     return rows
 
 
+def _chunks(cases: Sequence[dict[str, Any]], size: int) -> list[list[dict[str, Any]]]:
+    return [list(cases[i : i + size]) for i in range(0, len(cases), size)]
+
+
 def run_sweep(
     spec: SweepSpec,
     workers: int | None = None,
@@ -244,45 +255,266 @@ def run_sweep(
     ``workers``: local processes (default: all cores; 1 runs in this process).
     ``scheduler``: address of a Dask ``distributed`` scheduler, used instead of local processes.
     """
-    chunks = [spec.cases[i : i + spec.chunk] for i in range(0, len(spec.cases), spec.chunk)]
+    chunks = _chunks(spec.cases, spec.chunk)
     results: list[list[dict[str, Any]] | None] = [None] * len(chunks)
+
+    def keep(i: int, rows: list[dict[str, Any]]) -> None:
+        results[i] = rows
+
+    run_chunks(chunks, spec.rtol, spec.f, keep, workers, scheduler, progress)
+    return [row for rows in results for row in (rows or [])]
+
+
+MAX_RESUBMITS = 3
+"""How often a chunk whose Dask worker was lost is submitted again (beyond Dask's own retries)."""
+
+
+def run_chunks(
+    chunks: Sequence[Sequence[dict[str, Any]]],
+    rtol: float,
+    f: float,
+    on_rows: Callable[[int, list[dict[str, Any]]], None],
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> None:
+    """Solve ``chunks`` of cases, calling ``on_rows(i, rows)`` in this process as chunk ``i``
+    finishes (in completion order, exactly once per chunk).
+
+    On a Dask cluster a chunk whose worker dies is run again: Dask reschedules the tasks of a
+    lost worker itself, and a chunk that Dask gives up on (``KilledWorker``) is resubmitted up to
+    :data:`MAX_RESUBMITS` times. Local processes are cancelled on an interruption (Ctrl-C):
+    the chunks already passed to ``on_rows`` are all that is kept.
+    """
+    total = sum(len(c) for c in chunks)
     done = 0
 
     def collect(i: int, rows: list[dict[str, Any]]) -> None:
         nonlocal done
-        results[i] = rows
+        on_rows(i, rows)
         done += len(rows)
         if progress:
-            progress(done, len(spec.cases))
+            progress(done, total)
 
+    if not chunks:
+        return
     if scheduler is not None:
-        try:
-            from distributed import Client
-            from distributed import as_completed as dask_completed
-        except ImportError:  # pragma: no cover - depends on the installation
-            raise ParameterError(
-                "--scheduler needs Dask: pip install 'cosserat-granular[dask]'"
-            ) from None
-        try:
-            client = Client(scheduler)
-        except (OSError, ValueError, TypeError) as exc:  # includes timeouts and bad addresses
-            raise InputError(
-                f"cannot connect to the Dask scheduler at {scheduler!r}: {exc}"
-            ) from None
-        with client:
-            futures = [client.submit(run_chunk, c, spec.rtol, spec.f, pure=False) for c in chunks]
-            index = {fut.key: i for i, fut in enumerate(futures)}
-            for fut in dask_completed(futures):
-                collect(index[fut.key], fut.result())
+        _run_on_dask(chunks, rtol, f, collect, scheduler)
     elif (workers or 0) == 1 or len(chunks) == 1:
         for i, c in enumerate(chunks):
-            collect(i, run_chunk(c, spec.rtol, spec.f))
+            collect(i, run_chunk(c, rtol, f))
     else:
-        with process_pool(workers) as pool:
-            futs = {pool.submit(run_chunk, c, spec.rtol, spec.f): i for i, c in enumerate(chunks)}
+        pool = process_pool(workers)
+        try:
+            futs = {pool.submit(run_chunk, c, rtol, f): i for i, c in enumerate(chunks)}
             for fut in as_completed(futs):
                 collect(futs[fut], fut.result())
-    return [row for rows in results for row in (rows or [])]
+        except BaseException:
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+        pool.shutdown()
+
+
+def _run_on_dask(
+    chunks: Sequence[Sequence[dict[str, Any]]],
+    rtol: float,
+    f: float,
+    collect: Callable[[int, list[dict[str, Any]]], None],
+    scheduler: str,
+) -> None:
+    try:
+        from distributed import Client, KilledWorker
+        from distributed import as_completed as dask_completed
+    except ImportError:  # pragma: no cover - depends on the installation
+        raise ParameterError(
+            "--scheduler needs Dask: pip install 'cosserat-granular[dask]'"
+        ) from None
+    try:
+        client = Client(scheduler)
+    except (OSError, ValueError, TypeError) as exc:  # includes timeouts and bad addresses
+        raise InputError(f"cannot connect to the Dask scheduler at {scheduler!r}: {exc}") from None
+    with client:
+        index: dict[str, int] = {}
+        tries = [0] * len(chunks)
+
+        def submit(i: int) -> Any:
+            fut = client.submit(run_chunk, list(chunks[i]), rtol, f, pure=False)
+            index[fut.key] = i
+            return fut
+
+        pending = dask_completed([submit(i) for i in range(len(chunks))])
+        for fut in pending:
+            i = index.pop(fut.key)
+            try:
+                rows = fut.result()
+            except KilledWorker:
+                tries[i] += 1
+                if tries[i] > MAX_RESUBMITS:
+                    raise
+                pending.add(submit(i))
+                continue
+            collect(i, rows)
+
+
+# --------------------------------------------------------------------------- resumable tables
+def journal_path(path: str | Path) -> Path:
+    """The journal of an unfinished sweep writing ``path``: ``<path>.part`` beside it."""
+    path = Path(path)
+    return path.with_name(path.name + ".part")
+
+
+def _cell(value: Any) -> str:
+    """A value as the sweep table writes it (the empty string for None, NaN or inf)."""
+    return "" if value is None else _fmt(value)
+
+
+def case_key(case: dict[str, Any], columns: Sequence[str]) -> tuple[str, ...]:
+    """What identifies a case's row: its parameter cells as written in the table."""
+    return tuple(_cell(case.get(c)) for c in columns)
+
+
+def _complete_rows(path: Path, header: list[str]) -> tuple[list[list[str]], int]:
+    """The complete rows of a table or journal (a last line without its newline, cut by a
+    killed process, is left out) and the byte length they span.
+
+    Raises
+    ------
+    InputError
+        The file cannot be read, or its header is not ``header`` (another spec's table).
+    """
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {_reason(exc)}") from None
+    end = data.rfind(b"\n") + 1
+    try:
+        text = data[:end].decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError(f"cannot resume from {path}: not a text (CSV) file") from None
+    lines = list(csv.reader(io.StringIO(text, newline="")))
+    if not lines:
+        return [], 0
+    if lines[0] != header:
+        raise InputError(
+            f"cannot resume from {path}: its columns ({', '.join(lines[0])}) are not this "
+            f"sweep's ({', '.join(header)}); delete it or write to another --out"
+        )
+    return [row for row in lines[1:] if len(row) == len(header)], end
+
+
+@dataclass
+class SweepRun:
+    """The outcome of :func:`run_sweep_to_table`."""
+
+    rows: list[dict[str, Any]]
+    path: Path
+    reused: int
+    computed: int
+
+
+def run_sweep_to_table(
+    spec: SweepSpec,
+    path: str | Path,
+    *,
+    resume: bool = False,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> SweepRun:
+    """Run a sweep into the table ``path`` so that an interruption loses no finished row.
+
+    Every finished chunk of rows is appended to the journal :func:`journal_path` (``<path>.part``,
+    a CSV with the table's columns) and flushed to disk at once; when all cases are done the
+    table is written atomically in the spec's order and the journal removed. An interrupted run
+    (Ctrl-C, a killed process or machine) thus leaves every finished row in the journal, and
+    ``resume=True`` reuses the rows found in the journal and in an existing CSV table at
+    ``path``, keyed by their case parameters (:func:`case_key`), and computes only the rest.
+    The finished table is the same as an uninterrupted run's.
+
+    Raises
+    ------
+    InputError
+        A journal exists and ``resume`` is False (it holds the rows of an unfinished run), a
+        journal or table to resume from belongs to a sweep with other columns, or a file
+        cannot be read or written.
+    """
+    path = Path(path)
+    check_table_format(path)
+    journal = journal_path(path)
+    header = [*spec.columns, *RESULTS]
+    if journal.exists() and not resume:
+        raise InputError(
+            f"{journal} holds the finished rows of an interrupted sweep: run again with "
+            f"--resume to finish it, or delete it to start again"
+        )
+    found: list[list[str]] = []
+    length = 0
+    if resume:
+        if path.suffix == ".csv" and path.is_file():
+            found += _complete_rows(path, header)[0]
+        if journal.is_file():
+            rows, length = _complete_rows(journal, header)
+            found += rows
+    stored: dict[tuple[str, ...], list[dict[str, Any]]] = {}
+    for cells in found:
+        row = {c: (None if v == "" else v) for c, v in zip(header, cells, strict=True)}
+        if path.suffix == ".parquet":
+            row = {c: _typed(v) for c, v in row.items()}
+        stored.setdefault(tuple(cells[: len(spec.columns)]), []).append(row)
+    slots: list[dict[str, Any] | None] = []
+    pending: list[int] = []
+    for i, case in enumerate(spec.cases):
+        same = stored.get(case_key(case, spec.columns))
+        slots.append(same.pop(0) if same else None)
+        if slots[-1] is None:
+            pending.append(i)
+    reused = len(spec.cases) - len(pending)
+    try:
+        with journal.open("r+b" if length else "wb") as fh:
+            fh.truncate(length)  # a line cut by a kill goes; the finished rows stay
+            fh.seek(length)
+            if not length:
+                fh.write(_csv_lines([header]))
+            chunks = [pending[i : i + spec.chunk] for i in range(0, len(pending), spec.chunk)]
+
+            def keep(k: int, rows: list[dict[str, Any]]) -> None:
+                fh.write(_csv_lines([[_cell(r.get(c)) for c in header] for r in rows]))
+                fh.flush()
+                os.fsync(fh.fileno())
+                for slot, row in zip(chunks[k], rows, strict=True):
+                    slots[slot] = row
+
+            run_chunks(
+                [[spec.cases[i] for i in c] for c in chunks],
+                spec.rtol,
+                spec.f,
+                keep,
+                workers,
+                scheduler,
+                None if progress is None else lambda i, n: progress(reused + i, reused + n),
+            )
+    except OSError as exc:
+        raise InputError(f"cannot write the sweep journal {journal}: {_reason(exc)}") from None
+    rows = [r for r in slots if r is not None]
+    write_table(rows, path, spec.columns)
+    journal.unlink(missing_ok=True)
+    return SweepRun(rows, path, reused, len(pending))
+
+
+def _csv_lines(rows: Iterable[Sequence[str]]) -> bytes:
+    buf = io.StringIO(newline="")
+    csv.writer(buf, lineterminator="\n").writerows(rows)
+    return buf.getvalue().encode("utf-8")
+
+
+def _typed(value: str | None) -> Any:
+    """A stored cell back as a number where it is one (for Parquet tables)."""
+    if value is None:
+        return None
+    try:
+        return float(value)
+    except ValueError:
+        return value
 
 
 def check_table_format(path: str | Path) -> None:
