@@ -518,43 +518,54 @@ class NGFCouetteFlow(_NGFCell):
 class NGFChannel(_NGFCell):
     """Fully developed gravity flow of an NGF material down a vertical channel.
 
-    Shared channel conventions: ``xi = y/H`` across, walls at 0 and 1 (both fixed, no slip),
-    x downward along gravity, ``u >= 0`` downward, over the centre-line speed V_c (so
-    ``u(1/2) = 1``); ``N = sigma_yy`` uniform; ``|tau|/N = G |xi - 1/2|`` with
-    ``G = rho_s nu g H / N``, so ``mu = G |xi - 1/2|``, largest (G/2) at the walls; the core
+    The conventions of :class:`~cosserat.model.channel.Channel` and
+    :class:`~cosserat.model.mui.MuIChannel`: ``xi = y/H`` across, walls at rest at 0 and 1 (no
+    slip), x downward along gravity, ``u >= 0`` downward, scaled by the centre-line speed V_c
+    (``u(1/2) = 1``); ``p = N`` uniform; ``|tau|/N = B nu |xi - 1/2|`` with
+    ``B = rho_p g H / N``, so ``mu = B nu |xi - 1/2|``, largest (B nu/2) at the walls; the core
     where mu <= mu_s creeps. Symmetric about the centre line.
 
     Parameters
     ----------
     rheology : NGF
     eps : float
-        Grain diameter over gap d/H, ``0 < eps <= 0.5`` [-].
-    I_w : float, default 0.01
-        Inertial number of the centre-line speed, V_c d / (H sqrt(N / rho_s)) [-].
-    G : float, optional
-        Instead of I_w: the gravity number rho_s nu g H / N [-] (the wall stress ratio is
-        G/2); the centre-line speed is then an output.
+        Grain diameter over channel width d/H, ``0 < eps <= 0.5`` [-].
+    B : float, optional
+        rho_p g H / N with N the wall normal stress, ``0 < B <= 1e6`` [-]: the wall stress
+        ratio is B nu/2; the centre-line speed (its I_w) is then an output.
+    nu : float
+        Solids fraction, ``0 < nu <= 1`` [-]; only B nu enters.
+    I_w : float, default 0.01 when B is not given
+        Instead of B: the inertial number of the centre-line speed, V_c d/(H sqrt(N/rho_s))
+        [-]; B nu is then an output.
     fluidity_bc : {"neumann", "local"}
         Wall condition on g (default ``n . grad g = 0``).
     """
 
     rheology: NGF = NGF()
     eps: float
+    B: float | None = None
+    nu: float = 1.0
     I_w: float | None = None
-    G: float | None = None
     fluidity_bc: str = "neumann"
 
     kind = 2
-    moving_wall = 0.0  # the shear layer is measured from the wall at xi = 0 (symmetric)
-    fixed_wall = 1.0
+    moving_wall = 1.0  # the layer is measured from the wall at xi = 1 (as for Channel)
+    fixed_wall = 0.0
     wall_name = "walls"
     reference_velocity = 1.0  # the centre-line speed: Delta is where u = 1 - f
 
     def __post_init__(self) -> None:
         self._validate_common()
-        I_w, G = _validate_driving(self.I_w, self.G, "G")
+        nu = require_finite("nu", self.nu)
+        if not 0.0 < nu <= 1.0:
+            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
+        object.__setattr__(self, "nu", nu)
+        I_w, B = _validate_driving(self.I_w, self.B, "B")
+        if B is not None and B > B_MAX:
+            raise ParameterError(f"B = rho_p g H / N must satisfy 0 < B <= {B_MAX:g}; got {B:g}")
         object.__setattr__(self, "I_w", I_w)
-        object.__setattr__(self, "G", G)
+        object.__setattr__(self, "B", B)
 
     @property
     def shape(self) -> float:
@@ -562,8 +573,8 @@ class NGFChannel(_NGFCell):
 
     @property
     def imposed_level(self) -> float | None:
-        """The wall stress ratio G/2 when G is imposed [-]."""
-        return None if self.G is None else 0.5 * self.G
+        """The wall stress ratio B nu/2 when B is imposed [-]."""
+        return None if self.B is None else 0.5 * self.B * self.nu
 
     @staticmethod
     def wall_velocity(xi_wall: float) -> float:
@@ -571,29 +582,30 @@ class NGFChannel(_NGFCell):
         return 0.0
 
     def pressure(self, xi: FloatArray) -> FloatArray:
-        """sigma_yy / N = 1 [-]."""
+        """p/N = 1 [-]."""
         return np.ones_like(np.asarray(xi, dtype=float))
 
     def friction_ratio(self, xi: FloatArray, T: float) -> FloatArray:
-        """mu = 2 T |xi - 1/2| = G |xi - 1/2| with T = G/2 the wall stress ratio [-]."""
+        """mu = 2 T |xi - 1/2| = B nu |xi - 1/2| with T = B nu/2 the wall stress ratio [-]."""
         return 2.0 * T * np.abs(np.asarray(xi, dtype=float) - 0.5)
 
     def creep_extent(self, T: float) -> tuple[float, float] | None:
-        """The core [1/2 - w, 1/2 + w], w = mu_s/(2T), where mu <= mu_s [-]."""
+        """The core [1/2 - w, 1/2 + w], w = mu_s/(2T) = mu_s/(B nu), where mu <= mu_s [-]."""
         w = min(self.rheology.mu_s / (2.0 * T), 0.5)
         return (0.5 - w, 0.5 + w)
 
     def describe(self) -> str:
+        drive = f"B = {self.B:g}, nu = {self.nu:g}" if self.B is not None else f"I_w = {self.I_w:g}"
         return (
-            f"vertical channel, NGF: {self.rheology.describe()}, eps = {self.eps:g}; no slip, "
-            f"wall fluidity {self.fluidity_bc}; "
-            + (f"G = {self.G:g}" if self.G is not None else f"I_w = {self.I_w:g} (centre line)")
+            f"vertical channel, NGF: {self.rheology.describe()}, eps = {self.eps:g}; {drive}; "
+            f"no slip, wall fluidity {self.fluidity_bc}; velocity scaled by the centre line"
         )
 
     def parameters(self) -> dict[str, Any]:
         out: dict[str, Any] = {"geometry": "channel"}
         out.update(self._common())
-        out["G"] = self.G
+        out.update({"B": self.B, "nu": self.nu})
+        out["velocity_scale"] = "centre-line velocity, u(1/2) = 1"
         return out
 
 

@@ -263,13 +263,13 @@ class _Evaluator:
 
 
 class _ChannelEvaluator(_Evaluator):
-    """The channel's profile is symmetric: Delta is found on the half-gap at xi = 0."""
+    """The channel's profile is symmetric: Delta is found on the half-gap at the wall xi = 1."""
 
     def thickness(self, f: float) -> float:
         """Delta: the distance from the wall, in grains, where u = 1 - f (u_0 = 1) [-]."""
         target = 1.0 - f
         d = brentq(
-            lambda x: float(self.velocity(np.array([x]))[0]) - target,
+            lambda t: float(self.velocity(np.array([1.0 - t]))[0]) - target,
             0.0,
             0.5,
             xtol=1e-15 * self.problem.eps,
@@ -414,7 +414,7 @@ def _profile(
         "fluidity_solves": level.solves + half.solves,
     }
     if isinstance(problem, NGFChannel):
-        stats["G"] = 2.0 * ev.T
+        stats["B_nu"] = 2.0 * ev.T
     return Profile(
         problem=problem,  # type: ignore[arg-type]
         xi=grid,
