@@ -82,6 +82,7 @@ sphinx_gallery_conf = {
     "matplotlib_animations": False,
     "image_scrapers": ("matplotlib",),
     "show_memory": False,
+    "write_computation_times": False,  # its page loads jQuery from a CDN: no network here
     "abort_on_example_error": False,
     "only_warn_on_example_error": False,
 }
