@@ -42,6 +42,7 @@ COSSERAT = Rheology(
 """The frictional Cosserat model on its two cells, through the seam every rheology uses."""
 
 RHEOLOGIES: dict[str, Rheology] = {}
+"""The registered rheologies by name (``"cosserat"``, ``"mui"``, ...); see :func:`register`."""
 _ROUTES: dict[str, dict[type, Callable[..., Profile]]] = {}
 _PICKLABLE: set[Callable[..., Profile]] = set()
 
