@@ -1,0 +1,382 @@
+"""The nonlocal granular fluidity model on its three cells (``docs/derivation_ngf.md``).
+
+An independent discretisation (SciPy's ``solve_bvp`` collocation, written here from the
+equations with its own statics, local law and the stress level as an unknown parameter)
+against the compiled finite volumes; second-order convergence of the scheme and what
+Richardson's extrapolation adds; the creep region's exponential decay over the cooperativity
+length (with its WKB correction); the local limit A -> 0 against the mu(I) rheology and its
+rate (A eps)^(4/3); the channel's symmetry; the wall conditions; the closed form of uniform
+shear; what a profile carries; no solution, bad parameters, pickling.
+"""
+
+from __future__ import annotations
+
+import math
+import pickle
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_bvp
+
+from cosserat import NoSolutionError, ParameterError, shear_layer_thickness, solve, wall_slip
+from cosserat.config import DEFAULT_F, MUI_I0, MUI_MU_2, MUI_MU_S
+from cosserat.errors import MethodNotAvailableError
+from cosserat.model.mui import MuI, MuICouetteFlow, MuIPlaneShear
+from cosserat.model.ngf import NGF, NGFChannel, NGFCouetteFlow, NGFPlaneShear
+from cosserat.model.rheology import Cell
+from cosserat.routes import NGF_RHEOLOGY, RHEOLOGIES
+from cosserat.routes.ngf import creep_mask, fluidity, friction_ratio, shear_rate
+
+SATURATING = NGF(mu_s=MUI_MU_S, mu_2=MUI_MU_2, b=(MUI_MU_2 - MUI_MU_S) / MUI_I0)
+CASES = {
+    "couette": NGFCouetteFlow(eps=0.01, Ri=1.0),
+    "couette-local-bc": NGFCouetteFlow(eps=0.01, Ri=1.0, fluidity_bc="local"),
+    "couette-saturating": NGFCouetteFlow(eps=0.01, Ri=1.0, I_w=0.05, rheology=SATURATING),
+    "plane-gravity": NGFPlaneShear(eps=0.01, B=1.0),
+    "channel-speed": NGFChannel(eps=0.02, I_w=0.01),
+    "channel-stress": NGFChannel(eps=0.02, B=2.4, nu=0.5),
+}
+XS = np.linspace(0.0, 1.0, 401)
+
+
+# ----------------------------------------------------------------- an independent solver
+def _bvp(problem, tol=1e-6):
+    """u(xi) and the stress level by solve_bvp: y = (F, r F', int w F mu, int sign F mu/r),
+    the stress level T a free parameter fixed by the fifth boundary condition."""
+    law = problem.rheology
+    mu_s, b, mu_2, a = law.mu_s, law.b, law.mu_2, law.A * problem.eps
+    name = type(problem).__name__
+
+    def statics(x, T):
+        one = np.ones_like(x)
+        if name == "NGFPlaneShear":
+            s = 1.0 + problem.B * problem.nu * (1.0 - x)
+            return T / s, s, one
+        if name == "NGFCouetteFlow":
+            r = problem.Ri + x
+            return T * (problem.Ri / r) ** 2, one, r
+        return 2.0 * T * np.abs(x - 0.5), one, one
+
+    def f_loc(mu, s):
+        e = np.maximum(mu - mu_s, 0.0)
+        i = e / b if mu_2 is None else (mu_2 - mu_s) / b * e / (mu_2 - mu)
+        return np.sqrt(s) * i / np.where(mu > 0.0, mu, 1.0)
+
+    def weight(x):
+        return problem.Ri / (problem.Ri + x) if name == "NGFCouetteFlow" else np.ones_like(x)
+
+    def sign(x):
+        return np.where(x > 0.5, -1.0, 1.0) if name == "NGFChannel" else np.ones_like(x)
+
+    speed = name != "NGFChannel" or problem.I_w is not None
+    imposed = None if speed else 0.5 * problem.B * problem.nu
+    target = (problem.I_w or 0.0) * (2.0 if name == "NGFChannel" else 1.0)
+
+    def rhs(x, y, p=None):
+        T = p[0] if speed else imposed
+        mu, s, r = statics(x, T)
+        k = np.abs(mu - mu_s) / a**2
+        return np.vstack(
+            [
+                y[1] / r,
+                r * k * (y[0] - f_loc(mu, s)),
+                weight(x) * y[0] * mu,
+                sign(x) * y[0] * mu / r,
+            ]
+        )
+
+    def bc(ya, yb, p=None):
+        T = p[0] if speed else imposed
+        if problem.fluidity_bc == "local":
+            ends = [f_loc(*statics(np.array([w]), T)[:2])[0] for w in (0.0, 1.0)]
+            walls = [ya[0] - ends[0], yb[0] - ends[1]]
+        else:
+            walls = [ya[1], yb[1]]
+        last = [yb[2] - target] if speed else []
+        return np.array([*walls, ya[2], ya[3], *last])
+
+    x = np.linspace(0.0, 1.0, 101)
+    T0 = 1.2 * mu_s if speed else imposed
+    y = np.zeros((4, x.size))
+    y[0] = f_loc(*statics(x, T0)[:2]) + 1e-3
+    sol = solve_bvp(rhs, bc, x, y, p=[T0] if speed else None, tol=tol, max_nodes=100_000)
+    assert sol.status == 0, sol.message
+    T = sol.p[0] if speed else imposed
+
+    def velocity(xx):
+        yy = sol.sol(xx)
+        if name == "NGFCouetteFlow":
+            return -(problem.Ri + xx) * (sol.sol(1.0)[3] - yy[3]) / problem.I_w
+        if name == "NGFChannel":
+            return yy[3] / sol.sol(0.5)[3]  # u(1/2) = 1
+        return yy[3] / problem.I_w
+
+    return velocity, T
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_collocation_agrees_with_the_finite_volumes(name):
+    problem = CASES[name]
+    velocity, T = _bvp(problem)
+    p = solve(problem, xi=XS)
+    assert np.max(np.abs(p.u - velocity(XS))) < 1e-6
+    assert p.diagnostics.stats["stress_ratio"] == pytest.approx(T, rel=1e-7)
+    # the second-order solution alone, with its error estimate
+    raw = solve(problem, xi=XS, extrapolate=False)
+    estimate = raw.diagnostics.residuals["discretisation (u, second order, Richardson estimate)"]
+    err = np.max(np.abs(raw.u - velocity(XS)))
+    assert 0.3 * estimate < err < 3.0 * estimate + 1e-8
+
+
+# ----------------------------------------------------------------- convergence order
+NS = np.array([256, 512, 1024, 2048, 4096])
+
+
+@pytest.mark.parametrize("name", ["couette", "plane-gravity", "channel-speed"])
+def test_the_scheme_converges_at_second_order_and_the_extrapolation_beyond(name):
+    problem = CASES[name]
+    ref = solve(problem, xi=XS, cells=2**16, check=False).u
+    raw = [np.max(np.abs(solve(problem, xi=XS, cells=n, extrapolate=False).u - ref)) for n in NS]
+    ext = [np.max(np.abs(solve(problem, xi=XS, cells=n).u - ref)) for n in NS]
+    order = -np.polyfit(np.log(NS), np.log(raw), 1)[0]
+    assert 1.95 < order < 2.05, (order, raw)
+    ratios = np.array(raw[:-1]) / np.array(raw[1:])
+    assert np.all((ratios > 3.8) & (ratios < 4.2)), ratios  # a regular O(h^2): kinks exact
+    assert np.all(np.array(ext) < 0.05 * np.array(raw)), (ext, raw)
+    assert ext[-1] < 2e-9
+
+
+# ----------------------------------------------------------------- the creep region
+def _along(f, x, direction, step):
+    """Derivative of f along ``direction`` (+1 or -1) by central differences."""
+    return direction * (f(x + step) - f(x - step)) / (2 * step)
+
+
+@pytest.mark.parametrize(
+    "problem",
+    [NGFCouetteFlow(eps=0.002, Ri=20.0, I_w=0.01), NGFPlaneShear(eps=0.002, B=0.2, I_w=0.01)],
+    ids=["couette-far", "plane-below-yield"],
+)
+def test_the_creep_region_decays_over_the_cooperativity_length(problem):
+    """Where mu < mu_s, g'' = k g with k = (mu_s - mu)/(A d)^2: g ~ k^(-1/4) exp(-int sqrt k)
+    (WKB), so -d ln g/ds = sqrt(k) (1 + w) with w = k_s/(4 k^(3/2)), s the distance from the
+    flowing region: g decays as exp(-distance/xi_c) up to the slow variation w of mu, and
+    the WKB term removes that to O(w^2). Six lengths from the far wall, its reflection
+    (n . grad g = 0 there) is below 2 exp(-12)."""
+    p = solve(problem, cells=2**15)
+    T = p.diagnostics.stats["stress_ratio"]
+    lo, hi = p.diagnostics.stats["creep"]
+    law = problem.rheology
+    a = law.A * problem.eps
+    edge, far = (lo, 1.0) if isinstance(problem, NGFCouetteFlow) else (hi, 0.0)
+    away = 1.0 if far > edge else -1.0  # the direction away from the flowing region
+    x = np.linspace(edge, far, 401)[1:-1]
+    k = (law.mu_s - problem.friction_ratio(x, T)) / a**2
+    keep = (np.abs(x - edge) * np.sqrt(k) > 5.0) & (np.abs(x - far) * np.sqrt(k) > 6.0)
+    x, k = x[keep], k[keep]
+    assert x.size > 100
+    assert np.all(creep_mask(p, x)) and np.all(fluidity(p, x) > 0.0)
+    assert np.all(p.evaluate(x).u != 0.0)  # it moves: creep, not a plug at rest
+    rate = -_along(lambda y: np.log(fluidity(p, y)), x, away, 1e-5)
+    dk = _along(lambda y: -problem.friction_ratio(y, T) / a**2, x, away, 1e-6)
+    w = dk / (4.0 * k**1.5)
+    assert np.all((w > 0.0) & (w < 0.06))  # mu close to constant on xi_c
+    plain = rate / np.sqrt(k) - 1.0  # exp(-distance / xi_c)
+    assert np.all(np.abs(plain - w) < 0.25 * w), np.c_[plain, w]
+    wkb = rate / (np.sqrt(k) * (1.0 + w)) - 1.0
+    assert np.all(np.abs(wkb) < 4.0 * w**2 + 1e-5), np.c_[wkb, w]
+
+
+# ----------------------------------------------------------------- the local limit
+@pytest.mark.parametrize("cell", ["couette", "plane"])
+def test_ngf_tends_to_local_mu_of_I_as_A_goes_to_zero(cell):
+    """The nonlocal correction is largest at the plug edge, where xi_c diverges: an inner
+    layer of width (A d)^(2/3) (derivation section 6) makes |u_NGF - u_mu(I)| ~ (A d)^(4/3)."""
+    mui = SATURATING.matching_mui()
+    assert (mui.mu_s, mui.mu_2) == (MUI_MU_S, MUI_MU_2)
+    assert mui.I_0 == pytest.approx(MUI_I0, rel=1e-14)
+    As = np.array([0.12, 0.06, 0.03, 0.015])
+    errors = []
+    for A in As:
+        law = NGF(mu_s=SATURATING.mu_s, b=SATURATING.b, mu_2=SATURATING.mu_2, A=A)
+        if cell == "couette":
+            ngf = NGFCouetteFlow(eps=0.01, Ri=1.0, I_w=0.05, rheology=law)
+            local = MuICouetteFlow(eps=0.01, Ri=1.0, I_w=0.05, rheology=mui)
+        else:
+            ngf = NGFPlaneShear(eps=0.01, B=1.0, I_w=0.05, rheology=law)
+            local = MuIPlaneShear(eps=0.01, B=1.0, I_w=0.05, rheology=mui)
+        p = solve(ngf, xi=XS, check=False)
+        errors.append(np.max(np.abs(p.u - solve(local, xi=XS, check=False).u)))
+    errors = np.array(errors)
+    assert np.all(np.diff(errors) < 0.0), errors
+    orders = np.log(errors[:-1] / errors[1:]) / math.log(2.0)
+    assert np.all((orders > 1.2) & (orders < 1.5)), orders
+    assert errors[-1] < 3e-4
+
+
+# ----------------------------------------------------------------- symmetry, walls, closed form
+@pytest.mark.parametrize("name", ["channel-speed", "channel-stress"])
+def test_the_channel_is_symmetric_about_its_centre_line(name):
+    problem = CASES[name]
+    p = solve(problem, xi=XS)
+    f = p.evaluate(1.0 - XS)
+    np.testing.assert_allclose(f.u, p.u, atol=1e-12)
+    np.testing.assert_allclose(fluidity(p), fluidity(p, 1.0 - XS), rtol=1e-10, atol=1e-14)
+    np.testing.assert_allclose(f.sigma_yx, -p.sigma_yx, atol=1e-15)  # odd shear stress
+    np.testing.assert_allclose(f.du_dxi, -p.du_dxi, atol=1e-9)
+    assert p.evaluate([0.5]).u[0] == pytest.approx(1.0, abs=1e-14)
+    assert abs(p.u[0]) < 1e-14 and abs(p.u[-1]) < 1e-12
+    Bn = p.diagnostics.stats["B_nu"]
+    np.testing.assert_allclose(p.sigma_yx, Bn * (XS - 0.5), atol=1e-15)
+    core = creep_mask(p)
+    np.testing.assert_array_equal(core, np.abs(XS - 0.5) <= SATURATING.mu_s / Bn + 1e-15 * 0)
+    assert core[200] and not core[0]
+    assert np.all(p.u[core] > 0.9)  # the creeping core is sheared, not a plug
+    assert np.all(np.abs(p.du_dxi[core & (XS != 0.5)]) > 0.0)
+    delta = shear_layer_thickness(p)
+    assert p.evaluate([1.0 - delta * problem.eps]).u[0] == pytest.approx(1.0 - DEFAULT_F)
+
+
+def test_imposed_stress_and_imposed_speed_are_one_solution():
+    for by_speed in (CASES["couette"], CASES["plane-gravity"], CASES["channel-speed"]):
+        p = solve(by_speed, xi=XS)
+        T = p.diagnostics.stats["stress_ratio"]
+        if isinstance(by_speed, NGFChannel):
+            by_stress = NGFChannel(eps=by_speed.eps, B=2.0 * T)
+        else:
+            kwargs = {k: v for k, v in vars(by_speed).items() if k not in ("I_w", "stress_ratio")}
+            by_stress = type(by_speed)(**kwargs, stress_ratio=T)
+        q = solve(by_stress, xi=XS)
+        assert q.diagnostics.stats["I_w"] == pytest.approx(by_speed.I_w, rel=1e-9)
+        np.testing.assert_allclose(q.u, p.u, atol=1e-9)
+
+
+@pytest.mark.parametrize("I_w", [1e-3, 0.01, 0.3])
+def test_uniform_shear_is_the_local_law_exactly(I_w):
+    """Plane shear without gravity: mu uniform, so g = g_loc solves the fluidity equation
+    with either wall condition and T = mu_s + b I_w (the linear law), u = xi."""
+    for bc in ("neumann", "local"):
+        p = solve(NGFPlaneShear(eps=0.02, I_w=I_w, fluidity_bc=bc), xi=XS)
+        np.testing.assert_allclose(p.u, XS, atol=1e-13)
+        law = NGF()
+        assert p.diagnostics.stats["stress_ratio"] == pytest.approx(
+            law.mu_s + law.b * I_w, rel=1e-13
+        )
+        assert p.diagnostics.stats["creep"] is None and not creep_mask(p).any()
+
+
+def test_the_wall_conditions_on_the_fluidity():
+    neumann = solve(CASES["couette"], xi=XS)
+    local = solve(CASES["couette-local-bc"], xi=XS)
+    for p in (neumann, local):
+        assert all(abs(v) < 1e-5 for v in p.diagnostics.bc_errors.values()), p.diagnostics
+        assert p.evaluate([0.0]).u[0] == pytest.approx(-1.0, abs=1e-13)
+    problem = CASES["couette-local-bc"]
+    T = local.diagnostics.stats["stress_ratio"]
+    g_wall = fluidity(local, [0.0])[0] * problem.I_w
+    # exact for the second-order solution; the extrapolated one to the extrapolation's error
+    g_loc = float(problem.local_fluidity(np.array([0.0]), T)[0])
+    assert g_wall == pytest.approx(g_loc, rel=1e-10)
+    # zero flux: the slope at the wall, times xi_c over max g, from the nodes (fourth order)
+    slopes = [v for k, v in neumann.diagnostics.bc_errors.items() if k.startswith("n.grad g")]
+    assert len(slopes) == 2 and max(map(abs, slopes)) < 1e-5
+    # the two conditions give different profiles
+    assert np.max(np.abs(neumann.u - local.u)) > 1e-3
+
+
+# ----------------------------------------------------------------- what a profile carries
+@pytest.mark.parametrize("name", ["couette", "plane-gravity", "channel-stress"])
+def test_profile_fields_and_wall_quantities(name):
+    problem = CASES[name]
+    p = solve(problem)
+    assert isinstance(problem, Cell)
+    mu = friction_ratio(p)
+    np.testing.assert_allclose(mu, np.abs(p.sigma_yx) / p.sigma_yy, rtol=1e-14)
+    g = fluidity(p)
+    assert np.all(g >= 0.0) and np.all(np.isfinite(g))
+    rate = shear_rate(p)
+    np.testing.assert_allclose(rate, g * mu, rtol=1e-6, atol=1e-9 * rate.max())  # gamma = g mu
+    np.testing.assert_allclose(np.abs(p.du_dxi - p.kappa * p.u), rate, rtol=1e-12, atol=1e-15)
+    np.testing.assert_array_equal(creep_mask(p), mu <= problem.rheology.mu_s)
+    extent = p.diagnostics.stats["creep"]
+    assert extent is not None and "creeping region" in p.diagnostics.message
+    np.testing.assert_allclose(p.spin_minus_half_vorticity, 0.0, atol=1e-12)
+    np.testing.assert_array_equal(p.m, 0.0)
+    np.testing.assert_array_equal(p.asymmetry, 0.0)
+    assert wall_slip(p) == pytest.approx(0.0, abs=1e-12)
+    delta = shear_layer_thickness(p)
+    assert 1.0 < delta < 0.5 / problem.eps
+    assert "nonlocal granular fluidity" in p.diagnostics.message
+    assert p.problem.parameters()["rheology"] == "ngf"
+    p.to_json()
+    back = pickle.loads(pickle.dumps(p))
+    np.testing.assert_array_equal(back.evaluate(XS).u, p.evaluate(XS).u)
+    np.testing.assert_array_equal(fluidity(back), g)
+    assert shear_layer_thickness(back) == delta
+
+
+def test_registration_and_the_methods_that_do_not_exist():
+    assert RHEOLOGIES["ngf"] is NGF_RHEOLOGY
+    assert set(NGF_RHEOLOGY.cells) == {"plane", "couette", "channel"}
+    p = solve(NGFCouetteFlow(eps=0.01, Ri=1.0))
+    assert p.method == "numerical"
+    for method, why in (("closed-form", "no closed-form solution"), ("asymptotic", "asymptotics")):
+        with pytest.raises(MethodNotAvailableError, match=f"{why}.*method='numerical'"):
+            solve(CASES["couette"], method=method)
+
+
+def test_glass_bead_defaults_are_henann_and_kamrin():
+    law = NGF()
+    assert (law.mu_s, law.b, law.A, law.mu_2, law.rho_s) == (0.3819, 0.9377, 0.48, None, 2450.0)
+    # b is the slope at mu_s of Jop et al.'s law for the same beads, (mu_2 - mu_s)/I_0
+    assert law.b == pytest.approx((MUI_MU_2 - MUI_MU_S) / MUI_I0, rel=1e-4)
+    assert law.mu_s == pytest.approx(MUI_MU_S, rel=2e-4)
+    # both local laws share mu_s and the slope b
+    mus = np.array([0.39, 0.40])
+    slope = np.diff(SATURATING.local_inertial_number(mus)) / np.diff(mus)
+    assert 1.0 / slope[0] == pytest.approx(SATURATING.b, rel=0.1)
+    assert law.wall_inertial_number(V=0.1, H=0.05, d=1e-3, N=2450.0) == pytest.approx(0.002)
+    with pytest.raises(ParameterError, match="linear local law"):
+        law.matching_mui()
+    assert isinstance(SATURATING.matching_mui(), MuI)
+
+
+# ----------------------------------------------------------------- no solution, bad input
+def test_no_solution_is_said_in_words():
+    with pytest.raises(NoSolutionError, match=r"<= mu_s .* nothing flows"):
+        solve(NGFCouetteFlow(eps=0.01, Ri=1.0, stress_ratio=0.3))
+    with pytest.raises(NoSolutionError, match="<= mu_s"):
+        solve(NGFChannel(eps=0.02, B=0.7))  # B nu/2 = 0.35 < mu_s
+    with pytest.raises(NoSolutionError, match=">= mu_2"):
+        solve(NGFPlaneShear(eps=0.02, stress_ratio=0.7, rheology=SATURATING))
+    with pytest.raises(NoSolutionError, match="beyond the fastest steady NGF flow"):
+        solve(NGFCouetteFlow(eps=0.01, Ri=1.0, I_w=0.9, rheology=SATURATING))
+
+
+@pytest.mark.parametrize(
+    ("make", "match"),
+    [
+        (lambda: NGF(mu_s=-0.1), "mu_s must satisfy mu_s > 0; got -0.1"),
+        (lambda: NGF(b=0.0), "b must satisfy b > 0; got 0"),
+        (lambda: NGF(A=0.0), "A must satisfy A > 0"),
+        (lambda: NGF(mu_2=0.3), "mu_2 must satisfy mu_2 > mu_s = 0.3819; got 0.3"),
+        (lambda: NGF(rho_s=-1.0), "rho_s must satisfy rho_s > 0"),
+        (lambda: NGF(A=float("nan")), "A must be finite"),
+        (lambda: NGFPlaneShear(eps=0.01, I_w=0.0), r"0 < I_w <= 1 .*; got 0"),
+        (lambda: NGFPlaneShear(eps=0.01, I_w=0.1, stress_ratio=0.5), "not both"),
+        (lambda: NGFPlaneShear(eps=0.7), "eps = d_p/H must satisfy 0 < eps <= 0.5"),
+        (lambda: NGFPlaneShear(eps=0.01, B=-1.0), "B = rho_p g H / N must satisfy 0 <= B"),
+        (lambda: NGFPlaneShear(eps=0.01, fluidity_bc="dirichlet"), "fluidity_bc must be one of"),
+        (lambda: NGFCouetteFlow(eps=0.01, Ri=0.0), "Ri = R_i/H must satisfy 0.001 <= Ri"),
+        (lambda: NGFCouetteFlow(eps=0.01, Ri=1.0, rheology=MuI()), "rheology must be an NGF"),
+        (lambda: NGFChannel(eps=0.01, B=1.0, I_w=0.1), "not both"),
+        (lambda: NGFChannel(eps=0.01, B=-1.0), "B must be > 0"),
+        (lambda: NGFChannel(eps=0.01, B=1.0, nu=2.0), "nu .* must satisfy 0 < nu <= 1"),
+        (lambda: solve(CASES["couette"], cells=1002), "cells must be a multiple of 4"),
+        (lambda: solve(CASES["couette"], resolution=0.1), "resolution must satisfy"),
+        (lambda: solve(CASES["couette"], rtol=1e-8), "do not apply"),
+    ],
+)
+def test_parameter_errors_name_the_parameter_and_the_bound(make, match):
+    with pytest.raises(ParameterError, match=match):
+        make()
