@@ -27,7 +27,7 @@ from cosserat.routes.laws import asymptotic_thickness, thickness_limit
 COUETTE = {"geometry": "couette", "eps": 0.025, "Ri": 2.0}
 """A Couette cell of 40 grain diameters on which the three models' profiles differ."""
 TRUTH = {"cosserat": {"delta": 22.0, "K": 0.5}, "mui": {"I_w": 0.05}, "ngf": {"I_w": 0.01}}
-NOISE = 0.01
+NOISE = 0.003
 
 
 def synthetic(model: str, seed: int, cell: dict = COUETTE) -> tuple[MeasuredProfile, object]:

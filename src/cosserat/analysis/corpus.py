@@ -363,7 +363,7 @@ def read_corpus(folder: str | Path | None = None) -> Corpus:
         without its CSV, or any run that :func:`read_run` rejects.
     """
     path = shipped_corpus() if folder is None else Path(folder)
-    if not path.is_dir():
+    if not path.is_dir() or (folder is None and not any(path.glob("*.csv"))):
         if folder is None:
             raise InputError(
                 f"no corpus is shipped in this installation ({path} does not exist); give a "
