@@ -15,6 +15,7 @@ without a network.
 
 from __future__ import annotations
 
+import importlib
 import os
 import re
 import sys
@@ -63,7 +64,7 @@ myst_heading_anchors = 3
 # -- API reference --------------------------------------------------------------------------
 autosummary_generate = True
 autosummary_imported_members = False
-autodoc_default_options = {"members": True, "member-order": "bysource"}
+autodoc_default_options = {"members": True, "member-order": "bysource", "ignore-module-all": True}
 autodoc_typehints = "none"  # numpydoc's Parameters sections carry the types and units
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
@@ -158,6 +159,23 @@ def escape_absolute_values(app, what, name, obj, options, lines):  # type: ignor
         lines[i] = "``".join(parts)
 
 
+def _canonical_name(module_name: str | None, target: str) -> str | None:
+    """``module.qualname`` of what ``target`` names inside ``module_name`` (None if nothing)."""
+    if not module_name:
+        return None
+    try:
+        obj = importlib.import_module(module_name)
+        for part in target.split("."):
+            obj = getattr(obj, part)
+    except (ImportError, AttributeError):
+        return None
+    module = getattr(obj, "__module__", None)
+    qualname = getattr(obj, "__qualname__", None)
+    if isinstance(obj, type(importlib)):
+        return obj.__name__
+    return f"{module}.{qualname}" if module and qualname else None
+
+
 def resolve_short_names(app, env, node, contnode):  # type: ignore[no-untyped-def]
     """Resolve a Python reference that names an object by a shorter or older path.
 
@@ -169,6 +187,13 @@ def resolve_short_names(app, env, node, contnode):  # type: ignore[no-untyped-de
         return None
     target = node["reftarget"].lstrip("~.")
     domain = env.get_domain("py")
+    # First choice: the object the referring module itself sees under that name.
+    canonical = _canonical_name(node.get("py:module"), target)
+    if canonical in domain.objects:
+        node["reftarget"] = canonical
+        return domain.resolve_xref(
+            env, node["refdoc"], app.builder, node["reftype"], canonical, node, contnode
+        )
     tail = "." + target.rsplit(".", 1)[-1]
     kinds = {"mod": ("module",)}.get(node["reftype"])
     matches = [
@@ -188,8 +213,15 @@ def resolve_short_names(app, env, node, contnode):  # type: ignore[no-untyped-de
     )
 
 
+def reread_optional_toctrees(app, env, added, changed, removed):  # type: ignore[no-untyped-def]
+    """Pages with an optional toctree are read again on every build: whether an entry shows
+    depends on files that may have appeared since."""
+    return [d for d in env.found_docs if "optional-toctree" in Path(env.doc2path(d)).read_text()]
+
+
 def setup(app):  # type: ignore[no-untyped-def]
     app.add_directive("optional-toctree", OptionalTocTree)
+    app.connect("env-get-outdated", reread_optional_toctrees)
     app.connect("source-read", link_outside_files)
     app.connect("autodoc-process-docstring", escape_absolute_values, priority=400)
     app.connect("missing-reference", resolve_short_names)
