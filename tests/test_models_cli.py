@@ -1,0 +1,77 @@
+"""``cosserat models`` and ``cosserat validate`` on the command line."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import write_run
+from cosserat.cli import main
+from cosserat.routes import RHEOLOGIES
+
+
+def test_models_lists_every_registered_rheology_with_units_and_reference(capsys):
+    assert main(["models"]) == 0
+    text = capsys.readouterr().out
+    for name, rheology in RHEOLOGIES.items():
+        assert f"{name}: {rheology.title}" in text and rheology.reference in text
+        for cell in rheology.cells:
+            assert f"cell {cell} (" in text
+    assert "phi [deg], default 28.5" in text
+
+
+def test_models_json(capsys):
+    assert main(["models", "--format", "json"]) == 0
+    models = {m["name"]: m for m in json.loads(capsys.readouterr().out)}
+    assert set(models) == set(RHEOLOGIES)
+    phi = next(r for r in models["cosserat"]["parameters"]["Material"] if r["name"] == "phi")
+    assert phi["unit"] == "deg" and phi["default"] == 28.5 and not phi["required"]
+    eps = next(r for r in models["mui"]["cells"]["couette"]["parameters"] if r["name"] == "eps")
+    assert eps["required"] and eps["unit"] == "-"
+    assert set(models["mui"]["parameters"]["MuI"][0]) >= {"name", "default", "unit"}
+
+
+def _corpus(folder, gaps=(20.0, 40.0, 80.0)):
+    rng = np.random.default_rng(0)
+    for g in gaps:
+        y = np.arange(int(g)) + 0.5
+        u = np.exp(-(g - y) / 3.0)
+        write_run(folder, f"run_{g:g}", {"cell": "plane", "gap_d": g, "B": 1.0,
+                                          "wall": {"kind": "smooth-frictional"}},
+                  {"y": y, "u": u + rng.normal(0, 0.005, y.size),
+                   "u_se": np.full(y.size, 0.005)})  # fmt: skip
+    return folder
+
+
+def test_validate_writes_the_report_and_prints_the_verdicts(tmp_path, capsys):
+    corpus = _corpus(tmp_path / "corpus")
+    out = tmp_path / "out"
+    assert main(["validate", str(corpus), "--out", str(out), "--models", "cosserat"]) == 0
+    text = capsys.readouterr().out
+    assert "[supported] Delta is independent of the gap" in text
+    assert "[undecided] The grain spin departs" in text
+    assert (out / "report.md").exists() and (out / "index.html").exists()
+    assert main(["validate", str(corpus), "--out", str(out), "--models", "cosserat",
+                 "--format", "json"]) == 0  # fmt: skip
+    record = json.loads(capsys.readouterr().out)
+    assert [v["verdict"] for v in record["verdicts"]] == ["undecided", "supported", "undecided"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["validate", "{tmp}/nowhere", "--out", "{tmp}/o"], "not a folder"),
+        (["validate", "{tmp}/corpus", "--out", "{tmp}/o", "--models", "nonesuch"],
+         "unknown model(s) nonesuch"),
+        (["validate", "{tmp}/corpus", "--out", "{tmp}/o", "--f", "2"], "--f must satisfy"),
+        (["validate", "{tmp}/corpus", "--out", "{tmp}/o", "--near-wall", "-1"],
+         "--near-wall must be > 0"),
+    ],
+)  # fmt: skip
+def test_validate_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, message):
+    _corpus(tmp_path / "corpus", gaps=(20.0,))
+    assert main([a.format(tmp=tmp_path) for a in argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and len(err.strip().splitlines()) == 1
