@@ -2,8 +2,14 @@
 
 The fit is a bounded nonlinear least-squares problem (SciPy ``least_squares``, trust-region
 reflective) on the residuals ``(u_model - u_data)/sigma``, sigma the point's uncertainty (or 1).
-Standard errors and correlations come from the Jacobian at the optimum; with uncertainties given
-they are taken as absolute, otherwise the covariance is scaled by the residual variance. Because
+Standard errors and correlations come from ``least_squares``' Jacobian J at the optimum (the
+covariance is the inverse of the Fisher matrix J^T J); with uncertainties given they are taken as
+absolute, otherwise the covariance is scaled by the residual variance. Parameters the data cannot
+determine are named, with the reason, in ``FitResult.warnings``, and their standard errors are
+None: a flat direction of J^T J (an eigenvalue below :data:`FLAT_RATIO` of the largest, or one
+along which the whole allowed range of the parameters changes the fit by less than one residual
+variance) names the parameters of its eigenvector, and a correlation above
+:data:`CORRELATION_LIMIT` names the pair and its value. Because
 the velocity depends strongly and non-linearly on delta near tan(delta) = sin(phi), delta also
 gets a profile-likelihood interval (the range where the refitted chi-square rises by less than
 one residual variance), which is one-sided when it reaches the fully rough bound.
@@ -35,6 +41,13 @@ from .measurements import MeasuredProfile
 FREE_PARAMETERS = ("delta", "K", "L", "phi", "A")
 BOUNDS = {"K": (0.0, 10.0), "L": (0.5, 100.0), "phi": (10.0, 60.0), "A": (-0.95, 0.95)}
 NO_SOLUTION_RESIDUAL = 1e3
+CORRELATION_LIMIT = 0.95
+"""|r| above which two fitted parameters are reported as strongly correlated."""
+FLAT_RATIO = 1e-8
+"""Eigenvalue of J^T J, relative to the largest, below which its direction is flat: the level of
+the finite-difference error of the Jacobian, squared (relative step ~1e-4)."""
+FLAT_COMPONENT = 0.05
+"""Parameters whose share of a flat eigenvector is at least this get no standard error."""
 
 
 def moving_wall(problem: Problem) -> tuple[float, float]:
@@ -170,6 +183,14 @@ class _Coordinates:
                 out.append(natural[name])
         return np.asarray(out, dtype=float)
 
+    def natural_ranges(self, natural: dict[str, float]) -> FloatArray:
+        """The allowed range of each free parameter in natural units [deg for angles]."""
+        phi = natural.get("phi", self.base.material.phi)
+        rough = math.degrees(math.atan(math.sin(math.radians(phi))))
+        return np.asarray(
+            [rough - 1.0 if n == "delta" else BOUNDS[n][1] - BOUNDS[n][0] for n in self.names]
+        )
+
     def bounds(self) -> tuple[FloatArray, FloatArray]:
         lo, hi = [], []
         for name in self.names:
@@ -182,21 +203,30 @@ class _Coordinates:
 # --------------------------------------------------------------------------- fit
 @dataclass(frozen=True)
 class FitParameter:
+    """A fitted value [its unit: deg for angles], its standard error (None when the data cannot
+    determine it, with the reason) and an optional profile-likelihood interval."""
+
     value: float
-    stderr: float
+    stderr: float | None
     interval: tuple[float, float] | None = None
+    reason: str | None = None
 
     def to_dict(self) -> dict[str, Any]:
         return {
             "value": self.value,
             "stderr": self.stderr,
             "interval": None if self.interval is None else list(self.interval),
+            "reason": self.reason,
         }
 
 
 @dataclass
 class FitResult:
-    """Best-fit parameters with uncertainties (angles in degrees)."""
+    """Best-fit parameters with uncertainties (angles in degrees).
+
+    ``covariance`` and ``correlation`` hold NaN where a parameter is not identifiable (its
+    ``stderr`` is None); :meth:`to_dict` writes None there.
+    """
 
     parameters: dict[str, FitParameter]
     problem: Problem
@@ -225,7 +255,10 @@ class FitResult:
             "warnings": list(self.warnings),
             "correlation": {
                 "names": list(self.parameters),
-                "matrix": np.round(self.correlation, 6).tolist(),
+                "matrix": [
+                    [None if not np.isfinite(r) else round(float(r), 6) for r in row]
+                    for row in self.correlation
+                ],
             },
             "problem": self.problem.parameters(),
         }
@@ -247,6 +280,8 @@ class _Objective:
         self.fixed, self.method, self.options = fixed, method, options
         self.sigma = measured.u_err if measured.u_err is not None else np.ones(measured.n)
         self.solves = 0
+        self.best = math.inf
+        self.progress: Callable[[str], None] | None = None
 
     def problem(self, theta: FloatArray) -> Problem:
         return with_values(self.base, {**self.fixed, **self.coords.to_natural(theta)})
@@ -257,7 +292,13 @@ class _Objective:
             prof = model_profile(self.problem(theta), self.method, **self.options)
         except (NoSolutionError, ParameterError):
             return np.full(self.measured.n, NO_SOLUTION_RESIDUAL)
-        return (model_at(prof, self.measured.distance_d) - self.measured.u_over_uw) / self.sigma
+        res = (model_at(prof, self.measured.distance_d) - self.measured.u_over_uw) / self.sigma
+        chi2 = float(np.sum(res**2))
+        if self.progress is not None and chi2 < self.best * (1.0 - 1e-6):
+            values = ", ".join(f"{k} = {v:.4g}" for k, v in self.coords.to_natural(theta).items())
+            self.progress(f"{self.solves} solves, chi-square {chi2:.6g} at {values}")
+        self.best = min(self.best, chi2)
+        return res
 
 
 def _least_squares(obj: _Objective, theta0: FloatArray) -> Any:
@@ -315,7 +356,11 @@ def fit(
     coords = _Coordinates(names, problem)
     start = {n: natural_value(problem, n) for n in names}
     obj = _Objective(measured, problem, coords, {}, method, options)
+    obj.progress = progress
+    if progress:
+        progress(f"fitting {', '.join(names)} to {measured.n} points")
     res = _least_squares(obj, coords.to_internal(start))
+    obj.progress = None
     best_problem = obj.problem(res.x)
     comparison = compare(best_problem, measured, method, **options)
     obj.solves += 1
@@ -325,18 +370,7 @@ def fit(
     dof = max(n - p, 1)
     absolute = measured.u_err is not None
     scale = 1.0 if absolute else chi2 / dof
-    J = _jacobian(obj, res.x, res.fun)
-    warnings: list[str] = []
-    _, sv, vt = np.linalg.svd(J, full_matrices=False)
-    if sv[-1] <= 1e-10 * sv[0]:
-        cov_internal = np.full((p, p), np.nan)
-        warnings.append(
-            "the Jacobian is singular: the free parameters are not identifiable "
-            "from these data together"
-        )
-    else:
-        cov_internal = (vt.T / sv**2) @ vt * scale
-    # delta method to natural units
+    # the Jacobian in natural units (delta in degrees), by the chain rule through to_natural
     grad = np.zeros((p, p))
     nat0 = coords.to_natural(res.x)
     for j in range(p):
@@ -345,11 +379,29 @@ def fit(
         th[j] -= h
         nat1 = coords.to_natural(th)
         grad[:, j] = [(nat0[k] - nat1[k]) / h for k in names]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        cov = grad @ cov_internal @ grad.T
+    jac = np.asarray(res.jac) @ np.linalg.inv(grad)
+    cov, flat = _covariance(jac, coords.natural_ranges(nat0), scale)
+    warnings: list[str] = []
+    undefined: dict[str, str] = {}
+    for direction in flat:
+        message, involved = direction.describe(names)
+        warnings.append(message)
+        for name in involved:
+            undefined.setdefault(name, direction.reason(names, name))
+    bad = np.array([k in undefined for k in names])
+    cov[bad, :] = np.nan
+    cov[:, bad] = np.nan
+    with np.errstate(invalid="ignore"):
         stderr = np.sqrt(np.diag(cov))
         corr = cov / np.outer(stderr, stderr)
-    params = {k: FitParameter(nat0[k], float(stderr[i])) for i, k in enumerate(names)}
+    params = {
+        k: FitParameter(
+            nat0[k],
+            None if k in undefined else float(stderr[i]),
+            reason=undefined.get(k),
+        )
+        for i, k in enumerate(names)
+    }
 
     # profile-likelihood intervals
     for name in interval_for:
@@ -358,13 +410,22 @@ def fit(
         if progress:
             progress(f"profile likelihood for {name}")
         lo_hi = _profile_interval(
-            measured, problem, names, name, nat0, chi2, scale, method, options, obj
+            measured, problem, names, name, nat0, chi2, scale, method, options, obj, progress
         )
         params[name] = replace(params[name], interval=lo_hi)
 
     warnings += _diagnose(
         names, params, corr, measured, problem, chi2, dof, absolute, res.x, coords, comparison
     )
+    if progress:
+        free_text = ", ".join(
+            f"{k} = {v.value:.4g}" + ("" if v.stderr is None else f" +- {v.stderr:.2g}")
+            for k, v in params.items()
+        )
+        progress(
+            f"done after {obj.solves} solves: {free_text}; reduced chi-square "
+            f"{chi2 / dof:.3g}" + (f"; {len(warnings)} warning(s)" if warnings else "")
+        )
     return FitResult(
         params,
         best_problem,
@@ -380,19 +441,78 @@ def fit(
     )
 
 
-def _jacobian(obj: _Objective, theta: FloatArray, f0: FloatArray) -> FloatArray:
-    """Forward differences at the optimum, stepping away from any bound (a column per
-    parameter); least_squares' own Jacobian is scaled at active bounds."""
-    lo, hi = obj.coords.bounds()
-    J = np.empty((f0.size, theta.size))
-    for j in range(theta.size):
-        h = config.FIT_DIFF_STEP * (hi[j] - lo[j])  # >> the model's rtol, << the range
-        if theta[j] + h > hi[j]:
-            h = -h
-        th = theta.copy()
-        th[j] += h
-        J[:, j] = (obj(th) - f0) / h
-    return J
+@dataclass(frozen=True)
+class FlatDirection:
+    """A direction of the (range-scaled) parameters along which the fit hardly changes."""
+
+    eigenvalue: float
+    largest: float
+    vector: FloatArray
+
+    def components(self, names: Sequence[str]) -> list[tuple[str, float]]:
+        """(name, component) of the eigenvector's main components, largest first."""
+        order = np.argsort(-np.abs(self.vector))
+        sign = np.sign(self.vector[order[0]]) or 1.0
+        return [
+            (names[i], float(sign * self.vector[i]))
+            for i in order
+            if abs(self.vector[i]) >= FLAT_COMPONENT
+        ]
+
+    def describe(self, names: Sequence[str]) -> tuple[str, list[str]]:
+        """The warning and the parameters it makes undefined."""
+        parts = self.components(names)
+        involved = [k for k, _ in parts]
+        combo = " ".join(
+            f"{'-' if c < 0 else '+' if j else ''} {abs(c):.2f} {k}".strip()
+            for j, (k, c) in enumerate(parts)
+        )
+        if len(involved) == 1:
+            what = f"{involved[0]} is not identifiable from these data"
+            why = f"the fit hardly depends on {involved[0]}"
+        else:
+            names_text = f"{', '.join(involved[:-1])} and {involved[-1]}"
+            what = f"{names_text} are not identifiable from these data"
+            why = "changing them together along it leaves the fit nearly unchanged"
+        return (
+            f"{what}: the Fisher matrix J^T J has a flat direction along {combo} "
+            f"(eigenvalue {self.eigenvalue:.2g} against a largest of {self.largest:.2g}, with "
+            f"each parameter scaled by its allowed range): {why}, so the standard errors of "
+            f"{', '.join(involved)} are undefined (None)",
+            involved,
+        )
+
+    def reason(self, names: Sequence[str], name: str) -> str:
+        others = [k for k, _ in self.components(names) if k != name]
+        if not others:
+            return "not identifiable: the fit hardly depends on it"
+        return f"not identifiable: trades off with {', '.join(others)} (flat direction of J^T J)"
+
+
+def _covariance(
+    jac: FloatArray, ranges: FloatArray, scale: float
+) -> tuple[FloatArray, list[FlatDirection]]:
+    """Covariance of the internal coordinates from the Jacobian of the residuals, and the flat
+    directions of the Fisher matrix J^T J (left out of the pseudo-inverse).
+
+    The columns are scaled by the parameters' allowed ranges, so that the eigenvalues compare
+    like with like: an eigenvalue ``lam`` means moving by a whole range along its eigenvector
+    raises chi-square by ``lam`` residual variances. A direction is flat when ``lam`` is below
+    :data:`FLAT_RATIO` of the largest (numerically singular) or below one (the whole range is
+    within one standard error).
+    """
+    scaled = jac * ranges
+    lam, vec = np.linalg.eigh(scaled.T @ scaled)  # chi-square units; ascending
+    largest = float(max(lam[-1], np.finfo(float).tiny))
+    flat_mask = (lam <= FLAT_RATIO * largest) | (lam < scale)
+    keep = ~flat_mask
+    cov = (vec[:, keep] / lam[keep]) @ vec[:, keep].T * np.outer(ranges, ranges) * scale
+    variance = scale if scale > 0 else 1.0
+    flat = [
+        FlatDirection(float(max(lam[k], 0.0)) / variance, largest / variance, vec[:, k])
+        for k in np.flatnonzero(flat_mask)
+    ]
+    return cov, flat
 
 
 def _profile_interval(
@@ -406,6 +526,7 @@ def _profile_interval(
     method: str,
     options: dict[str, Any],
     counter: _Objective,
+    progress: Callable[[str], None] | None = None,
 ) -> tuple[float, float]:
     """Where the refitted chi-square rises by ``scale`` (one residual variance) [units of name]."""
     others = [n for n in names if n != name]
@@ -433,6 +554,11 @@ def _profile_interval(
             chi2 = float(np.sum(obj(coords.to_internal({name: value})) ** 2))
         counter.solves += obj.solves
         cache[value] = (chi2 - chi2_min) / scale - 1.0
+        if progress:
+            progress(
+                f"profile likelihood for {name}: at {name} = {value:.4g} the refit chi-square "
+                f"rises by {cache[value] + 1.0:.3g} residual variances ({counter.solves} solves)"
+            )
         return cache[value]
 
     center = best[name]
@@ -483,17 +609,18 @@ def _diagnose(
                 f"profile-likelihood interval"
             )
         p = params[name]
-        if not np.isfinite(p.stderr) or p.stderr > max(abs(p.value), 1e-3):
+        if p.stderr is not None and p.stderr > max(abs(p.value), 1e-3):
             out.append(
-                f"{name} is not identifiable from these data (standard error "
+                f"{name} is poorly determined by these data (standard error "
                 f"{p.stderr:.3g} against value {p.value:.3g})"
             )
     for i in range(len(names)):
         for j in range(i + 1, len(names)):
-            if np.isfinite(corr[i, j]) and abs(corr[i, j]) > 0.95:
+            if np.isfinite(corr[i, j]) and abs(corr[i, j]) > CORRELATION_LIMIT:
                 out.append(
-                    f"{names[i]} and {names[j]} are strongly correlated "
-                    f"(r = {corr[i, j]:.3f}): the data constrain mainly a combination"
+                    f"{names[i]} and {names[j]} are strongly correlated (r = {corr[i, j]:+.3f}, "
+                    f"|r| > {CORRELATION_LIMIT}): the data constrain mainly a combination of "
+                    f"them, and their standard errors are dominated by it"
                 )
     if "K" in names and measured.distance_d.min() > 2.0:
         out.append(
@@ -529,6 +656,7 @@ __all__ = [
     "Comparison",
     "FitParameter",
     "FitResult",
+    "FlatDirection",
     "compare",
     "fit",
     "model_at",
