@@ -64,9 +64,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         "--only",
         type=int,
         nargs="+",
-        choices=range(1, 15),
+        choices=range(1, 16),
         metavar="N",
-        help="only these figures (1-14); the report keeps the others from earlier runs",
+        help="only these figures (1-14; 15: the rheologies side by side); the report keeps "
+        "the others from earlier runs",
     )
     rp.add_argument(
         "--workers", type=positive_int, default=None, help="worker processes (default: cores)"
@@ -80,9 +81,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         "--only",
         type=int,
         nargs="+",
-        choices=range(1, 15),
+        choices=range(1, 16),
         metavar="N",
-        help="only these figures (1-14; default: all)",
+        help="only these figures (1-14; 15: the rheologies side by side; default: all)",
     )
     fp.add_argument(
         "--data",

@@ -160,7 +160,7 @@ def reproduce(
     workers = workers or min(len(numbers), os.cpu_count() or 1, 4)
     results: dict[int, FigureData] = {}
     # longest first, so the parallel run ends together
-    order = sorted(numbers, key=lambda n: (n != 14, n != 9, n))
+    order = sorted(numbers, key=lambda n: (n != 14, n != 15, n != 9, n))
     if workers <= 1:
         for i, n in enumerate(order):
             results[n] = _figure_job(n, str(out))

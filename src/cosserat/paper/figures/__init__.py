@@ -1,4 +1,5 @@
-"""Every figure of the paper: ``FIGURES[n].compute()`` then ``FIGURES[n].plot(data)``."""
+"""Every figure of the paper (1-14) and the rheologies side by side (15):
+``FIGURES[n].compute()`` then ``FIGURES[n].plot(data)``."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from . import paper, schematics
+from . import models, paper, schematics
 from .base import FigureData, save
 
 if TYPE_CHECKING:
@@ -51,6 +52,7 @@ FIGURES: dict[int, PaperFigure] = {
         PaperFigure(12, "fig-A_sensitivity", paper.compute_A_sensitivity, paper.plot_default),
         PaperFigure(13, "fig-K_sensitivity", paper.compute_K_sensitivity, paper.plot_default),
         PaperFigure(14, "fig-slt", paper.compute_slt, paper.plot_default),
+        PaperFigure(15, "fig-models", models.compute_models, models.plot_models),
     ]
 }
 
