@@ -218,7 +218,7 @@ class _Evaluator:
         self.nodes = nodal.x
         self.F = nodal.F
         self._prim = CubicHermiteSpline(nodal.x, nodal.prim, nodal.dprim)
-        self._F = CubicSpline(nodal.x, nodal.F)
+        self._F: CubicSpline | None = None  # built on first use
 
     def velocity(self, x: FloatArray) -> FloatArray:
         x = np.atleast_1d(np.asarray(x, dtype=float))
@@ -227,6 +227,8 @@ class _Evaluator:
 
     def fluidity(self, x: FloatArray) -> FloatArray:
         """F(xi) = I_w g H / V: the fluidity in units of sqrt(N/rho_s)/d [-]."""
+        if self._F is None:
+            self._F = CubicSpline(self.nodes, self.F)
         return self._F(np.atleast_1d(np.asarray(x, dtype=float)))
 
     def friction_ratio(self, x: FloatArray) -> FloatArray:
