@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import csv
 import json
+import re
 
 import numpy as np
 import pytest
@@ -11,6 +13,19 @@ from reference import delta_limit_by_hand
 from cosserat.paper.figures import FIGURES, make_figure
 
 _CACHE: dict[int, object] = {}
+LATEX = re.compile(r"[$\\]")
+"""LaTeX source ($ or a backslash): allowed in figure labels only, never in tables or text."""
+
+
+def _assert_plain_table(path):
+    """One header row of plain column names, then rows with no LaTeX in any cell."""
+    with open(path, newline="") as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0] == ["panel", "curve", "x_name", "x", "y_name", "y"], rows[0]
+    for row in rows:
+        assert not any(LATEX.search(cell) for cell in row), row
+    for row in rows[1:]:
+        float(row[3]), float(row[5])  # the first line is the only one that is not data
 
 
 def data_of(number: int):
@@ -20,7 +35,7 @@ def data_of(number: int):
 
 
 def curves(number: int, panel: int = 0):
-    return {c.label: c for c in data_of(number).panels[panel].curves}
+    return {c.plain_name: c for c in data_of(number).panels[panel].curves}
 
 
 @pytest.mark.parametrize("number", sorted(FIGURES))
@@ -29,8 +44,11 @@ def test_every_figure_computes_and_plots(number, tmp_path):
     _CACHE[number] = data
     assert data.number == number and data.caption
     stem = f"fig{number:02d}_{data.key.removeprefix('fig-')}"
-    for ext in ("png", "pdf", "csv"):
+    for ext in ("png", "pdf", "csv", "json"):
         assert (tmp_path / f"{stem}.{ext}").stat().st_size > 0
+    _assert_plain_table(tmp_path / f"{stem}.csv")
+    for text in (data.title, data.caption, *data.notes):
+        assert not LATEX.search(text), text
     for panel in data.panels:
         for c in panel.curves:
             assert np.all(np.isfinite(c.x)) and np.all(np.isfinite(c.y)), c.label
@@ -72,7 +90,7 @@ def test_fig6_the_layer_thins_as_B_grows():
     extra = data_of(6).extra
     deltas = [d for B, d in zip(extra["B"], extra["Delta"], strict=True) if B > 0]
     assert deltas == sorted(deltas, reverse=True)
-    rough = curves(6, 1)["$B = 0$"]  # omega + du/dxi/2 = 0 for uniform shear
+    rough = curves(6, 1)["B = 0"]  # omega + du/dxi/2 = 0 for uniform shear
     assert np.max(np.abs(rough.x)) < 1e-12
 
 
@@ -171,3 +189,50 @@ def test_reproduce_only_updates_the_report_instead_of_replacing_it(tmp_path):
     # a second run of the same figure replaces its entry, not duplicates it
     reproduce(tmp_path, figures=[13], workers=1)
     assert (out / "index.html").read_text().count("<figure>") == 3
+
+
+def test_claims_and_table_names_carry_no_latex():
+    """The claims (claims.csv, the report's table, the terminal) and every curve and column
+    name of the figures are plain text; the Couette ones use its own coordinate."""
+    from cosserat.paper.reproduce import _claims
+
+    figures = {n: data_of(n) for n in (6, 7, 9, 12, 14)}
+    claims = _claims(figures)
+    assert any("Couette, Ri = 1" in c.quantity for c in claims)
+    for claim in claims:
+        for text in vars(claim).values():
+            assert not LATEX.search(str(text)), claim
+    for data in figures.values():
+        for name in data.extra.get("table", {}):
+            assert not LATEX.search(name), name
+    y_names = {c.y_name or p.y_name for p in data_of(9).panels for c in p.curves}
+    assert y_names == {"r_minus_Ri"}
+    by_cell = {c.plain_name: c.y_name for c in data_of(7).panels[0].curves}
+    assert by_cell["numerical, Couette, Ri = 1"] == "r_minus_Ri"
+    assert by_cell["numerical, plane, B = 1"] == "xi"
+
+
+def test_figure_tables_read_with_pandas_as_they_are(tmp_path):
+    pd = pytest.importorskip("pandas")
+    make_figure(14, out=str(tmp_path))
+    table = pd.read_csv(tmp_path / "fig14_slt.csv")
+    assert list(table.columns) == ["panel", "curve", "x_name", "x", "y_name", "y"]
+    assert table["x"].dtype.kind == "f" and set(table["x_name"]) == {"eps"}
+    meta = json.loads((tmp_path / "fig14_slt.json").read_text())
+    assert meta["figure"] == 14 and "Delta against eps" in meta["caption"]
+
+
+def test_legends_sit_outside_every_panel():
+    """No legend overlaps the data area of any panel (one legend below all of them)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    for number in (2, 4, 7, 9, 14):
+        fig = make_figure(number)[1]
+        FigureCanvasAgg(fig).draw()
+        renderer = fig.canvas.get_renderer()
+        legends = fig.legends + [ax.get_legend() for ax in fig.axes if ax.get_legend()]
+        assert legends, number
+        for legend in legends:
+            box = legend.get_window_extent(renderer)
+            for ax in fig.axes:
+                assert not box.overlaps(ax.get_window_extent(renderer)), (number, ax)

@@ -15,58 +15,79 @@ import numpy as np
 from ... import config
 from ...analysis import asymptotic_thickness, shear_layer_thickness, thickness_curve
 from ...model import CouetteFlow, PlaneShear, Problem
+from ...model.constitutive import FloatArray
 from ...model.parameters import FULLY_ROUGH, Material, Wall
 from ...results.profile import Profile
 from ...routes import solve
-from .base import LINESTYLES, MARKERS, FigureData, Panel, draw
+from .base import LINESTYLES, MARKERS, FigureData, Panel, draw, spaced_along
 
 # the paper's parameters (cosserat.config), as the captions state them
 PHI, EPS, L, A, K = config.PHI, config.EPS, config.L, config.A, config.K
 DELTA, RI = config.DELTA, config.RI
 MATERIAL = Material(PHI, L=L, A=A)
 POINTS = 401
+SYMBOLS = 18
+"""Symbols per asymptotic curve (spaced along the curve as drawn)."""
 _t = config.text
 PAPER = f"phi = {_t(PHI)} deg, eps = {_t(EPS)}, L = {_t(L)}, A = {_t(A)}, K = {_t(K)}"
 """The caption's statement of the paper's parameters."""
 COUETTE = rf"Couette, $\bar R_i = {_t(RI)}$"
+"""Legend text of the Couette cell (mathtext: figures only)."""
+COUETTE_NAME = f"Couette, Ri = {_t(RI)}"
+"""The same in plain text, for tables, claims and messages."""
 
+# axis labels (mathtext, for the pictures) and the plain column names of the tables
 XI = r"$\xi$"
+XI_NAME = "xi"
+R_GAP = r"$(r - R_i)/H$"
+R_GAP_NAME = "r_minus_Ri"  # Couette: distance from the inner cylinder over the gap
 U = r"$u$"
 OMEGA = r"$\omega$"
 M = r"$m$"
 SPIN = r"$\omega + \frac{1}{2}\,\mathrm{d}u/\mathrm{d}\xi$"
-SPIN_CYL = r"$\omega + \frac{1}{2}(\mathrm{d}u/\mathrm{d}\xi + u/(\bar R_i + \xi))$"
+SPIN_CYL = r"$\omega + \frac{1}{2}(\mathrm{d}u/\mathrm{d}\bar r + u/\bar r)$, $\bar r = r/H$"
 ASYM = r"$\bar\sigma_{yx} - \bar\sigma_{xy}$"
 ASYM_CYL = r"$\bar\sigma_{r\theta} - \bar\sigma_{\theta r}$"
 
 FIELD = {
-    "u": (U, lambda p: p.u),
-    "omega": (OMEGA, lambda p: p.omega),
-    "spin": (SPIN, lambda p: p.spin_minus_half_vorticity),
-    "spin_cyl": (SPIN_CYL, lambda p: p.spin_minus_half_vorticity),
-    "asym": (ASYM, lambda p: p.asymmetry),
-    "asym_cyl": (ASYM_CYL, lambda p: p.asymmetry),
-    "m": (M, lambda p: p.m),
+    "u": (U, "u", lambda p: p.u),
+    "omega": (OMEGA, "omega", lambda p: p.omega),
+    "spin": (SPIN, "spin_minus_half_vorticity", lambda p: p.spin_minus_half_vorticity),
+    "spin_cyl": (SPIN_CYL, "spin_minus_half_vorticity", lambda p: p.spin_minus_half_vorticity),
+    "asym": (ASYM, "sigma_yx_minus_sigma_xy", lambda p: p.asymmetry),
+    "asym_cyl": (ASYM_CYL, "sigma_r_theta_minus_sigma_theta_r", lambda p: p.asymmetry),
+    "m": (M, "m", lambda p: p.m),
 }
+"""Profile field -> (axis label, column name, value)."""
 
 
-def _delta_label(wall: Wall) -> str:
-    return "fully rough" if wall.is_fully_rough else rf"$\delta = {wall.delta:g}^\circ$"
+def _delta_label(wall: Wall) -> tuple[str, str]:
+    """Legend text and plain name of a wall's friction."""
+    if wall.is_fully_rough:
+        return "fully rough", "fully rough"
+    return rf"$\delta = {wall.delta:g}^\circ$", f"delta = {wall.delta:g} deg"
 
 
 def profile_panels(
-    curves: list[tuple[str, Profile]], fields: list[str], markers: bool = False
+    curves: list[tuple[str, str, Profile]], fields: list[str], couette: bool = False
 ) -> list[Panel]:
-    """Panels of ``fields`` against xi (vertical, as in the paper), one curve per profile."""
+    """Panels of ``fields`` against the gap coordinate (vertical, as in the paper), one curve
+    per (legend label, plain name, profile): xi = y/H, or (r - R_i)/H in a Couette cell."""
     panels = []
-    for name in fields:
-        label, get = FIELD[name]
-        panel = Panel(xlabel=label, ylabel=XI)
-        for i, (curve_label, prof) in enumerate(curves):
+    for field_name in fields:
+        label, column, get = FIELD[field_name]
+        panel = Panel(
+            xlabel=label,
+            ylabel=R_GAP if couette else XI,
+            x_name=column,
+            y_name=R_GAP_NAME if couette else XI_NAME,
+        )
+        for i, (curve_label, name, prof) in enumerate(curves):
             panel.add(
                 curve_label,
                 get(prof),
                 prof.xi,
+                name=name,
                 color="k",
                 linestyle=LINESTYLES[i % len(LINESTYLES)],
             )
@@ -78,7 +99,7 @@ def profile_panels(
 def compute_zero_g() -> FigureData:
     walls = [Wall.fully_rough(K), Wall(25.0, K), Wall(DELTA, K), Wall(10.0, K)]
     curves = [
-        (_delta_label(w), solve(PlaneShear(material=MATERIAL, upper=w, eps=EPS), points=POINTS))
+        (*_delta_label(w), solve(PlaneShear(material=MATERIAL, upper=w, eps=EPS), points=POINTS))
         for w in walls
     ]
     return FigureData(
@@ -97,7 +118,7 @@ def compute_zero_g_aw() -> FigureData:
     walls = [Wall(25.5, K), Wall(20.0, K), Wall(10.0, K)]
     curves = [
         (
-            _delta_label(w),
+            *_delta_label(w),
             solve(PlaneShear(material=MATERIAL, upper=w, lower=rough, eps=EPS), points=POINTS),
         )
         for w in walls
@@ -126,14 +147,25 @@ def compute_asymp_g0() -> FigureData:
         ),
     }
     xi = np.linspace(0.95, 1.0, 301)
-    xi_sym = np.linspace(0.95, 1.0, 21)
-    panels = [Panel(xlabel=U, ylabel=XI), Panel(xlabel=OMEGA, ylabel=XI)]
+    legend = "lines: numerical; symbols: asymptotic"
+    panels = [
+        Panel(xlabel=U, ylabel=XI, x_name="u", y_name=XI_NAME, legend_title=legend),
+        Panel(xlabel=OMEGA, ylabel=XI, x_name="omega", y_name=XI_NAME, legend_title=legend),
+    ]
     for i, (name, problem) in enumerate(cases.items()):
         num = solve(problem, points=POINTS).evaluate(xi)
-        asym = solve(problem, method="asymptotic", points=POINTS).evaluate(xi_sym)
-        for panel, a, b in ((panels[0], num.u, asym.u), (panels[1], num.omega, asym.omega)):
-            panel.add(f"numerical, {name}", a, xi, color="k", linestyle=LINESTYLES[i])
-            panel.add_symbols(f"asymptotic, {name}", b, xi_sym, MARKERS[i])
+        asym = solve(problem, method="asymptotic", points=POINTS)
+        for panel, field_name in ((panels[0], "u"), (panels[1], "omega")):
+            line = getattr(num, field_name)
+            panel.add(name, line, xi, name=f"numerical, {name}", color="k", linestyle=LINESTYLES[i])
+            at = xi[spaced_along(line, xi, SYMBOLS)]
+            panel.add_symbols(
+                name,
+                getattr(asym.evaluate(at), field_name),
+                at,
+                MARKERS[i],
+                name=f"asymptotic, {name}",
+            )
     return FigureData(
         "fig-asymp_g0",
         4,
@@ -152,7 +184,11 @@ def compute_bc() -> FigureData:
     b = base.slip_constants.b
     fractions = [1.0, 0.7, 0.4, 0.1]
     curves = [
-        (rf"$m(0) = {f:g}\,b$", solve(replace(base, m_fixed_wall=f * b), points=POINTS))
+        (
+            rf"$m(0) = {f:g}\,b$",
+            f"m(0) = {f:g} b",
+            solve(replace(base, m_fixed_wall=f * b), points=POINTS),
+        )
         for f in fractions
     ]
     return FigureData(
@@ -173,6 +209,7 @@ def compute_finite_g() -> FigureData:
     curves = [
         (
             rf"$B = {B:g}$",
+            f"B = {B:g}",
             solve(
                 PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=B),
                 points=POINTS,
@@ -190,7 +227,7 @@ def compute_finite_g() -> FigureData:
             "B values (not given in the caption): 0, 0.1, 0.3, 1; B = 10 has no real "
             f"solution at eps = {_t(EPS)}"
         ],
-        extra={"B": B_values, "Delta": [shear_layer_thickness(p) for _, p in curves]},
+        extra={"B": B_values, "Delta": [shear_layer_thickness(p) for *_, p in curves]},
     )
 
 
@@ -198,17 +235,40 @@ def compute_finite_g() -> FigureData:
 def compute_asymp_g_c() -> FigureData:
     eps = 1e-3
     cases = {
-        "plane, B = 1": PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=eps, B=1.0),
-        COUETTE: CouetteFlow(material=MATERIAL, wall=Wall.fully_rough(K), eps=eps, Ri=RI),
+        ("plane, B = 1", "plane, B = 1", XI_NAME): PlaneShear(
+            material=MATERIAL, upper=Wall.fully_rough(K), eps=eps, B=1.0
+        ),
+        (COUETTE, COUETTE_NAME, R_GAP_NAME): CouetteFlow(
+            material=MATERIAL, wall=Wall.fully_rough(K), eps=eps, Ri=RI
+        ),
     }
-    panels = [Panel(xlabel=U, ylabel=XI), Panel(xlabel=M, ylabel=XI)]
-    for i, (name, problem) in enumerate(cases.items()):
+    legend = "lines: numerical; symbols: asymptotic"
+    gap = r"$\xi = y/H$ or $(r - R_i)/H$"
+    panels = [
+        Panel(xlabel=U, ylabel=gap, x_name="u", legend_title=legend),
+        Panel(xlabel=M, ylabel=gap, x_name="m", legend_title=legend),
+    ]
+    placed: dict[str, list[FloatArray]] = {"u": [], "m": []}
+    for i, ((label, name, y_name), problem) in enumerate(cases.items()):
         num = solve(problem, points=POINTS)
-        xs = num.xi[:: max(1, len(num.xi) // 45)]  # layered grid: symbols in the layer too
-        asym = solve(problem, method="asymptotic", points=POINTS).evaluate(xs)
-        for panel, a, b in ((panels[0], num.u, asym.u), (panels[1], num.m, asym.m)):
-            panel.add(f"numerical, {name}", a, num.xi, color="k", linestyle=LINESTYLES[i])
-            panel.add_symbols(f"asymptotic, {name}", b, xs, MARKERS[i])
+        asym = solve(problem, method="asymptotic", points=POINTS)
+        for panel, field_name in ((panels[0], "u"), (panels[1], "m")):
+            line = getattr(num, field_name)
+            panel.add(
+                label,
+                line,
+                num.xi,
+                name=f"numerical, {name}",
+                y_name=y_name,
+                color="k",
+                linestyle=LINESTYLES[i],
+            )
+            # the layered grid is dense in the layer: symbols spaced along the curve instead,
+            # shifted to fall between the other cell's where the two curves run together
+            at = _apart(line, num.xi, SYMBOLS - 6, placed[field_name])
+            sym = getattr(asym.evaluate(at), field_name)
+            placed[field_name].append(np.column_stack([sym, at]))
+            panel.add_symbols(label, sym, at, MARKERS[i], name=f"asymptotic, {name}", y_name=y_name)
     return FigureData(
         "fig-asymp_g_c",
         7,
@@ -220,12 +280,33 @@ def compute_asymp_g_c() -> FigureData:
     )
 
 
+def _apart(x: FloatArray, y: FloatArray, n: int, others: list[FloatArray]) -> FloatArray:
+    """y at ``n`` points spaced along the curve (x, y), shifted along it so that they stay
+    farthest (in axes-scaled units) from the symbols already placed, ``others`` [(x, y) rows]."""
+    if not others:
+        return y[spaced_along(x, y, n)]
+    taken = np.vstack(others)
+    scale = np.array(
+        [np.ptp(np.concatenate([x, taken[:, 0]])) or 1.0, np.ptp(np.concatenate([y, taken[:, 1]]))]
+    )
+
+    def clearance(phase: float) -> float:
+        idx = spaced_along(x, y, n, phase=phase)
+        pts = np.column_stack([x[idx], y[idx]]) / scale
+        gaps = np.linalg.norm(pts[:, None, :] - taken[None, :, :] / scale, axis=2)
+        return float(gaps.min())
+
+    best = max(np.linspace(0.0, 0.9, 10), key=clearance)
+    return y[spaced_along(x, y, n, phase=best)]
+
+
 # --------------------------------------------------------------------------- 9: fig-cyl_couette
 def compute_cyl_couette() -> FigureData:
     radii = [1e6, 100.0, 10.0, 1.0]
     curves = [
         (
             r"$\bar R_i = \infty$" if R > 1e5 else rf"$\bar R_i = {R:g}$",
+            "Ri = inf" if R > 1e5 else f"Ri = {R:g}",
             solve(
                 CouetteFlow(material=MATERIAL, wall=Wall.fully_rough(K), eps=EPS, Ri=R),
                 points=POINTS,
@@ -238,7 +319,7 @@ def compute_cyl_couette() -> FigureData:
         9,
         "Couette flow, fully rough walls",
         f"Fully rough Couette cell for four Ri = R_i/H; {PAPER}.",
-        profile_panels(curves, ["u", "spin_cyl", "asym_cyl", "m"]),
+        profile_panels(curves, ["u", "spin_cyl", "asym_cyl", "m"], couette=True),
         notes=[
             "Ri values (not given in the caption): 1e6 (for infinity), 100, 10, 1. With "
             "the paper's outer-wall conditions the Ri -> infinity limit is uniform shear "
@@ -254,13 +335,19 @@ def experiment_curves(preset: str, data: Any = None) -> Panel:
     from ...studies.experiments import PRESETS
 
     cell = PRESETS[preset]
-    panel = Panel(xlabel=XI, ylabel=r"$-u$", title=cell.description)
-    for delta, label, ls in (
-        (None, r"$\delta = \tan^{-1}\sin\phi - 2^\circ$", "-"),
-        (FULLY_ROUGH, "fully rough", "-."),
+    panel = Panel(
+        xlabel=R_GAP,
+        ylabel=r"$-u$",
+        title=cell.description,
+        x_name=R_GAP_NAME,
+        y_name="u_theta_over_wall_speed",
+    )
+    for delta, label, name, ls in (
+        (None, r"$\delta = \tan^{-1}\sin\phi - 2^\circ$", "delta = atan(sin phi) - 2 deg", "-"),
+        (FULLY_ROUGH, "fully rough", "fully rough", "-."),
     ):
         prof = solve(cell.problem(delta), points=POINTS)
-        panel.add(label, prof.xi, -prof.u, color="k", linestyle=ls)
+        panel.add(label, prof.xi, -prof.u, name=name, color="k", linestyle=ls)
     if data is not None:
         panel.add_symbols(data.label, data.xi(cell.eps), data.u_over_uw, "o")
     return panel
@@ -319,6 +406,7 @@ def compute_A_sensitivity() -> FigureData:
     curves = [
         (
             rf"$A = {a:.3g}$",
+            f"A = {a:.3g}",
             solve(
                 PlaneShear(
                     material=Material(PHI, L=L, A=a), upper=Wall.fully_rough(K), eps=EPS, B=1.0
@@ -349,6 +437,7 @@ def compute_K_sensitivity() -> FigureData:
     curves = [
         (
             rf"$K = {k:g}$",
+            f"K = {k:g}",
             solve(
                 PlaneShear(material=MATERIAL, upper=Wall.fully_rough(k), eps=EPS, B=1.0),
                 points=POINTS,
@@ -381,7 +470,7 @@ def thickness_problems(fully_rough: bool) -> dict[str, Problem]:
             material=MATERIAL, upper=wall, lower=Wall.fully_rough(K), eps=EPS
         ),
         "plane, gravity B = 1": PlaneShear(material=MATERIAL, upper=wall, eps=EPS, B=1.0),
-        COUETTE: CouetteFlow(material=MATERIAL, wall=wall, eps=EPS, Ri=RI),
+        COUETTE_NAME: CouetteFlow(material=MATERIAL, wall=wall, eps=EPS, Ri=RI),
     }
     if fully_rough:  # no wall is rougher than fully rough
         problems.pop("plane, rougher lower wall")
@@ -392,8 +481,10 @@ SLT_MARKERS = {
     "plane, identical walls": "o",
     "plane, rougher lower wall": "x",
     "plane, gravity B = 1": "*",
-    COUETTE: "D",
+    COUETTE_NAME: "D",
 }
+SLT_LABELS = {COUETTE_NAME: COUETTE}
+"""Legend text where it differs from the plain name."""
 
 
 def compute_slt() -> FigureData:
@@ -405,19 +496,25 @@ def compute_slt() -> FigureData:
             ylabel=r"$\Delta$",
             xscale="log",
             yscale="log" if fully_rough else "linear",
+            x_name="eps",
+            y_name="Delta",
+            legend_title="symbols: numerical; lines: small-eps law",
         )
-        for i, (name, problem) in enumerate(thickness_problems(fully_rough).items()):
+        for name, problem in thickness_problems(fully_rough).items():
+            i = list(SLT_MARKERS).index(name)  # the same line style for a case in both panels
             curve = thickness_curve(problem, EPS_SLT)
             ok = [j for j, d in enumerate(curve.Delta) if d is not None]
             eps_ok = np.array([EPS_SLT[j] for j in ok])
             delta_ok = np.array([curve.Delta[j] for j in ok])
-            panel.add_symbols(name, eps_ok, delta_ok, SLT_MARKERS[name], markersize=6)
+            label = SLT_LABELS.get(name, name)
+            panel.add_symbols(label, eps_ok, delta_ok, SLT_MARKERS[name], markersize=6, name=name)
             fine = np.geomspace(EPS_SLT[-1], EPS_SLT[0], 60)
             asym = [asymptotic_thickness(replace(problem, eps=e)) for e in fine]
             panel.add(
-                f"_asymptote {name}",
+                label,  # one legend entry: the symbol over its line
                 fine,
                 asym,
+                name=f"small-eps law, {name}",
                 color="k",
                 linestyle=LINESTYLES[i % len(LINESTYLES)],
                 linewidth=0.8,

@@ -51,7 +51,7 @@ def plot_schem_plane_shear(data: FigureData) -> Figure:
         ax.annotate(r"$H$", (-0.65, 0.6), fontsize=11)
         arrow((-0.9, -0.45), (-0.3, -0.45), r"$x$", (-0.25, -0.52))
         arrow((-0.9, -0.45), (-0.9, 0.05), r"$y$", (-1.05, 0.08))
-        ax.annotate(r"$\delta$", (3.75, 1.34), fontsize=10)
+        ax.annotate(r"$\delta$", (0.1, 1.36), fontsize=10)  # clear of V and its arrow
         ax.annotate(r"$\delta_L$", (3.65, -0.2), fontsize=10)
         ax.set_xlim(-1.2, 4.8)
         ax.set_ylim(-0.6, 2.0)
@@ -90,7 +90,7 @@ def plot_schem_cyl_couette(data: FigureData) -> Figure:
         ax.add_patch(
             FancyArrowPatch((0, 0), (0.71, -0.71), arrowstyle="-|>", mutation_scale=10, color="k")
         )
-        ax.annotate(r"$R_i$", (0.25, -0.55), fontsize=11, color="w")
+        ax.annotate(r"$R_i$", (-0.1, -0.62), fontsize=11, color="w")  # beside the arrow
         ax.add_patch(
             FancyArrowPatch((1.0, 0), (2.0, 0), arrowstyle="<|-|>", mutation_scale=10, color="k")
         )
