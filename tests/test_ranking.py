@@ -191,3 +191,24 @@ def test_gap_study_plot_and_failures():
     assert study.plot().axes
     with pytest.raises(ParameterError, match="gaps"):
         thickness_vs_gap("plane", ["cosserat"], [1.0])
+
+
+def test_models_figure_overlays_every_registered_model():
+    from cosserat.paper.figures.models import CELLS, compute_models
+
+    data = compute_models()
+    assert len(data.panels) == 3 * len(CELLS)
+    for i, cell in enumerate(CELLS):
+        models = [m for m, r in RHEOLOGIES.items() if cell in r.cells]
+        labels = [c.label for c in data.panels[2 * i].curves]
+        assert [label.split(",")[0] for label in labels] == models
+        # only the Cosserat model has a spin of its own
+        spin = [c.label for c in data.panels[2 * i + 1].curves]
+        assert spin == ["cosserat, fully rough"]
+    studies = data.extra["gap_studies"]
+    for cell in CELLS:
+        by_label = {s["label"]: s for s in studies[cell]["series"]}
+        assert (
+            by_label["cosserat, delta = 20 deg"]["slope_large_gap"]
+            < (by_label["cosserat, fully rough"]["slope_large_gap"])
+        )
