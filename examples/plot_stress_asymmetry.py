@@ -24,7 +24,7 @@ for eps in (0.05, 0.02, 0.01):
     axes[2].plot(profile.xi, profile.spin_minus_half_vorticity, label=label)
 axes[0].set_ylabel("couple stress $m$")
 axes[1].set_ylabel(r"asymmetry $\bar\sigma_{yx} - \bar\sigma_{xy}$")
-axes[2].set_ylabel(r"spin $-$ half the vorticity, $\omega + \frac{1}{2}\,du/d\xi$")
+axes[2].set_ylabel(r"$\omega + \frac{1}{2}\,du/d\xi$ (spin $-$ half the vorticity)")
 for ax in axes:
     ax.set_xlabel(r"$\xi = y/H$")
     ax.yaxis.set_major_locator(MaxNLocator(5))
