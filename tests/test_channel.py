@@ -366,3 +366,17 @@ def test_mui_channel_without_flow_or_without_steady_rate():
         MuIChannel(eps=0.01, B=0.7)  # B nu/2 = 0.35 < mu_s = 0.382
     with pytest.raises(NoSolutionError, match="mu_2"):
         MuIChannel(eps=0.01, B=1.4)  # B nu/2 = 0.7 > mu_2 = 0.644
+
+
+def test_wall_quantities_match_the_profiles():
+    from cosserat.routes.channel import wall_quantities
+
+    problems = [smooth(1e-3), rough(1e-4), smooth(0.5)]
+    out = wall_quantities(problems, rtol=1e-10)
+    assert [r.status for r in out] == ["ok", "ok", "no-solution"]
+    for pr, r in zip(problems[:2], out[:2], strict=True):
+        prof = solve(pr, rtol=1e-10)
+        assert r.Delta == pytest.approx(shear_layer_thickness(prof), rel=1e-12)
+        assert r.wall_slip == pytest.approx(wall_slip(prof), rel=1e-9, abs=1e-15)
+        assert r.wall_omega == pytest.approx(wall_omega(prof), rel=1e-9)
+    assert "centre line" in out[2].message and out[2].Delta is None

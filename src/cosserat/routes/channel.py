@@ -14,6 +14,7 @@ applies; the lower half is the mirror image by construction.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -29,7 +30,7 @@ from ..results.diagnostics import residuals
 from ..results.profile import Fields, Profile
 from .airy import I_INFINITY, airy_layer, inner_couple_stress, xi_hat_at_fraction
 from .assemble import make_profile
-from .numerical import tolerances
+from .numerical import WallResult, tolerances
 
 START_OFFSET = 1e-4
 """s_0 = xi_0 - 1/2 where the couple-stress pass leaves the centre-line series (its error
@@ -267,6 +268,43 @@ def run_kernel(
     return ChannelSolution(problem, p, info, couple, spin, float(f))
 
 
+def wall_quantities(
+    problems: Sequence[Channel],
+    rtol: float = config.RTOL,
+    f: float = config.DEFAULT_F,
+    *,
+    atol: float | None = None,
+) -> list[WallResult]:
+    """Delta, wall slip, wall spin and wall stress of each channel, as
+    :func:`cosserat.routes.numerical.wall_quantities` reports them for the other cells (one
+    compiled solve each; a failure is a status and its message, never NaN)."""
+    rtol, atol = tolerances(rtol, atol)
+    if not 0.0 < f < 1.0:
+        raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
+    out = []
+    for pr in problems:
+        if not isinstance(pr, Channel):
+            raise ParameterError(f"expected a Channel; got {type(pr).__name__}")
+        try:
+            sol = run_kernel(pr, rtol, atol, f)
+        except NoSolutionError as exc:
+            out.append(WallResult("no-solution", None, None, None, None, str(exc)))
+            continue
+        except ConvergenceError as exc:
+            out.append(WallResult("error", None, None, None, None, str(exc)))
+            continue
+        info = sol.info
+        slip = abs(1.0 - info[kernel.I_U_S])  # u at the wall = 1 - u_hat_w
+        omega = -float(info[kernel.I_W_S])
+        stress = pr.wall_stress
+        if not info[kernel.I_DELTA_OK]:
+            message = f"f = {f:g}: Delta is not defined (the velocity does not fall to f)"
+            out.append(WallResult("error", None, slip, omega, stress, message))
+            continue
+        out.append(WallResult("ok", float(info[kernel.I_DELTA]), slip, omega, stress))
+    return out
+
+
 # ----------------------------------------------------------------- asymptotic route
 THIN_LAYER = 0.1
 """The expansion needs eps Delta at most this fraction of the channel width."""
@@ -393,4 +431,5 @@ __all__ = [
     "parameter_vector",
     "solve_asymptotic",
     "solve_numerical",
+    "wall_quantities",
 ]
