@@ -119,13 +119,14 @@ def test_collocation_agrees_with_the_finite_volumes(name):
     problem = CASES[name]
     velocity, T = _bvp(problem)
     p = solve(problem, xi=XS)
-    assert np.max(np.abs(p.u - velocity(XS))) < 1e-6
-    assert p.diagnostics.stats["stress_ratio"] == pytest.approx(T, rel=1e-7)
+    # the bar is 1e-6; measured 5e-10 to 8e-9 (solve_bvp at tol 1e-6 has its own ~1e-9)
+    assert np.max(np.abs(p.u - velocity(XS))) < 3e-8
+    assert p.diagnostics.stats["stress_ratio"] == pytest.approx(T, rel=1e-8)
     # the second-order solution alone, with its error estimate
     raw = solve(problem, xi=XS, extrapolate=False)
     estimate = raw.diagnostics.residuals["discretisation (u, second order, Richardson estimate)"]
     err = np.max(np.abs(raw.u - velocity(XS)))
-    assert 0.3 * estimate < err < 3.0 * estimate + 1e-8
+    assert 0.5 * estimate < err < 2.0 * estimate
 
 
 # ----------------------------------------------------------------- convergence order
