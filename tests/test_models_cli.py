@@ -75,3 +75,12 @@ def test_validate_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, mes
     assert main([a.format(tmp=tmp_path) for a in argv]) == 2
     err = capsys.readouterr().err
     assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_validate_without_a_corpus_argument_uses_the_shipped_one(tmp_path, capsys):
+    from cosserat.analysis.corpus import shipped_corpus
+
+    if any(shipped_corpus().glob("*.csv")):
+        pytest.skip("a corpus is shipped: validating all of it is a study, not a unit test")
+    assert main(["validate", "--out", str(tmp_path)]) == 2
+    assert "no corpus is shipped in this installation" in capsys.readouterr().err

@@ -234,3 +234,20 @@ def test_shipped_corpus_reads_or_says_it_is_missing():
     else:
         with pytest.raises(InputError, match="no corpus is shipped"):
             read_corpus()
+
+
+def test_a_channel_run_has_its_spin_compared_and_says_why_nothing_else(tmp_path):
+    y = np.arange(20) + 0.5
+    u = 1.0 - ((y - 10.0) / 10.0) ** 2  # a parabola between the walls
+    half = (y - 10.0) / 100.0  # -(1/2) du/dy
+    se = np.full(y.size, 0.01)
+    write_run(tmp_path, "channel", {"cell": "channel", "gap_d": 20.0, "B": 1.0,
+                                    "wall": {"kind": "glued-grains"}},
+              {"y": y, "u": u, "u_se": se, "omega": half, "omega_se": se,
+               "half_vorticity": half, "half_vorticity_se": se})  # fmt: skip
+    report = validate(tmp_path, tmp_path / "out")
+    (result,) = report.results
+    assert result.ranking is None and "no moving wall" in result.error
+    assert result.spin.available and not result.spin.departs
+    assert verdicts(report) == {"spin": "undecided", "smoother": "undecided",
+                                "rough": "undecided"}  # fmt: skip
