@@ -212,3 +212,14 @@ def test_models_figure_overlays_every_registered_model():
             by_label["cosserat, delta = 20 deg"]["slope_large_gap"]
             < (by_label["cosserat, fully rough"]["slope_large_gap"])
         )
+
+
+def test_measured_cell_reads_the_header_and_lets_arguments_override():
+    from cosserat.analysis.measurements import read_profile
+    from cosserat.analysis.ranking import measured_cell
+
+    m = read_profile("# geometry: couette\n# eps: 0.05\n# Ri: 2\ndistance_d,u_over_uw\n0.5,0.9\n")
+    assert measured_cell(m) == {"geometry": "couette", "eps": 0.05, "Ri": 2.0}
+    assert measured_cell(m, Ri=None, eps=0.1)["eps"] == 0.1
+    with pytest.raises(ParameterError, match="geometry"):
+        measured_cell(read_profile("distance_d,u_over_uw\n0.5,0.9\n"), eps=0.1)

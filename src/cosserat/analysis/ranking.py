@@ -758,6 +758,27 @@ class Ranking:
         return fig
 
 
+def measured_cell(measured: MeasuredProfile, **given: Any) -> dict[str, Any]:
+    """The cell parameters a measured profile's header states (``geometry``, ``eps``, ``Ri``,
+    ``B``, ``nu``), with ``given`` values (not None) taking precedence: what
+    :func:`rank_models` takes as ``cell_parameters``.
+
+    Raises
+    ------
+    ParameterError
+        No geometry or no eps in the header or ``given``.
+    """
+    names = {"geometry": "geometry", "eps": "eps", "ri": "Ri", "b": "B", "nu": "nu"}
+    out = {names[k]: v for k, v in measured.meta.items() if k in names}
+    out.update({k: v for k, v in given.items() if v is not None})
+    for key in ("geometry", "eps"):
+        if out.get(key) is None:
+            raise ParameterError(
+                f"the cell's {key} is neither in the profile's header ('# {key}: ...') nor given"
+            )
+    return out
+
+
 def rank_models(
     measured: MeasuredProfile,
     cell_parameters: Mapping[str, Any],
@@ -828,6 +849,7 @@ __all__ = [
     "fit_model",
     "get_parameter",
     "information_criteria",
+    "measured_cell",
     "model_problem",
     "model_velocity",
     "moving_wall",
