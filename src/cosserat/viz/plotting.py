@@ -54,6 +54,41 @@ FIELD_LABELS = {
 }
 """Axis labels of the profile fields (mathtext: for figures only)."""
 
+COUETTE_LABELS = {
+    "xi": r"$(r - R_i)/H$",
+    "sigma_xy": r"$\bar\sigma_{\theta r}$",
+    "sigma_yx": r"$\bar\sigma_{r\theta}$",
+    "sigma_yy": r"$\bar\sigma_{rr}$",
+    "asymmetry": r"$\bar\sigma_{r\theta}-\bar\sigma_{\theta r}$",
+    "spin_minus_half_vorticity": r"$\omega + \frac{1}{2}(\mathrm{d}u/\mathrm{d}\bar r + u/\bar r)$",
+}
+"""The labels a Couette cell names in its own coordinates (r, theta; r-bar = r/H)."""
+
+
+def field_label(problem: object, name: str) -> str:
+    """Axis label of field ``name`` in the cell's own coordinates."""
+    params = getattr(problem, "parameters", None)
+    geometry = params().get("geometry") if callable(params) else None
+    if geometry == "couette" and name in COUETTE_LABELS:
+        return COUETTE_LABELS[name]
+    return FIELD_LABELS[name]
+
+
+def suptitle(fig: Figure, text: str, fontsize: float = 7) -> None:
+    """A figure title wrapped to the figure's width (long problem descriptions are not cut)."""
+    import textwrap
+
+    chars = int(fig.get_figwidth() * 72 / (0.56 * fontsize))  # ~ half an em per character
+    fig.suptitle(textwrap.fill(text, width=max(chars, 20)), fontsize=fontsize)
+
+
+def upright_ylabel(ax: object, label: str) -> None:
+    """A y label read upright when it is a short symbol (xi), along the axis otherwise."""
+    if len(label) <= 10:
+        ax.set_ylabel(label, rotation=0, ha="right", va="center")  # type: ignore[attr-defined]
+    else:
+        ax.set_ylabel(label)  # type: ignore[attr-defined]
+
 
 @contextmanager
 def style() -> Iterator[None]:
@@ -85,6 +120,7 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
             fig, axes = new_figure(2, 2, height=5.6)
         else:
             axes = fig.subplots(2, 2, squeeze=False)
+        fig.set_layout_engine("constrained")
         panels = [
             ("u", profile.u),
             ("spin_minus_half_vorticity", profile.spin_minus_half_vorticity),
@@ -93,10 +129,9 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
         ]
         for ax, (name, values) in zip(axes.ravel(), panels, strict=True):
             ax.plot(values, profile.xi, color="k")
-            ax.set_xlabel(FIELD_LABELS[name])
-            ax.set_ylabel(FIELD_LABELS["xi"])
-        fig.suptitle(profile.problem.describe(), fontsize=7)
-        fig.tight_layout()
+            ax.set_xlabel(field_label(profile.problem, name))
+            upright_ylabel(ax, field_label(profile.problem, "xi"))
+        suptitle(fig, profile.problem.describe())
     return fig
 
 
@@ -113,6 +148,7 @@ def comparison_plot(comparison, title: str = "", residual_panel: bool = False): 
     ncols = 3 if residual_panel else 2
     fig, axes = new_figure(1, ncols, width=3.3 * ncols, height=3.0)
     with style():
+        fig.set_layout_engine("constrained")
         for k, ax in enumerate(axes[0, :2]):
             ax.plot(d_fine, model, "k-", label="model")
             if meas.u_err is not None:
@@ -142,7 +178,8 @@ def comparison_plot(comparison, title: str = "", residual_panel: bool = False): 
                 floor = max(float(positive.min()) / 3 if positive.size else 1e-4, 1e-8)
                 ax.set_yscale("log")
                 ax.set_ylim(floor, 1.5)
-            ax.legend()
+        # one legend below the panels, never on the data
+        fig.legend(*axes[0, 0].get_legend_handles_labels(), loc="outside lower center", ncols=2)
         if residual_panel:
             ax = axes[0, 2]
             ax.axhline(0.0, color="0.6", linewidth=0.8)
@@ -150,6 +187,5 @@ def comparison_plot(comparison, title: str = "", residual_panel: bool = False): 
             ax.set_xlabel(r"distance from the moving wall [$d_p$]")
             ax.set_ylabel("data - model")
         if title:
-            fig.suptitle(title, fontsize=8)
-        fig.tight_layout()
+            suptitle(fig, title, fontsize=8)
     return fig
