@@ -604,10 +604,13 @@ def _diagnose(
         margin = 1e-6 * (hi[i] - lo[i])
         if theta[i] >= hi[i] - margin or theta[i] <= lo[i] + margin:
             what = "the fully rough bound tan(delta) = sin(phi)" if name == "delta" else "a bound"
-            out.append(
-                f"{name} is at {what}: its standard error is not meaningful; use the "
-                f"profile-likelihood interval"
+            advice = (
+                "use the profile-likelihood interval"
+                if params[name].interval is not None
+                else f"a profile-likelihood interval (interval_for including {name}) is"
+                " the meaningful range"
             )
+            out.append(f"{name} is at {what}: its standard error is not meaningful; {advice}")
         p = params[name]
         if p.stderr is not None and p.stderr > max(abs(p.value), 1e-3):
             out.append(

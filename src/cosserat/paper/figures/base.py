@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import csv
 import json
+import textwrap
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,7 +18,7 @@ import numpy as np
 
 from ..._atomic import atomic_open, save_figure, write_text
 from ...model.constitutive import FloatArray
-from ...viz.plotting import new_figure, style
+from ...viz.plotting import STYLE, new_figure, style
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -211,10 +212,10 @@ def draw(data: FigureData, ncols: int = 2, width: float = 6.6, panel_height: flo
                 ax.set_ylabel(panel.ylabel)
             ax.set_xscale(panel.xscale)
             ax.set_yscale(panel.yscale)
-            if n > 1:
-                ax.set_title(f"({panel.tag or 'abcdefgh'[i]}) {panel.title}".rstrip(), loc="left")
-            elif panel.title:
-                ax.set_title(panel.title, loc="left")
+            title = f"({panel.tag or 'abcdefgh'[i]}) {panel.title}" if n > 1 else panel.title
+            if title.strip():  # wrapped to the panel's width: neighbours' titles never touch
+                chars = int(width / ncols * 72 / (0.5 * STYLE["axes.titlesize"])) - 6
+                ax.set_title(textwrap.fill(title.rstrip(), chars), loc="left")
             _handles(ax, panel, entries)
         if entries:
             titles = list(dict.fromkeys(p.legend_title for p in data.panels if p.legend_title))
