@@ -357,13 +357,26 @@ def _terminal() -> bool:
     return not _STATE["quiet"] and sys.stderr.isatty()
 
 
+def _tqdm(**options: Any) -> Any:
+    """A tqdm bar on stderr that follows the terminal's width (80 columns where the terminal
+    reports none, as a pseudo-terminal without a size does)."""
+    import os
+
+    from tqdm import tqdm
+
+    try:
+        width = os.get_terminal_size(sys.stderr.fileno()).columns
+    except (OSError, ValueError, AttributeError):
+        width = 0
+    sizing = {"dynamic_ncols": True} if width > 0 else {"ncols": 80}
+    return tqdm(file=sys.stderr, **sizing, **options)
+
+
 def progress_bar(label: str) -> Callable[[int, int], None] | None:
     """A tqdm progress bar on stderr as a callable ``update(i, n)`` (i of n done), or None
     when stderr is not a terminal or ``--quiet`` was given."""
     if not _terminal():
         return None
-    from tqdm import tqdm
-
     state: dict[str, Any] = {}
 
     def update(i: int, n: int) -> None:
@@ -371,7 +384,7 @@ def progress_bar(label: str) -> Callable[[int, int], None] | None:
         if bar is None or bar.total != n:
             if bar is not None:
                 bar.close()
-            bar = state["bar"] = tqdm(total=n, desc=label, file=sys.stderr, dynamic_ncols=True)
+            bar = state["bar"] = _tqdm(total=n, desc=label)
         bar.update(max(0, i - bar.n))
         if i >= n:
             bar.close()
@@ -385,9 +398,7 @@ def progress_messages(label: str) -> Callable[[str], None] | None:
     stage, the message beside it), or None when silent (as :func:`progress_bar`)."""
     if not _terminal():
         return None
-    from tqdm import tqdm
-
-    bar = tqdm(total=None, desc=label, file=sys.stderr, dynamic_ncols=True, unit="stage")
+    bar = _tqdm(total=None, desc=label, unit="step")
 
     def step(message: str) -> None:
         bar.set_postfix_str(message, refresh=False)
