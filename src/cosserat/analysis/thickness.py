@@ -8,9 +8,13 @@ from typing import TYPE_CHECKING, Any
 
 from ..config import DEFAULT_F
 from ..errors import ConvergenceError, NoSolutionError, ParameterError
+from ..model import CouetteFlow, PlaneShear
 from ..results.wall import shear_layer_thickness
-from ..routes import COSSERAT, solve
+from ..routes import solve
 from ..routes.numerical import wall_quantities
+
+BATCH_PROBLEMS = (PlaneShear, CouetteFlow)
+"""Problems the compiled batch (:func:`cosserat.routes.numerical.wall_quantities`) solves."""
 
 if TYPE_CHECKING:
     from ..model import Problem
@@ -38,9 +42,9 @@ def thickness_curve(
 
     An eps at which the model has no real solution (:class:`NoSolutionError`) gives None and
     its reason in ``failures``; other errors propagate. The numerical route of the Cosserat
-    model solves the whole curve in one call of the compiled batch kernel (the same kernel as
-    a single solve); the other routes and rheologies solve eps by eps, calling
-    ``progress(i, n)`` after each.
+    model on plane shear and Couette flow (:data:`BATCH_PROBLEMS`) solves the whole curve in
+    one call of the compiled batch kernel (the same kernel as a single solve); the other
+    routes, cells and rheologies solve eps by eps, calling ``progress(i, n)`` after each.
 
     Examples
     --------
@@ -53,7 +57,7 @@ def thickness_curve(
     """
     problems = [replace(problem, eps=eps) for eps in eps_values]
     eps_list = [float(e) for e in eps_values]
-    if method == "numerical" and type(problem) in COSSERAT.cells.values():
+    if method == "numerical" and isinstance(problem, BATCH_PROBLEMS):
         unknown = sorted(set(options) - {"rtol", "atol"})
         if unknown:
             raise ParameterError(
