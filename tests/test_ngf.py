@@ -316,6 +316,22 @@ def test_profile_fields_and_wall_quantities(name):
     assert shear_layer_thickness(back) == delta
 
 
+@pytest.mark.parametrize("name", ["couette", "couette-saturating", "plane-gravity"])
+def test_the_creep_tail_keeps_its_sign_and_order(name):
+    """Deep in the creep region u and g are 1e-20 of their peak and below: still of one sign
+    and monotone (the velocity is summed from the wall it decays towards, and the
+    extrapolation works on the logarithm there), not round-off of O(1) sums."""
+    problem = CASES[name]
+    p = solve(problem, points=4001)
+    g = fluidity(p)
+    assert np.all(g > 0.0) and g.min() < 1e-15 * g.max()
+    if isinstance(problem, NGFCouetteFlow):  # u = -v/V_i: -1 at the inner cylinder, 0 outside
+        assert np.all(p.u[:-1] < 0.0)
+    else:
+        assert np.all(p.u[1:] > 0.0)
+    assert np.all(np.diff(p.u) >= 0.0)
+
+
 def test_registration_and_the_methods_that_do_not_exist():
     assert RHEOLOGIES["ngf"] is NGF_RHEOLOGY
     assert set(NGF_RHEOLOGY.cells) == {"plane", "couette", "channel"}
