@@ -20,7 +20,7 @@ from scipy.integrate import solve_bvp
 
 from cosserat import NoSolutionError, ParameterError, shear_layer_thickness, solve, wall_slip
 from cosserat.config import DEFAULT_F, MUI_I0, MUI_MU_2, MUI_MU_S
-from cosserat.errors import MethodNotAvailableError
+from cosserat.errors import ConvergenceError, MethodNotAvailableError
 from cosserat.model.mui import MuI, MuICouetteFlow, MuIPlaneShear
 from cosserat.model.ngf import NGF, NGFChannel, NGFCouetteFlow, NGFPlaneShear
 from cosserat.model.rheology import Cell
@@ -368,6 +368,8 @@ def test_no_solution_is_said_in_words():
         solve(NGFPlaneShear(eps=0.02, stress_ratio=0.7, rheology=SATURATING))
     with pytest.raises(NoSolutionError, match="beyond the fastest steady NGF flow"):
         solve(NGFCouetteFlow(eps=0.01, Ri=1.0, I_w=0.9, rheology=SATURATING))
+    with pytest.raises(ConvergenceError, match="needs 8388608 cells"):  # too thin for the grid
+        solve(NGFCouetteFlow(eps=0.001, Ri=1.0, rheology=NGF(A=0.001)))
 
 
 @pytest.mark.parametrize(

@@ -368,8 +368,9 @@ def _profile(
             first = False
             if need > MAX_CELLS:
                 raise ConvergenceError(
-                    f"{problem.describe()}: the shortest cooperativity length needs {need} cells "
-                    f"across the gap, more than {MAX_CELLS}; lower the resolution"
+                    f"{problem.describe()}: resolving the shortest cooperativity length (and, "
+                    f"with mu_2, the peak of g_loc at the wall) needs {need} cells across the "
+                    f"gap, more than {MAX_CELLS}; lower the resolution or the driving"
                 )
             n = max(need, n)
             half = _solve_at(problem, n // 2, level.T)
