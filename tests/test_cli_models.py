@@ -4,6 +4,7 @@ option of another model."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import pytest
@@ -152,3 +153,33 @@ def test_thickness_compare_and_fit_take_a_model(capsys, request):
     record = json.loads(out)
     assert code == 0 and record["model"] == "mui" and set(record["parameters"]) == {"mu_s"}
     assert "phi" in one_line_error(capsys, "fit", data, "--model", "mui", "--free", "phi")
+
+
+@pytest.mark.parametrize(
+    ("model", "cell"),
+    [(name, cell) for name, rheology in RHEOLOGIES.items() for cell in rheology.cells],
+)
+def test_every_model_solves_on_every_cell_from_the_command_line(capsys, model, cell):
+    required = [
+        p.key
+        for p in parameters_of(RHEOLOGIES[model].cells[cell]).values()
+        if p.default is dataclasses.MISSING and p.key not in ("eps", "Ri")
+    ]
+    given = [a for key in required for a in ("--param", f"{key}=1")]  # e.g. a channel's B
+    code, out, err = run(
+        capsys, "solve", cell, "--model", model, "--eps", "0.02", "--points", "11",
+        "--format", "json", *given,
+    )  # fmt: skip
+    assert code == 0, err
+    record = json.loads(out)
+    coordinate = "r" if cell == "couette" else "y"
+    assert record[coordinate][0] == (
+        record["parameters"].get("Ri", 0.0) if cell == "couette" else 0.0
+    )
+    assert record["parameters"].get("rheology", "cosserat") == model
+
+
+def test_thickness_on_the_channel(capsys):
+    code, out, _ = run(capsys, "thickness", "channel", "--eps", "1e-2", "1e-3", "--format", "json")
+    record = json.loads(out)
+    assert code == 0 and all(d is not None and d > 0 for d in record["Delta"])

@@ -28,6 +28,9 @@ PRESETS = ("mustard", "poppy", "glass")
 MAX_POINTS = 1_000_000
 """Most output points ``solve --points`` accepts (more would only exhaust memory)."""
 FORMATS = ("text", "json", "csv")
+CELL_DEFAULTS = {"couette": ("Ri",)}
+"""Cell parameters whose command-line default (:data:`cosserat.model.build.DEFAULTS`) also
+applies to the other models on that cell (``--Ri``'s help states it)."""
 
 _STATE = {"quiet": False}
 
@@ -260,8 +263,8 @@ def model_problem(model: str, cell: str, given: dict[str, Any], extra: dict[str,
         )
     values = {**values, **extra}
     for name, param in params.parameters_of(params.problem_class(model, cell)).items():
-        # a cell parameter the class leaves required takes the command line's default (Ri)
-        if name not in values and param.default is MISSING and name in DEFAULTS:
+        # a cell parameter the class leaves required takes the default --help states (Ri)
+        if name not in values and param.default is MISSING and name in CELL_DEFAULTS.get(cell, ()):
             values[name] = DEFAULTS[name]
     return params.build(model, cell, values)
 
