@@ -251,3 +251,19 @@ def test_a_channel_run_has_its_spin_compared_and_says_why_nothing_else(tmp_path)
     assert result.spin.available and not result.spin.departs
     assert verdicts(report) == {"spin": "undecided", "smoother": "undecided",
                                 "rough": "undecided"}  # fmt: skip
+
+
+def test_profiles_of_the_cosserat_model_at_small_gaps_cannot_decide_its_limit_laws(tmp_path):
+    # at H/d = 20-80 the model's own Delta still grows with the gap (the limits are
+    # H/d -> infinity): data that follow the model agree with its slope there, not with 0
+    for i, g in enumerate((20, 40, 80)):
+        p = model_problem("cosserat", "plane", {"eps": 1 / g, "B": 1.0, "delta": 20.0})
+        synthetic_run(tmp_path, f"smooth_{g}", model_solve(p, points=401), noise=0.01, seed=i,
+                      wall={"kind": "smooth-frictional"})  # fmt: skip
+    report = validate(tmp_path, models=["cosserat"])
+    assert verdicts(report)["smoother"] == "undecided"
+    assert "larger gaps are needed" in report.verdicts[1].text
+    (group,) = report.groups
+    assert group.slope.slope > 0.3  # clearly not 0 ...
+    cos = group.model_slopes["cosserat"].slope  # ... and what the model says at these gaps
+    assert abs(group.slope.slope - cos) < 2 * group.slope.stderr
