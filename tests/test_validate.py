@@ -195,6 +195,8 @@ def test_reader_round_trip_and_orientation(tmp_path):
         (lambda p: p.write_text("y,u,u_se\n0.5,1,0.1\n1.5,0.5,0.1\n9.5,0,0.1\n"),
          "outside the gap"),
         (lambda p: p.write_text("y,u,u_se\n0.5,1,0.1\n\n2.5,0,0.1\n"), "line 3: empty row"),
+        (lambda p: p.write_text("y,u,u_se\n0.5,1,0.1\n1.5,nan,0.1\n2.5,0,0.1\n"),
+         "line 3, column 'u': nan is not finite"),
         (lambda p: _meta(p, columns={"y": "", "u": "", "u_se": "", "omega": ""}),
          "describes column(s) omega"),
     ],
@@ -267,3 +269,17 @@ def test_profiles_of_the_cosserat_model_at_small_gaps_cannot_decide_its_limit_la
     assert group.slope.slope > 0.3  # clearly not 0 ...
     cos = group.model_slopes["cosserat"].slope  # ... and what the model says at these gaps
     assert abs(group.slope.slope - cos) < 2 * group.slope.stderr
+
+
+def test_optional_columns_may_have_unusable_bins_which_are_left_out(tmp_path):
+    y = np.arange(6) + 0.5
+    se = np.full(6, 0.01)
+    omega = np.array([np.nan, 0.1, 0.1, 0.1, 0.1, 0.1])
+    path = write_run(tmp_path, "r", {"cell": "plane", "gap_d": 6.2, "B": 0.0},
+                     {"y": y, "u": y / 6.0, "u_se": se, "omega": omega, "omega_se": se,
+                      "half_vorticity": np.full(6, 0.1), "half_vorticity_se": se})  # fmt: skip
+    run = read_run(path)
+    assert any("omega: 1 bin(s) not finite" in n for n in run.notes)
+    report = validate(tmp_path, models=["cosserat"])
+    spin = report.results[0].spin
+    assert spin.available and spin.departure.size == 5 and not spin.departs

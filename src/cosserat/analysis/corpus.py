@@ -59,6 +59,16 @@ WALL_KINDS = ("glued-grains", "smooth-frictional")
 ROUGHNESS = ("fully-rough", "smoother")
 
 
+OUTSIDE_TOLERANCE_D = 0.5
+"""Bin centres this far outside the sidecar's gap [d] are accepted (a coarse-grained wall
+position) and taken at the wall; farther out they are an error."""
+
+
+def usable(values: FloatArray, stderr: FloatArray) -> FloatArray:
+    """True where a measured quantity and its standard error can be used (finite, se > 0)."""
+    return np.isfinite(values) & np.isfinite(stderr) & (stderr > 0.0)
+
+
 def shipped_corpus() -> Path:
     """The folder of the corpus shipped with the package, ``cosserat/data/corpus``."""
     return Path(str(resources.files("cosserat") / "data" / "corpus"))
@@ -160,8 +170,10 @@ class Run:
         c = self.columns[COORDINATE[self.cell]]
         if self.cell == "couette":
             inner = float(self.Ri_d or 0.0)
-            return c - inner if self.moving_wall == "inner" else inner + self.gap_d - c
-        return self.gap_d - c if self.moving_wall == "upper" else c.copy()
+            d = c - inner if self.moving_wall == "inner" else inner + self.gap_d - c
+        else:
+            d = self.gap_d - c if self.moving_wall == "upper" else c.copy()
+        return np.clip(d, 0.0, self.gap_d)  # bins a little beyond the gap: at the wall
 
     @property
     def sign(self) -> float:
@@ -274,9 +286,7 @@ def _read_columns(path: Path) -> dict[str, FloatArray]:
                 raise InputError(
                     f"{path}, line {line}, column {name!r}: {cell!r} is not a number"
                 ) from None
-            if not math.isfinite(x):
-                raise InputError(f"{path}, line {line}, column {name!r}: {cell!r} is not finite")
-            values[name].append(x)
+            values[name].append(x)  # nan/inf: checked by read_run (allowed where optional)
     return {k: np.asarray(v, dtype=float) for k, v in values.items()}
 
 
@@ -300,6 +310,13 @@ def read_run(csv_path: str | Path) -> Run:
         raise InputError(
             f"{path}: missing column(s) {', '.join(absent)} (a {cell} run needs {', '.join(need)})"
         )
+    for name in need:
+        bad = np.flatnonzero(~np.isfinite(columns[name]))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(
+                f"{path}, line {i + 2}, column {name!r}: {columns[name][i]} is not finite"
+            )
     n = columns[coord].size
     if n < 3:
         raise InputError(f"{path}: {n} bins; a profile needs at least 3")
@@ -313,8 +330,7 @@ def read_run(csv_path: str | Path) -> Run:
         )
     lo = float(meta.get("Ri_d") or 0.0) if cell == "couette" else 0.0
     hi = lo + float(meta["gap_d"])
-    tol = 1e-9 * max(1.0, hi)
-    outside = np.flatnonzero((c < lo - tol) | (c > hi + tol))
+    outside = np.flatnonzero((c < lo - OUTSIDE_TOLERANCE_D) | (c > hi + OUTSIDE_TOLERANCE_D))
     if outside.size:
         i = int(outside[0])
         raise InputError(
@@ -322,17 +338,29 @@ def read_run(csv_path: str | Path) -> Run:
             f"[{lo:g}, {hi:g}] given by the sidecar"
         )
     notes = []
+    if np.any((c < lo) | (c > hi)):
+        notes.append(
+            f"bins up to {OUTSIDE_TOLERANCE_D:g} d beyond the sidecar's gap [{lo:g}, {hi:g}] "
+            "are taken at the wall"
+        )
+    bad = np.flatnonzero(columns["u_se"] <= 0.0)
+    if bad.size:
+        i = int(bad[0])
+        raise InputError(
+            f"{path}, line {i + 2}, column 'u_se': a standard error must be > 0; got "
+            f"{columns['u_se'][i]:g}"
+        )
     for name in list(columns):
-        if name.endswith("_se"):
-            bad = np.flatnonzero(columns[name] <= 0.0)
-            if bad.size:
-                i = int(bad[0])
-                raise InputError(
-                    f"{path}, line {i + 2}, column {name!r}: a standard error must be > 0; got "
-                    f"{columns[name][i]:g}"
+        if name.endswith("_se") and name[:-3] not in columns:
+            notes.append(f"column {name} without {name[:-3]}")
+    for q in OPTIONAL_QUANTITIES:
+        if q in columns and f"{q}_se" in columns:
+            unusable = ~usable(columns[q], columns[f"{q}_se"])
+            if np.any(unusable):
+                notes.append(
+                    f"{q}: {int(np.sum(unusable))} bin(s) not finite or with {q}_se <= 0 are "
+                    "left out of the comparisons"
                 )
-            if name[:-3] not in columns:
-                notes.append(f"column {name} without {name[:-3]}")
     for q in OPTIONAL_QUANTITIES:
         if q in columns and f"{q}_se" not in columns:
             notes.append(f"column {q} has no {q}_se: it is not used")
@@ -478,5 +506,6 @@ __all__ = [
     "read_run",
     "shipped_corpus",
     "synthetic_run",
+    "usable",
     "write_run",
 ]

@@ -47,7 +47,7 @@ import numpy as np
 from scipy.stats import chi2 as chi2_dist
 
 from .._atomic import save_figure, write_text
-from ..analysis.corpus import Corpus, Run, read_corpus
+from ..analysis.corpus import Corpus, Run, read_corpus, usable
 from ..analysis.gap import PAPER_SLOPES, SlopeFit, power_law_slope
 from ..analysis.ranking import Ranking, moving_wall, rank_models
 from ..config import DEFAULT_F
@@ -188,9 +188,13 @@ def compare_spin(
         )
     omega, s_o = run.quantity("omega")
     half, s_h = run.quantity("half_vorticity")
+    ok = usable(omega, s_o) & usable(half, s_h)
+    if np.sum(ok) < 3:
+        return SpinComparison(False, "fewer than 3 bins with a finite spin and its error")
+    omega, s_o, half, s_h = omega[ok], s_o[ok], half[ok], s_h[ok]
     dep = omega - half
     se = np.sqrt(s_o**2 + s_h**2)
-    dist = run.distance_d
+    dist = run.distance_d[ok]
     other = run.gap_d - dist
     near = np.minimum(dist, other) <= near_wall_d
     out = SpinComparison(True, distance_d=dist, departure=dep, stderr=se, near_wall=near)
