@@ -167,6 +167,12 @@ def test_cell_gives_torque_stress_slip_and_velocity_in_si(capsys):
     assert rec["r"][0] == 0.05 and rec["r"][-1] == pytest.approx(0.07)
     assert rec["Delta_m"] == pytest.approx(shear_layer_thickness(prof) * 1e-3, rel=1e-9)
     assert rec["units"]["torque"] == "N m" and rec["units"]["v_theta"] == "m/s"
+    # the shear stress's share of the torque; the rest is the wall couple stress, and the total
+    # is the same on every cylinder across the gap (torque balance, analysis.cell)
+    shear = 2 * math.pi * 0.05**2 * rec["wall_shear_stress"]
+    assert rec["torque_per_height_shear"] == pytest.approx(shear, rel=1e-12)
+    across = cell.torque_density(prof, 0.1)
+    np.testing.assert_allclose(across, rec["torque_per_height"], rtol=1e-9)
 
 
 def test_cell_by_wall_speed_text_csv_and_depth(capsys, tmp_path):

@@ -40,6 +40,7 @@ _DEFAULTS = {f.name: f.default for f in dataclasses.fields(CouetteCell)}
 UNITS = {
     "torque": "N m",
     "torque_per_height": "N m/m",
+    "torque_per_height_shear": "N m/m",
     "wall_shear_stress": "Pa",
     "mean_stress": "Pa",
     "slip_velocity": "m/s",
@@ -124,6 +125,10 @@ def compute(args: argparse.Namespace) -> tuple[dict[str, Any], Any, CouetteCell]
         "torque": cell.torque(profile),
         "torque_per_height": float(cell.torque_density(profile, depth)[0]),
         "wall_shear_stress": cell.wall_shear_stress(profile, depth),
+        "torque_per_height_shear": 2.0
+        * math.pi
+        * cell.R_i**2
+        * cell.wall_shear_stress(profile, depth),
         "mean_stress": float(cell.mean_stress(depth)),
         "slip_velocity": cell.slip_velocity(profile),
         "Delta": delta,
@@ -158,6 +163,12 @@ def cell_text(record: dict[str, Any]) -> str:
     ]
     width = max(len(r[0]) for r in rows)
     lines += [f"{name.ljust(width)}  {value:.6g} {unit}" for name, value, unit in rows]
+    shear = record["torque_per_height_shear"]
+    lines.insert(
+        -4,
+        f"{'':{width}}  (the wall shear stress gives 2 pi R_i^2 tau_w = {shear:.6g} N m/m, the "
+        f"couple stress {record['torque_per_height'] - shear:.6g} N m/m)",
+    )
     lines[-1] += f" ({record['Delta']:.4g} grain diameters)"
     n = len(record["r"])
     picks = sorted({round(k * (n - 1) / (TABLE_ROWS - 1)) for k in range(TABLE_ROWS)})
