@@ -32,7 +32,9 @@ def cmd_sweep(args: argparse.Namespace) -> None:
             scheduler=args.scheduler,
             progress=progress_bar("sweep"),
         )
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, SystemError) as exc:
+        if not _interrupted(exc):
+            raise
         print(
             f"\ninterrupted: the finished rows are in {journal_path(out)}; run the same command "
             f"with --resume to finish the sweep",
@@ -47,6 +49,17 @@ def cmd_sweep(args: argparse.Namespace) -> None:
         f"{len(rows)} cases in {time.perf_counter() - start:.1f} s -> {out} "
         f"({', '.join(f'{k}: {v}' for k, v in counts.items())}{reused})"
     )
+
+
+def _interrupted(exc: BaseException | None) -> bool:
+    """True for Ctrl-C, also when it arrived inside a compiled kernel, which reports it as a
+    SystemError caused by the KeyboardInterrupt."""
+    seen = 0
+    while exc is not None and seen < 20:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        exc, seen = exc.__cause__ or exc.__context__, seen + 1
+    return False
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]

@@ -34,9 +34,9 @@ worker processes, or on a Dask cluster (``scheduler="tcp://..."``); the rows are
 way, and a chunk whose Dask worker is lost is run again.
 
 :func:`run_sweep_to_table` (``cosserat sweep``) appends each finished chunk of rows to a journal
-``<table>.part`` beside the table, flushed at once, and writes the table atomically at the end:
-an interrupted sweep keeps every finished row, and ``resume=True`` (``--resume``) computes only
-the cases whose rows are missing (rows are matched by their case parameters).
+``<table>.part`` beside the table, flushed at once (synced to disk every second), and writes the
+table atomically at the end: an interrupted sweep keeps every finished row, and ``resume=True``
+(``--resume``) computes only the cases whose rows are missing (matched by their parameters).
 """
 
 from __future__ import annotations
@@ -46,6 +46,7 @@ import io
 import itertools
 import math
 import os
+import time
 import tomllib
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import as_completed
@@ -402,6 +403,11 @@ def _complete_rows(path: Path, header: list[str]) -> tuple[list[list[str]], int]
     return [row for row in lines[1:] if len(row) == len(header)], end
 
 
+JOURNAL_SYNC = 1.0
+"""Seconds between the journal's syncs to disk (each chunk is flushed to the operating system at
+once, which is all a killed process needs; the sync bounds what a crash of the machine loses)."""
+
+
 @dataclass
 class SweepRun:
     """The outcome of :func:`run_sweep_to_table`."""
@@ -424,7 +430,8 @@ def run_sweep_to_table(
     """Run a sweep into the table ``path`` so that an interruption loses no finished row.
 
     Every finished chunk of rows is appended to the journal :func:`journal_path` (``<path>.part``,
-    a CSV with the table's columns) and flushed to disk at once; when all cases are done the
+    a CSV with the table's columns) and flushed at once (synced to disk every
+    :data:`JOURNAL_SYNC` seconds); when all cases are done the
     table is written atomically in the spec's order and the journal removed. An interrupted run
     (Ctrl-C, a killed process or machine) thus leaves every finished row in the journal, and
     ``resume=True`` reuses the rows found in the journal and in an existing CSV table at
@@ -477,10 +484,14 @@ def run_sweep_to_table(
                 fh.write(_csv_lines([header]))
             chunks = [pending[i : i + spec.chunk] for i in range(0, len(pending), spec.chunk)]
 
+            synced = [time.monotonic()]
+
             def keep(k: int, rows: list[dict[str, Any]]) -> None:
                 fh.write(_csv_lines([[_cell(r.get(c)) for c in header] for r in rows]))
-                fh.flush()
-                os.fsync(fh.fileno())
+                fh.flush()  # in the operating system now: a killed process loses nothing
+                if time.monotonic() - synced[0] > JOURNAL_SYNC:  # and on disk, every second
+                    os.fsync(fh.fileno())
+                    synced[0] = time.monotonic()
                 for slot, row in zip(chunks[k], rows, strict=True):
                     slots[slot] = row
 
