@@ -224,7 +224,10 @@ def test_corpus_folder_errors(tmp_path):
         read_corpus(tmp_path / "nowhere")
     with pytest.raises(InputError, match="no runs"):
         read_corpus(tmp_path)
-    (tmp_path / "lonely.json").write_text("{}")
+    (tmp_path / "timing.json").write_text("{}")  # not a sidecar: ignored
+    with pytest.raises(InputError, match="no runs"):
+        read_corpus(tmp_path)
+    (tmp_path / "lonely.json").write_text('{"format": "cosserat-corpus/1"}')
     with pytest.raises(InputError, match=_escape("sidecar(s) without a CSV: lonely.json")):
         read_corpus(tmp_path)
 

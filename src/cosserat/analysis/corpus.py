@@ -124,10 +124,12 @@ class Run:
 
     @property
     def wall_key(self) -> str:
-        """Runs with the same cell, wall and (Couette) inner radius form one gap series."""
+        """Runs with the same cell, wall, gravity (plane, B to one significant digit) and
+        (Couette) inner radius form one gap series."""
         w = {k: v for k, v in sorted(self.wall.items())}
         extra = f", Ri_d = {self.Ri_d:g}" if self.cell == "couette" and self.Ri_d else ""
-        grav = f", B = {self.B:g}" if self.cell == "plane" else ""
+        # B to one significant digit: runs of one design differ by their measured gaps
+        grav = f", B = {self.B:.1g}" if self.cell == "plane" else ""
         kind = w.pop("kind", "unknown wall")
         details = ", ".join(f"{k} = {v}" for k, v in w.items())
         return f"{self.cell}, {kind}" + (f" ({details})" if details else "") + grav + extra
@@ -381,6 +383,16 @@ def read_run(csv_path: str | Path) -> Run:
     return Run(path.stem, path, meta, columns, tuple(notes))
 
 
+def _is_sidecar(path: Path) -> bool:
+    """A JSON file that says it is a run's sidecar (other JSON files in a corpus folder, such
+    as a run log, are not runs)."""
+    try:
+        meta = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return True  # unreadable: report it rather than skip it
+    return isinstance(meta, dict) and meta.get("format") == FORMAT
+
+
 def read_corpus(folder: str | Path | None = None) -> Corpus:
     """Every run in ``folder`` (default :func:`shipped_corpus`), sorted by name.
 
@@ -400,7 +412,7 @@ def read_corpus(folder: str | Path | None = None) -> Corpus:
         raise InputError(f"{path}: not a folder (give a folder of <run>.csv + <run>.json)")
     csvs = sorted(path.glob("*.csv"))
     jsons = {p.stem for p in path.glob("*.json")}
-    orphans = sorted(jsons - {p.stem for p in csvs})
+    orphans = sorted(s for s in jsons - {p.stem for p in csvs} if _is_sidecar(path / f"{s}.json"))
     if orphans:
         names = ", ".join(o + ".json" for o in orphans)
         raise InputError(f"{path}: sidecar(s) without a CSV: {names}")
