@@ -214,9 +214,14 @@ def resolve_short_names(app, env, node, contnode):  # type: ignore[no-untyped-de
 
 
 def reread_optional_toctrees(app, env, added, changed, removed):  # type: ignore[no-untyped-def]
-    """Pages with an optional toctree are read again on every build: whether an entry shows
-    depends on files that may have appeared since."""
-    return [d for d in env.found_docs if "optional-toctree" in Path(env.doc2path(d)).read_text()]
+    """Pages read again on every build: those with an optional toctree (whether an entry shows
+    depends on files that may have appeared since) and the API reference (it depends on the
+    sources in src/, which Sphinx does not watch)."""
+    return [
+        d
+        for d in env.found_docs
+        if d.startswith("api/") or "optional-toctree" in Path(env.doc2path(d)).read_text()
+    ]
 
 
 def setup(app):  # type: ignore[no-untyped-def]
