@@ -615,16 +615,23 @@ def _estimates(
                 int(j),
                 "not identifiable: the profile does not change along it (singular Jacobian)",
             )
-        if not np.all(weak):
-            warnings.append(
-                "the free parameters are not all identifiable together: fix one of "
-                + ", ".join(c.names[j] for j in np.flatnonzero(weak))
-            )
+        warnings.append(
+            "the profile does not change along some combination of the free parameters (a "
+            "singular Jacobian): fix one of " + ", ".join(c.names[j] for j in np.flatnonzero(weak))
+        )
     out = {}
     for j, name in enumerate(c.names):
         e = float(stderr[j])
         if j in reasons or not math.isfinite(e):
-            out[name] = Estimate(float(values[j]), None, reasons.get(j, "not identifiable"))
+            out[name] = Estimate(
+                float(values[j]),
+                None,
+                reasons.get(
+                    j,
+                    "not identifiable: its standard error is not finite (the free parameters "
+                    "are degenerate together)",
+                ),
+            )
         else:
             out[name] = Estimate(float(values[j]), e)
     return out
