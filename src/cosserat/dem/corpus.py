@@ -23,7 +23,10 @@ CORPUS_RUN = RunLength(settle_steps=30_000, steps=400_000, dump_every=1_000)
 """Run length of the corpus's smallest plane cells (H = 20 d): 400 samples of the sheared
 state at a 0.996e-3 time step."""
 SHORT_RUN = RunLength(settle_steps=30_000, steps=250_000, dump_every=1_000)
-"""Run length of the larger cells (plane H = 40, 80 d; the channel; Couette H = 10 d)."""
+"""Run length of the plane cells at H = 40 d, the channel and Couette at H = 10 d."""
+LONG_RUN = RunLength(settle_steps=30_000, steps=600_000, dump_every=1_500)
+"""Run length of the plane cells at H = 80 d (driven at V = 0.2: 250k steps at V = 0.1 left
+them in their transient, the upper 50 d sliding as a block)."""
 COUETTE_RUN = RunLength(settle_steps=30_000, steps=200_000, dump_every=1_000)
 """Run length of the largest cell (Couette H = 20 d, 3,837 grains)."""
 
@@ -36,9 +39,11 @@ def corpus_cells() -> dict[str, Cell]:
     cells: dict[str, Cell] = {}
     for label, wall in (("rough", ROUGH), ("smooth", SMOOTH)):
         for gap in (20, 40, 80):
-            run = CORPUS_RUN if gap == 20 else SHORT_RUN
+            run = {20: CORPUS_RUN, 40: SHORT_RUN, 80: LONG_RUN}[gap]
+            speed = 0.2 if gap == 80 else 0.1  # H = 80 d: twice the strain per step
             cells[f"plane_{label}_H{gap}"] = PlaneShearDEM(gap=gap, width=30.0, B=1.0,
-                                                           wall=wall, run=run)  # fmt: skip
+                                                           wall_speed=speed, wall=wall,
+                                                           run=run)  # fmt: skip
     cells["plane_rough_H20_halfspeed"] = replace(cells["plane_rough_H20"], wall_speed=0.05)
     for gap, run in ((10, SHORT_RUN), (20, COUETTE_RUN)):
         cells[f"couette_Ri20_H{gap}"] = CouetteDEM(gap=gap, inner_radius=20.0, wall=ROUGH,
