@@ -224,9 +224,18 @@ def reread_optional_toctrees(app, env, added, changed, removed):  # type: ignore
     ]
 
 
+def skip_namedtuple_aliases(app, what, name, obj, skip, options):  # type: ignore[no-untyped-def]
+    """NamedTuple fields document themselves as "Alias for field number N": the class docstring
+    already says what they are."""
+    if (getattr(obj, "__doc__", None) or "").startswith("Alias for field number"):
+        return True
+    return None
+
+
 def setup(app):  # type: ignore[no-untyped-def]
     app.add_directive("optional-toctree", OptionalTocTree)
     app.connect("env-get-outdated", reread_optional_toctrees)
+    app.connect("autodoc-skip-member", skip_namedtuple_aliases)
     app.connect("source-read", link_outside_files)
     app.connect("autodoc-process-docstring", escape_absolute_values, priority=400)
     app.connect("missing-reference", resolve_short_names)
