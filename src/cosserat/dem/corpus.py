@@ -142,4 +142,3 @@ def generate_corpus(
 
 
 __all__ = ["CORPUS_RUN", "corpus_cells", "generate_corpus", "run_cell"]
-_ = (ChannelDEM, CouetteDEM, PlaneShearDEM)

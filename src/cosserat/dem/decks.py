@@ -250,4 +250,3 @@ def build_deck(cell: Cell) -> Deck:
 
 
 __all__ = ["ATOM_COLUMNS", "CONTACT_COLUMNS", "Deck", "build_deck", "job_script", "timestep"]
-_ = (ChannelDEM, PlaneShearDEM)
