@@ -103,7 +103,7 @@ def test_sweep_on_a_dask_local_cluster_gives_the_same_rows():
     spec = parse_spec(__import__("tomllib").loads(SPEC))
     local = run_sweep(spec, workers=1)
     with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
     ) as cluster:
         remote = run_sweep(spec, scheduler=cluster.scheduler_address)
     assert remote == local
@@ -373,7 +373,7 @@ def test_a_dask_worker_killed_mid_sweep_loses_no_row(allowed_failures):
     with (
         dask.config.set({"distributed.scheduler.allowed-failures": allowed_failures}),
         distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
         ) as cluster,
         distributed.Client(cluster) as client,
     ):
