@@ -132,7 +132,7 @@ def _solve_at(problem: NGFProblem, n: int, hint: float | None) -> _Level:
         reach = kernel.fluidity(kind, shape, top, n, a_eps, mu_s, b, mu_2, dirichlet, F)
         raise NoSolutionError(
             f"{problem.describe()}: I_w = {problem.I_w:g} is beyond the fastest steady NGF flow "
-            f"with the saturating local law in this cell (I_w -> {reach:.6g} as the stress "
+            f"with the saturating local law in this cell (I_w -> about {reach:.3g} as the stress "
             f"ratio at the {problem.wall_name} tends to mu_2 = {mu_2:.6g}; beyond mu_2 the "
             "local law has no rate, and the fluidity stays finite because it diffuses away "
             "from the wall)"
