@@ -265,3 +265,22 @@ def test_fit_cli_text_with_unidentifiable_parameters(tmp_path, capsys):
     assert code == 0
     assert "nan" not in out.lower()
     assert "warning: A is not identifiable from these data" in out
+
+
+def test_the_moving_wall_is_read_from_the_cell_for_every_rheology():
+    """Couette flow is driven by the inner cylinder whatever the rheology (mu(I) and NGF too)."""
+    from cosserat.analysis.fitting import moving_wall
+    from cosserat.errors import MethodNotAvailableError
+    from cosserat.model.mui import MuICouetteFlow, MuIPlaneShear
+    from cosserat.model.ngf import NGFCouetteFlow
+
+    assert moving_wall(MuICouetteFlow(eps=0.01, Ri=1.0)) == (0.0, -1.0)
+    assert moving_wall(NGFCouetteFlow(eps=0.01, Ri=1.0)) == (0.0, -1.0)
+    assert moving_wall(MuIPlaneShear(eps=0.01)) == (1.0, 1.0)
+
+    class Still:
+        def wall_velocity(self, xi):
+            return 0.0
+
+    with pytest.raises(MethodNotAvailableError, match="no wall moves"):
+        moving_wall(Still())

@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import brentq, least_squares
 
 from .. import config
-from ..errors import NoSolutionError, ParameterError
+from ..errors import MethodNotAvailableError, NoSolutionError, ParameterError
 from ..model import CouetteFlow, Problem
 from ..model.constitutive import FloatArray
 from ..model.parameters import FULLY_ROUGH, Material, Wall
@@ -50,9 +50,25 @@ FLAT_COMPONENT = 0.05
 """Parameters whose share of a flat eigenvector is at least this get no standard error."""
 
 
-def moving_wall(problem: Problem) -> tuple[float, float]:
-    """(xi, u) of the moving wall: the upper plate (1, 1) or the inner cylinder (0, -1)."""
-    return (0.0, -1.0) if isinstance(problem, CouetteFlow) else (1.0, 1.0)
+def moving_wall(problem: Any) -> tuple[float, float]:
+    """(xi, u) of the wall that drives the flow, read from the cell's ``wall_velocity``.
+
+    (1, 1) for plane shear (the upper plate), (0, -1) for Couette flow (the inner cylinder),
+    whatever the rheology.
+
+    Raises
+    ------
+    MethodNotAvailableError
+        No wall moves (a gravity-driven cell): a velocity over the wall speed is undefined.
+    """
+    for xi in (1.0, 0.0):
+        u = float(problem.wall_velocity(xi))
+        if u != 0.0:
+            return xi, u
+    raise MethodNotAvailableError(
+        f"{type(problem).__name__}: no wall moves, so a profile over the wall speed cannot be "
+        "compared with it (the gravity-driven cell needs its own velocity scale)"
+    )
 
 
 def model_profile(problem: Problem, method: str = "numerical", **options: Any) -> Profile:
