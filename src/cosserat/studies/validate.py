@@ -632,6 +632,14 @@ def validate(
 
 
 # --------------------------------------------------------------------------- figures
+def _model_style(model: str) -> dict[str, Any]:
+    """One colour and line style per registered model, the same in every panel."""
+    from ..routes import RHEOLOGIES
+
+    i = list(RHEOLOGIES).index(model) if model in RHEOLOGIES else len(RHEOLOGIES)
+    return {"color": f"C{i % 10}", "linestyle": ["-", "--", "-.", ":"][i % 4]}
+
+
 def run_figure(result: RunResult):  # type: ignore[no-untyped-def]
     """Velocity with error bands and the fitted models; spin minus half vorticity."""
     from ..viz.plotting import new_figure, style
@@ -640,7 +648,6 @@ def run_figure(result: RunResult):  # type: ignore[no-untyped-def]
     spin = result.spin
     ncols = 2 if spin.available else 1
     fig, axes = new_figure(1, ncols, width=3.4 * ncols, height=3.0)
-    styles = ["-", "--", "-.", ":"]
     with style():
         ax = axes[0, 0]
         assert m.u_err is not None
@@ -650,9 +657,9 @@ def run_figure(result: RunResult):  # type: ignore[no-untyped-def]
         ax.plot(m.distance_d, m.u_over_uw, "o", color="k", markerfacecolor="none", label="data")
         if result.ranking is not None:
             d = np.linspace(0.0, float(m.distance_d.max()), 200)
-            for i, fit in enumerate(result.ranking.ranked):
+            for fit in result.ranking.ranked:
                 if fit.ok:
-                    ax.plot(d, fit.curve(d), linestyle=styles[i % 4], label=fit.model)
+                    ax.plot(d, fit.curve(d), label=fit.model, **_model_style(fit.model))
         ax.set_xlabel(r"distance from the moving wall [$d$]")
         ax.set_ylabel(r"$u/V$")
         ax.legend(fontsize=7)
@@ -664,8 +671,8 @@ def run_figure(result: RunResult):  # type: ignore[no-untyped-def]
             x, y, e = spin.distance_d[order], spin.departure[order], spin.stderr[order]
             ax.fill_between(x, y - e, y + e, color="0.8", linewidth=0)
             ax.plot(x, y, "o", color="k", markerfacecolor="none", label="data")
-            for i, (name, pred) in enumerate(spin.predicted.items()):
-                ax.plot(x, pred[order], linestyle=styles[i % 4], label=name)
+            for name, pred in spin.predicted.items():
+                ax.plot(x, pred[order], label=name, **_model_style(name))
             ax.axhline(0.0, color="0.5", linewidth=0.6)
             ax.set_xlabel(r"distance from the moving wall [$d$]")
             ax.set_ylabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$")
