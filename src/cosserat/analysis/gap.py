@@ -248,6 +248,10 @@ class GapStudy:
                 )
             ax.set_xscale("log")
             ax.set_yscale("log")
+            from matplotlib.ticker import NullFormatter, ScalarFormatter
+
+            ax.yaxis.set_major_formatter(ScalarFormatter())  # 2, 5, 10, not 2 x 10^0
+            ax.yaxis.set_minor_formatter(NullFormatter())
             ax.set_xlabel(r"$H/d$")
             ax.set_ylabel(r"$\Delta$ [$d$]")
             ax.legend(fontsize=7)

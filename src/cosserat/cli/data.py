@@ -8,6 +8,7 @@ import math
 from types import SimpleNamespace
 from typing import Any
 
+from ..routes import RHEOLOGIES
 from . import files, params
 from .common import (
     GEOMETRIES,
@@ -262,7 +263,73 @@ def _error_text(stderr: Any, reason: str | None = None) -> str:
     return f"+- {stderr:.2g}"
 
 
+def cmd_fit_models(args: argparse.Namespace) -> None:
+    """``fit --models a,b,...``: fit each model and rank them (chi^2, AIC, BIC)."""
+    from ..analysis.ranking import rank_models
+
+    names = [m.strip() for m in args.models.split(",") if m.strip()]
+    if not names:
+        raise UsageError("--models: give model names separated by commas, e.g. cosserat,mui,ngf")
+    unknown = [m for m in names if m not in RHEOLOGIES]
+    if unknown:
+        raise UsageError(
+            f"--models: unknown model(s) {', '.join(unknown)}; registered: {', '.join(RHEOLOGIES)}"
+        )
+    if args.free:
+        raise UsageError("--free applies to one model; with --models each fits its default set")
+    measured, problem = data_problem(args)
+    cell = problem.parameters()["geometry"]
+    cell_keys = ("eps", "Ri") if cell == "couette" else ("eps", "B", "nu")
+    given = problem.parameters()
+    cell_parameters = {k: given[k] for k in cell_keys if given.get(k) is not None}
+    ranking = rank_models(measured, cell_parameters, names, cell=cell)
+    if args.plot:
+        files.save_figure(ranking.plot(title=f"{measured.n} points, {cell} cell"), args.plot)
+    record = ranking.to_dict()
+
+    def render(fmt: str) -> str:
+        if fmt == "json":
+            return json.dumps(record, allow_nan=False)
+        if fmt == "csv":
+            out = ["rank,model,k,chi2,reduced_chi2,AIC,BIC,akaike_weight,status"]
+            weights = ranking.weights()
+            for i, f in enumerate(ranking.ranked, start=1):
+                cells = [str(i) if f.ok else "", f.model]
+                for v in (f.k, f.chi2, f.reduced_chi2, f.aic, f.bic, weights.get(f.model)):
+                    cells.append("" if v is None or not f.ok else repr(v))
+                cells.append("ok" if f.ok else "not fitted")
+                out.append(",".join(cells))
+            return "\n".join(out)
+        return ranking.to_text()
+
+    best = ranking.best
+    line = (
+        f"fit of {len(names)} models: best {best.model} by AIC"
+        if best is not None
+        else f"fit of {len(names)} models: none could be fitted"
+    )
+    meta = {
+        "cell": cell,
+        "cell_parameters": cell_parameters,
+        "columns": {
+            "rank": {"meaning": "rank by AIC (empty: not fitted)", "unit": ""},
+            "model": {"meaning": "rheology", "unit": ""},
+            "k": {"meaning": "number of fitted parameters", "unit": ""},
+            "chi2": {"meaning": "chi-square (RSS without uncertainties)", "unit": "1"},
+            "reduced_chi2": {"meaning": "chi2 / (n - k)", "unit": "1"},
+            "AIC": {"meaning": "Akaike information criterion", "unit": "1"},
+            "BIC": {"meaning": "Bayesian information criterion", "unit": "1"},
+            "akaike_weight": {"meaning": "exp(-dAIC/2), normalised", "unit": "1"},
+            "status": {"meaning": "ok or not fitted (reason in the JSON)", "unit": ""},
+        },
+    }
+    deliver(args, render, meta, line)
+
+
 def cmd_fit(args: argparse.Namespace) -> None:
+    if args.models:
+        cmd_fit_models(args)
+        return
     measured, problem = data_problem(args)
     free = [f.strip() for f in args.free.split(",") if f.strip()] if args.free else None
     opts = {} if args.rtol is None else {"rtol": args.rtol}
@@ -375,6 +442,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         help=(
             "comma-separated parameters to fit (default: delta,K for the Cosserat model, "
             "among delta [deg], K, L, phi [deg], A; another model's defaults otherwise)"
+        ),
+    )
+    fitp.add_argument(
+        "--models",
+        default=None,
+        help=(
+            "comma-separated models to fit side by side and rank by AIC and BIC "
+            "(e.g. cosserat,mui,ngf); each fits its default free parameters"
         ),
     )
     fitp.set_defaults(func=cmd_fit)

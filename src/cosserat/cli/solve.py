@@ -159,7 +159,61 @@ def thickness_csv(record: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def cmd_thickness_vs_gap(args: argparse.Namespace) -> None:
+    """``thickness CELL --vs-gap``: Delta against H/d for each model on the cell."""
+    from ..analysis.gap import DEFAULT_CELL, DEFAULT_GAPS, thickness_vs_gap
+
+    if args.eps is not None:
+        raise UsageError("--vs-gap sets the gaps itself: give H/d values to --vs-gap, not --eps")
+    gaps = list(args.vs_gap) or list(DEFAULT_GAPS)
+    bad = [g for g in gaps if not g > 2.0]
+    if bad:
+        raise UsageError(f"--vs-gap: every H/d must exceed 2; got {', '.join(map(str, bad))}")
+    models = None
+    if args.models:
+        models = [m.strip() for m in args.models.split(",") if m.strip()]
+    cell_parameters = dict(DEFAULT_CELL.get(args.geometry, {}))
+    for key in ("B", "nu", "Ri"):
+        if getattr(args, key, None) is not None:
+            cell_parameters[key] = getattr(args, key)
+    check_outputs(args)
+    study = thickness_vs_gap(args.geometry, models, gaps, cell_parameters=cell_parameters, f=args.f)
+    if args.plot:
+        files.save_figure(study.plot(), args.plot)
+    record = study.to_dict()
+
+    def render(fmt: str) -> str:
+        if fmt == "json":
+            return json.dumps(record, allow_nan=False)
+        if fmt == "csv":
+            out = ["series,model,gap_d,Delta"]
+            for series in study.series:
+                for g, d in zip(series.gaps, series.Delta, strict=True):
+                    label = series.label.replace(",", ";")
+                    out.append(f"{label},{series.model},{g!r},{'' if d is None else repr(d)}")
+            return "\n".join(out)
+        return study.to_text()
+
+    slopes = [
+        f"{s.label}: {s.slope_large_gap:.2f}" for s in study.series if s.slope_large_gap is not None
+    ]
+    line = f"{args.geometry}: slope of Delta vs H/d at the largest gaps: " + "; ".join(slopes)
+    meta = {k: v for k, v in record.items() if k != "series"}
+    meta["columns"] = {
+        "series": {"meaning": "model and wall of the series", "unit": ""},
+        "model": {"meaning": "rheology", "unit": ""},
+        "gap_d": {"meaning": "gap over grain diameter H/d", "unit": "1"},
+        "Delta": {"meaning": "shear-layer thickness (empty: no solution)", "unit": "d"},
+    }
+    deliver(args, render, meta, line)
+
+
 def cmd_thickness(args: argparse.Namespace) -> None:
+    if args.vs_gap is not None:
+        cmd_thickness_vs_gap(args)
+        return
+    if args.eps is None:
+        raise UsageError("give --eps (one or more d_p/H), or --vs-gap for Delta against H/d")
     eps_values = list(args.eps)
     problem = problem_from_args(args, eps_values[0])
     for e in eps_values[1:]:
@@ -264,8 +318,26 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
             "--eps",
             type=float,
             nargs="+",
-            required=True,
-            help="one or more grain diameter over gap d_p/H [-]",
+            default=None,
+            help="one or more grain diameter over gap d_p/H [-] (or use --vs-gap)",
+        )
+        tp.add_argument(
+            "--vs-gap",
+            type=float,
+            nargs="*",
+            default=None,
+            metavar="H/d",
+            help=(
+                "Delta against the gap H/d for every model on this cell (the paper's "
+                "distinguishing prediction: gap-independent for walls smoother than the "
+                "material, ~ (H/d)^(1/3) for fully rough ones); optional gaps [-] "
+                "(default: 10 20 40 80 160 320)"
+            ),
+        )
+        tp.add_argument(
+            "--models",
+            default=None,
+            help="with --vs-gap: comma-separated models (default: every one on this cell)",
         )
         _add_cell_options(tp, cell)
         tp.add_argument(

@@ -1,0 +1,68 @@
+"""`cosserat fit --models` and `cosserat thickness --vs-gap`: the models side by side."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from cosserat.cli import main
+
+DATA = Path(__file__).resolve().parents[1] / "src" / "cosserat" / "data" / "synthetic_couette.csv"
+
+
+def test_fit_models_ranks_the_generating_model_first(capsys):
+    """The synthetic profile was made by the Cosserat model (delta = 23, K = 0.3, noise 0.01):
+    it must rank first by AIC, and its fitted delta must come back within 3 standard errors."""
+    assert main(["fit", str(DATA), "--models", "cosserat,mui", "--format", "json"]) == 0
+    record = json.loads(capsys.readouterr().out)
+    assert record["best"] == "cosserat"
+    fits = {f["model"]: f for f in record["fits"]}
+    assert set(fits) == {"cosserat", "mui"}
+    assert fits["cosserat"]["aic"] < fits["mui"]["aic"]
+    delta = fits["cosserat"]["parameters"]["delta"]
+    assert abs(delta["value"] - 23.0) < 3 * delta["stderr"]
+
+
+def test_fit_models_csv_is_a_plain_table(tmp_path, capsys):
+    out = tmp_path / "ranking.csv"
+    assert (
+        main(["fit", str(DATA), "--models", "cosserat,mui", "--format", "csv", "--out", str(out)])
+        == 0
+    )
+    table = pd.read_csv(out)
+    assert list(table.columns[:3]) == ["rank", "model", "k"]
+    assert table.loc[0, "model"] == "cosserat" and table.loc[0, "rank"] == 1
+    assert (table["AIC"].diff().dropna() >= 0).all()  # ranked by AIC
+    assert json.loads(out.with_suffix(".json").read_text())["cell"] == "couette"
+
+
+def test_fit_models_rejects_unknown_names(capsys):
+    assert main(["fit", str(DATA), "--models", "cosserat,nonsense"]) == 2
+    err = capsys.readouterr().err
+    assert "unknown model(s) nonsense" in err and "cosserat" in err
+
+
+def test_thickness_vs_gap_reports_each_model_and_the_paper_law(capsys):
+    assert main(["thickness", "couette", "--vs-gap", "20", "40", "80", "--format", "json"]) == 0
+    record = json.loads(capsys.readouterr().out)
+    labels = [s["label"] for s in record["series"]]
+    assert "cosserat, fully rough" in labels and "mui" in labels
+    assert record["paper_slopes"]["fully rough walls"] == pytest.approx(1 / 3)
+    for s in record["series"]:
+        assert s["gaps"] == [20.0, 40.0, 80.0]
+        found = [d for d in s["Delta"] if d is not None]
+        assert found and all(d > 0 for d in found)
+        # Delta grows with the gap for every model here (or stays put): never shrinks much
+        assert found[-1] >= 0.9 * found[0]
+
+
+def test_thickness_vs_gap_usage_errors(capsys):
+    assert main(["thickness", "plane", "--vs-gap", "1.5"]) == 2
+    assert "must exceed 2" in capsys.readouterr().err
+    assert main(["thickness", "plane", "--vs-gap", "20", "--eps", "0.1"]) == 2
+    assert "not --eps" in capsys.readouterr().err
+    assert main(["thickness", "plane"]) == 2
+    assert "--vs-gap" in capsys.readouterr().err
