@@ -48,7 +48,7 @@ from ..model.constitutive import FloatArray
 from ..results.profile import Profile
 from ..routes import RHEOLOGIES, solve
 from .fitting import FREE_PARAMETERS as COSSERAT_PARAMETERS
-from .fitting import natural_value, with_values
+from .fitting import moving_wall, natural_value, with_values
 from .measurements import MeasuredProfile
 
 DEFAULT_FREE: dict[str, tuple[str, ...]] = {
@@ -232,24 +232,6 @@ def model_problem(model: str, cell: str, parameters: Mapping[str, Any] | None = 
             else:
                 raise ParameterError(f"{cls.__name__} needs {f.name!r}")
     return set_parameters(cls(**kwargs), params)
-
-
-def moving_wall(problem: Any) -> tuple[float, float]:
-    """(xi, u) of the wall that drives the flow: (1, 1) plane shear, (0, -1) Couette.
-
-    Raises
-    ------
-    MethodNotAvailableError
-        No wall moves (a gravity-driven cell): a velocity over the wall speed is undefined.
-    """
-    for xi in (1.0, 0.0) if not hasattr(problem, "moving_wall") else (problem.moving_wall,):
-        u = float(problem.wall_velocity(xi))
-        if u != 0.0:
-            return float(xi), u
-    raise MethodNotAvailableError(
-        f"{type(problem).__name__}: no wall moves, so a profile over the wall speed cannot be "
-        "compared with it (the gravity-driven cell needs its own velocity scale)"
-    )
 
 
 def model_velocity(profile: Profile, distance_d: FloatArray) -> FloatArray:
