@@ -15,34 +15,9 @@ from typing import Any
 from .. import config
 from . import files
 from .common import UsageError, progress_bar
+from .params import doc_parameters, nested_class, plain_text
 
 _UNIT = re.compile(r"\[([^\[\],]*)\]")
-
-
-def _docstring_parameters(cls: type) -> dict[str, str]:
-    """name -> description from the numpydoc "Parameters" section of ``cls``'s docstring."""
-    doc = (cls.__doc__ or "").expandtabs()
-    lines = doc.splitlines()
-    out: dict[str, str] = {}
-    try:
-        start = next(i for i, s in enumerate(lines) if s.strip() == "Parameters") + 2
-    except StopIteration:
-        return out
-    name, indent = None, None
-    for line in lines[start:]:
-        stripped = line.strip()
-        if stripped and set(stripped) <= {"-"}:
-            break  # the next section's underline
-        here = len(line) - len(line.lstrip())
-        if stripped and (indent is None or here <= indent) and " : " in stripped + " ":
-            indent = here
-            name = stripped.split(" : ")[0].split(":")[0].strip()
-            out[name] = ""
-        elif name is not None and stripped:
-            if indent is not None and here <= indent:
-                break  # the next section's title
-            out[name] = (out[name] + " " + stripped).strip()
-    return out
 
 
 def _unit(description: str) -> str:
@@ -62,24 +37,15 @@ def _plain(value: Any) -> Any:
     return str(value)
 
 
-def _parameter_class(hint: Any) -> type | None:
-    """The dataclass a field holds (also through ``X | None``), else None."""
-    options = typing.get_args(hint) if typing.get_origin(hint) is not None else (hint,)
-    for option in options:
-        if isinstance(option, type) and dataclasses.is_dataclass(option):
-            return option
-    return None
-
-
 def class_parameters(cls: type) -> list[dict[str, Any]]:
     """Every field of a parameter or problem class: name, default (None: required), unit,
     description; dataclass-valued fields (the material, the rheology's constants) listed as
     such with their own class name."""
-    docs = _docstring_parameters(cls)
+    docs = doc_parameters(cls)
     hints = typing.get_type_hints(cls)
     rows = []
     for f in dataclasses.fields(cls):  # type: ignore[arg-type]
-        kind = _parameter_class(hints.get(f.name))
+        kind = nested_class(hints.get(f.name))
         nested = kind is not None
         if f.default is not dataclasses.MISSING:
             default = f.default
@@ -94,7 +60,7 @@ def class_parameters(cls: type) -> list[dict[str, Any]]:
                 "required": default is dataclasses.MISSING and not nested,
                 "default": None if default is dataclasses.MISSING or nested else _plain(default),
                 "unit": _unit(text),
-                "description": text.replace("``", "").rstrip("."),
+                "description": plain_text(text).rstrip("."),
                 "class": kind.__name__ if nested else None,
             }
         )
@@ -113,7 +79,7 @@ def describe_models() -> list[dict[str, Any]]:
             rows = class_parameters(cls)
             hints = typing.get_type_hints(cls)
             for row in rows:
-                kind = _parameter_class(hints[row["name"]])
+                kind = nested_class(hints[row["name"]])
                 if kind is not None and kind.__name__ not in constitutive:
                     constitutive[kind.__name__] = class_parameters(kind)
             methods = [m for m, table in rheology.routes.items() if cls in table]

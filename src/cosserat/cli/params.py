@@ -122,7 +122,7 @@ def uses_build_problem(model: str, cell: str) -> bool:
     return model == DEFAULT_MODEL and cell in BUILD_GEOMETRIES
 
 
-def _doc_parameters(cls: type) -> dict[str, str]:
+def doc_parameters(cls: type) -> dict[str, str]:
     """Name -> description from the numpydoc ``Parameters`` section of ``cls``."""
     lines = (inspect.getdoc(cls) or "").splitlines()
     out: dict[str, str] = {}
@@ -144,16 +144,22 @@ def _doc_parameters(cls: type) -> dict[str, str]:
     return out
 
 
+def plain_text(description: str) -> str:
+    """A docstring description without reStructuredText markup (``x``, :role:`x`), for a
+    terminal."""
+    text = re.sub(r"``([^`]*)``", r"\1", description)
+    return re.sub(r":\w+:`~?([^`]*)`", r"\1", text)
+
+
 def _meaning_and_unit(description: str) -> tuple[str, str]:
     units = re.findall(r"\[([^\[\]]*)\]", description)
     unit = units[-1] if units else ""
-    text = re.sub(r"``([^`]*)``", r"\1", description)
-    text = re.sub(r":\w+:`~?([^`]*)`", r"\1", text)
+    text = plain_text(description)
     first = re.split(r"(?<=[a-z0-9)])[.;] |, ``|\[", text + " ")[0].strip().rstrip(",.")
     return first, unit
 
 
-def _nested_class(hint: Any) -> type | None:
+def nested_class(hint: Any) -> type | None:
     """The dataclass among the types of a field's hint (``Wall | None`` -> ``Wall``)."""
     candidates = typing.get_args(hint) or (hint,)
     for c in candidates:
@@ -172,11 +178,11 @@ def parameters_of(cls: type) -> dict[str, Param]:
 
     def walk(c: type, prefix: tuple[str, ...]) -> None:
         hints = typing.get_type_hints(c)
-        docs = _doc_parameters(c)
+        docs = doc_parameters(c)
         for f in dataclasses.fields(c):
             if not f.init:
                 continue
-            nested = _nested_class(hints.get(f.name))
+            nested = nested_class(hints.get(f.name))
             if nested is not None:
                 walk(nested, (*prefix, f.name))
                 continue
@@ -269,7 +275,7 @@ def build(model: str, cell: str, values: Mapping[str, Any]) -> Any:
             if not f.init:
                 continue
             path = (*prefix, f.name)
-            nested = _nested_class(hints.get(f.name))
+            nested = nested_class(hints.get(f.name))
             if nested is not None:
                 inner = [p for p in params.values() if p.path[: len(path)] == path]
                 if any(p.key in values for p in inner) or f.default is dataclasses.MISSING:
