@@ -85,6 +85,8 @@ def test_fully_rough_identical_walls_shear_uniformly_at_leading_order():
         (PlaneShear(material=Material(28.5, L=1e8), upper=Wall(20.0), eps=1e-3), "thinner than"),
         (PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3, B=1e6), "changes too fast"),
         (CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=0.04, Ri=1.0), "thinner than"),
+        # identical walls: layers at both walls and the centre leave no outer region
+        (PlaneShear(material=MAT, upper=Wall(20.0), eps=5e-3), "fill the gap"),
         (
             PlaneShear(
                 material=MAT, upper=Wall(20.0), lower=Wall(25.0), eps=1e-3, m_fixed_wall=0.1

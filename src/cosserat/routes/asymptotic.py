@@ -102,6 +102,13 @@ def require_valid(problem: Problem, thickness: float) -> None:
         layers += [0.0, 0.5]
     for centre in layers:
         x = x[np.abs(x - centre) > 3.0 * thickness + 0.01]
+    if x.size < 3:
+        raise MethodNotAvailableError(
+            f"the small-eps asymptotics need an outer region between the layers, but layers "
+            f"{thickness:.3g} gap widths thick at xi = "
+            f"{', '.join(f'{c:g}' for c in sorted(set(layers)))} fill the gap: use "
+            f"method='numerical'"
+        )
     m0 = outer_couple_stress(problem, x)
     form = (
         problem.formulation(float(m0[0]))
