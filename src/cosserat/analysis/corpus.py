@@ -53,8 +53,15 @@ OPTIONAL_QUANTITIES = (
     "sigma_xx", "sigma_yy", "sigma_xy", "sigma_yx",
     "sigma_rr", "sigma_tt", "sigma_rt", "sigma_tr",
 )  # fmt: skip
-EXTRA_KEYS = ("moving_wall", "synthetic_model")
-"""Keys this reader also understands: which wall moves; the model a synthetic run came from."""
+EXTRA_KEYS = (
+    "moving_wall", "synthetic_model",
+    "B_note", "settle_steps", "dump_every", "wall_stress", "moving_wall_speed", "steady_drift",
+    "wall_time_s",
+)  # fmt: skip
+"""Keys this reader also understands: which wall moves; the model a synthetic run came from;
+and what :mod:`cosserat.dem` records of a run (how B was set, the settling and dump intervals,
+the moving wall's measured stresses and speed, the drift of the flow over the steady window,
+the run's wall time; ``docs/dem.md``)."""
 WALL_KINDS = ("glued-grains", "smooth-frictional")
 ROUGHNESS = ("fully-rough", "smoother")
 
