@@ -256,7 +256,7 @@ chunk = 1
 phi = 28.5
 [grid]
 delta = [10.0, 20.0, "fully-rough"]
-eps = { geomspace = [1e-1, 1e-5, 200] }
+eps = { geomspace = [1e-1, 1e-5, 2000] }
 B = [0.0, 1.0]
 """
 
