@@ -39,10 +39,12 @@ def test_fit_models_csv_is_a_plain_table(tmp_path, capsys):
     assert json.loads(out.with_suffix(".json").read_text())["cell"] == "couette"
 
 
-def test_fit_models_rejects_unknown_names(capsys):
+def test_fit_models_rejects_unknown_and_repeated_names(capsys):
     assert main(["fit", str(DATA), "--models", "cosserat,nonsense"]) == 2
     err = capsys.readouterr().err
     assert "unknown model(s) nonsense" in err and "cosserat" in err
+    assert main(["fit", str(DATA), "--models", "mui,mui"]) == 2
+    assert "mui more than once" in capsys.readouterr().err
 
 
 def test_thickness_vs_gap_reports_each_model_and_the_paper_law(capsys):
@@ -57,6 +59,33 @@ def test_thickness_vs_gap_reports_each_model_and_the_paper_law(capsys):
         assert found and all(d > 0 for d in found)
         # Delta grows with the gap for every model here (or stays put): never shrinks much
         assert found[-1] >= 0.9 * found[0]
+
+
+def test_thickness_vs_gap_takes_the_cosserat_options_and_params(capsys):
+    """--delta/--K set the Cosserat series (one series, not the default two); --param with
+    --model sets that model's parameters; a parameter for a model left out is an error."""
+    argv = ["thickness", "plane", "--vs-gap", "20", "40", "--format", "json"]
+    assert main([*argv, "--models", "cosserat", "--delta", "15", "--K", "0.2"]) == 0
+    (series,) = json.loads(capsys.readouterr().out)["series"]
+    assert series["parameters"]["delta"] == 15.0 and series["parameters"]["K"] == 0.2
+    assert main([*argv, "--models", "mui", "--model", "mui", "--param", "mu_s=0.4"]) == 0
+    (series,) = json.loads(capsys.readouterr().out)["series"]
+    assert series["parameters"]["mu_s"] == 0.4
+    assert main([*argv, "--models", "cosserat", "--model", "mui", "--param", "mu_s=0.4"]) == 2
+    assert "which --models leaves out" in capsys.readouterr().err
+
+
+def test_thickness_vs_gap_on_the_channel_gives_every_model_a_row(capsys):
+    """No single B makes every model flow in the channel (the Cosserat channel needs
+    B nu <= 2 tan(delta), local mu(I) B nu / 2 > mu_s): mu(I) gets its own B, and a model that
+    cannot be set up is a row with the reason, never the end of the study."""
+    assert main(["thickness", "channel", "--vs-gap", "10", "20", "--format", "json"]) == 0
+    series = {s["label"]: s for s in json.loads(capsys.readouterr().out)["series"]}
+    assert series["mui, B = 1"]["Delta"][0] > 0
+    assert all(any(d is not None for d in s["Delta"]) for s in series.values())
+    assert main(["thickness", "channel", "--vs-gap", "10", "--B", "0.1", "--format", "json"]) == 0
+    rows = {s["model"]: s for s in json.loads(capsys.readouterr().out)["series"]}
+    assert rows["mui"]["Delta"] == [None] and rows["mui"]["failures"]
 
 
 def test_thickness_vs_gap_usage_errors(capsys):

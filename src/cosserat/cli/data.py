@@ -270,6 +270,9 @@ def cmd_fit_models(args: argparse.Namespace) -> None:
     names = [m.strip() for m in args.models.split(",") if m.strip()]
     if not names:
         raise UsageError("--models: give model names separated by commas, e.g. cosserat,mui,ngf")
+    repeated = sorted({m for m in names if names.count(m) > 1})
+    if repeated:
+        raise UsageError(f"--models names {', '.join(repeated)} more than once")
     unknown = [m for m in names if m not in RHEOLOGIES]
     if unknown:
         raise UsageError(

@@ -11,6 +11,7 @@ from typing import Any
 from .. import config
 from ..analysis import thickness_curve, thickness_limit
 from ..analysis.laws import thickness_curve_asymptote
+from ..model.parameters import FULLY_ROUGH
 from ..routes import RHEOLOGIES, solve
 from . import files, params
 from .common import (
@@ -176,8 +177,38 @@ def cmd_thickness_vs_gap(args: argparse.Namespace) -> None:
     for key in ("B", "nu", "Ri"):
         if getattr(args, key, None) is not None:
             cell_parameters[key] = getattr(args, key)
+    # the Cosserat options are the Cosserat model's parameters; --param those of --model
+    model_parameters: dict[str, dict[str, object]] = {}
+    cosserat = {
+        name: getattr(args, name)
+        for name in ("phi", "L", "A", "K")
+        if getattr(args, name, None) is not None
+    }
+    if getattr(args, "fully_rough", False):
+        cosserat["delta"] = FULLY_ROUGH
+    elif getattr(args, "delta", None) is not None:
+        cosserat["delta"] = args.delta
+    for name in ("delta_lower", "K_lower", "m_wall"):
+        if getattr(args, name, None) is not None:
+            option = "--" + name.replace("_", "-")
+            raise UsageError(f"{option} does not apply to --vs-gap (one wall moves, one series)")
+    if cosserat:
+        model_parameters[params.DEFAULT_MODEL] = cosserat
+    given = {k: params.convert(v) for k, v in params.parse_params(args.param).items()}
+    if given:
+        model_parameters.setdefault(args.model, {}).update(given)
+    unused = [m for m in model_parameters if models is not None and m not in models]
+    if unused:
+        raise UsageError(f"parameters are given for {', '.join(unused)}, which --models leaves out")
     check_outputs(args)
-    study = thickness_vs_gap(args.geometry, models, gaps, cell_parameters=cell_parameters, f=args.f)
+    study = thickness_vs_gap(
+        args.geometry,
+        models,
+        gaps,
+        cell_parameters=cell_parameters,
+        model_parameters=model_parameters,
+        f=args.f,
+    )
     if args.plot:
         files.save_figure(study.plot(), args.plot)
     record = study.to_dict()
