@@ -286,3 +286,21 @@ def test_optional_columns_may_have_unusable_bins_which_are_left_out(tmp_path):
     report = validate(tmp_path, models=["cosserat"])
     spin = report.results[0].spin
     assert spin.available and spin.departure.size == 5 and not spin.departs
+
+
+def test_runs_at_one_gap_and_two_wall_speeds_are_named_as_replicates(tmp_path):
+    """A rate-check partner (same cell and wall, same gap, another wall speed) joins its gap
+    series as a replicate; the series and the verdict say so, since that assumes rate
+    independence."""
+    scaling_corpus(tmp_path, 0.0, 1 / 3, spin_departure=0.1)
+    partner = exponential_run(tmp_path, "rough_20_halfspeed", 20.0, 3.0, "glued-grains", seed=99)
+    meta = json.loads(partner.with_suffix(".json").read_text())
+    meta["wall_speed"] = 0.05
+    partner.with_suffix(".json").write_text(json.dumps(meta))
+    report = validate(tmp_path, models=["cosserat"])
+    rough = next(g for g in report.groups if g.roughness == "fully-rough")
+    (note,) = rough.notes
+    assert "H/d = 20 has 2 runs" in note and "rough_20_halfspeed (wall speed 0.05)" in note
+    assert "replicates" in report.verdicts[2].text
+    smooth = next(g for g in report.groups if g.roughness == "smoother")
+    assert smooth.notes == ()

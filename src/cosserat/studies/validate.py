@@ -281,9 +281,11 @@ class GapGroup:
     slope: SlopeFit | None
     reason: str
     model_slopes: dict[str, SlopeFit | None]
+    notes: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {
+            "notes": list(self.notes),
             "key": self.key,
             "cell": self.cell,
             "roughness": self.roughness,
@@ -333,8 +335,26 @@ def _group(key: str, results: list[RunResult]) -> GapGroup:
         )
     return GapGroup(
         key, runs[0].cell, runs[0].roughness, runs[0].B, gaps, deltas, errs, slope, reason,
-        model_slopes,
+        model_slopes, _replicate_notes(runs),
     )  # fmt: skip
+
+
+def _replicate_notes(runs: list[Run]) -> tuple[str, ...]:
+    """Say where a series holds several runs at one gap (at different wall speeds: a rate
+    check): they enter the power law as replicates, which is right only if the flow is
+    rate-independent, as the model assumes."""
+    notes = []
+    for g in sorted({r.gap_d for r in runs}):
+        same = [r for r in runs if r.gap_d == g]
+        if len(same) > 1:
+            speeds = ", ".join(
+                f"{r.name} (wall speed {r.meta.get('wall_speed', '?')})" for r in same
+            )
+            notes.append(
+                f"H/d = {g:g} has {len(same)} runs, {speeds}: used as replicates, which assumes "
+                "the rate independence the model has (compare their profiles to check it)"
+            )
+    return tuple(notes)
 
 
 # --------------------------------------------------------------------------- verdicts
@@ -444,6 +464,7 @@ def scaling_verdict(groups: list[GapGroup], which: str) -> Verdict:
         cos = g.model_slopes.get("cosserat")
         if cos is not None:
             text += f" (the Cosserat fits to these runs give {cos.slope:.3f})"
+        text += "".join(f"; note: {n}" for n in g.notes)
         if se is None:
             calls.append(("undecided", text + "; no error on the slope"))
         elif abs(s.slope - target) <= 2 * se and abs(s.slope - other) > 2 * se:
