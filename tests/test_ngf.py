@@ -19,12 +19,15 @@ import pytest
 from scipy.integrate import solve_bvp
 
 from cosserat import NoSolutionError, ParameterError, shear_layer_thickness, solve, wall_slip
+from cosserat.cli import main
 from cosserat.config import DEFAULT_F, MUI_I0, MUI_MU_2, MUI_MU_S
-from cosserat.errors import ConvergenceError, MethodNotAvailableError
+from cosserat.errors import ConvergenceError, CosseratError, MethodNotAvailableError
 from cosserat.model.mui import MuI, MuIChannel, MuICouetteFlow, MuIPlaneShear
-from cosserat.model.ngf import NGF, NGFChannel, NGFCouetteFlow, NGFPlaneShear
+from cosserat.model.ngf import NGF, NGF_EXCESS_RTOL, NGFChannel, NGFCouetteFlow, NGFPlaneShear
 from cosserat.model.rheology import Cell
+from cosserat.numerics import ngf as kernel
 from cosserat.routes import NGF_RHEOLOGY, RHEOLOGIES
+from cosserat.routes import ngf as ngf_routes
 from cosserat.routes.ngf import creep_mask, fluidity, friction_ratio, shear_rate
 
 SATURATING = NGF(mu_s=MUI_MU_S, mu_2=MUI_MU_2, b=(MUI_MU_2 - MUI_MU_S) / MUI_I0)
@@ -233,7 +236,7 @@ def test_the_channel_is_symmetric_about_its_centre_line(name):
     Bn = p.diagnostics.stats["B_nu"]
     np.testing.assert_allclose(p.sigma_yx, Bn * (XS - 0.5), atol=1e-15)
     core = creep_mask(p)
-    np.testing.assert_array_equal(core, np.abs(XS - 0.5) <= SATURATING.mu_s / Bn + 1e-15 * 0)
+    np.testing.assert_array_equal(core, Bn * np.abs(XS - 0.5) <= problem.rheology.mu_s)
     assert core[200] and not core[0]
     assert np.all(p.u[core] > 0.9)  # the creeping core is sheared, not a plug
     assert np.all(np.abs(p.du_dxi[core & (XS != 0.5)]) > 0.0)
@@ -351,10 +354,18 @@ def test_glass_bead_defaults_are_henann_and_kamrin():
     # b is the slope at mu_s of Jop et al.'s law for the same beads, (mu_2 - mu_s)/I_0
     assert law.b == pytest.approx((MUI_MU_2 - MUI_MU_S) / MUI_I0, rel=1e-4)
     assert law.mu_s == pytest.approx(MUI_MU_S, rel=2e-4)
-    # both local laws share mu_s and the slope b
-    mus = np.array([0.39, 0.40])
-    slope = np.diff(SATURATING.local_inertial_number(mus)) / np.diff(mus)
-    assert 1.0 / slope[0] == pytest.approx(SATURATING.b, rel=0.1)
+    # both local laws start from mu_s with the slope dI/dmu = 1/b: exactly for the linear law;
+    # for the saturating one I = I_0 (mu - mu_s)/(mu_2 - mu), whose forward difference from
+    # mu_s over h is exactly I_0/(mu_2 - mu_s - h) = (1/b)/(1 - h/(mu_2 - mu_s)): relative error
+    # h/(mu_2 - mu_s - h) = 3.8e-6 at h = 1e-6, plus the rounding of mu_s + h (about 1e-10)
+    h = 1e-6
+    for ngf in (law, SATURATING):
+        ends = ngf.local_inertial_number(np.array([ngf.mu_s, ngf.mu_s + h]))
+        assert ends[0] == 0.0
+        slope = (ends[1] - ends[0]) / ((ngf.mu_s + h) - ngf.mu_s)
+        error = 0.0 if ngf.mu_2 is None else h / (ngf.mu_2 - ngf.mu_s - h)
+        assert slope == pytest.approx(1.0 / ngf.b * (1.0 + error), rel=1e-9)
+        assert slope == pytest.approx(1.0 / ngf.b, rel=error + 1e-9)
     assert law.wall_inertial_number(V=0.1, H=0.05, d=1e-3, N=2450.0) == pytest.approx(0.002)
     with pytest.raises(ParameterError, match="linear local law"):
         law.matching_mui()
@@ -402,3 +413,103 @@ def test_no_solution_is_said_in_words():
 def test_parameter_errors_name_the_parameter_and_the_bound(make, match):
     with pytest.raises(ParameterError, match=match):
         make()
+
+
+# ----------------------------------------------------------------- a flow not told from rest
+@pytest.mark.parametrize(
+    ("args", "match"),
+    [
+        (
+            ["plane", "--eps", "0.01", "--param", "I_w=1e-16"],
+            "I_w must satisfy I_w >= 1e-07 mu_s/b",
+        ),
+        (["plane", "--eps", "0.01", "--param", "stress_ratio=0.38190000000000007"], "stress_ratio"),
+        (["couette", "--eps", "0.01", "--param", "Ri=1", "--param", "I_w=1e-100"], "I_w must"),
+        (["channel", "--eps", "0.01", "--param", "I_w=1e-100"], "I_w must satisfy"),
+    ],
+)
+def test_a_flow_indistinguishable_from_rest_is_refused_in_one_line(args, match, capsys):
+    """These crashed with ZeroDivisionError in the tridiagonal solve (the first two) or gave
+    only 'root-find did not converge' (the last two)."""
+    assert main(["solve", *args[:1], "--model", "ngf", *args[1:]]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("cosserat: error: "), err
+    assert match in err and "cannot be told from rest" in err
+
+
+def test_the_bounds_on_the_wall_speed_and_the_stress_level():
+    law = NGF()
+    assert law.I_w_min == NGF_EXCESS_RTOL * law.mu_s / law.b
+    bound = law.mu_s * (1.0 + NGF_EXCESS_RTOL)
+    for make in (
+        lambda: NGFPlaneShear(eps=0.01, I_w=1e-16),
+        lambda: NGFCouetteFlow(eps=0.01, Ri=1.0, I_w=0.99 * law.I_w_min),
+        lambda: NGFChannel(eps=0.01, I_w=1e-100),
+        lambda: NGFPlaneShear(eps=0.01, stress_ratio=np.nextafter(law.mu_s, 1.0)),
+        lambda: NGFCouetteFlow(eps=0.01, Ri=1.0, stress_ratio=law.mu_s * (1.0 + 0.5e-7)),
+        lambda: NGFChannel(eps=0.01, B=2.0 * law.mu_s * (1.0 + 0.5e-7)),
+    ):
+        with pytest.raises(ParameterError, match="cannot be told from rest") as info:
+            make()
+        assert isinstance(info.value, CosseratError)
+    # at the bounds: uniform shear is still u = xi, T = mu_s + b I_w (measured 1.1e-10: the
+    # excess T - mu_s = 3.8e-8 resolved to Brent's 1e-15 and mu_s's rounding)
+    for eps in (0.01, 0.5):
+        p = solve(NGFPlaneShear(eps=eps, I_w=law.I_w_min), xi=XS)
+        np.testing.assert_allclose(p.u, XS, atol=1e-9)
+        T = p.diagnostics.stats["stress_ratio"]
+        assert T - law.mu_s == pytest.approx(law.b * law.I_w_min, rel=1e-7)
+    for p in (NGFPlaneShear(eps=0.01, stress_ratio=bound), NGFChannel(eps=0.01, B=2.0 * bound)):
+        assert solve(p).diagnostics.stats["I_w"] > 0.0
+    # a stress level at or below mu_s stays "nothing flows"
+    with pytest.raises(NoSolutionError, match="nothing flows"):
+        solve(NGFPlaneShear(eps=0.01, stress_ratio=law.mu_s))
+
+
+@pytest.mark.parametrize("n", [256, 2**16])
+@pytest.mark.parametrize("excess", [5.6e-17, 1e-12, 1e-7, 0.3])
+def test_the_tridiagonal_solve_keeps_a_small_k_with_zero_flux_walls(n, excess):
+    """Uniform shear: F = F_loc whatever k. With zero-flux walls and k h^2 below the rounding
+    of the O(1/h) fluxes the plain Thomas algorithm lost k and divided by zero; the form
+    without cancellation keeps it to the rounding of n positive terms (measured <= 2.4e-12 at
+    n = 2^16, down to a stress level 1 ulp above mu_s)."""
+    mu_s, b = NGF().mu_s, NGF().b
+    T = max(mu_s * (1.0 + excess), np.nextafter(mu_s, 1.0))
+    F_loc = kernel.local_fluidity(T, 1.0, mu_s, b, 0.0)
+    for a_eps in (0.48 * 0.01, 0.48 * 0.5):
+        for dirichlet in (False, True):
+            F = np.empty(n + 1)
+            G, status = kernel.fluidity(kernel.PLANE, 0.0, T, n, a_eps, mu_s, b, 0.0, dirichlet, F)
+            assert status == kernel.SOLVED
+            np.testing.assert_allclose(F, F_loc, rtol=n * np.finfo(float).eps)
+            assert G == pytest.approx(T * F_loc, rel=n * np.finfo(float).eps)
+
+
+def test_a_singular_fluidity_solve_is_a_status_and_then_an_error_in_words():
+    """k = 0 in double precision (T = mu_s) with zero-flux walls: F is not determined. The
+    kernel says so (status SINGULAR, NaN) instead of dividing by zero, the root-find passes
+    it on, and the route raises ConvergenceError."""
+    law = NGF()
+    F = np.empty(257)
+    args = (kernel.PLANE, 0.0)
+    G, status = kernel.fluidity(*args, law.mu_s, 256, 0.0048, law.mu_s, law.b, 0.0, False, F)
+    assert status == kernel.SINGULAR and math.isnan(G) and np.all(np.isnan(F))
+    found = kernel.stress_level(
+        *args,
+        256,
+        0.0048,
+        law.mu_s,
+        law.b,
+        0.0,
+        False,
+        1e-300,
+        law.mu_s,
+        2 * law.mu_s,
+        1e-15,
+        200,
+        F,
+    )
+    assert found[1] == kernel.SINGULAR
+    problem = NGFPlaneShear(eps=0.01)
+    with pytest.raises(ConvergenceError, match=r"singular in double precision.*told from rest"):
+        ngf_routes._fluidity(problem, law.mu_s, 256, F)

@@ -55,6 +55,15 @@ NGF_I_W = 0.01
 """Default inertial number of the reference speed, as for mu(I) [-]."""
 NGF_I_W_MAX = 1.0
 """Largest admissible I_w [-] (dense flow, the range of the local law)."""
+NGF_EXCESS_RTOL = 1e-7
+"""Smallest relative excess (T - mu_s)/mu_s of the stress level T over mu_s [-].
+
+The excess drives the flow (g_loc and k are proportional to it), but the stress level is found
+to about 1e-15 (Brent's tolerance) and mu, mu_s are rounded to 1e-16 mu_s: an excess of
+1e-7 mu_s keeps about 7 significant digits, and the profile about 1e-9 (measured, uniform
+shear at the bound). Closer to mu_s the flow cannot be told from rest at double precision.
+Through ``T - mu_s >= b I_w`` (every cell, the maximum principle) it bounds the wall speed:
+:attr:`NGF.I_w_min`."""
 FLUIDITY_BCS = ("neumann", "local")
 """Wall conditions on g: ``n . grad g = 0`` (default) or ``g = g_loc``."""
 
@@ -120,6 +129,17 @@ class NGF:
     def saturating(self) -> bool:
         """True for the Jop et al. local law (mu_2 given), False for the linear one."""
         return self.mu_2 is not None
+
+    @property
+    def I_w_min(self) -> float:
+        """Smallest admissible I_w, ``NGF_EXCESS_RTOL mu_s / b`` (4.07e-8 for glass beads) [-].
+
+        Since g <= max g_loc (the maximum principle of the fluidity equation), the wall speed
+        satisfies ``b I_w <= T - mu_s`` in every cell (equality in uniform shear, to first
+        order in the excess with the saturating law): a slower wall would put the stress level
+        within :data:`NGF_EXCESS_RTOL` of mu_s.
+        """
+        return NGF_EXCESS_RTOL * self.mu_s / self.b
 
     @property
     def I_0(self) -> float | None:
@@ -190,7 +210,7 @@ class NGF:
 
 
 def _validate_driving(
-    I_w: float | None, level: float | None, level_name: str
+    I_w: float | None, level: float | None, level_name: str, law: NGF
 ) -> tuple[float | None, float | None]:
     """Exactly one of the reference speed (I_w) and the stress level drives the cell."""
     if I_w is not None and level is not None:
@@ -207,6 +227,13 @@ def _validate_driving(
         raise ParameterError(
             f"I_w = V d / (H sqrt(N/rho_s)) must satisfy 0 < I_w <= {NGF_I_W_MAX:g} "
             f"(dense flow, the range of the local law); got {x:g}"
+        )
+    if x < law.I_w_min:
+        raise ParameterError(
+            f"I_w must satisfy I_w >= {NGF_EXCESS_RTOL:g} mu_s/b = {law.I_w_min:.3g}; got "
+            f"{x:g}: a slower wall puts the stress level within {NGF_EXCESS_RTOL:g} mu_s of "
+            "mu_s (T - mu_s >= b I_w), where the excess that drives the flow has too few "
+            "significant digits in double precision and the flow cannot be told from rest"
         )
     return x, None
 
@@ -307,6 +334,22 @@ class _NGFCell:
             )
         return T
 
+    def _check_level_excess(self, name: str, bound: float) -> None:
+        """ParameterError if the imposed stress level exceeds mu_s by less than
+        :data:`NGF_EXCESS_RTOL` mu_s (``name`` >= ``bound`` is the same condition on the
+        parameter given). A level <= mu_s passes: it is NoSolutionError at solve time."""
+        T = self.imposed_level
+        mu_s = self.rheology.mu_s
+        if T is not None and mu_s < T < mu_s * (1.0 + NGF_EXCESS_RTOL):
+            raise ParameterError(
+                f"{name} must satisfy {name} >= {bound!r} (a stress ratio at the "
+                f"{self.wall_name} of at least mu_s (1 + {NGF_EXCESS_RTOL:g})) or make the "
+                f"stress ratio <= mu_s; got {name} = {getattr(self, name)!r}, a stress "
+                f"ratio {T!r} within {NGF_EXCESS_RTOL:g} mu_s of mu_s = {mu_s!r}: the "
+                "excess that drives the flow has too few significant digits in double "
+                "precision and the flow cannot be told from rest"
+            )
+
     def _driving(self) -> str:
         if self.I_w is None:
             return f"stress ratio {self.imposed_level:g} at the {self.wall_name}"
@@ -343,9 +386,11 @@ class NGFPlaneShear(_NGFCell):
     nu : float
         Solids fraction, ``0 < nu <= 1`` [-]; only B nu enters.
     I_w : float, default 0.01
-        Inertial number of the wall speed, V d / (H sqrt(N / rho_s)), ``0 < I_w <= 1`` [-].
+        Inertial number of the wall speed, V d / (H sqrt(N / rho_s)),
+        ``rheology.I_w_min <= I_w <= 1`` [-].
     stress_ratio : float, optional
-        Instead of I_w: the imposed tau/N [-]; the wall speed is then an output.
+        Instead of I_w: the imposed tau/N [-]; the wall speed is then an output. Either
+        ``<= mu_s`` (NoSolutionError at solve time) or ``>= mu_s (1 + NGF_EXCESS_RTOL)``.
     fluidity_bc : {"neumann", "local"}
         Wall condition on g: ``n . grad g = 0`` (default) or ``g = g_loc``.
     """
@@ -374,9 +419,10 @@ class NGFPlaneShear(_NGFCell):
         if not 0.0 < nu <= 1.0:
             raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
         object.__setattr__(self, "nu", nu)
-        I_w, T = _validate_driving(self.I_w, self.stress_ratio, "stress_ratio")
+        I_w, T = _validate_driving(self.I_w, self.stress_ratio, "stress_ratio", self.rheology)
         object.__setattr__(self, "I_w", I_w)
         object.__setattr__(self, "stress_ratio", T)
+        self._check_level_excess("stress_ratio", self.rheology.mu_s * (1.0 + NGF_EXCESS_RTOL))
 
     @property
     def shape(self) -> float:
@@ -436,9 +482,11 @@ class NGFCouetteFlow(_NGFCell):
     Ri : float
         Inner radius over gap R_i/H, ``1e-3 <= Ri <= 1e6`` [-].
     I_w : float, default 0.01
-        Inertial number of the inner wall's speed, V_i d / (H sqrt(p / rho_s)) [-].
+        Inertial number of the inner wall's speed, V_i d / (H sqrt(p / rho_s)),
+        ``rheology.I_w_min <= I_w <= 1`` [-].
     stress_ratio : float, optional
-        Instead of I_w: the imposed tau_i/p at the inner cylinder (the torque) [-].
+        Instead of I_w: the imposed tau_i/p at the inner cylinder (the torque) [-]; either
+        ``<= mu_s`` (NoSolutionError at solve time) or ``>= mu_s (1 + NGF_EXCESS_RTOL)``.
     fluidity_bc : {"neumann", "local"}
         Wall condition on g (default ``n . grad g = 0``).
     """
@@ -464,9 +512,10 @@ class NGFCouetteFlow(_NGFCell):
                 f"Ri = R_i/H must satisfy {RI_MIN:g} <= Ri <= {RI_MAX:g}; got {Ri:g}"
             )
         object.__setattr__(self, "Ri", Ri)
-        I_w, T = _validate_driving(self.I_w, self.stress_ratio, "stress_ratio")
+        I_w, T = _validate_driving(self.I_w, self.stress_ratio, "stress_ratio", self.rheology)
         object.__setattr__(self, "I_w", I_w)
         object.__setattr__(self, "stress_ratio", T)
+        self._check_level_excess("stress_ratio", self.rheology.mu_s * (1.0 + NGF_EXCESS_RTOL))
 
     @property
     def shape(self) -> float:
@@ -532,12 +581,13 @@ class NGFChannel(_NGFCell):
         Grain diameter over channel width d/H, ``0 < eps <= 0.5`` [-].
     B : float, optional
         rho_p g H / N with N the wall normal stress, ``0 < B <= 1e6`` [-]: the wall stress
-        ratio is B nu/2; the centre-line speed (its I_w) is then an output.
+        ratio is B nu/2 (either <= mu_s, NoSolutionError at solve time, or
+        >= mu_s (1 + NGF_EXCESS_RTOL)); the centre-line speed (its I_w) is then an output.
     nu : float
         Solids fraction, ``0 < nu <= 1`` [-]; only B nu enters.
     I_w : float, default 0.01 when B is not given
         Instead of B: the inertial number of the centre-line speed, V_c d/(H sqrt(N/rho_s))
-        [-]; B nu is then an output.
+        [-], ``rheology.I_w_min <= I_w <= 1``; B nu is then an output.
     fluidity_bc : {"neumann", "local"}
         Wall condition on g (default ``n . grad g = 0``).
     """
@@ -561,11 +611,12 @@ class NGFChannel(_NGFCell):
         if not 0.0 < nu <= 1.0:
             raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
         object.__setattr__(self, "nu", nu)
-        I_w, B = _validate_driving(self.I_w, self.B, "B")
+        I_w, B = _validate_driving(self.I_w, self.B, "B", self.rheology)
         if B is not None and B > B_MAX:
             raise ParameterError(f"B = rho_p g H / N must satisfy 0 < B <= {B_MAX:g}; got {B:g}")
         object.__setattr__(self, "I_w", I_w)
         object.__setattr__(self, "B", B)
+        self._check_level_excess("B", 2.0 * self.rheology.mu_s * (1.0 + NGF_EXCESS_RTOL) / nu)
 
     @property
     def shape(self) -> float:
@@ -616,6 +667,7 @@ __all__ = [
     "NGF",
     "NGF_A",
     "NGF_B",
+    "NGF_EXCESS_RTOL",
     "NGF_MU_S",
     "NGF_RHO_S",
     "NGFChannel",

@@ -8,15 +8,19 @@ over the control volume ``[xi_j - h/2, xi_j + h/2]`` of each node (half a cell a
     K_j = int r k,   S_j = int r k F_loc   (Gauss-Legendre between the kinks of k and F_loc),
 
 with no flux through a wall for ``n . grad F = 0``, or ``F = F_loc`` there. The matrix is
-tridiagonal and diagonally dominant (k >= 0): the Thomas algorithm, O(n). The wall-speed
+tridiagonal and diagonally dominant (k >= 0): the Thomas algorithm, O(n), in a form without
+cancellation (each pivot's excess over its off-diagonal carried apart, as in the GTH
+algorithm), so that a small k with zero-flux walls keeps its relative accuracy. The wall-speed
 integral of the cell (the trapezoidal rule, second order) is a smooth function of the stress
 level T; Brent's method (:mod:`cosserat.numerics.roots`) finds the T at which it equals the
 imposed I_w.
 
 Cells (``kind``): 0 plane shear (``shape`` = B nu), 1 Couette flow (``shape`` = Ri),
 2 vertical channel (``shape`` unused). The local law: ``mu_2 = 0`` is the linear one.
-Status codes of :func:`stress_level`: 0 converged, 1 no bracket found (the wall speed exceeds
-what any admissible stress level gives), 2 Brent did not converge.
+Status codes: of :func:`fluidity`, 0 solved, 3 singular (a pivot of the tridiagonal solve is
+0 or not finite: k = 0 in double precision, so F is not determined); of :func:`stress_level`,
+0 converged, 1 no bracket found (the wall speed exceeds what any admissible stress level
+gives), 2 Brent did not converge, 3 a fluidity solve on the way was singular.
 """
 
 from __future__ import annotations
@@ -29,7 +33,8 @@ from numba import njit
 from .roots import brent_accept, brent_next, brent_start
 
 PLANE, COUETTE, CHANNEL = 0, 1, 2
-CONVERGED, NO_BRACKET, NO_CONVERGENCE = 0, 1, 2
+CONVERGED, NO_BRACKET, NO_CONVERGENCE, SINGULAR = 0, 1, 2, 3
+SOLVED = CONVERGED
 
 
 @njit(cache=True, nogil=True)
@@ -150,22 +155,24 @@ def fluidity(
     mu_2: float,
     dirichlet: bool,
     F: np.ndarray,
-) -> float:
-    """Solve for F on the n + 1 nodes (into ``F``); return the wall-speed integral.
+) -> tuple[float, int]:
+    """Solve for F on the n + 1 nodes (into ``F``); return (the wall-speed integral, status).
 
     Vertex-centred finite volumes: on the control volume of node j (half cells at the walls)
     ``-[r F']`` + ``(int r k) F_j = int r k F_loc``, the fluxes by central differences and the
     coefficient integrals by Gauss-Legendre between the kinks (:func:`kinks`), so the error is
     a regular O(h^2) wherever mu crosses mu_s. The integral is ``int_0^1 F mu`` (plane),
     ``Ri int_0^1 F mu/(Ri + xi)`` (Couette) or ``int_0^{1/2} F mu`` (channel, n even), each by
-    the trapezoidal rule.
+    the trapezoidal rule. Status SOLVED, or SINGULAR (F and the integral NaN) if a pivot is
+    0 or not finite.
     """
     h = 1.0 / n
     inv_a2 = 1.0 / (a_eps * a_eps)
     cuts = kinks(kind, shape, T, mu_s)
-    lower = np.empty(n + 1)
-    diag = np.empty(n + 1)
-    upper = np.empty(n + 1)
+    lower = np.empty(n + 1)  # -(sub-diagonal) >= 0
+    upper = np.empty(n + 1)  # -(super-diagonal) >= 0
+    excess = np.empty(n + 1)  # diagonal minus the two above: K_j >= 0 (1 in a Dirichlet row)
+    pivot = np.empty(n + 1)
     rhs = np.empty(n + 1)
     mus = np.empty(n + 1)
     for j in range(n + 1):
@@ -173,32 +180,44 @@ def fluidity(
         mus[j] = statics(kind, shape, T, x)[0]
         if (j == 0 or j == n) and dirichlet:
             mu, s, _ = statics(kind, shape, T, x)
-            lower[j], diag[j], upper[j] = 0.0, 1.0, 0.0
+            lower[j], excess[j], upper[j] = 0.0, 1.0, 0.0
             rhs[j] = local_fluidity(mu, s, mu_s, b, mu_2)
             continue
         a = max(x - 0.5 * h, 0.0)
         c = min(x + 0.5 * h, 1.0)
         K, S = _cell_integrals(kind, shape, T, a, c, cuts, inv_a2, mu_s, b, mu_2)
-        rm = statics(kind, shape, T, a)[2] / h if j > 0 else 0.0
-        rp = statics(kind, shape, T, c)[2] / h if j < n else 0.0
-        lower[j] = -rm
-        upper[j] = -rp
-        diag[j] = rm + rp + K
+        lower[j] = statics(kind, shape, T, a)[2] / h if j > 0 else 0.0
+        upper[j] = statics(kind, shape, T, c)[2] / h if j < n else 0.0
+        excess[j] = K
         rhs[j] = S
-    # Thomas algorithm (no pivoting: the matrix is diagonally dominant)
-    for j in range(1, n + 1):
-        w = lower[j] / diag[j - 1]
-        diag[j] -= w * upper[j - 1]
-        rhs[j] -= w * rhs[j - 1]
-    F[n] = rhs[n] / diag[n]
+    # The Thomas algorithm without cancellation (the GTH form): the pivot d_j = u_j + e_j keeps
+    # its excess over the super-diagonal apart, e_j = K_j + l_j e_{j-1}/d_{j-1}, which is the
+    # subtraction (l_j + u_j + K_j) - l_j u_{j-1}/d_{j-1} done exactly by hand (d - u = e).
+    # Every term is >= 0, so a small sum of K (a cooperativity length
+    # far beyond the gap with zero-flux walls) is not lost against the O(1/h) fluxes, and a
+    # pivot is 0 only if k = 0 in double precision: then F is not determined (status SINGULAR).
+    e_prev = 0.0
+    for j in range(n + 1):
+        e = excess[j]
+        if j > 0:
+            w = lower[j] / pivot[j - 1]
+            e += w * e_prev
+            rhs[j] += w * rhs[j - 1]
+        d = upper[j] + e
+        if not (d > 0.0 and math.isfinite(d)):
+            F[:] = math.nan
+            return math.nan, SINGULAR
+        pivot[j] = d
+        e_prev = e
+    F[n] = rhs[n] / pivot[n]
     for j in range(n - 1, -1, -1):
-        F[j] = (rhs[j] - upper[j] * F[j + 1]) / diag[j]
+        F[j] = (rhs[j] + upper[j] * F[j + 1]) / pivot[j]
     last = n // 2 if kind == CHANNEL else n
     total = 0.0
     for j in range(last + 1):
         f = F[j] * mus[j] * _weight(kind, shape, j * h)
         total += 0.5 * f if (j == 0 or j == last) else f
-    return total * h
+    return total * h, SOLVED
 
 
 @njit(cache=True, nogil=True)
@@ -223,36 +242,48 @@ def stress_level(
     ``lo`` is a level with integral 0 (mu_s: nothing flows) or a tighter lower bracket whose
     integral is below target; ``hi`` an upper guess, doubled away from mu_s (linear law) until
     the integral exceeds ``target``, or, with the saturating law, the largest level allowed.
-    Returns (T, status, Brent iterations, fluidity solves).
+    Returns (T, status, Brent iterations, fluidity solves); with status SINGULAR, T is the
+    level whose fluidity solve was singular.
     """
     solves = 0
     if lo > mu_s:
-        f_lo = fluidity(kind, shape, lo, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+        g, status = fluidity(kind, shape, lo, n, a_eps, mu_s, b, mu_2, dirichlet, F)
         solves += 1
+        if status != SOLVED:
+            return lo, SINGULAR, 0, solves
+        f_lo = g - target
         if f_lo > 0.0:
             lo, f_lo = mu_s, -target
     else:
         f_lo = -target
-    f_hi = fluidity(kind, shape, hi, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+    g, status = fluidity(kind, shape, hi, n, a_eps, mu_s, b, mu_2, dirichlet, F)
     solves += 1
+    if status != SOLVED:
+        return hi, SINGULAR, 0, solves
+    f_hi = g - target
     grow = 0
     while f_hi < 0.0:
         if mu_2 != 0.0 or grow >= 60:
             return hi, NO_BRACKET, 0, solves
         lo, f_lo = hi, f_hi
         hi = mu_s + 2.0 * (hi - mu_s)
-        f_hi = fluidity(kind, shape, hi, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+        g, status = fluidity(kind, shape, hi, n, a_eps, mu_s, b, mu_2, dirichlet, F)
         solves += 1
+        if status != SOLVED:
+            return hi, SINGULAR, 0, solves
+        f_hi = g - target
         grow += 1
     state = brent_start(lo, hi, f_lo, f_hi)
     for it in range(maxiter):
         x, done = brent_next(state, xtol)
         if done:
-            fluidity(kind, shape, x, n, a_eps, mu_s, b, mu_2, dirichlet, F)
-            return x, CONVERGED, it, solves + 1
-        fx = fluidity(kind, shape, x, n, a_eps, mu_s, b, mu_2, dirichlet, F) - target
+            g, status = fluidity(kind, shape, x, n, a_eps, mu_s, b, mu_2, dirichlet, F)
+            return x, (CONVERGED if status == SOLVED else SINGULAR), it, solves + 1
+        g, status = fluidity(kind, shape, x, n, a_eps, mu_s, b, mu_2, dirichlet, F)
         solves += 1
-        brent_accept(state, x, fx)
+        if status != SOLVED:
+            return x, SINGULAR, it, solves
+        brent_accept(state, x, g - target)
     return state[1], NO_CONVERGENCE, maxiter, solves
 
 
@@ -263,6 +294,8 @@ __all__ = [
     "NO_BRACKET",
     "NO_CONVERGENCE",
     "PLANE",
+    "SINGULAR",
+    "SOLVED",
     "fluidity",
     "local_fluidity",
     "statics",

@@ -106,14 +106,35 @@ def _args(problem: NGFProblem) -> tuple[Any, ...]:
     )
 
 
+def _singular(problem: NGFProblem, T: float) -> ConvergenceError:
+    """The error for a fluidity solve whose tridiagonal system is singular at double precision."""
+    law = problem.rheology
+    excess = _max_excess(problem, T)
+    length = law.A * problem.eps / math.sqrt(excess) if excess > 0.0 else math.inf
+    return ConvergenceError(
+        f"{problem.describe()}: the fluidity equation is singular in double precision at the "
+        f"stress level {T:.17g} (max |mu - mu_s| = {excess:.3g} over the gap, the cooperativity "
+        f"length {length:.3g} gaps): k = |mu - mu_s|/(A eps)^2 vanishes there, so the flow "
+        "cannot be told from rest and g is not determined"
+    )
+
+
+def _fluidity(problem: NGFProblem, T: float, n: int, F: FloatArray) -> float:
+    """The wall-speed integral at the stress level T on n cells (F filled in)."""
+    kind, shape, a_eps, mu_s, b, mu_2, dirichlet = _args(problem)
+    G, status = kernel.fluidity(kind, shape, T, n, a_eps, mu_s, b, mu_2, dirichlet, F)
+    if status != kernel.SOLVED:
+        raise _singular(problem, T)
+    return float(G)
+
+
 def _solve_at(problem: NGFProblem, n: int, hint: float | None) -> _Level:
     """The stress level (imposed, or for the wall speed I_w) and F on n cells."""
     kind, shape, a_eps, mu_s, b, mu_2, dirichlet = _args(problem)
     F = np.empty(n + 1)
     if problem.I_w is None:
         T = problem.check_imposed_level()
-        G = kernel.fluidity(kind, shape, T, n, a_eps, mu_s, b, mu_2, dirichlet, F)
-        return _Level(n, T, F, G, 0, 1)
+        return _Level(n, T, F, _fluidity(problem, T, n, F), 0, 1)
     top = math.inf if mu_2 == 0.0 else mu_2 - SATURATION_MARGIN * (mu_2 - mu_s)
     if hint is not None:
         lo, hi = mu_s + (hint - mu_s) * (1 - 1e-3), min(mu_s + (hint - mu_s) * (1 + 1e-3), top)
@@ -124,12 +145,14 @@ def _solve_at(problem: NGFProblem, n: int, hint: float | None) -> _Level:
     if status == kernel.NO_BRACKET and hi < top:  # the hint was too low (saturating law)
         T, status, iterations, more = kernel.stress_level(*args, mu_s, top, XTOL, 200, F)
         solves += more
+    if status == kernel.SINGULAR:
+        raise _singular(problem, T)
     if status == kernel.NO_BRACKET:
         if mu_2 == 0.0:
             raise ConvergenceError(
                 f"{problem.describe()}: no stress level up to {T:.3g} gives the wall speed"
             )
-        reach = kernel.fluidity(kind, shape, top, n, a_eps, mu_s, b, mu_2, dirichlet, F)
+        reach = _fluidity(problem, top, n, F)
         raise NoSolutionError(
             f"{problem.describe()}: I_w = {problem.I_w:g} is beyond the fastest steady NGF flow "
             f"with the saturating local law in this cell (I_w -> about {reach:.3g} as the stress "
@@ -139,8 +162,7 @@ def _solve_at(problem: NGFProblem, n: int, hint: float | None) -> _Level:
         )
     if status != kernel.CONVERGED:
         raise ConvergenceError(f"{problem.describe()}: the stress-level root-find did not converge")
-    G = kernel.fluidity(kind, shape, T, n, a_eps, mu_s, b, mu_2, dirichlet, F)
-    return _Level(n, T, F, G, iterations, solves)
+    return _Level(n, T, F, _fluidity(problem, T, n, F), iterations, solves)
 
 
 # ----------------------------------------------------------------- the velocity
