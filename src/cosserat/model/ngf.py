@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numba import njit
 
 from ..errors import NoSolutionError, ParameterError
 from .constitutive import FloatArray
@@ -66,6 +67,71 @@ Through ``T - mu_s >= b I_w`` (every cell, the maximum principle) it bounds the 
 :attr:`NGF.I_w_min`."""
 FLUIDITY_BCS = ("neumann", "local")
 """Wall conditions on g: ``n . grad g = 0`` (default) or ``g = g_loc``."""
+
+
+# ----------------------------------------------------------------- compiled statics and law
+PLANE, COUETTE, CHANNEL = 0, 1, 2
+"""The cells' codes (``kind``) in the compiled functions below and in the kernel."""
+
+
+@njit(cache=True, nogil=True)
+def statics(kind: int, shape: float, T: float, x: float) -> tuple[float, float, float]:
+    """(mu, p/N, r) at xi = x for the stress level T, the one statement of the three cells'
+    statics (``shape``: B nu for plane shear, Ri for Couette flow, unused for the channel).
+
+    Plane shear ``mu = T/s``, ``s = 1 + B nu (1 - xi)``, r = 1; Couette flow
+    ``mu = T (Ri/(Ri + xi))^2``, p uniform, ``r = Ri + xi``; the channel ``mu = 2 T |xi - 1/2|``,
+    p uniform, r = 1 [-].
+    """
+    if kind == PLANE:
+        s = 1.0 + shape * (1.0 - x)
+        return T / s, s, 1.0
+    if kind == COUETTE:
+        q = shape / (shape + x)
+        return T * q * q, 1.0, shape + x
+    return 2.0 * T * abs(x - 0.5), 1.0, 1.0
+
+
+@njit(cache=True, nogil=True)
+def local_inertial_number(mu: float, mu_s: float, b: float, mu_2: float) -> float:
+    """I_loc(mu), 0 for mu <= mu_s: ``(mu - mu_s)/b`` (mu_2 = 0, the linear law) or
+    ``I_0 (mu - mu_s)/(mu_2 - mu)``, ``I_0 = (mu_2 - mu_s)/b`` (for mu < mu_2) [-]."""
+    excess = mu - mu_s
+    if excess <= 0.0:
+        return 0.0
+    return excess / b if mu_2 == 0.0 else (mu_2 - mu_s) / b * excess / (mu_2 - mu)
+
+
+@njit(cache=True, nogil=True)
+def local_fluidity(mu: float, s: float, mu_s: float, b: float, mu_2: float) -> float:
+    """F_loc = sqrt(p/N) I_loc(mu)/mu, 0 for mu <= mu_s (mu_2 = 0: the linear law) [-]."""
+    i = local_inertial_number(mu, mu_s, b, mu_2)
+    if i <= 0.0:
+        return 0.0
+    return math.sqrt(s) * i / mu
+
+
+@njit(cache=True, nogil=True)
+def _statics_on(kind: int, shape: float, T: float, xs: np.ndarray, which: int) -> np.ndarray:
+    """Component ``which`` (0 mu, 1 p/N, 2 r) of :func:`statics` on the 1-D array xs."""
+    out = np.empty_like(xs)
+    for i in range(xs.size):
+        out[i] = statics(kind, shape, T, xs[i])[which]
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _local_on(
+    mu: np.ndarray, s: np.ndarray, mu_s: float, b: float, mu_2: float, fluidity: bool
+) -> np.ndarray:
+    """:func:`local_fluidity` (or :func:`local_inertial_number`) on 1-D arrays."""
+    out = np.empty_like(mu)
+    for i in range(mu.size):
+        if fluidity:
+            out[i] = local_fluidity(mu[i], s[i], mu_s, b, mu_2)
+        else:
+            out[i] = local_inertial_number(mu[i], mu_s, b, mu_2)
+    return out
 
 
 @dataclass(frozen=True)
@@ -146,31 +212,34 @@ class NGF:
         """I_0 = (mu_2 - mu_s)/b of the saturating local law, None for the linear one [-]."""
         return None if self.mu_2 is None else (self.mu_2 - self.mu_s) / self.b
 
+    def _local(self, mu: FloatArray, pressure: FloatArray, fluidity: bool) -> FloatArray:
+        m, p = np.broadcast_arrays(np.asarray(mu, dtype=float), np.asarray(pressure, dtype=float))
+        if self.mu_2 is not None and np.any(m >= self.mu_2):
+            raise NoSolutionError(
+                f"stress ratio {float(np.max(m)):.6g} >= mu_2 = {self.mu_2:.6g}: the local law "
+                "of Jop et al. has no steady rate there, so g_loc is undefined"
+            )
+        mu_2 = 0.0 if self.mu_2 is None else self.mu_2
+        shape = m.shape
+        m, p = np.array(m, dtype=float).ravel(), np.array(p, dtype=float).ravel()
+        flat = _local_on(m, p, self.mu_s, self.b, mu_2, fluidity)
+        return flat.reshape(shape)
+
     def local_inertial_number(self, mu: FloatArray) -> FloatArray:
-        """I_loc(mu): the local law inverted, 0 where mu <= mu_s [-].
+        """I_loc(mu): the local law inverted, 0 where mu <= mu_s [-]
+        (:func:`local_inertial_number`).
 
         Raises
         ------
         NoSolutionError
             The saturating law and some mu >= mu_2 (no local steady rate carries it).
         """
-        m = np.asarray(mu, dtype=float)
-        excess = np.maximum(m - self.mu_s, 0.0)
-        if self.mu_2 is None:
-            return excess / self.b
-        if np.any(m >= self.mu_2):
-            raise NoSolutionError(
-                f"stress ratio {float(np.max(m)):.6g} >= mu_2 = {self.mu_2:.6g}: the local law "
-                "of Jop et al. has no steady rate there, so g_loc is undefined"
-            )
-        return (self.mu_2 - self.mu_s) / self.b * excess / (self.mu_2 - m)
+        return self._local(mu, 1.0, False)
 
     def local_fluidity(self, mu: FloatArray, pressure: FloatArray = 1.0) -> FloatArray:
-        """F_loc = sqrt(p/N) I_loc(mu)/mu: g_loc in units of sqrt(N/rho_s)/d [-]."""
-        m = np.asarray(mu, dtype=float)
-        i = self.local_inertial_number(m)
-        safe = np.where(m > 0.0, m, 1.0)
-        return np.where(i > 0.0, np.sqrt(np.asarray(pressure, dtype=float)) * i / safe, 0.0)
+        """F_loc = sqrt(p/N) I_loc(mu)/mu: g_loc in units of sqrt(N/rho_s)/d [-]
+        (:func:`local_fluidity`)."""
+        return self._local(mu, pressure, True)
 
     def cooperativity_length(self, mu: FloatArray, eps: float) -> FloatArray:
         """xi_c / H = A eps / sqrt(|mu - mu_s|) (inf at mu = mu_s) [-]."""
@@ -276,15 +345,25 @@ class _NGFCell:
         """xi of the wall the shear layer is measured from (NGF has no wall slip) [-]."""
         return self.moving_wall
 
-    def pressure(self, xi: FloatArray) -> FloatArray:  # pragma: no cover - overridden
-        raise NotImplementedError
+    def _statics(self, xi: FloatArray, T: float, which: int) -> FloatArray:
+        x = np.array(xi, dtype=float)  # a writeable copy (numba types read-only arrays apart)
+        return _statics_on(self.kind, float(self.shape), float(T), x.ravel(), which).reshape(
+            x.shape
+        )
 
-    def friction_ratio(self, xi: FloatArray, T: float) -> FloatArray:  # pragma: no cover
-        raise NotImplementedError
+    def friction_ratio(self, xi: FloatArray, T: float) -> FloatArray:
+        """mu = |tau|/p for the stress level T, from :func:`statics` [-]: ``T/(1 + B nu
+        (1 - xi))`` (plane), ``T (Ri/(Ri + xi))^2`` (Couette), ``2 T |xi - 1/2|`` (channel)."""
+        return self._statics(xi, T, 0)
+
+    def pressure(self, xi: FloatArray) -> FloatArray:
+        """p/N from :func:`statics`: ``1 + B nu (1 - xi)`` (plane), 1 otherwise [-]."""
+        return self._statics(xi, 1.0, 1)
 
     def radius(self, xi: FloatArray) -> FloatArray:
-        """r of the Laplacian (1/r) d/dxi (r d/dxi): 1 except in Couette flow [-]."""
-        return np.ones_like(np.asarray(xi, dtype=float))
+        """r/H of the Laplacian (1/r) d/dxi (r d/dxi), from :func:`statics`: ``Ri + xi`` in
+        Couette flow, 1 otherwise [-]."""
+        return self._statics(xi, 1.0, 2)
 
     def sigma_c(self, xi: FloatArray) -> FloatArray:
         """Normal stress over its scale (the Cell protocol's name for :meth:`pressure`)."""
@@ -403,7 +482,7 @@ class NGFPlaneShear(_NGFCell):
     stress_ratio: float | None = None
     fluidity_bc: str = "neumann"
 
-    kind = 0
+    kind = PLANE
     moving_wall = 1.0
     fixed_wall = 0.0
     wall_name = "moving upper wall"
@@ -436,14 +515,6 @@ class NGFPlaneShear(_NGFCell):
     def wall_velocity(xi_wall: float) -> float:
         """u of the wall: 1 at the moving upper wall, 0 at the fixed lower one [-]."""
         return 1.0 if xi_wall == 1.0 else 0.0
-
-    def pressure(self, xi: FloatArray) -> FloatArray:
-        """p/N = 1 + B nu (1 - xi) [-]."""
-        return 1.0 + self.B * self.nu * (1.0 - np.asarray(xi, dtype=float))
-
-    def friction_ratio(self, xi: FloatArray, T: float) -> FloatArray:
-        """mu = T / (1 + B nu (1 - xi)) [-]."""
-        return T / self.pressure(xi)
 
     def creep_extent(self, T: float) -> tuple[float, float] | None:
         """[0, xi_p] where mu <= mu_s (the creeping region at the fixed wall), or None [-]."""
@@ -498,7 +569,7 @@ class NGFCouetteFlow(_NGFCell):
     stress_ratio: float | None = None
     fluidity_bc: str = "neumann"
 
-    kind = 1
+    kind = COUETTE
     moving_wall = 0.0
     fixed_wall = 1.0
     wall_name = "turning inner cylinder"
@@ -530,20 +601,8 @@ class NGFCouetteFlow(_NGFCell):
         """u of the wall: -1 at the turning inner cylinder, 0 at the outer one [-]."""
         return -1.0 if xi_wall == 0.0 else 0.0
 
-    def radius(self, xi: FloatArray) -> FloatArray:
-        """r/H = Ri + xi [-]."""
-        return self.Ri + np.asarray(xi, dtype=float)
-
     def curvature(self, xi: FloatArray) -> FloatArray:
         return 1.0 / (self.Ri + np.asarray(xi, dtype=float))
-
-    def pressure(self, xi: FloatArray) -> FloatArray:
-        """p over the local pressure: 1 [-]."""
-        return np.ones_like(np.asarray(xi, dtype=float))
-
-    def friction_ratio(self, xi: FloatArray, T: float) -> FloatArray:
-        """mu = T (Ri/(Ri + xi))^2 [-]."""
-        return T * (self.Ri / (self.Ri + np.asarray(xi, dtype=float))) ** 2
 
     def creep_extent(self, T: float) -> tuple[float, float] | None:
         """[xi_c, 1] where mu <= mu_s (creeping, at the outer cylinder), or None [-]."""
@@ -599,7 +658,7 @@ class NGFChannel(_NGFCell):
     I_w: float | None = None
     fluidity_bc: str = "neumann"
 
-    kind = 2
+    kind = CHANNEL
     moving_wall = 1.0  # the layer is measured from the wall at xi = 1 (as for Channel)
     fixed_wall = 0.0
     wall_name = "walls"
@@ -632,14 +691,6 @@ class NGFChannel(_NGFCell):
         """u of either wall: 0 (no slip) [-]."""
         return 0.0
 
-    def pressure(self, xi: FloatArray) -> FloatArray:
-        """p/N = 1 [-]."""
-        return np.ones_like(np.asarray(xi, dtype=float))
-
-    def friction_ratio(self, xi: FloatArray, T: float) -> FloatArray:
-        """mu = 2 T |xi - 1/2| = B nu |xi - 1/2| with T = B nu/2 the wall stress ratio [-]."""
-        return 2.0 * T * np.abs(np.asarray(xi, dtype=float) - 0.5)
-
     def creep_extent(self, T: float) -> tuple[float, float] | None:
         """The core [1/2 - w, 1/2 + w], w = mu_s/(2T) = mu_s/(B nu), where mu <= mu_s [-]."""
         w = min(self.rheology.mu_s / (2.0 * T), 0.5)
@@ -663,6 +714,8 @@ class NGFChannel(_NGFCell):
 NGFProblem = NGFPlaneShear | NGFCouetteFlow | NGFChannel
 
 __all__ = [
+    "CHANNEL",
+    "COUETTE",
     "FLUIDITY_BCS",
     "NGF",
     "NGF_A",
@@ -670,8 +723,12 @@ __all__ = [
     "NGF_EXCESS_RTOL",
     "NGF_MU_S",
     "NGF_RHO_S",
+    "PLANE",
     "NGFChannel",
     "NGFCouetteFlow",
     "NGFPlaneShear",
     "NGFProblem",
+    "local_fluidity",
+    "local_inertial_number",
+    "statics",
 ]

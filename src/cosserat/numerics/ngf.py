@@ -16,7 +16,10 @@ level T; Brent's method (:mod:`cosserat.numerics.roots`) finds the T at which it
 imposed I_w.
 
 Cells (``kind``): 0 plane shear (``shape`` = B nu), 1 Couette flow (``shape`` = Ri),
-2 vertical channel (``shape`` unused). The local law: ``mu_2 = 0`` is the linear one.
+2 vertical channel (``shape`` unused). The local law: ``mu_2 = 0`` is the linear one. The
+statics and the local law are the compiled functions of :mod:`cosserat.model.ngf`
+(:func:`~cosserat.model.ngf.statics`, :func:`~cosserat.model.ngf.local_fluidity`), which the
+model's cells use too.
 Status codes: of :func:`fluidity`, 0 solved, 3 singular (a pivot of the tridiagonal solve is
 0 or not finite: k = 0 in double precision, so F is not determined); of :func:`stress_level`,
 0 converged, 1 no bracket found (the wall speed exceeds what any admissible stress level
@@ -30,33 +33,11 @@ import math
 import numpy as np
 from numba import njit
 
+from ..model.ngf import CHANNEL, COUETTE, PLANE, local_fluidity, statics
 from .roots import brent_accept, brent_next, brent_start
 
-PLANE, COUETTE, CHANNEL = 0, 1, 2
 CONVERGED, NO_BRACKET, NO_CONVERGENCE, SINGULAR = 0, 1, 2, 3
 SOLVED = CONVERGED
-
-
-@njit(cache=True, nogil=True)
-def statics(kind: int, shape: float, T: float, x: float) -> tuple[float, float, float]:
-    """(mu, p/N, r) at xi = x for the stress level T."""
-    if kind == PLANE:
-        s = 1.0 + shape * (1.0 - x)
-        return T / s, s, 1.0
-    if kind == COUETTE:
-        q = shape / (shape + x)
-        return T * q * q, 1.0, shape + x
-    return 2.0 * T * abs(x - 0.5), 1.0, 1.0
-
-
-@njit(cache=True, nogil=True)
-def local_fluidity(mu: float, s: float, mu_s: float, b: float, mu_2: float) -> float:
-    """F_loc = sqrt(p/N) I_loc(mu)/mu, 0 for mu <= mu_s (mu_2 = 0: linear law)."""
-    excess = mu - mu_s
-    if excess <= 0.0:
-        return 0.0
-    i = excess / b if mu_2 == 0.0 else (mu_2 - mu_s) / b * excess / (mu_2 - mu)
-    return math.sqrt(s) * i / mu
 
 
 @njit(cache=True, nogil=True)
