@@ -275,6 +275,18 @@ class Channel:
         disc = 0.25 * p * p - r * q
         return q / (0.5 * p + math.sqrt(max(disc, 0.0)))
 
+    @property
+    def deficit_scale(self) -> float:
+        """Scale of the couple stress's deficit y = c - |m| over the half channel, in units of
+        the yield scale: ``min(1, (tau_w / sin phi)^2)`` (doc section 4) [-].
+
+        On the outer solution ``y ~ tau^2 / (4 c (1+A))``, so y is O(tau_w^2) across the whole
+        channel when the wall stress is small; the kernel's absolute tolerance on y is measured
+        in this unit, else it would exceed y itself (and the width of the band between y and
+        the yield bound) when B nu is small.
+        """
+        return min(1.0, (self.wall_stress / self.material.sin_phi) ** 2)
+
     # ----------------------------------------------------------------- wall constants
     @functools.cached_property
     def slip_constants(self) -> WallConstants:

@@ -10,7 +10,8 @@ The passes are those of :mod:`cosserat.numerics.cosserat`:
    keeps the radicand S of ``eqn-nd_sigxy`` free of cancellation near the centre, where S
    vanishes), integrated with Radau IIA from ``xi_0 = 1/2 + s_0`` (started on the regular series
    ``y = mu s_0^2`` through the singular point, doc section 4) to the wall: its stable direction.
-   An event stops it where S reaches zero (no real solution).
+   An event stops it where S reaches zero (no real solution). Its absolute tolerance is atol
+   times ``P_Y_SCALE``, the scale of y (``y ~ tau^2``, tiny when B nu is small; doc section 4).
 2. **Spin and velocity**: ``l = ln(omega_hat / omega_hat_w)`` and ``P = int_1^xi e^l F1`` from
    the wall to xi_0 with DOP853, stopped where e^l underflows; the piece from xi_0 to the centre,
    where ``omega_hat ~ s^p``, is added in closed form.
@@ -44,7 +45,8 @@ P_C = 6  # couple stress at the centre line, sqrt(sin^2 phi / (2(A+1))) [-]
 P_MU = 7  # series coefficient: y = mu s^2 near the centre [-]
 P_S0 = 8  # where the couple-stress pass starts, xi_0 - 1/2 [-]
 P_EPS_K = 9  # eps K at the walls, 0 if they do not slip [-]
-N_PARAMS = 10
+P_Y_SCALE = 10  # scale of the deficit y across the half channel, absolute tolerance unit [-]
+N_PARAMS = 11
 
 # ----------------------------------------------------------------- status codes
 OK = 0
@@ -97,10 +99,13 @@ def couple_rhs(xi, yv, p):
 
 @njit(cache=True, nogil=True)
 def couple_jac(xi, yv, p):
-    """d(dy/dxi)/dy = -2(A+1) m_hat/(eps alpha sqrt(S)), sqrt(S) floored (as the plane kernel)."""
-    _, _, S = _state(xi, yv[0], p)
+    """d(dy/dxi)/dy = -2(A+1) m_hat/(eps alpha sqrt(S)), sqrt(S) floored at a small fraction of
+    its own scale (1+A) tau (sqrt(S) ~ kappa s on the series, kappa -> (1+A) B nu as eps -> 0):
+    a floor fixed in units of sin(phi) would exceed sqrt(S) itself near the centre when B nu is
+    small, and Newton's iteration would then stall on a wrong Jacobian."""
+    tau, _, S = _state(xi, yv[0], p)
     m = p[P_C] - yv[0]
-    floor = JACOBIAN_ROOT_FLOOR * p[P_SIN_PHI]
+    floor = JACOBIAN_ROOT_FLOOR * (1.0 + p[P_A]) * tau
     out = np.empty((1, 1))
     root = max(math.sqrt(S) if S > 0.0 else 0.0, floor)
     out[0, 0] = -2.0 * (p[P_A] + 1.0) * m / (root * p[P_EPS] * p[P_ALPHA])
@@ -245,7 +250,7 @@ def solve_case(p, rtol, atol, f, max_steps):
     x0 = 0.5 + p[P_S0]
     y0 = np.array([p[P_MU] * p[P_S0] ** 2])
     status, ts1, hs1, ys1, Q1, _, nfev, _, nlu, nsteps = radau5(
-        couple_rhs, couple_jac, couple_event, x0, 1.0, y0, rtol, np.array([atol]), p,
+        couple_rhs, couple_jac, couple_event, x0, 1.0, y0, rtol, np.array([atol * p[P_Y_SCALE]]), p,
         max_steps, 0.0,
     )  # fmt: skip
     info[I_NFEV], info[I_NSTEPS], info[I_NLU] = nfev, nsteps, nlu

@@ -35,9 +35,18 @@ from .numerical import WallResult, tolerances
 START_OFFSET = 1e-4
 """s_0 = xi_0 - 1/2 where the couple-stress pass leaves the centre-line series (its error
 ~ s_0^4 is below round-off, and decays further as the pass relaxes) [-]."""
+NEAR_CENTRE_OFFSETS = 10.0
+"""A yield event within this many start offsets s_0 of the centre line is undecided: where the
+centre-line condition holds the series through the singular point is a real solution there
+(doc section 4), so the event is the integration's error, not the model's [-]."""
+RETRY_TIGHTENING = 100.0
+"""Factor by which rtol and atol are tightened when a yield event is retried [-]."""
+MAX_RETRIES = 2
+"""Retries of a solve that ended on a yield event (tighter tolerance; s_0/10 if near the
+centre) before the event is trusted (away from the centre) or the solve gives up [-]."""
 
 
-def parameter_vector(problem: Channel) -> FloatArray:
+def parameter_vector(problem: Channel, start_offset: float = START_OFFSET) -> FloatArray:
     """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.channel`)."""
     mat = problem.material
     p = np.zeros(kernel.N_PARAMS)
@@ -47,21 +56,24 @@ def parameter_vector(problem: Channel) -> FloatArray:
     p[kernel.P_WALL_GAP] = problem.wall_gap
     p[kernel.P_C] = problem.c
     p[kernel.P_MU] = problem.centre_expansion()  # raises NoSolutionError in words
-    p[kernel.P_S0] = START_OFFSET
+    p[kernel.P_S0] = start_offset
     p[kernel.P_EPS_K] = problem.eps * problem.wall.K if problem.slips else 0.0
+    p[kernel.P_Y_SCALE] = problem.deficit_scale
     return p
 
 
-def raise_for_status(problem: Channel, status: int, info: FloatArray) -> None:
+def raise_for_status(problem: Channel, status: int, info: FloatArray, rtol: float) -> None:
+    """The package's error for a kernel status (a yield event only once :func:`run_kernel` has
+    confirmed it away from the centre line)."""
     if status == kernel.OK:
         return
     xi, m = float(info[kernel.I_XI_FAIL]), float(info[kernel.I_M_FAIL])
     if status == kernel.NO_SOLUTION:
         raise NoSolutionError(
             f"no real solution for {problem.describe()}: integrated from the centre line, the "
-            f"couple stress reaches the yield bound at xi = {xi:.6g} (|m| = {abs(m):.6g}), "
-            f"beyond which the second shear stress of eqn-nd_sigxy is complex "
-            f"(docs/derivation_channel.md, section 4)"
+            f"couple stress reaches the yield bound at xi = {xi:.6g} (|m| = {abs(m):.6g}; "
+            f"found again at rtol = {rtol:.3g}), beyond which the second shear stress of "
+            f"eqn-nd_sigxy is complex (docs/derivation_channel.md, section 4)"
         )
     if status == kernel.SINGULAR_VELOCITY:
         raise ConvergenceError(f"the velocity conditions are singular for {problem.describe()}")
@@ -112,6 +124,10 @@ class ChannelSolution:
     couple: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
     spin: tuple[FloatArray, FloatArray, FloatArray]
     info_f: float = config.DEFAULT_F
+    rtol: float = math.nan
+    """The relative tolerance of the solve that succeeded (tighter than asked after a retry)."""
+    retries: int = 0
+    """How many retries a spurious yield event took (:func:`run_kernel`)."""
 
     def _deficit(self, h: FloatArray) -> FloatArray:
         """y = c - m_hat on the upper half (the series inside xi_0)."""
@@ -239,6 +255,9 @@ def solve_numerical(
         "spin_steps": int(info[kernel.I_STEPS_SPIN]),
         "spin_cutoff_xi": float(info[kernel.I_XI_CUT]),
         "centre_exponent": float(info[kernel.I_P_EXP]),
+        "start_offset": float(sol.params[kernel.P_S0]),
+        "retries": sol.retries,
+        "rtol_used": sol.rtol,
     }
     return _finish(
         problem,
@@ -261,11 +280,48 @@ def solve_numerical(
 def run_kernel(
     problem: Channel, rtol: float, atol: float, f: float = config.DEFAULT_F
 ) -> ChannelSolution:
-    """Solve on the compiled kernel; raise the package's error if it fails."""
-    p = parameter_vector(problem)
-    status, info, couple, spin = kernel.solve_case(p, rtol, atol, f, config.MAX_STEPS)
-    raise_for_status(problem, int(status), info)
-    return ChannelSolution(problem, p, info, couple, spin, float(f))
+    """Solve on the compiled kernel; raise the package's error if it fails.
+
+    A yield event (S reaching zero, no real solution beyond it) is only reported as
+    :class:`NoSolutionError` once a solve at a tolerance tighter by ``RETRY_TIGHTENING`` finds it
+    again away from the centre line (or rtol is already at its floor). An event within
+    ``NEAR_CENTRE_OFFSETS`` start offsets of the centre line is undecided (the series there is a
+    real solution, doc section 4): it is retried with a tighter tolerance and s_0/10, and if it
+    persists the solve raises :class:`ConvergenceError`, saying where and why, not
+    NoSolutionError.
+    """
+    s0 = START_OFFSET
+    floor = config.RTOL_RANGE[0]
+    tried: list[str] = []
+    far_events = 0
+    for attempt in range(MAX_RETRIES + 1):
+        p = parameter_vector(problem, s0)
+        status, info, couple, spin = kernel.solve_case(p, rtol, atol, f, config.MAX_STEPS)
+        if status == kernel.OK:
+            return ChannelSolution(problem, p, info, couple, spin, float(f), rtol, attempt)
+        if status != kernel.NO_SOLUTION:
+            raise_for_status(problem, int(status), info, rtol)
+        xi_fail = float(info[kernel.I_XI_FAIL])
+        near = xi_fail - 0.5 < NEAR_CENTRE_OFFSETS * s0
+        tried.append(f"xi = {xi_fail:.9g} at rtol = {rtol:.3g}, s_0 = {s0:.3g}")
+        if not near:
+            far_events += 1
+            if far_events >= 2 or rtol <= floor:
+                raise_for_status(problem, int(status), info, rtol)
+        tighter = max(rtol / RETRY_TIGHTENING, floor)
+        atol *= tighter / rtol
+        rtol = tighter
+        if near:
+            s0 /= 10.0
+    raise ConvergenceError(
+        f"cannot decide whether {problem.describe()} has a real solution: integrated from the "
+        f"centre line, the couple stress met the yield bound ({'; '.join(tried)}), within "
+        f"{NEAR_CENTRE_OFFSETS:g} start offsets s_0 of the centre line or at a place that "
+        f"moved with the tolerance; the series through the centre line is a real solution "
+        f"there when eps alpha B nu (1 - A) <= 2 c (1 + A) (docs/derivation_channel.md, "
+        f"section 4), so the integration could not resolve the narrow band between the couple "
+        f"stress and its bound: try a tighter rtol"
+    )
 
 
 def wall_quantities(
