@@ -95,7 +95,12 @@ def _cell_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--B", type=float, default=1.0, help="plane: rho_s nu g H / N (0: no gravity)")
     p.add_argument("--Ri", type=float, default=20.0, help="couette: inner radius [d]")
     p.add_argument("--nu-fill", type=float, default=0.81, help="couette: solids fraction")
-    p.add_argument("--shear-ratio", type=float, default=0.42, help="channel: rho_s nu g H/(2N)")
+    p.add_argument(
+        "--shear-ratio",
+        type=float,
+        default=0.40,
+        help="channel: the drive rho_s nu g H/(2N) [-] (default: 0.40; 0.39 jams, docs/dem.md)",
+    )
     p.add_argument("--speed", type=float, default=None, help="wall speed [sqrt(N/rho_s)]")
     p.add_argument("--wall", choices=("glued-grains", "smooth-frictional"), default="glued-grains")
     p.add_argument("--glued-diameter", type=float, default=1.0, help="[d]")
