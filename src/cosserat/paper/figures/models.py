@@ -29,6 +29,23 @@ POINTS = 201
 COLORS = ["k", "tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange"]
 
 
+def _style(styles: dict[str, dict], label: str, markevery: int | None = None) -> dict:
+    """One style per series label in every panel (the figure has one legend for all panels):
+    colour, line style and an open marker, spaced along profiles by ``markevery``."""
+    if label not in styles:
+        i = len(styles)
+        styles[label] = {
+            "color": COLORS[i % len(COLORS)],
+            "linestyle": LINESTYLES[i % 5],
+            "marker": MARKERS[i % len(MARKERS)],
+            "markerfacecolor": "none",
+        }
+    style = dict(styles[label])
+    if markevery is not None:
+        style["markevery"] = markevery
+    return style
+
+
 def _models(cell: str) -> list[str]:
     return [m for m, r in RHEOLOGIES.items() if cell in r.cells]
 
@@ -39,6 +56,7 @@ def compute_models() -> FigureData:
     notes: list[str] = []
     extra: dict = {"gap_studies": {}}
     spinless: set[str] = set()
+    styles: dict[str, dict] = {}  # one style per series label across the panels
     for cell, params in CELLS.items():
         u_panel = Panel(xlabel=r"$u$", ylabel=r"$\xi$", title=f"{cell}: velocity")
         s_panel = Panel(
@@ -46,7 +64,7 @@ def compute_models() -> FigureData:
             ylabel=r"$\xi$",
             title=f"{cell}: spin minus half vorticity",
         )
-        for i, model in enumerate(_models(cell)):
+        for model in _models(cell):
             own = {"delta": "fully-rough"} if model == "cosserat" else {}
             try:
                 prof = model_solve(model_problem(model, cell, {**params, **own}), points=POINTS)
@@ -54,7 +72,7 @@ def compute_models() -> FigureData:
                 notes.append(f"{model} on the {cell} cell: {' '.join(str(exc).split())}")
                 continue
             label = f"{model}, fully rough" if model == "cosserat" else model
-            style = {"color": COLORS[i % len(COLORS)], "linestyle": LINESTYLES[i % 5]}
+            style = _style(styles, label, markevery=max(1, POINTS // 8))
             u_panel.add(label, prof.u, prof.xi, **style)
             spin = prof.spin_minus_half_vorticity
             if np.any(spin != 0.0):
@@ -71,21 +89,19 @@ def compute_models() -> FigureData:
             xlabel=r"$H/d$", ylabel=r"$\Delta$ [$d$]", xscale="log", yscale="log",
             title=f"{cell}: Delta against the gap",
         )  # fmt: skip
-        for i, s in enumerate(study.series):
+        for s in study.series:
             ok = [(g, d) for g, d in zip(s.gaps, s.Delta, strict=True) if d is not None]
             if not ok:
                 continue
             g = np.array([p[0] for p in ok])
             d = np.array([p[1] for p in ok])
             last = s.slope_large_gap
-            panel.add(
-                s.label + ("" if last is None else f" (last slope {last:.2f})"),
-                g,
-                d,
-                color=COLORS[i % len(COLORS)],
-                marker=MARKERS[i % len(MARKERS)],
-                markerfacecolor="none",
-            )
+            if last is not None:
+                notes.append(
+                    f"{cell}, {s.label}: slope of Delta against H/d between the two largest "
+                    f"gaps {last:.2f}"
+                )
+            panel.add(s.label, g, d, **_style(styles, s.label))
         gg = np.geomspace(GAPS[0], GAPS[-1], 20)
         panel.add("slope 1/3", gg, 3.0 * (gg / GAPS[0]) ** (1 / 3), color="0.5", linestyle=":")
         panels.append(panel)
@@ -123,7 +139,13 @@ def compute_models() -> FigureData:
 
 
 def plot_models(data: FigureData):  # type: ignore[no-untyped-def]
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
+
     fig = draw(data, ncols=2)
+    for ax in fig.axes:
+        if ax.get_yscale() == "log":  # 2, 5, 10, 20 rather than 2 x 10^0
+            ax.yaxis.set_major_formatter(ScalarFormatter())
+            ax.yaxis.set_minor_formatter(NullFormatter())
     for ax in fig.axes:
         for text in ax.get_legend().get_texts() if ax.get_legend() else []:
             text.set_fontsize(6)
