@@ -261,6 +261,16 @@ B = [0.0, 1.0]
 """
 
 
+def _default_sigint() -> None:
+    """In the child, before exec: SIGINT back to its default. A shell without job control
+    starts background commands with SIGINT ignored, and an ignored SIGINT stays ignored
+    across exec (Python then installs no KeyboardInterrupt handler): under such a CI runner
+    the test's Ctrl-C would never reach the sweep, as it does at a terminal."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _cosserat(*args, **kw):
     import subprocess
     import sys
@@ -270,6 +280,7 @@ def _cosserat(*args, **kw):
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        preexec_fn=_default_sigint,
         **kw,
     )
 
