@@ -59,7 +59,7 @@ EXTRA_KEYS = (
     "wall_time_s",
 )  # fmt: skip
 """Keys this reader also understands: which wall moves; the model a synthetic run came from;
-and what :mod:`cosserat.dem` records of a run (how B was set, the settling and dump intervals,
+and what ``cosserat.dem`` records of a run (how B was set, the settling and dump intervals,
 the moving wall's measured stresses and speed, the drift of the flow over the steady window,
 the run's wall time; ``docs/dem.md``)."""
 WALL_KINDS = ("glued-grains", "smooth-frictional")
