@@ -14,8 +14,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from cosserat import ParameterError, shear_layer_thickness, solve, wall_slip
+from cosserat import Material, ParameterError, Wall, shear_layer_thickness, solve, wall_slip
 from cosserat.model import Channel, CouetteFlow, PlaneShear
+from cosserat.model.mui import MuIChannel, MuIPlaneShear
+from cosserat.model.ngf import NGFPlaneShear
 from cosserat.model.rheology import Cell, Rheology
 from cosserat.results.profile import Diagnostics, Fields, Profile
 from cosserat.routes import COSSERAT, RHEOLOGIES, register
@@ -114,3 +116,22 @@ def test_a_rheology_cannot_route_a_cell_it_does_not_have():
 def test_names_are_unique():
     with pytest.raises(ParameterError, match="already registered"):
         register(TOY)
+
+
+@pytest.mark.parametrize(
+    ("problem", "method"),
+    [
+        (PlaneShear(material=Material(), upper=Wall(), eps=0.05), "numerical"),
+        (MuIPlaneShear(eps=0.05), "numerical"),
+        (MuIChannel(eps=0.05, B=1.0), "closed-form"),
+        (NGFPlaneShear(eps=0.05), "numerical"),
+    ],
+)
+def test_every_route_checks_a_given_grid_the_same_way(problem, method):
+    """One check of a caller's xi (routes.assemble.given_grid) for every rheology and cell."""
+    with pytest.raises(ParameterError, match="strictly increasing"):
+        solve(problem, method=method, xi=np.array([0.0, 0.5, 0.4]))
+    with pytest.raises(ParameterError, match=r"must lie in \[0, 1\]"):
+        solve(problem, method=method, xi=np.array([0.0, 0.5, 1.5]))
+    profile = solve(problem, method=method, xi=np.array([0.0, 0.25, 1.0]))
+    np.testing.assert_array_equal(profile.xi, [0.0, 0.25, 1.0])

@@ -16,6 +16,22 @@ from ..results.diagnostics import residuals
 from ..results.profile import Diagnostics, Evaluator, Fields, Profile
 
 
+def given_grid(xi: FloatArray) -> FloatArray:
+    """A caller's output grid ``xi``, checked: 1-D, strictly increasing, in [0, 1] [-].
+
+    Raises
+    ------
+    ParameterError
+        Otherwise, saying which.
+    """
+    grid = np.asarray(xi, dtype=float)
+    if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
+        raise ParameterError("xi must be a strictly increasing 1-D array of at least two points")
+    if grid[0] < 0.0 or grid[-1] > 1.0:
+        raise ParameterError(f"xi must lie in [0, 1]; got [{grid[0]:g}, {grid[-1]:g}]")
+    return grid
+
+
 def make_profile(
     problem: Problem,
     form: Formulation,
@@ -37,15 +53,7 @@ def make_profile(
     ``check`` computes the ODE residuals on a layer-resolving check grid and the boundary
     errors; sweeps that need only wall quantities may skip it.
     """
-    grid = (
-        problem.output_grid(points or config.OUTPUT_POINTS)
-        if xi is None
-        else np.asarray(xi, dtype=float)
-    )
-    if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
-        raise ParameterError("xi must be a strictly increasing 1-D array of at least two points")
-    if grid[0] < 0.0 or grid[-1] > 1.0:
-        raise ParameterError(f"xi must lie in [0, 1]; got [{grid[0]:g}, {grid[-1]:g}]")
+    grid = problem.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
     f = evaluate(grid)
     # The returned stresses must be real: a profile never carries a clipped radicand.
     check_radicand(

@@ -33,6 +33,7 @@ from ..model.constitutive import FloatArray
 from ..model.mui import GAP_MIN, MuIChannel, MuICouetteFlow, MuIPlaneShear, MuIProblem
 from ..model.rheology import Rheology
 from ..results.profile import Diagnostics, Fields, Profile
+from .assemble import given_grid
 
 REFERENCE = (
     "GDR MiDi, On dense granular flows, Eur. Phys. J. E 14 (2004) 341-365; Jop, Forterre & "
@@ -244,14 +245,7 @@ def _stress_level(problem: MuIProblem, G_of_gap, rtol: float) -> tuple[float, fl
 # ----------------------------------------------------------------- profiles
 def _grid(problem: MuIProblem, gap: float, points: int | None, xi: FloatArray | None) -> FloatArray:
     if xi is not None:
-        grid = np.asarray(xi, dtype=float)
-        if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
-            raise ParameterError(
-                "xi must be a strictly increasing 1-D array of at least two points"
-            )
-        if grid[0] < 0.0 or grid[-1] > 1.0:
-            raise ParameterError(f"xi must lie in [0, 1]; got [{grid[0]:g}, {grid[-1]:g}]")
-        return grid
+        return given_grid(xi)
     n = max(int(points or config.OUTPUT_POINTS), 3)
     plug = problem.plug_extent(gap)
     if plug is None:
@@ -545,11 +539,7 @@ def _channel_profile(
         n = points or config.OUTPUT_POINTS
         grid = np.unique(np.concatenate([np.linspace(0.0, 1.0, n), [0.5 - t_s, 0.5 + t_s]]))
     else:
-        grid = np.asarray(xi, dtype=float)
-        if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
-            raise ParameterError("xi must be a strictly increasing 1-D array of >= 2 points")
-        if grid[0] < 0.0 or grid[-1] > 1.0:
-            raise ParameterError(f"xi must lie in [0, 1]; got [{grid[0]:g}, {grid[-1]:g}]")
+        grid = given_grid(xi)
     f = ev(grid)
     for name, values in f._asdict().items():
         if not np.all(np.isfinite(values)):

@@ -33,6 +33,7 @@ from ..model.ngf import NGFChannel, NGFCouetteFlow, NGFPlaneShear, NGFProblem
 from ..model.rheology import Rheology
 from ..numerics import ngf as kernel
 from ..results.profile import Diagnostics, Fields, Profile
+from .assemble import given_grid
 
 REFERENCE = (
     "Kamrin & Koval, Nonlocal constitutive relation for steady granular flow, Phys. Rev. Lett. "
@@ -321,14 +322,7 @@ class _ChannelEvaluator(_Evaluator):
 # ----------------------------------------------------------------- the profile
 def _grid(problem: NGFProblem, T: float, points: int | None, xi: FloatArray | None) -> FloatArray:
     if xi is not None:
-        grid = np.asarray(xi, dtype=float)
-        if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
-            raise ParameterError(
-                "xi must be a strictly increasing 1-D array of at least two points"
-            )
-        if grid[0] < 0.0 or grid[-1] > 1.0:
-            raise ParameterError(f"xi must lie in [0, 1]; got [{grid[0]:g}, {grid[-1]:g}]")
-        return grid
+        return given_grid(xi)
     n = max(int(points or config.OUTPUT_POINTS), 3)
     parts = [np.linspace(0.0, 1.0, n)]
     extent = problem.creep_extent(T)
