@@ -46,7 +46,7 @@ from .constitutive import FloatArray
 from .formulation import Formulation
 from .grids import layered_grid
 from .parameters import Material, Wall, require_finite
-from .plane import B_MAX, WallConstants, validate_eps, wall_constants
+from .plane import B_MAX, WallConstants, validate_eps, validate_nu, wall_constants
 
 FRICTION_MATCH_RTOL = 1e-12
 """B nu / 2 within this relative distance of tan(delta) is friction fully mobilised [-]."""
@@ -138,9 +138,7 @@ class Channel:
         if not isinstance(self.wall, Wall):
             raise ParameterError(f"wall must be a Wall; got {type(self.wall).__name__}")
         object.__setattr__(self, "eps", validate_eps(self.eps))
-        nu = require_finite("nu", self.nu)
-        if not 0.0 < nu <= 1.0:
-            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
+        nu = validate_nu(self.nu)
         object.__setattr__(self, "nu", nu)
         tan_delta = self.wall.tan_delta(self.material, "delta")
         if self.B is None:

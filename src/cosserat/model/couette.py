@@ -44,6 +44,14 @@ from .plane import WallConstants, validate_eps, wall_constants
 RI_MIN, RI_MAX = 1e-3, 1e6
 
 
+def validate_Ri(Ri: float) -> float:
+    """R_i/H, checked: RI_MIN <= Ri <= RI_MAX [-]."""
+    Ri = require_finite("Ri", Ri)
+    if not RI_MIN <= Ri <= RI_MAX:
+        raise ParameterError(f"Ri = R_i/H must satisfy {RI_MIN:g} <= Ri <= {RI_MAX:g}; got {Ri:g}")
+    return Ri
+
+
 @njit(cache=True, nogil=True)
 def shear_stress(
     xi: Any, m: Any, m_inner: float, tan_delta: float, Ri: float, couple_factor: float
@@ -120,12 +128,7 @@ class CouetteFlow:
         if not isinstance(self.wall, Wall):
             raise ParameterError(f"wall must be a Wall; got {type(self.wall).__name__}")
         object.__setattr__(self, "eps", validate_eps(self.eps))
-        Ri = require_finite("Ri", self.Ri)
-        if not RI_MIN <= Ri <= RI_MAX:
-            raise ParameterError(
-                f"Ri = R_i/H must satisfy {RI_MIN:g} <= Ri <= {RI_MAX:g}; got {Ri:g}"
-            )
-        object.__setattr__(self, "Ri", Ri)
+        object.__setattr__(self, "Ri", validate_Ri(self.Ri))
         self.wall.tan_delta(self.material, "delta")
 
     # ----------------------------------------------------------------- equations

@@ -28,9 +28,9 @@ import numpy as np
 from .. import config
 from ..errors import NoSolutionError, ParameterError
 from .constitutive import FloatArray
-from .couette import RI_MAX, RI_MIN
+from .couette import validate_Ri
 from .parameters import require_finite
-from .plane import B_MAX, validate_eps
+from .plane import B_MAX, validate_B, validate_eps, validate_nu
 
 GAP_MIN = 1e-300
 """Smallest representable distance of the wall's stress ratio from mu_2 [-]."""
@@ -261,14 +261,8 @@ class MuIPlaneShear(_MuICell):
         if not isinstance(self.rheology, MuI):
             raise ParameterError(f"rheology must be a MuI; got {type(self.rheology).__name__}")
         object.__setattr__(self, "eps", validate_eps(self.eps))
-        B = require_finite("B", self.B)
-        if not 0.0 <= B <= B_MAX:
-            raise ParameterError(f"B = rho_p g H / N must satisfy 0 <= B <= {B_MAX:g}; got {B:g}")
-        object.__setattr__(self, "B", B)
-        nu = require_finite("nu", self.nu)
-        if not 0.0 < nu <= 1.0:
-            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
-        object.__setattr__(self, "nu", nu)
+        object.__setattr__(self, "B", validate_B(self.B))
+        object.__setattr__(self, "nu", validate_nu(self.nu))
         I_w, T = _validate_driving(self.I_w, self.stress_ratio)
         object.__setattr__(self, "I_w", I_w)
         object.__setattr__(self, "stress_ratio", T)
@@ -362,12 +356,7 @@ class MuICouetteFlow(_MuICell):
         if not isinstance(self.rheology, MuI):
             raise ParameterError(f"rheology must be a MuI; got {type(self.rheology).__name__}")
         object.__setattr__(self, "eps", validate_eps(self.eps))
-        Ri = require_finite("Ri", self.Ri)
-        if not RI_MIN <= Ri <= RI_MAX:
-            raise ParameterError(
-                f"Ri = R_i/H must satisfy {RI_MIN:g} <= Ri <= {RI_MAX:g}; got {Ri:g}"
-            )
-        object.__setattr__(self, "Ri", Ri)
+        object.__setattr__(self, "Ri", validate_Ri(self.Ri))
         I_w, T = _validate_driving(self.I_w, self.stress_ratio)
         object.__setattr__(self, "I_w", I_w)
         object.__setattr__(self, "stress_ratio", T)
@@ -469,10 +458,7 @@ class MuIChannel:
                 f"drives the flow); got {B:g}"
             )
         object.__setattr__(self, "B", B)
-        nu = require_finite("nu", self.nu)
-        if not 0.0 < nu <= 1.0:
-            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
-        object.__setattr__(self, "nu", nu)
+        object.__setattr__(self, "nu", validate_nu(self.nu))
         law, mu_w = self.rheology, self.wall_stress_ratio
         if mu_w >= law.mu_2:
             law.inertial_number(np.array([mu_w]), "at the walls, where it is largest")

@@ -38,10 +38,10 @@ from numba import njit
 
 from ..errors import NoSolutionError, ParameterError
 from .constitutive import FloatArray
-from .couette import RI_MAX, RI_MIN
+from .couette import validate_Ri
 from .mui import MuI
 from .parameters import require_finite
-from .plane import B_MAX, validate_eps
+from .plane import B_MAX, validate_B, validate_eps, validate_nu
 
 # ----------------------------------------------------------------- the source's values
 NGF_MU_S = 0.3819
@@ -490,13 +490,8 @@ class NGFPlaneShear(_NGFCell):
 
     def __post_init__(self) -> None:
         self._validate_common()
-        B = require_finite("B", self.B)
-        if not 0.0 <= B <= B_MAX:
-            raise ParameterError(f"B = rho_p g H / N must satisfy 0 <= B <= {B_MAX:g}; got {B:g}")
-        object.__setattr__(self, "B", B)
-        nu = require_finite("nu", self.nu)
-        if not 0.0 < nu <= 1.0:
-            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
+        object.__setattr__(self, "B", validate_B(self.B))
+        nu = validate_nu(self.nu)
         object.__setattr__(self, "nu", nu)
         I_w, T = _validate_driving(self.I_w, self.stress_ratio, "stress_ratio", self.rheology)
         object.__setattr__(self, "I_w", I_w)
@@ -577,12 +572,7 @@ class NGFCouetteFlow(_NGFCell):
 
     def __post_init__(self) -> None:
         self._validate_common()
-        Ri = require_finite("Ri", self.Ri)
-        if not RI_MIN <= Ri <= RI_MAX:
-            raise ParameterError(
-                f"Ri = R_i/H must satisfy {RI_MIN:g} <= Ri <= {RI_MAX:g}; got {Ri:g}"
-            )
-        object.__setattr__(self, "Ri", Ri)
+        object.__setattr__(self, "Ri", validate_Ri(self.Ri))
         I_w, T = _validate_driving(self.I_w, self.stress_ratio, "stress_ratio", self.rheology)
         object.__setattr__(self, "I_w", I_w)
         object.__setattr__(self, "stress_ratio", T)
@@ -666,9 +656,7 @@ class NGFChannel(_NGFCell):
 
     def __post_init__(self) -> None:
         self._validate_common()
-        nu = require_finite("nu", self.nu)
-        if not 0.0 < nu <= 1.0:
-            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
+        nu = validate_nu(self.nu)
         object.__setattr__(self, "nu", nu)
         I_w, B = _validate_driving(self.I_w, self.B, "B", self.rheology)
         if B is not None and B > B_MAX:

@@ -81,6 +81,25 @@ def mean_stress(xi: Any, B_nu: float) -> Any:
     return 1.0 + B_nu * (1.0 - xi)
 
 
+def validate_B(B: float) -> float:
+    """The gravity parameter B = rho_p g H / N, checked: 0 <= B <= B_MAX [-]."""
+    B = require_finite("B", B)
+    if not 0.0 <= B <= B_MAX:
+        raise ParameterError(
+            f"B = rho_p g H / N must satisfy 0 <= B <= {B_MAX:g} (weight of the layer at most "
+            f"{B_MAX:g} times the applied normal stress); got {B:g}"
+        )
+    return B
+
+
+def validate_nu(nu: float) -> float:
+    """The solids fraction nu, checked: 0 < nu <= 1 [-]."""
+    nu = require_finite("nu", nu)
+    if not 0.0 < nu <= 1.0:
+        raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
+    return nu
+
+
 def validate_eps(eps: float) -> float:
     x = require_finite("eps", eps)
     if not 0.0 < x <= 0.5:
@@ -142,17 +161,8 @@ class PlaneShear:
         elif not isinstance(self.lower, Wall):
             raise ParameterError(f"lower must be a Wall; got {type(self.lower).__name__}")
         object.__setattr__(self, "eps", validate_eps(self.eps))
-        B = require_finite("B", self.B)
-        if not 0.0 <= B <= B_MAX:
-            raise ParameterError(
-                f"B = rho_p g H / N must satisfy 0 <= B <= {B_MAX:g} (weight of the layer at most "
-                f"{B_MAX:g} times the applied normal stress); got {B:g}"
-            )
-        object.__setattr__(self, "B", B)
-        nu = require_finite("nu", self.nu)
-        if not 0.0 < nu <= 1.0:
-            raise ParameterError(f"nu (solids fraction) must satisfy 0 < nu <= 1; got {nu:g}")
-        object.__setattr__(self, "nu", nu)
+        object.__setattr__(self, "B", validate_B(self.B))
+        object.__setattr__(self, "nu", validate_nu(self.nu))
         # tan(delta) <= sin(phi) for both walls (raises with the wall's name).
         self.upper.tan_delta(self.material, "delta")
         self.lower_wall.tan_delta(self.material, "delta_lower")
