@@ -161,6 +161,12 @@ class CouetteCell:
         bracket = -(r**2) * profile.sigma_yx + p.couple_factor * r * profile.m
         return 2.0 * math.pi * self.mean_stress(depth) * self.gap**2 * bracket
 
+    def shear_torque_density(self, profile: Profile, depth: float) -> float:
+        """The wall shear stress's share of the torque per unit height at depth z,
+        2 pi R_i^2 tau_w [N m / m]; the rest of :meth:`torque_density` at r = R_i is the wall
+        couple stress's share."""
+        return 2.0 * math.pi * self.R_i**2 * self.wall_shear_stress(profile, depth)
+
     def torque(self, profile: Profile) -> float:
         """Torque on the inner cylinder over the fill depth D [N m].
 

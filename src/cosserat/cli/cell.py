@@ -125,10 +125,7 @@ def compute(args: argparse.Namespace) -> tuple[dict[str, Any], Any, CouetteCell]
         "torque": cell.torque(profile),
         "torque_per_height": float(cell.torque_density(profile, depth)[0]),
         "wall_shear_stress": cell.wall_shear_stress(profile, depth),
-        "torque_per_height_shear": 2.0
-        * math.pi
-        * cell.R_i**2
-        * cell.wall_shear_stress(profile, depth),
+        "torque_per_height_shear": cell.shear_torque_density(profile, depth),
         "mean_stress": float(cell.mean_stress(depth)),
         "slip_velocity": cell.slip_velocity(profile),
         "Delta": delta,
