@@ -223,3 +223,19 @@ def test_measured_cell_reads_the_header_and_lets_arguments_override():
     assert measured_cell(m, Ri=None, eps=0.1)["eps"] == 0.1
     with pytest.raises(ParameterError, match="geometry"):
         measured_cell(read_profile("distance_d,u_over_uw\n0.5,0.9\n"), eps=0.1)
+
+
+@pytest.mark.parametrize("model", ["cosserat", "mui"])
+def test_a_fitted_model_compares_as_compare_does(model):
+    """ModelFit.comparison is analysis.fitting.compare of the fitted problem: the same model
+    curve, residuals (data minus model) and rms, for any rheology."""
+    from cosserat.analysis.fitting import compare
+
+    measured, problem = synthetic(model, 5)
+    fitted = fit_model(measured, problem)
+    mine = fitted.comparison(measured)
+    theirs = compare(fitted.problem, measured)
+    np.testing.assert_allclose(mine.model, theirs.model, rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(mine.residuals, theirs.residuals, rtol=1e-6, atol=1e-9)
+    assert mine.rms == pytest.approx(theirs.rms, rel=1e-5)
+    np.testing.assert_allclose(mine.residuals, measured.u_over_uw - mine.model)

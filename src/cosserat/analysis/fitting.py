@@ -80,7 +80,7 @@ def model_at(profile: Profile, distance_d: FloatArray) -> FloatArray:
     xw, uw = moving_wall(profile.problem)
     d = np.asarray(distance_d, dtype=float) * profile.problem.eps
     xi = d if xw == 0.0 else 1.0 - d
-    return profile.evaluate(np.clip(xi, 0.0, 1.0)).u / uw
+    return profile.velocity_at(np.clip(xi, 0.0, 1.0)) / uw
 
 
 @dataclass(frozen=True)

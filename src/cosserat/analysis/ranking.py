@@ -48,7 +48,7 @@ from ..model.constitutive import FloatArray
 from ..results.profile import Profile
 from ..routes import RHEOLOGIES, solve
 from .fitting import FREE_PARAMETERS as COSSERAT_PARAMETERS
-from .fitting import moving_wall, natural_value, with_values
+from .fitting import Comparison, model_at, moving_wall, natural_value, with_values
 from .measurements import MeasuredProfile
 
 DEFAULT_FREE: dict[str, tuple[str, ...]] = {
@@ -234,12 +234,8 @@ def model_problem(model: str, cell: str, parameters: Mapping[str, Any] | None = 
     return set_parameters(cls(**kwargs), params)
 
 
-def model_velocity(profile: Profile, distance_d: FloatArray) -> FloatArray:
-    """u / u_wall of ``profile`` at distances from the moving wall in grain diameters [-]."""
-    xw, uw = moving_wall(profile.problem)
-    d = np.asarray(distance_d, dtype=float) * profile.problem.eps
-    xi = d if xw == 0.0 else 1.0 - d
-    return profile.velocity_at(np.clip(xi, 0.0, 1.0)) / uw
+model_velocity = model_at
+"""u / u_wall of a profile at distances from the moving wall [d] (:func:`fitting.model_at`)."""
 
 
 def model_solve(problem: Any, points: int = 3, **options: Any) -> Profile:
@@ -339,6 +335,17 @@ class ModelFit:
     @property
     def ok(self) -> bool:
         return self.status == "ok"
+
+    def comparison(self, measured: MeasuredProfile) -> Comparison:
+        """The fitted model beside ``measured``, as :func:`cosserat.analysis.fitting.compare`
+        gives it (residuals data minus model; chi^2 only with absolute uncertainties)."""
+        if self.profile is None or self.model_u is None or self.residuals is None:
+            raise MethodNotAvailableError(f"{self.model} was not fitted: {self.message}")
+        model = np.asarray(self.model_u, dtype=float)
+        residuals = measured.u_over_uw - model
+        chi2 = self.chi2 if self.absolute_sigma else None
+        rms = float(np.sqrt(np.mean(residuals**2)))
+        return Comparison(measured, self.profile, model, residuals, rms, chi2)
 
     def curve(self, distance_d: FloatArray) -> FloatArray:
         """The fitted model's u/u_wall at distances from the moving wall [d] (for plots)."""

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import math
-from types import SimpleNamespace
 from typing import Any
 
 from ..routes import RHEOLOGIES
@@ -222,39 +221,7 @@ def _local_comparison(measured: Any, problem: Any, args: argparse.Namespace, opt
     if args.method != "numerical":
         raise UsageError(f"--model {args.model}: compare uses --method numerical")
     fitted = fit_model(measured, problem, free=[], grid=0, **opts)
-    return _as_comparison(measured, fitted)
-
-
-def _as_comparison(measured: Any, fitted: Any) -> Any:
-    """A :class:`~cosserat.analysis.ranking.ModelFit` with the attributes of a Comparison."""
-    import numpy as np
-
-    residuals = -np.asarray(fitted.residuals)  # data minus model, as compare() gives
-    chi2 = fitted.chi2 if fitted.absolute_sigma else None
-    rms = float(np.sqrt(np.mean(residuals**2)))
-
-    def to_dict() -> dict[str, Any]:
-        return {
-            "problem": fitted.problem.parameters(),
-            "distance_d": measured.distance_d.tolist(),
-            "u_over_uw": measured.u_over_uw.tolist(),
-            "model": np.asarray(fitted.model_u).tolist(),
-            "residuals": residuals.tolist(),
-            "rms": rms,
-            "chi2": chi2,
-            "n_points": measured.n,
-        }
-
-    return SimpleNamespace(
-        measured=measured,
-        profile=fitted.profile,
-        model=np.asarray(fitted.model_u),
-        residuals=residuals,
-        rms=rms,
-        chi2=chi2,
-        model_curve=fitted.curve,
-        to_dict=to_dict,
-    )
+    return fitted.comparison(measured)
 
 
 def _error_text(stderr: Any, reason: str | None = None) -> str:
@@ -374,7 +341,7 @@ def cmd_fit(args: argparse.Namespace) -> None:
             raise UsageError(f"--model {args.model}: fit uses --method numerical")
         fitted = fit_model(measured, problem, free=free, **opts)
         record = fitted.to_dict()
-        comparison, best = _as_comparison(measured, fitted), fitted.problem
+        comparison, best = fitted.comparison(measured), fitted.problem
         rows = [
             (name, est.value, est.stderr, est.reason, None)
             for name, est in fitted.parameters.items()
