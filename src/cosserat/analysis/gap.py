@@ -40,11 +40,6 @@ DEFAULT_CELL = {"plane": {"B": 1.0}, "couette": {"Ri": config.RI}, "channel": {}
 """Cell parameters by default: plane shear under gravity (B = 1, where the fully rough law
 (H/d)^(1/3) holds) and the paper's Couette cell."""
 
-MODEL_CELL_DEFAULTS: dict[tuple[str, str], dict[str, Any]] = {("mui", "channel"): {"B": 1.0}}
-"""A model's own cell parameters where the cell's defaults leave it without a flow: local
-mu(I) in the channel flows only for mu_s < B nu / 2 < mu_2 (B = 1 is inside for the default
-glass beads), while the Cosserat channel's default B is Janssen's B nu = 2 tan(delta)."""
-
 PAPER_SLOPES = {"smoother walls": 0.0, "fully rough walls": 1.0 / 3.0}
 """The paper's exponents of Delta against H/d as H/d -> infinity (eqn-delta_soln,
 eqn-delta_soln_fr)."""
@@ -350,14 +345,7 @@ def thickness_vs_gap(
     g_ref = float(reference_gap) if reference_gap is not None else gap_list[0]
     series = []
     for model, label, own in _default_series(list(names), model_parameters or {}):
-        extra = {
-            k: v
-            for k, v in MODEL_CELL_DEFAULTS.get((model, cell), {}).items()
-            if k not in cp and k not in own
-        }
-        base = {**cp, **extra, **own}
-        if extra:
-            label += ", " + ", ".join(f"{k} = {v:g}" for k, v in extra.items())
+        base = {**cp, **own}
         try:
             template = model_problem(model, cell, {**base, "eps": 1.0 / g_ref})
         except (ParameterError, MethodNotAvailableError, NoSolutionError) as exc:

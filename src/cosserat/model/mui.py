@@ -427,6 +427,9 @@ class MuIChannel:
         diameters, uses it).
     B : float
         rho_p g H / N with N the wall normal stress [-]: the wall stress ratio is B nu / 2.
+        Default 1: a wall stress ratio of 0.5, inside (mu_s, mu_2) = (0.382, 0.643) of the
+        default glass beads, where mu(I) flows (unlike the Cosserat channel, whose default is
+        Janssen's B nu = 2 tan(delta) = 0.73: for mu(I) that is a plug).
     nu : float
         Solids fraction, ``0 < nu <= 1`` [-]; only B nu enters.
 
@@ -441,7 +444,7 @@ class MuIChannel:
 
     rheology: MuI = MuI()
     eps: float
-    B: float
+    B: float = 1.0
     nu: float = 1.0
 
     slip_wall = 1.0
