@@ -61,9 +61,10 @@ class ChannelCase(StrEnum):
 
 # ----------------------------------------------------------------- compiled statics and law
 @njit(cache=True, nogil=True)
-def shear_stress_magnitude(xi: Any, B_nu: float) -> Any:
-    """tau = |sigma_yx| = B nu |xi - 1/2|: x-momentum with symmetry (doc section 1) [-]."""
-    return B_nu * np.abs(xi - 0.5)
+def shear_stress(xi: Any, B_nu: float) -> Any:
+    """sigma_yx = B nu (xi - 1/2): x-momentum with symmetry (doc section 1); its magnitude
+    tau on the upper half, where the kernel works [-]."""
+    return B_nu * (xi - 0.5)
 
 
 @njit(cache=True, nogil=True)
@@ -220,7 +221,7 @@ class Channel:
 
     def sigma_yx(self, xi: FloatArray) -> FloatArray:
         """sigma_yx = B nu (xi - 1/2) (x-momentum with symmetry, doc section 1) [-]."""
-        return self.B_nu * (np.asarray(xi, dtype=float) - 0.5)
+        return shear_stress(np.asarray(xi, dtype=float), self.B_nu)
 
     @functools.cached_property
     def c(self) -> float:
@@ -234,7 +235,7 @@ class Channel:
         return Formulation(
             material=self.material,
             eps=self.eps,
-            sigma_yx=lambda xi, m: -B_nu * (xi - 0.5) + 0.0 * m,
+            sigma_yx=lambda xi, m: -shear_stress(np.asarray(xi, dtype=float), B_nu) + 0.0 * m,
             sigma_c=lambda xi: 1.0 + 0.0 * xi,
         )
 
@@ -306,7 +307,7 @@ class Channel:
 
         ``m^(0) = -sqrt((sin^2 phi - tau^2)/(2(A+1)))``; -c at the centre (doc section 5).
         """
-        tau = self.B_nu * np.abs(np.asarray(xi, dtype=float) - 0.5)
+        tau = np.abs(shear_stress(np.asarray(xi, dtype=float), self.B_nu))
         sp = self.material.sin_phi
         gap = self.wall_gap + self.B_nu * (0.5 - np.abs(np.asarray(xi, dtype=float) - 0.5))
         return -np.sqrt(np.maximum(gap * (sp + tau), 0.0) / (2.0 * (self.material.A + 1.0)))

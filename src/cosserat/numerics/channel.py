@@ -28,7 +28,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..model.channel import k_channel_radicand, k_torque_numerator
+from ..model.channel import k_channel_radicand, k_torque_numerator, shear_stress
 from .dop853 import dop853, dop853_eval1
 from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1, radau5
 from .roots import B as ROOT
@@ -81,7 +81,7 @@ RADICAND_ROUNDOFF = 1e-12
 def _state(xi: float, y: float, p: np.ndarray) -> tuple[float, float, float]:
     """(tau, numerator, S) at (xi, y) on the upper half (:mod:`cosserat.model.channel`)."""
     Bn = p[P_B_NU]
-    tau = Bn * (xi - 0.5)
+    tau = shear_stress(xi, Bn)
     num = k_torque_numerator(tau, p[P_WALL_GAP], 1.0 - xi, Bn, y, p[P_C], p[P_A], p[P_SIN_PHI])
     return tau, num, k_channel_radicand(tau, num, p[P_A])
 

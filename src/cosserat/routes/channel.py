@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
-from ..model.channel import Channel
+from ..model.channel import Channel, shear_stress
 from ..model.constitutive import FloatArray
 from ..numerics import channel as kernel
 from ..numerics.radau import dense_eval
@@ -394,7 +394,7 @@ class _AsymptoticEvaluator:
         pr = self.problem
         mat, eps = pr.material, pr.eps
         d = 1.0 - h
-        tau = pr.B_nu * (h - 0.5)
+        tau = shear_stress(np.asarray(h, dtype=float), pr.B_nu)
         m_outer = -pr.outer_couple_stress(h)
         if pr.is_fully_rough:
             scale = pr.inner_scale()
