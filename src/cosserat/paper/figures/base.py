@@ -98,10 +98,6 @@ class Panel:
         style = {"color": "k", "linestyle": "none", "marker": marker, "markerfacecolor": "none"}
         self.add(label, x, y, **(style | style_kw))
 
-    def legend_labels(self) -> list[str]:
-        """The legend entries in order (one per distinct visible label)."""
-        return list(dict.fromkeys(c.label for c in self.curves if not c.label.startswith("_")))
-
 
 def spaced_along(
     x: FloatArray, y: FloatArray, n: int, log_x: bool = False, phase: float = 0.0
