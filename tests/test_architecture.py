@@ -28,7 +28,7 @@ LAYERS = [
     ["cosserat.results"],
     ["cosserat.routes"],
     ["cosserat.analysis"],
-    ["cosserat.studies", "cosserat.dem"],
+    ["cosserat.studies", "cosserat.calibration", "cosserat.dem"],
     ["cosserat.paper"],
     ["cosserat.cli"],
     ["cosserat", "cosserat.__main__", "cosserat.cell"],

@@ -17,10 +17,10 @@ from collections.abc import Sequence
 
 from .._version import __version__
 from ..errors import CosseratError
-from . import cell, data, dem, models, paper, solve, sweep
+from . import calibrate, cell, data, dem, models, paper, solve, sweep
 from .common import Parser, UsageError, add_quiet, problem_from_args, set_quiet
 
-COMMANDS = (solve, cell, paper, data, sweep, dem, models)
+COMMANDS = (solve, cell, paper, data, calibrate, sweep, dem, models)
 """The command modules, each with ``add_parsers(sub)``."""
 
 __all__ = ["COMMANDS", "UsageError", "main", "make_parser", "problem_from_args"]

@@ -1,0 +1,433 @@
+"""``calibrate``: every model on every run, with its diagnostics and the comparison.
+
+This is the one engine behind ``cosserat calibrate``, ``cosserat fit`` (one run is a
+calibration on one run) and the model fits of ``cosserat validate`` (``docs/calibration.md``).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
+from ..model.constitutive import FloatArray
+from . import diagnostics as dg
+from .data import RunData, load, with_correlations
+from .engine import AT_BOUND, Optimum, Setup, fit, setup
+from .models import LOCAL_SPIN, Model
+from .models import models as make_models
+from .noise import covariance
+from .result import Calibration, Estimate, FieldFit, ModelCalibration
+
+log = logging.getLogger(__name__)
+
+DERIVED_STEP = 1e-6
+"""Relative finite-difference step of a derived parameter's gradient (in the fit's coordinates)."""
+
+
+# --------------------------------------------------------------------------- estimates
+def _estimates(
+    s: Setup, opt: Optimum
+) -> tuple[dict[str, Estimate], list[dg.FlatDirection], list[tuple[str, str, float]], FloatArray]:
+    names = s.names
+    lo, hi = s.bounds()
+    widths = hi - lo
+    J = opt.jacobian
+    flat = dg.flat_directions(J, names, widths)
+    unidentified = {n for d in flat for n in d.components}
+    cov = np.linalg.pinv(J.T @ J, rcond=1e-15) if J.size else np.zeros((0, 0))
+    natural = s.natural(opt.theta)
+    out: dict[str, Estimate] = {}
+    i = 0
+    for slot in s.slots:
+        decl = slot.param.declared
+        shared = len(slot.runs) > 1
+        common = dict(
+            name=slot.name,
+            key=slot.key,
+            role=slot.param.role,
+            unit=decl.unit,
+            shared=shared,
+            runs=slot.runs,
+            meaning=decl.meaning,
+            fit_range=decl.fit_range,
+        )
+        if not slot.free:
+            out[slot.name] = Estimate(
+                value=slot.value, stderr=None, free=False, reason="fixed", **common
+            )
+            continue
+        theta = opt.theta[i]
+        at = None
+        if theta - lo[i] <= AT_BOUND * widths[i]:
+            at = "lower"
+        elif hi[i] - theta <= AT_BOUND * widths[i]:
+            at = "upper"
+        value = natural[slot.name]
+        stderr: float | None = None
+        reason = ""
+        if at is not None:
+            reason = f"at the {at} end of its search range {decl.fit_range}"
+        elif slot.name in unidentified:
+            reason = "not identified by the data (a flat direction of the fit)"
+        else:
+            se_int = math.sqrt(max(cov[i, i], 0.0))
+            stderr = value * math.log(10.0) * se_int if slot.log else se_int
+        out[slot.name] = Estimate(
+            value=value, stderr=stderr, free=True, at_bound=at, reason=reason, **common
+        )
+        i += 1
+    return out, flat, dg.strong_correlations(cov, names), cov
+
+
+def _derived(
+    model: Model, s: Setup, opt: Optimum, cov: FloatArray, estimates: Mapping[str, Estimate]
+) -> dict[str, Estimate]:
+    """Parameters computed from fitted ones (the Cosserat wall angle delta from the wall's
+    roughness and phi), with errors by the delta method."""
+    if model.name != "cosserat":
+        return {}
+    out = {}
+    material_phi = [sl for sl in s.slots if sl.key == "phi"]
+    for slot in s.slots:
+        if slot.key != "roughness":
+            continue
+        label = slot.group
+        phi_slot = next((p for p in material_phi if set(slot.runs) & set(p.runs)), material_phi[0])
+
+        def delta(theta: FloatArray, slot: Any = slot, phi_slot: Any = phi_slot) -> float:
+            nat = s.natural(theta)
+            t = nat[slot.name]
+            return math.degrees(math.atan(t * math.sin(math.radians(nat[phi_slot.name]))))
+
+        value = delta(opt.theta)
+        free = slot.free or phi_slot.free
+        stderr = None
+        est = estimates[slot.name]
+        reason = "fixed" if not free else ""
+        if free and est.stderr is None and slot.free:
+            reason = est.reason
+        elif free and opt.theta.size:
+            g = np.zeros(opt.theta.size)
+            for j in range(opt.theta.size):
+                h = DERIVED_STEP * max(1.0, abs(opt.theta[j]))
+                up = opt.theta.copy()
+                up[j] += h
+                g[j] = (delta(up) - value) / h
+            stderr = float(math.sqrt(max(g @ cov @ g, 0.0)))
+        fully = est.at_bound == "upper" or (not slot.free and slot.value >= 1.0 - 1e-12)
+        out[f"delta[{label}]"] = Estimate(
+            name=f"delta[{label}]",
+            key="delta",
+            role="wall",
+            value=value,
+            stderr=stderr,
+            free=free,
+            shared=len(slot.runs) > 1,
+            unit="deg",
+            runs=slot.runs,
+            at_bound="upper" if fully else None,
+            reason=("fully rough: tan(delta) = sin(phi)" if fully else reason),
+            meaning="angle of wall friction, atan(roughness sin(phi)) (derived)",
+        )
+    return out
+
+
+# --------------------------------------------------------------------------- field fits
+def _field_fits(s: Setup, predictions: Mapping[str, Mapping[str, FloatArray]]) -> list[FieldFit]:
+    from .noise import whiten
+
+    out = []
+    for run in s.runs:
+        u = run.fields.get("u")
+        for name in s.fields:
+            if name not in run.fields:
+                continue
+            f = run.fields[name]
+            model = predictions[run.name][name]
+            z = (model - f.value) / f.se
+            w = whiten(model - f.value, f.se, f.correlation.rho)
+            u_at = None if u is None else np.interp(f.s, u.s, u.value)
+            out.append(
+                FieldFit(
+                    run=run.name,
+                    field=name,
+                    s=f.s,
+                    data=f.value,
+                    se=f.se,
+                    model=model,
+                    whitened=w,
+                    rho=f.correlation.rho,
+                    rho_source=f.correlation.source,
+                    chi2=float(w @ w),
+                    runs_p=dg.runs_test(w).p_value,
+                    regions=dg.misfit_regions(f.s, z, u_at),
+                )
+            )
+    return out
+
+
+def _stress_contradictions(model: Model, fits: Sequence[FieldFit]) -> list[str]:
+    """Runs whose fitted stress ratio in the band contradicts the measured one (> 3 se)."""
+    friction = {"cosserat": "phi and the wall roughness", "mui": "mu_s", "ngf": "mu_s"}
+    by_run: dict[str, dict[str, FieldFit]] = {}
+    for f in fits:
+        by_run.setdefault(f.run, {})[f.field] = f
+    out = []
+    for run, fields in by_run.items():
+        ratio, u = fields.get("stress_ratio"), fields.get("u")
+        if ratio is None or u is None:
+            continue
+        band = np.interp(ratio.s, u.s, u.data) > dg.TAIL_U
+        if np.count_nonzero(band) < 2:
+            continue
+        m = int(np.count_nonzero(band))
+        C = covariance(ratio.se[band], ratio.rho)
+        se_mean = math.sqrt(float(np.sum(C))) / m
+        data = float(np.mean(ratio.data[band]))
+        pred = float(np.mean(ratio.model[band]))
+        if abs(pred - data) > 3.0 * se_mean:
+            out.append(
+                f"{model.name}: run {run}: the fitted parameters give |sigma_yx|/sigma_yy = "
+                f"{pred:.3f} in the shear band where the run measures {data:.3f} +- "
+                f"{se_mean:.3f} ({(pred - data) / se_mean:+.1f} se): "
+                f"{friction.get(model.name, 'the friction parameters')} contradict the "
+                "measured stresses"
+            )
+    return out
+
+
+def _warnings(mc: ModelCalibration, fits: Sequence[FieldFit]) -> list[str]:
+    name = mc.model
+    out = []
+    p = mc.p_value
+    if p is not None and p < dg.MISFIT_P:
+        worst = max(fits, key=lambda f: f.chi2 - f.n)
+        out.append(
+            f"{name}: misfit: chi^2 = {mc.chi2:.1f} on {mc.dof} degrees of freedom "
+            f"(p = {p:.2g}); the largest excess: run {worst.run}, {worst.field} (chi^2 = "
+            f"{worst.chi2:.1f} on {worst.n} bins)"
+        )
+    low = dg.chi2_p_low(mc.chi2 or 0.0, mc.dof)
+    if low is not None and low < dg.OVERSTATED_P:
+        out.append(
+            f"{name}: chi^2 = {mc.chi2:.1f} on {mc.dof} degrees of freedom is improbably small "
+            f"(P(chi^2 <= this) = {low:.2g}): the errors are overstated, or the bins are more "
+            "correlated than the error model says; the information criteria are not calibrated"
+        )
+    for f in fits:
+        pf = dg.chi2_p_value(f.chi2, f.n)
+        where = "; ".join(r.describe() for r in f.regions)
+        if pf is not None and pf < dg.MISFIT_P:
+            out.append(
+                f"{name}: run {f.run}, {f.field}: chi^2 = {f.chi2:.1f} on {f.n} bins (p = "
+                f"{pf:.2g})" + (f": misses {where}" if where else "")
+            )
+        elif f.regions:
+            out.append(f"{name}: run {f.run}, {f.field}: misses {where}")
+        if f.runs_p is not None and f.runs_p < dg.MISFIT_P:
+            out.append(
+                f"{name}: run {f.run}, {f.field}: the signs of the whitened residuals change "
+                f"too rarely (runs test p = {f.runs_p:.2g}): a systematic misfit"
+            )
+    for e in mc.parameters.values():
+        if e.free and e.at_bound is not None and e.key != "roughness":
+            out.append(
+                f"{name}: {e.name} = {e.value:.4g} {e.unit} is at the {e.at_bound} end of its "
+                f"search range {e.fit_range}: the data push it further; no error is given"
+            )
+    for d in mc.flat:
+        out.append(f"{name}: the data do not determine {d.describe()}")
+    for a, b, r in mc.correlations:
+        out.append(f"{name}: {a} and {b} are strongly correlated (r = {r:+.3f})")
+    return out
+
+
+def _assumptions(s: Setup) -> list[str]:
+    rhos = []
+    for run in s.runs:
+        for name in s.fields:
+            if name in run.fields:
+                c = run.fields[name].correlation
+                rhos.append(f"{run.name}/{name} {c.rho:.2f} ({c.source})")
+    out = [
+        "error model: Gaussian; the bins of one field of one run AR(1)-correlated with lag-1 "
+        "correlation rho (per run/field: " + ", ".join(rhos) + "); fields and runs independent",
+        "fixed from each run's metadata: "
+        + "; ".join(
+            f"{r.name}: "
+            + ", ".join(f"{k} = {v:.4g}" for k, v in r.cell_values.items())
+            + (f", I_w = {r.I_w:.3g}" if s.model.rate_dependent and r.I_w is not None else "")
+            for r in s.runs
+        ),
+        "fields fitted: " + ", ".join(s.fields),
+    ]
+    if "omega" in s.fields and not s.model.has_spin:
+        out.append(
+            f"{s.model.name} has no spin of its own: its grains are taken to turn at "
+            f"{LOCAL_SPIN.replace('-', ' ')} (a classical continuum's kinematics)"
+        )
+    return out
+
+
+# --------------------------------------------------------------------------- one model
+def calibrate_model(
+    model: Model,
+    runs: Sequence[RunData],
+    fields: Sequence[str] | None = None,
+    fix: Mapping[str, float] | None = None,
+    free: Sequence[str] = (),
+    start: Mapping[str, float] | None = None,
+    starts: int | None = None,
+    seed: int = 0,
+) -> ModelCalibration:
+    """Calibrate ``model`` on ``runs`` (module docstring); a failure is a result with the
+    reason, not an exception, so that a ranking lists it."""
+    t0 = time.perf_counter()
+    try:
+        s = setup(model, runs, fields, fix, free, start)
+        opt = fit(s, starts=starts, seed=seed)
+    except (ParameterError, ConvergenceError, NoSolutionError, MethodNotAvailableError) as exc:
+        return ModelCalibration(
+            model=model.name, status="failed", message=str(exc), seconds=time.perf_counter() - t0
+        )
+    estimates, flat, corr, cov = _estimates(s, opt)
+    estimates.update(_derived(model, s, opt, cov, estimates))
+    predictions = s.predict(opt.theta)
+    fits = _field_fits(s, predictions)
+    chi2 = float(opt.residuals @ opt.residuals)
+    mc = ModelCalibration(
+        model=model.name,
+        status="ok",
+        parameters=estimates,
+        fields=fits,
+        fields_used=s.fields,
+        chi2=chi2,
+        n=s.n,
+        k=len(s.free),
+        log_likelihood=-0.5 * chi2 + s.log_norm,
+        flat=flat,
+        correlations=corr,
+        covariance=cov,
+        covariance_names=tuple(s.names),
+        assumptions=_assumptions(s),
+        nfev=s.nfev,
+        seconds=time.perf_counter() - t0,
+        internal=(s, opt),
+    )
+    mc.warnings.extend(_warnings(mc, fits))
+    mc.warnings.extend(_stress_contradictions(model, fits))
+    return mc
+
+
+COMPARISON = [
+    "AIC = -2 ln L + 2k and BIC = -2 ln L + k ln n use the full Gaussian likelihood of the "
+    "error model; they rank models fitted to the same fields of the same runs, and their "
+    "weights mean something only where each model's reduced chi^2 is near 1",
+    "the Bayesian evidence Z (nested sampling, dynesty) puts priors uniform over each free "
+    "parameter's declared search range (log-uniform where the declaration's scale is log); it "
+    "depends on those ranges, which are stated with the parameters",
+]
+
+
+def calibrate(
+    data: Sequence[str | Path | RunData],
+    models: Sequence[str] | None = ("cosserat", "mui", "ngf"),
+    fields: Sequence[str] | None = None,
+    fix: Mapping[str, Mapping[str, float]] | None = None,
+    free: Mapping[str, Sequence[str]] | None = None,
+    start: Mapping[str, Mapping[str, float]] | None = None,
+    bin_correlation: Mapping[str, float] | None = None,
+    local_spin: bool = True,
+    evidence: bool = False,
+    posterior: int = 0,
+    out: str | Path | None = None,
+    seed: int = 0,
+    progress: Any = None,
+) -> Calibration:
+    """Calibrate each model jointly on every run, and compare them.
+
+    Parameters
+    ----------
+    data : sequence
+        Corpus folders, corpus run files (``.csv`` with a ``.json`` sidecar), profile files
+        (``docs/measurements.md``), or :class:`~cosserat.calibration.data.RunData`.
+    models : sequence of str, optional
+        Registered rheologies (default the three: ``cosserat``, ``mui``, ``ngf``).
+    fields : sequence of str, optional
+        Measured fields to use (``u``, ``omega``, ``stress_ratio``); default every field a
+        model predicts.
+    fix, free, start : mapping of model name to ..., optional
+        Per model: parameters to hold at a value, to fit although fixed by default, and start
+        values (names as in the result: ``phi``, ``K[glued-grains]``, or a key for all).
+    bin_correlation : mapping of field to float, optional
+        Lag-1 correlation of neighbouring bins' errors, overriding the metadata and the
+        estimate (``calibration.noise``).
+    local_spin : bool
+        Compare local rheologies with spin data through half the vorticity (``models``).
+    evidence : bool
+        Also compute each model's Bayesian evidence (nested sampling; ~1e4 model solves).
+    posterior : int
+        Posterior samples to draw per model (0: none), written under ``out``.
+    out : path, optional
+        Folder for the posterior files (InferenceData netCDF, corner plots).
+    seed : int
+        Seed of the start design, the sampler and the nested sampler.
+    progress : callable, optional
+        ``progress(message)`` per model (the command line's progress line).
+
+    Returns
+    -------
+    Calibration
+    """
+    runs = [r for r in data if isinstance(r, RunData)]
+    paths = [p for p in data if not isinstance(p, RunData)]
+    skipped: list[str] = []
+    if paths:
+        runs += load(paths, skipped)
+    runs = with_correlations(runs, bin_correlation)
+    chosen = make_models(models, local_spin)
+    results = []
+    for m in chosen:
+        if progress is not None:
+            progress(f"calibrating {m.name} on {len(runs)} run(s)")
+        mc = calibrate_model(
+            m,
+            runs,
+            fields,
+            fix=(fix or {}).get(m.name),
+            free=(free or {}).get(m.name, ()),
+            start=(start or {}).get(m.name),
+            seed=seed,
+        )
+        if mc.ok and evidence:
+            from .evidence import nested_evidence
+
+            if progress is not None:
+                progress(f"evidence of {m.name} (nested sampling)")
+            mc = nested_evidence(mc, seed=seed)
+        if mc.ok and posterior > 0:
+            from .posterior import sample_posterior
+
+            if progress is not None:
+                progress(f"posterior of {m.name}: {posterior} samples")
+            mc = sample_posterior(mc, posterior, out=out, seed=seed)
+        results.append(mc)
+    comparison = list(COMPARISON)
+    used = {m.fields_used for m in results if m.ok}
+    if len(used) > 1:
+        comparison.append(
+            "the models were fitted to different fields ("
+            + "; ".join(f"{m.model}: {', '.join(m.fields_used)}" for m in results if m.ok)
+            + "): their information criteria are not comparable"
+        )
+    return Calibration(runs, results, comparison, skipped)
+
+
+__all__ = ["COMPARISON", "calibrate", "calibrate_model"]

@@ -1,0 +1,273 @@
+"""A model as a calibration sees it: its parameters by role, and its predictions of the
+measured fields of a run (``docs/calibration.md``).
+
+Predictions are in the frame of :mod:`cosserat.calibration.data`: at the bins' distances from
+the moving wall, ``u`` over the wall's velocity, ``omega`` in units of V/d, and the stress ratio
+``|sigma_yx| / sigma_yy``.
+
+Local rheologies (mu(I), NGF) carry no spin of their own. Where a calibration compares them
+with spin data, their grains are taken to turn with the material, at half the vorticity of
+their velocity field (:data:`LOCAL_SPIN`): the kinematics of a classical continuum, which is
+what the Cosserat model departs from near walls. The assumption is stated in every report that
+uses it; ``fields=("u", "stress_ratio")`` leaves spin out.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .. import config
+from ..analysis.ranking import model_problem, model_solve
+from ..errors import ParameterError
+from ..model.constitutive import FloatArray
+from ..model.declare import Param
+from ..routes import RHEOLOGIES
+from .data import FIELDS, RunData
+
+LOCAL_SPIN = "half-vorticity"
+"""How a calibration gives a local rheology a spin: half the vorticity of its velocity."""
+
+
+@dataclass(frozen=True)
+class ModelParam:
+    """One parameter of a model in a calibration.
+
+    Attributes
+    ----------
+    key : str
+        The model's name for it (``phi``, ``mu_s``, ``delta``, ...).
+    declared : Param
+        Its declaration (meaning, unit, bounds, fit range, scale, role).
+    default_free : bool
+        Fitted unless the caller fixes it.
+    """
+
+    key: str
+    declared: Param
+    default_free: bool = True
+
+    @property
+    def role(self) -> str:
+        return self.declared.role
+
+
+def _p(
+    key: str,
+    meaning: str,
+    unit: str,
+    default: float,
+    fit_range: tuple[float, float],
+    role: str,
+    scale: str = "linear",
+    bounds: tuple[float, float] | None = None,
+    free: bool = True,
+) -> ModelParam:
+    lo, hi = bounds or (-math.inf, math.inf)
+    return ModelParam(
+        key,
+        Param(
+            name=key,
+            meaning=meaning,
+            unit=unit,
+            default=default,
+            bounds=(lo, hi),
+            fit_range=fit_range,
+            scale=scale,
+            role=role,
+        ),  # type: ignore[arg-type]
+        free,
+    )
+
+
+# The search ranges of the fits (the old ranking.BOUNDS); the declarations of issue 17 take
+# these over when the cell x rheology composition lands.
+_PARAMS: dict[str, tuple[ModelParam, ...]] = {
+    "cosserat": (
+        _p("phi", "angle of internal friction", "deg", config.PHI, (10.0, 60.0), "material"),
+        _p(
+            "L",
+            "material length over grain diameter",
+            "-",
+            config.L,
+            (0.5, 100.0),
+            "material",
+            "log",
+        ),
+        _p(
+            "A", "yield-condition ratio a2/a1", "-", config.A, (-0.95, 0.95), "material", free=False
+        ),
+        _p(
+            "roughness",
+            "tan(delta)/sin(phi) of the wall (1: fully rough)",
+            "-",
+            0.7,
+            (0.05, 1.0),
+            "wall",
+        ),
+        _p("K", "wall slip coefficient", "-", config.K, (0.0, 10.0), "wall"),
+    ),
+    "mui": (
+        _p("mu_s", "static friction coefficient", "-", config.MUI_MU_S, (0.05, 0.6), "material"),
+        _p(
+            "mu_2",
+            "limiting friction coefficient",
+            "-",
+            config.MUI_MU_2,
+            (0.61, 2.0),
+            "material",
+            free=False,
+        ),
+        _p("I_0", "inertial number scale", "-", config.MUI_I0, (1e-4, 10.0), "material", "log"),
+    ),
+    "ngf": (
+        _p("mu_s", "static friction coefficient", "-", 0.3819, (0.05, 0.6), "material"),
+        _p(
+            "b",
+            "slope of the local law mu = mu_s + b I",
+            "-",
+            0.9377,
+            (1e-2, 10.0),
+            "material",
+            "log",
+        ),
+        _p("A", "nonlocal amplitude", "-", 0.48, (0.03, 5.0), "material", "log"),
+    ),
+}
+
+
+class Model:
+    """One registered rheology, as a calibration uses it.
+
+    Parameters
+    ----------
+    name : str
+        A registered rheology (``cosserat``, ``mui``, ``ngf``).
+    local_spin : bool
+        For a rheology without spin of its own: predict ``omega`` as half the vorticity
+        (:data:`LOCAL_SPIN`). Ignored for the Cosserat model.
+    """
+
+    def __init__(self, name: str, local_spin: bool = True):
+        if name not in RHEOLOGIES:
+            raise ParameterError(f"unknown model {name!r}: registered are {', '.join(RHEOLOGIES)}")
+        if name not in _PARAMS:
+            raise ParameterError(f"model {name!r} has no calibration parameters declared")
+        self.name = name
+        self.local_spin = local_spin
+
+    @property
+    def has_spin(self) -> bool:
+        """The rheology's own spin field (the Cosserat model's)."""
+        return self.name == "cosserat"
+
+    @property
+    def rate_dependent(self) -> bool:
+        """Needs the wall's inertial number I_w (mu(I), NGF)."""
+        return self.name != "cosserat"
+
+    def fields(self) -> tuple[str, ...]:
+        """The measured fields this model predicts (:data:`~cosserat.calibration.data.FIELDS`)."""
+        if self.has_spin or self.local_spin:
+            return FIELDS
+        return tuple(f for f in FIELDS if f != "omega")
+
+    def parameters(self) -> tuple[ModelParam, ...]:
+        return _PARAMS[self.name]
+
+    def cells(self) -> tuple[str, ...]:
+        return tuple(RHEOLOGIES[self.name].cells)
+
+    # ------------------------------------------------------------------ problems
+    def problem(self, run: RunData, values: Mapping[str, Any]) -> Any:
+        """The model's problem for ``run`` with parameter ``values``.
+
+        ``values`` holds the material parameters by key and the wall parameters as
+        ``(key, "moving" | "fixed")`` tuples.
+        """
+        if run.cell not in self.cells():
+            raise ParameterError(f"model {self.name!r} has no {run.cell} cell")
+        params: dict[str, Any] = dict(run.cell_values)
+        material = {k: v for k, v in values.items() if isinstance(k, str)}
+        if self.name == "cosserat":
+            params.update(material)
+            phi = float(material.get("phi", config.PHI))
+            s = math.sin(math.radians(phi))
+
+            def angle(t: float) -> Any:
+                return "fully-rough" if t >= 1.0 - 1e-12 else math.degrees(math.atan(t * s))
+
+            params["delta"] = angle(float(values[("roughness", "moving")]))
+            params["K"] = float(values[("K", "moving")])
+            if run.cell == "plane" and run.walls["fixed"] != run.walls["moving"]:
+                params["delta_lower"] = angle(float(values[("roughness", "fixed")]))
+                params["K_lower"] = float(values[("K", "fixed")])
+            return model_problem("cosserat", run.cell, params)
+        if run.I_w is None:
+            raise ParameterError(
+                f"run {run.name}: {self.name} needs the wall's inertial number I_w, and the "
+                "run's metadata do not give the wall speed (wall_speed) to compute it"
+            )
+        params.update(material)
+        params["I_w"] = run.I_w
+        return model_problem(self.name, run.cell, params)
+
+    def predict(
+        self, run: RunData, values: Mapping[Any, Any], fields: Sequence[str]
+    ) -> dict[str, FloatArray]:
+        """The model's values of ``fields`` at the bins of ``run`` (module docstring).
+
+        Raises
+        ------
+        NoSolutionError, ConvergenceError, ParameterError
+            The model has no solution or could not be solved for these values.
+        """
+        problem = self.problem(run, values)
+        profile = model_solve(problem)
+        xw = 1.0 if float(problem.wall_velocity(1.0)) != 0.0 else 0.0
+        uw = float(problem.wall_velocity(xw))
+        # one evaluation at every field's bins
+        positions = [run.fields[name].s for name in fields]
+        sizes = np.cumsum([0] + [p.size for p in positions])
+        ev = profile.evaluate(run.xi(np.concatenate(positions), xw))
+        out: dict[str, FloatArray] = {}
+        for i, name in enumerate(fields):
+            part = slice(sizes[i], sizes[i + 1])
+            if name == "u":
+                out[name] = ev.u[part] / uw
+            elif name == "omega":
+                if self.has_spin:
+                    spin = ev.omega[part]
+                else:  # half the vorticity of the velocity field (LOCAL_SPIN)
+                    spin = -0.5 * (ev.du_dxi[part] + ev.kappa[part] * ev.u[part])
+                # model: omega_z H / V; data: omega_z d / V. Both in a frame where the wall
+                # moves along +x above the layer (plane) or turns counter-clockwise (Couette:
+                # the model's x is -e_theta, so its z is e_z): the same sense, no sign change
+                out[name] = spin * run.eps / abs(uw)
+            elif name == "stress_ratio":
+                out[name] = np.abs(ev.sigma_yx[part]) / ev.sigma_yy[part]
+            else:  # pragma: no cover - FIELDS is closed
+                raise ParameterError(f"unknown field {name!r}")
+        return out
+
+
+def models(names: Sequence[str] | None, local_spin: bool = True) -> list[Model]:
+    """:class:`Model` objects for ``names`` (default: every model with declared parameters).
+
+    Raises
+    ------
+    ParameterError
+        An unknown name, or a name given twice.
+    """
+    chosen = list(_PARAMS) if names is None else list(names)
+    twice = sorted({n for n in chosen if chosen.count(n) > 1})
+    if twice:
+        raise ParameterError(f"model(s) named twice: {', '.join(twice)}")
+    return [Model(n, local_spin) for n in chosen]
+
+
+__all__ = ["LOCAL_SPIN", "Model", "ModelParam", "models"]

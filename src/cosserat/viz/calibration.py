@@ -1,0 +1,137 @@
+"""Figures of a calibration: each run's measured fields beside every model, and the residuals.
+
+A leaf like :mod:`cosserat.viz.plotting`: it draws plain data (the dictionaries of
+:func:`cosserat.calibration.report.figure_data`) and imports nothing of the package at run
+time.
+
+One figure per run: a column per field (velocity on a log axis, so that a creep tail spanning
+decades is visible; spin and stress ratio on linear axes), the data with their error bars, each
+model's best fit as a line and, where a posterior was sampled, its 68% and 95% posterior
+predictive bands; below, the residuals over the standard errors.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+FIELD_AXES = {
+    "u": (r"$u/u_w$", "log"),
+    "omega": (r"$\omega\, d/V$", "linear"),
+    "stress_ratio": (r"$|\sigma_{yx}|/\sigma_{yy}$", "linear"),
+}
+MODEL_STYLES = {
+    "cosserat": {"color": "C0", "linestyle": "-"},
+    "mui": {"color": "C3", "linestyle": "--"},
+    "ngf": {"color": "C2", "linestyle": "-."},
+}
+U_FLOOR = 1e-5
+"""Lower limit of the log velocity axis [-]: below, a point is shown at the axis edge."""
+
+
+def run_figure(entry: Mapping[str, Any]) -> Figure:
+    """The figure of one run (module docstring).
+
+    Parameters
+    ----------
+    entry : mapping
+        ``name``, ``gap_d``, ``fields`` (field -> {"s", "data", "se"}), ``models`` (model ->
+        field -> {"s", "values"}), optional ``bands`` (model -> field -> {"s", "q2.5", "q16",
+        "q84", "q97.5"}) and ``residuals`` (model -> field -> {"s", "z"}).
+    """
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from .plotting import style
+
+    fields = [f for f in ("u", "omega", "stress_ratio") if f in entry["fields"]]
+    with style():
+        fig, axes = plt.subplots(
+            2,
+            len(fields),
+            figsize=(3.3 * len(fields) + 0.6, 5.6),
+            squeeze=False,
+            gridspec_kw={"height_ratios": [3, 1.3]},
+            sharex="col",
+        )
+        for j, name in enumerate(fields):
+            ax, rax = axes[0, j], axes[1, j]
+            label, scale = FIELD_AXES[name]
+            d = entry["fields"][name]
+            s, y, se = (np.asarray(d[k], dtype=float) for k in ("s", "data", "se"))
+            if scale == "log":
+                ax.set_yscale("log")
+                shown = np.maximum(y, U_FLOOR)
+                lower = np.minimum(np.clip(y - se, U_FLOOR, None), shown)
+                ax.errorbar(
+                    s,
+                    shown,
+                    yerr=[shown - lower, np.maximum(y + se, shown) - shown],
+                    fmt="o",
+                    ms=3,
+                    color="k",
+                    ecolor="0.5",
+                    elinewidth=0.8,
+                    capsize=1.5,
+                    label="data",
+                    zorder=3,
+                )
+                ax.set_ylim(U_FLOOR, 1.5)
+            else:
+                ax.errorbar(
+                    s,
+                    y,
+                    yerr=se,
+                    fmt="o",
+                    ms=3,
+                    color="k",
+                    ecolor="0.5",
+                    elinewidth=0.8,
+                    capsize=1.5,
+                    label="data",
+                    zorder=3,
+                )
+            for model, curves in entry.get("bands", {}).items():
+                if name not in curves:
+                    continue
+                b = curves[name]
+                st = MODEL_STYLES.get(model, {"color": "C4"})
+                ax.fill_between(b["s"], b["q2.5"], b["q97.5"], color=st["color"], alpha=0.12, lw=0)
+                ax.fill_between(b["s"], b["q16"], b["q84"], color=st["color"], alpha=0.25, lw=0)
+            for model, curves in entry["models"].items():
+                if name not in curves:
+                    continue
+                c = curves[name]
+                st = MODEL_STYLES.get(model, {"color": "C4", "linestyle": ":"})
+                v = np.asarray(c["values"], dtype=float)
+                if scale == "log":
+                    v = np.where(v > 0, v, np.nan)
+                ax.plot(c["s"], v, label=model, **st)
+                r = entry.get("residuals", {}).get(model, {}).get(name)
+                if r is not None:
+                    rax.plot(r["s"], r["z"], "o-", ms=2.5, lw=0.7, color=st["color"])
+            ax.set_ylabel(label)
+            ax.set_xlim(0.0, float(entry["gap_d"]))
+            rax.axhline(0.0, color="0.3", lw=0.6)
+            for z in (-2.0, 2.0):
+                rax.axhline(z, color="0.6", lw=0.5, ls=":")
+            rax.set_ylabel("(model - data)/se", fontsize=8)
+            rax.set_xlabel("distance from the moving wall $s/d$")
+        handles, labels = axes[0, 0].get_legend_handles_labels()
+        fig.legend(
+            handles,
+            labels,
+            loc="lower center",
+            ncol=len(labels),
+            fontsize=8,
+            bbox_to_anchor=(0.5, -0.01),
+        )
+        fig.suptitle(f"run {entry['name']} (H = {float(entry['gap_d']):.4g} d)", fontsize=10)
+        fig.tight_layout(rect=(0, 0.05, 1, 1))
+    return fig
+
+
+__all__ = ["FIELD_AXES", "MODEL_STYLES", "run_figure"]

@@ -1,0 +1,342 @@
+"""The calibration engine: its error model, its diagnostics, joint recovery of known
+parameters from synthetic runs made by each model, misfit warnings on another model's data,
+the posterior against least squares where both are exact, and the command line.
+
+The coverage of the 68% intervals over hundreds of noisy replicas is a benchmark
+(``benchmarks/bench_calibration.py``), too slow for a test.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import read_corpus, shipped_corpus
+from cosserat.calibration import Calibration, calibrate, calibrate_model, load
+from cosserat.calibration import diagnostics as dg
+from cosserat.calibration.data import Field, RunData, from_run, with_correlations
+from cosserat.calibration.engine import setup
+from cosserat.calibration.models import Model, ModelParam
+from cosserat.calibration.noise import Correlation, covariance, estimate_rho, whiten
+from cosserat.calibration.synthetic import make_runs, template_run, template_runs
+from cosserat.errors import InputError, ParameterError
+from cosserat.model.declare import Param
+
+TRUTH = {
+    "cosserat": {"phi": 20.0, "L": 8.0, "roughness[rough]": 0.8, "K[rough]": 0.6},
+    "mui": {"mu_s": 0.3, "I_0": 0.3},
+    "ngf": {"mu_s": 0.3, "b": 1.0, "A": 0.5},
+}
+
+
+# --------------------------------------------------------------------------- error model
+def test_whitening_makes_ar1_noise_white(rng):
+    n, rho = 30, 0.7
+    se = np.linspace(0.5, 2.0, n)
+    chol = np.linalg.cholesky(covariance(se, rho))
+    w = np.array([whiten(chol @ rng.standard_normal(n), se, rho) for _ in range(4000)])
+    c = np.cov(w.T)
+    assert np.allclose(np.diag(c), 1.0, atol=0.08)
+    off = c[~np.eye(n, dtype=bool)]
+    assert np.max(np.abs(off)) < 0.08
+
+
+@pytest.mark.parametrize("rho", [0.0, 0.4, 0.8])
+def test_rho_is_recovered_from_the_data_alone(rng, rho):
+    """The second-difference estimate, pooled over ten profiles of a shear band, lands within
+    0.1 of the correlation the noise was made with."""
+    ys, ss = [], []
+    for _ in range(10):
+        s = np.arange(0.5, 40.0)
+        se = 0.02 * (1.0 + s / 40.0)
+        truth = np.exp(-s / 5.0)
+        ys.append(truth + np.linalg.cholesky(covariance(se, rho)) @ rng.standard_normal(s.size))
+        ss.append(se)
+    est = estimate_rho(ys, ss)
+    assert est.source == "estimated"
+    assert abs(est.rho - rho) < 0.1
+
+
+def test_rho_needs_enough_bins():
+    assert estimate_rho(np.ones(4), np.ones(4)) == Correlation(0.0, "too few bins")
+
+
+# --------------------------------------------------------------------------- diagnostics
+def test_runs_test_flags_a_trend_not_noise(rng):
+    assert dg.runs_test(np.r_[np.ones(10), -np.ones(10)]).p_value < 1e-3
+    ps = [dg.runs_test(rng.standard_normal(40)).p_value for _ in range(400)]
+    assert 0.01 < np.mean(np.array(ps) < 0.05) < 0.09  # close to its nominal 5%
+
+
+def test_misfit_regions_name_where_the_model_misses():
+    s = np.arange(0.5, 20.0)
+    z = np.zeros_like(s)
+    z[12:16] = -3.0
+    u = np.exp(-s / 2.0)
+    (region,) = dg.misfit_regions(s, z, u)
+    assert region.where == "in the creep tail" and region.bins == 4 and region.sign == -1
+    z[:] = 0.0
+    z[0:3] = 2.5
+    assert dg.misfit_regions(s, z, u)[0].where == "at the moving wall"
+
+
+def test_flat_direction_is_the_unidentified_combination():
+    # residuals depend on a + b only: a - b is not determined
+    J = np.column_stack([np.ones(20), np.ones(20)]) * 10.0
+    (flat,) = dg.flat_directions(J, ["a", "b"], np.ones(2))
+    assert set(flat.components) == {"a", "b"}
+    assert flat.components["a"] * flat.components["b"] < 0  # the difference
+    assert dg.flat_directions(np.eye(2) * 10.0, ["a", "b"], np.ones(2)) == []
+
+
+# --------------------------------------------------------------------------- recovery
+@pytest.mark.parametrize("model", ["cosserat", "mui", "ngf"])
+def test_joint_calibration_recovers_each_models_parameters(model):
+    """Three runs (two plane-shear gaps under gravity, one Couette cell) made by the model,
+    with correlated noise: every free parameter comes back within 3.5 standard errors, chi^2
+    is consistent with its degrees of freedom, and no misfit is reported."""
+    m = Model(model)
+    runs = make_runs(m, TRUTH[model], rho={"u": 0.5, "omega": 0.2}, seed=11)
+    mc = calibrate_model(m, runs)
+    assert mc.ok, mc.message
+    for name, value in TRUTH[model].items():
+        e = mc.parameters[name]
+        assert e.stderr is not None, (name, e.reason)
+        assert abs(e.value - value) < 3.5 * e.stderr, (name, e.value, e.stderr)
+        assert e.shared and e.free
+    assert mc.p_value > 1e-3
+    assert not [w for w in mc.warnings if "misfit" in w or "chi^2 =" in w], mc.warnings
+
+
+def test_data_made_by_another_model_are_flagged():
+    runs = make_runs(Model("mui"), TRUTH["mui"], seed=3)
+    cos = calibrate_model(Model("cosserat"), runs)
+    assert cos.ok and cos.p_value < 1e-3
+    assert any(w.startswith("cosserat: misfit") for w in cos.warnings)
+    # the warning names the run and the field
+    assert any("run plane_H40, u" in w for w in cos.warnings)
+    own = calibrate_model(Model("mui"), runs)
+    assert own.p_value > 1e-3 and not own.warnings
+    cal = Calibration(runs, [cos, own])
+    assert cal.best == "mui"
+
+
+def test_material_parameters_are_shared_and_metadata_fixed():
+    runs = template_runs()
+    s = setup(Model("cosserat"), runs)
+    names = {sl.name: sl for sl in s.slots}
+    assert names["phi"].runs == ("plane_H20", "plane_H40", "couette_H20")
+    assert names["K[rough]"].scope == "wall"
+    assert not names["A"].free  # fixed by default
+    # a second wall kind gets its own parameters; the material stays one
+    other = replace(runs[2], walls={"moving": "smooth", "fixed": "smooth"})
+    s2 = setup(Model("cosserat"), [*runs[:2], other])
+    assert {"K[rough]", "K[smooth]", "roughness[smooth]"} <= {sl.name for sl in s2.slots}
+    # the wall's inertial number is the metadata's, never a fitted parameter
+    assert "I_w" not in {sl.key for sl in setup(Model("mui"), runs).slots}
+    with pytest.raises(ParameterError, match="needs the wall's inertial number"):
+        Model("mui").problem(replace(runs[0], I_w=None), {"mu_s": 0.3})
+
+
+def test_fixing_and_freeing():
+    runs = make_runs(Model("cosserat"), TRUTH["cosserat"], seed=2)
+    mc = calibrate_model(Model("cosserat"), runs, fix={"phi": 20.0}, free=["A"])
+    assert not mc.parameters["phi"].free and mc.parameters["phi"].value == 20.0
+    assert mc.parameters["A"].free
+    with pytest.raises(ParameterError, match="not a parameter of cosserat"):
+        setup(Model("cosserat"), runs, fix={"mu_s": 0.3})
+
+
+def test_a_fully_rough_wall_is_a_bound_not_an_error():
+    truth = dict(TRUTH["cosserat"], **{"roughness[rough]": 1.0})
+    runs = make_runs(Model("cosserat"), truth, seed=5)
+    mc = calibrate_model(Model("cosserat"), runs)
+    d = mc.parameters["delta[rough]"]
+    if mc.parameters["roughness[rough]"].at_bound == "upper":
+        assert "fully rough" in d.reason
+    assert abs(d.value - math.degrees(math.atan(math.sin(math.radians(20.0))))) < 1.0
+
+
+# --------------------------------------------------------------------------- posterior
+class Line(Model):
+    """y = a + b s on a plane cell: a linear-Gaussian model, posterior known exactly."""
+
+    def __init__(self) -> None:
+        self.name = "line"
+        self.local_spin = False
+
+    def fields(self):  # type: ignore[override]
+        return ("u",)
+
+    def cells(self):  # type: ignore[override]
+        return ("plane",)
+
+    def parameters(self):  # type: ignore[override]
+        def p(key: str) -> ModelParam:
+            return ModelParam(
+                key,
+                Param(name=key, meaning=key, default=0.0, fit_range=(-50.0, 50.0), role="material"),
+            )
+
+        return (p("a"), p("b"))
+
+    def predict(self, run, values, fields):  # type: ignore[override]
+        return {"u": values["a"] + values["b"] * run.fields["u"].s}
+
+
+def test_posterior_of_a_linear_gaussian_model_matches_least_squares():
+    pytest.importorskip("emcee")
+    from cosserat.calibration.posterior import sample_posterior
+
+    s = np.linspace(0.0, 10.0, 25)
+    se = np.full_like(s, 0.3)
+    y = 1.0 + 0.5 * s + np.random.default_rng(4).normal(0.0, 0.3, s.size)
+    run = RunData(
+        "line",
+        "plane",
+        10.0,
+        {"eps": 0.1},
+        None,
+        "m",
+        {"moving": "w", "fixed": "w"},
+        {"u": Field("u", s, y, se, Correlation(0.0, "given"))},
+    )
+    mc = calibrate_model(Line(), [run])
+    X = np.column_stack([np.ones_like(s), s]) / 0.3
+    cov = np.linalg.inv(X.T @ X)
+    beta = cov @ X.T @ (y / 0.3)
+    assert np.allclose([mc.parameters["a"].value, mc.parameters["b"].value], beta, rtol=1e-6)
+    assert np.allclose(
+        [mc.parameters["a"].stderr, mc.parameters["b"].stderr], np.sqrt(np.diag(cov)), rtol=1e-4
+    )
+    post = sample_posterior(mc, 20000, seed=1).posterior
+    for i, name in enumerate(("a", "b")):
+        sd = math.sqrt(cov[i, i])
+        assert abs(post.parameters[name]["mean"] - beta[i]) < 0.1 * sd
+        assert abs(post.parameters[name]["sd"] / sd - 1.0) < 0.1
+
+
+# --------------------------------------------------------------------------- data
+def test_the_shipped_corpus_loads_in_the_calibration_frame():
+    skipped: list[str] = []
+    runs = with_correlations(load([shipped_corpus()], skipped))
+    assert len(skipped) == 1 and "channel_rough_H20" in skipped[0]
+    plane = next(r for r in runs if r.name == "plane_rough_H40")
+    assert set(plane.fields) == {"u", "omega", "stress_ratio"}
+    u = plane.fields["u"]
+    assert np.all(np.diff(u.s) > 0) and u.value[0] > 0.8  # the moving wall first
+    # spin and half the vorticity turn the same way near the moving wall
+    assert plane.fields["omega"].value[0] < 0
+    ratio = plane.fields["stress_ratio"]
+    assert 0.2 < ratio.value[0] < 0.35 and ratio.s[0] >= 1.0
+    assert 5e-4 < plane.I_w < 1e-2
+    assert u.correlation.source == "estimated"
+    (channel,) = [r for r in read_corpus(shipped_corpus()).runs if r.cell == "channel"]
+    with pytest.raises(InputError, match="cannot be calibrated yet"):
+        from_run(channel)  # refused in words, not by a traceback
+
+
+def test_json_contract_and_dataframe():
+    runs = make_runs(Model("cosserat"), TRUTH["cosserat"], runs=template_runs()[:1], seed=1)
+    cal = calibrate(runs, models=["cosserat", "mui"])
+    d = json.loads(cal.to_json())
+    assert d["best"] in ("cosserat", "mui")
+    m = d["models"][0]
+    for key in (
+        "model",
+        "status",
+        "parameters",
+        "per_run",
+        "chi2",
+        "dof",
+        "p_value",
+        "aic",
+        "bic",
+        "warnings",
+    ):
+        assert key in m
+    assert set(m["parameters"]["phi"]) >= {"value", "stderr", "free", "shared", "unit"}
+    assert m["per_run"]["plane_H20"]["fields"]["u"]["n"] == 20
+    assert [r["name"] for r in d["runs"]] == ["plane_H20"]
+    df = cal.to_dataframe()
+    assert {"model", "parameter", "value", "stderr"} <= set(df.columns)
+
+
+# --------------------------------------------------------------------------- command line
+def test_cli_calibrate_on_the_shipped_corpus(tmp_path):
+    corpus = shipped_corpus()
+    out = tmp_path / "cal"
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "cosserat",
+            "calibrate",
+            str(corpus / "plane_rough_H20.csv"),
+            str(corpus / "couette_Ri20_H10.csv"),
+            "--models",
+            "cosserat,ngf",
+            "--format",
+            "json",
+            "--out",
+            str(out),
+            "-q",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert proc.returncode == 0, proc.stderr
+    d = json.loads(proc.stdout)
+    assert [m["model"] for m in d["models"]] == ["cosserat", "ngf"]
+    assert (out / "calibration.json").is_file() and (out / "report.md").is_file()
+    assert (out / "fit_plane_rough_H20.png").is_file()
+    # the shipped runs are not what the models describe: the misfit is said, naming the run
+    assert any(
+        "couette_Ri20_H10" in w or "plane_rough_H20" in w for w in d["models"][0]["warnings"]
+    )
+
+
+def test_cli_calibrate_refuses_bad_input_in_one_line(tmp_path):
+    corpus = shipped_corpus()
+    for args, words in [
+        (["--models", "cosserat,cosserat"], "named twice"),
+        (["--fix", "mu_s=abc"], "must be a number"),
+        (["--fix", "nothing=1"], "no model has a parameter"),
+        (["--fields", "u,pressure"], "unknown field"),
+        (["--posterior", "10"], "give --out"),
+    ]:
+        proc = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "cosserat",
+                "calibrate",
+                str(corpus / "plane_rough_H20.csv"),
+                *args,
+            ],
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
+        assert proc.returncode == 2, (args, proc.stderr)
+        assert words in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    proc = subprocess.run(
+        [sys.executable, "-m", "cosserat", "calibrate", str(tmp_path / "missing.csv")],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert proc.returncode == 2 and "no such file" in proc.stderr
+
+
+def test_template_runs_carry_their_cells():
+    r = template_run("c", "couette", 10.0, Ri_d=20.0)
+    assert r.cell_values == {"eps": 0.1, "Ri": 2.0}
+    assert isinstance(r.fields["u"], Field)
