@@ -259,11 +259,12 @@ def _assumptions(s: Setup) -> list[str]:
     out = [
         "error model: Gaussian; the bins of one field of one run AR(1)-correlated with lag-1 "
         "correlation rho (per run/field: " + ", ".join(rhos) + "); fields and runs independent",
-        "fixed from each run's metadata: "
+        "fixed from each run's metadata (I_w, the wall's inertial number, enters the "
+        "rate-dependent models only): "
         + "; ".join(
             f"{r.name}: "
             + ", ".join(f"{k} = {v:.4g}" for k, v in r.cell_values.items())
-            + (f", I_w = {r.I_w:.3g}" if s.model.rate_dependent and r.I_w is not None else "")
+            + (f", I_w = {r.I_w:.3g}" if r.I_w is not None else "")
             for r in s.runs
         ),
         "fields fitted: " + ", ".join(s.fields),

@@ -11,7 +11,8 @@ model (``docs/calibration.md``):
   (plane shear: the deck's own frame when the upper wall moves; its mirror image when the
   lower one does). Half the vorticity of such a flow is negative;
 * ``stress_ratio`` is ``|sigma_yx| / sigma_yy`` (Couette flow: ``|sigma_rt| / sigma_rr``) [-],
-  a ratio of two measured stresses, free of the sign conventions of each.
+  a ratio of two measured stresses, free of the sign conventions of each, in the shear band
+  (:data:`BAND_U`) and at least :data:`WALL_EXCLUSION_D` from the walls.
 
 What a run's metadata give is fixed, never fitted unless the caller frees it: the cell
 (``eps = d/H``, ``Ri = R_i/H``, ``B``, ``nu``) and the drive, the wall's inertial number
@@ -23,6 +24,7 @@ joint calibration shares parameters over.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
@@ -48,6 +50,13 @@ FIELD_MEANINGS: dict[str, str] = {
     "stress_ratio": "|shear stress| / normal stress on planes parallel to the walls [-]",
 }
 
+BAND_U = 0.05
+"""``stress_ratio`` is taken where the measured u is at least this (the shear band, by the
+definition of Delta's edge, ``eqn-delta_defn``) [-]. Below, the material barely moves: its
+force network is frozen for the whole run, so the time blocks that give the standard errors do
+not sample it, and bin-to-bin differences of the stress many times those errors are structure,
+not noise (seen in every shipped run deeper than 20 d). The models' stresses there are averages
+over such structures."""
 WALL_EXCLUSION_D = 1.0
 """Stress bins whose centre is closer than this to a wall are left out of ``stress_ratio`` [d]:
 the first layer's stresses are those of a half-filled bin against the wall's grains."""
@@ -201,9 +210,11 @@ def _stress_ratio(run: Run) -> tuple[FloatArray, FloatArray, FloatArray] | None:
         return None
     t, st = run.quantity(shear)
     n, sn = run.quantity(normal)
+    u, _ = run.quantity("u")
     s = run.distance_d
     ok = usable(t, st) & usable(n, sn) & (n > 0.0)
     ok &= (s >= WALL_EXCLUSION_D) & (s <= run.gap_d - WALL_EXCLUSION_D)
+    ok &= u >= BAND_U  # where the material flows: below, the stresses are frozen in
     if np.count_nonzero(ok) < 2:
         return None
     ratio = np.abs(t[ok]) / n[ok]
@@ -355,6 +366,7 @@ def load(paths: Sequence[str | Path], skipped: list[str] | None = None) -> list[
             runs.append(from_profile(read_profile(path), name=path.stem))
         else:
             raise InputError(f"{path}: no such file or folder")
+    runs = short_labels(runs)
     names = [r.name for r in runs]
     twice = sorted({n for n in names if names.count(n) > 1})
     if twice:
@@ -362,6 +374,35 @@ def load(paths: Sequence[str | Path], skipped: list[str] | None = None) -> list[
     if not runs:
         raise InputError("no runs to calibrate on")
     return runs
+
+
+def short_labels(runs: Sequence[RunData]) -> list[RunData]:
+    """Runs with their wall labels cut to the wall's kind (``glued-grains``) and their material
+    label to ``material`` where that leaves no two different descriptions with one label."""
+    walls = {label for r in runs for label in r.walls.values()}
+    kinds: dict[str, set[str]] = {}
+    for label in walls:
+        kinds.setdefault(label.rsplit("-", 1)[0] if _hashed(label) else label, set()).add(label)
+    wall_map = {
+        label: (kind if len(labels) == 1 else label)
+        for kind, labels in kinds.items()
+        for label in labels
+    }
+    materials = {r.material for r in runs}
+    single = len(materials) == 1 and all(m.startswith("material") for m in materials)
+    return [
+        dataclasses.replace(
+            r,
+            walls={pos: wall_map[label] for pos, label in r.walls.items()},
+            material="material" if single else r.material,
+        )
+        for r in runs
+    ]
+
+
+def _hashed(label: str) -> bool:
+    tail = label.rsplit("-", 1)[-1]
+    return "-" in label and len(tail) == 8 and all(c in "0123456789abcdef" for c in tail)
 
 
 def with_correlations(

@@ -82,8 +82,12 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> list[str]:
 HEADER = ["model", "k", "n", "chi2", "dof", "p", "dAIC", "BIC", "ln Z", "weight AIC/Z"]
 
 
-def text(cal: Calibration) -> str:
-    """The readable summary printed by ``cosserat calibrate``."""
+TEXT_WARNINGS = 12
+"""Warnings per model in the printed summary (the JSON and the report have them all)."""
+
+
+def text(cal: Calibration, full: bool = False) -> str:
+    """The readable summary printed by ``cosserat calibrate`` (``full``: every warning)."""
     runs = ", ".join(f"{r.name} ({r.cell}, H = {r.gap_d:.4g} d)" for r in cal.runs)
     lines = [f"Calibration on {len(cal.runs)} run(s): {runs}"]
     lines += [f"skipped: {note}" for note in cal.skipped] + [""]
@@ -113,8 +117,14 @@ def text(cal: Calibration) -> str:
                     f"    {name}: median {q['q50']:.5g}, 68% [{q['q16']:.5g}, {q['q84']:.5g}]"
                 )
         if m.warnings:
-            lines.append("  warnings:")
-            lines += [f"    - {w}" for w in m.warnings]
+            lines.append(f"  warnings ({len(m.warnings)}):")
+            shown = m.warnings if full else m.warnings[:TEXT_WARNINGS]
+            lines += [f"    - {w}" for w in shown]
+            if len(shown) < len(m.warnings):
+                lines.append(
+                    f"    ... and {len(m.warnings) - len(shown)} more (--format json, or the "
+                    "report written with --out, lists them all)"
+                )
     lines += ["", "Assumptions:"]
     seen: list[str] = []
     for m in cal.models:
@@ -122,6 +132,8 @@ def text(cal: Calibration) -> str:
             if a not in seen:
                 seen.append(a)
     lines += [f"  - {a}" for a in seen + list(cal.comparison)]
+    if cal.notes:
+        lines += ["", "Across models:"] + [f"  - {n}" for n in cal.notes]
     return "\n".join(lines)
 
 
@@ -196,7 +208,7 @@ def write_report(cal: Calibration, out: str | Path) -> list[Path]:
         figures.append(save_figure(fig, folder / f"fit_{entry['name']}.png", dpi=130))
         plt.close(fig)
     corners = sorted(folder.glob("corner_*.png"))
-    md = ["# Calibration", "", "```", text(cal), "```", ""]
+    md = ["# Calibration", "", "```", text(cal, full=True), "```", ""]
     for p in figures:
         md += [f"![{p.stem}]({p.name})", ""]
     for p in corners:

@@ -311,6 +311,29 @@ class Calibration:
         raise KeyError(model)
 
     @property
+    def notes(self) -> list[str]:
+        """Misfits every model shares: a field of a run that no model describes (its chi^2
+        per bin above 3 in each fitted model, within a factor 1.5 of each other) points at
+        the data or their errors (the statics are common to all models), not at one model."""
+        ok = [m for m in self.models if m.ok]
+        if len(ok) < 2:
+            return []
+        out = []
+        for f in ok[0].fields:
+            chis = []
+            for m in ok:
+                match = [g for g in m.fields if g.run == f.run and g.field == f.field]
+                if match:
+                    chis.append(match[0].chi2 / max(match[0].n, 1))
+            if len(chis) == len(ok) and min(chis) > 3.0 and max(chis) < 1.5 * min(chis):
+                out.append(
+                    f"run {f.run}, {f.field}: every model misses it alike (chi^2 per bin "
+                    f"{min(chis):.3g}-{max(chis):.3g}): the scatter of the data exceeds their "
+                    "standard errors, or the statics the models share do not hold there"
+                )
+        return out
+
+    @property
     def best(self) -> str | None:
         """The model with the lowest AIC among those fitted to the same fields."""
         ok = [m for m in self.models if m.ok and m.aic is not None]
@@ -351,6 +374,7 @@ class Calibration:
                 "evidence": self.weights("evidence"),
             },
             "comparison": list(self.comparison),
+            "notes": self.notes,
             "runs": [_run_dict(r) for r in self.runs],
             "skipped": list(self.skipped),
         }
