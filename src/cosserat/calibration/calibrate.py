@@ -239,7 +239,8 @@ def _warnings(mc: ModelCalibration, fits: Sequence[FieldFit]) -> list[str]:
     for e in mc.parameters.values():
         if e.free and e.at_bound is not None and e.key != "roughness":
             out.append(
-                f"{name}: {e.name} = {e.value:.4g} {e.unit} is at the {e.at_bound} end of its "
+                f"{name}: {e.name} = {e.value:.4g}{'' if e.unit in ('', '-') else ' ' + e.unit}"
+                f" is at the {e.at_bound} end of its "
                 f"search range {e.fit_range}: the data push it further; no error is given"
             )
     for d in mc.flat:
