@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from cosserat.calibration.calibrate import calibrate_model
+from cosserat.calibration.joint import calibrate_model
 from cosserat.calibration.models import Model
 from cosserat.calibration.synthetic import make_runs
 

@@ -10,8 +10,8 @@ model's posterior.
 
 from __future__ import annotations
 
-from .calibrate import calibrate, calibrate_model
 from .data import FIELDS, Field, RunData, load
+from .joint import calibrate, calibrate_model
 from .models import Model
 from .result import Calibration, Estimate, FieldFit, ModelCalibration
 
