@@ -5,11 +5,14 @@ One path for every numerical computation: a profile, a thickness curve and a swe
 It does what ``docs/numerics.md`` describes:
 
 1. **Couple stress** (``eqn-nd_zangmom``, ``eqn-nd_zangmom_cyl``), integrated with Radau IIA
-   from the wall that does not slip (the centre in the symmetric case) to the slipping wall,
-   its stable direction, stopped by an event where the yield radicand S of ``eqn-nd_sigxy``
-   reaches zero (no real solution). In Couette flow the inner-wall couple stress mu = m(0) of
-   ``eqn-nd_shsts_cyl`` is unknown: a secant iteration from the leading-order value, then a
-   bracket and Brent's method, find the mu for which the integration returns m(0) = mu.
+   (:func:`~cosserat.numerics.radau_scalar.radau5_scalar`) from the wall that does not slip
+   (the centre in the symmetric case) to the slipping wall, its stable direction, stopped by
+   an event where the yield radicand S of ``eqn-nd_sigxy`` reaches zero (no real solution).
+   In Couette flow the inner-wall couple stress mu = m(0) of ``eqn-nd_shsts_cyl`` is unknown:
+   Newton's method finds the mu for which the integration returns m(0) = mu, each pass giving
+   its derivative in mu by internal differentiation (:func:`couette_newton`); a secant
+   iteration, then a bracket and Brent's method, take over if Newton's method does not
+   converge (:func:`couette_inner_couple_stress`).
 2. **Spin and velocity**: ``l = ln(w / w_s)`` and ``P = int e^l G`` from the slipping wall
    inwards (the same integrator), stopped where e^l underflows.
 3. **Velocity constants** (u_s, w_s) from the two linear velocity conditions, then the
@@ -38,10 +41,17 @@ from ..model.constitutive import (
     k_torque_dsyx,
     k_velocity_ratio,
 )
-from ..model.couette import outer_wall_couple_stress, shear_stress, shear_stress_dm
+from ..model.couette import (
+    outer_wall_couple_stress,
+    outer_wall_couple_stress_dm_inner,
+    shear_stress,
+    shear_stress_dm,
+    shear_stress_dm_inner,
+)
 from ..model.plane import mean_stress
 from .dop853 import dop853, dop853_eval1
-from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1, radau5
+from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1
+from .radau_scalar import radau5_scalar, sensitivity
 from .roots import B as ROOT
 from .roots import brackets, brent_accept, brent_next, brent_start
 
@@ -105,6 +115,13 @@ N_INFO = 19
 LOG_UNDERFLOW = -745.0  # e^l underflows below this: the spin is exactly 0 in double precision
 SINGULAR_MARGIN = 1e-8  # S below this fraction of its scale at the far end: 1/sqrt singularity
 SECANT_STEPS = 12
+# Newton on m(0) (couette_newton): passes before giving up to the bracketing search, the
+# tolerance of its first pass, the allowed second-order remainder of its last step (a fraction
+# of the tolerance on m(0)), and |F''|/2 assumed before two passes have measured it
+NEWTON_TRIALS = 8
+NEWTON_LOOSE_RTOL = 1e-6
+NEWTON_REMAINDER = 0.01
+NEWTON_CURVATURE_PRIOR = 1.0
 # floor on sqrt(S) in the Jacobian, relative to sigma_c sin(phi) (couple_jac)
 JACOBIAN_ROOT_FLOOR = 1e-6
 # a torque below this fraction of sigma_c sin(phi) is round-off (_crossed_by_round_off)
@@ -145,24 +162,20 @@ def _curvature(xi: float, p: np.ndarray) -> float:
 
 
 @njit(cache=True, nogil=True)
-def couple_rhs(xi, y, args):
+def couple_rhs(xi, m, args):
     """dm/dxi = torque / (eps alpha) - kappa m (``formulation`` module docstring) [-]."""
     p, mu = args
-    m = y[0]
     syx = _shear_stress(xi, m, p, mu)
-    out = np.empty(1)
-    out[0] = (
+    return (
         k_torque(syx, _mean_stress(xi, p), m, p[P_A], p[P_SIN_PHI]) / (p[P_EPS] * p[P_ALPHA])
         - _curvature(xi, p) * m
     )
-    return out
 
 
 @njit(cache=True, nogil=True)
-def couple_jac(xi, y, args):
+def couple_jac(xi, m, args):
     """d(dm/dxi)/dm, analytic (:func:`k_torque_dm`, :func:`k_torque_dsyx`)."""
     p, mu = args
-    m = y[0]
     syx = _shear_stress(xi, m, p, mu)
     sc = _mean_stress(xi, p)
     A, sp = p[P_A], p[P_SIN_PHI]
@@ -172,9 +185,20 @@ def couple_jac(xi, y, args):
     dT_dm = k_torque_dm(syx, sc, m, A, sp, floor)
     dT_dsyx = k_torque_dsyx(syx, sc, m, A, sp, floor)
     dT = dT_dm + dT_dsyx * _shear_stress_dm(xi, p)
-    out = np.empty((1, 1))
-    out[0, 0] = dT / (p[P_EPS] * p[P_ALPHA]) - _curvature(xi, p)
-    return out
+    return dT / (p[P_EPS] * p[P_ALPHA]) - _curvature(xi, p)
+
+
+@njit(cache=True, nogil=True)
+def couple_dmu(xi, m, args):
+    """d(dm/dxi)/d m(0) at fixed m (Couette; 0 in plane shear): m(0) enters through s_rt."""
+    p, mu = args
+    if p[P_GEOMETRY] == PLANE:
+        return 0.0
+    syx = _shear_stress(xi, m, p, mu)
+    sc = _mean_stress(xi, p)
+    floor = JACOBIAN_ROOT_FLOOR * sc * p[P_SIN_PHI]
+    dT_dsyx = k_torque_dsyx(syx, sc, m, p[P_A], p[P_SIN_PHI], floor)
+    return dT_dsyx * shear_stress_dm_inner(xi, p[P_RI], p[P_COUPLE]) / (p[P_EPS] * p[P_ALPHA])
 
 
 @njit(cache=True, nogil=True)
@@ -187,9 +211,9 @@ def _yield_margin(xi: float, m: float, p: np.ndarray, mu: float) -> float:
 
 
 @njit(cache=True, nogil=True)
-def couple_event(xi, y, args):
+def couple_event(xi, m, args):
     p, mu = args
-    return _yield_margin(xi, y[0], p, mu)
+    return _yield_margin(xi, m, p, mu)
 
 
 # ----------------------------------------------------------------- pass 2: spin and velocity
@@ -317,21 +341,28 @@ def velocities(xi, P, p, info):
 # ----------------------------------------------------------------- one couple-stress pass
 @njit(cache=True, nogil=True)
 def couple_pass(p, mu, m_start, x_start, x_end, rtol, atol, max_steps):
-    """Pass 1 from ``x_start`` to ``x_end``: (status, ts, hs, ys, Q, t_event, nfev, nsteps, nlu)."""
-    status, ts, hs, ys, Q, t_event, nfev, _, nlu, nsteps = radau5(
+    """Pass 1 from ``x_start`` to ``x_end``:
+    (status, ts, hs, ys, Q, Zs, t_event, nfev, nsteps, nlu) of :func:`radau5_scalar`."""
+    status, ts, hs, ys, Q, Zs, t_event, nfev, nlu, nsteps = radau5_scalar(
         couple_rhs,
         couple_jac,
         couple_event,
         x_start,
         x_end,
-        np.array([m_start]),
+        m_start,
         rtol,
-        np.array([atol]),
+        atol,
         (p, mu),
         max_steps,
         0.0,
     )
-    return status, ts, hs, ys, Q, t_event, nfev, nsteps, nlu
+    return status, ts, hs, ys, Q, Zs, t_event, nfev, nsteps, nlu
+
+
+@njit(cache=True, nogil=True)
+def couple_sensitivity(p, mu, ts, hs, ys, Zs, s_start):
+    """d m / d m(0) along a Couette couple-stress pass (:func:`sensitivity`): (ss, dQ)."""
+    return sensitivity(couple_jac, couple_dmu, (p, mu), ts, hs, ys, Zs, s_start)
 
 
 @njit(cache=True, nogil=True)
@@ -362,7 +393,7 @@ def _shoot(mu, args):
     counters[3] += 1.0
     if disc < 0.0:
         return 0.0, NO_SOLUTION, 1.0, m1
-    status, ts, _, ys, _, _, nfev, nsteps, nlu = couple_pass(
+    status, ts, _, ys, _, _, _, nfev, nsteps, nlu = couple_pass(
         p, mu, m1, 1.0, 0.0, rtol, atol, max_steps
     )
     counters[0] += nfev
@@ -489,6 +520,101 @@ def couette_inner_couple_stress(p, rtol, atol, max_steps, counters):
     return NO_BRACKET, state[ROOT], 0.0, 0.0
 
 
+@njit(cache=True, nogil=True)
+def _newton_trial(p, mu, rtol, atol, max_steps, counters):
+    """One pass at m(0) = mu with its sensitivity: (code, F, dF/dmu, ts, hs, ys, Q, ss, dQ).
+
+    F(mu) = m(0; mu) - mu; dF/dmu = s(0) - 1 with s = dm/dmu, the derivative of the computed
+    pass (:func:`couple_sensitivity`), started from dm(1)/dmu of ``eqn-nd_bc1_cyl``.
+    """
+    tan_d, Ri, cf, A, sp = p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+    m1, disc = outer_wall_couple_stress(mu, tan_d, Ri, cf, A, sp)
+    counters[3] += 1.0
+    e1 = np.zeros(1)
+    e2 = np.zeros((1, 1))
+    e3 = np.zeros((0, 1, 3))
+    if disc <= 0.0:
+        return NO_SOLUTION, 0.0, 0.0, e1, e1, e2, e3, e2, e3
+    status, ts, hs, ys, Q, Zs, _, nfev, nsteps, nlu = couple_pass(
+        p, mu, m1, 1.0, 0.0, rtol, atol, max_steps
+    )
+    counters[0] += nfev
+    counters[1] += nsteps
+    counters[2] += nlu
+    code = _pass_status(status)
+    if code != OK:
+        return code, 0.0, 0.0, ts, hs, ys, Q, e2, e3
+    s1 = outer_wall_couple_stress_dm_inner(mu, tan_d, Ri, cf, A, sp)
+    ss, dQ = couple_sensitivity(p, mu, ts, hs, ys, Zs, s1)
+    return OK, ys[-1, 0] - mu, ss[-1, 0] - 1.0, ts, hs, ys, Q, ss, dQ
+
+
+@njit(cache=True, nogil=True)
+def couette_newton(p, rtol, atol, max_steps, counters):
+    """(found, mu, ts, hs, ys, Q): m(0) by Newton's method, and its final couple-stress pass.
+
+    Each pass returns F(mu) = m(0; mu) - mu and, by internal differentiation, dF/dmu
+    (:func:`_newton_trial`), so each pass is one Newton step. Only the last pass needs the
+    final tolerance (rtol/10, as every trial of :func:`couette_inner_couple_stress`): the first
+    runs at ``NEWTON_LOOSE_RTOL`` (unless the caller gave a guess of m(0)), and a pass whose
+    Newton step will still be large runs at a tolerance a hundred times below the error of
+    m(0) expected after it. The result is accepted when |F| <= tol (``tol`` as in
+    :func:`couette_inner_couple_stress`), or when the final pass's own Newton step is so small
+    that its second-order remainder, estimated from the previous step (``c |step|^2``, with
+    ``c`` the smaller of |F|/|previous step|^2 and |change of dF/dmu|/(2 |previous step|),
+    both upper estimates of |F''|/2 up to the passes' errors), is below
+    ``NEWTON_REMAINDER`` tol: then the step is taken on the computed solution itself, through
+    its linearisation ``m + step dm/dmu`` (exact to first order for the discrete equations).
+    Anything unexpected (a pass that fails, dF/dmu >= 0, a step beyond the yield scale, no
+    convergence in ``NEWTON_TRIALS`` passes) returns found = False, and the caller falls back
+    to the bracketing search.
+    """
+    e1 = np.zeros(1)
+    e2 = np.zeros((1, 1))
+    e3 = np.zeros((0, 1, 3))
+    final_rtol, final_atol = rtol * 0.1, atol * 0.1
+    guess = math.isfinite(p[P_MU_GUESS])
+    mu = p[P_MU_GUESS] if guess else -p[P_M0]
+    tol = max(atol, rtol * abs(mu))
+    bound = p[P_B_BOUND]
+    pass_rtol = final_rtol if guess else max(final_rtol, NEWTON_LOOSE_RTOL)
+    prev_step = math.nan
+    prev_dF = math.nan
+    for _ in range(NEWTON_TRIALS):
+        final = pass_rtol <= final_rtol
+        code, F, dF, ts, hs, ys, Q, ss, dQ = _newton_trial(
+            p, mu, pass_rtol, final_atol * (pass_rtol / final_rtol), max_steps, counters
+        )
+        if code != OK or not (math.isfinite(F) and math.isfinite(dF) and dF < 0.0):
+            break
+        if final and abs(F) <= tol:
+            return True, mu, ts, hs, ys, Q
+        step = -F / dF
+        if not abs(step) <= bound:
+            break
+        curv = math.inf
+        if math.isfinite(prev_step) and prev_step != 0.0:
+            curv = min(abs(F) / prev_step**2, 0.5 * abs(dF - prev_dF) / abs(prev_step))
+        if final and curv * step * step <= NEWTON_REMAINDER * tol:
+            for i in range(ys.shape[0]):
+                ys[i, 0] += step * ss[i, 0]
+            for i in range(Q.shape[0]):
+                for j in range(3):
+                    Q[i, 0, j] += step * dQ[i, 0, j]
+            return True, mu + step, ts, hs, ys, Q
+        # the next pass: final if its own step should be small enough, else a looser one
+        c = curv if math.isfinite(curv) else NEWTON_CURVATURE_PRIOR
+        F_next = c * step * step
+        if c * (F_next / dF) ** 2 <= NEWTON_REMAINDER * tol:
+            pass_rtol = final_rtol
+        else:
+            scale = max(abs(mu), atol)
+            pass_rtol = min(max(0.01 * F_next / scale, final_rtol), NEWTON_LOOSE_RTOL)
+        prev_step, prev_dF = step, dF
+        mu += step
+    return False, mu, e1, e1, e2, e3
+
+
 # ----------------------------------------------------------------- thickness
 @njit(cache=True, nogil=True)
 def _excess(tau, args):
@@ -552,7 +678,7 @@ def solve_case(p, rtol, atol, f, max_steps):
     """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
 
     ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
-    :func:`~cosserat.numerics.radau.radau5`, the spin one (ts, ys, F) of
+    :func:`~cosserat.numerics.radau_scalar.radau5_scalar`, the spin one (ts, ys, F) of
     :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
     xi(tau) given by the pass geometry ``[xi_slip, span, singular]``.
     """
@@ -566,28 +692,39 @@ def solve_case(p, rtol, atol, f, max_steps):
     g = np.zeros(3)
     xs, x0 = walls(p)
     mu = 0.0
+    have_pass = False
+    ts1, hs1, ys1, Q1 = empty1, np.zeros(0), empty2, empty3
     if p[P_GEOMETRY] == COUETTE:
-        code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
+        pass_rtol, pass_atol = rtol * 0.1, atol * 0.1
+        have_pass, mu, ts1, hs1, ys1, Q1 = couette_newton(p, rtol, atol, max_steps, counters)
+        if not have_pass:
+            code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
+            if code != OK:
+                info[I_MU] = mu
+                info[I_ITERATIONS] = counters[3]
+                info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
+                return code, info, (empty1, np.zeros(0), empty2, empty3), no_spin, g
         info[I_MU] = mu
         info[I_ITERATIONS] = counters[3]
-        if code != OK:
-            info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
-            return code, info, (empty1, np.zeros(0), empty2, empty3), no_spin, g
         m1, _ = outer_wall_couple_stress(
             mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
         )
         m_start = m1
-        pass_rtol, pass_atol = rtol * 0.1, atol * 0.1
     else:
         m_start = p[P_M_START]
         pass_rtol, pass_atol = rtol, atol
-    status, ts1, hs1, ys1, Q1, _, nfev, nsteps, nlu = couple_pass(
-        p, mu, m_start, x0, xs, pass_rtol, pass_atol, max_steps
-    )
-    counters[0] += nfev
-    counters[1] += nsteps
-    counters[2] += nlu
-    info[I_STEPS_COUPLE] = nsteps
+    if have_pass:
+        status = SUCCESS
+        m_start = ys1[0, 0]
+        info[I_STEPS_COUPLE] = ts1.size - 1
+    else:
+        status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
+            p, mu, m_start, x0, xs, pass_rtol, pass_atol, max_steps
+        )
+        counters[0] += nfev
+        counters[1] += nsteps
+        counters[2] += nlu
+        info[I_STEPS_COUPLE] = nsteps
     cs = (ts1, hs1, ys1, Q1)
     code = _pass_status(status)
     if code == NO_SOLUTION and _crossed_by_round_off(ts1, ys1, p):
@@ -676,7 +813,8 @@ def solve_batch(params, rtol, atol, f, max_steps):
     for i in range(n):
         code, row, _, _, _ = solve_case(params[i], rtol, atol, f, max_steps)
         status[i] = code
-        info[i, :] = row
+        for j in range(N_INFO):
+            info[i, j] = row[j]
     return status, info
 
 
