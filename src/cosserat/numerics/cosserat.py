@@ -565,9 +565,11 @@ def couette_newton(p, rtol, atol, max_steps, counters):
     both upper estimates of |F''|/2 up to the passes' errors), is below
     ``NEWTON_REMAINDER`` tol: then the step is taken on the computed solution itself, through
     its linearisation ``m + step dm/dmu`` (exact to first order for the discrete equations).
-    Anything unexpected (a pass that fails, dF/dmu >= 0, a step beyond the yield scale, no
-    convergence in ``NEWTON_TRIALS`` passes) returns found = False, and the caller falls back
-    to the bracketing search.
+    A step whose pass leaves the real domain is halved (the root lies between the last
+    admissible trial and it, F decreasing), and no later step goes beyond it. Anything else
+    unexpected (a first pass outside the real domain, a pass that fails otherwise, dF/dmu >= 0,
+    a step beyond the yield scale, no convergence in ``NEWTON_TRIALS`` passes) returns
+    found = False, and the caller falls back to the bracketing search.
     """
     e1 = np.zeros(1)
     e2 = np.zeros((1, 1))
@@ -580,11 +582,19 @@ def couette_newton(p, rtol, atol, max_steps, counters):
     pass_rtol = final_rtol if guess else max(final_rtol, NEWTON_LOOSE_RTOL)
     prev_step = math.nan
     prev_dF = math.nan
+    mu_ok = math.nan  # the last admissible trial
+    limit = math.nan  # the nearest trial beyond the real domain (F decreases; failures bound mu)
     for _ in range(NEWTON_TRIALS):
         final = pass_rtol <= final_rtol
         code, F, dF, ts, hs, ys, Q, ss, dQ = _newton_trial(
             p, mu, pass_rtol, final_atol * (pass_rtol / final_rtol), max_steps, counters
         )
+        if code == NO_SOLUTION and math.isfinite(mu_ok):
+            # the step left the real domain: halve it, and never step that far again
+            limit = mu
+            mu = 0.5 * (mu_ok + mu)
+            prev_step = math.nan
+            continue
         if code != OK or not (math.isfinite(F) and math.isfinite(dF) and dF < 0.0):
             break
         if final and abs(F) <= tol:
@@ -602,6 +612,8 @@ def couette_newton(p, rtol, atol, max_steps, counters):
                 for j in range(3):
                     Q[i, 0, j] += step * dQ[i, 0, j]
             return True, mu + step, ts, hs, ys, Q
+        if math.isfinite(limit) and (mu + step - limit) * (mu - limit) <= 0.0:
+            step = 0.5 * (limit - mu)  # not beyond a trial known to leave the real domain
         # the next pass: final if its own step should be small enough, else a looser one
         c = curv if math.isfinite(curv) else NEWTON_CURVATURE_PRIOR
         F_next = c * step * step
@@ -611,6 +623,7 @@ def couette_newton(p, rtol, atol, max_steps, counters):
             scale = max(abs(mu), atol)
             pass_rtol = min(max(0.01 * F_next / scale, final_rtol), NEWTON_LOOSE_RTOL)
         prev_step, prev_dF = step, dF
+        mu_ok = mu
         mu += step
     return False, mu, e1, e1, e2, e3
 
@@ -843,3 +856,133 @@ def spin_pass_at(xi, g, ts, ys, F):
         ell[i] = dop853_eval1(ts, ys, F, tau, 0)
         P[i] = dop853_eval1(ts, ys, F, tau, 1)
     return ell, P
+
+
+# ----------------------------------------------------------------- fields at many points
+# rows of fields_at's output, in the order of cosserat.results.profile.Fields
+F_U, F_OMEGA, F_M, F_SIGMA_XY, F_SIGMA_YX, F_SIGMA_YY, F_DU_DXI, F_KAPPA = range(8)
+N_FIELDS = 8
+
+
+@njit(cache=True, nogil=True)
+def _radau_step(ts: np.ndarray, t: float, hint: int) -> int:
+    """:func:`~cosserat.numerics.radau._step_index` (the step with ts[i] < t <= ts[i + 1],
+    the first one at ts[0]), trying ``hint`` first: sorted points cost no search."""
+    k = ts.shape[0] - 1
+    s = 1.0 if ts[k] >= ts[0] else -1.0
+    st = s * t
+    if 0 <= hint < k and st <= s * ts[hint + 1] and (hint == 0 or st > s * ts[hint]):
+        return hint
+    lo = 0
+    hi = k - 1
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if st <= s * ts[mid + 1]:
+            hi = mid
+        else:
+            lo = mid + 1
+    return lo
+
+
+@njit(cache=True, nogil=True)
+def _dop853_step(ts: np.ndarray, t: float, hint: int) -> int:
+    """The step :func:`~cosserat.numerics.dop853.dop853_eval1` evaluates at t (the last one
+    with ts[i] <= t, forwards), trying ``hint`` first."""
+    k = ts.shape[0] - 1
+    if 0 <= hint < k and ts[hint] <= t and (hint == k - 1 or ts[hint + 1] > t):
+        return hint
+    lo, hi = 0, k
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if ts[mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True, nogil=True)
+def _dop853_at(ts: np.ndarray, ys: np.ndarray, F: np.ndarray, t: float, i: int, c: int) -> float:
+    """:func:`~cosserat.numerics.dop853.dop853_eval1` in step i (the same operations)."""
+    h = ts[i + 1] - ts[i]
+    x = (t - ts[i]) / h if h != 0.0 else 0.0
+    x = min(max(x, 0.0), 1.0)
+    out = 0.0
+    for j in range(6, -1, -1):
+        out = (out + F[i, j, c]) * (x if (6 - j) % 2 == 0 else 1.0 - x)
+    return out + ys[i, c]
+
+
+@njit(cache=True, nogil=True)
+def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
+    """The fields of a solved case at points ``xi`` in [0, 1]: float64[N_FIELDS, n] [-].
+
+    Rows ``F_*`` (u, omega, m, sigma_xy, sigma_yx, sigma_yy, du/dxi, kappa), from the dense
+    outputs of both passes (``(ts1, hs1, ys1, Q1)`` of the couple stress, ``(ts2, ys2, F2)``
+    of the spin pass with geometry ``g``), the velocity constants in ``info`` and the stresses
+    of the constitutive law (``eqn-nd_sigxy``, the flow rule ``eqn-nd_fr1``): the arithmetic of
+    :func:`cosserat.routes.assemble.fields_from_state`, compiled. Between identical walls (the
+    symmetric case) the solved upper half is reflected: u - u_c odd, m odd, the rest even
+    (``eqn-nd_bc6``). Sorted points are cheapest (no search for the step of each point).
+    """
+    n = xi.shape[0]
+    out = np.empty((N_FIELDS, n))
+    symmetric = p[P_GEOMETRY] == PLANE and p[P_CASE] == SYMMETRIC
+    mu = info[I_MU] if p[P_GEOMETRY] == COUETTE else 0.0
+    A, sp = p[P_A], p[P_SIN_PHI]
+    w_s = info[I_W_S]
+    u_c = info[I_U_REF]
+    k1 = ts1.shape[0] - 1
+    lo1 = min(ts1[0], ts1[k1])
+    hi1 = max(ts1[0], ts1[k1])
+    k2 = ts2.shape[0] - 1
+    tau_end = ts2[k2]
+    reach = abs(_map(tau_end, g)[0] - g[0])
+    cut = reach < abs(g[1])
+    i1 = 0
+    i2 = 0
+    for q in range(n):
+        x = xi[q]
+        low = symmetric and x < 0.5
+        h = 1.0 - x if low else x
+        # couple stress: radau's dense output (dense_eval's clipping and step ends)
+        if k1 == 0:
+            m = ys1[0, 0]
+        else:
+            tp = min(max(h, lo1), hi1)
+            i1 = _radau_step(ts1, tp, i1)
+            if tp == ts1[i1 + 1]:
+                m = ys1[i1 + 1, 0]
+            else:
+                s = (tp - ts1[i1]) / hs1[i1]
+                m = ys1[i1, 0] + s * (Q1[i1, 0, 0] + s * (Q1[i1, 0, 1] + s * Q1[i1, 0, 2]))
+        # spin pass: l = ln(w/w_s) and P at h (spin_pass_at)
+        if cut and abs(h - g[0]) > reach * (1.0 + 1e-15):
+            w = w_s * 0.0  # e^l underflows beyond the cut (spin_pass_at: l = -inf)
+            P = ys2[k2, 1]
+        else:
+            frac = min(max((h - g[0]) / g[1], 0.0), 1.0)
+            tau = 1.0 - math.sqrt(1.0 - frac) if g[2] != 0.0 else frac
+            tau = min(tau, tau_end)
+            if k2 == 0:
+                ell = ys2[0, 0]
+                P = ys2[0, 1]
+            else:
+                i2 = _dop853_step(ts2, tau, i2)
+                ell = _dop853_at(ts2, ys2, F2, tau, i2, 0)
+                P = _dop853_at(ts2, ys2, F2, tau, i2, 1)
+            w = w_s * math.exp(ell)
+        u = velocity(h, P, p, info)
+        syx = _shear_stress(h, m, p, mu)
+        sc = _mean_stress(h, p)
+        kappa = _curvature(h, p)
+        F1 = k_velocity_ratio(syx, sc, m, A, sp)
+        out[F_SIGMA_YX, q] = syx
+        out[F_SIGMA_XY, q] = syx - 2.0 * (A + 1.0) * k_torque(syx, sc, m, A, sp)
+        out[F_SIGMA_YY, q] = sc
+        out[F_OMEGA, q] = w - kappa * u
+        out[F_DU_DXI, q] = -w * F1 + kappa * u
+        out[F_KAPPA, q] = kappa
+        out[F_U, q] = 2.0 * u_c - u if low else u
+        out[F_M, q] = -m if low else m
+    return out

@@ -21,10 +21,9 @@ from ..model import CouetteFlow, PlaneShear, PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
 from ..model.formulation import Formulation
 from ..numerics import cosserat as kernel
-from ..numerics.radau import dense_eval
 from ..numerics.runtime import map_batches
 from ..results.profile import Fields, Profile
-from .assemble import fields_from_state, make_profile
+from .assemble import make_profile
 
 DEFAULT_RTOL = config.RTOL
 
@@ -170,30 +169,19 @@ class NumericalSolution:
         """Points mapped onto the solved half (symmetric case) [-]."""
         return np.where(x >= 0.5, x, 1.0 - x) if self.symmetric else x
 
-    def _state(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """(m, u, w) at points x of the solved part of the gap."""
-        m = dense_eval(*self.couple, x)[:, 0]
-        ell, P = kernel.spin_pass_at(x, self.geometry, *self.spin)
-        u = kernel.velocities(x, P, self.params, self.info)
-        with np.errstate(under="ignore"):
-            w = self.info[kernel.I_W_S] * np.exp(ell)
-        return m, u, w
-
     def __call__(self, xi: FloatArray) -> Fields:
         x = np.asarray(xi, dtype=float)
-        h = self._half(x)
-        m, u, w = self._state(h)
-        f = fields_from_state(self.formulation(), h, m, u, w)
-        if not self.symmetric:
-            return f
-        # u - u_c odd and omega even about xi = 1/2, m odd (eqn-nd_bc6)
-        low = x < 0.5
-        u_c = self.info[kernel.I_U_REF]
-        return f._replace(
-            u=np.where(low, 2.0 * u_c - f.u, f.u),
-            m=np.where(low, -f.m, f.m),
-            du_dxi=f.du_dxi,
+        out = kernel.fields_at(
+            np.ascontiguousarray(x.ravel()),
+            self.params,
+            self.info,
+            *self.couple,
+            self.geometry,
+            *self.spin,
         )
+        if x.ndim == 1:
+            return Fields(*out)
+        return Fields(*(row.reshape(x.shape) for row in out))
 
     def velocity(self, xi: FloatArray) -> FloatArray:
         """u only (cheaper than the fields) [-]."""
