@@ -986,3 +986,32 @@ def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
         out[F_U, q] = 2.0 * u_c - u if low else u
         out[F_M, q] = -m if low else m
     return out
+
+
+@njit(cache=True, nogil=True)
+def predict_batch(params, xi, starts, rows, rtol, atol, f, max_steps):
+    """Chosen fields of many problems at their own points, and nothing else.
+
+    Problem i (row ``params[i]``) is solved (:func:`solve_case`) and its fields ``rows``
+    (indices ``F_*``) evaluated at ``xi[starts[i]:starts[i + 1]]`` (:func:`fields_at`).
+    Returns (status[n], info[n, N_INFO], out[len(rows), xi.size]); the columns of a failed
+    case are left at 0 and its status says why (never NaN in place of an answer). Releases the
+    GIL, like :func:`solve_batch`.
+    """
+    n = params.shape[0]
+    status = np.empty(n, dtype=np.int64)
+    info = np.zeros((n, N_INFO))
+    out = np.zeros((rows.shape[0], xi.shape[0]))
+    for i in range(n):
+        code, row, cs, sp, g = solve_case(params[i], rtol, atol, f, max_steps)
+        status[i] = code
+        for j in range(N_INFO):
+            info[i, j] = row[j]
+        if code != OK:
+            continue
+        a, b = starts[i], starts[i + 1]
+        values = fields_at(xi[a:b], params[i], row, cs[0], cs[1], cs[2], cs[3], g, *sp)
+        for r in range(rows.shape[0]):
+            for q in range(b - a):
+                out[r, a + q] = values[rows[r], q]
+    return status, info, out
