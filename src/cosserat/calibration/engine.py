@@ -33,10 +33,10 @@ from typing import Any
 import numpy as np
 from scipy.stats import qmc
 
-from ..errors import ConvergenceError, NoSolutionError, ParameterError
+from ..errors import ConvergenceError, ParameterError
 from ..model.constitutive import FloatArray
 from .data import Field, RunData
-from .models import Model, ModelParam
+from .models import SOLVE_ERRORS, Model, ModelParam
 from .noise import log_normalisation, whiten
 
 NO_SOLUTION_RESIDUAL = 1e3
@@ -45,7 +45,7 @@ FD_STEP = 1e-4
 """Finite-difference step of the Jacobian, as a fraction of each parameter's search range."""
 AT_BOUND = 1e-3
 """A fitted value within this fraction of its search range from an end is at that bound."""
-_SOLVE_ERRORS = (NoSolutionError, ConvergenceError, ParameterError)
+_SOLVE_ERRORS = SOLVE_ERRORS
 
 
 @dataclass(frozen=True)
@@ -208,6 +208,25 @@ class Setup:
     @property
     def n(self) -> int:
         return sum(run.fields[f].n for run in self.runs for f in self._fields(run))
+
+    def log_likelihood_many(self, thetas: FloatArray) -> FloatArray:
+        """:meth:`log_likelihood` of every row of ``thetas``, the model solved for all of them
+        at once (what an ensemble sampler's walkers need in one step)."""
+        thetas = np.atleast_2d(np.asarray(thetas, dtype=float))
+        items = [(run, self.run_values(run, th)) for th in thetas for run in self.runs]
+        self.nfev += len(thetas)
+        preds = self.model.predict_many(items, self.fields)
+        out = np.empty(len(thetas))
+        norm = self.log_norm
+        k = len(self.runs)
+        for i in range(len(thetas)):
+            chunk = preds[i * k : (i + 1) * k]
+            if any(isinstance(p, Exception) for p in chunk):
+                out[i] = -math.inf
+                continue
+            w = self.whitened({run.name: p for run, p in zip(self.runs, chunk, strict=True)})
+            out[i] = -0.5 * float(w @ w) + norm if np.all(np.isfinite(w)) else -math.inf
+        return out
 
     def whitened(self, predictions: Mapping[str, Mapping[str, FloatArray]]) -> FloatArray:
         parts = []

@@ -23,12 +23,17 @@ import numpy as np
 
 from .. import config
 from ..analysis.ranking import model_problem, model_solve
-from ..errors import ParameterError
+from ..errors import ConvergenceError, NoSolutionError, ParameterError
 from ..model.constitutive import FloatArray
 from ..model.declare import Param
 from ..routes import RHEOLOGIES
+from ..routes.numerical import predict_many
 from .data import FIELDS, RunData
 
+SOLVE_ERRORS = (NoSolutionError, ConvergenceError, ParameterError)
+"""What a model raises where it has no solution for trial parameters."""
+LEAN_FIELDS = ("u", "omega", "sigma_yx", "sigma_yy")
+"""What the Cosserat model's lean prediction returns (``routes.numerical.predict_many``)."""
 LOCAL_SPIN = "half-vorticity"
 """How a calibration gives a local rheology a spin: half the vorticity of its velocity."""
 
@@ -159,6 +164,8 @@ class Model:
             raise ParameterError(f"model {name!r} has no calibration parameters declared")
         self.name = name
         self.local_spin = local_spin
+        self._guess: dict[str, float] = {}  # Couette m(0) of the last solve of each run
+        self._points: dict[tuple, tuple[RunData, FloatArray]] = {}  # bins as gap fractions
 
     @property
     def has_spin(self) -> bool:
@@ -226,30 +233,102 @@ class Model:
         NoSolutionError, ConvergenceError, ParameterError
             The model has no solution or could not be solved for these values.
         """
+        if self.name == "cosserat":
+            (out,) = self._lean([(run, values)], fields)
+            if isinstance(out, Exception):
+                raise out
+            return out
+        use = [f for f in fields if f in run.fields]
+        positions = [run.fields[name].s for name in use]
         problem = self.problem(run, values)
-        profile = model_solve(problem)
+        xw, xi = self._where(run, problem, use, positions)
+        ev = model_solve(problem).evaluate(xi)._asdict()
+        return self._fields(run, use, positions, ev, float(problem.wall_velocity(xw)))
+
+    def predict_many(
+        self, items: Sequence[tuple[RunData, Mapping[Any, Any]]], fields: Sequence[str]
+    ) -> list[dict[str, FloatArray] | Exception]:
+        """:meth:`predict` for many (run, values) pairs; a pair without a solution gives the
+        exception :meth:`predict` would raise, in its place. The Cosserat model solves them
+        all in one compiled call (``routes.numerical.predict_many``)."""
+        if self.name == "cosserat":
+            return self._lean(items, fields)
+        out: list[dict[str, FloatArray] | Exception] = []
+        for run, values in items:
+            try:
+                out.append(self.predict(run, values, fields))
+            except SOLVE_ERRORS as exc:
+                out.append(exc)
+        return out
+
+    def _where(
+        self, run: RunData, problem: Any, use: Sequence[str], positions: Sequence[FloatArray]
+    ) -> tuple[float, FloatArray]:
+        """(the moving wall's xi, the bins of ``use`` as gap fractions), cached per run."""
         xw = 1.0 if float(problem.wall_velocity(1.0)) != 0.0 else 0.0
-        uw = float(problem.wall_velocity(xw))
-        # one evaluation at every field's bins
-        positions = [run.fields[name].s for name in fields]
+        key = (id(run), xw, tuple(use))
+        if key not in self._points:  # the same bins at every call of a calibration
+            xi = run.xi(np.concatenate(positions), xw) if positions else np.zeros(0)
+            self._points[key] = (run, xi)
+        return xw, self._points[key][1]
+
+    def _lean(
+        self, items: Sequence[tuple[RunData, Mapping[Any, Any]]], fields: Sequence[str]
+    ) -> list[dict[str, FloatArray] | Exception]:
+        """The Cosserat model's predictions of many pairs in one compiled call."""
+        plans: list[tuple[Any, ...]] = []
+        for run, values in items:
+            use = [f for f in fields if f in run.fields]
+            positions = [run.fields[name].s for name in use]
+            try:
+                problem = self.problem(run, values)
+            except ParameterError as exc:
+                plans.append((run, use, positions, None, 0.0, exc))
+                continue
+            xw, xi = self._where(run, problem, use, positions)
+            plans.append((run, use, positions, problem, xw, xi))
+        todo = [p for p in plans if p[3] is not None]
+        preds = iter(
+            predict_many(
+                [p[3] for p in todo], [p[5] for p in todo], LEAN_FIELDS,
+                m_inner_guesses=[self._guess.get(p[0].name) for p in todo],
+            )
+        )  # fmt: skip
+        out: list[dict[str, FloatArray] | Exception] = []
+        for run, use, positions, problem, xw, extra in plans:
+            if problem is None:
+                out.append(extra)
+                continue
+            pr = next(preds)
+            if pr.status != "ok" or pr.values is None:
+                kind = NoSolutionError if pr.status == "no-solution" else ConvergenceError
+                out.append(kind(pr.message))
+                continue
+            if pr.m_inner is not None:
+                self._guess[run.name] = pr.m_inner
+            out.append(self._fields(run, use, positions, pr.values,
+                                    float(problem.wall_velocity(xw))))  # fmt: skip
+        return out
+
+    def _fields(self, run: RunData, use: Sequence[str], positions: Sequence[FloatArray],
+                ev: Mapping[str, FloatArray], uw: float) -> dict[str, FloatArray]:  # fmt: skip
         sizes = np.cumsum([0] + [p.size for p in positions])
-        ev = profile.evaluate(run.xi(np.concatenate(positions), xw))
         out: dict[str, FloatArray] = {}
-        for i, name in enumerate(fields):
+        for i, name in enumerate(use):
             part = slice(sizes[i], sizes[i + 1])
             if name == "u":
-                out[name] = ev.u[part] / uw
+                out[name] = ev["u"][part] / uw
             elif name == "omega":
                 if self.has_spin:
-                    spin = ev.omega[part]
+                    spin = ev["omega"][part]
                 else:  # half the vorticity of the velocity field (LOCAL_SPIN)
-                    spin = -0.5 * (ev.du_dxi[part] + ev.kappa[part] * ev.u[part])
+                    spin = -0.5 * (ev["du_dxi"][part] + ev["kappa"][part] * ev["u"][part])
                 # model: omega_z H / V; data: omega_z d / V. Both in a frame where the wall
                 # moves along +x above the layer (plane) or turns counter-clockwise (Couette:
                 # the model's x is -e_theta, so its z is e_z): the same sense, no sign change
                 out[name] = spin * run.eps / abs(uw)
             elif name == "stress_ratio":
-                out[name] = np.abs(ev.sigma_yx[part]) / ev.sigma_yy[part]
+                out[name] = np.abs(ev["sigma_yx"][part]) / ev["sigma_yy"][part]
             else:  # pragma: no cover - FIELDS is closed
                 raise ParameterError(f"unknown field {name!r}")
         return out

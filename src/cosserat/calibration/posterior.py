@@ -67,6 +67,17 @@ def log_probability(s: Setup, theta: FloatArray) -> float:
     return lp + s.log_likelihood(theta)
 
 
+def log_probability_many(s: Setup, thetas: FloatArray) -> FloatArray:
+    """:func:`log_probability` of every row of ``thetas`` (the model solved for all at once)."""
+    thetas = np.atleast_2d(thetas)
+    lo, hi = s.bounds()
+    inside = np.all((thetas >= lo) & (thetas <= hi), axis=1)
+    out = np.full(len(thetas), -np.inf)
+    if np.any(inside):
+        out[inside] = s.log_likelihood_many(thetas[inside])
+    return out
+
+
 def _initial(s: Setup, opt: Optimum, cov: FloatArray, walkers: int, rng: Any) -> FloatArray:
     lo, hi = s.bounds()
     k = lo.size
@@ -88,7 +99,9 @@ def run_sampler(
     walkers += walkers % 2
     rng = np.random.default_rng(seed)
     steps = math.ceil(samples / walkers)
-    sampler = emcee.EnsembleSampler(walkers, k, lambda th: log_probability(s, th))
+    sampler = emcee.EnsembleSampler(
+        walkers, k, lambda thetas: log_probability_many(s, thetas), vectorize=True
+    )
     sampler.random_state = np.random.RandomState(seed).get_state()
     sampler.run_mcmc(_initial(s, opt, cov, walkers, rng), BURN_IN + steps, progress=progress)
     return sampler, BURN_IN
