@@ -41,14 +41,22 @@ from ..errors import InputError, ParameterError
 from ..model.constitutive import FloatArray
 from .noise import Correlation, estimate_rho
 
-FIELDS: tuple[str, ...] = ("u", "omega", "stress_ratio")
+FIELDS: tuple[str, ...] = ("u", "omega", "stress_ratio", "wall_ratio")
 """The measured fields a calibration can use, in this order everywhere."""
 
 FIELD_MEANINGS: dict[str, str] = {
     "u": "velocity along the flow over the moving wall's velocity [-]",
     "omega": "grain spin over V/d, V the moving wall's speed [-]",
     "stress_ratio": "|shear stress| / normal stress on planes parallel to the walls [-]",
+    "wall_ratio": "|shear stress| / normal stress on the moving wall, from its contacts [-]",
 }
+
+QUASI_STATIC_I = 1e-3
+"""Largest local inertial number of slow, quasi-static flow [-], the regime the frictional
+Cosserat model is for (``docs/dem.md``)."""
+WALL_BINS = 3
+"""Bins next to the moving wall whose local inertial number says whether a run is
+quasi-static (the criterion of ``docs/dem.md``)."""
 
 BAND_U = 0.05
 """``stress_ratio`` is taken where the measured u is at least this (the shear band, by the
@@ -119,6 +127,10 @@ class RunData:
         The measured fields the run has, by name.
     meta : dict
         The run's metadata as read.
+    local_inertial_number : float or None
+        The largest local inertial number in the :data:`WALL_BINS` bins next to the moving wall
+        (the sidecar's ``wall_inertial_number``, else the run's ``inertial_number`` column)
+        [-]; None where not measured. Above :data:`QUASI_STATIC_I` the run is not quasi-static.
     """
 
     name: str
@@ -130,6 +142,16 @@ class RunData:
     walls: dict[str, str]
     fields: dict[str, Field]
     meta: dict[str, Any] = field(default_factory=dict)
+    local_inertial_number: float | None = None
+
+    @property
+    def quasi_static(self) -> bool | None:
+        """Local I next to the moving wall at most :data:`QUASI_STATIC_I` (None: unknown)."""
+        return (
+            None
+            if self.local_inertial_number is None
+            else self.local_inertial_number <= QUASI_STATIC_I
+        )
 
     @property
     def eps(self) -> float:
@@ -264,6 +286,9 @@ def from_run(run: Run) -> RunData:
         s, v, e = _ordered(*ratio)
         fields["stress_ratio"] = Field("stress_ratio", s, v, e)
     meta = dict(run.meta)
+    wall = _wall_ratio(run, fields.get("stress_ratio"))
+    if wall is not None:
+        fields["wall_ratio"] = wall
     correlation = meta.get("bin_correlation")
     if isinstance(correlation, Mapping):
         for name, rho in correlation.items():
@@ -282,7 +307,46 @@ def from_run(run: Run) -> RunData:
         walls={"moving": moving, "fixed": fixed},
         fields=fields,
         meta=meta,
+        local_inertial_number=_local_inertial_number(run),
     )
+
+
+def _wall_ratio(run: Run, band: Field | None) -> Field | None:
+    """The moving wall's measured stress ratio ``|shear| / normal`` from its contacts (the
+    sidecar's ``wall_stress``), one datum at s = 0; its error from ``wall_stress.shear_se`` and
+    ``normal_se`` where given, else the error of the band's first stress-ratio bin (a bin
+    averages fewer contacts than the wall, so this errs on the safe side)."""
+    ws = run.meta.get("wall_stress")
+    if not isinstance(ws, Mapping):
+        return None
+    shear, normal = ws.get("shear"), ws.get("normal")
+    if not (isinstance(shear, int | float) and isinstance(normal, int | float) and normal > 0):
+        return None
+    ratio = abs(float(shear)) / float(normal)
+    s_se, n_se = ws.get("shear_se"), ws.get("normal_se")
+    if isinstance(s_se, int | float) and isinstance(n_se, int | float) and s_se > 0:
+        se = ratio * math.hypot(s_se / max(abs(float(shear)), 1e-300), n_se / float(normal))
+    elif band is not None and band.n:
+        se = float(band.se[0])
+    else:
+        return None
+    return Field("wall_ratio", np.zeros(1), np.array([ratio]), np.array([se]))
+
+
+def _local_inertial_number(run: Run) -> float | None:
+    """Largest local I in the :data:`WALL_BINS` bins next to the moving wall (RunData)."""
+    rec = run.meta.get("wall_inertial_number")
+    if isinstance(rec, Mapping):
+        moving = rec.get(str(rec.get("moving")))
+        if isinstance(moving, Mapping) and moving.get("per_bin"):
+            return float(max(moving["per_bin"]))
+    if "inertial_number" not in run.columns:
+        return None
+    values = np.asarray(run.columns["inertial_number"], dtype=float)
+    order = np.argsort(run.distance_d)
+    near = values[order][:WALL_BINS]
+    near = near[np.isfinite(near)]
+    return float(np.max(near)) if near.size else None
 
 
 def from_profile(profile: MeasuredProfile, name: str | None = None) -> RunData:
@@ -444,19 +508,7 @@ def with_correlations(
             elif f.correlation.source != "metadata":
                 f = f.with_correlation(pooled[name] if pool else estimate_rho(f.value, f.se))
             fields[name] = f
-        out.append(
-            RunData(
-                run.name,
-                run.cell,
-                run.gap_d,
-                run.cell_values,
-                run.I_w,
-                run.material,
-                run.walls,
-                fields,
-                run.meta,
-            )
-        )
+        out.append(dataclasses.replace(run, fields=fields))
     return out
 
 

@@ -46,6 +46,42 @@ def chi2_p_value(chi2: float, dof: int) -> float | None:
     return float(stats.chi2.sf(chi2, dof))
 
 
+def chi2_log10_p(chi2: float, dof: int) -> float:
+    """log10 P(X >= chi2) for X ~ chi^2(dof), finite where the p-value itself underflows."""
+    if dof <= 0:
+        return 0.0
+    ln_p = float(stats.chi2.logsf(chi2, dof))
+    if not math.isfinite(ln_p):  # far in the tail: the leading term of Q(k/2, x/2)
+        a, x = 0.5 * dof, 0.5 * chi2
+        ln_p = -x + (a - 1.0) * math.log(x) - math.lgamma(a)
+    return ln_p / math.log(10.0)
+
+
+def p_text(log10_p: float) -> str:
+    """``p = 0.0012`` or, below the range of doubles' comfort, ``p = 10^-123``."""
+    if log10_p > -4.0:
+        return f"p = {10.0**log10_p:.2g}"
+    return f"p = 10^{log10_p:.0f}"
+
+
+def tail_decades(s: FloatArray, data: FloatArray, se: FloatArray, model: FloatArray) -> str | None:
+    """Where a velocity profile's creep tail (measured u below :data:`TAIL_U`, yet more than
+    2 se above 0) lies a decade or more above the model, say by how many decades."""
+    s, data, se, model = (np.asarray(x, dtype=float) for x in (s, data, se, model))
+    tail = (data < TAIL_U) & (data > 2.0 * se)
+    if np.count_nonzero(tail) < REGION_BINS:
+        return None
+    ratio = np.log10(np.maximum(model[tail], 1e-300) / data[tail])
+    if np.median(ratio) > -1.0:
+        return None
+    lo, hi = np.percentile(-ratio, [10, 90])
+    return (
+        f"in the creep tail (s = {s[tail].min():.3g}-{s[tail].max():.3g} d, "
+        f"{np.count_nonzero(tail)} bins where u is measured above 2 se) the model lies "
+        f"{max(lo, 0):.1f}-{hi:.1f} decades below the data"
+    )
+
+
 def chi2_p_low(chi2: float, dof: int) -> float | None:
     """P(X <= chi2) for X ~ chi^2(dof): small when the errors are overstated."""
     if dof <= 0:
@@ -233,10 +269,13 @@ __all__ = [
     "FlatDirection",
     "Region",
     "RunsTest",
+    "chi2_log10_p",
     "chi2_p_low",
     "chi2_p_value",
     "flat_directions",
     "misfit_regions",
+    "p_text",
     "runs_test",
     "strong_correlations",
+    "tail_decades",
 ]

@@ -6,6 +6,7 @@ calibration on one run) and the model fits of ``cosserat validate`` (``docs/cali
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -18,7 +19,8 @@ import numpy as np
 from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
 from ..model.constitutive import FloatArray
 from . import diagnostics as dg
-from .data import RunData, load, with_correlations
+from .checks import all_checks
+from .data import BAND_U, RunData, load, with_correlations
 from .engine import AT_BOUND, Optimum, Setup, fit, setup
 from .models import LOCAL_SPIN, Model
 from .models import models as make_models
@@ -123,6 +125,7 @@ def _derived(
             stderr = float(math.sqrt(max(g @ cov @ g, 0.0)))
         fully = est.at_bound == "upper" or (not slot.free and slot.value >= 1.0 - 1e-12)
         out[f"delta[{label}]"] = Estimate(
+            derived=True,
             name=f"delta[{label}]",
             key="delta",
             role="wall",
@@ -175,7 +178,7 @@ def _field_fits(s: Setup, predictions: Mapping[str, Mapping[str, FloatArray]]) -
 
 def _stress_contradictions(model: Model, fits: Sequence[FieldFit]) -> list[str]:
     """Runs whose fitted stress ratio in the band contradicts the measured one (> 3 se)."""
-    friction = {"cosserat": "phi and the wall roughness", "mui": "mu_s", "ngf": "mu_s"}
+    friction = {"cosserat": "delta (the wall's friction) and phi", "mui": "mu_s", "ngf": "mu_s"}
     by_run: dict[str, dict[str, FieldFit]] = {}
     for f in fits:
         by_run.setdefault(f.run, {})[f.field] = f
@@ -204,16 +207,21 @@ def _stress_contradictions(model: Model, fits: Sequence[FieldFit]) -> list[str]:
 
 
 def _warnings(mc: ModelCalibration, fits: Sequence[FieldFit]) -> list[str]:
+    """The model's warnings, the worst first (overall misfit, then fields by their excess
+    chi^2, then parameters)."""
     name = mc.model
     out = []
-    p = mc.p_value
-    if p is not None and p < dg.MISFIT_P:
-        worst = max(fits, key=lambda f: f.chi2 - f.n)
-        out.append(
-            f"{name}: misfit: chi^2 = {mc.chi2:.1f} on {mc.dof} degrees of freedom "
-            f"(p = {p:.2g}); the largest excess: run {worst.run}, {worst.field} (chi^2 = "
-            f"{worst.chi2:.1f} on {worst.n} bins)"
-        )
+    if mc.chi2 is not None and mc.dof > 0:
+        lp = dg.chi2_log10_p(mc.chi2, mc.dof)
+        if lp < math.log10(dg.MISFIT_P):
+            worst = max(fits, key=lambda f: f.chi2 - f.n)
+            out.append(
+                f"{name}: misfit: chi^2 = {mc.chi2:.1f} on {mc.dof} degrees of freedom "
+                f"({dg.p_text(lp)}); the largest excess: run {worst.run}, {worst.field} "
+                f"(chi^2 = {worst.chi2:.1f} on {worst.n} bins); errors scaled by "
+                f"sqrt(chi^2/dof) = {math.sqrt(mc.chi2 / mc.dof):.2g} are given beside the "
+                "statistical ones"
+            )
     low = dg.chi2_p_low(mc.chi2 or 0.0, mc.dof)
     if low is not None and low < dg.OVERSTATED_P:
         out.append(
@@ -221,32 +229,83 @@ def _warnings(mc: ModelCalibration, fits: Sequence[FieldFit]) -> list[str]:
             f"(P(chi^2 <= this) = {low:.2g}): the errors are overstated, or the bins are more "
             "correlated than the error model says; the information criteria are not calibrated"
         )
-    for f in fits:
-        pf = dg.chi2_p_value(f.chi2, f.n)
+    per_field = []
+    for f in sorted(fits, key=lambda f: f.chi2 - f.n, reverse=True):
+        lp = dg.chi2_log10_p(f.chi2, f.n)
         where = "; ".join(r.describe() for r in f.regions)
-        if pf is not None and pf < dg.MISFIT_P:
-            out.append(
-                f"{name}: run {f.run}, {f.field}: chi^2 = {f.chi2:.1f} on {f.n} bins (p = "
-                f"{pf:.2g})" + (f": misses {where}" if where else "")
+        tail = dg.tail_decades(f.s, f.data, f.se, f.model) if f.field == "u" else None
+        if tail is not None:
+            where = "; ".join(x for x in (where, tail) if x)
+        z = (f.model - f.data) / f.se
+        top = int(np.argmax(np.abs(z))) if f.n else 0
+        largest = f"largest: s = {f.s[top]:.3g} d, {z[top]:+.1f} se" if f.n else ""
+        if lp < math.log10(dg.MISFIT_P):
+            per_field.append(
+                f"{name}: run {f.run}, {f.field}: chi^2 = {f.chi2:.1f} on {f.n} bins "
+                f"({dg.p_text(lp)}; {largest})" + (f": misses {where}" if where else "")
             )
-        elif f.regions:
-            out.append(f"{name}: run {f.run}, {f.field}: misses {where}")
+        elif where:
+            per_field.append(f"{name}: run {f.run}, {f.field}: misses {where}")
+        low_f = dg.chi2_p_low(f.chi2, f.n)
+        if f.n >= 5 and low_f is not None and low_f < dg.OVERSTATED_P:
+            per_field.append(
+                f"{name}: run {f.run}, {f.field}: chi^2 = {f.chi2:.1f} on {f.n} bins is "
+                f"improbably small (P(chi^2 <= this) = {low_f:.2g}): the errors are overstated "
+                f"or more correlated than rho = {f.rho:.2f} says"
+            )
         if f.runs_p is not None and f.runs_p < dg.MISFIT_P:
-            out.append(
+            per_field.append(
                 f"{name}: run {f.run}, {f.field}: the signs of the whitened residuals change "
                 f"too rarely (runs test p = {f.runs_p:.2g}): a systematic misfit"
             )
+    out += per_field
     for e in mc.parameters.values():
-        if e.free and e.at_bound is not None and e.key != "roughness":
+        if e.free and e.at_bound is not None and e.key != "roughness" and not e.derived:
+            direction = BOUND_MEANING.get((mc.model, e.key, e.at_bound), "")
             out.append(
                 f"{name}: {e.name} = {e.value:.4g}{'' if e.unit in ('', '-') else ' ' + e.unit}"
-                f" is at the {e.at_bound} end of its "
-                f"search range {e.fit_range}: the data push it further; no error is given"
+                f" is at the {e.at_bound} end of its search range {e.fit_range}"
+                + (f" ({direction})" if direction else "")
+                + ": the data push it further; no error is given"
             )
     for d in mc.flat:
         out.append(f"{name}: the data do not determine {d.describe()}")
     for a, b, r in mc.correlations:
         out.append(f"{name}: {a} and {b} are strongly correlated (r = {r:+.3f})")
+    return out
+
+
+BOUND_MEANING = {
+    ("ngf", "b", "lower"): "b -> 0: the local law loses its rate dependence",
+    ("mui", "I_0", "upper"): "I_0 -> infinity: mu stays at mu_s, a rate-independent law",
+    ("cosserat", "K", "upper"): "K -> infinity: the wall slips freely",
+}
+"""What a parameter at an end of its search range means, for the warnings."""
+
+
+def _flow_below_yield(model: Model, mc: ModelCalibration, fits: Sequence[FieldFit]) -> list[str]:
+    """mu(I) flows only where |tau|/p > mu_s: bins that flow (measured u >= BAND_U) at a
+    measured stress ratio more than 2 se below the fitted mu_s contradict the local law."""
+    if model.name != "mui" or "mu_s" not in mc.parameters:
+        return []
+    mu_s = mc.parameters["mu_s"].value
+    out = []
+    for f in fits:
+        if f.field != "stress_ratio":
+            continue
+        u = next((g for g in fits if g.run == f.run and g.field == "u"), None)
+        if u is None:
+            continue
+        flowing = np.interp(f.s, u.s, u.data) >= BAND_U
+        below = flowing & (f.data < mu_s - 2.0 * f.se)
+        if np.any(below):
+            out.append(
+                f"{model.name}: run {f.run}: the material flows (u >= {BAND_U:g}) at s = "
+                f"{f.s[below].min():.3g}-{f.s[below].max():.3g} d where the measured "
+                f"|sigma_yx|/sigma_yy ({f.data[below].min():.3f}-{f.data[below].max():.3f}) is "
+                f"below the fitted mu_s = {mu_s:.3f}: flow below yield, which the local law "
+                "does not allow"
+            )
     return out
 
 
@@ -323,8 +382,14 @@ def calibrate_model(
         seconds=time.perf_counter() - t0,
         internal=(s, opt),
     )
+    if mc.dof > 0 and dg.chi2_log10_p(chi2, mc.dof) < math.log10(dg.MISFIT_P):
+        birge = math.sqrt(chi2 / mc.dof)
+        mc = dataclasses.replace(
+            mc, parameters={n: dataclasses.replace(e, scale=birge) for n, e in estimates.items()}
+        )
     mc.warnings.extend(_warnings(mc, fits))
     mc.warnings.extend(_stress_contradictions(model, fits))
+    mc.warnings.extend(_flow_below_yield(model, mc, fits))
     return mc
 
 
@@ -429,7 +494,7 @@ def calibrate(
             + "; ".join(f"{m.model}: {', '.join(m.fields_used)}" for m in results if m.ok)
             + "): their information criteria are not comparable"
         )
-    return Calibration(runs, results, comparison, skipped)
+    return Calibration(runs, results, comparison, skipped, data_notes=all_checks(runs))
 
 
 __all__ = ["COMPARISON", "calibrate", "calibrate_model"]

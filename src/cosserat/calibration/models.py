@@ -136,7 +136,7 @@ _PARAMS: dict[str, tuple[ModelParam, ...]] = {
             "slope of the local law mu = mu_s + b I",
             "-",
             0.9377,
-            (1e-2, 10.0),
+            (1e-4, 10.0),
             "material",
             "log",
         ),
@@ -327,7 +327,7 @@ class Model:
                 # moves along +x above the layer (plane) or turns counter-clockwise (Couette:
                 # the model's x is -e_theta, so its z is e_z): the same sense, no sign change
                 out[name] = spin * run.eps / abs(uw)
-            elif name == "stress_ratio":
+            elif name in ("stress_ratio", "wall_ratio"):
                 out[name] = np.abs(ev["sigma_yx"][part]) / ev["sigma_yy"][part]
             else:  # pragma: no cover - FIELDS is closed
                 raise ParameterError(f"unknown field {name!r}")

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import save_figure, write_text
+from . import diagnostics as dg
 from .result import Calibration
 
 PERCENTILES = (2.5, 16.0, 50.0, 84.0, 97.5)
@@ -33,9 +34,13 @@ def _fmt(x: Any, digits: int = 4) -> str:
 
 def _value(e: Any) -> str:
     err = "" if e.stderr is None else f" +- {e.stderr:.2g}"
+    if e.stderr is not None and e.scale > 1.0:
+        err += f" (scaled for the misfit: +- {e.stderr_scaled:.2g})"
     unit = "" if e.unit in ("", "-") else f" {e.unit}"
     note = []
-    if not e.free:
+    if e.derived:
+        note.append("derived")
+    elif not e.free:
         note.append("fixed")
     elif e.reason:
         note.append(e.reason)
@@ -60,11 +65,11 @@ def comparison_rows(cal: Calibration) -> list[list[str]]:
                 str(m.n),
                 _fmt(m.chi2, 5),
                 str(m.dof),
-                _fmt(m.p_value, 2),
+                dg.p_text(dg.chi2_log10_p(m.chi2 or 0.0, m.dof))[4:],
                 _fmt(None if m.aic is None or aic0 is None else m.aic - aic0, 4),
                 _fmt(m.bic, 6),
                 "-" if m.evidence is None else f"{m.evidence[0]:.1f} +- {m.evidence[1]:.1f}",
-                _fmt(w_aic.get(m.model), 3)
+                (_fmt(w_aic.get(m.model), 3) if cal.calibrated_weights else "n/c")
                 + ("" if not w_ev else f" / {_fmt(w_ev.get(m.model), 3)}"),
             ]
         )
@@ -92,7 +97,16 @@ def text(cal: Calibration, full: bool = False) -> str:
     lines = [f"Calibration on {len(cal.runs)} run(s): {runs}"]
     lines += [f"skipped: {note}" for note in cal.skipped] + [""]
     lines += _table(HEADER, comparison_rows(cal))
-    lines.append(f"best by AIC: {cal.best or '-'}")
+    if cal.calibrated_weights:
+        lines.append(f"best by AIC: {cal.best or '-'}")
+    else:
+        lines.append(
+            f"lowest AIC: {cal.best or '-'}; the weights are NOT calibrated: a model misfits "
+            "(p < 1e-3), and being the least bad does not make a model right"
+        )
+    if cal.notes:
+        lines += ["", "What the runs say of themselves, whatever the model:"]
+        lines += [f"  - {n}" for n in cal.notes]
     for m in cal.models:
         lines += ["", f"{m.model}: " + ("" if m.ok else f"FAILED: {m.message}")]
         if not m.ok:
@@ -132,8 +146,6 @@ def text(cal: Calibration, full: bool = False) -> str:
             if a not in seen:
                 seen.append(a)
     lines += [f"  - {a}" for a in seen + list(cal.comparison)]
-    if cal.notes:
-        lines += ["", "Across models:"] + [f"  - {n}" for n in cal.notes]
     return "\n".join(lines)
 
 

@@ -69,11 +69,21 @@ class Estimate:
     reason: str = ""
     meaning: str = ""
     fit_range: tuple[float, float] | None = None
+    derived: bool = False
+    scale: float = 1.0
+
+    @property
+    def stderr_scaled(self) -> float | None:
+        """``stderr`` times sqrt(chi^2/dof) where the model misfits (the Birge ratio): the
+        spread the parameter would have if the misfit were extra noise [unit]."""
+        return None if self.stderr is None else self.stderr * self.scale
 
     def to_dict(self) -> dict[str, Any]:
         return {
             "value": _num(self.value),
             "stderr": _num(self.stderr),
+            "stderr_scaled": _num(self.stderr_scaled),
+            "derived": self.derived,
             "free": self.free,
             "shared": self.shared,
             "unit": self.unit,
@@ -225,6 +235,13 @@ class ModelCalibration:
         return None if self.chi2 is None else chi2_p_value(self.chi2, self.dof)
 
     @property
+    def log10_p_value(self) -> float | None:
+        """log10 of :attr:`p_value`, finite where the p-value underflows to 0."""
+        from .diagnostics import chi2_log10_p
+
+        return None if self.chi2 is None or self.dof <= 0 else chi2_log10_p(self.chi2, self.dof)
+
+    @property
     def reduced_chi2(self) -> float | None:
         return None if self.chi2 is None or self.dof <= 0 else self.chi2 / self.dof
 
@@ -265,6 +282,7 @@ class ModelCalibration:
             "k": self.k,
             "reduced_chi2": _num(self.reduced_chi2),
             "p_value": _num(self.p_value),
+            "log10_p_value": _num(self.log10_p_value),
             "log_likelihood": _num(self.log_likelihood),
             "aic": _num(self.aic),
             "bic": _num(self.bic),
@@ -297,12 +315,17 @@ class Calibration:
         The assumptions under which the models are compared.
     skipped : list of str
         Runs of the folders given that could not be calibrated, with the reason.
+    data_notes : list of str
+        What the data say of themselves, whatever the model (``calibration.checks``): runs
+        that are not quasi-static, same cells at two speeds that disagree, error models at
+        their limits.
     """
 
     runs: list[RunData]
     models: list[ModelCalibration]
     comparison: list[str] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
+    data_notes: list[str] = field(default_factory=list)
 
     def __getitem__(self, model: str) -> ModelCalibration:
         for m in self.models:
@@ -311,14 +334,25 @@ class Calibration:
         raise KeyError(model)
 
     @property
+    def calibrated_weights(self) -> bool:
+        """Information-criterion weights mean something only where every compared model
+        describes the data (chi^2 p-value at least ``diagnostics.MISFIT_P``)."""
+        from .diagnostics import MISFIT_P, chi2_log10_p
+
+        ok = [m for m in self.models if m.ok and m.chi2 is not None and m.dof > 0]
+        return bool(ok) and all(
+            chi2_log10_p(m.chi2 or 0.0, m.dof) >= math.log10(MISFIT_P) for m in ok
+        )
+
+    @property
     def notes(self) -> list[str]:
         """Misfits every model shares: a field of a run that no model describes (its chi^2
         per bin above 3 in each fitted model, within a factor 1.5 of each other) points at
         the data or their errors (the statics are common to all models), not at one model."""
+        out = list(self.data_notes)
         ok = [m for m in self.models if m.ok]
         if len(ok) < 2:
-            return []
-        out = []
+            return out
         for f in ok[0].fields:
             chis = []
             for m in ok:
@@ -372,6 +406,7 @@ class Calibration:
                 "aic": self.weights("aic"),
                 "bic": self.weights("bic"),
                 "evidence": self.weights("evidence"),
+                "calibrated": self.calibrated_weights,
             },
             "comparison": list(self.comparison),
             "notes": self.notes,
@@ -408,6 +443,8 @@ def _run_dict(run: RunData) -> dict[str, Any]:
         "name": run.name,
         "cell": run.cell,
         "gap_d": run.gap_d,
+        "local_inertial_number": _num(run.local_inertial_number),
+        "quasi_static": run.quasi_static,
         "fixed": {**run.cell_values, "I_w": run.I_w},
         "material": run.material,
         "walls": dict(run.walls),
