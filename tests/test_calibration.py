@@ -228,7 +228,7 @@ def test_the_shipped_corpus_loads_in_the_calibration_frame():
     runs = with_correlations(load([shipped_corpus()], skipped))
     assert len(skipped) == 1 and "channel_rough_H20" in skipped[0]
     plane = next(r for r in runs if r.name == "plane_rough_H40")
-    assert set(plane.fields) == {"u", "omega", "stress_ratio"}
+    assert set(plane.fields) == {"u", "omega", "stress_ratio", "wall_ratio"}
     u = plane.fields["u"]
     assert np.all(np.diff(u.s) > 0) and u.value[0] > 0.8  # the moving wall first
     # spin and half the vorticity turn the same way near the moving wall
@@ -340,3 +340,77 @@ def test_template_runs_carry_their_cells():
     r = template_run("c", "couette", 10.0, Ri_d=20.0)
     assert r.cell_values == {"eps": 0.1, "Ri": 2.0}
     assert isinstance(r.fields["u"], Field)
+
+
+# --------------------------------------------------------------------------- data checks
+def test_regime_rate_pairs_and_the_error_models_cap():
+    from cosserat.calibration import checks
+
+    runs = load([shipped_corpus()], [])
+    by = {r.name: r for r in runs}
+    notes = checks.regime(runs)
+    # every shipped run is faster than quasi-static next to its moving wall
+    assert len(notes) == len(runs) and all("not quasi-static" in n for n in notes)
+    assert 1e-3 < by["plane_rough_H40"].local_inertial_number < 0.1
+    pairs = checks.rate_pairs(runs)
+    (pair,) = pairs  # the one cell shipped at two speeds
+    assert "plane_rough_H20 and plane_rough_H20_halfspeed" in pair
+    # a run against itself at a fake other speed agrees exactly
+    twin = replace(by["plane_rough_H40"], name="twin", I_w=2 * by["plane_rough_H40"].I_w)
+    (same,) = checks.rate_pairs([by["plane_rough_H40"], twin])
+    assert "chi^2 = 0.0" in same and "they agree" in same
+    capped = with_correlations(runs)
+    assert any("bins of u" in n for n in checks.error_model(capped))
+
+
+def test_the_moving_walls_stress_ratio_is_a_datum():
+    run = next(r for r in load([shipped_corpus()], []) if r.name == "plane_smooth_H40")
+    wall = run.fields["wall_ratio"]
+    assert wall.n == 1 and wall.s[0] == 0.0
+    sidecar = json.loads((shipped_corpus() / "plane_smooth_H40.json").read_text())
+    ws = sidecar["wall_stress"]
+    assert wall.value[0] == pytest.approx(abs(ws["shear"]) / ws["normal"])
+    # the Cosserat model predicts tan(delta) there
+    pred = Model("cosserat").predict(
+        run, {"phi": 20.0, "L": 8.0, ("roughness", "moving"): 0.5, ("K", "moving"): 0.5},
+        ["wall_ratio"],
+    )["wall_ratio"]  # fmt: skip
+    assert pred[0] == pytest.approx(0.5 * math.sin(math.radians(20.0)), rel=1e-6)
+
+
+def test_held_out_runs_are_predicted_not_fitted():
+    truth = TRUTH["cosserat"]
+    runs = make_runs(Model("cosserat"), truth, seed=8)
+    cal = calibrate(runs, models=["cosserat"], holdout=["plane_H40"])
+    m = cal["cosserat"]
+    assert [r.name for r in cal.runs] == ["plane_H20", "couette_H20"]
+    assert {f.run for f in m.held_out} == {"plane_H40"}
+    # made by the model: the prediction holds (chi^2 near its bins)
+    for f in m.held_out:
+        assert dg.chi2_log10_p(f.chi2, f.n) > -3, (f.field, f.chi2, f.n)
+    with pytest.raises(ParameterError, match="not among the runs"):
+        calibrate(runs, models=["cosserat"], holdout=["nope"])
+
+
+def test_weights_are_not_calibrated_when_every_model_misfits():
+    runs = make_runs(Model("mui"), TRUTH["mui"], seed=3)
+    both = calibrate(runs, models=["cosserat", "mui"])
+    assert not both.calibrated_weights  # the Cosserat model misfits these data
+    assert calibrate(runs, models=["mui"]).calibrated_weights
+    assert (
+        both["cosserat"].parameters["phi"].stderr_scaled > both["cosserat"].parameters["phi"].stderr
+    )
+
+
+def test_p_values_past_underflow():
+    assert dg.chi2_log10_p(10.0, 10) == pytest.approx(math.log10(0.4404932850652124))
+    from scipy import stats
+
+    # past underflow the leading term of the incomplete gamma function takes over; where both
+    # exist they agree to 0.1 in log10 p (here 1200 on 170)
+    assert math.isinf(stats.chi2.logsf(4000.0, 170))
+    assert -750 < dg.chi2_log10_p(4000.0, 170) < -690
+    a, x = 85.0, 600.0
+    lead = (-x + (a - 1.0) * math.log(x) - math.lgamma(a)) / math.log(10.0)
+    assert abs(lead - stats.chi2.logsf(1200.0, 170) / math.log(10.0)) < 0.1
+    assert dg.p_text(-123.4) == "p = 10^-123"

@@ -22,7 +22,7 @@ from . import diagnostics as dg
 from .checks import all_checks
 from .data import BAND_U, RunData, load, with_correlations
 from .engine import AT_BOUND, Optimum, Setup, fit, setup
-from .models import LOCAL_SPIN, Model
+from .models import LOCAL_SPIN, SOLVE_ERRORS, Model
 from .models import models as make_models
 from .noise import covariance
 from .result import Calibration, Estimate, FieldFit, ModelCalibration
@@ -393,6 +393,54 @@ def calibrate_model(
     return mc
 
 
+def predict_held_out(mc: ModelCalibration, runs: Sequence[RunData]) -> ModelCalibration:
+    """``mc`` with its predictions of ``runs``, which the fit did not see: every parameter at
+    its fitted value, each field's chi^2 and p-value, a warning where a prediction fails.
+
+    A run whose material or wall kind the fit did not see cannot be predicted (said in the
+    warnings)."""
+    if not mc.ok or not runs:
+        return mc
+    s, opt = mc.internal[0], mc.internal[1]
+    natural = s.natural(opt.theta)
+    slots = []
+    for sl in s.slots:
+        members = tuple(
+            r.name
+            for r in runs
+            if (sl.scope == "material" and r.material == sl.group)
+            or (sl.scope == "wall" and sl.group in r.walls.values())
+        )
+        slots.append(dataclasses.replace(sl, free=False, value=natural[sl.name], runs=members))
+    usable, notes = [], []
+    for r in runs:
+        labels = {sl.group for sl in slots if r.name in sl.runs}
+        missing = [w for w in {r.material, *r.walls.values()} if w not in labels]
+        if missing:
+            notes.append(
+                f"{mc.model}: held-out run {r.name} cannot be predicted: the fit saw no run "
+                f"with its {', '.join(missing)}"
+            )
+        else:
+            usable.append(r)
+    held: list[FieldFit] = []
+    if usable:
+        hs = Setup(s.model, usable, s.fields, slots)
+        try:
+            held = _field_fits(hs, hs.predict(np.zeros(0)))
+        except SOLVE_ERRORS as exc:
+            notes.append(f"{mc.model}: no prediction of the held-out runs: {exc}")
+    for f in held:
+        lp = dg.chi2_log10_p(f.chi2, f.n)
+        if lp < math.log10(dg.MISFIT_P):
+            notes.append(
+                f"{mc.model}: held-out run {f.run}, {f.field}: predicted with chi^2 = "
+                f"{f.chi2:.1f} on {f.n} bins ({dg.p_text(lp)}): the calibration does not carry "
+                "to this run"
+            )
+    return dataclasses.replace(mc, held_out=held, warnings=[*mc.warnings, *notes])
+
+
 COMPARISON = [
     "AIC = -2 ln L + 2k and BIC = -2 ln L + k ln n use the full Gaussian likelihood of the "
     "error model; they rank models fitted to the same fields of the same runs, and their "
@@ -417,6 +465,7 @@ def calibrate(
     out: str | Path | None = None,
     seed: int = 0,
     progress: Any = None,
+    holdout: Sequence[str] = (),
 ) -> Calibration:
     """Calibrate each model jointly on every run, and compare them.
 
@@ -448,6 +497,9 @@ def calibrate(
         Seed of the start design, the sampler and the nested sampler.
     progress : callable, optional
         ``progress(message)`` per model (the command line's progress line).
+    holdout : sequence of str
+        Runs left out of the fit and predicted with the fitted parameters (a test of whether
+        the calibration carries to another gap or cell).
 
     Returns
     -------
@@ -459,6 +511,13 @@ def calibrate(
     if paths:
         runs += load(paths, skipped)
     runs = with_correlations(runs, bin_correlation)
+    unknown = sorted(set(holdout) - {r.name for r in runs})
+    if unknown:
+        raise ParameterError(f"held-out run(s) {', '.join(unknown)} are not among the runs")
+    held = [r for r in runs if r.name in holdout]
+    runs = [r for r in runs if r.name not in holdout]
+    if not runs:
+        raise ParameterError("every run is held out: nothing is left to calibrate on")
     chosen = make_models(models, local_spin)
     results = []
     for m in chosen:
@@ -473,6 +532,7 @@ def calibrate(
             start=(start or {}).get(m.name),
             seed=seed,
         )
+        mc = predict_held_out(mc, held)
         if mc.ok and evidence:
             from .evidence import nested_evidence
 
@@ -494,7 +554,9 @@ def calibrate(
             + "; ".join(f"{m.model}: {', '.join(m.fields_used)}" for m in results if m.ok)
             + "): their information criteria are not comparable"
         )
-    return Calibration(runs, results, comparison, skipped, data_notes=all_checks(runs))
+    return Calibration(
+        runs, results, comparison, skipped, data_notes=all_checks([*runs, *held]), held_out=held
+    )
 
 
 __all__ = ["COMPARISON", "calibrate", "calibrate_model"]

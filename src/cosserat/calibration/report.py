@@ -120,6 +120,12 @@ def text(cal: Calibration, full: bool = False) -> str:
                 for f, d in entry["fields"].items()
             ]
             lines.append(f"  run {run}: " + "; ".join(parts))
+        for f in m.held_out:
+            lp = dg.chi2_log10_p(f.chi2, f.n)
+            lines.append(
+                f"  held out, predicted: run {f.run}, {f.field}: chi2 {f.chi2:.4g}/{f.n} "
+                f"({dg.p_text(lp)})"
+            )
         if m.posterior is not None:
             p = m.posterior
             lines.append(
@@ -156,6 +162,7 @@ def figure_data(cal: Calibration, points: int = 160) -> list[dict[str, Any]]:
     for run in cal.runs:
         entries[run.name] = {
             "name": run.name,
+            "cell": run.cell,
             "gap_d": run.gap_d,
             "fields": {n: {"s": f.s, "data": f.value, "se": f.se} for n, f in run.fields.items()},
             "models": {},

@@ -218,6 +218,7 @@ class ModelCalibration:
     posterior: PosteriorSummary | None = None
     nfev: int = 0
     seconds: float = 0.0
+    held_out: list[FieldFit] = field(default_factory=list)
     internal: Any = field(default=None, repr=False, compare=False)
 
     @property
@@ -292,6 +293,10 @@ class ModelCalibration:
             "unidentified": [d.describe() for d in self.flat],
             "correlations": [{"a": a, "b": b, "r": r} for a, b, r in self.correlations],
             "warnings": list(self.warnings),
+            "held_out": {
+                f"{f.run}/{f.field}": {**f.to_dict(), "log10_p_value": _log10_p(f.chi2, f.n)}
+                for f in self.held_out
+            },
             "assumptions": list(self.assumptions),
             "nfev": self.nfev,
             "seconds": round(self.seconds, 3),
@@ -326,6 +331,7 @@ class Calibration:
     comparison: list[str] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
     data_notes: list[str] = field(default_factory=list)
+    held_out: list[RunData] = field(default_factory=list)
 
     def __getitem__(self, model: str) -> ModelCalibration:
         for m in self.models:
@@ -411,6 +417,7 @@ class Calibration:
             "comparison": list(self.comparison),
             "notes": self.notes,
             "runs": [_run_dict(r) for r in self.runs],
+            "held_out": [_run_dict(r) for r in self.held_out],
             "skipped": list(self.skipped),
         }
         posterior = {m.model: m.posterior.to_dict() for m in self.models if m.posterior}
@@ -453,6 +460,12 @@ def _run_dict(run: RunData) -> dict[str, Any]:
             for name, f in run.fields.items()
         },
     }
+
+
+def _log10_p(chi2: float, n: int) -> float | None:
+    from .diagnostics import chi2_log10_p
+
+    return _num(chi2_log10_p(chi2, n)) if n > 0 else None
 
 
 def _num(x: Any) -> Any:

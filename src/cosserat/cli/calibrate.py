@@ -103,6 +103,7 @@ def cmd_calibrate(args: argparse.Namespace) -> None:
         out=args.out,
         seed=args.seed,
         progress=progress_messages("calibrate"),
+        holdout=[h.strip() for h in (args.holdout or "").split(",") if h.strip()],
     )
     result = dataclasses.replace(result, skipped=skipped)
     if args.out:
@@ -180,6 +181,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         default=0,
         metavar="N",
         help="draw N posterior samples per model (needs --out; extra 'posterior')",
+    )
+    p.add_argument(
+        "--holdout",
+        metavar="RUN[,RUN]",
+        default=None,
+        help="leave these runs out of the fit and predict them with the fitted parameters",
     )
     p.add_argument("--seed", type=int, default=0, help="seed of the starts and samplers")
     g = p.add_argument_group("output")

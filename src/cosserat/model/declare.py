@@ -48,6 +48,7 @@ Role = Literal["material", "wall", "cell", "drive", "option"]
 ROLES: tuple[str, ...] = ("material", "wall", "cell", "drive", "option")
 Scale = Literal["linear", "log"]
 
+
 class _Required:
     """The type of :data:`REQUIRED`."""
 

@@ -23,6 +23,7 @@ FIELD_AXES = {
     "omega": (r"$\omega\, d/V$", "linear"),
     "stress_ratio": (r"$|\sigma_{yx}|/\sigma_{yy}$", "linear"),
 }
+COUETTE_AXES = {"stress_ratio": r"$|\sigma_{r\theta}|/\sigma_{rr}$"}
 MODEL_STYLES = {
     "cosserat": {"color": "C0", "linestyle": "-"},
     "mui": {"color": "C3", "linestyle": "--"},
@@ -48,6 +49,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     from .plotting import style
 
     fields = [f for f in ("u", "omega", "stress_ratio") if f in entry["fields"]]
+    wall = entry["fields"].get("wall_ratio")
     with style():
         fig, axes = plt.subplots(
             2,
@@ -60,10 +62,24 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
         for j, name in enumerate(fields):
             ax, rax = axes[0, j], axes[1, j]
             label, scale = FIELD_AXES[name]
+            if entry.get("cell") == "couette" and name in COUETTE_AXES:
+                label = COUETTE_AXES[name]
             d = entry["fields"][name]
             s, y, se = (np.asarray(d[k], dtype=float) for k in ("s", "data", "se"))
             if scale == "log":
                 ax.set_yscale("log")
+                low = y <= U_FLOOR  # measured at or below the floor (zero, negative): open marks
+                if np.any(low):
+                    ax.plot(
+                        s[low],
+                        np.full(np.count_nonzero(low), U_FLOOR * 1.15),
+                        "v",
+                        mfc="none",
+                        mec="0.4",
+                        ms=4,
+                        label=f"data <= {U_FLOOR:g}",
+                    )
+                s, y, se = s[~low], y[~low], se[~low]
                 shown = np.maximum(y, U_FLOOR)
                 lower = np.minimum(np.clip(y - se, U_FLOOR, None), shown)
                 ax.errorbar(
@@ -113,14 +129,32 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 r = entry.get("residuals", {}).get(model, {}).get(name)
                 if r is not None:
                     rax.plot(r["s"], r["z"], "o-", ms=2.5, lw=0.7, color=st["color"])
+            if name == "stress_ratio" and wall is not None:
+                ax.errorbar(
+                    [0.0],
+                    wall["data"],
+                    yerr=wall["se"],
+                    fmt="s",
+                    ms=4,
+                    mfc="none",
+                    color="k",
+                    capsize=1.5,
+                    label="wall (contacts)",
+                    zorder=3,
+                )
             ax.set_ylabel(label)
-            ax.set_xlim(0.0, float(entry["gap_d"]))
+            ax.set_xlim(-0.02 * float(entry["gap_d"]), float(entry["gap_d"]))
             rax.axhline(0.0, color="0.3", lw=0.6)
             for z in (-2.0, 2.0):
                 rax.axhline(z, color="0.6", lw=0.5, ls=":")
-            rax.set_ylabel("(model - data)/se", fontsize=8)
+            rax.set_ylabel("(model - data)/se\n(not whitened)", fontsize=7)
             rax.set_xlabel("distance from the moving wall $s/d$")
-        handles, labels = axes[0, 0].get_legend_handles_labels()
+        handles, labels = [], []
+        for ax in axes[0]:
+            for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+                if lab not in labels:
+                    handles.append(h)
+                    labels.append(lab)
         fig.legend(
             handles,
             labels,
