@@ -6,8 +6,9 @@ time.
 
 One figure per run: a column per field (velocity on a log axis, so that a creep tail spanning
 decades is visible; spin and stress ratio on linear axes), the data with their error bars, each
-model's best fit as a line and, where a posterior was sampled, its 68% and 95% posterior
-bands of the model (its parameters drawn from the posterior; the noise of the data not added); below, the residuals over the standard errors.
+model's best fit as a line and, where a posterior was sampled, its 68% and 95% bands over the
+posterior (its parameters drawn from the posterior; the noise of the data not added); below,
+the residuals over the standard errors.
 """
 
 from __future__ import annotations
