@@ -71,6 +71,14 @@ def tail_decades(s: FloatArray, data: FloatArray, se: FloatArray, model: FloatAr
     tail = (data < TAIL_U) & (data > 2.0 * se)
     if np.count_nonzero(tail) < REGION_BINS:
         return None
+    at_rest = model[tail] <= 0.0
+    if np.count_nonzero(at_rest) >= REGION_BINS:
+        return (
+            f"in the creep tail (s = {s[tail][at_rest].min():.3g}-{s[tail][at_rest].max():.3g} "
+            f"d, {np.count_nonzero(at_rest)} bins) the model is at rest (a rigid plug) where "
+            f"the data creep at u = {data[tail][at_rest].min():.2g}-"
+            f"{data[tail][at_rest].max():.2g}"
+        )
     ratio = np.log10(np.maximum(model[tail], 1e-300) / data[tail])
     if np.median(ratio) > -1.0:
         return None
