@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any, NoReturn
 
 from .. import config
+from ..errors import InputError
 from ..model import Problem, build_problem
 from ..model.build import DEFAULTS, ROUGH_WORDS
 from ..model.parameters import FULLY_ROUGH
@@ -328,15 +329,24 @@ def deliver(args: argparse.Namespace, render: Callable[[str], str], meta: Any, l
 
 
 def check_outputs(args: argparse.Namespace) -> None:
-    """Fail on an unusable --out or --plot before any computation."""
-    if getattr(args, "out", None):
-        files.check_output_file(args.out)
+    """Fail on an unusable --out or --plot before any computation: a folder that does not
+    exist, a directory, a FIFO or device, no permission, a figure without a known image
+    suffix, or --plot naming the same file as --out."""
+    out = getattr(args, "out", None)
+    if out:
+        files.check_output_file(out)
         if getattr(args, "format", None) == "csv":
             from ..results.profile import sidecar_path
 
-            files.check_output_file(str(sidecar_path(args.out)), "--out's sidecar")
-    if getattr(args, "plot", None):
-        files.check_plot_file(args.plot)
+            files.check_output_file(str(sidecar_path(out)), "--out's sidecar")
+    plot = getattr(args, "plot", None)
+    if plot:
+        files.check_plot_file(plot)
+        if out and files.same_file_key(plot) == files.same_file_key(out):
+            raise InputError(
+                f"cannot write --plot {plot}: it is the same file as --out; give the figure "
+                "another name"
+            )
 
 
 def table(header: list[str], rows: list[list[Any]], digits: int = 6) -> list[str]:
