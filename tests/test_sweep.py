@@ -408,7 +408,7 @@ def test_a_dask_worker_killed_mid_sweep_loses_no_row(allowed_failures):
 def test_ctrl_c_inside_a_compiled_kernel_counts_as_an_interruption():
     """numba reports a KeyboardInterrupt raised during a kernel call as a SystemError caused by
     it: the command line must still say 'interrupted' (exit 130), not print a traceback."""
-    from cosserat.cli.sweep import _interrupted
+    from cosserat.cli.common import interrupted as _interrupted
 
     try:
         try:

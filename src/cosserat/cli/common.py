@@ -33,7 +33,7 @@ CELL_DEFAULTS = {"couette": ("Ri",)}
 """Cell parameters whose command-line default (:data:`cosserat.model.build.DEFAULTS`) also
 applies to the other models on that cell (``--Ri``'s help states it)."""
 
-_STATE = {"quiet": False}
+_STATE: dict[str, Any] = {"quiet": False, "interrupt_hint": None}
 
 
 class Parser(argparse.ArgumentParser):
@@ -222,6 +222,35 @@ def add_quiet(g: Any) -> None:
 def set_quiet(quiet: bool) -> None:
     """Silence (or allow) the progress bars of this process."""
     _STATE["quiet"] = bool(quiet)
+
+
+# --------------------------------------------------------------------------- interruptions
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised as Ctrl-C is so that the same cleanup runs (``cosserat.cli.main``)."""
+
+
+def set_interrupt_hint(hint: str | None) -> None:
+    """What the one line after an interruption adds (where the finished work is, how to go
+    on); None: nothing."""
+    _STATE["interrupt_hint"] = hint
+
+
+def interrupt_hint() -> str | None:
+    """The hint :func:`set_interrupt_hint` left, once (then cleared)."""
+    hint, _STATE["interrupt_hint"] = _STATE["interrupt_hint"], None
+    return hint  # type: ignore[no-any-return]
+
+
+def interrupted(exc: BaseException | None, kind: type[BaseException] = KeyboardInterrupt) -> bool:
+    """True if ``exc`` is an interruption of type ``kind`` (Ctrl-C, or SIGTERM as
+    :class:`Terminated`), also when it arrived inside a compiled kernel, which reports it as
+    a SystemError caused by the KeyboardInterrupt."""
+    seen = 0
+    while exc is not None and seen < 20:
+        if isinstance(exc, kind):
+            return True
+        exc, seen = exc.__cause__ or exc.__context__, seen + 1
+    return False
 
 
 # --------------------------------------------------------------------------- problems

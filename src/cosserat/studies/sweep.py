@@ -61,7 +61,7 @@ from .._atomic import atomic_open
 from ..errors import CosseratError, InputError, ParameterError
 from ..model import Problem, build_problem
 from ..model.build import DEFAULTS, PARAMETERS
-from ..numerics.runtime import process_pool
+from ..numerics.runtime import worker_processes
 
 RESULTS = ("Delta", "wall_slip", "wall_omega", "wall_stress", "status", "message")
 
@@ -284,8 +284,9 @@ def run_chunks(
 
     On a Dask cluster a chunk whose worker dies is run again: Dask reschedules the tasks of a
     lost worker itself, and a chunk that Dask gives up on (``KilledWorker``) is resubmitted up to
-    :data:`MAX_RESUBMITS` times. Local processes are cancelled on an interruption (Ctrl-C):
-    the chunks already passed to ``on_rows`` are all that is kept.
+    :data:`MAX_RESUBMITS` times. Local processes are stopped at once on an interruption (Ctrl-C,
+    SIGTERM; :func:`cosserat.numerics.runtime.worker_processes`) and end by themselves if this
+    process is killed: the chunks already passed to ``on_rows`` are all that is kept.
     """
     total = sum(len(c) for c in chunks)
     done = 0
@@ -305,15 +306,10 @@ def run_chunks(
         for i, c in enumerate(chunks):
             collect(i, run_chunk(c, rtol, f))
     else:
-        pool = process_pool(workers)
-        try:
+        with worker_processes(workers) as pool:  # stopped at once on an interruption
             futs = {pool.submit(run_chunk, c, rtol, f): i for i, c in enumerate(chunks)}
             for fut in as_completed(futs):
                 collect(futs[fut], fut.result())
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
-        pool.shutdown()
 
 
 def _run_on_dask(
