@@ -153,3 +153,20 @@ def test_the_writer_refuses_what_is_not_a_regular_file(tmp_path):
         assert (tmp_path / "p").is_fifo()
     with pytest.raises(InputError, match="no suffix"):
         save_figure(object(), tmp_path / "figure")
+
+
+# ---------------------------------------------------------------------------- sweeps
+def test_a_sweep_that_fails_at_start_leaves_no_journal_and_the_next_run_starts(tmp_path):
+    spec = tmp_path / "s.toml"
+    spec.write_text("[fixed]\ngeometry = 'plane'\n[grid]\neps = [0.1, 0.05]\n")
+    out = tmp_path / "t.csv"
+    # no scheduler listens on port 1: the sweep fails before any row
+    failed = cosserat("sweep", str(spec), "--out", str(out), "--scheduler", "tcp://127.0.0.1:1")
+    assert "cannot connect to the Dask scheduler" in one_line_exit_2(failed)
+    assert not (tmp_path / "t.csv.part").exists() and not out.exists()
+    # a journal with its header and no row (left by an older version, or a crash) holds
+    # nothing to lose: the next run starts instead of asking for --resume
+    (tmp_path / "t.csv.part").write_text("geometry,eps,Delta\n")
+    again = cosserat("sweep", str(spec), "--out", str(out), "--workers", "1")
+    assert again.returncode == 0, again.stderr
+    assert len(out.read_text().splitlines()) == 3 and not (tmp_path / "t.csv.part").exists()

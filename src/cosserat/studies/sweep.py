@@ -437,7 +437,8 @@ def run_sweep_to_table(
     Raises
     ------
     InputError
-        A journal exists and ``resume`` is False (it holds the rows of an unfinished run), a
+        A journal with rows exists and ``resume`` is False (the rows of an unfinished run; a
+        journal with its header alone holds nothing and is replaced), a
         journal or table to resume from belongs to a sweep with other columns, or a file
         cannot be read or written.
     """
@@ -445,7 +446,7 @@ def run_sweep_to_table(
     check_table_format(path)
     journal = journal_path(path)
     header = [*spec.columns, *RESULTS]
-    if journal.exists() and not resume:
+    if not resume and _holds_rows(journal):
         raise InputError(
             f"{journal} holds the finished rows of an interrupted sweep: run again with "
             f"--resume to finish it, or delete it to start again"
@@ -501,11 +502,33 @@ def run_sweep_to_table(
                 None if progress is None else lambda i, n: progress(reused + i, reused + n),
             )
     except OSError as exc:
+        _drop_if_empty(journal, length)
         raise InputError(f"cannot write the sweep journal {journal}: {_reason(exc)}") from None
+    except BaseException:
+        _drop_if_empty(journal, length)  # a sweep that failed before any row keeps nothing
+        raise
     rows = [r for r in slots if r is not None]
     write_table(rows, path, spec.columns)
     journal.unlink(missing_ok=True)
     return SweepRun(rows, path, reused, len(pending))
+
+
+def _holds_rows(journal: Path) -> bool:
+    """True if ``journal`` exists and holds anything beyond its header line (rows to keep)."""
+    try:
+        data = journal.read_bytes()
+    except FileNotFoundError:
+        return False
+    except OSError:
+        return True  # cannot tell: let the caller refuse rather than lose rows
+    first = data.find(b"\n")
+    return first >= 0 and bool(data[first + 1 :].strip())
+
+
+def _drop_if_empty(journal: Path, length: int) -> None:
+    """Delete the journal this run started (``length`` 0) if it holds no row."""
+    if not length and not _holds_rows(journal):
+        journal.unlink(missing_ok=True)
 
 
 def _csv_lines(rows: Iterable[Sequence[str]]) -> bytes:
