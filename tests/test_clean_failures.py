@@ -170,3 +170,32 @@ def test_a_sweep_that_fails_at_start_leaves_no_journal_and_the_next_run_starts(t
     again = cosserat("sweep", str(spec), "--out", str(out), "--workers", "1")
     assert again.returncode == 0, again.stderr
     assert len(out.read_text().splitlines()) == 3 and not (tmp_path / "t.csv.part").exists()
+
+
+def test_a_sweep_of_a_trillion_cases_is_refused_before_it_is_made(tmp_path):
+    spec = tmp_path / "huge.toml"
+    spec.write_text(
+        "[fixed]\ngeometry = 'plane'\n[grid]\n"
+        "eps = { geomspace = [1e-1, 1e-6, 1000000] }\ndelta = { linspace = [5, 25, 1000000] }\n"
+    )
+    err = one_line_exit_2(cosserat("sweep", str(spec), "--workers", "1", timeout=60))
+    assert "the sweep spec has 1,000,000,000,000 cases (1000000 eps x 1000000 delta)" in err
+    assert "max_cases = 1,000,000" in err and "put max_cases = 1000000000000 at the top" in err
+    assert not list(tmp_path.glob("huge.csv*"))
+
+
+def test_max_cases_counts_grid_and_listed_cases():
+    import tomllib
+
+    from cosserat.errors import ParameterError
+    from cosserat.studies.sweep import MAX_CASES, parse_spec
+
+    text = "[grid]\neps = [0.1, 0.05]\ndelta = [10.0, 20.0]\n[[cases]]\neps = 0.02\n"
+    assert len(parse_spec(tomllib.loads("max_cases = 5\n" + text)).cases) == 5
+    with pytest.raises(ParameterError, match=r"has 5 cases \(2 eps x 2 delta \+ 1 \[\[cases\]\]\)"):
+        parse_spec(tomllib.loads("max_cases = 4\n" + text))
+    for bad in ("0", "2.5", "true", "'many'"):
+        with pytest.raises(ParameterError, match="max_cases must be a whole number >= 1"):
+            parse_spec(tomllib.loads(f"max_cases = {bad}\n" + text))
+    with pytest.raises(ParameterError, match=f"more than max_cases = {MAX_CASES:,}"):
+        parse_spec(tomllib.loads("[grid]\neps = { linspace = [0.01, 0.1, 1000001] }\n"))

@@ -6,6 +6,7 @@ Spec (``cosserat sweep SPEC.toml``)::
     rtol = 1e-8                     # numerical tolerance (optional)
     f = 0.05                        # fraction defining Delta (optional)
     output = "sweep.csv"            # .csv, or .parquet if pyarrow is installed (optional)
+    max_cases = 1000000             # refuse a spec of more cases (optional; the default)
 
     [fixed]                         # parameters common to every case
     phi = 28.5
@@ -25,6 +26,11 @@ delta_lower, K_lower, B, nu, m_wall [plane]; Ri [Couette]; eps. Defaults are the
 (:data:`cosserat.model.build.DEFAULTS`, from :mod:`cosserat.config`), and every case is built
 by :func:`cosserat.model.build_problem`, as on the command line. ``rtol`` and ``f`` default to
 ``config.RTOL`` and ``config.DEFAULT_F``.
+
+The number of cases is counted from the spec before any case is made, and a spec of more than
+``max_cases`` (default :data:`MAX_CASES`, one million: about a gigabyte of memory for the cases
+and their rows, and hours of work on a few cores) is refused with its count; give a larger
+``max_cases`` at the top of the spec to run it anyway.
 
 Every case gives a row: its parameters, Delta, wall_slip, wall_omega, wall_stress, and
 ``status`` ("ok"; "no-solution": the model has no real solution; "error": the solver could not
@@ -64,6 +70,10 @@ from ..model.build import DEFAULTS, PARAMETERS
 from ..numerics.runtime import worker_processes
 
 RESULTS = ("Delta", "wall_slip", "wall_omega", "wall_stress", "status", "message")
+
+MAX_CASES = 1_000_000
+"""Most cases a spec may have unless it gives ``max_cases`` (each case and its row take about a
+kilobyte in memory, so a grid of 10^12 cases would exhaust any machine before it starts)."""
 
 
 @dataclass
@@ -113,6 +123,37 @@ def _values(name: str, spec: Any) -> list[Any]:
     )
 
 
+def _count(spec: Any) -> int:
+    """How many values a grid entry gives (:func:`_values`), counted without making them; a
+    malformed entry counts 1 (then :func:`_values` says what is wrong with it)."""
+    if isinstance(spec, list):
+        return len(spec)
+    if isinstance(spec, dict) and len(spec) == 1:
+        ((kind, args),) = spec.items()
+        if kind in ("geomspace", "linspace") and isinstance(args, list) and len(args) == 3:
+            n = args[2]
+            if isinstance(n, int) and not isinstance(n, bool) and n >= 1:
+                return n
+    return 1
+
+
+def _check_size(grid: dict[str, Any], listed: int, limit: Any) -> None:
+    """Refuse a spec of more than ``limit`` cases, counted before any case is made."""
+    if isinstance(limit, bool) or not isinstance(limit, int) or limit < 1:
+        raise ParameterError(f"max_cases must be a whole number >= 1; got {limit!r}")
+    counts = {name: _count(spec) for name, spec in grid.items()}
+    total = (math.prod(counts.values()) if grid else 0) + listed
+    if total > limit:
+        product = " x ".join(f"{n} {name}" for name, n in counts.items())
+        parts = ([product] if grid else []) + ([f"{listed} [[cases]]"] if listed else [])
+        raise ParameterError(
+            f"the sweep spec has {total:,} cases ({' + '.join(parts)}), more than max_cases = "
+            f"{limit:,}: each case takes about a kilobyte of memory and some milliseconds of "
+            f"work; make the grid smaller, or put max_cases = {total} at the top of the spec "
+            "to run it anyway"
+        )
+
+
 def _table(where: str, value: Any) -> dict[str, Any]:
     if not isinstance(value, dict):
         raise ParameterError(
@@ -139,12 +180,13 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
     Raises
     ------
     ParameterError
-        An unknown key or parameter, a table or grid entry of the wrong form, a case without
-        eps, or ``rtol`` (within ``config.RTOL_RANGE``), ``f`` (0 < f < 1), ``chunk`` (>= 1) or
-        ``output`` (a file name) out of bounds. A parameter *value* out of bounds is not an
+        An unknown key or parameter, a table or grid entry of the wrong form, more cases than
+        ``max_cases`` (default :data:`MAX_CASES`), a case without eps, or ``rtol`` (within
+        ``config.RTOL_RANGE``), ``f`` (0 < f < 1), ``chunk`` (>= 1) or ``output`` (a file
+        name) out of bounds. A parameter *value* out of bounds is not an
         error here: that case gives a row with status "invalid".
     """
-    known = {"geometry", "rtol", "f", "output", "chunk", "fixed", "grid", "cases"}
+    known = {"geometry", "rtol", "f", "output", "chunk", "max_cases", "fixed", "grid", "cases"}
     unknown = set(data) - known
     if unknown:
         raise ParameterError(f"unknown top-level key(s) in the sweep spec: {sorted(unknown)}")
@@ -162,6 +204,7 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
             raise ParameterError(
                 f"unknown parameter(s) {sorted(bad)} in [{where}]; known: {', '.join(PARAMETERS)}"
             )
+    _check_size(grid, len(listed), data.get("max_cases", MAX_CASES))
     cases: list[dict[str, Any]] = []
     if grid:
         names = list(grid)
