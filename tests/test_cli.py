@@ -243,7 +243,9 @@ def test_a_malformed_measured_profile_names_the_file_and_the_line(capsys, tmp_pa
     assert f"{bad}: line 7, column 'u_over_uw': 'abc' is not a number" in err
     binary = tmp_path / "binary.csv"
     binary.write_bytes(b"\xff\xfe\x00\x81")
-    assert "not a text (CSV) file" in _one_line_exit_2(capsys, "compare", str(binary))
+    assert f"{binary}: not a text file (it holds NUL bytes" in _one_line_exit_2(
+        capsys, "compare", str(binary)
+    )
 
 
 @pytest.mark.parametrize(

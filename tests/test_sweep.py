@@ -244,7 +244,7 @@ def test_spec_files_that_cannot_be_read(tmp_path):
         load_spec(tmp_path)
     binary = tmp_path / "b.toml"
     binary.write_bytes(b"\xff\xfe\x00\x81")
-    with pytest.raises(InputError, match=r"not a text \(TOML\) file"):
+    with pytest.raises(InputError, match=r"b.toml: not a text file \(it holds NUL bytes"):
         load_spec(binary)
 
 

@@ -23,6 +23,7 @@ positive; spins and vorticities with the same sign change (a mirror image of the
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
 from dataclasses import dataclass, field
@@ -33,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import atomic_open, write_text
+from .._text import read_text
 from ..errors import InputError
 from ..model.constitutive import FloatArray
 from .measurements import MeasuredProfile
@@ -226,14 +228,22 @@ class Corpus:
 
 
 # ---------------------------------------------------------------------- reading
+def _reason(exc: OSError) -> str:
+    """The operating system's reason, lower case ("permission denied")."""
+    text = exc.strerror or str(exc) or type(exc).__name__
+    return text[:1].lower() + text[1:]
+
+
 def _read_sidecar(path: Path) -> dict[str, Any]:
     try:
-        text = path.read_text()
+        text = read_text(path)
     except FileNotFoundError:
         raise InputError(
             f"{path.with_suffix('.csv').name}: no sidecar {path.name} beside it (each run is "
             "<run>.csv and <run>.json)"
         ) from None
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {_reason(exc)}") from None
     try:
         meta = json.loads(text)
     except json.JSONDecodeError as exc:
@@ -271,14 +281,15 @@ def _read_sidecar(path: Path) -> dict[str, Any]:
 
 def _read_columns(path: Path) -> dict[str, FloatArray]:
     try:
-        with path.open(newline="") as fh:
-            rows = list(csv.reader(fh))
+        rows = list(csv.reader(io.StringIO(read_text(path), newline="")))
     except FileNotFoundError:
         raise InputError(f"{path}: no such file") from None
-    except UnicodeDecodeError:
-        raise InputError(f"{path}: not a text CSV file") from None
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {_reason(exc)}") from None
     if not rows:
         raise InputError(f"{path}: empty file")
+    if len(rows) == 1:
+        raise InputError(f"{path}: no data rows after the column header (line 1)")
     names = [n.strip() for n in rows[0]]
     if len(set(names)) != len(names):
         raise InputError(f"{path}, line 1: repeated column names")
@@ -394,8 +405,8 @@ def _is_sidecar(path: Path) -> bool:
     """A JSON file that says it is a run's sidecar (other JSON files in a corpus folder, such
     as a run log, are not runs)."""
     try:
-        meta = json.loads(path.read_text())
-    except (OSError, ValueError):
+        meta = json.loads(read_text(path))
+    except (OSError, ValueError):  # InputError (not UTF-8) is a ValueError
         return True  # unreadable: report it rather than skip it
     return isinstance(meta, dict) and meta.get("format") == FORMAT
 

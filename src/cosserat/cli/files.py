@@ -27,7 +27,7 @@ def read_measured(path: str, what: str = "measured profile") -> Any:
     Raises
     ------
     InputError
-        The file does not exist, is a directory, cannot be read, or is not text.
+        The file does not exist, is a directory, cannot be read, or is not UTF-8 text.
     MeasurementError
         Its content is malformed (the message starts with the file name).
     """
@@ -37,8 +37,6 @@ def read_measured(path: str, what: str = "measured profile") -> Any:
         return read_profile(Path(path))
     except OSError as exc:
         raise InputError(f"cannot read the {what} {path}: {reason(exc)}") from None
-    except UnicodeDecodeError:
-        raise InputError(f"cannot read the {what} {path}: not a text (CSV) file") from None
     except MeasurementError as exc:
         raise MeasurementError(f"{path}: {exc}") from None
 

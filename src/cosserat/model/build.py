@@ -28,7 +28,7 @@ from types import MappingProxyType
 from typing import Any, Literal
 
 from .. import config
-from ..errors import ParameterError
+from ..errors import ParameterError, shown
 from .channel import Channel
 from .couette import CouetteFlow
 from .parameters import FULLY_ROUGH, Material, Wall
@@ -176,7 +176,7 @@ def build_problem(parameters: Mapping[str, Any]) -> PlaneShear | CouetteFlow | C
             if name not in given or _is_default(name, given[name]):
                 continue
             raise ParameterError(
-                f"{name} applies to geometry {where!r} only; got {name} = {given[name]!r} for "
+                f"{name} applies to geometry {where!r} only; got {name} = {shown(given[name])} for "
                 f"geometry {geometry!r}"
             )
     p = {**DEFAULTS, **given}

@@ -42,7 +42,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from ..errors import ParameterError
+from ..errors import ParameterError, shown
 
 Role = Literal["material", "wall", "cell", "drive", "option"]
 ROLES: tuple[str, ...] = ("material", "wall", "cell", "drive", "option")
@@ -179,16 +179,16 @@ class Param:
                     return choice
         if isinstance(value, bool) or not isinstance(value, numbers.Real | str):
             raise ParameterError(
-                f"{n} ({self.meaning}) must be a number{self._or()}; got {value!r}"
+                f"{n} ({self.meaning}) must be a number{self._or()}; got {shown(value)}"
             )
         try:
             x = float(value)
         except ValueError:
             raise ParameterError(
-                f"{n} ({self.meaning}) must be a number{self._or()}; got {value!r}"
+                f"{n} ({self.meaning}) must be a number{self._or()}; got {shown(value)}"
             ) from None
         if not math.isfinite(x):
-            raise ParameterError(f"{n} ({self.meaning}) must be finite; got {value!r}")
+            raise ParameterError(f"{n} ({self.meaning}) must be finite; got {shown(value)}")
         if not self.admits(x):
             unit = f" [{self.unit}]" if self.unit not in ("", "-") else ""
             why = f" ({self.reason})" if self.reason else ""

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from ..errors import NoSolutionError, ParameterError
+from ..errors import NoSolutionError, ParameterError, shown
 from .constitutive import FloatArray
 from .couette import validate_Ri
 from .mui import MuI
@@ -421,10 +421,10 @@ class _NGFCell:
         mu_s = self.rheology.mu_s
         if T is not None and mu_s < T < mu_s * (1.0 + NGF_EXCESS_RTOL):
             raise ParameterError(
-                f"{name} must satisfy {name} >= {bound!r} (a stress ratio at the "
+                f"{name} must satisfy {name} >= {shown(bound)} (a stress ratio at the "
                 f"{self.wall_name} of at least mu_s (1 + {NGF_EXCESS_RTOL:g})) or make the "
-                f"stress ratio <= mu_s; got {name} = {getattr(self, name)!r}, a stress "
-                f"ratio {T!r} within {NGF_EXCESS_RTOL:g} mu_s of mu_s = {mu_s!r}: the "
+                f"stress ratio <= mu_s; got {name} = {shown(getattr(self, name))}, a stress "
+                f"ratio {shown(T)} within {NGF_EXCESS_RTOL:g} mu_s of mu_s = {shown(mu_s)}: the "
                 "excess that drives the flow has too few significant digits in double "
                 "precision and the flow cannot be told from rest"
             )

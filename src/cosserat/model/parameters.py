@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from .. import config
-from ..errors import ParameterError
+from ..errors import ParameterError, shown
 
 FULLY_ROUGH: Literal["fully-rough"] = "fully-rough"
 """Value of ``Wall.delta`` for a fully rough wall, tan(delta) = sin(phi) (``eqn-bc_fullyrough``)."""
@@ -33,9 +33,9 @@ def require_finite(name: str, value: float) -> float:
     try:
         x = float(value)
     except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number; got {value!r}") from None
+        raise ParameterError(f"{name} must be a number; got {shown(value)}") from None
     if not math.isfinite(x):
-        raise ParameterError(f"{name} must be finite; got {value!r}")
+        raise ParameterError(f"{name} must be finite; got {shown(value)}")
     return x
 
 

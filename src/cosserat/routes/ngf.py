@@ -27,7 +27,13 @@ from scipy.interpolate import CubicHermiteSpline, CubicSpline
 from scipy.optimize import brentq
 
 from .. import config
-from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
+from ..errors import (
+    ConvergenceError,
+    MethodNotAvailableError,
+    NoSolutionError,
+    ParameterError,
+    shown,
+)
 from ..model.constitutive import FloatArray
 from ..model.ngf import NGFChannel, NGFCouetteFlow, NGFPlaneShear, NGFProblem
 from ..model.rheology import Rheology
@@ -368,7 +374,7 @@ def _profile(
     if cells is not None:
         if int(cells) != cells or cells < 8 or cells % 4 or cells > MAX_CELLS:
             raise ParameterError(
-                f"cells must be a multiple of 4 in [8, {MAX_CELLS}]; got {cells!r}"
+                f"cells must be a multiple of 4 in [8, {MAX_CELLS}]; got {shown(cells)}"
             )
         half = _solve_at(problem, int(cells) // 2, None)
         level = _solve_at(problem, int(cells), half.T)

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .. import config
-from ..errors import ConvergenceError, NoSolutionError, ParameterError
+from ..errors import ConvergenceError, NoSolutionError, ParameterError, shown
 from ..model import CouetteFlow, PlaneShear, PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
 from ..model.formulation import Formulation
@@ -41,12 +41,12 @@ def tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
     if not (isinstance(rtol, int | float) and lo <= rtol <= hi):
         raise ParameterError(
             f"rtol must satisfy {lo:g} <= rtol <= {hi:g} (relative tolerance of the "
-            f"integration); got {rtol!r}"
+            f"integration); got {shown(rtol)}"
         )
     if atol is None:
         return float(rtol), float(rtol) * config.ATOL_OVER_RTOL
     if not (isinstance(atol, int | float) and 0.0 < atol <= 1.0):
-        raise ParameterError(f"atol must satisfy 0 < atol <= 1; got {atol!r}")
+        raise ParameterError(f"atol must satisfy 0 < atol <= 1; got {shown(atol)}")
     return float(rtol), float(atol)
 
 
@@ -282,7 +282,7 @@ def solve_couette(
     neighbouring eps in a sweep) replaces the leading-order starting value."""
     rtol, atol = tolerances(rtol, atol)
     if m_inner_guess is not None and not math.isfinite(float(m_inner_guess)):
-        raise ParameterError(f"m_inner_guess must be finite; got {m_inner_guess!r}")
+        raise ParameterError(f"m_inner_guess must be finite; got {shown(m_inner_guess)}")
     sol = run_kernel(problem, rtol, atol, m_inner_guess)
     stats = _stats(sol.info)
     stats["m_inner"] = sol.mu

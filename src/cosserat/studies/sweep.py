@@ -64,6 +64,7 @@ import numpy as np
 
 from .. import config
 from .._atomic import atomic_open
+from .._text import read_text
 from ..errors import CosseratError, InputError, ParameterError
 from ..model import Problem, build_problem
 from ..model.build import DEFAULTS, PARAMETERS
@@ -234,16 +235,14 @@ def load_spec(path: str | Path) -> SweepSpec:
     Raises
     ------
     InputError
-        The file cannot be read (missing, a directory, no permission, not text).
+        The file cannot be read (missing, a directory, no permission, not UTF-8 text).
     ParameterError
         Not valid TOML, or a spec :func:`parse_spec` rejects.
     """
     try:
-        text = Path(path).read_text()
+        text = read_text(path, f"cannot read the sweep spec {path}")  # UTF-8, as TOML is
     except OSError as exc:
         raise InputError(f"cannot read the sweep spec {path}: {_reason(exc)}") from None
-    except UnicodeDecodeError:
-        raise InputError(f"cannot read the sweep spec {path}: not a text (TOML) file") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -635,6 +634,6 @@ def write_table(rows: Iterable[dict[str, Any]], path: str | Path, columns: Seque
 
 
 def _fmt(value: Any) -> str:
-    if isinstance(value, float):
-        return repr(value) if math.isfinite(value) else ""
+    if isinstance(value, float):  # a NumPy float too: written as a plain number
+        return repr(float(value)) if math.isfinite(value) else ""
     return str(value)
