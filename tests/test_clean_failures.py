@@ -199,3 +199,179 @@ def test_max_cases_counts_grid_and_listed_cases():
             parse_spec(tomllib.loads(f"max_cases = {bad}\n" + text))
     with pytest.raises(ParameterError, match=f"more than max_cases = {MAX_CASES:,}"):
         parse_spec(tomllib.loads("[grid]\neps = { linspace = [0.01, 0.1, 1000001] }\n"))
+
+
+# ---------------------------------------------------------------------------- input files
+@pytest.fixture
+def corpus(tmp_path):
+    """A copy of the shipped corpus to damage."""
+    import shutil
+
+    from cosserat.analysis.corpus import shipped_corpus
+
+    folder = tmp_path / "corpus"
+    shutil.copytree(shipped_corpus(), folder)
+    return folder
+
+
+def test_a_header_only_profile_says_it_has_no_data_rows(tmp_path):
+    empty = tmp_path / "empty.csv"
+    empty.write_text("# geometry: plane\n# eps: 0.05\ndistance_d,u_over_uw\n")
+    err = one_line_exit_2(cosserat("compare", str(empty)))
+    assert f"{empty}: no data rows after the column header (line 3)" in err
+    assert "1-D arrays" not in err
+
+
+def test_a_utf8_profile_with_a_byte_order_mark_is_read(tmp_path):
+    from cosserat.analysis.measurements import read_profile
+
+    plain = tmp_path / "plain.csv"
+    plain.write_text(PROFILE, encoding="utf-8")
+    bom = tmp_path / "bom.csv"
+    bom.write_text(PROFILE.replace("# geometry", "distance_d,u_over_uw\n", 0), encoding="utf-8-sig")
+    assert bom.read_bytes()[:3] == b"\xef\xbb\xbf"
+    a, b = read_profile(plain), read_profile(bom)
+    assert a.meta == b.meta and list(a.distance_d) == list(b.distance_d)
+    assert read_profile("\ufeff" + PROFILE).n == 3  # text with the mark, as a string
+    proc = cosserat("compare", str(bom), "--format", "json")
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_a_latin1_profile_says_which_encoding_and_where(tmp_path):
+    latin = tmp_path / "latin.csv"
+    latin.write_bytes(("# label: caf\u00e9 au lait\n" + PROFILE).encode("latin-1"))
+    err = one_line_exit_2(cosserat("compare", str(latin)))
+    assert f"{latin}: not UTF-8 text: byte 0xe9 at line 1, column 13 is not valid UTF-8" in err
+    assert "save the file as UTF-8" in err
+
+
+def test_profile_messages_print_plain_numbers(tmp_path):
+    import numpy as np
+
+    from cosserat import Material
+    from cosserat.analysis.measurements import MeasurementError, read_profile
+    from cosserat.errors import ParameterError, shown
+
+    with pytest.raises(MeasurementError, match=r"must be >= 0; got -1$"):
+        read_profile("distance_d,u_over_uw\n-1.0,0.5\n1.0,0.2\n")
+    with pytest.raises(MeasurementError, match=r"finite and > 0; got -0.5$"):
+        read_profile("distance_d,u_over_uw,u_err\n1.0,0.5,-0.5\n")
+    with pytest.raises(ParameterError, match=r"phi must be finite; got nan$"):
+        Material(phi=np.float64(np.nan))
+    assert shown(np.float64(-1.0)) == "-1.0" and shown(np.int64(3)) == "3"
+    assert shown("abc") == "'abc'" and shown(True) == "True" and shown(2.5) == "2.5"
+
+
+def test_no_numpy_repr_in_the_package_messages():
+    """The source has no message that would print np.float64(...): every ``got {x!r}`` is of
+    a value that is never a NumPy scalar, or goes through errors.shown."""
+    import re
+    from pathlib import Path
+
+    import cosserat
+
+    numeric = re.compile(r"got \{[^}]*(value|rtol|atol|cells|seed|bound|\bT\b|mu_s)[^}]*!r\}")
+    hits = [
+        f"{path.name}:{i}: {line.strip()}"
+        for path in Path(cosserat.__file__).parent.rglob("*.py")
+        for i, line in enumerate(path.read_text().splitlines(), start=1)
+        if numeric.search(line) and "np." not in line
+    ]
+    # TOML and JSON values (Python numbers only); an angle that is a string or a bool
+    allowed = ("sweep.py", "corpus.py")
+    assert [h for h in hits if not h.startswith(allowed) and "or 'fully-rough'" not in h] == []
+
+
+def test_corpus_files_in_utf8_with_a_mark_are_read_and_latin1_is_named(corpus, tmp_path):
+    from cosserat.analysis.corpus import read_run
+
+    run = corpus / "plane_rough_H20.csv"
+    sidecar = run.with_suffix(".json")
+    for path in (run, sidecar):
+        path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    assert read_run(run).columns["u"].size > 3
+    sidecar.write_bytes(
+        sidecar.read_bytes()[3:].replace(b'"format"', b'"note": "caf\xe9", "format"', 1)
+    )
+    err = one_line_exit_2(cosserat("validate", str(corpus), "--out", str(tmp_path / "report")))
+    assert f"{sidecar}: not UTF-8 text: byte 0xe9 at line 2, column" in err
+
+
+def test_a_header_only_corpus_run_says_it_has_no_data_rows(corpus, tmp_path):
+    run = corpus / "plane_rough_H20.csv"
+    run.write_text(run.read_text().splitlines()[0] + "\n")
+    err = one_line_exit_2(cosserat("validate", str(corpus), "--out", str(tmp_path / "report")))
+    assert f"{run}: no data rows after the column header (line 1)" in err
+
+
+# ---------------------------------------------------------------------------- a full disk
+@pytest.fixture
+def one_run(tmp_path):
+    """A corpus of one shipped run (validate with --models mui takes a few seconds)."""
+    import shutil
+
+    from cosserat.analysis.corpus import shipped_corpus
+
+    folder = tmp_path / "one"
+    folder.mkdir()
+    for path in shipped_corpus().glob("plane_rough_H20.*"):
+        shutil.copy(path, folder)
+    return folder
+
+
+def test_validate_onto_a_full_disk_is_one_line(one_run, tmp_path, monkeypatch, capsys):
+    """The writer fails as a full disk makes it fail (ENOSPC): one line, exit 2, and nothing
+    half-written or temporary left in the report folder."""
+    import errno
+
+    from cosserat import _atomic
+    from cosserat.cli import main
+
+    def full(src, dst):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(_atomic.os, "replace", full)
+    out = tmp_path / "report"
+    assert main(["validate", str(one_run), "--out", str(out), "--models", "mui"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert err.startswith(f"cosserat: error: cannot write {out}/run_plane_rough_H20.png: no space")
+    assert list(out.iterdir()) == []
+
+
+def test_validate_onto_a_real_full_file_system(one_run, tmp_path):
+    """The same on a 64 kB tmpfs mounted in a private mount namespace (where the system
+    allows one: unshare -rm)."""
+    import shutil
+
+    if shutil.which("unshare") is None or sys.platform != "linux":
+        pytest.skip("needs unshare (util-linux) on Linux")
+    tiny = tmp_path / "tiny"
+    tiny.mkdir()
+    probe = subprocess.run(
+        ["unshare", "-rm", "sh", "-c", f"mount -t tmpfs -o size=64k tmpfs {tiny}"],
+        capture_output=True,
+        check=False,
+    )
+    if probe.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs in a user namespace here: {probe.stderr!r}")
+    script = (
+        f"mount -t tmpfs -o size=64k tmpfs {tiny} && "
+        f"{sys.executable} -m cosserat validate {one_run} --out {tiny}/report --models mui; "
+        f"echo status=$?; ls -A {tiny}/report"
+    )
+    proc = subprocess.run(
+        ["unshare", "-rm", "sh", "-c", script],
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=600,
+        env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)},
+    )
+    assert "status=2" in proc.stdout, proc.stderr
+    assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
+    assert (
+        f"cannot write {tiny}/report/" in proc.stderr and "no space left on device" in proc.stderr
+    )
+    left = proc.stdout.split("status=2", 1)[1].split()
+    assert not [name for name in left if name.startswith(".")], "temporary files left"

@@ -35,7 +35,7 @@ _LIVE: set[str] = set()
 """The temporary files this process is writing now (removed on success or failure)."""
 _LIVE_LOCK = threading.Lock()
 
-_TEMPORARY = re.compile(r"^\..+\.(?P<pid>\d+)\.[A-Za-z0-9_]+\.tmp[^/]*$")
+_TEMPORARY = re.compile(r"^\.(?P<name>.+)\.(?P<pid>\d+)\.[A-Za-z0-9_]+\.tmp[^/]*$")
 """The name of a temporary file of :func:`atomic_path`; ``pid``: the process writing it."""
 
 
@@ -112,9 +112,11 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         yield Path(tmp)
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the file from others
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and exc.errno and not exc.filename:  # say which file
+            raise OSError(exc.errno, exc.strerror or str(exc), str(target)) from exc
         raise
     finally:
         with _LIVE_LOCK:
@@ -130,6 +132,14 @@ def remove_own_temporaries() -> None:
     for tmp in live:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+
+
+def destination_of(path: str | Path) -> Path:
+    """The file a temporary file of :func:`atomic_path` was to become (``path`` itself if it is
+    not one), for messages about a write that failed."""
+    path = Path(path)
+    match = _TEMPORARY.match(path.name)
+    return path.with_name(match["name"]) if match else path
 
 
 def _running(pid: int) -> bool:

@@ -4,7 +4,8 @@ Bad input (a :class:`~cosserat.errors.CosseratError`, or a usage error) exits wi
 one line on stderr saying what is wrong; anything else is a bug and shows as one (a traceback,
 exit status 1). Ctrl-C and SIGTERM stop the command as cleanly (worker processes stopped,
 temporary files removed, finished outputs kept) and exit with one line and the shell's status,
-130 (128 + SIGINT) or 143 (128 + SIGTERM). Defaults are the paper's, from
+130 (128 + SIGINT) or 143 (128 + SIGTERM). A full disk (or quota, or read-only file system)
+is reported in one line too, exit status 2 (:data:`FULL`). Defaults are the paper's, from
 :mod:`cosserat.config`, filled in by :func:`cosserat.model.build_problem` (the same as for
 sweeps).
 
@@ -16,11 +17,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import signal
 import sys
 import threading
 from collections.abc import Iterator, Sequence
 
+from .._atomic import destination_of
 from .._version import __version__
 from ..errors import CosseratError
 from . import cell, data, dem, models, paper, solve, sweep
@@ -78,6 +81,11 @@ def main(argv: Sequence[str] | None = None) -> int:
             message = " ".join(str(exc).split()) or type(exc).__name__
             print(f"cosserat: error: {message}", file=sys.stderr)
             return 2
+        except OSError as exc:
+            if exc.errno not in FULL:  # anything else is a bug, or a CosseratError already
+                raise
+            print(f"cosserat: error: {_full_message(exc)}", file=sys.stderr)
+            return 2
         except (KeyboardInterrupt, SystemError) as exc:
             if not interrupted(exc):
                 raise
@@ -86,6 +94,21 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"{newline}cosserat: interrupted{'; ' + hint if hint else ''}", file=sys.stderr)
             return TERMINATED if interrupted(exc, Terminated) else INTERRUPTED
     return 0
+
+
+FULL = {getattr(errno, e) for e in ("ENOSPC", "EDQUOT", "EFBIG", "EROFS") if hasattr(errno, e)}
+"""Errors of a write the command line reports in one line (exit 2) wherever they arise: a full
+disk, a quota, a file too large, a read-only file system. They are never bugs, and every
+output is written whole or not at all (:mod:`cosserat._atomic`), so nothing half-written is
+left behind."""
+
+
+def _full_message(exc: OSError) -> str:
+    reason = exc.strerror or str(exc)
+    if not exc.filename:
+        return f"cannot write the output: {reason[:1].lower() + reason[1:]}"
+    name = destination_of(exc.filename)
+    return f"cannot write {name}: {reason[:1].lower() + reason[1:]}"
 
 
 def _raise_terminated(signum: int, frame: object) -> None:
