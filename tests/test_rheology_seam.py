@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from cosserat import Material, ParameterError, Wall, shear_layer_thickness, solve, wall_slip
+from cosserat.errors import MethodNotAvailableError
 from cosserat.model import Channel, CouetteFlow, PlaneShear
 from cosserat.model.mui import MuIChannel, MuIPlaneShear
 from cosserat.model.ngf import NGFPlaneShear
@@ -104,7 +105,7 @@ def test_a_registered_rheology_is_solved_by_the_entry_point():
 
 
 def test_a_method_the_rheology_lacks_is_refused_with_the_alternatives():
-    with pytest.raises(Exception, match="use one of 'closed-form'"):
+    with pytest.raises(MethodNotAvailableError, match="use one of 'closed-form'"):
         solve(NewtonianPlane(), method="numerical")
 
 

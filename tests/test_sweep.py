@@ -11,6 +11,7 @@ import pytest
 from cosserat import CouetteFlow, Material, ParameterError, PlaneShear, Wall, solve
 from cosserat.analysis import shear_layer_thickness, wall_omega, wall_slip
 from cosserat.cli import main
+from cosserat.errors import NoSolutionError
 from cosserat.routes.numerical import wall_quantities
 from cosserat.studies.sweep import load_spec, parse_spec, run_sweep
 
@@ -70,7 +71,7 @@ def test_batched_wall_quantities_match_single_solves():
     for problem, res in zip(PROBLEMS, results, strict=True):
         try:
             prof = solve(problem, rtol=1e-11, check=False)
-        except Exception as exc:
+        except NoSolutionError as exc:
             assert res.status == "no-solution" and "no real solution" in res.message
             assert "no real solution" in str(exc)
             continue
