@@ -13,7 +13,7 @@ import pytest
 PROFILE = "# geometry: plane\n# eps: 0.05\ndistance_d,u_over_uw\n0.5,0.8\n1.5,0.5\n2.5,0.3\n"
 
 
-def cosserat(*args, cwd=None, timeout=120):
+def cosserat(*args, cwd=None, timeout=120, env=None):
     return subprocess.run(
         [sys.executable, "-m", "cosserat", *args],
         capture_output=True,
@@ -21,6 +21,7 @@ def cosserat(*args, cwd=None, timeout=120):
         check=False,
         cwd=cwd,
         timeout=timeout,
+        env=None if env is None else {**os.environ, **env},
     )
 
 
@@ -160,8 +161,12 @@ def test_a_sweep_that_fails_at_start_leaves_no_journal_and_the_next_run_starts(t
     spec = tmp_path / "s.toml"
     spec.write_text("[fixed]\ngeometry = 'plane'\n[grid]\neps = [0.1, 0.05]\n")
     out = tmp_path / "t.csv"
-    # no scheduler listens on port 1: the sweep fails before any row
-    failed = cosserat("sweep", str(spec), "--out", str(out), "--scheduler", "tcp://127.0.0.1:1")
+    # no scheduler listens on port 1: the sweep fails before any row (within 2 s, not Dask's
+    # default 30 s of retries)
+    failed = cosserat(
+        "sweep", str(spec), "--out", str(out), "--scheduler", "tcp://127.0.0.1:1",
+        env={"DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT": "2s"},
+    )  # fmt: skip
     assert "cannot connect to the Dask scheduler" in one_line_exit_2(failed)
     assert not (tmp_path / "t.csv.part").exists() and not out.exists()
     # a journal with its header and no row (left by an older version, or a crash) holds
@@ -339,6 +344,7 @@ def test_validate_onto_a_full_disk_is_one_line(one_run, tmp_path, monkeypatch, c
     assert list(out.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_validate_onto_a_real_full_file_system(one_run, tmp_path):
     """The same on a 64 kB tmpfs mounted in a private mount namespace (where the system
     allows one: unshare -rm)."""

@@ -39,6 +39,7 @@ def test_compare_is_exact_on_noise_free_model_data():
     assert cmp.rms < 1e-14 and cmp.chi2 < 1e-20
 
 
+@pytest.mark.slow
 def test_recovery_coverage_over_many_seeds():
     """68% nominal: the true value lies within one standard error in about 68% of fits."""
     n = 120

@@ -17,10 +17,7 @@ from pathlib import Path
 
 import pytest
 
-pytestmark = [
-    pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc (Linux)"),
-    pytest.mark.slow,
-]
+pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc (Linux)")
 
 GONE_WITHIN = 10.0
 """Seconds the workers may take to end after their parent (they take well under one)."""

@@ -99,6 +99,7 @@ def test_sweep_records_every_case_and_is_the_same_in_one_or_two_processes(tmp_pa
     assert all(np.isfinite(r["Delta"]) for r in fine)
 
 
+@pytest.mark.slow
 def test_sweep_on_a_dask_local_cluster_gives_the_same_rows():
     distributed = pytest.importorskip("distributed")
     spec = parse_spec(__import__("tomllib").loads(SPEC))
@@ -299,6 +300,7 @@ def _interrupt_after(proc, journal, rows, sig):
     return proc.communicate(timeout=300)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", ["SIGINT", "SIGKILL"])
 def test_an_interrupted_sweep_keeps_its_rows_and_resume_computes_only_the_rest(tmp_path, sig):
     import signal
@@ -363,6 +365,7 @@ def test_resume_refuses_a_journal_of_another_spec(tmp_path):
         run_sweep_to_table(spec, tmp_path / "t.csv", resume=True, workers=1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("allowed_failures", [3, 0])
 def test_a_dask_worker_killed_mid_sweep_loses_no_row(allowed_failures):
     """A worker process is killed (SIGKILL) while it holds tasks. With Dask's default retries

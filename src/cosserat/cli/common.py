@@ -237,8 +237,9 @@ def set_interrupt_hint(hint: str | None) -> None:
 
 def interrupt_hint() -> str | None:
     """The hint :func:`set_interrupt_hint` left, once (then cleared)."""
-    hint, _STATE["interrupt_hint"] = _STATE["interrupt_hint"], None
-    return hint  # type: ignore[no-any-return]
+    hint: str | None = _STATE["interrupt_hint"]
+    _STATE["interrupt_hint"] = None
+    return hint
 
 
 def interrupted(exc: BaseException | None, kind: type[BaseException] = KeyboardInterrupt) -> bool:
