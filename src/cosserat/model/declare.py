@@ -48,6 +48,7 @@ Role = Literal["material", "wall", "cell", "drive", "option"]
 ROLES: tuple[str, ...] = ("material", "wall", "cell", "drive", "option")
 Scale = Literal["linear", "log"]
 
+
 class _Required:
     """The type of :data:`REQUIRED`."""
 
@@ -95,6 +96,11 @@ class Param:
         None is a valid value (the default then says what None means).
     key : str
         The name on the command line and in sweep specs when it differs from ``name``.
+    numeric : bool
+        False for a parameter that takes only one of its ``choices`` (a boundary condition).
+    cells : tuple of str
+        The cells the parameter applies to (empty: every cell); a wall parameter of the plane
+        cell's fixed lower plate, for instance.
     """
 
     name: str = ""
@@ -111,6 +117,8 @@ class Param:
     choices: tuple[str, ...] = ()
     optional: bool = False
     key: str = ""
+    numeric: bool = True
+    cells: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.role not in ROLES:
@@ -140,6 +148,10 @@ class Param:
     @property
     def fittable(self) -> bool:
         return self.fit_range is not None
+
+    def applies_to(self, cell: str) -> bool:
+        """True if the parameter applies to the cell named ``cell``."""
+        return not self.cells or cell in self.cells
 
     def admits(self, x: float) -> bool:
         """True if ``x`` lies inside the bounds (ends included where ``closed`` says)."""
@@ -177,6 +189,11 @@ class Param:
             for choice in self.choices:
                 if word == choice or word.replace("_", "-") == choice:
                     return choice
+        if not self.numeric:
+            raise ParameterError(
+                f"{n} ({self.meaning}) must be one of "
+                f"{', '.join(repr(c) for c in self.choices)}; got {value!r}"
+            )
         if isinstance(value, bool) or not isinstance(value, numbers.Real | str):
             raise ParameterError(
                 f"{n} ({self.meaning}) must be a number{self._or()}; got {value!r}"
@@ -200,6 +217,16 @@ class Param:
     def _or(self) -> str:
         return "".join(f" or {c!r}" for c in self.choices) + (" or None" if self.optional else "")
 
+    def default_text(self) -> str:
+        """The default as help texts show it (``config.text``); "required" if there is none."""
+        from ..config import text
+
+        if not self.has_default:
+            return "required"
+        if isinstance(self.default, bool) or not isinstance(self.default, numbers.Real):
+            return str(self.default)
+        return text(float(self.default))
+
     def to_dict(self) -> dict[str, Any]:
         """Plain data (for JSON, ``cosserat models --format json`` and the docs' tables)."""
         return {
@@ -212,20 +239,33 @@ class Param:
             "scale": self.scale,
             "role": self.role,
             "source": self.source,
+            "choices": list(self.choices),
+            "cells": list(self.cells),
         }
+
+
+_SAME: Any = object()
 
 
 def param(
     default: Any = REQUIRED,
     meaning: str = "",
     unit: str = "-",
+    *,
+    field_default: Any = _SAME,
     **spec: Any,
 ) -> Any:
-    """A dataclass field declared with its :class:`Param` (``spec``: its other attributes)."""
+    """A dataclass field declared with its :class:`Param` (``spec``: its other attributes).
+
+    ``field_default``: the field's own default when it differs from the declared one: None for
+    a value the class resolves itself (a wall's inertial number takes its declared default
+    unless the wall stress is imposed instead).
+    """
     declared = Param(meaning=meaning, unit=unit, default=default, **spec)
-    if default is REQUIRED:
+    value = default if field_default is _SAME else field_default
+    if value is REQUIRED:
         return dataclasses.field(metadata={"param": declared})
-    return dataclasses.field(default=default, metadata={"param": declared})
+    return dataclasses.field(default=value, metadata={"param": declared})
 
 
 def declarations(cls: Any) -> dict[str, Param]:
