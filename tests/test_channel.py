@@ -27,15 +27,19 @@ from scipy.optimize import brentq
 from cosserat import (
     Channel,
     ConvergenceError,
+    Cosserat,
     MethodNotAvailableError,
+    MuI,
     NoSolutionError,
     ParameterError,
+    Problem,
+    VerticalChannel,
     shear_layer_thickness,
     solve,
     wall_omega,
     wall_slip,
 )
-from cosserat.model import build_problem
+from cosserat.model import make_problem
 from cosserat.model.parameters import Material, Wall
 from cosserat.routes.airy import I_INFINITY, xi_hat_at_fraction
 from cosserat.routes.channel import asymptotic_thickness
@@ -48,7 +52,7 @@ def smooth(eps: float, **kw) -> Channel:  # type: ignore[no-untyped-def]
 
 
 def rough(eps: float) -> Channel:
-    return Channel(material=MAT, wall=Wall.fully_rough(), eps=eps)
+    return Problem(VerticalChannel(eps=eps), Cosserat(material=MAT, wall=Wall.fully_rough()))
 
 
 CASES = {
@@ -72,7 +76,7 @@ def test_statics_from_the_balances():
     np.testing.assert_allclose(p.sigma_yx(x), 2.0 * math.tan(math.radians(20.0)) * (x - 0.5))
     # friction fully mobilised by default: B nu = 2 tan(delta), the same group as plane shear
     assert p.B * p.nu == pytest.approx(2.0 * math.tan(math.radians(20.0)), rel=1e-15)
-    assert p.slips and not smooth(0.01, B=0.5).slips
+    assert p.equations.slips and not smooth(0.01, B=0.5).slips
 
 
 def test_lower_half_is_the_mirror_image_by_construction(solved):
@@ -102,7 +106,7 @@ def test_wall_and_centre_conditions(solved):
     ends = prof.evaluate([0.0, 0.5, 1.0])
     assert ends.u[1] == pytest.approx(1.0, abs=1e-12)
     assert ends.m[1] == pytest.approx(-math.sqrt(MAT.c2), abs=1e-14)
-    if problem.slips:
+    if problem.equations.slips:
         eK = problem.eps * problem.wall.K
         assert ends.u[2] == pytest.approx(eK * ends.omega[2], abs=1e-12)
         # construction check: the lower half is the reflection of the upper one
@@ -185,7 +189,7 @@ def bvp_profile(problem: Channel):  # type: ignore[no-untyped-def]
     c = math.sqrt(MAT.c2)
     m0 = -(c - centre_series(problem) * s0**2)
     ea = problem.eps * MAT.alpha
-    eK = problem.eps * problem.wall.K if problem.slips else 0.0
+    eK = problem.eps * problem.wall.K if problem.equations.slips else 0.0
 
     def rhs(t, y, par):  # type: ignore[no-untyped-def]
         s = np.exp(t)
@@ -197,13 +201,13 @@ def bvp_profile(problem: Channel):  # type: ignore[no-untyped-def]
         return np.array([ya[0] - m0, yb[1], yb[2] - eK * par[0], ya[2] - 1.0])
 
     # the leading-order layer as the first guess (k = 1 stands in at fully rough walls)
-    k = problem.slip_constants.k or 1.0
-    K = problem.wall.K if problem.slips else 0.0
+    k = problem.equations.slip_constants.k or 1.0
+    K = problem.wall.K if problem.equations.slips else 0.0
     t = np.linspace(math.log(s0), math.log(0.5), 400)
     x = 0.5 + np.exp(t)
     decay = np.exp(-k * (1 - x) / problem.eps)
     guess = np.vstack(
-        [problem.outer_couple_stress(x), np.log(decay), 1.0 - (2 / k) / (K + 2 / k) * decay]
+        [problem.equations.outer_couple_stress(x), np.log(decay), 1.0 - (2 / k) / (K + 2 / k) * decay]
     )
     w_guess = 1.0 / (problem.eps * (K + 2 / k))
     sol = solve_bvp(rhs, bc, t, guess, p=[w_guess], tol=1e-8, max_nodes=200000)
@@ -260,7 +264,7 @@ def whole_width_bvp(problem: Channel):  # type: ignore[no-untyped-def]
     c = math.sqrt(MAT.c2)
     m0 = -(c - centre_series(problem) * s0**2)
     ea = problem.eps * MAT.alpha
-    eK = problem.eps * problem.wall.K if problem.slips else 0.0
+    eK = problem.eps * problem.wall.K if problem.equations.slips else 0.0
 
     def rhs(t, y, par):  # type: ignore[no-untyped-def]
         s = np.exp(t)
@@ -285,11 +289,11 @@ def whole_width_bvp(problem: Channel):  # type: ignore[no-untyped-def]
             ]
         )  # fmt: skip
 
-    k = problem.slip_constants.k or 1.0
-    K = problem.wall.K if problem.slips else 0.0
+    k = problem.equations.slip_constants.k or 1.0
+    K = problem.wall.K if problem.equations.slips else 0.0
     t = np.linspace(math.log(s0), math.log(0.5), 400)
     d = 0.5 - np.exp(t)  # distance from the wall
-    m_out = problem.outer_couple_stress(0.5 + np.exp(t))
+    m_out = problem.equations.outer_couple_stress(0.5 + np.exp(t))
     guess = []
     for kk in (k, 0.7 * k):  # asymmetric: the lower half's layer 1/0.7 times thicker
         decay = np.exp(-kk * d / problem.eps)
@@ -429,7 +433,7 @@ def test_asymptotic_route_approaches_the_numerical_one_fully_rough_walls():
     errs = np.array([asymptotic_errors(rough(e)) for e in eps])
     du, dD = errs[:, 0], np.abs(errs[:, 1])
     pr = rough(1e-6)
-    D1 = pr.wall.K / (2.0 * pr.inner_scale() * I_INFINITY)
+    D1 = pr.wall.K / (2.0 * pr.equations.inner_scale() * I_INFINITY)
     lead = D1 * eps ** (1.0 / 3.0)
     assert np.all(np.abs(du / lead - 1.0) < eps ** (1.0 / 3.0))
     gamma_over_a2 = 4.0 * MAT.c2 / (0.5 * MAT.sin_phi) ** 2
@@ -551,10 +555,10 @@ def test_asymptotic_route_refuses_thick_layers():
         solve(smooth(0.05), method="asymptotic")
 
 
-def test_build_problem_and_pickle():
-    p = build_problem({"geometry": "channel", "eps": 0.02})
-    assert isinstance(p, Channel) and p.slips
-    assert build_problem({"geometry": "channel", "eps": 0.02, "B": 0.6}).case.value.endswith(
+def test_make_problem_and_pickle():
+    p = make_problem("cosserat", "channel", {"eps": 0.02})
+    assert p.cell_name == "channel" and p.equations.slips
+    assert make_problem("cosserat", "channel", {"eps": 0.02, "B": 0.6}).equations.case.value.endswith(
         "not-slip"
     )
     prof = solve(p)
@@ -588,9 +592,8 @@ def mui_velocity_by_hand(problem, x):  # type: ignore[no-untyped-def]
 
 @pytest.mark.parametrize("B", [0.8, 1.0, 1.25])
 def test_mui_channel_closed_form(B):
-    from cosserat.model.mui import MuIChannel
 
-    problem = MuIChannel(eps=0.01, B=B)
+    problem = Problem(VerticalChannel(eps=0.01, B=B), MuI())
     prof = solve(problem, method="closed-form")
     x = np.linspace(0.0, 1.0, 101)
     u_hand, I_w = mui_velocity_by_hand(problem, x)
@@ -616,12 +619,11 @@ def test_mui_channel_closed_form(B):
 
 
 def test_mui_channel_without_flow_or_without_steady_rate():
-    from cosserat.model.mui import MuIChannel
 
     with pytest.raises(NoSolutionError, match="plug"):
-        MuIChannel(eps=0.01, B=0.7)  # B nu/2 = 0.35 < mu_s = 0.382
+        Problem(VerticalChannel(eps=0.01, B=0.7), MuI())  # B nu/2 = 0.35 < mu_s = 0.382
     with pytest.raises(NoSolutionError, match="mu_2"):
-        MuIChannel(eps=0.01, B=1.4)  # B nu/2 = 0.7 > mu_2 = 0.644
+        Problem(VerticalChannel(eps=0.01, B=1.4), MuI())  # B nu/2 = 0.7 > mu_2 = 0.644
 
 
 def test_wall_quantities_match_the_profiles():

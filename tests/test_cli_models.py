@@ -8,12 +8,12 @@ import dataclasses
 import json
 
 import pytest
+from cosserat.model.rheology import Rheology
 
-from cosserat import solve
+from cosserat import Couette, Plane, Problem, solve
 from cosserat.cli import main, make_parser
 from cosserat.cli.params import parameters_of, valid_keys
 from cosserat.model.mui import MuI, MuICouetteFlow, MuIPlaneShear
-from cosserat.model.rheology import Rheology
 from cosserat.routes import RHEOLOGIES
 
 
@@ -37,7 +37,7 @@ def test_mui_through_param_is_the_api_problem(capsys):
     )  # fmt: skip
     assert code == 0
     record = json.loads(out)
-    problem = MuICouetteFlow(rheology=MuI(mu_s=0.4), eps=0.01, Ri=2.0, I_w=0.05)
+    problem = Problem(Couette(eps=0.01, Ri=2.0, I_w=0.05), MuI(mu_s=0.4))
     assert record["parameters"] == problem.parameters()
     assert record["u"] == solve(problem, points=21).u.tolist()
     assert record["r"][0] == 2.0 and "m" not in record["columns"]
@@ -50,7 +50,7 @@ def test_cell_options_map_to_any_model_that_has_them(capsys):
     )  # fmt: skip
     assert code == 0
     params = json.loads(out)["parameters"]
-    assert params == MuIPlaneShear(eps=0.01, B=2.0, nu=0.6).parameters()
+    assert params == Problem(Plane(eps=0.01, B=2.0, nu=0.6), MuI()).parameters()
 
 
 def test_cosserat_param_is_the_same_as_its_option(capsys):

@@ -14,28 +14,37 @@ import pickle
 
 import numpy as np
 import pytest
+from cosserat.model.rheology import Cell
 from scipy.optimize import brentq
 
-from cosserat import NoSolutionError, ParameterError, shear_layer_thickness, solve, wall_slip
+from cosserat import (
+    Couette,
+    NoSolutionError,
+    ParameterError,
+    Plane,
+    Problem,
+    shear_layer_thickness,
+    solve,
+    wall_slip,
+)
 from cosserat.config import DEFAULT_F, MUI_I0, MUI_MU_2, MUI_MU_S
 from cosserat.errors import MethodNotAvailableError
-from cosserat.model.mui import MuI, MuICouetteFlow, MuIPlaneShear
-from cosserat.model.rheology import Cell
+from cosserat.model.mui import MuI, MuICouetteFlow
 from cosserat.routes import MUI, RHEOLOGIES
 from cosserat.routes.mui import plug_mask
 
 LAW = MuI()
 COUETTE = [
-    MuICouetteFlow(eps=0.01, Ri=1.0, I_w=0.01),  # plug in the outer part
-    MuICouetteFlow(eps=0.01, Ri=0.2, I_w=0.05),
-    MuICouetteFlow(eps=0.02, Ri=5.0, I_w=0.2),  # no plug
-    MuICouetteFlow(eps=0.01, Ri=1.0, I_w=0.9),  # mu within 1e-8 of mu_2 at the wall
-    MuICouetteFlow(eps=0.01, Ri=1.0, I_w=1e-5),  # a thin layer
+    Problem(Couette(eps=0.01, Ri=1.0, I_w=0.01), MuI()),  # plug in the outer part
+    Problem(Couette(eps=0.01, Ri=0.2, I_w=0.05), MuI()),
+    Problem(Couette(eps=0.02, Ri=5.0, I_w=0.2), MuI()),  # no plug
+    Problem(Couette(eps=0.01, Ri=1.0, I_w=0.9), MuI()),  # mu within 1e-8 of mu_2 at the wall
+    Problem(Couette(eps=0.01, Ri=1.0, I_w=1e-5), MuI()),  # a thin layer
 ]
 PLANE_G = [
-    MuIPlaneShear(eps=0.01, B=1.0, I_w=0.01),
-    MuIPlaneShear(eps=0.01, B=0.3, nu=0.6, I_w=0.1),
-    MuIPlaneShear(eps=0.01, B=10.0, I_w=1.0),
+    Problem(Plane(eps=0.01, B=1.0, I_w=0.01), MuI()),
+    Problem(Plane(eps=0.01, B=0.3, nu=0.6, I_w=0.1), MuI()),
+    Problem(Plane(eps=0.01, B=10.0, I_w=1.0), MuI()),
 ]
 
 
@@ -73,7 +82,7 @@ def test_couette_closed_form_agrees_with_numerical(problem):
 
 @pytest.mark.parametrize("I_w", [1e-4, 0.01, 0.5])
 def test_plane_shear_without_gravity_is_uniform_at_mu_of_I_w(I_w):
-    problem = MuIPlaneShear(eps=0.02, I_w=I_w)
+    problem = Problem(Plane(eps=0.02, I_w=I_w), MuI())
     for method in ("closed-form", "numerical"):
         p = solve(problem, method=method)
         np.testing.assert_allclose(p.u, p.xi, atol=1e-12)
@@ -133,7 +142,7 @@ NS = np.array([65, 129, 257, 513, 1025, 2049])
 def test_an_independent_discretisation_converges_at_second_order_where_the_rate_is_smooth(
     problem,
 ):
-    assert problem.plug_extent(solve(problem, check=False).diagnostics.stats["gap_to_mu_2"]) is None
+    assert problem.equations.plug_extent(solve(problem, check=False).diagnostics.stats["gap_to_mu_2"]) is None
     errors = _trapezoid_errors(problem, NS)
     order = -np.polyfit(np.log(NS - 1.0), np.log(errors), 1)[0]
     assert 1.9 < order < 2.1, (order, errors)
@@ -159,7 +168,7 @@ def test_an_independent_discretisation_agrees_across_a_plug_edge(problem):
 @pytest.mark.parametrize("problem", COUETTE + PLANE_G, ids=lambda p: p.describe()[:40])
 def test_walls_monotone_friction_range_and_plug(problem):
     p = solve(problem, method="numerical")
-    mw, fw = problem.moving_wall, problem.fixed_wall
+    mw, fw = problem.equations.moving_wall, problem.equations.fixed_wall
     ends = p.evaluate([mw, fw])
     assert ends.u[0] == pytest.approx(problem.wall_velocity(mw), abs=1e-12)
     assert ends.u[1] == 0.0
@@ -170,7 +179,7 @@ def test_walls_monotone_friction_range_and_plug(problem):
     np.testing.assert_array_equal(plug, mu <= LAW.mu_s)
     # mu_2 - mu from the statics (|sigma_yx|/sigma_yy rounds to mu_2 when the wall is within
     # round-off of saturation, B = 10 and I_w = 1 here)
-    gap = problem.saturation_gap(p.xi, p.diagnostics.stats["gap_to_mu_2"])
+    gap = problem.equations.saturation_gap(p.xi, p.diagnostics.stats["gap_to_mu_2"])
     assert np.all((mu[~plug] > LAW.mu_s) & (gap[~plug] > 0.0))
     assert np.all(p.u[plug] == 0.0) and np.all(p.du_dxi[plug] == 0.0)
     extent = p.diagnostics.stats["plug"]
@@ -207,7 +216,7 @@ def test_quasi_static_limit_couette_is_a_parabolic_layer_of_width_sqrt_I_w():
     I_ws = np.array([1e-4, 1e-5, 1e-6, 1e-7])
     shape_err, width_err = [], []
     for I_w in I_ws:
-        problem = MuICouetteFlow(eps=1e-3, Ri=Ri, I_w=I_w)
+        problem = Problem(Couette(eps=1e-3, Ri=Ri, I_w=I_w), MuI())
         p = solve(problem, method="closed-form", check=False)
         xi_c = p.diagnostics.stats["plug"][0]
         width_err.append(abs(xi_c / (scale * math.sqrt(I_w)) - 1.0))
@@ -226,7 +235,7 @@ def test_quasi_static_limit_plane_shear_under_gravity_is_a_parabolic_surface_lay
     I_ws = np.array([1e-4, 1e-5, 1e-6, 1e-7])
     errs = []
     for I_w in I_ws:
-        p = solve(MuIPlaneShear(eps=1e-3, B=B, I_w=I_w), method="numerical", check=False)
+        p = solve(Problem(Plane(eps=1e-3, B=B, I_w=I_w), MuI()), method="numerical", check=False)
         h = 1.0 - p.diagnostics.stats["plug"][1]
         assert h / (scale * math.sqrt(I_w)) == pytest.approx(1.0, rel=10 * h)
         errs.append(np.max(np.abs(p.evaluate(1.0 - h + eta * h).u - eta**2)))
@@ -238,13 +247,13 @@ def test_quasi_static_limit_plane_shear_under_gravity_is_a_parabolic_surface_lay
 @pytest.mark.parametrize("method", ["closed-form", "numerical"])
 def test_a_stress_ratio_at_or_above_mu_2_has_no_steady_solution(method):
     for problem, where in (
-        (MuICouetteFlow(eps=0.01, Ri=1.0, stress_ratio=0.7), "inner cylinder"),
-        (MuIPlaneShear(eps=0.01, stress_ratio=MUI_MU_2), "upper wall"),
+        (Problem(Couette(eps=0.01, Ri=1.0, stress_ratio=0.7), MuI()), "inner cylinder"),
+        (Problem(Plane(eps=0.01, stress_ratio=MUI_MU_2), MuI()), "upper wall"),
     ):
         with pytest.raises(NoSolutionError, match=rf">= mu_2 = 0.643468 at the .*{where}"):
             solve(problem, method=method)
     with pytest.raises(NoSolutionError, match="whole gap is a plug"):
-        solve(MuICouetteFlow(eps=0.01, Ri=1.0, stress_ratio=0.3), method=method)
+        solve(Problem(Couette(eps=0.01, Ri=1.0, stress_ratio=0.3), MuI()), method=method)
     with pytest.raises(NoSolutionError, match="no steady shear rate"):
         LAW.inertial_number(np.array([0.5, 0.65]))
 
@@ -256,14 +265,17 @@ def test_a_stress_ratio_at_or_above_mu_2_has_no_steady_solution(method):
         (lambda: MuI(mu_2=0.3), "mu_2 must satisfy mu_2 > mu_s = 0.381863; got 0.3"),
         (lambda: MuI(I_0=0.0), "I_0 must satisfy I_0 > 0; got 0"),
         (lambda: MuI(I_0=float("nan")), "I_0 must be finite"),
-        (lambda: MuIPlaneShear(eps=0.01, I_w=0.0), r"I_w .* must satisfy 0 < I_w <= 1 .*; got 0"),
-        (lambda: MuIPlaneShear(eps=0.01, I_w=2.0), r"0 < I_w <= 1 .*; got 2"),
-        (lambda: MuIPlaneShear(eps=0.01, I_w=0.1, stress_ratio=0.5), "not both"),
-        (lambda: MuIPlaneShear(eps=0.7), "eps = d_p/H must satisfy 0 < eps <= 0.5"),
-        (lambda: MuIPlaneShear(eps=0.01, B=-1.0), "B = rho_p g H / N must satisfy 0 <= B"),
-        (lambda: MuIPlaneShear(eps=0.01, nu=0.0), "nu .* must satisfy 0 < nu <= 1"),
-        (lambda: MuICouetteFlow(eps=0.01, Ri=0.0), "Ri = R_i/H must satisfy 0.001 <= Ri"),
-        (lambda: MuICouetteFlow(eps=0.01, Ri=1.0, rheology=1), "rheology must be a MuI"),
+        (
+            lambda: Problem(Plane(eps=0.01, I_w=0.0), MuI()),
+            r"I_w .* must satisfy 0 < I_w <= 1 .*; got 0",
+        ),
+        (lambda: Problem(Plane(eps=0.01, I_w=2.0), MuI()), r"0 < I_w <= 1 .*; got 2"),
+        (lambda: Problem(Plane(eps=0.01, I_w=0.1, stress_ratio=0.5), MuI()), "not both"),
+        (lambda: Problem(Plane(eps=0.7), MuI()), "eps = d_p/H must satisfy 0 < eps <= 0.5"),
+        (lambda: Problem(Plane(eps=0.01, B=-1.0), MuI()), "B = rho_p g H / N must satisfy 0 <= B"),
+        (lambda: Problem(Plane(eps=0.01, nu=0.0), MuI()), "nu .* must satisfy 0 < nu <= 1"),
+        (lambda: Problem(Couette(eps=0.01, Ri=0.0), MuI()), "Ri = R_i/H must satisfy 0.001 <= Ri"),
+        (lambda: Problem(Couette(eps=0.01, Ri=1.0), 1), "rheology must be a MuI"),
     ],
 )
 def test_parameter_errors_name_the_parameter_and_the_bound(make, match):
@@ -272,7 +284,7 @@ def test_parameter_errors_name_the_parameter_and_the_bound(make, match):
 
 
 def test_defaults_and_options():
-    assert MuICouetteFlow(eps=0.01, Ri=1.0).I_w == 0.01
+    assert Problem(Couette(eps=0.01, Ri=1.0), MuI()).I_w == 0.01
     with pytest.raises(ParameterError, match="rtol must satisfy"):
         solve(COUETTE[0], method="numerical", rtol=1.0)
     with pytest.raises(ParameterError, match="do not apply"):
@@ -285,7 +297,7 @@ def test_defaults_and_options():
 
 @pytest.mark.parametrize("method", ["closed-form", "numerical"])
 def test_profiles_pickle_with_their_evaluator(method):
-    for problem in (COUETTE[0], MuIPlaneShear(eps=0.05)):
+    for problem in (COUETTE[0], Problem(Plane(eps=0.05), MuI())):
         p = solve(problem, method=method, points=21)
         back = pickle.loads(pickle.dumps(p))
         np.testing.assert_array_equal(back.u, p.u)

@@ -127,7 +127,7 @@ def test_models_not_defined_on_a_cell_are_listed_with_the_reason():
 
 def test_model_problem_and_parameters():
     p = model_problem("cosserat", "plane", {"eps": 0.1, "B": 1.0, "delta": "fully-rough"})
-    assert p.upper.is_fully_rough and p.B == 1.0
+    assert p.rheology.wall.is_fully_rough and p.cell.B == 1.0
     q = set_parameters(p, {"delta": 20.0, "K": 0.3, "phi": 30.0})
     assert get_parameter(q, "delta") == pytest.approx(20.0) and q.upper.K == 0.3
     m = model_problem("mui", "couette", {"eps": 0.1, "Ri": 1.0, "mu_s": 0.4})

@@ -6,12 +6,14 @@ from dataclasses import replace
 
 import pytest
 
-from cosserat import Material, PlaneShear, Wall
+from cosserat import Cosserat, Material, Plane, PlaneShear, Problem, Wall
 from cosserat.analysis.sensitivity import existence_bound_A, has_solution
 
 
 def fully_rough_gravity(eps: float, B: float) -> PlaneShear:
-    return PlaneShear(material=Material(28.5), upper=Wall.fully_rough(0.5), eps=eps, B=B)
+    return Problem(
+        Plane(eps=eps, B=B), Cosserat(material=Material(28.5), wall=Wall.fully_rough(0.5))
+    )
 
 
 def test_the_papers_bound_appears_at_eps_B_nu_of_0_02():

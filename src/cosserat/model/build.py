@@ -25,7 +25,7 @@ from typing import Any
 from ..errors import ParameterError
 from .cells import CELLS, cell_class
 from .declare import Param
-from .problem import Problem
+from .problem import Problem, pair_parameters
 from .rheologies import RHEOLOGIES, rheology_class
 
 UNAVAILABLE = ("kinetic",)
@@ -67,13 +67,7 @@ def problem_parameters(model: str, cell: str) -> dict[str, Param]:
         As :func:`check_pair`.
     """
     check_pair(model, cell)
-    law, geometry = RHEOLOGIES[model], CELLS[cell]
-    out = dict(law.declared(cell))
-    for key, p in geometry.declared().items():
-        if p.role == "drive" and not law.rate_dependent:
-            continue
-        out[key] = p
-    return out
+    return pair_parameters(RHEOLOGIES[model], CELLS[cell])
 
 
 def make_problem(model: str, cell: str, values: Mapping[str, Any] | None = None) -> Problem:

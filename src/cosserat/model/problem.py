@@ -116,10 +116,8 @@ class Problem:
 
     def declared(self) -> dict[str, Param]:
         """Every parameter of this problem by its command-line key, with its declaration
-        (:func:`~cosserat.model.build.problem_parameters`)."""
-        from .build import problem_parameters
-
-        return problem_parameters(self.model, self.cell_name)
+        (:func:`pair_parameters`)."""
+        return pair_parameters(type(self.rheology), type(self.cell))
 
     def cell_values(self) -> dict[str, Any]:
         """The cell's parameters this rheology reads, by key (I_w resolved to its default
@@ -189,6 +187,18 @@ class Problem:
         return self.equations.parameters()
 
 
+def pair_parameters(law: type[Rheology], cell: type[Cell]) -> dict[str, Param]:
+    """The parameters of the rheology ``law`` on the cell ``cell`` by command-line key, with
+    their declarations: the law's (those that apply to this cell), then the cell's (its drive
+    only for a rate-dependent law)."""
+    out = dict(law.declared(cell.name))
+    for key, p in cell.declared().items():
+        if p.role == "drive" and not law.rate_dependent:
+            continue
+        out[key] = p
+    return out
+
+
 def _fields(obj: Any) -> dict[str, Any]:
     from .declare import declarations
 
@@ -201,4 +211,4 @@ def _init_values(obj: Any) -> dict[str, Any]:
     return {f.name: getattr(obj, f.name) for f in dataclasses.fields(obj) if f.init}
 
 
-__all__ = ["Problem"]
+__all__ = ["Problem", "pair_parameters"]

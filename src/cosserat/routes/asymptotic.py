@@ -110,14 +110,8 @@ def require_valid(eq: Any, thickness: float) -> None:
             f"method='numerical'"
         )
     m0 = outer_couple_stress(eq, x)
-    form = (
-        eq.formulation(float(m0[0]))
-        if eq.problem.cell_name == "couette"
-        else (eq.formulation())
-    )
-    need = (
-        eq.eps * eq.material.alpha * np.abs(np.gradient(m0, x) + form.curvature(x) * m0)
-    )
+    form = eq.formulation(float(m0[0])) if eq.problem.cell_name == "couette" else (eq.formulation())
+    need = eq.eps * eq.material.alpha * np.abs(np.gradient(m0, x) + form.curvature(x) * m0)
     a = 0.5 * np.abs(np.asarray(form.sigma_yx(x, m0), dtype=float))
     if np.any(need > 0.5 * a):
         i = int(np.argmax(need / np.maximum(a, 1e-300)))

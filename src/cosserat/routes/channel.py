@@ -231,7 +231,9 @@ def _finish(
     )
     if not check:
         return profile
-    res = residuals(problem.equations.mapped_formulation(), _mapped_evaluator(evaluate), check_grid(problem))
+    res = residuals(
+        problem.equations.mapped_formulation(), _mapped_evaluator(evaluate), check_grid(problem)
+    )
     bc = problem.equations.boundary_errors(evaluate)
     return replace(profile, diagnostics=replace(profile.diagnostics, residuals=res, bc_errors=bc))
 

@@ -20,8 +20,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError, MethodNotAvailableError
-from ..model.constitutive import FloatArray
 from ..model import PlaneShearCase, Problem
+from ..model.constitutive import FloatArray
 from ..model.rheologies.cosserat import CosseratPlane
 from ..results.profile import Fields, Profile
 from .assemble import make_profile

@@ -123,22 +123,36 @@ def _quad_intervals(eq: MuIFlow, gap: float, nodes: FloatArray, rtol: float) -> 
     if not info.success:
         # round-off in the smallest pieces (at the plug edge, where I -> 0) can keep the
         # global estimate above the target: integrate piece by piece, each to its own rtol
-        return _quad_each(f, nodes, live, rtol, eq)
+        return _quad_each(f, nodes, live, rtol, eq, gap)
     out[live] = value
     return out
 
 
-def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow):  # type: ignore[no-untyped-def]
-    """The pieces of :func:`_quad_intervals` one by one with QUADPACK (slower, robust)."""
+def _rounding(eq: MuIFlow, gap: float, a: float, b: float) -> float:
+    """The integral over [a, b] of the integrand's own rounding error: the excess mu - mu_s
+    is known to about eps (mu_2 - mu_s), so I = I_0 excess/(mu_2 - mu) to about
+    I_0 eps (mu_2 - mu_s)/(mu_2 - mu), largest at a (nearest the peak wall) [-]. A piece
+    cannot be integrated more precisely than this."""
+    law, t = eq.rheology, np.array([a])
+    g = float(eq.saturation_gap_at(t, gap)[0])
+    scale = math.sqrt(float(eq.cell.normal_stress_at(t)[0])) / float(eq.cell.radius_at(t)[0])
+    return 8.0 * np.finfo(float).eps * (b - a) * law.I_0 * (law.mu_2 - law.mu_s) / g * scale
+
+
+def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow, gap: float):  # type: ignore[no-untyped-def]
+    """The pieces of :func:`_quad_intervals` one by one with QUADPACK (slower, robust), each
+    to its own rtol or to the rounding of its integrand (:func:`_rounding`)."""
     out = np.zeros(nodes.size - 1)
     for i in np.flatnonzero(live):
         a, b = nodes[i], nodes[i + 1]
+        floor = _rounding(eq, gap, a, b)
         with warnings.catch_warnings():
             warnings.simplefilter("error", IntegrationWarning)
             try:
                 out[i] = quad(
-                    lambda t: float(f(np.array([t]))[0]), a, b, epsabs=0.0, epsrel=rtol, limit=200
-                )[0]
+                    lambda t: float(f(np.array([t]))[0]), a, b, epsabs=floor, epsrel=rtol,
+                    limit=200,
+                )[0]  # fmt: skip
             except IntegrationWarning as exc:
                 raise ConvergenceError(
                     f"mu(I) quadrature at distances [{a:.6g}, {b:.6g}] from the "
@@ -147,10 +161,19 @@ def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow)
     return out
 
 
+ROUNDING_EXCESS = 64.0 * np.finfo(float).eps
+"""An excess of the peak stress ratio over mu_s below this fraction of mu_2 - mu_s is rounding:
+the rate there is noise of its own size, and the velocity integral is taken as 0 (no flow)."""
+
+
 def _numerical_velocity(eq: MuIFlow, gap: float, I_w: float, x: FloatArray, rtol: float):
     """u at ``x`` by quadrature from the wall at rest, and the scale integral G (module
-    docstring: I_w = G)."""
+    docstring: I_w = G). A stress level within rounding of mu_s (:data:`ROUNDING_EXCESS`;
+    met only while the root-find brackets the level) gives no flow."""
     x = np.asarray(x, dtype=float)
+    law = eq.rheology
+    if law.mu_2 - law.mu_s - gap <= ROUNDING_EXCESS * (law.mu_2 - law.mu_s):
+        return np.zeros_like(x), 0.0
     cell = eq.cell
     xs, ts, us = _scale(eq)
     t_x = cell.distance(x)

@@ -29,14 +29,13 @@ from scipy.optimize import brentq
 
 from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
-from ..model.constitutive import FloatArray
 from ..model import Problem
+from ..model.constitutive import FloatArray
 from ..model.rheologies.ngf import KINDS, REFERENCE, NGFFlow
 from ..numerics import ngf as kernel
 from ..results.profile import Diagnostics, Fields, Profile
 from .assemble import given_grid
 from .registry import register_route
-
 
 RESOLUTION = 16.0
 """Default cells per shortest cooperativity length A d/sqrt(max |mu - mu_s|): second-order
@@ -68,8 +67,7 @@ def _required_cells(eq: NGFFlow, T: float, resolution: float) -> int:
     if law.mu_2 is not None:
         wall = eq.moving_wall
         slope = (
-            abs(float(eq.friction_ratio(np.array([wall + 1e-7 * (1 - 2 * wall)]), T)[0]) - T)
-            / 1e-7
+            abs(float(eq.friction_ratio(np.array([wall + 1e-7 * (1 - 2 * wall)]), T)[0]) - T) / 1e-7
         )
         if slope > 0.0:
             need = max(need, resolution / ((law.mu_2 - T) / slope))
@@ -342,9 +340,9 @@ def _wall_fluidity_errors(eq: NGFFlow, ev: _Evaluator) -> dict[str, float]:
             out[f"g - g_loc at xi = {wall:g} (over max g)"] = float(f[0] - loc) / scale
         else:
             ell = float(
-                eq.rheology.cooperativity_length(
-                    eq.friction_ratio(np.array([wall]), ev.T), eq.eps
-                )[0]
+                eq.rheology.cooperativity_length(eq.friction_ratio(np.array([wall]), ev.T), eq.eps)[
+                    0
+                ]
             )
             # one-sided, fourth order: its own error stays below the scheme's
             slope = float(np.dot([-25.0, 48.0, -36.0, 16.0, -3.0], f)) / (12.0 * h)
@@ -415,9 +413,7 @@ def _profile(
         )
         ends = ev.velocity(np.array([0.0, 1.0]))
         for wall, u_end in zip((0.0, 1.0), ends, strict=True):
-            bc[f"u - u_wall at xi = {wall:g} [no slip]"] = float(
-                u_end - eq.wall_velocity(wall)
-            )
+            bc[f"u - u_wall at xi = {wall:g} [no slip]"] = float(u_end - eq.wall_velocity(wall))
         bc.update(_wall_fluidity_errors(eq, ev))
     extent = eq.creep_extent(ev.T)
     creep_text = (

@@ -334,7 +334,9 @@ BATCHED = ("plane", "couette")
 def is_batched(problem: Any) -> bool:
     """True for a problem of the Cosserat model on a cell of :data:`BATCHED`."""
     return (
-        isinstance(problem, Problem) and problem.model == "cosserat" and problem.cell_name in BATCHED
+        isinstance(problem, Problem)
+        and problem.model == "cosserat"
+        and problem.cell_name in BATCHED
     )
 
 

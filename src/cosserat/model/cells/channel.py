@@ -20,7 +20,7 @@ import numpy as np
 from numba import njit
 
 from ..constitutive import FloatArray
-from . import Cell, Coordinate, wall_inertial_number_param
+from .base import Cell, Coordinate, wall_inertial_number_param
 from .plane import gravity_param, nu_param
 
 

@@ -24,7 +24,7 @@ from numba import njit
 from ... import config
 from ..constitutive import FloatArray
 from ..declare import param
-from . import Cell, Coordinate, wall_inertial_number_param
+from .base import Cell, Coordinate, wall_inertial_number_param
 from .plane import stress_ratio_param
 
 RI_MIN, RI_MAX = 1e-3, 1e6

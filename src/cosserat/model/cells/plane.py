@@ -21,7 +21,7 @@ from numba import njit
 from ... import config
 from ..constitutive import FloatArray
 from ..declare import param
-from . import Cell, Coordinate, wall_inertial_number_param
+from .base import Cell, Coordinate, wall_inertial_number_param
 
 B_MAX = 1e6
 """Largest B: beyond, stresses of order (B sin phi)^2 leave the range of doubles soon."""

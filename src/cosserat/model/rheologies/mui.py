@@ -32,7 +32,7 @@ from ... import config
 from ...errors import NoSolutionError, ParameterError
 from ..constitutive import FloatArray
 from ..declare import param, validate
-from . import ANY_CELL, Equations, Rheology
+from .base import ANY_CELL, Equations, Rheology
 
 GAP_MIN = 1e-300
 """Smallest representable distance of the wall's stress ratio from mu_2 [-]."""
@@ -155,11 +155,15 @@ class MuIFlow(Equations):
         return self.cell.region_below(self.rheology.mu_2 - gap, self.rheology.mu_s)
 
     def peak_width(self, gap: float) -> float:
-        """Width over which mu_2 - mu doubles from the peak wall (quadrature breakpoints) [-]."""
-        slope = float(self.cell.ratio_slope)
-        if slope == 0.0:
-            return 1.0
-        return min(1.0, gap / (self.rheology.mu_2 * slope))
+        """Width over which mu_2 - mu doubles from the peak wall (quadrature breakpoints):
+        ``gap/(mu_2 slope)`` with the slope of the cell's ratio shape there, or where
+        ``mu_2 (1 - q) = gap`` if the cell states no slope or the shape starts flat
+        (:meth:`~cosserat.model.cells.Cell.distance_of_complement`) [-]."""
+        slope = self.cell.ratio_slope
+        mu_2 = self.rheology.mu_2
+        if slope is not None and slope > 0.0:
+            return min(1.0, gap / (mu_2 * slope))
+        return min(1.0, self.cell.distance_of_complement(gap / mu_2))
 
     # ----------------------------------------------------------------- records
     def _driving(self) -> str:

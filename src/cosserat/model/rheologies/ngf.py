@@ -46,7 +46,7 @@ from ..cells.couette import torque_decay
 from ..cells.plane import mean_stress
 from ..constitutive import FloatArray
 from ..declare import param, validate
-from . import Equations, Rheology
+from .base import Equations, Rheology
 from .mui import MuI
 
 # ----------------------------------------------------------------- the source's values

@@ -22,7 +22,7 @@ from typing import Any, ClassVar
 from ....errors import ParameterError
 from ...declare import Param, declarations, param
 from ...parameters import Material, Wall
-from .. import Equations, Rheology
+from ..base import Equations, Rheology
 from .channel import CosseratChannel
 from .couette import CosseratCouette
 from .plane import CosseratPlane, PlaneShearCase

@@ -40,7 +40,7 @@ from ...constitutive import FloatArray
 from ...formulation import Formulation
 from ...grids import layered_grid
 from ...parameters import Material, Wall
-from .. import Equations
+from ..base import Equations
 from .plane import WallConstants, wall_constants
 
 FRICTION_MATCH_RTOL = 1e-12

@@ -35,7 +35,7 @@ from ...constitutive import FloatArray
 from ...formulation import Formulation
 from ...grids import layered_grid
 from ...parameters import Material, Wall
-from .. import Equations
+from ..base import Equations
 from .plane import WallConstants, wall_constants
 
 

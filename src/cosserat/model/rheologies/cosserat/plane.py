@@ -35,7 +35,7 @@ from ...constitutive import FloatArray, radicand, symmetric_couple_stress
 from ...formulation import Formulation
 from ...grids import layered_grid
 from ...parameters import Material, Wall
-from .. import Equations
+from ..base import Equations
 
 
 class PlaneShearCase(StrEnum):
