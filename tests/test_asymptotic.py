@@ -14,7 +14,6 @@ from cosserat import (
     Material,
     MethodNotAvailableError,
     Plane,
-    PlaneShear,
     Problem,
     Wall,
     solve,
@@ -22,6 +21,13 @@ from cosserat import (
 from cosserat.routes.airy import I_INFINITY, velocity_fraction, xi_hat_at_fraction
 
 MAT = Material(28.5)
+
+
+def plane(eps, upper, lower=None, B=0.0, nu=1.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear with the paper's material (MAT)."""
+    return Problem(Plane(eps=eps, B=B, nu=nu), Cosserat(material=MAT, wall=upper, lower=lower))
+
+
 EPS = [1e-3, 1e-4, 1e-5, 1e-6]
 
 
@@ -54,7 +60,7 @@ def test_zero_gravity_asymptotics_are_exact_up_to_exponentially_small_terms(lowe
 def test_asymptotic_error_shrinks_at_the_predicted_rate(kwargs, order):
     errors = []
     for eps in EPS:
-        problem = PlaneShear(material=MAT, eps=eps, **kwargs)
+        problem = plane(eps, **kwargs)
         num = solve(problem)
         asym = solve(problem, method="asymptotic", xi=num.xi)
         errors.append(np.max(np.abs(num.u - asym.u)))

@@ -88,7 +88,7 @@ def test_thickness_vs_gap_on_the_channel_gives_every_model_a_row(capsys):
     cannot be set up is a row with the reason, never the end of the study."""
     assert main(["thickness", "channel", "--vs-gap", "10", "20", "--format", "json"]) == 0
     series = {s["label"]: s for s in json.loads(capsys.readouterr().out)["series"]}
-    assert series["mui"]["Delta"][0] > 0  # its own default B = 1 (model.mui.MuIChannel)
+    assert series["mui"]["Delta"][0] > 0  # driven by the one default I_w (no B given)
     assert all(any(d is not None for d in s["Delta"]) for s in series.values())
     assert main(["thickness", "channel", "--vs-gap", "10", "--B", "0.1", "--format", "json"]) == 0
     rows = {s["model"]: s for s in json.loads(capsys.readouterr().out)["series"]}

@@ -64,17 +64,20 @@ def test_help_texts_show_the_config_values():
     text = _help("solve", "plane")
     for option, value in [
         ("--phi PHI angle of internal friction [deg]", config.PHI),
-        ("wall slip coefficient of the moving wall [-]", config.K),
+        (
+            "slip coefficient of eqn-bc3; 0: no slip, 1/2: a grain rolling without sliding [-]",
+            config.K,
+        ),
         ("relative tolerance of --method numerical [-]", config.RTOL),
         ("layers resolved", config.OUTPUT_POINTS),
     ]:
         assert f"{option} (default: {config.text(value)}" in text
-    assert f"yield-condition ratio A = a2/a1 [-] (default: {config.text(config.A)})" in text
+    assert f"yield-condition constants, eqn-yc2 [-] (default: {config.text(config.A)})" in text
     assert config.text(config.A) == "1/3"
     assert f"of its wall value [-] (default: {config.text(config.DEFAULT_F)})" in _help(
         "thickness", "couette"
     )
-    assert f"R_i/H (Couette) [-] (default: {config.text(config.RI)})" in _help("solve", "couette")
+    assert f"R_i/H [-] (default: {config.text(config.RI)})" in _help("solve", "couette")
 
 
 @pytest.mark.parametrize(

@@ -30,7 +30,8 @@ MAT = Material(28.5)
 
 def test_parameter_bounds():
     with pytest.raises(
-        ParameterError, match=r"Ri = R_i/H must satisfy 0.001 <= Ri <= 1e\+06; got 0"
+        ParameterError,
+        match=r"Ri \(inner radius over gap, R_i/H\) must satisfy 0.001 <= Ri <= 1e\+06; got 0",
     ):
         Problem(Couette(eps=0.1, Ri=0.0), Cosserat(material=MAT, wall=Wall(20.0)))
     with pytest.raises(ParameterError, match="eps"):

@@ -44,7 +44,7 @@ def test_dataframe_holds_every_column_and_the_parameters(profile):
 def test_xarray_dataset_has_the_coordinate_and_units(profile):
     ds = profile.to_xarray()
     assert list(ds.coords) == ["r"]
-    np.testing.assert_array_equal(ds["r"].to_numpy(), profile.problem.Ri + profile.xi)
+    np.testing.assert_array_equal(ds["r"].to_numpy(), profile.problem.cell.Ri + profile.xi)
     assert "radius" in ds["r"].attrs["long_name"]
     assert set(ds.data_vars) >= {"sigma_theta_r", "sigma_r_theta", "sigma_rr"}
     np.testing.assert_array_equal(ds["omega"].to_numpy(), profile.omega)
@@ -132,16 +132,17 @@ def test_stdout_csv_writes_no_sidecar(tmp_path, monkeypatch):
 
 
 def test_a_local_rheology_exports_no_cosserat_only_columns(tmp_path):
+    """No grain spin or couple stress of its own: omega, m and the asymmetry are absent."""
     couette = solve(Problem(Couette(eps=0.01, Ri=2.0), MuI()), points=9)
     frame = pd.read_csv(io.StringIO(couette.to_csv()))
-    assert list(frame.columns) == ["r", "u", "omega", "sigma_theta_r", "sigma_r_theta", "sigma_rr"]
+    assert list(frame.columns) == ["r", "u", "sigma_theta_r", "sigma_r_theta", "sigma_rr"]
     np.testing.assert_allclose(frame["r"].to_numpy(), 2.0 + couette.xi, rtol=0, atol=1e-15)
     plane = solve(Problem(Plane(eps=0.01), MuI()), points=9)
     plane.to_csv(tmp_path / "mui.csv")
     meta = json.loads((tmp_path / "mui.json").read_text())
     assert meta["rheology"] == "mui" and next(iter(meta["columns"])) == "y"
-    assert "half the vorticity" in meta["columns"]["omega"]["meaning"]
-    assert "m" not in meta["columns"]
+    assert "omega" not in meta["columns"] and "m" not in meta["columns"]
+    assert meta["wall_omega"] is None
 
 
 def test_a_sidecar_never_overwrites_its_csv(tmp_path):

@@ -61,7 +61,9 @@ def test_the_toy_rheology_solves_on_every_cell_against_its_closed_forms(toys, n)
     plane = solve(Problem(Plane(eps=0.01), law), xi=x)
     np.testing.assert_allclose(plane.u, x, atol=1e-13)
     channel = solve(Problem(VerticalChannel(eps=0.01), law), xi=x)
-    np.testing.assert_allclose(channel.u, 1.0 - np.abs(1.0 - 2.0 * x) ** (1.0 + 1.0 / n), atol=1e-12)
+    np.testing.assert_allclose(
+        channel.u, 1.0 - np.abs(1.0 - 2.0 * x) ** (1.0 + 1.0 / n), atol=1e-12
+    )
     couette = solve(Problem(Couette(eps=0.01, Ri=0.7), law), xi=x)
     np.testing.assert_allclose(couette.u, _couette_power_law(n, 0.7, x), atol=1e-12)
     stratified = solve(Problem(toys.toy_cell.StratifiedPlane(eps=0.01, c=3.0), law), xi=x)
@@ -147,7 +149,9 @@ def test_the_command_line_takes_the_toys(toys, capsys):
     assert code == 0
     record = json.loads(out)
     assert record["parameters"]["rheology"] == "powerlaw" and record["parameters"]["n"] == 0.4
-    np.testing.assert_allclose(record["u"], _couette_power_law(0.4, 0.7, np.array(record["r"]) - 0.7), atol=1e-12)
+    np.testing.assert_allclose(
+        record["u"], _couette_power_law(0.4, 0.7, np.array(record["r"]) - 0.7), atol=1e-12
+    )
     code = main(["solve", "stratified", "--model", "mui", "--eps", "0.01", "--param", "c=2",
                  "--param", "I_w=0.05", "--format", "json", "--points", "11"])  # fmt: skip
     record = json.loads(capsys.readouterr().out)

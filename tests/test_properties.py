@@ -111,7 +111,7 @@ def test_closed_form_agrees_with_numerical_and_asymptotic_never_returns_nan(prob
     try:
         cf = solve(problem, method="closed-form", points=41, check=False)
     except MethodNotAvailableError:
-        assert problem.B > 0 or problem.m_fixed_wall is not None
+        assert problem.equations.B > 0 or problem.equations.m_fixed_wall is not None
     else:
         for values in cf.columns().values():
             assert np.all(np.isfinite(values))

@@ -62,7 +62,9 @@ def test_every_cell_states_one_statics(cell):
     q, rest = cell.ratio_shape(cell.distance(xi))
     np.testing.assert_allclose(q + rest, 1.0, rtol=1e-15)
     assert float(np.max(ratio)) == pytest.approx(T * float(cell.ratio_shape(0.0)[0]), rel=1e-15)
-    assert cell.stress_ratio_profile(np.array([cell.peak_wall]), T)[0] == pytest.approx(T, rel=1e-15)
+    assert cell.stress_ratio_profile(np.array([cell.peak_wall]), T)[0] == pytest.approx(
+        T, rel=1e-15
+    )
     for r in (1.1, 1.7):
         t = cell.distance_of_ratio(r)
         if t < cell.span:

@@ -12,7 +12,6 @@ from cosserat import (
     Cosserat,
     Material,
     Plane,
-    PlaneShear,
     Problem,
     Wall,
     shear_layer_thickness,
@@ -23,6 +22,13 @@ from cosserat import (
 from cosserat.analysis import asymptotic_thickness, thickness_curve, thickness_limit
 
 MAT = Material(28.5)
+
+
+def plane(eps, upper, lower=None, B=0.0, nu=1.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear with the paper's material (MAT)."""
+    return Problem(Plane(eps=eps, B=B, nu=nu), Cosserat(material=MAT, wall=upper, lower=lower))
+
+
 F = 0.05
 
 
@@ -43,7 +49,7 @@ CASES = {
 
 @pytest.mark.parametrize("name", list(CASES))
 def test_delta_approaches_17_67_in_every_plane_case(name):
-    problem = PlaneShear(material=MAT, eps=1e-2, **CASES[name])
+    problem = plane(1e-2, **CASES[name])
     eps = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6]
     curve = thickness_curve(problem, eps)
     gaps = [abs(d - delta_limit_by_hand()) for d in curve.Delta]

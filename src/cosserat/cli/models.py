@@ -27,6 +27,7 @@ def _row(p: Any) -> dict[str, Any]:
     """One parameter as ``cosserat models`` lists it (its declaration as plain data)."""
     row = p.to_dict()
     row["default"] = _plain(row["default"])
+    row["default_text"] = p.default_text()
     row["required"] = not p.has_default
     return row
 
@@ -63,7 +64,7 @@ def describe_models() -> list[dict[str, Any]]:
 
 
 def _row_text(row: dict[str, Any]) -> str:
-    default = "required" if row["required"] else f"default {row['default']}"
+    default = "required" if row["required"] else f"default {row['default_text']}"
     parts = [default]
     if row["bounds"]:
         parts.append(row["bounds"])

@@ -264,7 +264,9 @@ class _Evaluator:
         rate = eq.shear_sign(x, gap) * eq.rate_times_I_w(x, gap) / self.I_w
         # r d(u/r)/dxi = rate, so du/dxi = rate + kappa u
         du = rate + kappa * u
-        sigma = cell.shear_stress(x, eq.rheology.mu_2 - gap)
+        # the stress from the same stress ratio the plug test reads (one rounding, not two)
+        sign = np.sign(cell.shear_stress(x, 1.0))
+        sigma = sign * eq.friction_ratio(x, gap) * cell.normal_stress(x)
         return Fields(
             u=u,
             omega=None,
@@ -401,11 +403,17 @@ def _profile(
     law = eq.rheology
     T = law.mu_2 - gap
     plug = eq.plug_extent(gap)
-    plug_text = (
-        "no plug: the whole gap flows"
-        if plug is None
-        else f"plug (|tau|/p <= mu_s, no shear) on xi in [{plug[0]:.6g}, {plug[1]:.6g}]"
-    )
+    if plug is None:
+        plug_text = "no plug: the whole gap flows"
+    elif eq.cell.symmetric:
+        plug_text = (
+            f"plug (|tau|/p <= mu_s, no shear) on the centre line, xi in "
+            f"[{plug[0]:.6g}, {plug[1]:.6g}]"
+        )
+    else:
+        plug_text = (
+            f"plug at rest (|tau|/p <= mu_s, u = 0 exactly) on xi in [{plug[0]:.6g}, {plug[1]:.6g}]"
+        )
     how = (
         "velocity by adaptive quadrature of the rate, stress level by Brent's method"
         if numerical
