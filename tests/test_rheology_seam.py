@@ -96,11 +96,11 @@ def test_a_problem_is_a_cell_and_a_rheology():
 
 
 def test_a_parameter_that_does_not_apply_to_the_pair_is_refused():
-    with pytest.raises(ParameterError, match="I_w .* does not apply to the cosserat rheology"):
+    with pytest.raises(ParameterError, match=r"I_w .* does not apply to the cosserat rheology"):
         Problem(Plane(eps=0.01, I_w=0.1), Cosserat())
     with pytest.raises(ParameterError, match="m_wall applies to the plane cell only"):
         Problem(Couette(eps=0.01), Cosserat(m_fixed_wall=0.1))
-    with pytest.raises(ParameterError, match="has no equations on the .* cell"):
+    with pytest.raises(ParameterError, match=r"has no equations on the .* cell"):
 
         class Nowhere(Rheology):  # not registered: no name
             pass

@@ -105,7 +105,10 @@ def test_sweep_records_every_case_and_is_the_same_in_one_or_two_processes(tmp_pa
     assert len(one) == len(spec.cases) == len(two)
     assert one == two
     status = [r["status"] for r in one]
-    assert status.count("invalid") == 1 and "eps = d_p/H must satisfy" in one[-1]["message"]
+    assert (
+        status.count("invalid") == 1
+        and "eps (grain diameter over gap, d_p/H) must satisfy" in one[-1]["message"]
+    )
     assert status.count("no-solution") >= 1
     fine = [r for r in one if r["status"] == "ok"]
     assert all(np.isfinite(r["Delta"]) for r in fine)
@@ -205,7 +208,8 @@ def test_the_defaults_are_the_declared_ones():
         ),
         (
             {"eps": 0.1, "zeta": 1.0},
-            r"unknown parameter\(s\) zeta for model 'cosserat' on the plane cell; valid: phi \[deg\]",
+            r"unknown parameter\(s\) zeta for model 'cosserat' on the plane cell; "
+            r"valid: phi \[deg\]",
         ),
         ({"eps": 0.1, "Phi": 30.0}, r"unknown parameter\(s\) Phi"),
         ({"phi": 30.0}, r"eps \(grain diameter over gap, d_p/H\) must be given"),

@@ -181,6 +181,8 @@ class Param:
         ParameterError
             Naming the parameter, its meaning, the bound and the value received.
         """
+        if type(value) is float and self.numeric and math.isfinite(value) and self.admits(value):
+            return value  # the common case, without the checks below
         n = name or self.cli_key
         if value is None and self.optional:
             return None
@@ -268,24 +270,35 @@ def param(
     return dataclasses.field(default=value, metadata={"param": declared})
 
 
+_DECLARED: dict[type, dict[str, Param]] = {}
+
+
+def _declared(cls: Any) -> dict[str, Param]:
+    """:func:`declarations` itself, the cached dict (not to be changed)."""
+    klass = cls if isinstance(cls, type) else type(cls)
+    found = _DECLARED.get(klass)
+    if found is None:
+        found = {}
+        if dataclasses.is_dataclass(klass):
+            for f in dataclasses.fields(klass):
+                p = f.metadata.get("param")
+                if p is not None:
+                    found[f.name] = dataclasses.replace(p, name=f.name)
+        _DECLARED[klass] = found
+    return found
+
+
 def declarations(cls: Any) -> dict[str, Param]:
     """Every declared field of the dataclass ``cls`` (or of an instance's class), by field name,
-    in field order, each :class:`Param` with its ``name`` set."""
-    if not dataclasses.is_dataclass(cls):
-        return {}
-    out: dict[str, Param] = {}
-    for f in dataclasses.fields(cls):
-        p = f.metadata.get("param")
-        if p is not None:
-            out[f.name] = dataclasses.replace(p, name=f.name)
-    return out
+    in field order, each :class:`Param` with its ``name`` set (computed once per class)."""
+    return dict(_declared(cls))
 
 
 def validate(obj: Any, skip: tuple[str, ...] = ()) -> None:
     """Check and normalise every declared field of the frozen dataclass ``obj`` in place
     (:meth:`Param.check`); call it first in ``__post_init__``, then check what ties fields
     together."""
-    for name, p in declarations(obj).items():
+    for name, p in _declared(obj).items():
         if name in skip:
             continue
         object.__setattr__(obj, name, p.check(getattr(obj, name), name))
@@ -293,7 +306,7 @@ def validate(obj: Any, skip: tuple[str, ...] = ()) -> None:
 
 def values(obj: Any) -> dict[str, Any]:
     """Declared field -> value of ``obj`` (its command-line keys)."""
-    return {p.cli_key: getattr(obj, name) for name, p in declarations(obj).items()}
+    return {p.cli_key: getattr(obj, name) for name, p in _declared(obj).items()}
 
 
 def table(params: Mapping[str, Param]) -> list[dict[str, Any]]:

@@ -27,7 +27,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from .cells import Cell
-from .declare import Param
+from .declare import Param, declarations
 from .rheologies import Equations, Rheology
 
 
@@ -72,31 +72,38 @@ class Problem:
             )
         cell, law = self.cell, self.rheology
         if not law.rate_dependent:
-            for key, p in cell.declared().items():
-                if p.role == "drive" and cell.values()[key] is not None:
+            for name, p in _drives(type(cell)):
+                if getattr(cell, name) is not None:
                     raise ParameterError(
-                        f"{key} ({p.meaning.split(';')[0]}) does not apply to the {law.name} "
-                        f"rheology, which is rate-independent: it has no drive"
+                        f"{p.cli_key} ({p.meaning.split(';')[0]}) does not apply to the "
+                        f"{law.name} rheology, which is rate-independent: it has no drive"
                     )
-        for key, p in law.declared().items():
-            if not p.applies_to(cell.name) and law.values()[key] is not None:
-                raise ParameterError(
-                    f"{key} applies to the {' and '.join(p.cells)} cell only; got {key} = "
-                    f"{law.values()[key]!r} on the {cell.name} cell"
-                )
+        elsewhere = _elsewhere(type(law), cell.name)
+        if elsewhere:
+            given = law.values()
+            for key, p in elsewhere.items():
+                if given[key] is not None:
+                    raise ParameterError(
+                        f"{key} applies to the {' and '.join(p.cells)} cell only; got {key} = "
+                        f"{given[key]!r} on the {cell.name} cell"
+                    )
         self.equations.validate()
 
     def __getstate__(self) -> dict[str, Any]:
         """The cell and the rheology (the equations helper is rebuilt on first use)."""
-        return {k: v for k, v in self.__dict__.items() if k != "equations"}
+        return {k: v for k, v in self.__dict__.items() if k != "_equations"}
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self.__dict__.update(state)
 
-    @functools.cached_property
+    @property
     def equations(self) -> Equations:
-        """The pair's equations (the rheology's helper for this cell)."""
-        return self.rheology.equations_for(self)
+        """The pair's equations (the rheology's helper for this cell), built once."""
+        eq = self.__dict__.get("_equations")
+        if eq is None:
+            eq = self.rheology.equations_for(self)
+            object.__setattr__(self, "_equations", eq)
+        return eq
 
     # ----------------------------------------------------------------- names and values
     @property
@@ -187,16 +194,34 @@ class Problem:
         return self.equations.parameters()
 
 
+_PAIRS: dict[tuple[type, type], dict[str, Param]] = {}
+
+
+@functools.cache
+def _drives(cell: type[Cell]) -> tuple[tuple[str, Param], ...]:
+    """(field name, declaration) of the cell class's drive parameters."""
+    return tuple((n, p) for n, p in declarations(cell).items() if p.role == "drive")
+
+
+@functools.cache
+def _elsewhere(law: type[Rheology], cell: str) -> dict[str, Param]:
+    """The law's parameters that do not apply to the cell named ``cell``."""
+    return {k: p for k, p in law.declared().items() if not p.applies_to(cell)}
+
+
 def pair_parameters(law: type[Rheology], cell: type[Cell]) -> dict[str, Param]:
     """The parameters of the rheology ``law`` on the cell ``cell`` by command-line key, with
     their declarations: the law's (those that apply to this cell), then the cell's (its drive
-    only for a rate-dependent law)."""
-    out = dict(law.declared(cell.name))
-    for key, p in cell.declared().items():
-        if p.role == "drive" and not law.rate_dependent:
-            continue
-        out[key] = p
-    return out
+    only for a rate-dependent law). Computed once per pair of classes."""
+    found = _PAIRS.get((law, cell))
+    if found is None:
+        found = dict(law.declared(cell.name))
+        for key, p in cell.declared().items():
+            if p.role == "drive" and not law.rate_dependent:
+                continue
+            found[key] = p
+        _PAIRS[(law, cell)] = found
+    return dict(found)
 
 
 def _fields(obj: Any) -> dict[str, Any]:

@@ -15,6 +15,7 @@ The command-line keys are ``phi, L, A`` (material), ``delta, K`` (the moving wal
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
@@ -115,6 +116,11 @@ class Cosserat(Rheology):
     # ----------------------------------------------------------------- declarations
     @classmethod
     def declared(cls, cell: str | None = None) -> dict[str, Param]:
+        out = _declared_cosserat()
+        return {k: p for k, p in out.items() if cell is None or p.applies_to(cell)}
+
+    @classmethod
+    def _declared_all(cls) -> dict[str, Param]:
         wall = declarations(Wall)
         out: dict[str, Param] = {p.cli_key: p for p in declarations(Material).values()}
         out.update({p.cli_key: p for p in wall.values()})
@@ -127,7 +133,7 @@ class Cosserat(Rheology):
         )
         m = declarations(cls)["m_fixed_wall"]
         out[m.cli_key] = m
-        return {k: p for k, p in out.items() if cell is None or p.applies_to(cell)}
+        return out
 
     def values(self) -> dict[str, Any]:
         mat, wall, low = self.material, self.wall, self.lower
@@ -175,6 +181,12 @@ class Cosserat(Rheology):
     def describe(self) -> str:
         m = self.material
         return f"phi = {m.phi:g} deg, L = {m.L:g}, A = {m.A:g}; walls {self.wall.describe()}"
+
+
+@functools.cache
+def _declared_cosserat() -> dict[str, Param]:
+    """:meth:`Cosserat.declared` for every cell, computed once."""
+    return Cosserat._declared_all()
 
 
 __all__ = [
