@@ -259,7 +259,7 @@ class FitResult:
     """Best-fit parameters with uncertainties (angles in degrees).
 
     ``covariance`` and ``correlation`` hold NaN where a parameter is not identifiable (its
-    ``stderr`` is None); :meth:`to_dict` writes None there.
+    ``stderr`` is None); :meth:`FitResult.to_dict` writes None there.
     """
 
     parameters: dict[str, FitParameter]
@@ -279,6 +279,8 @@ class FitResult:
         return self.comparison.rms
 
     def to_dict(self) -> dict[str, Any]:
+        """Plain data (JSON): the parameters, the fit statistics, the warnings, the
+        correlation matrix (None where a parameter is not identifiable) and the problem."""
         return {
             "parameters": {k: v.to_dict() for k, v in self.parameters.items()},
             "rms": self.rms,

@@ -148,7 +148,7 @@ def model_solve(problem: Any, points: int = 3, **options: Any) -> Profile:
 
 def default_free(model: str, problem: Any) -> tuple[str, ...]:
     """The parameters fitted by default: the rheology's
-    :attr:`~cosserat.model.rheologies.Rheology.default_free` that this problem has, or else
+    :attr:`~cosserat.model.rheologies.base.Rheology.default_free` that this problem has, or else
     every parameter of the rheology with a declared fit range."""
     names = tuple(n for n in RHEOLOGIES[model].default_free if n in parameter_names(problem))
     if names:

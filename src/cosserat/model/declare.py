@@ -46,6 +46,7 @@ from ..errors import ParameterError
 
 Role = Literal["material", "wall", "cell", "drive", "option"]
 ROLES: tuple[str, ...] = ("material", "wall", "cell", "drive", "option")
+"""What a parameter can be to a calibration (the module docstring says what each means)."""
 Scale = Literal["linear", "log"]
 
 

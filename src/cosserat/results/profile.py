@@ -107,7 +107,7 @@ FIELD_MEANINGS = {
 }
 """What each field of the profile means (all dimensionless; ``docs/model.md``). The exports
 (:meth:`Profile.columns` and everything built on it) name them in the cell's own coordinates:
-the cell's :attr:`~cosserat.model.cells.Cell.coordinate`."""
+the cell's :attr:`~cosserat.model.cells.base.Cell.coordinate`."""
 
 COSSERAT_ONLY = ("omega", "m", "asymmetry", "spin_minus_half_vorticity")
 """Fields only a rheology with grain spin and couple stress has: a profile of any other
@@ -118,7 +118,7 @@ _GENERIC = Coordinate("xi", FIELD_MEANINGS["xi"], lambda cell, xi: xi)
 
 
 def cell_names(problem: Any) -> Coordinate:
-    """The export names of ``problem``'s cell (:attr:`~cosserat.model.cells.Cell.coordinate`;
+    """The export names of ``problem``'s cell (:attr:`~cosserat.model.cells.base.Cell.coordinate`;
     the generic ``xi`` names for an object without a cell)."""
     cell = getattr(problem, "cell", None)
     return getattr(cell, "coordinate", _GENERIC)

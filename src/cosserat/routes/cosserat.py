@@ -1,10 +1,10 @@
 """The Cosserat model's routes, registered per (cell, method) (:mod:`.registry`).
 
-* "numerical": the compiled kernels, :mod:`.numerical` (plane shear, Couette flow) and
-  :mod:`.channel` (the vertical channel);
-* "closed-form": plane shear without gravity (:mod:`.closed_form`);
-* "asymptotic": the leading order in eps of the paper's Appendix (:mod:`.asymptotic`,
-  :func:`.channel.solve_asymptotic`).
+* "numerical": the compiled kernels, :mod:`cosserat.routes.numerical` (plane shear, Couette
+  flow) and :mod:`cosserat.routes.channel` (the vertical channel);
+* "closed-form": plane shear without gravity (:mod:`cosserat.routes.closed_form`);
+* "asymptotic": the leading order in eps of the paper's Appendix
+  (:mod:`cosserat.routes.asymptotic`, :func:`cosserat.routes.channel.solve_asymptotic`).
 """
 
 from __future__ import annotations

@@ -19,7 +19,7 @@ from ..declare import Param, declarations, param, validate
 
 CELLS: dict[str, type[Cell]] = {}
 """Every cell class by its name (``"plane"``, ``"couette"``, ``"channel"``, ...), in the order
-they were defined; filled by :meth:`Cell.__init_subclass__`."""
+they were defined; a subclass of :class:`Cell` with a ``name`` adds itself when it is defined."""
 
 
 @dataclass(frozen=True)
@@ -93,7 +93,7 @@ class Cell:
     """Export names (:class:`Coordinate`)."""
     peak_wall: ClassVar[float] = 1.0
     """xi of the wall where the stress ratio |sigma_yx|/sigma_yy is largest (one of them if
-    :attr:`symmetric`) [-]."""
+    :attr:`~cosserat.model.cells.base.Cell.symmetric`) [-]."""
     symmetric: ClassVar[bool] = False
     """True if the flow is symmetric about xi = 1/2 (then distances run over half the gap)."""
     moving_wall: ClassVar[float | None] = 1.0

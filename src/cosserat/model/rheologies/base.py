@@ -19,7 +19,8 @@ if TYPE_CHECKING:
 
 RHEOLOGIES: dict[str, type[Rheology]] = {}
 """Every rheology class by its name (``"cosserat"``, ``"mui"``, ``"ngf"``, ...), in the order
-they were defined; filled by :meth:`Rheology.__init_subclass__`."""
+they were defined; a subclass of :class:`Rheology` with a ``name`` adds itself when it is
+defined."""
 
 ANY_CELL = "*"
 """Key of :attr:`Rheology.equations` for a helper that works on every cell's statics."""

@@ -48,7 +48,7 @@ class MuIFlow(Equations):
     """mu(I) on any cell: the stress ratio, the rate and the plug from the cell's statics
     (module docstring); ``problem.equations`` of ``Problem(cell, MuI(...))``.
 
-    Distances ``t`` run from the cell's :attr:`~cosserat.model.cells.Cell.peak_wall` (the
+    Distances ``t`` run from the cell's :attr:`~cosserat.model.cells.base.Cell.peak_wall` (the
     wall of the largest stress ratio): in distances, a layer of width 1e-300 at that wall is
     resolved.
     """
