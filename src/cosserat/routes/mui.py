@@ -94,8 +94,10 @@ def _quad_intervals(eq: MuIFlow, gap: float, nodes: FloatArray, rtol: float) -> 
     which is the scale of the velocity they sum to.
     """
 
+    integrand = eq.integrand_at
+
     def f(t: FloatArray) -> FloatArray:
-        return eq.integrand_at(t, gap)
+        return integrand(t, gap)
 
     t_plug = _plug_distance(eq, gap)
     a, b = nodes[:-1], nodes[1:]
@@ -108,7 +110,7 @@ def _quad_intervals(eq: MuIFlow, gap: float, nodes: FloatArray, rtol: float) -> 
     a, width = a[live], (b - a)[live]
 
     def pieces(s: float) -> FloatArray:
-        return f(a + s * width) * width
+        return integrand(a + s * width, gap) * width
 
     value, _, info = quad_vec(
         pieces,

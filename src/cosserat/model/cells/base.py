@@ -96,6 +96,9 @@ class Cell:
     :attr:`~cosserat.model.cells.base.Cell.symmetric`) [-]."""
     symmetric: ClassVar[bool] = False
     """True if the flow is symmetric about xi = 1/2 (then distances run over half the gap)."""
+    straight: ClassVar[bool] = True
+    """True if the coordinate lines are straight: :meth:`curvature` 0 and :meth:`radius` 1
+    (False for a cell that overrides them)."""
     moving_wall: ClassVar[float | None] = 1.0
     """xi of the wall that moves (None: none moves, the flow is driven otherwise)."""
     velocity_scale: ClassVar[tuple[float, float]] = (1.0, 1.0)

@@ -83,6 +83,7 @@ class Couette(Cell):
         },
     )
     peak_wall: ClassVar[float] = 0.0
+    straight: ClassVar[bool] = False
     moving_wall: ClassVar[float | None] = 0.0
     velocity_scale: ClassVar[tuple[float, float]] = (0.0, -1.0)
     layer_wall: ClassVar[float] = 0.0
@@ -133,3 +134,7 @@ class Couette(Cell):
     def radius(self, xi: FloatArray) -> FloatArray:
         """r/H = Ri + xi [-]."""
         return self.Ri + np.asarray(xi, dtype=float)
+
+    def radius_at(self, t: FloatArray) -> FloatArray:
+        """Ri + t: the distance t from the inner cylinder is xi [-]."""
+        return self.Ri + np.asarray(t, dtype=float)

@@ -121,9 +121,17 @@ class MuIFlow(Equations):
         return np.sqrt(self.cell.normal_stress_at(tt)) * self.inertial_number_at(tt, gap)
 
     def integrand_at(self, t: FloatArray, gap: float) -> FloatArray:
-        """|d(u/r)/dxi| I_w at the distance t: the rate over the radius [-]."""
+        """|d(u/r)/dxi| I_w at the distance t: the rate over the radius [-]
+        (:meth:`rate_times_I_w_at` over the cell's radius, in one pass: the quadratures call it
+        for every node)."""
         tt = np.asarray(t, dtype=float)
-        return self.rate_times_I_w_at(tt, gap) / self.cell.radius_at(tt)
+        cell, law = self.cell, self.rheology
+        q, one_minus_q = cell.ratio_shape(tt)
+        g = law.mu_2 * one_minus_q + gap * q
+        rate = np.sqrt(cell.normal_stress_at(tt)) * law.inertial_number_from_gap(
+            law.mu_2 - law.mu_s - g, g
+        )
+        return rate if cell.straight else rate / cell.radius_at(tt)
 
     def saturation_gap(self, xi: FloatArray, gap: float) -> FloatArray:
         """mu_2 - mu(xi) for the wall gap ``gap`` [-]."""
