@@ -71,9 +71,11 @@ from baselines import (  # noqa: E402
 )
 
 from cosserat import (  # noqa: E402
-    CouetteFlow,
+    Cosserat,
+    Couette,
     Material,
-    PlaneShear,
+    Plane,
+    Problem,
     Wall,
     config,
     shear_layer_thickness,
@@ -87,10 +89,10 @@ from cosserat.routes.numerical import parameter_vector, wall_quantities  # noqa:
 MAT = Material(phi=28.5)
 W20 = Wall(delta=20.0, K=0.5)
 BASE = {
-    "P1": PlaneShear(material=MAT, upper=W20, lower=W20, eps=0.1),
-    "P2": PlaneShear(material=MAT, upper=W20, lower=Wall.fully_rough(K=0.5), eps=0.1),
-    "P3": PlaneShear(material=MAT, upper=W20, lower=W20, eps=0.1, B=1.0, nu=1.0),
-    "C": CouetteFlow(material=MAT, wall=W20, eps=0.1, Ri=1.0),
+    "P1": Problem(Plane(eps=0.1), Cosserat(material=MAT, wall=W20, lower=W20)),
+    "P2": Problem(Plane(eps=0.1), Cosserat(material=MAT, wall=W20, lower=Wall.fully_rough(K=0.5))),
+    "P3": Problem(Plane(eps=0.1, B=1.0, nu=1.0), Cosserat(material=MAT, wall=W20, lower=W20)),
+    "C": Problem(Couette(eps=0.1, Ri=1.0), Cosserat(material=MAT, wall=W20)),
 }
 V010_NAME = {"P1": "P1", "P2": "P2", "P3": "P3", "C": "C1"}  # v010_timing.py's names
 DESCRIPTION = {
@@ -400,15 +402,18 @@ def _ref_problem(case: dict[str, Any]) -> Any:
     par = case["parameters"]
     mat = Material(**par["material"])
     if case["geometry"] == "couette":
-        return CouetteFlow(material=mat, wall=_ref_wall(par["wall"]), eps=par["eps"], Ri=par["Ri"])
-    return PlaneShear(
-        material=mat,
-        upper=_ref_wall(par["upper"]),
-        lower=_ref_wall(par["lower"]),
-        eps=par["eps"],
-        B=par["B"],
-        nu=par["nu"],
-        m_fixed_wall=par["m_fixed_wall"],
+        return Problem(
+            Couette(eps=par["eps"], Ri=par["Ri"]),
+            Cosserat(material=mat, wall=_ref_wall(par["wall"])),
+        )
+    return Problem(
+        Plane(eps=par["eps"], B=par["B"], nu=par["nu"]),
+        Cosserat(
+            material=mat,
+            wall=_ref_wall(par["upper"]),
+            lower=_ref_wall(par["lower"]),
+            m_fixed_wall=par["m_fixed_wall"],
+        ),
     )
 
 
@@ -782,10 +787,11 @@ def sweeps(rep: Report, old: V010 | None, n_plane: int, n_couette: int, repeat: 
     )
     problems = {
         "plane": [
-            PlaneShear(material=MAT, upper=Wall(delta=d, K=0.5), eps=e, B=b) for d, e, b in plane
+            Problem(Plane(eps=e, B=b), Cosserat(material=MAT, wall=Wall(delta=d, K=0.5)))
+            for d, e, b in plane
         ],
         "couette": [
-            CouetteFlow(material=MAT, wall=Wall(delta=d, K=0.5), eps=e, Ri=ri)
+            Problem(Couette(eps=e, Ri=ri), Cosserat(material=MAT, wall=Wall(delta=d, K=0.5)))
             for d, e, ri in couette
         ],
     }

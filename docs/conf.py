@@ -48,6 +48,7 @@ extensions = [
     "myst_parser",
     "sphinx_gallery.gen_gallery",
     "sphinx-mathjax-offline",  # a local MathJax 3 copy: equations render offline
+    "parameter_tables",  # docs/parameter_tables.py: tables from the parameter declarations
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}

@@ -261,7 +261,9 @@ def test_profile_messages_print_plain_numbers(tmp_path):
         read_profile("distance_d,u_over_uw\n-1.0,0.5\n1.0,0.2\n")
     with pytest.raises(MeasurementError, match=r"finite and > 0; got -0.5$"):
         read_profile("distance_d,u_over_uw,u_err\n1.0,0.5,-0.5\n")
-    with pytest.raises(ParameterError, match=r"phi must be finite; got nan$"):
+    with pytest.raises(
+        ParameterError, match=r"phi \(angle of internal friction\) must be finite; got nan$"
+    ):
         Material(phi=np.float64(np.nan))
     assert shown(np.float64(-1.0)) == "-1.0" and shown(np.int64(3)) == "3"
     assert shown("abc") == "'abc'" and shown(True) == "True" and shown(2.5) == "2.5"

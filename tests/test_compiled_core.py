@@ -6,17 +6,18 @@ from __future__ import annotations
 import json
 import math
 import pickle
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from cosserat import (
-    CouetteFlow,
+    Cosserat,
+    Couette,
     Material,
     NoSolutionError,
-    PlaneShear,
+    Plane,
+    Problem,
     Wall,
     shear_layer_thickness,
     solve,
@@ -39,15 +40,17 @@ def _problem(case: dict):
     par = case["parameters"]
     mat = Material(**par["material"])
     if case["geometry"] == "couette":
-        return CouetteFlow(material=mat, wall=_wall(par["wall"]), eps=par["eps"], Ri=par["Ri"])
-    return PlaneShear(
-        material=mat,
-        upper=_wall(par["upper"]),
-        lower=_wall(par["lower"]),
-        eps=par["eps"],
-        B=par["B"],
-        nu=par["nu"],
-        m_fixed_wall=par["m_fixed_wall"],
+        return Problem(
+            Couette(eps=par["eps"], Ri=par["Ri"]), Cosserat(material=mat, wall=_wall(par["wall"]))
+        )
+    return Problem(
+        Plane(eps=par["eps"], B=par["B"], nu=par["nu"]),
+        Cosserat(
+            material=mat,
+            wall=_wall(par["upper"]),
+            lower=_wall(par["lower"]),
+            m_fixed_wall=par["m_fixed_wall"],
+        ),
     )
 
 
@@ -85,7 +88,9 @@ def test_analytic_torque_derivatives_match_finite_differences(syx, sc, m):
 
 
 def test_couple_stress_jacobian_of_couette_matches_finite_differences():
-    p = parameter_vector(CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=1.0))
+    p = parameter_vector(
+        Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
+    )
     mu, h = -0.2, 1e-7
     for xi in (0.0, 0.3, 1.0):
         y = np.array([-0.21])
@@ -96,15 +101,15 @@ def test_couple_stress_jacobian_of_couette_matches_finite_differences():
 
 
 def _profiles():
-    plane = PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3, B=1.0)
-    couette = CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=1.0)
-    symmetric = PlaneShear(material=MAT, upper=Wall(20.0), eps=0.04)
+    plane = Problem(Plane(eps=1e-3, B=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
+    couette = Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
+    symmetric = Problem(Plane(eps=0.04), Cosserat(material=MAT, wall=Wall(20.0)))
     return [
         solve(plane),
         solve(couette),
         solve(symmetric),
         solve(symmetric, method="closed-form"),
-        solve(replace(couette, eps=1e-3), method="asymptotic"),
+        solve(couette.with_values({"eps": 1e-3}), method="asymptotic"),
     ]
 
 
@@ -120,7 +125,7 @@ def test_profiles_pickle_and_evaluate_the_same_afterwards(index):
 
 
 def test_repr_is_a_few_lines_and_stats_are_carried():
-    profile = solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0))
+    profile = solve(Problem(Couette(eps=1e-3, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))))
     text = repr(profile)
     assert len(text.splitlines()) <= 4
     assert len(text) < 600
@@ -134,11 +139,15 @@ def test_repr_is_a_few_lines_and_stats_are_carried():
 
 def test_batch_returns_a_status_per_case_and_no_nan():
     problems = [
-        PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3),
-        PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1, B=1.0),  # no real solution
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=0.05),  # no real solution
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0),
-        PlaneShear(material=MAT, upper=Wall(1e-5), eps=1e-3),  # at the edge: undecidable
+        Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(20.0))),
+        Problem(Plane(eps=0.1, B=1.0), Cosserat(material=MAT, wall=Wall(20.0))),  # no real solution
+        Problem(
+            Couette(eps=0.04, Ri=0.05), Cosserat(material=MAT, wall=Wall(20.0))
+        ),  # no real solution
+        Problem(Couette(eps=1e-3, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))),
+        Problem(
+            Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(1e-5))
+        ),  # at the edge: undecidable
     ]
     results = wall_quantities(problems)
     assert [r.status for r in results] == ["ok", "no-solution", "no-solution", "ok", "error"]
@@ -156,7 +165,7 @@ def test_batch_returns_a_status_per_case_and_no_nan():
 
 
 def test_kernel_status_codes_are_not_nan_in_disguise():
-    p = parameter_vector(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1, B=1.0))
+    p = parameter_vector(Problem(Plane(eps=0.1, B=1.0), Cosserat(material=MAT, wall=Wall(20.0))))
     status, info = kernel.solve_batch(p[None, :], 1e-8, 1e-10, 0.05, 20000)
     assert status[0] == kernel.NO_SOLUTION
     assert 0.0 <= info[0, kernel.I_XI_FAIL] <= 1.0
@@ -168,20 +177,24 @@ def test_thin_inner_cylinder_at_small_eps_is_solved(Ri, eps):
     """v0.1.0 stalled here (the outer couple stress within 1e-9 of its yield bound) and gave
     up after ~3 s; the compiled core, with a bounded Newton Jacobian, solves it: boundary
     conditions to round-off, residuals within the dense-output error (docs/numerics.md)."""
-    profile = solve(CouetteFlow(material=Material(30.0), wall=Wall(20.0), eps=eps, Ri=Ri))
+    profile = solve(
+        Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=Material(30.0), wall=Wall(20.0)))
+    )
     assert max(abs(v) for v in profile.diagnostics.bc_errors.values()) < 1e-10
     assert max(profile.diagnostics.residuals.values()) < 1e3 * 1e-8
     assert 1.0 < shear_layer_thickness(profile) < 30.0
 
 
 def test_a_thin_cylinder_without_a_real_solution_says_so():
-    problem = CouetteFlow(material=Material(30.0), wall=Wall(20.0), eps=1e-4, Ri=1e-3)
+    problem = Problem(
+        Couette(eps=1e-4, Ri=1e-3), Cosserat(material=Material(30.0), wall=Wall(20.0))
+    )
     with pytest.raises(NoSolutionError, match="for no couple stress"):
         solve(problem)
 
 
 def test_step_budget_is_reported_as_a_convergence_error():
-    p = parameter_vector(PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3))
+    p = parameter_vector(Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(20.0))))
     status, _, _, _, _ = kernel.solve_case(p, 1e-10, 1e-12, 0.05, 3)
     assert status == kernel.TOO_MANY_STEPS
 

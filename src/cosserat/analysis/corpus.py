@@ -493,15 +493,18 @@ def synthetic_run(
     _, uw = moving_wall(problem)
     f = profile.evaluate(xi)
     half = -0.5 * (f.du_dxi + f.kappa * f.u)
+    # a rheology without grain spin of its own: the grains turn with the material
+    spin = half if f.omega is None else f.omega
     rng = np.random.default_rng(seed)
     s_spin = noise * eps if spin_noise is None else spin_noise
-    Ri_d = float(problem.Ri) * gap if cell == "couette" else None
+    params = problem.parameters()
+    Ri_d = float(params["Ri"]) * gap if cell == "couette" else None
     coord = xi * gap + (Ri_d or 0.0)
     columns = {
         COORDINATE[cell]: coord,
         "u": f.u / uw + rng.normal(0.0, noise, n),
         "u_se": np.full(n, noise),
-        "omega": eps * f.omega + rng.normal(0.0, s_spin, n),
+        "omega": eps * spin + rng.normal(0.0, s_spin, n),
         "omega_se": np.full(n, s_spin),
         "half_vorticity": eps * half + rng.normal(0.0, s_spin, n),
         "half_vorticity_se": np.full(n, s_spin),
@@ -510,7 +513,7 @@ def synthetic_run(
         "cell": cell,
         "gap_d": gap,
         "Ri_d": Ri_d,
-        "B": float(getattr(problem, "B", 0.0)) * float(getattr(problem, "nu", 1.0)),
+        "B": float(params.get("B") or 0.0) * float(params.get("nu") or 1.0),
         "wall": wall or {"kind": "glued-grains"},
         "seed": seed,
         "source": "synthetic",

@@ -29,6 +29,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..model.cells.plane import mean_stress
 from ..model.constitutive import (
     RADICAND_ROUNDOFF,
     k_radicand,
@@ -38,8 +39,11 @@ from ..model.constitutive import (
     k_torque_dsyx,
     k_velocity_ratio,
 )
-from ..model.couette import outer_wall_couple_stress, shear_stress, shear_stress_dm
-from ..model.plane import mean_stress
+from ..model.rheologies.cosserat.couette import (
+    outer_wall_couple_stress,
+    shear_stress,
+    shear_stress_dm,
+)
 from .dop853 import dop853, dop853_eval1
 from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1, radau5
 from .roots import B as ROOT

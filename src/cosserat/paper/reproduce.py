@@ -22,7 +22,7 @@ from typing import Any
 from .. import config
 from .._atomic import atomic_open, remove_stale_temporaries, write_text
 from ..analysis.sensitivity import existence_bound_A
-from ..model import PlaneShear
+from ..model import Cosserat, Plane, Problem
 from ..model.parameters import Wall
 from ..numerics.runtime import worker_processes
 from ..routes.airy import xi_hat_at_fraction
@@ -120,7 +120,7 @@ def _later_claims(figures: dict[int, FigureData]) -> list[Claim]:
             )
         )
         alt = existence_bound_A(
-            PlaneShear(material=MATERIAL, upper=Wall.fully_rough(), eps=0.02, B=1.0)
+            Problem(Plane(eps=0.02, B=1.0), Cosserat(material=MATERIAL, wall=Wall.fully_rough()))
         )
         claims.append(
             Claim(

@@ -53,14 +53,15 @@ def make_profile(
     ``check`` computes the ODE residuals on a layer-resolving check grid and the boundary
     errors; sweeps that need only wall quantities may skip it.
     """
-    grid = problem.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
+    eq = problem.equations
+    grid = eq.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
     f = evaluate(grid)
     # The returned stresses must be real: a profile never carries a clipped radicand.
     check_radicand(
-        radicand(f.sigma_yx, f.sigma_yy, f.m, problem.material),
+        radicand(f.sigma_yx, f.sigma_yy, f.m, eq.material),
         f.sigma_yy,
         f.m,
-        problem.material,
+        eq.material,
         grid,
     )
     for name, values in f._asdict().items():
@@ -75,8 +76,8 @@ def make_profile(
                 f"the {method} solution produced non-finite {name} for {problem.describe()}"
             )
     if check:
-        res = residuals(form, evaluate, problem.output_grid(config.CHECK_POINTS))
-        bc = problem.boundary_errors(evaluate)
+        res = residuals(form, evaluate, eq.output_grid(config.CHECK_POINTS))
+        bc = eq.boundary_errors(evaluate)
     else:
         res, bc = {}, {}
     diag = Diagnostics(

@@ -17,7 +17,7 @@ import numpy as np
 
 from .. import config
 from ..errors import ConvergenceError, NoSolutionError, ParameterError, shown
-from ..model import CouetteFlow, PlaneShear, PlaneShearCase, Problem
+from ..model import PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
 from ..model.formulation import Formulation
 from ..numerics import cosserat as kernel
@@ -51,29 +51,31 @@ def tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
 
 
 def parameter_vector(problem: Problem, mu_guess: float | None = None) -> FloatArray:
-    """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.cosserat`)."""
+    """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.cosserat`)
+    for the Cosserat model on the plane or Couette cell."""
+    eq = problem.equations
     p = np.zeros(kernel.N_PARAMS)
-    mat = problem.material
+    mat = eq.material
     p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
-    p[kernel.P_EPS] = problem.eps
-    const = problem.slip_constants
+    p[kernel.P_EPS] = eq.eps
+    const = eq.slip_constants
     p[kernel.P_M0], p[kernel.P_B_BOUND] = const.m0, const.b
     p[kernel.P_MU_GUESS] = math.nan if mu_guess is None else float(mu_guess)
-    if isinstance(problem, CouetteFlow):
+    if problem.cell_name == "couette":
         p[kernel.P_GEOMETRY] = kernel.COUETTE
-        p[kernel.P_TAN_DELTA] = problem.tan_delta
-        p[kernel.P_RI] = problem.Ri
-        p[kernel.P_COUPLE] = problem.couple_factor
-        p[kernel.P_K_SLIP] = problem.wall.K
+        p[kernel.P_TAN_DELTA] = eq.tan_delta
+        p[kernel.P_RI] = eq.Ri
+        p[kernel.P_COUPLE] = eq.couple_factor
+        p[kernel.P_K_SLIP] = eq.wall.K
         return p
-    case = problem.case
+    case = eq.case
     p[kernel.P_GEOMETRY] = kernel.PLANE
     p[kernel.P_CASE] = _CASES[case]
-    p[kernel.P_SIGMA_YX] = problem.sigma_yx
-    p[kernel.P_B_NU] = problem.B * problem.nu
-    p[kernel.P_M_START] = 0.0 if case is PlaneShearCase.SYMMETRIC else problem.m_at_fixed_wall
-    p[kernel.P_K_SLIP] = problem.slipping.K
-    p[kernel.P_K_OTHER] = problem.lower_wall.K
+    p[kernel.P_SIGMA_YX] = eq.sigma_yx
+    p[kernel.P_B_NU] = eq.B * eq.nu
+    p[kernel.P_M_START] = 0.0 if case is PlaneShearCase.SYMMETRIC else eq.m_at_fixed_wall
+    p[kernel.P_K_SLIP] = eq.slipping.K
+    p[kernel.P_K_OTHER] = eq.lower_wall.K
     return p
 
 
@@ -83,7 +85,7 @@ def raise_for_status(problem: Problem, status: int, info: FloatArray) -> None:
         return
     xi, m = float(info[kernel.I_XI_FAIL]), float(info[kernel.I_M_FAIL])
     if status == kernel.NO_SOLUTION:
-        if isinstance(problem, CouetteFlow):
+        if problem.cell_name == "couette":
             raise NoSolutionError(
                 f"no real solution for {problem.describe()}: for no couple stress m(0) at the "
                 f"inner cylinder does the couple-stress balance, integrated from the outer "
@@ -132,7 +134,8 @@ class NumericalSolution:
 
     Attributes
     ----------
-    problem : PlaneShear or CouetteFlow
+    problem : Problem
+        The Cosserat model on the plane or Couette cell.
     params, info : ndarray
         The kernel's parameter and result vectors (``P_*``, ``I_*``).
     couple : tuple of ndarray
@@ -156,14 +159,15 @@ class NumericalSolution:
         return float(self.info[kernel.I_MU])
 
     def formulation(self) -> Formulation:
-        if isinstance(self.problem, CouetteFlow):
-            return self.problem.formulation(self.mu)
-        return self.problem.formulation()
+        if self.problem.cell_name == "couette":
+            return self.problem.equations.formulation(self.mu)
+        return self.problem.equations.formulation()
 
     @property
     def symmetric(self) -> bool:
         return (
-            isinstance(self.problem, PlaneShear) and self.problem.case is PlaneShearCase.SYMMETRIC
+            self.problem.cell_name == "plane"
+            and self.problem.equations.case is PlaneShearCase.SYMMETRIC
         )
 
     def _half(self, x: FloatArray) -> FloatArray:
@@ -246,7 +250,7 @@ def _stats(info: FloatArray) -> dict[str, Any]:
 
 
 def solve_plane(
-    problem: PlaneShear,
+    problem: Problem,
     *,
     rtol: float = DEFAULT_RTOL,
     atol: float | None = None,
@@ -267,7 +271,7 @@ def solve_plane(
 
 
 def solve_couette(
-    problem: CouetteFlow,
+    problem: Problem,
     *,
     rtol: float = DEFAULT_RTOL,
     atol: float | None = None,
@@ -323,6 +327,25 @@ def _profile(
 
 
 # ----------------------------------------------------------------- many problems at once
+BATCHED = ("plane", "couette")
+"""The cells the batch kernel solves for the Cosserat model."""
+
+
+def is_batched(problem: Any) -> bool:
+    """True for a problem of the Cosserat model on a cell of :data:`BATCHED`."""
+    return (
+        isinstance(problem, Problem)
+        and problem.model == "cosserat"
+        and problem.cell_name in BATCHED
+    )
+
+
+def _name(problem: Any) -> str:
+    if isinstance(problem, Problem):
+        return f"the {problem.model} rheology on the {problem.cell_name} cell"
+    return f"a {type(problem).__name__}"
+
+
 @dataclass(frozen=True)
 class WallResult:
     """Wall quantities of one problem (dimensionless; ``None`` where there is no solution).
@@ -359,9 +382,10 @@ def wall_quantities(
     if not problems:
         return []
     for pr in problems:
-        if not isinstance(pr, PlaneShear | CouetteFlow):
+        if not is_batched(pr):
             raise ParameterError(
-                f"cannot solve a {type(pr).__name__}: give a PlaneShear or a CouetteFlow"
+                f"the batch kernel solves the Cosserat model on the plane and Couette cells; "
+                f"got {_name(pr)}"
             )
     params = np.stack([parameter_vector(pr) for pr in problems])
     status, info = map_batches(params, rtol, atol, float(f), config.MAX_STEPS)
@@ -379,7 +403,7 @@ def _wall_result(problem: Problem, code: int, row: FloatArray, f: float) -> Wall
             return WallResult("no-solution", None, None, None, None, str(exc))
         except ConvergenceError as exc:
             return WallResult("error", None, None, None, None, str(exc))
-    m_inner = float(row[kernel.I_MU]) if isinstance(problem, CouetteFlow) else None
+    m_inner = float(row[kernel.I_MU]) if problem.cell_name == "couette" else None
     if not row[kernel.I_DELTA_OK]:
         return WallResult(
             "error",

@@ -2,8 +2,11 @@
 
 Spec (``cosserat sweep SPEC.toml``)::
 
-    geometry = "plane"              # or "couette"; may also vary in [grid] or [[cases]]
-    rtol = 1e-8                     # numerical tolerance (optional)
+    model = "cosserat"              # any registered rheology (cosserat, mui, ngf, ...);
+                                    #   may also vary in [grid] or [[cases]]
+    cell = "plane"                  # any registered cell (plane, couette, channel, ...);
+                                    #   "geometry" is the same key; may also vary
+    rtol = 1e-8                     # tolerance of the Cosserat model's kernels (optional)
     f = 0.05                        # fraction defining Delta (optional)
     output = "sweep.csv"            # .csv, or .parquet if pyarrow is installed (optional)
     max_cases = 1000000             # refuse a spec of more cases (optional; the default)
@@ -21,21 +24,27 @@ Spec (``cosserat sweep SPEC.toml``)::
     eps = 0.01
     delta = 22.0
 
-Parameters: phi, L, A [material]; delta, K [the moving wall; "fully-rough" allowed];
-delta_lower, K_lower, B, nu, m_wall [plane]; Ri [Couette]; eps. Defaults are the paper's
-(:data:`cosserat.model.build.DEFAULTS`, from :mod:`cosserat.config`), and every case is built
-by :func:`cosserat.model.build_problem`, as on the command line. ``rtol`` and ``f`` default to
-``config.RTOL`` and ``config.DEFAULT_F``.
+Parameters: the command-line keys of the case's model on its cell
+(:func:`cosserat.model.problem_parameters`; ``cosserat models`` lists them): for the Cosserat
+model phi, L, A, delta, K ("fully-rough" allowed), delta_lower, K_lower, m_wall (plane); for
+mu(I) mu_s, mu_2, I_0; for NGF mu_s, b, A, mu_2, fluidity_bc; and the cell's eps, B, nu
+(plane, channel), Ri (Couette), I_w, stress_ratio (the drive of mu(I) and NGF). Absent keys take
+their declared defaults, and every case is built by :func:`cosserat.model.make_problem`, as on
+the command line; a key the case's model or cell does not have makes that case's row
+"invalid". ``rtol`` and ``f`` default to ``config.RTOL`` and ``config.DEFAULT_F``.
 
 The number of cases is counted from the spec before any case is made, and a spec of more than
 ``max_cases`` (default :data:`MAX_CASES`, one million: about a gigabyte of memory for the cases
 and their rows, and hours of work on a few cores) is refused with its count; give a larger
 ``max_cases`` at the top of the spec to run it anyway.
 
-Every case gives a row: its parameters, Delta, wall_slip, wall_omega, wall_stress, and
-``status`` ("ok"; "no-solution": the model has no real solution; "error": the solver could not
-finish, e.g. a singular start on the yield bound; "invalid": a parameter out of bounds) with the
-reason in ``message``: failed cases are recorded, never dropped. Cases run in chunks in local
+Every case gives a row: its parameters (the declared defaults filled in), Delta, wall_slip,
+wall_omega (empty for a rheology without grain spin), wall_stress, and ``status`` ("ok";
+"no-solution": the model has no real solution; "error": the solver could not finish, e.g. a
+singular start on the yield bound; "invalid": a parameter out of bounds or of another model)
+with the reason in ``message``: failed cases are recorded, never dropped. The Cosserat model on
+plane shear and Couette flow runs on the compiled batch kernel, every other case by its
+numerical route (:func:`cosserat.routes.walls.wall_quantities`). Cases run in chunks in local
 worker processes, or on a Dask cluster (``scheduler="tcp://..."``); the rows are the same either
 way, and a chunk whose Dask worker is lost is run again.
 
@@ -66,9 +75,12 @@ from .. import config
 from .._atomic import atomic_open
 from .._text import read_text
 from ..errors import CosseratError, InputError, ParameterError
-from ..model import Problem, build_problem
-from ..model.build import DEFAULTS, PARAMETERS
+from ..model import Problem, make_problem
+from ..model.build import problem_parameters
 from ..numerics.runtime import worker_processes
+
+DEFAULT_MODEL, DEFAULT_CELL = "cosserat", "plane"
+"""The model and cell of a case that names none."""
 
 RESULTS = ("Delta", "wall_slip", "wall_omega", "wall_stress", "status", "message")
 
@@ -187,37 +199,43 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
         name) out of bounds. A parameter *value* out of bounds is not an
         error here: that case gives a row with status "invalid".
     """
-    known = {"geometry", "rtol", "f", "output", "chunk", "max_cases", "fixed", "grid", "cases"}
+    known = {
+        "model", "cell", "geometry", "rtol", "f", "output", "chunk", "max_cases", "fixed", "grid",
+        "cases",
+    }
     unknown = set(data) - known
     if unknown:
         raise ParameterError(f"unknown top-level key(s) in the sweep spec: {sorted(unknown)}")
-    fixed = dict(_table("fixed", data.get("fixed", {})))
-    if "geometry" in data:
-        fixed.setdefault("geometry", data["geometry"])
-    grid = _table("grid", data.get("grid", {}))
+    fixed = _named(dict(_table("fixed", data.get("fixed", {}))), "fixed")
+    top = _named({k: data[k] for k in ("model", "cell", "geometry") if k in data}, "the spec")
+    for key, value in top.items():
+        fixed.setdefault(key, value)
+    grid = _named(dict(_table("grid", data.get("grid", {}))), "grid")
     listed = data.get("cases", [])
     if not isinstance(listed, list):
         raise ParameterError(f"cases must be an array of tables ([[cases]]); got {listed!r}")
-    listed = [_table("cases", c) for c in listed]
+    listed = [_named(dict(_table("cases", c)), "cases") for c in listed]
+    allowed = parameter_keys()
     for where, table in [("fixed", fixed), ("grid", grid), *[("cases", c) for c in listed]]:
-        bad = set(table) - set(PARAMETERS)
+        bad = set(table) - set(allowed)
         if bad:
             raise ParameterError(
-                f"unknown parameter(s) {sorted(bad)} in [{where}]; known: {', '.join(PARAMETERS)}"
+                f"unknown parameter(s) {sorted(bad)} in [{where}]; known: {', '.join(allowed)}"
             )
     _check_size(grid, len(listed), data.get("max_cases", MAX_CASES))
     cases: list[dict[str, Any]] = []
     if grid:
         names = list(grid)
         for combo in itertools.product(*(_values(n, grid[n]) for n in names)):
-            cases.append({**DEFAULTS, **fixed, **dict(zip(names, combo, strict=True))})
-    cases += [{**DEFAULTS, **fixed, **c} for c in listed]
+            cases.append({**fixed, **dict(zip(names, combo, strict=True))})
+    cases += [{**fixed, **c} for c in listed]
     if not grid and not listed:
-        cases.append({**DEFAULTS, **fixed})
+        cases.append(dict(fixed))
+    cases = [_with_defaults(c) for c in cases]
     for i, c in enumerate(cases):
         if "eps" not in c:
             raise ParameterError(f"case {i}: no eps (give it in [fixed], [grid] or [[cases]])")
-    columns = [p for p in PARAMETERS if any(p in c for c in cases)]
+    columns = [p for p in allowed if any(p in c for c in cases)]
     rtol = _number("rtol", data.get("rtol", config.RTOL), *config.RTOL_RANGE, closed=True)
     f = _number("f", data.get("f", config.DEFAULT_F), 0.0, 1.0)
     chunk = data.get("chunk", 64)
@@ -227,6 +245,58 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
     if output is not None and (not isinstance(output, str) or not output.strip()):
         raise ParameterError(f"output must be a file name (.csv or .parquet); got {output!r}")
     return SweepSpec(cases, rtol, f, output, chunk, columns)
+
+
+def parameter_keys() -> list[str]:
+    """Every key a case may have: ``model``, ``geometry`` and the command-line keys of every
+    registered model on every cell it has (:func:`cosserat.model.problem_parameters`), in the
+    order of the registries."""
+    from ..routes import RHEOLOGIES, cells_for
+
+    keys = ["model", "geometry"]
+    for model in RHEOLOGIES:
+        for cell in cells_for(model):
+            keys += list(problem_parameters(model, cell))
+    return list(dict.fromkeys(keys))
+
+
+def _named(table: dict[str, Any], where: str) -> dict[str, Any]:
+    """``cell`` is another name of ``geometry`` (not both)."""
+    if "cell" in table:
+        if "geometry" in table:
+            raise ParameterError(f"give cell or geometry in [{where}], not both")
+        table["geometry"] = table.pop("cell")
+    return table
+
+
+def _with_defaults(case: dict[str, Any]) -> dict[str, Any]:
+    """``case`` with its model, cell and the declared defaults of their parameters filled in
+    (the row shows the values the case ran with); a case naming an unknown model or cell is
+    left as it is (its row says why it is invalid)."""
+    out = {"model": DEFAULT_MODEL, "geometry": DEFAULT_CELL, **case}
+    try:
+        declared = problem_parameters(str(out["model"]), str(out["geometry"]))
+    except CosseratError:
+        return out
+    for key, p in declared.items():
+        if key not in out and p.has_default and p.default is not None:
+            out[key] = p.default
+    return out
+
+
+def case_problem(case: dict[str, Any]) -> Problem:
+    """The problem of one case (:func:`cosserat.model.make_problem`).
+
+    Raises
+    ------
+    ParameterError
+        An unknown model or cell, a key the case's model or cell does not have, a value out of
+        its bounds.
+    """
+    values = {k: v for k, v in case.items() if k not in ("model", "geometry")}
+    return make_problem(
+        str(case.get("model", DEFAULT_MODEL)), str(case.get("geometry", DEFAULT_CELL)), values
+    )
 
 
 def load_spec(path: str | Path) -> SweepSpec:
@@ -257,8 +327,9 @@ def _reason(exc: OSError) -> str:
 
 
 def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[dict[str, Any]]:
-    """Solve a chunk of cases with the compiled batch kernel; one row per case, in order."""
-    from ..routes.numerical import wall_quantities
+    """Solve a chunk of cases (:func:`cosserat.routes.walls.wall_quantities`: the compiled
+    batch kernel where it applies); one row per case, in order."""
+    from ..routes.walls import wall_quantities
 
     rows: list[dict[str, Any]] = []
     problems: list[Problem] = []
@@ -266,9 +337,9 @@ def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[di
     for case in cases:
         row = dict(case)
         try:
-            problems.append(build_problem(case))
+            problems.append(case_problem(case))
             slots.append(len(rows))
-        except CosseratError as exc:  # build_problem raises ParameterError for any bad value
+        except CosseratError as exc:  # make_problem raises ParameterError for any bad value
             row.update(status="invalid", message=" ".join(str(exc).split()))
         rows.append(row)
     for slot, res in zip(slots, wall_quantities(problems, rtol=rtol, f=f), strict=True):
