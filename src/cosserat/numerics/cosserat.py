@@ -687,58 +687,22 @@ def _crossed_by_round_off(ts: np.ndarray, ys: np.ndarray, p: np.ndarray) -> bool
 
 # ----------------------------------------------------------------- one case
 @njit(cache=True, nogil=True)
-def solve_case(p, rtol, atol, f, max_steps):
-    """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
+def _empty_solution():
+    """(couple-stress, spin) solutions of a case that stopped before them."""
+    couple = (np.zeros(1), np.zeros(0), np.zeros((1, 1)), np.zeros((0, 1, 3)))
+    spin = (np.zeros(1), np.zeros((1, 2)), np.zeros((0, 7, 2)))
+    return couple, spin
 
-    ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
-    :func:`~cosserat.numerics.radau_scalar.radau5_scalar`, the spin one (ts, ys, F) of
-    :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
-    xi(tau) given by the pass geometry ``[xi_slip, span, singular]``.
-    """
-    info = np.zeros(N_INFO)
-    info[I_DELTA] = math.nan
-    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
-    empty1 = np.zeros(1)
-    empty2 = np.zeros((1, 1))
-    empty3 = np.zeros((0, 1, 3))
-    no_spin = (empty1, np.zeros((1, 2)), np.zeros((0, 7, 2)))
-    g = np.zeros(3)
+
+@njit(cache=True, nogil=True)
+def _after_couple_pass(p, mu, status, cs, counters, info, rtol, atol, f, max_steps):
+    """From a couple-stress pass to the case's result (:func:`solve_case`): the pass's status,
+    then the spin pass, the velocity constants and the thickness."""
+    ts1, _, ys1, _ = cs
     xs, x0 = walls(p)
-    mu = 0.0
-    have_pass = False
-    ts1, hs1, ys1, Q1 = empty1, np.zeros(0), empty2, empty3
-    if p[P_GEOMETRY] == COUETTE:
-        pass_rtol, pass_atol = rtol * 0.1, atol * 0.1
-        have_pass, mu, ts1, hs1, ys1, Q1 = couette_newton(p, rtol, atol, max_steps, counters)
-        if not have_pass:
-            code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
-            if code != OK:
-                info[I_MU] = mu
-                info[I_ITERATIONS] = counters[3]
-                info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
-                return code, info, (empty1, np.zeros(0), empty2, empty3), no_spin, g
-        info[I_MU] = mu
-        info[I_ITERATIONS] = counters[3]
-        m1, _ = outer_wall_couple_stress(
-            mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
-        )
-        m_start = m1
-    else:
-        m_start = p[P_M_START]
-        pass_rtol, pass_atol = rtol, atol
-    if have_pass:
-        status = SUCCESS
-        m_start = ys1[0, 0]
-        info[I_STEPS_COUPLE] = ts1.size - 1
-    else:
-        status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
-            p, mu, m_start, x0, xs, pass_rtol, pass_atol, max_steps
-        )
-        counters[0] += nfev
-        counters[1] += nsteps
-        counters[2] += nlu
-        info[I_STEPS_COUPLE] = nsteps
-    cs = (ts1, hs1, ys1, Q1)
+    m_start = ys1[0, 0]
+    g = np.zeros(3)
+    _, no_spin = _empty_solution()
     code = _pass_status(status)
     if code == NO_SOLUTION and _crossed_by_round_off(ts1, ys1, p):
         code = AT_YIELD_EDGE
@@ -808,6 +772,75 @@ def solve_case(p, rtol, atol, f, max_steps):
     info[I_DELTA] = delta
     info[I_DELTA_OK] = 1.0 if delta_ok else 0.0
     return OK, info, cs, sp, g
+
+
+@njit(cache=True, nogil=True)
+def solve_plane_case(p, rtol, atol, f, max_steps):
+    """:func:`solve_case` for plane shear (compiled without the Couette search)."""
+    info = np.zeros(N_INFO)
+    info[I_DELTA] = math.nan
+    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
+    xs, x0 = walls(p)
+    status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
+        p, 0.0, p[P_M_START], x0, xs, rtol, atol, max_steps
+    )
+    counters[0] += nfev
+    counters[1] += nsteps
+    counters[2] += nlu
+    info[I_STEPS_COUPLE] = nsteps
+    cs = (ts1, hs1, ys1, Q1)
+    return _after_couple_pass(p, 0.0, status, cs, counters, info, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, nogil=True)
+def solve_couette_case(p, rtol, atol, f, max_steps):
+    """:func:`solve_case` for Couette flow: m(0) by Newton's method (:func:`couette_newton`),
+    or by the bracketing search (:func:`couette_inner_couple_stress`) if that fails."""
+    info = np.zeros(N_INFO)
+    info[I_DELTA] = math.nan
+    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
+    found, mu, ts1, hs1, ys1, Q1 = couette_newton(p, rtol, atol, max_steps, counters)
+    status = SUCCESS
+    if found:
+        info[I_STEPS_COUPLE] = ts1.size - 1
+    else:
+        code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
+        if code != OK:
+            info[I_MU] = mu
+            info[I_ITERATIONS] = counters[3]
+            info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
+            cs, sp = _empty_solution()
+            return code, info, cs, sp, np.zeros(3)
+        m1, _ = outer_wall_couple_stress(
+            mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+        )
+        status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
+            p, mu, m1, 1.0, 0.0, rtol * 0.1, atol * 0.1, max_steps
+        )
+        counters[0] += nfev
+        counters[1] += nsteps
+        counters[2] += nlu
+        info[I_STEPS_COUPLE] = nsteps
+    info[I_MU] = mu
+    info[I_ITERATIONS] = counters[3]
+    cs = (ts1, hs1, ys1, Q1)
+    return _after_couple_pass(p, mu, status, cs, counters, info, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, nogil=True)
+def solve_case(p, rtol, atol, f, max_steps):
+    """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
+
+    ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
+    :func:`~cosserat.numerics.radau_scalar.radau5_scalar`, the spin one (ts, ys, F) of
+    :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
+    xi(tau) given by the pass geometry ``[xi_slip, span, singular]``. One problem of a known
+    cell is cheaper to compile through :func:`solve_plane_case` or :func:`solve_couette_case`
+    (a first run compiles only what it calls).
+    """
+    if p[P_GEOMETRY] == COUETTE:
+        return solve_couette_case(p, rtol, atol, f, max_steps)
+    return solve_plane_case(p, rtol, atol, f, max_steps)
 
 
 @njit(cache=True, nogil=True)

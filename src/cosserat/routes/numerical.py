@@ -217,7 +217,11 @@ def run_kernel(
 ) -> NumericalSolution:
     """Solve ``problem`` on the compiled core; raise the package's error if it fails."""
     p = parameter_vector(problem, mu_guess)
-    status, info, couple, spin, geometry = kernel.solve_case(p, rtol, atol, f, config.MAX_STEPS)
+    # one cell's entry point: a first run compiles only that cell's search
+    solve_case = (
+        kernel.solve_couette_case if isinstance(problem, CouetteFlow) else kernel.solve_plane_case
+    )
+    status, info, couple, spin, geometry = solve_case(p, rtol, atol, f, config.MAX_STEPS)
     raise_for_status(problem, int(status), info)
     return NumericalSolution(problem, p, info, couple, spin, geometry, float(f))
 
