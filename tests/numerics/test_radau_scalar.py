@@ -37,8 +37,9 @@ def lin_dfdy(t, y, args):
 
 
 @njit
-def lin_dfdp(t, y, args):
-    return args[0] * math.cos(t)
+def lin_derivatives(t, y, args):
+    """(df/dy, df/dp)."""
+    return -args[0], args[0] * math.cos(t)
 
 
 @njit
@@ -80,6 +81,11 @@ def cubic_dfdy(t, y, args):
 @njit
 def cubic_dfdp(t, y, args):
     return args[0] * math.sin(t)
+
+
+@njit
+def cubic_derivatives(t, y, args):
+    return cubic_dfdy(t, y, args), cubic_dfdp(t, y, args)
 
 
 @njit
@@ -173,12 +179,12 @@ def test_radau_matrix_is_the_eigen_decomposition_of_radau5():
 
 
 # ----------------------------------------------------------------------------- sensitivity
-def _solve_with_sensitivity(f, dfdy, dfdp, t0, t1, y0, s0, rtol, args):
+def _solve_with_sensitivity(f, dfdy, derivatives, t0, t1, y0, s0, rtol, args):
     status, ts, hs, ys, Q, Zs, *_ = radau5_scalar(
         f, dfdy, no_event_scalar, t0, t1, y0, rtol, rtol * 1e-3, args, 100_000, 0.0
     )
     assert status == SUCCESS
-    ss, dQ = sensitivity(dfdy, dfdp, args, ts, hs, ys, Zs, s0)
+    ss, dQ = sensitivity(derivatives, args, ts, hs, ys, Zs, s0)
     return ts, hs, ys, Q, ss, dQ
 
 
@@ -188,7 +194,7 @@ def test_sensitivity_of_a_linear_problem_is_its_closed_form():
     k = K
     args = args_of(p=2.0)
     ts, hs, ys, Q, ss, dQ = _solve_with_sensitivity(
-        lin_f, lin_dfdy, lin_dfdp, 0.0, 2.0, 0.0, 0.0, 1e-9, args
+        lin_f, lin_dfdy, lin_derivatives, 0.0, 2.0, 0.0, 0.0, 1e-9, args
     )
 
     # closed form of s' = -k (s - cos t), s(0) = 0
@@ -217,7 +223,7 @@ def test_sensitivity_of_a_nonlinear_stiff_problem_against_the_variational_equati
                     dense_output=True)  # fmt: skip
     for rtol in (1e-6, 1e-9):
         ts, hs, _, _, ss, dQ = _solve_with_sensitivity(
-            cubic_f, cubic_dfdy, cubic_dfdp, 0.0, 3.0, 2.0, 0.0, rtol, args
+            cubic_f, cubic_dfdy, cubic_derivatives, 0.0, 3.0, 2.0, 0.0, rtol, args
         )
         err = np.max(np.abs(ss[:, 0] - ref.sol(ts)[1]))
         # the derivative of the computed solution is as accurate as the solution itself
