@@ -1,8 +1,10 @@
 """Numerical route: every problem, every eps in (0, 0.5], on the compiled core.
 
 This layer only validates, translates a problem into the kernel's parameter vector, calls
-:func:`cosserat.numerics.cosserat.solve_case` (one problem) or ``solve_batch`` (many), turns
-status codes into the package's errors and wraps the result as a
+:func:`cosserat.numerics.cosserat.solve_case` (one problem; ``solve_plane_case`` or
+``solve_couette_case``), ``solve_batch`` (the wall quantities of many) or ``predict_batch``
+(chosen fields of many at given points: :func:`predict`, :func:`predict_many`), turns status
+codes into the package's errors and wraps the result as a
 :class:`~cosserat.results.profile.Profile` (``docs/numerics.md``).
 """
 
@@ -268,10 +270,11 @@ def solve_couette(
     check: bool = True,
     m_inner_guess: float | None = None,
 ) -> Profile:
-    """Couette flow: m(0) by a compiled secant/Brent iteration on ``m(0; mu) - mu``
-    (``eqn-nd_shsts_cyl``), the couple stress from the outer cylinder inwards for each trial;
-    then spin and velocity from the inner cylinder outwards. ``m_inner_guess`` (e.g. from a
-    neighbouring eps in a sweep) replaces the leading-order starting value."""
+    """Couette flow: m(0) by compiled Newton iterations on ``m(0; mu) - mu``
+    (``eqn-nd_shsts_cyl``; secant/Brent if they fail), the couple stress from the outer
+    cylinder inwards for each trial; then spin and velocity from the inner cylinder outwards.
+    ``m_inner_guess`` (e.g. from a neighbouring eps in a sweep) replaces the leading-order
+    starting value."""
     rtol, atol = tolerances(rtol, atol)
     if m_inner_guess is not None and not math.isfinite(float(m_inner_guess)):
         raise ParameterError(f"m_inner_guess must be finite; got {m_inner_guess!r}")
@@ -280,7 +283,8 @@ def solve_couette(
     stats["m_inner"] = sol.mu
     stats["shooting_iterations"] = int(sol.info[kernel.I_ITERATIONS])
     message = (
-        "compiled: secant/Brent on m(0); Radau IIA couple stress (outer to inner), "
+        "compiled: Newton (secant/Brent as fallback) on m(0); Radau IIA couple stress "
+        "(outer to inner), "
         "DOP853 spin and velocity"
     )
     return _profile(sol, rtol, atol, points, xi, check, message, stats)
