@@ -374,7 +374,7 @@ def against_v010(rep: Report, old: V010 | None, rounds: int, min_time: float) ->
             call = (
                 "solve(p, check=False, points=3, rtol=1e-8)"
                 if kind == "cheap"
-                else "solve(p)` with its residuals read (`diagnostics.residuals`"
+                else "solve(p)` + reading `diagnostics.residuals"
             )
             rep.target(
                 f">= 30x faster than v0.1.0, `{call}`, eps 0.04-1e-4",
