@@ -136,6 +136,7 @@ class OptionalTocTree(TocTree):
 # the site that shows the same file (the notes stay readable where they are).
 OUTSIDE_LINKS = {
     "../benchmarks/RESULTS.md": "benchmarks.md",
+    "../benchmarks/RESULTS_speed.md": "benchmarks.md",
     "../CHANGELOG.md": "changelog.md",
     "../README.md": "getting_started.rst",
 }

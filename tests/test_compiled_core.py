@@ -19,16 +19,33 @@ from cosserat import (
     Plane,
     Problem,
     Wall,
+    config,
     shear_layer_thickness,
     solve,
     wall_omega,
     wall_slip,
 )
 from cosserat.model.constitutive import v_radicand, v_torque, v_torque_dm, v_torque_dsyx
+from cosserat.model.couette import outer_wall_couple_stress
 from cosserat.numerics import cosserat as kernel
-from cosserat.routes.numerical import parameter_vector, wall_quantities
+from cosserat.numerics.radau import dense_eval
+from cosserat.results.diagnostics import DeferredResiduals, residuals
+from cosserat.routes.assemble import fields_from_state
+from cosserat.routes.numerical import parameter_vector, run_kernel, wall_quantities
 
 REFERENCE = json.loads((Path(__file__).parent / "data" / "v010_reference.json").read_text())
+
+
+def plane_problem(*, material, upper, lower=None, eps, B=0.0, nu=1.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear (what plane_problem(...) was)."""
+    return Problem(Plane(eps=eps, B=B, nu=nu), Cosserat(material=material, wall=upper, lower=lower))
+
+
+def couette_problem(*, material, wall, eps, Ri):  # type: ignore[no-untyped-def]
+    """The Cosserat model in Couette flow (what couette_problem(...) was)."""
+    return Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=material, wall=wall))
+
+
 MAT = Material(28.5)
 
 
@@ -93,11 +110,84 @@ def test_couple_stress_jacobian_of_couette_matches_finite_differences():
     )
     mu, h = -0.2, 1e-7
     for xi in (0.0, 0.3, 1.0):
-        y = np.array([-0.21])
-        fd = (
-            kernel.couple_rhs(xi, y + h, (p, mu))[0] - kernel.couple_rhs(xi, y - h, (p, mu))[0]
-        ) / (2 * h)
-        assert kernel.couple_jac(xi, y, (p, mu))[0, 0] == pytest.approx(fd, rel=1e-6)
+        y = -0.21
+        fd = (kernel.couple_rhs(xi, y + h, (p, mu)) - kernel.couple_rhs(xi, y - h, (p, mu))) / (
+            2 * h
+        )
+        assert kernel.couple_jac(xi, y, (p, mu)) == pytest.approx(fd, rel=1e-6)
+
+
+def _fields_by_numpy(sol, xi):
+    """The fields of a kernel solution by the NumPy path (the problem's Formulation), as the
+    numerical route evaluated them before kernel.fields_at."""
+    symmetric = sol.symmetric
+    h = np.where(xi >= 0.5, xi, 1.0 - xi) if symmetric else xi
+    m = dense_eval(*sol.couple, h)[:, 0]
+    ell, P = kernel.spin_pass_at(h, sol.geometry, *sol.spin)
+    u = kernel.velocities(h, P, sol.params, sol.info)
+    with np.errstate(under="ignore"):
+        w = sol.info[kernel.I_W_S] * np.exp(ell)
+    f = fields_from_state(sol.formulation(), h, m, u, w)
+    if symmetric:
+        low = xi < 0.5
+        f = f._replace(u=np.where(low, 2.0 * sol.info[kernel.I_U_REF] - f.u, f.u))
+        f = f._replace(m=np.where(low, -f.m, f.m))
+    return f
+
+
+@pytest.mark.parametrize(
+    "problem",
+    [
+        plane_problem(material=MAT, upper=Wall(20.0), eps=0.04),
+        plane_problem(material=MAT, upper=Wall(20.0), lower=Wall.fully_rough(), eps=1e-3),
+        plane_problem(material=MAT, upper=Wall.fully_rough(), lower=Wall(15.0), eps=0.01),
+        plane_problem(material=MAT, upper=Wall(20.0), eps=1e-4, B=1.0),
+        couette_problem(material=MAT, wall=Wall(20.0), eps=0.04, Ri=1.0),
+        couette_problem(material=MAT, wall=Wall(10.0), eps=1e-5, Ri=30.0),
+    ],
+    ids=["symmetric", "upper", "lower", "gravity", "couette", "couette-thin"],
+)
+def test_compiled_fields_are_those_of_the_problems_formulation(problem):
+    sol = run_kernel(problem, 1e-8, 1e-10)
+    # sorted, unsorted, both walls, the centre, points beyond the spin pass's underflow cut
+    xi = np.concatenate([np.linspace(0.0, 1.0, 1001), [1.0, 0.0, 0.5, 0.25, 0.999999]])
+    got = sol(xi)
+    ref = _fields_by_numpy(sol, xi)
+    for name, value in ref._asdict().items():
+        np.testing.assert_allclose(getattr(got, name), value, rtol=1e-14, atol=1e-300, err_msg=name)
+
+
+@pytest.mark.parametrize("eps", [0.07, 0.04, 0.01, 1e-3, 1e-6])
+def test_couette_newton_agrees_with_the_bracketing_search(eps):
+    p = parameter_vector(couette_problem(material=MAT, wall=Wall(20.0), eps=eps, Ri=1.0))
+    rtol, atol = 1e-8, 1e-10
+    tol = rtol * abs(p[kernel.P_M0])
+    counters = np.zeros(4)
+    found, mu, ts, hs, ys, Q = kernel.couette_newton(p, rtol, atol, 100_000, counters)
+    assert found
+    assert abs(ys[-1, 0] - mu) <= tol
+    secant = np.zeros(4)
+    code, mu_secant, _, _ = kernel.couette_inner_couple_stress(p, rtol, atol, 100_000, secant)
+    assert code == kernel.OK
+    # Newton's passes, the last one included, take fewer steps than the secant's trials
+    # without the final pass they are followed by (observed: 0.4-0.6 of them)
+    assert counters[1] < 0.7 * secant[1]
+    assert abs(mu - mu_secant) <= 2.0 * tol
+    # the returned pass (possibly moved by its last Newton step, on its linearisation) is the
+    # couple stress of m(0) = mu, as accurate as a fresh pass from m(1; mu): both against a
+    # pass at rtol 1e-13 (observed: the same error, 4e-11 to 7e-9)
+    args = (p[kernel.P_TAN_DELTA], p[kernel.P_RI], p[kernel.P_COUPLE], MAT.A, MAT.sin_phi)
+    m1, _ = outer_wall_couple_stress(mu, *args)
+    assert abs(ys[0, 0] - m1) <= 1e-3 * tol
+    x = np.linspace(0.0, 1.0, 501)
+    runs = {}
+    for name, r in (("fresh", 0.1 * rtol), ("reference", 1e-13)):
+        status, *solution = kernel.couple_pass(p, mu, m1, 1.0, 0.0, r, 0.01 * r, 1_000_000)[:5]
+        assert status == 0
+        runs[name] = dense_eval(*solution, x)
+    error = np.max(np.abs(dense_eval(ts, hs, ys, Q, x) - runs["reference"]))
+    error_fresh = np.max(np.abs(runs["fresh"] - runs["reference"]))
+    assert error <= 2.0 * error_fresh + 1e-12
 
 
 def _profiles():
@@ -122,6 +212,23 @@ def test_profiles_pickle_and_evaluate_the_same_afterwards(index):
         np.testing.assert_array_equal(getattr(back.evaluate(x), name), value, err_msg=name)
     assert shear_layer_thickness(back) == shear_layer_thickness(profile)
     np.testing.assert_array_equal(back.u, profile.u)
+
+
+def test_residuals_are_computed_when_read_and_are_the_eager_ones():
+    problem = couette_problem(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0)
+    profile = solve(problem)
+    deferred = profile.diagnostics.residuals
+    assert isinstance(deferred, DeferredResiduals) and deferred._values is None
+    sol = run_kernel(problem, 1e-8, 1e-10)
+    eager = residuals(sol.formulation(), sol, problem.equations.output_grid(config.CHECK_POINTS))
+    assert dict(deferred) == eager and deferred == eager and eager == deferred
+    assert deferred._values is eager or deferred._values == eager
+    assert set(deferred) == {"couple_stress", "spin", "velocity"}
+    assert max(deferred.values()) < 1e3 * 1e-8
+    back = pickle.loads(pickle.dumps(profile))
+    assert type(back.diagnostics.residuals) is dict and back.diagnostics.residuals == eager
+    assert profile.diagnostics.to_dict()["residuals"] == eager
+    assert solve(problem, check=False).diagnostics.residuals == {}
 
 
 def test_repr_is_a_few_lines_and_stats_are_carried():

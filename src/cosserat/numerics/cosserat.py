@@ -5,11 +5,14 @@ One path for every numerical computation: a profile, a thickness curve and a swe
 It does what ``docs/numerics.md`` describes:
 
 1. **Couple stress** (``eqn-nd_zangmom``, ``eqn-nd_zangmom_cyl``), integrated with Radau IIA
-   from the wall that does not slip (the centre in the symmetric case) to the slipping wall,
-   its stable direction, stopped by an event where the yield radicand S of ``eqn-nd_sigxy``
-   reaches zero (no real solution). In Couette flow the inner-wall couple stress mu = m(0) of
-   ``eqn-nd_shsts_cyl`` is unknown: a secant iteration from the leading-order value, then a
-   bracket and Brent's method, find the mu for which the integration returns m(0) = mu.
+   (:func:`~cosserat.numerics.radau_scalar.radau5_scalar`) from the wall that does not slip
+   (the centre in the symmetric case) to the slipping wall, its stable direction, stopped by
+   an event where the yield radicand S of ``eqn-nd_sigxy`` reaches zero (no real solution).
+   In Couette flow the inner-wall couple stress mu = m(0) of ``eqn-nd_shsts_cyl`` is unknown:
+   Newton's method finds the mu for which the integration returns m(0) = mu, each pass giving
+   its derivative in mu by internal differentiation (:func:`couette_newton`); a secant
+   iteration, then a bracket and Brent's method, take over if Newton's method does not
+   converge (:func:`couette_inner_couple_stress`).
 2. **Spin and velocity**: ``l = ln(w / w_s)`` and ``P = int e^l G`` from the slipping wall
    inwards (the same integrator), stopped where e^l underflows.
 3. **Velocity constants** (u_s, w_s) from the two linear velocity conditions, then the
@@ -35,17 +38,19 @@ from ..model.constitutive import (
     k_radicand,
     k_spin_ratio,
     k_torque,
-    k_torque_dm,
-    k_torque_dsyx,
+    k_torque_gradient,
     k_velocity_ratio,
 )
 from ..model.rheologies.cosserat.couette import (
     outer_wall_couple_stress,
+    outer_wall_couple_stress_dm_inner,
     shear_stress,
     shear_stress_dm,
+    shear_stress_dm_inner,
 )
 from .dop853 import dop853, dop853_eval1
-from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1, radau5
+from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1
+from .radau_scalar import radau5_scalar, sensitivity
 from .roots import B as ROOT
 from .roots import brackets, brent_accept, brent_next, brent_start
 
@@ -109,6 +114,13 @@ N_INFO = 19
 LOG_UNDERFLOW = -745.0  # e^l underflows below this: the spin is exactly 0 in double precision
 SINGULAR_MARGIN = 1e-8  # S below this fraction of its scale at the far end: 1/sqrt singularity
 SECANT_STEPS = 12
+# Newton on m(0) (couette_newton): passes before giving up to the bracketing search, the
+# tolerance of its first pass, the allowed second-order remainder of its last step (a fraction
+# of the tolerance on m(0)), and |F''|/2 assumed before two passes have measured it
+NEWTON_TRIALS = 8
+NEWTON_LOOSE_RTOL = 1e-4
+NEWTON_REMAINDER = 0.01
+NEWTON_CURVATURE_PRIOR = 1.0
 # floor on sqrt(S) in the Jacobian, relative to sigma_c sin(phi) (couple_jac)
 JACOBIAN_ROOT_FLOOR = 1e-6
 # a torque below this fraction of sigma_c sin(phi) is round-off (_crossed_by_round_off)
@@ -149,36 +161,47 @@ def _curvature(xi: float, p: np.ndarray) -> float:
 
 
 @njit(cache=True, nogil=True)
-def couple_rhs(xi, y, args):
+def couple_rhs(xi, m, args):
     """dm/dxi = torque / (eps alpha) - kappa m (``formulation`` module docstring) [-]."""
     p, mu = args
-    m = y[0]
     syx = _shear_stress(xi, m, p, mu)
-    out = np.empty(1)
-    out[0] = (
+    return (
         k_torque(syx, _mean_stress(xi, p), m, p[P_A], p[P_SIN_PHI]) / (p[P_EPS] * p[P_ALPHA])
         - _curvature(xi, p) * m
     )
-    return out
 
 
 @njit(cache=True, nogil=True)
-def couple_jac(xi, y, args):
-    """d(dm/dxi)/dm, analytic (:func:`k_torque_dm`, :func:`k_torque_dsyx`)."""
+def couple_jac(xi, m, args):
+    """d(dm/dxi)/dm, analytic (:func:`k_torque_gradient`)."""
     p, mu = args
-    m = y[0]
     syx = _shear_stress(xi, m, p, mu)
     sc = _mean_stress(xi, p)
     A, sp = p[P_A], p[P_SIN_PHI]
     # Near the yield bound dT/dm ~ 1/sqrt(S) is unbounded; Newton needs only an approximate
     # Jacobian, and a bounded one lets a step cross S = 0, where the event stops the pass.
     floor = JACOBIAN_ROOT_FLOOR * sc * sp
-    dT_dm = k_torque_dm(syx, sc, m, A, sp, floor)
-    dT_dsyx = k_torque_dsyx(syx, sc, m, A, sp, floor)
+    dT_dm, dT_dsyx = k_torque_gradient(syx, sc, m, A, sp, floor)
     dT = dT_dm + dT_dsyx * _shear_stress_dm(xi, p)
-    out = np.empty((1, 1))
-    out[0, 0] = dT / (p[P_EPS] * p[P_ALPHA]) - _curvature(xi, p)
-    return out
+    return dT / (p[P_EPS] * p[P_ALPHA]) - _curvature(xi, p)
+
+
+@njit(cache=True, nogil=True)
+def couple_derivatives(xi, m, args):
+    """(d(dm/dxi)/dm, d(dm/dxi)/d m(0)) at fixed m: :func:`couple_jac`, and the dependence on
+    the inner-wall couple stress m(0) through s_rt in Couette flow (0 in plane shear)."""
+    p, mu = args
+    syx = _shear_stress(xi, m, p, mu)
+    sc = _mean_stress(xi, p)
+    A, sp = p[P_A], p[P_SIN_PHI]
+    floor = JACOBIAN_ROOT_FLOOR * sc * sp
+    dT_dm, dT_dsyx = k_torque_gradient(syx, sc, m, A, sp, floor)
+    dT = dT_dm + dT_dsyx * _shear_stress_dm(xi, p)
+    ea = p[P_EPS] * p[P_ALPHA]
+    dfdm = dT / ea - _curvature(xi, p)
+    if p[P_GEOMETRY] == PLANE:
+        return dfdm, 0.0
+    return dfdm, dT_dsyx * shear_stress_dm_inner(xi, p[P_RI], p[P_COUPLE]) / ea
 
 
 @njit(cache=True, nogil=True)
@@ -191,9 +214,9 @@ def _yield_margin(xi: float, m: float, p: np.ndarray, mu: float) -> float:
 
 
 @njit(cache=True, nogil=True)
-def couple_event(xi, y, args):
+def couple_event(xi, m, args):
     p, mu = args
-    return _yield_margin(xi, y[0], p, mu)
+    return _yield_margin(xi, m, p, mu)
 
 
 # ----------------------------------------------------------------- pass 2: spin and velocity
@@ -321,21 +344,28 @@ def velocities(xi, P, p, info):
 # ----------------------------------------------------------------- one couple-stress pass
 @njit(cache=True, nogil=True)
 def couple_pass(p, mu, m_start, x_start, x_end, rtol, atol, max_steps):
-    """Pass 1 from ``x_start`` to ``x_end``: (status, ts, hs, ys, Q, t_event, nfev, nsteps, nlu)."""
-    status, ts, hs, ys, Q, t_event, nfev, _, nlu, nsteps = radau5(
+    """Pass 1 from ``x_start`` to ``x_end``:
+    (status, ts, hs, ys, Q, Zs, t_event, nfev, nsteps, nlu) of :func:`radau5_scalar`."""
+    status, ts, hs, ys, Q, Zs, t_event, nfev, nlu, nsteps = radau5_scalar(
         couple_rhs,
         couple_jac,
         couple_event,
         x_start,
         x_end,
-        np.array([m_start]),
+        m_start,
         rtol,
-        np.array([atol]),
+        atol,
         (p, mu),
         max_steps,
         0.0,
     )
-    return status, ts, hs, ys, Q, t_event, nfev, nsteps, nlu
+    return status, ts, hs, ys, Q, Zs, t_event, nfev, nsteps, nlu
+
+
+@njit(cache=True, nogil=True)
+def couple_sensitivity(p, mu, ts, hs, ys, Zs, s_start):
+    """d m / d m(0) along a Couette couple-stress pass (:func:`sensitivity`): (ss, dQ)."""
+    return sensitivity(couple_derivatives, (p, mu), ts, hs, ys, Zs, s_start)
 
 
 @njit(cache=True, nogil=True)
@@ -366,7 +396,7 @@ def _shoot(mu, args):
     counters[3] += 1.0
     if disc < 0.0:
         return 0.0, NO_SOLUTION, 1.0, m1
-    status, ts, _, ys, _, _, nfev, nsteps, nlu = couple_pass(
+    status, ts, _, ys, _, _, _, nfev, nsteps, nlu = couple_pass(
         p, mu, m1, 1.0, 0.0, rtol, atol, max_steps
     )
     counters[0] += nfev
@@ -493,6 +523,120 @@ def couette_inner_couple_stress(p, rtol, atol, max_steps, counters):
     return NO_BRACKET, state[ROOT], 0.0, 0.0
 
 
+@njit(cache=True, nogil=True)
+def _newton_trial(p, mu, rtol, atol, max_steps, counters):
+    """One pass at m(0) = mu: (code, F, ts, hs, ys, Q, Zs), F(mu) = m(0; mu) - mu."""
+    m1, disc = outer_wall_couple_stress(
+        mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+    )
+    counters[3] += 1.0
+    if disc <= 0.0:
+        e1 = np.zeros(1)
+        return NO_SOLUTION, 0.0, e1, e1, np.zeros((1, 1)), np.zeros((0, 1, 3)), np.zeros((0, 3))
+    status, ts, hs, ys, Q, Zs, _, nfev, nsteps, nlu = couple_pass(
+        p, mu, m1, 1.0, 0.0, rtol, atol, max_steps
+    )
+    counters[0] += nfev
+    counters[1] += nsteps
+    counters[2] += nlu
+    return _pass_status(status), ys[-1, 0] - mu, ts, hs, ys, Q, Zs
+
+
+@njit(cache=True, nogil=True)
+def _newton_slope(p, mu, ts, hs, ys, Zs):
+    """(dF/dmu, dm/dmu along the pass, its dense output): dF/dmu = s(0) - 1 with s = dm/dmu,
+    the derivative of the computed pass (:func:`couple_sensitivity`), started from dm(1)/dmu
+    of ``eqn-nd_bc1_cyl``."""
+    s1 = outer_wall_couple_stress_dm_inner(
+        mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+    )
+    ss, dQ = couple_sensitivity(p, mu, ts, hs, ys, Zs, s1)
+    return ss[-1, 0] - 1.0, ss, dQ
+
+
+@njit(cache=True, nogil=True)
+def couette_newton(p, rtol, atol, max_steps, counters):
+    """(found, mu, ts, hs, ys, Q): m(0) by Newton's method, and its final couple-stress pass.
+
+    Each pass returns F(mu) = m(0; mu) - mu (:func:`_newton_trial`) and, by internal
+    differentiation, dF/dmu (:func:`_newton_slope`), so each pass is one Newton step. Only the
+    last pass needs the final tolerance (rtol/10, as every trial of
+    :func:`couette_inner_couple_stress`): the first runs at ``NEWTON_LOOSE_RTOL`` (unless the
+    caller gave a guess of m(0)), and a pass whose Newton step will still be large runs at a
+    tolerance a hundred times below the error of m(0) expected after it. The result is
+    accepted when |F| <= tol (``tol`` as in :func:`couette_inner_couple_stress`), or when the
+    final pass's own Newton step is so small that its second-order remainder, estimated from
+    the previous step (``c |step|^2``, with ``c`` the smaller of |F|/|previous step|^2 and
+    |change of dF/dmu|/(2 |previous step|), both upper estimates of |F''|/2 up to the passes'
+    errors), is below ``NEWTON_REMAINDER`` tol: then the step is taken on the computed
+    solution itself, through its linearisation ``m + step dm/dmu`` (exact to first order for
+    the discrete equations).
+    A step whose pass leaves the real domain is halved (the root lies between the last
+    admissible trial and it, F decreasing), and no later step goes beyond it. Anything else
+    unexpected (a first pass outside the real domain, a pass that fails otherwise, dF/dmu >= 0,
+    a step beyond the yield scale, no convergence in ``NEWTON_TRIALS`` passes) returns
+    found = False, and the caller falls back to the bracketing search.
+    """
+    e1 = np.zeros(1)
+    e2 = np.zeros((1, 1))
+    e3 = np.zeros((0, 1, 3))
+    final_rtol, final_atol = rtol * 0.1, atol * 0.1
+    guess = math.isfinite(p[P_MU_GUESS])
+    mu = p[P_MU_GUESS] if guess else -p[P_M0]
+    tol = max(atol, rtol * abs(mu))
+    bound = p[P_B_BOUND]
+    pass_rtol = final_rtol if guess else max(final_rtol, NEWTON_LOOSE_RTOL)
+    prev_step = math.nan
+    prev_dF = math.nan
+    mu_ok = math.nan  # the last admissible trial
+    limit = math.nan  # the nearest trial beyond the real domain (F decreases; failures bound mu)
+    for _ in range(NEWTON_TRIALS):
+        final = pass_rtol <= final_rtol
+        code, F, ts, hs, ys, Q, Zs = _newton_trial(
+            p, mu, pass_rtol, final_atol * (pass_rtol / final_rtol), max_steps, counters
+        )
+        if code == NO_SOLUTION and math.isfinite(mu_ok):
+            # the step left the real domain: halve it, and never step that far again
+            limit = mu
+            mu = 0.5 * (mu_ok + mu)
+            prev_step = math.nan
+            continue
+        if code != OK or not math.isfinite(F):
+            break
+        if final and abs(F) <= tol:
+            return True, mu, ts, hs, ys, Q
+        dF, ss, dQ = _newton_slope(p, mu, ts, hs, ys, Zs)
+        if not (math.isfinite(dF) and dF < 0.0):
+            break
+        step = -F / dF
+        if not abs(step) <= bound:
+            break
+        curv = math.inf
+        if math.isfinite(prev_step) and prev_step != 0.0:
+            curv = min(abs(F) / prev_step**2, 0.5 * abs(dF - prev_dF) / abs(prev_step))
+        if final and curv * step * step <= NEWTON_REMAINDER * tol:
+            for i in range(ys.shape[0]):
+                ys[i, 0] += step * ss[i, 0]
+            for i in range(Q.shape[0]):
+                for j in range(3):
+                    Q[i, 0, j] += step * dQ[i, 0, j]
+            return True, mu + step, ts, hs, ys, Q
+        if math.isfinite(limit) and (mu + step - limit) * (mu - limit) <= 0.0:
+            step = 0.5 * (limit - mu)  # not beyond a trial known to leave the real domain
+        # the next pass: final if its own step should be small enough, else a looser one
+        c = curv if math.isfinite(curv) else NEWTON_CURVATURE_PRIOR
+        F_next = c * step * step
+        if c * (F_next / dF) ** 2 <= NEWTON_REMAINDER * tol:
+            pass_rtol = final_rtol
+        else:
+            scale = max(abs(mu), atol)
+            pass_rtol = min(max(0.01 * F_next / scale, final_rtol), NEWTON_LOOSE_RTOL)
+        prev_step, prev_dF = step, dF
+        mu_ok = mu
+        mu += step
+    return False, mu, e1, e1, e2, e3
+
+
 # ----------------------------------------------------------------- thickness
 @njit(cache=True, nogil=True)
 def _excess(tau, args):
@@ -552,47 +696,22 @@ def _crossed_by_round_off(ts: np.ndarray, ys: np.ndarray, p: np.ndarray) -> bool
 
 # ----------------------------------------------------------------- one case
 @njit(cache=True, nogil=True)
-def solve_case(p, rtol, atol, f, max_steps):
-    """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
+def _empty_solution():
+    """(couple-stress, spin) solutions of a case that stopped before them."""
+    couple = (np.zeros(1), np.zeros(0), np.zeros((1, 1)), np.zeros((0, 1, 3)))
+    spin = (np.zeros(1), np.zeros((1, 2)), np.zeros((0, 7, 2)))
+    return couple, spin
 
-    ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
-    :func:`~cosserat.numerics.radau.radau5`, the spin one (ts, ys, F) of
-    :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
-    xi(tau) given by the pass geometry ``[xi_slip, span, singular]``.
-    """
-    info = np.zeros(N_INFO)
-    info[I_DELTA] = math.nan
-    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
-    empty1 = np.zeros(1)
-    empty2 = np.zeros((1, 1))
-    empty3 = np.zeros((0, 1, 3))
-    no_spin = (empty1, np.zeros((1, 2)), np.zeros((0, 7, 2)))
-    g = np.zeros(3)
+
+@njit(cache=True, nogil=True)
+def _after_couple_pass(p, mu, status, cs, counters, info, rtol, atol, f, max_steps):
+    """From a couple-stress pass to the case's result (:func:`solve_case`): the pass's status,
+    then the spin pass, the velocity constants and the thickness."""
+    ts1, _, ys1, _ = cs
     xs, x0 = walls(p)
-    mu = 0.0
-    if p[P_GEOMETRY] == COUETTE:
-        code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
-        info[I_MU] = mu
-        info[I_ITERATIONS] = counters[3]
-        if code != OK:
-            info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
-            return code, info, (empty1, np.zeros(0), empty2, empty3), no_spin, g
-        m1, _ = outer_wall_couple_stress(
-            mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
-        )
-        m_start = m1
-        pass_rtol, pass_atol = rtol * 0.1, atol * 0.1
-    else:
-        m_start = p[P_M_START]
-        pass_rtol, pass_atol = rtol, atol
-    status, ts1, hs1, ys1, Q1, _, nfev, nsteps, nlu = couple_pass(
-        p, mu, m_start, x0, xs, pass_rtol, pass_atol, max_steps
-    )
-    counters[0] += nfev
-    counters[1] += nsteps
-    counters[2] += nlu
-    info[I_STEPS_COUPLE] = nsteps
-    cs = (ts1, hs1, ys1, Q1)
+    m_start = ys1[0, 0]
+    g = np.zeros(3)
+    _, no_spin = _empty_solution()
     code = _pass_status(status)
     if code == NO_SOLUTION and _crossed_by_round_off(ts1, ys1, p):
         code = AT_YIELD_EDGE
@@ -665,6 +784,75 @@ def solve_case(p, rtol, atol, f, max_steps):
 
 
 @njit(cache=True, nogil=True)
+def solve_plane_case(p, rtol, atol, f, max_steps):
+    """:func:`solve_case` for plane shear (compiled without the Couette search)."""
+    info = np.zeros(N_INFO)
+    info[I_DELTA] = math.nan
+    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
+    xs, x0 = walls(p)
+    status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
+        p, 0.0, p[P_M_START], x0, xs, rtol, atol, max_steps
+    )
+    counters[0] += nfev
+    counters[1] += nsteps
+    counters[2] += nlu
+    info[I_STEPS_COUPLE] = nsteps
+    cs = (ts1, hs1, ys1, Q1)
+    return _after_couple_pass(p, 0.0, status, cs, counters, info, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, nogil=True)
+def solve_couette_case(p, rtol, atol, f, max_steps):
+    """:func:`solve_case` for Couette flow: m(0) by Newton's method (:func:`couette_newton`),
+    or by the bracketing search (:func:`couette_inner_couple_stress`) if that fails."""
+    info = np.zeros(N_INFO)
+    info[I_DELTA] = math.nan
+    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
+    found, mu, ts1, hs1, ys1, Q1 = couette_newton(p, rtol, atol, max_steps, counters)
+    status = SUCCESS
+    if found:
+        info[I_STEPS_COUPLE] = ts1.size - 1
+    else:
+        code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
+        if code != OK:
+            info[I_MU] = mu
+            info[I_ITERATIONS] = counters[3]
+            info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
+            cs, sp = _empty_solution()
+            return code, info, cs, sp, np.zeros(3)
+        m1, _ = outer_wall_couple_stress(
+            mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+        )
+        status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
+            p, mu, m1, 1.0, 0.0, rtol * 0.1, atol * 0.1, max_steps
+        )
+        counters[0] += nfev
+        counters[1] += nsteps
+        counters[2] += nlu
+        info[I_STEPS_COUPLE] = nsteps
+    info[I_MU] = mu
+    info[I_ITERATIONS] = counters[3]
+    cs = (ts1, hs1, ys1, Q1)
+    return _after_couple_pass(p, mu, status, cs, counters, info, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, nogil=True)
+def solve_case(p, rtol, atol, f, max_steps):
+    """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
+
+    ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
+    :func:`~cosserat.numerics.radau_scalar.radau5_scalar`, the spin one (ts, ys, F) of
+    :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
+    xi(tau) given by the pass geometry ``[xi_slip, span, singular]``. One problem of a known
+    cell is cheaper to compile through :func:`solve_plane_case` or :func:`solve_couette_case`
+    (a first run compiles only what it calls).
+    """
+    if p[P_GEOMETRY] == COUETTE:
+        return solve_couette_case(p, rtol, atol, f, max_steps)
+    return solve_plane_case(p, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, nogil=True)
 def solve_batch(params, rtol, atol, f, max_steps):
     """Wall quantities of many problems (rows of ``params``).
 
@@ -680,7 +868,8 @@ def solve_batch(params, rtol, atol, f, max_steps):
     for i in range(n):
         code, row, _, _, _ = solve_case(params[i], rtol, atol, f, max_steps)
         status[i] = code
-        info[i, :] = row
+        for j in range(N_INFO):
+            info[i, j] = row[j]
     return status, info
 
 
@@ -709,3 +898,162 @@ def spin_pass_at(xi, g, ts, ys, F):
         ell[i] = dop853_eval1(ts, ys, F, tau, 0)
         P[i] = dop853_eval1(ts, ys, F, tau, 1)
     return ell, P
+
+
+# ----------------------------------------------------------------- fields at many points
+# rows of fields_at's output, in the order of cosserat.results.profile.Fields
+F_U, F_OMEGA, F_M, F_SIGMA_XY, F_SIGMA_YX, F_SIGMA_YY, F_DU_DXI, F_KAPPA = range(8)
+N_FIELDS = 8
+
+
+@njit(cache=True, nogil=True)
+def _radau_step(ts: np.ndarray, t: float, hint: int) -> int:
+    """:func:`~cosserat.numerics.radau._step_index` (the step with ts[i] < t <= ts[i + 1],
+    the first one at ts[0]), trying ``hint`` first: sorted points cost no search."""
+    k = ts.shape[0] - 1
+    s = 1.0 if ts[k] >= ts[0] else -1.0
+    st = s * t
+    if 0 <= hint < k and st <= s * ts[hint + 1] and (hint == 0 or st > s * ts[hint]):
+        return hint
+    lo = 0
+    hi = k - 1
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if st <= s * ts[mid + 1]:
+            hi = mid
+        else:
+            lo = mid + 1
+    return lo
+
+
+@njit(cache=True, nogil=True)
+def _dop853_step(ts: np.ndarray, t: float, hint: int) -> int:
+    """The step :func:`~cosserat.numerics.dop853.dop853_eval1` evaluates at t (the last one
+    with ts[i] <= t, forwards), trying ``hint`` first."""
+    k = ts.shape[0] - 1
+    if 0 <= hint < k and ts[hint] <= t and (hint == k - 1 or ts[hint + 1] > t):
+        return hint
+    lo, hi = 0, k
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if ts[mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True, nogil=True)
+def _dop853_at(ts: np.ndarray, ys: np.ndarray, F: np.ndarray, t: float, i: int, c: int) -> float:
+    """:func:`~cosserat.numerics.dop853.dop853_eval1` in step i (the same operations)."""
+    h = ts[i + 1] - ts[i]
+    x = (t - ts[i]) / h if h != 0.0 else 0.0
+    x = min(max(x, 0.0), 1.0)
+    out = 0.0
+    for j in range(6, -1, -1):
+        out = (out + F[i, j, c]) * (x if (6 - j) % 2 == 0 else 1.0 - x)
+    return out + ys[i, c]
+
+
+@njit(cache=True, nogil=True)
+def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
+    """The fields of a solved case at points ``xi`` in [0, 1]: float64[N_FIELDS, n] [-].
+
+    Rows ``F_*`` (u, omega, m, sigma_xy, sigma_yx, sigma_yy, du/dxi, kappa), from the dense
+    outputs of both passes (``(ts1, hs1, ys1, Q1)`` of the couple stress, ``(ts2, ys2, F2)``
+    of the spin pass with geometry ``g``), the velocity constants in ``info`` and the stresses
+    of the constitutive law (``eqn-nd_sigxy``, the flow rule ``eqn-nd_fr1``): the arithmetic of
+    :func:`cosserat.routes.assemble.fields_from_state`, compiled. Between identical walls (the
+    symmetric case) the solved upper half is reflected: u - u_c odd, m odd, the rest even
+    (``eqn-nd_bc6``). Sorted points are cheapest (no search for the step of each point).
+    """
+    n = xi.shape[0]
+    out = np.empty((N_FIELDS, n))
+    symmetric = p[P_GEOMETRY] == PLANE and p[P_CASE] == SYMMETRIC
+    mu = info[I_MU] if p[P_GEOMETRY] == COUETTE else 0.0
+    A, sp = p[P_A], p[P_SIN_PHI]
+    w_s = info[I_W_S]
+    u_c = info[I_U_REF]
+    k1 = ts1.shape[0] - 1
+    lo1 = min(ts1[0], ts1[k1])
+    hi1 = max(ts1[0], ts1[k1])
+    k2 = ts2.shape[0] - 1
+    tau_end = ts2[k2]
+    reach = abs(_map(tau_end, g)[0] - g[0])
+    cut = reach < abs(g[1])
+    i1 = 0
+    i2 = 0
+    for q in range(n):
+        x = xi[q]
+        low = symmetric and x < 0.5
+        h = 1.0 - x if low else x
+        # couple stress: radau's dense output (dense_eval's clipping and step ends)
+        if k1 == 0:
+            m = ys1[0, 0]
+        else:
+            tp = min(max(h, lo1), hi1)
+            i1 = _radau_step(ts1, tp, i1)
+            if tp == ts1[i1 + 1]:
+                m = ys1[i1 + 1, 0]
+            else:
+                s = (tp - ts1[i1]) / hs1[i1]
+                m = ys1[i1, 0] + s * (Q1[i1, 0, 0] + s * (Q1[i1, 0, 1] + s * Q1[i1, 0, 2]))
+        # spin pass: l = ln(w/w_s) and P at h (spin_pass_at)
+        if cut and abs(h - g[0]) > reach * (1.0 + 1e-15):
+            w = w_s * 0.0  # e^l underflows beyond the cut (spin_pass_at: l = -inf)
+            P = ys2[k2, 1]
+        else:
+            frac = min(max((h - g[0]) / g[1], 0.0), 1.0)
+            tau = 1.0 - math.sqrt(1.0 - frac) if g[2] != 0.0 else frac
+            tau = min(tau, tau_end)
+            if k2 == 0:
+                ell = ys2[0, 0]
+                P = ys2[0, 1]
+            else:
+                i2 = _dop853_step(ts2, tau, i2)
+                ell = _dop853_at(ts2, ys2, F2, tau, i2, 0)
+                P = _dop853_at(ts2, ys2, F2, tau, i2, 1)
+            w = w_s * math.exp(ell)
+        u = velocity(h, P, p, info)
+        syx = _shear_stress(h, m, p, mu)
+        sc = _mean_stress(h, p)
+        kappa = _curvature(h, p)
+        F1 = k_velocity_ratio(syx, sc, m, A, sp)
+        out[F_SIGMA_YX, q] = syx
+        out[F_SIGMA_XY, q] = syx - 2.0 * (A + 1.0) * k_torque(syx, sc, m, A, sp)
+        out[F_SIGMA_YY, q] = sc
+        out[F_OMEGA, q] = w - kappa * u
+        out[F_DU_DXI, q] = -w * F1 + kappa * u
+        out[F_KAPPA, q] = kappa
+        out[F_U, q] = 2.0 * u_c - u if low else u
+        out[F_M, q] = -m if low else m
+    return out
+
+
+@njit(cache=True, nogil=True)
+def predict_batch(params, xi, starts, rows, rtol, atol, f, max_steps):
+    """Chosen fields of many problems at their own points, and nothing else.
+
+    Problem i (row ``params[i]``) is solved (:func:`solve_case`) and its fields ``rows``
+    (indices ``F_*``) evaluated at ``xi[starts[i]:starts[i + 1]]`` (:func:`fields_at`).
+    Returns (status[n], info[n, N_INFO], out[len(rows), xi.size]); the columns of a failed
+    case are left at 0 and its status says why (never NaN in place of an answer). Releases the
+    GIL, like :func:`solve_batch`.
+    """
+    n = params.shape[0]
+    status = np.empty(n, dtype=np.int64)
+    info = np.zeros((n, N_INFO))
+    out = np.zeros((rows.shape[0], xi.shape[0]))
+    for i in range(n):
+        code, row, cs, sp, g = solve_case(params[i], rtol, atol, f, max_steps)
+        status[i] = code
+        for j in range(N_INFO):
+            info[i, j] = row[j]
+        if code != OK:
+            continue
+        a, b = starts[i], starts[i + 1]
+        values = fields_at(xi[a:b], params[i], row, cs[0], cs[1], cs[2], cs[3], g, *sp)
+        for r in range(rows.shape[0]):
+            for q in range(b - a):
+                out[r, a + q] = values[rows[r], q]
+    return status, info, out

@@ -44,6 +44,14 @@ _JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
 _INLINE = {**_JIT, "inline": "always"}
 
 
+@njit(**_JIT)
+def _store(K: np.ndarray, row: int, values: np.ndarray) -> None:
+    """``K[row, :] = values`` as an element loop (a slice assignment makes numba compile its
+    shape-mismatch error message, seconds of the first run's compilation)."""
+    for j in range(values.shape[0]):
+        K[row, j] = values[j]
+
+
 @njit(**_INLINE)
 def dop853(fun, event, t0, t_end, y0, rtol, atol, args, max_steps):
     """Integrate ``y' = fun(t, y, args)`` from ``t0`` to ``t_end`` (either direction).
@@ -81,7 +89,8 @@ def dop853(fun, event, t0, t_end, y0, rtol, atol, args, max_steps):
     y = y0.copy()
     t = t0
     ts[0] = t
-    ys[0, :] = y
+    for j in range(n):
+        ys[0, j] = y[j]
     nsteps = 0
     nfev = 1
     f = fun(t, y, args)
@@ -133,20 +142,21 @@ def dop853(fun, event, t0, t_end, y0, rtol, atol, args, max_steps):
                 t_new = t_end
             h = t_new - t
             h_abs = abs(h)
-            K[0, :] = f
+            for j in range(n):
+                K[0, j] = f[j]
             for s in range(1, N_STAGES):
                 for j in range(n):
                     acc = 0.0
                     for r in range(s):
                         acc += A[s, r] * K[r, j]
                     ytmp[j] = y[j] + h * acc
-                K[s, :] = fun(t + C[s] * h, ytmp, args)
+                _store(K, s, fun(t + C[s] * h, ytmp, args))
             for j in range(n):
                 acc = 0.0
                 for r in range(N_STAGES):
                     acc += B[r] * K[r, j]
                 ytmp[j] = y[j] + h * acc
-            K[N_STAGES, :] = fun(t_new, ytmp, args)
+            _store(K, N_STAGES, fun(t_new, ytmp, args))
             nfev += N_STAGES
             err5 = err3 = 0.0
             finite = True
@@ -191,15 +201,20 @@ def dop853(fun, event, t0, t_end, y0, rtol, atol, args, max_steps):
                 for r in range(s):
                     acc += A[s, r] * K[r, j]
                 ytmp[j] = y[j] + h * acc
-            K[s, :] = fun(t + C[s] * h, ytmp, args)
+            _store(K, s, fun(t + C[s] * h, ytmp, args))
         nfev += 3
         if nsteps == cap:
             ts2 = np.empty(2 * cap + 1)
             ys2 = np.empty((2 * cap + 1, n))
             Fs2 = np.empty((2 * cap, 7, n))
-            ts2[: cap + 1] = ts
-            ys2[: cap + 1] = ys
-            Fs2[:cap] = Fs
+            for i in range(cap + 1):
+                ts2[i] = ts[i]
+                for j in range(n):
+                    ys2[i, j] = ys[i, j]
+            for i in range(cap):
+                for r in range(7):
+                    for j in range(n):
+                        Fs2[i, r, j] = Fs[i, r, j]
             ts, ys, Fs, cap = ts2, ys2, Fs2, 2 * cap
         for j in range(n):
             dy = y_new[j] - y[j]
@@ -213,7 +228,8 @@ def dop853(fun, event, t0, t_end, y0, rtol, atol, args, max_steps):
                 Fs[nsteps, 3 + i, j] = h * acc
         nsteps += 1
         ts[nsteps] = t_new
-        ys[nsteps, :] = y_new
+        for j in range(n):
+            ys[nsteps, j] = y_new[j]
         t, y, f = t_new, y_new, f_new
         h_abs = h_next
         ev_new = event(t, y, args)

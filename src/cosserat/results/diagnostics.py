@@ -20,6 +20,9 @@ the asymptotic route has residuals of the order of its neglected terms.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator, Mapping
+from typing import Any
+
 import numpy as np
 
 from ..model.constitutive import FloatArray, asymmetry_source
@@ -37,40 +40,99 @@ def residuals(form: Formulation, evaluate: Evaluator, grid: FloatArray) -> dict[
     half = 0.5 * (b - a)
     nodes = (0.5 * (a + b))[:, None] + half[:, None] * _GL_NODES[None, :]
     weights = half[:, None] * _GL_WEIGHTS[None, :]
-
-    ends_a, ends_b = evaluate(a), evaluate(b)
-    inner = evaluate(nodes.ravel())
+    x_in = nodes.ravel()
     shape = nodes.shape
+
+    # one call of the evaluator for the grid and the quadrature nodes
+    f = evaluate(np.concatenate([grid, x_in]))
+    n = grid.size
+    u, omega, m, kappa = f.u[:n], f.omega[:n], f.m[:n], f.kappa[:n]
+    m_in = f.m[n:]
+    w_in = f.omega[n:] + f.kappa[n:] * f.u[n:]
 
     def quad(values: FloatArray) -> FloatArray:
         return np.sum(weights * values.reshape(shape), axis=1)
 
-    m_in = inner.m
-    st = form.stresses(nodes.ravel(), m_in)
+    st = form.stresses(x_in, m_in)
     torque = asymmetry_source(st.sigma_xy, st.sigma_yx, form.material)
-    curv = form.curvature(nodes.ravel()) * m_in
+    curv = form.curvature(x_in) * m_in
     # the size of the yield-condition terms (sigma_c sin phi): max|sigma_yx| vanishes on a
     # frictionless wall and would turn round-off into a large "residual"
     stress_scale = float(np.max(np.abs(st.sigma_c * form.material.sin_phi)))
-    imbalance = quad(torque) - form.eps_alpha * (ends_b.m - ends_a.m + quad(curv))
+    imbalance = quad(torque) - form.eps_alpha * (m[1:] - m[:-1] + quad(curv))
     r_couple = np.abs(imbalance) / (b - a) / stress_scale
 
-    w_a = ends_a.omega + ends_a.kappa * ends_a.u
-    w_b = ends_b.omega + ends_b.kappa * ends_b.u
-    w_in = inner.omega + inner.kappa * inner.u
-    log_gain = quad(form.log_spin_rate(nodes.ravel(), m_in))
+    w = omega + kappa * u
+    w_a, w_b = w[:-1], w[1:]
+    log_rate, source = form.spin_rates(x_in, m_in)
+    log_gain = quad(log_rate)
     w_max = float(np.max(np.maximum(np.abs(w_a), np.abs(w_b))))
     ok = np.minimum(np.abs(w_a), np.abs(w_b)) > _SPIN_FLOOR * w_max
     with np.errstate(over="ignore", under="ignore"):
         predicted = np.sign(w_a[ok]) * np.exp(np.log(np.abs(w_a[ok])) + log_gain[ok])
     r_spin = np.abs(w_b[ok] - predicted) / w_max
 
-    h_a, h_b = form.velocity_weight(a), form.velocity_weight(b)
-    source = w_in * form.velocity_source(nodes.ravel(), m_in)
-    r_vel = np.abs(h_b * ends_b.u - h_a * ends_a.u + quad(source)) / np.maximum(h_b, h_a)
+    hu = form.velocity_weight(grid) * u
+    h = form.velocity_weight(grid)
+    r_vel = np.abs(hu[1:] - hu[:-1] + quad(w_in * source)) / np.maximum(h[1:], h[:-1])
 
     return {
         "couple_stress": float(np.max(r_couple)),
         "spin": float(np.max(r_spin)) if r_spin.size else 0.0,
         "velocity": float(np.max(r_vel)),
     }
+
+
+class DeferredResiduals(Mapping[str, float]):
+    """:func:`residuals` of a profile, computed when first read (then kept).
+
+    The check is the same independent recomputation, on the same grid; only its moment
+    changes: a caller that never reads the residuals (a fit, a sweep, a likelihood) does not
+    pay for ~6,400 quadrature nodes, several times the cost of the solve itself
+    (``docs/performance.md``). It behaves as the dict it stands for (reading, iteration,
+    equality), pickles as that dict, and computes it at most once per profile.
+
+    Parameters
+    ----------
+    form : Formulation
+        The problem's equations (not the solver's).
+    evaluate : Evaluator
+        The profile's dense evaluator.
+    grid : callable () -> ndarray
+        The check grid, made when the residuals are read.
+    """
+
+    __slots__ = ("_args", "_values")
+
+    def __init__(
+        self, form: Formulation, evaluate: Evaluator, grid: Callable[[], FloatArray]
+    ) -> None:
+        self._args: tuple[Formulation, Evaluator, Callable[[], FloatArray]] | None = (
+            form,
+            evaluate,
+            grid,
+        )
+        self._values: dict[str, float] | None = None
+
+    def _computed(self) -> dict[str, float]:
+        if self._values is None:
+            assert self._args is not None
+            form, evaluate, grid = self._args
+            self._values = residuals(form, evaluate, grid())
+            self._args = None
+        return self._values
+
+    def __getitem__(self, key: str) -> float:
+        return self._computed()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._computed())
+
+    def __len__(self) -> int:
+        return len(self._computed())
+
+    def __repr__(self) -> str:
+        return repr(self._computed())
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (dict, (self._computed(),))

@@ -12,7 +12,7 @@ from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
 from ..model import Problem
 from ..model.constitutive import FloatArray, check_radicand, radicand
 from ..model.formulation import Formulation
-from ..results.diagnostics import residuals
+from ..results.diagnostics import DeferredResiduals
 from ..results.profile import Diagnostics, Evaluator, Fields, Profile
 
 
@@ -50,8 +50,9 @@ def make_profile(
 ) -> Profile:
     """Evaluate on the output grid, verify, and package.
 
-    ``check`` computes the ODE residuals on a layer-resolving check grid and the boundary
-    errors; sweeps that need only wall quantities may skip it.
+    ``check`` computes the boundary errors, and the ODE residuals on a layer-resolving check
+    grid when they are first read (:class:`~cosserat.results.diagnostics.DeferredResiduals`);
+    sweeps that need only wall quantities may skip both.
     """
     eq = problem.equations
     grid = eq.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
@@ -65,7 +66,7 @@ def make_profile(
         grid,
     )
     for name, values in f._asdict().items():
-        if not np.all(np.isfinite(values)):
+        if not np.isfinite(values).all():
             if method == "asymptotic":
                 raise MethodNotAvailableError(
                     f"the leading-order expansion gives non-finite {name} for "
@@ -75,8 +76,10 @@ def make_profile(
             raise ConvergenceError(
                 f"the {method} solution produced non-finite {name} for {problem.describe()}"
             )
+    res: Mapping[str, float]
     if check:
-        res = residuals(form, evaluate, eq.output_grid(config.CHECK_POINTS))
+        # the ODE residuals are computed when first read (DeferredResiduals)
+        res = DeferredResiduals(form, evaluate, lambda: eq.output_grid(config.CHECK_POINTS))
         bc = eq.boundary_errors(evaluate)
     else:
         res, bc = {}, {}

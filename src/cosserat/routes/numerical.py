@@ -1,8 +1,10 @@
 """Numerical route: every problem, every eps in (0, 0.5], on the compiled core.
 
 This layer only validates, translates a problem into the kernel's parameter vector, calls
-:func:`cosserat.numerics.cosserat.solve_case` (one problem) or ``solve_batch`` (many), turns
-status codes into the package's errors and wraps the result as a
+:func:`cosserat.numerics.cosserat.solve_case` (one problem; ``solve_plane_case`` or
+``solve_couette_case``), ``solve_batch`` (the wall quantities of many) or ``predict_batch``
+(chosen fields of many at given points: :func:`predict`, :func:`predict_many`), turns status
+codes into the package's errors and wraps the result as a
 :class:`~cosserat.results.profile.Profile` (``docs/numerics.md``).
 """
 
@@ -21,10 +23,9 @@ from ..model import PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
 from ..model.formulation import Formulation
 from ..numerics import cosserat as kernel
-from ..numerics.radau import dense_eval
 from ..numerics.runtime import map_batches
 from ..results.profile import Fields, Profile
-from .assemble import fields_from_state, make_profile
+from .assemble import make_profile
 
 DEFAULT_RTOL = config.RTOL
 
@@ -174,30 +175,19 @@ class NumericalSolution:
         """Points mapped onto the solved half (symmetric case) [-]."""
         return np.where(x >= 0.5, x, 1.0 - x) if self.symmetric else x
 
-    def _state(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """(m, u, w) at points x of the solved part of the gap."""
-        m = dense_eval(*self.couple, x)[:, 0]
-        ell, P = kernel.spin_pass_at(x, self.geometry, *self.spin)
-        u = kernel.velocities(x, P, self.params, self.info)
-        with np.errstate(under="ignore"):
-            w = self.info[kernel.I_W_S] * np.exp(ell)
-        return m, u, w
-
     def __call__(self, xi: FloatArray) -> Fields:
         x = np.asarray(xi, dtype=float)
-        h = self._half(x)
-        m, u, w = self._state(h)
-        f = fields_from_state(self.formulation(), h, m, u, w)
-        if not self.symmetric:
-            return f
-        # u - u_c odd and omega even about xi = 1/2, m odd (eqn-nd_bc6)
-        low = x < 0.5
-        u_c = self.info[kernel.I_U_REF]
-        return f._replace(
-            u=np.where(low, 2.0 * u_c - f.u, f.u),
-            m=np.where(low, -f.m, f.m),
-            du_dxi=f.du_dxi,
+        out = kernel.fields_at(
+            np.ascontiguousarray(x.ravel()),
+            self.params,
+            self.info,
+            *self.couple,
+            self.geometry,
+            *self.spin,
         )
+        if x.ndim == 1:
+            return Fields(*out)
+        return Fields(*(row.reshape(x.shape) for row in out))
 
     def velocity(self, xi: FloatArray) -> FloatArray:
         """u only (cheaper than the fields) [-]."""
@@ -233,7 +223,11 @@ def run_kernel(
 ) -> NumericalSolution:
     """Solve ``problem`` on the compiled core; raise the package's error if it fails."""
     p = parameter_vector(problem, mu_guess)
-    status, info, couple, spin, geometry = kernel.solve_case(p, rtol, atol, f, config.MAX_STEPS)
+    # one cell's entry point: a first run compiles only that cell's search
+    solve_case = (
+        kernel.solve_couette_case if problem.cell_name == "couette" else kernel.solve_plane_case
+    )
+    status, info, couple, spin, geometry = solve_case(p, rtol, atol, f, config.MAX_STEPS)
     raise_for_status(problem, int(status), info)
     return NumericalSolution(problem, p, info, couple, spin, geometry, float(f))
 
@@ -280,10 +274,11 @@ def solve_couette(
     check: bool = True,
     m_inner_guess: float | None = None,
 ) -> Profile:
-    """Couette flow: m(0) by a compiled secant/Brent iteration on ``m(0; mu) - mu``
-    (``eqn-nd_shsts_cyl``), the couple stress from the outer cylinder inwards for each trial;
-    then spin and velocity from the inner cylinder outwards. ``m_inner_guess`` (e.g. from a
-    neighbouring eps in a sweep) replaces the leading-order starting value."""
+    """Couette flow: m(0) by compiled Newton iterations on ``m(0; mu) - mu``
+    (``eqn-nd_shsts_cyl``; secant/Brent if they fail), the couple stress from the outer
+    cylinder inwards for each trial; then spin and velocity from the inner cylinder outwards.
+    ``m_inner_guess`` (e.g. from a neighbouring eps in a sweep) replaces the leading-order
+    starting value."""
     rtol, atol = tolerances(rtol, atol)
     if m_inner_guess is not None and not math.isfinite(float(m_inner_guess)):
         raise ParameterError(f"m_inner_guess must be finite; got {shown(m_inner_guess)}")
@@ -292,7 +287,8 @@ def solve_couette(
     stats["m_inner"] = sol.mu
     stats["shooting_iterations"] = int(sol.info[kernel.I_ITERATIONS])
     message = (
-        "compiled: secant/Brent on m(0); Radau IIA couple stress (outer to inner), "
+        "compiled: Newton (secant/Brent as fallback) on m(0); Radau IIA couple stress "
+        "(outer to inner), "
         "DOP853 spin and velocity"
     )
     return _profile(sol, rtol, atol, points, xi, check, message, stats)
@@ -424,3 +420,185 @@ def _wall_result(problem: Problem, code: int, row: FloatArray, f: float) -> Wall
         "",
         m_inner,
     )
+
+
+# ----------------------------------------------------------------- predictions (likelihoods)
+FIELDS = Fields._fields
+"""The fields :func:`predict` can return (those of :class:`~cosserat.results.profile.Fields`)."""
+PREDICT_FIELDS = ("u", "omega", "sigma_yx", "sigma_yy")
+"""What :func:`predict` returns unless told: the measured fields the model predicts."""
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """Fields of one problem at given points (:func:`predict_many`), or why there are none.
+
+    Attributes
+    ----------
+    status : str
+        "ok", "no-solution" (the model has no real solution) or "error" (the solver could not
+        finish); ``message`` says why.
+    values : dict of str to ndarray, or None
+        Each requested field at the points [-]; None unless ``status`` is "ok".
+    message : str
+    m_inner : float or None
+        Couette flow: the inner-wall couple stress m(0), a good ``m_inner_guess`` for a nearby
+        problem (the next step of a sampler); None in plane shear or without a solution.
+    """
+
+    status: str
+    values: dict[str, FloatArray] | None
+    message: str = ""
+    m_inner: float | None = None
+
+
+def _field_rows(fields: Sequence[str]) -> np.ndarray:
+    if isinstance(fields, str):
+        fields = (fields,)
+    unknown = [name for name in fields if name not in FIELDS]
+    if unknown or not fields:
+        raise ParameterError(
+            f"fields must name some of {', '.join(FIELDS)}; got {', '.join(map(repr, fields))}"
+        )
+    return np.array([FIELDS.index(name) for name in fields], dtype=np.int64)
+
+
+def _points(xi: Any) -> FloatArray:
+    x = np.ascontiguousarray(xi, dtype=float)
+    if x.ndim != 1 or not np.all(np.isfinite(x)) or np.any((x < 0.0) | (x > 1.0)):
+        raise ParameterError("xi must be a 1-D array of finite points in [0, 1] (any order)")
+    return x
+
+
+def _point_sets(xi: Any, n: int) -> list[FloatArray]:
+    """One array of points per problem: from one array shared by all, or one per problem."""
+    shared = isinstance(xi, np.ndarray) and xi.dtype != object and xi.ndim == 1
+    if not shared and isinstance(xi, Sequence) and len(xi) > 0:
+        shared = all(isinstance(v, int | float | np.number) for v in xi)
+    if shared:
+        return [_points(xi)] * n
+    sets = [_points(x) for x in xi]
+    if len(sets) != n:
+        raise ParameterError(
+            f"xi must be one array of points, or one per problem ({n}); got {len(sets)}"
+        )
+    return sets
+
+
+def _predict(
+    problems: Sequence[Problem],
+    xi: Any,
+    fields: Sequence[str],
+    rtol: float,
+    atol: float | None,
+    m_inner_guesses: Sequence[float | None] | None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    rtol, atol = tolerances(rtol, atol)
+    rows = _field_rows(fields)
+    for pr in problems:
+        if not (
+            isinstance(pr, Problem)
+            and pr.rheology.name == "cosserat"
+            and pr.cell_name in ("plane", "couette")
+        ):
+            raise ParameterError(
+                f"cannot predict {pr!r} here: give the Cosserat model on the plane or Couette "
+                f"cell (other problems: solve(problem, xi=...))"
+            )
+    n = len(problems)
+    point_sets = _point_sets(xi, n)
+    guesses = [None] * n if m_inner_guesses is None else list(m_inner_guesses)
+    if len(guesses) != n:
+        raise ParameterError(f"m_inner_guesses must have one entry per problem ({n})")
+    for g in guesses:
+        if g is not None and not math.isfinite(float(g)):
+            raise ParameterError(f"an m_inner guess must be finite or None; got {g!r}")
+    params = np.stack([parameter_vector(pr, g) for pr, g in zip(problems, guesses, strict=True)])
+    starts = np.zeros(n + 1, dtype=np.int64)
+    starts[1:] = np.cumsum([x.size for x in point_sets])
+    points = np.concatenate(point_sets) if n else np.zeros(0)
+    status, info, out = kernel.predict_batch(
+        params, points, starts, rows, rtol, atol, config.DEFAULT_F, config.MAX_STEPS
+    )
+    return status, info, out, starts, rows
+
+
+def predict_many(
+    problems: Sequence[Problem],
+    xi: Any,
+    fields: Sequence[str] = PREDICT_FIELDS,
+    *,
+    rtol: float = DEFAULT_RTOL,
+    atol: float | None = None,
+    m_inner_guesses: Sequence[float | None] | None = None,
+) -> list[Prediction]:
+    """The ``fields`` of many problems at points ``xi``, in one compiled call.
+
+    What a likelihood needs and nothing else: no :class:`Profile`, no output grid, no
+    residuals or boundary errors; the numbers are those of ``solve(problem).evaluate(xi)``
+    (the same kernel, the same field evaluation). One call for all the problems of all the
+    walkers of a sampler costs no Python per problem beyond building its parameter vector.
+
+    Parameters
+    ----------
+    problems : sequence of Problem
+        The Cosserat model on the plane or Couette cell.
+    xi : array or sequence of arrays
+        Points in [0, 1], any order: one array for every problem, or one per problem [-].
+    fields : sequence of str
+        Names among :data:`FIELDS` (default :data:`PREDICT_FIELDS`).
+    rtol, atol : float
+        As :func:`cosserat.solve`.
+    m_inner_guesses : sequence of float or None, optional
+        Couette flow: a guess of m(0) per problem (None: the leading-order value), e.g. the
+        ``m_inner`` of the previous prediction of the same run; it saves passes.
+
+    Returns
+    -------
+    list of Prediction
+        One per problem, in order; a problem without a solution has its status and message
+        (those :func:`cosserat.solve` would raise) and no values.
+
+    Raises
+    ------
+    ParameterError
+        A problem this kernel does not solve, unknown fields, points outside [0, 1].
+    """
+    if not problems:
+        _field_rows(fields)
+        return []
+    status, info, out, starts, rows = _predict(problems, xi, fields, rtol, atol, m_inner_guesses)
+    names = [FIELDS[r] for r in rows]
+    result = []
+    for i, pr in enumerate(problems):
+        couette = pr.cell_name == "couette"
+        if status[i] != kernel.OK:
+            wall = _wall_result(pr, int(status[i]), info[i], config.DEFAULT_F)
+            result.append(Prediction(wall.status, None, wall.message))
+            continue
+        a, b = starts[i], starts[i + 1]
+        values = {name: out[k, a:b] for k, name in enumerate(names)}
+        m_inner = float(info[i, kernel.I_MU]) if couette else None
+        result.append(Prediction("ok", values, "", m_inner))
+    return result
+
+
+def predict(
+    problem: Problem,
+    xi: Any,
+    fields: Sequence[str] = PREDICT_FIELDS,
+    *,
+    rtol: float = DEFAULT_RTOL,
+    atol: float | None = None,
+    m_inner_guess: float | None = None,
+) -> dict[str, FloatArray]:
+    """The ``fields`` of one problem at points ``xi`` (:func:`predict_many` for one problem).
+
+    Returns a dict of arrays (one per field, in the order of ``xi``) and raises as
+    :func:`cosserat.solve` does where there is no solution (``NoSolutionError``,
+    ``ConvergenceError``).
+    """
+    x = _points(xi)
+    status, info, out, _, rows = _predict([problem], x, fields, rtol, atol, [m_inner_guess])
+    raise_for_status(problem, int(status[0]), info[0])
+    return {FIELDS[r]: out[k] for k, r in enumerate(rows)}

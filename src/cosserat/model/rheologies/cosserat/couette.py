@@ -58,6 +58,13 @@ def shear_stress_dm(xi: float, Ri: float, couple_factor: float) -> float:
     """d s_rt / dm at fixed m(0): ``couple_factor / (Ri + xi)`` (:func:`shear_stress`) [-]."""
     return couple_factor / (Ri + xi)
 
+@njit(cache=True)
+def shear_stress_dm_inner(xi: float, Ri: float, couple_factor: float) -> float:
+    """d s_rt / d m(0) at fixed m: ``-couple_factor Ri/(Ri + xi)^2`` (:func:`shear_stress`) [-]."""
+    r = Ri + xi
+    return -couple_factor * Ri / (r * r)
+
+
 
 @njit(cache=True)
 def outer_wall_couple_stress(
@@ -76,6 +83,26 @@ def outer_wall_couple_stress(
     disc = -2.0 * (A + 1.0) * s0 * s0 + qa * sin_phi * sin_phi
     root = math.sqrt(disc) if disc > 0.0 else 0.0
     return (-s0 * beta - root) / qa, disc
+
+@njit(cache=True)
+def outer_wall_couple_stress_dm_inner(
+    m_inner: float, tan_delta: float, Ri: float, couple_factor: float, A: float, sin_phi: float
+) -> float:
+    """d m(1) / d m(0) of :func:`outer_wall_couple_stress` (``eqn-nd_bc1_cyl``) [-].
+
+    With ``ds0/dm(0) = -couple_factor Ri/(Ri+1)^2`` and ``d disc = -4(A+1) s0 ds0``:
+    ``dm(1) = -(beta ds0 + d disc / (2 sqrt(disc))) / qa``; infinite where disc = 0.
+    """
+    r1 = Ri + 1.0
+    beta = couple_factor / r1
+    s0 = -tan_delta * (Ri / r1) ** 2 - couple_factor * m_inner * Ri / (r1 * r1)
+    ds0 = -couple_factor * Ri / (r1 * r1)
+    qa = beta * beta + 2.0 * (A + 1.0)
+    disc = -2.0 * (A + 1.0) * s0 * s0 + qa * sin_phi * sin_phi
+    if disc <= 0.0:
+        return math.inf
+    return -(beta * ds0 - 2.0 * (A + 1.0) * s0 * ds0 / math.sqrt(disc)) / qa
+
 
 
 class CosseratCouette(Equations):
