@@ -121,34 +121,34 @@ def _graded_mesh(eps, k, layer_at, n_bulk=41, n_layer=81, span=40.0):
 
 
 def _plane_params(problem):
-    mat = problem.material
-    if getattr(problem, "fixed_wall", None) != 0.0:
+    mat = problem.equations.material
+    if problem.equations.fixed_wall != 0.0:
         raise ValueError(
             "these baselines handle plane shear with the layer at the upper wall and a lower wall "
-            f"that does not slip; problem.fixed_wall = {getattr(problem, 'fixed_wall', None)}"
+            f"that does not slip; problem.equations.fixed_wall = {problem.equations.fixed_wall}"
         )
     return dict(
         A=float(mat.A),
         alpha=float(mat.alpha),
         sphi=float(mat.sin_phi),
         eps=float(problem.eps),
-        Bnu=float(problem.B) * float(problem.nu),
-        syx=float(problem.sigma_yx),
-        K=float(problem.upper.K),
-        m_fix=float(problem.m_at_fixed_wall),
+        Bnu=float(problem.equations.B) * float(problem.equations.nu),
+        syx=float(problem.equations.sigma_yx),
+        K=float(problem.equations.upper.K),
+        m_fix=float(problem.equations.m_at_fixed_wall),
     )
 
 
 def _couette_params(problem):
-    mat = problem.material
+    mat = problem.equations.material
     return dict(
         A=float(mat.A),
         alpha=float(mat.alpha),
         sphi=float(mat.sin_phi),
         eps=float(problem.eps),
-        tand=float(problem.tan_delta),
-        Ri=float(problem.Ri),
-        K=float(problem.wall.K),
+        tand=float(problem.equations.tan_delta),
+        Ri=float(problem.equations.Ri),
+        K=float(problem.equations.wall.K),
     )
 
 
@@ -244,8 +244,11 @@ def bvp_plane_symmetric(problem, tol, *, xi=None):
     :func:`bvp_plane_gravity`.
     """
     try:
-        mat = problem.material
-        if float(problem.B) != 0.0 or getattr(problem.case, "name", "") != "SYMMETRIC":
+        mat = problem.equations.material
+        if (
+            float(problem.equations.B) != 0.0
+            or getattr(problem.equations.case, "name", "") != "SYMMETRIC"
+        ):
             raise ValueError("bvp_plane_symmetric needs the symmetric case (no gravity)")
         P = dict(
             A=float(mat.A),
@@ -253,11 +256,11 @@ def bvp_plane_symmetric(problem, tol, *, xi=None):
             sphi=float(mat.sin_phi),
             eps=float(problem.eps),
             Bnu=0.0,
-            syx=float(problem.sigma_yx),
+            syx=float(problem.equations.sigma_yx),
         )
         rhs, radicand = _plane_rhs_factory(P)
         eps = P["eps"]
-        Ku, Kl = float(problem.upper.K), float(problem.lower_wall.K)
+        Ku, Kl = float(problem.equations.upper.K), float(problem.equations.lower_wall.K)
         x0 = np.linspace(0.5, 1.0, 51)
         y0 = np.vstack([np.zeros_like(x0), x0.copy(), np.full_like(x0, -0.5)])
 
@@ -415,7 +418,7 @@ def bvp_couette(problem, tol, *, xi=None, x0=None, naive=False):
         if naive:
             x0 = np.linspace(0.0, 1.0, 101)
             m_init = (
-                np.asarray(problem.outer_couple_stress(x0), dtype=float)
+                np.asarray(problem.equations.outer_couple_stress(x0), dtype=float)
                 if naive == "outer-m"
                 else np.zeros_like(x0)
             )
@@ -423,7 +426,7 @@ def bvp_couette(problem, tol, *, xi=None, x0=None, naive=False):
             p0 = np.array([m_init[0]])
         else:
             x0 = _graded_mesh(eps, k, layer_at=0.0) if x0 is None else np.asarray(x0, float)
-            m_init = np.asarray(problem.outer_couple_stress(x0), dtype=float)
+            m_init = np.asarray(problem.equations.outer_couple_stress(x0), dtype=float)
             e = np.exp(-k * x0 / eps)
             y0 = np.vstack(
                 [m_init, -(2.0 / k) / (K + 2.0 / k) * e, -1.0 / (eps * (K + 2.0 / k)) * e]
@@ -506,7 +509,7 @@ def lsoda_shooting_couette(problem, rtol, *, xi=None, max_iter=50):
                 )
             return float(s.y[0, -1]) - mu
 
-        mu0 = float(problem.outer_couple_stress(0.0))
+        mu0 = float(problem.equations.outer_couple_stress(0.0))
         mu1 = mu0 * (1.0 + 1e-2)
         f0, f1 = residual(mu0), residual(mu1)
         converged = False

@@ -20,7 +20,15 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from cosserat import Channel, Material, PlaneShear, Wall, solve
+from cosserat import (
+    Cosserat,
+    Material,
+    Plane,
+    Problem,
+    VerticalChannel,
+    Wall,
+    solve,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -43,13 +51,17 @@ def main() -> None:
     mat = Material()
     problems = {}
     for eps in (1e-2, 1e-4, 1e-6):
-        problems[f"channel delta=20 eps={eps:g}"] = Channel(material=mat, wall=Wall(), eps=eps)
-        problems[f"channel rough    eps={eps:g}"] = Channel(
-            material=mat, wall=Wall.fully_rough(), eps=eps
+        problems[f"channel delta=20 eps={eps:g}"] = Problem(
+            VerticalChannel(eps=eps), Cosserat(material=mat, wall=Wall())
         )
-        problems[f"plane P1         eps={eps:g}"] = PlaneShear(material=mat, upper=Wall(), eps=eps)
-        problems[f"plane P3 (B=1)   eps={eps:g}"] = PlaneShear(
-            material=mat, upper=Wall(), eps=eps, B=1.0
+        problems[f"channel rough    eps={eps:g}"] = Problem(
+            VerticalChannel(eps=eps), Cosserat(material=mat, wall=Wall.fully_rough())
+        )
+        problems[f"plane P1         eps={eps:g}"] = Problem(
+            Plane(eps=eps), Cosserat(material=mat, wall=Wall())
+        )
+        problems[f"plane P3 (B=1)   eps={eps:g}"] = Problem(
+            Plane(eps=eps, B=1.0), Cosserat(material=mat, wall=Wall())
         )
     for p in problems.values():  # compile and warm
         solve(p, check=False, points=3)

@@ -22,9 +22,10 @@ from pathlib import Path
 import numpy as np
 
 from cosserat import config
-from cosserat.analysis.ranking import model_problem, model_solve, model_velocity
+from cosserat.analysis.ranking import model_solve, model_velocity
 from cosserat.errors import CosseratError
-from cosserat.routes import RHEOLOGIES, solve
+from cosserat.model import make_problem
+from cosserat.routes import RHEOLOGIES, cells_for, methods_for, solve
 
 CASES = {
     "plane": {"eps": config.EPS},
@@ -41,9 +42,9 @@ def _cell(case: str) -> str:
 def _problem(model: str, case: str):  # type: ignore[no-untyped-def]
     params = CASES[case]
     try:
-        return model_problem(model, _cell(case), params)
+        return make_problem(model, _cell(case), params)
     except CosseratError:
-        return model_problem(model, _cell(case), {**params, "B": 1.0})  # the channel's weight
+        return make_problem(model, _cell(case), {**params, "B": 1.0})  # the channel's weight
 
 
 def _time(fn, repeat: int) -> float:  # type: ignore[no-untyped-def]
@@ -65,17 +66,15 @@ def run(repeat: int) -> list[dict]:
     rows = []
     d = np.arange(0.5, 1.0 / config.EPS, 1.0)
     for case in CASES:
-        for model, rheology in RHEOLOGIES.items():
-            if _cell(case) not in rheology.cells:
+        for model in RHEOLOGIES:
+            if _cell(case) not in cells_for(model):
                 continue
             try:
                 problem = _problem(model, case)
             except CosseratError as exc:
                 rows.append({"case": case, "model": model, "error": str(exc)})
                 continue
-            for method, table in rheology.routes.items():
-                if type(problem) not in table:
-                    continue
+            for method in methods_for(model, _cell(case)):
                 try:
                     t = _time(lambda p=problem, m=method: solve(p, method=m, check=False), repeat)
                 except CosseratError as exc:

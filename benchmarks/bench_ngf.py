@@ -21,7 +21,7 @@ For each:
    1.2 mu_s), SciPy's default tol = 1e-3 and also tol = 1e-6;
 3. the package at matched accuracy: the cheapest of ``resolution`` = 2, 4, ..., 64 (cells per
    cooperativity length) whose error is at most the baseline's;
-4. the Cosserat model on the same cell (``build_problem`` with the paper's defaults at the same
+4. the Cosserat model on the same cell (``make_problem`` with the paper's defaults at the same
    eps, Ri, B; check=False, points=3): what a model's solve costs beside it.
 
 Errors: max |u - u_ref| on 401 points, u_ref the package at 2^16 cells (extrapolated).
@@ -36,39 +36,38 @@ from collections.abc import Callable
 import numpy as np
 from scipy.integrate import solve_bvp
 
-from cosserat import solve
-from cosserat.model import build_problem
-from cosserat.model.ngf import NGFChannel, NGFCouetteFlow, NGFPlaneShear
+from cosserat import NGF, Couette, Plane, Problem, VerticalChannel, solve
+from cosserat.model import make_problem
 
 XS = np.linspace(0.0, 1.0, 401)
 
 
 def plain_bvp(problem, tol: float) -> Callable[[np.ndarray], np.ndarray]:  # type: ignore[no-untyped-def]
     """u(xi) of an NGF problem by solve_bvp, as a user would write it (see the module text)."""
-    law = problem.rheology
+    law, cell = problem.rheology, problem.cell
     mu_s, b, a = law.mu_s, law.b, law.A * problem.eps
-    name = type(problem).__name__
+    name = {"plane": "NGFPlaneShear", "couette": "NGFCouetteFlow", "channel": "NGFChannel"}[
+        problem.cell_name
+    ]
+    Ri = getattr(cell, "Ri", None)
+    I_w = problem.equations.I_w
 
     def statics(x, T):  # type: ignore[no-untyped-def]
         one = np.ones_like(x)
         if name == "NGFPlaneShear":
-            s = 1.0 + problem.B * problem.nu * (1.0 - x)
+            s = 1.0 + cell.B * cell.nu * (1.0 - x)
             return T / s, s, one
         if name == "NGFCouetteFlow":
-            r = problem.Ri + x
-            return T * (problem.Ri / r) ** 2, one, r
+            r = Ri + x
+            return T * (Ri / r) ** 2, one, r
         return 2.0 * T * np.abs(x - 0.5), one, one
 
     def f_loc(mu, s):  # type: ignore[no-untyped-def]
         return np.sqrt(s) * np.maximum(mu - mu_s, 0.0) / (b * np.where(mu > 0, mu, 1.0))
 
-    weight = (
-        (lambda x: problem.Ri / (problem.Ri + x))
-        if name == "NGFCouetteFlow"
-        else (lambda x: np.ones_like(x))
-    )
+    weight = (lambda x: Ri / (Ri + x)) if name == "NGFCouetteFlow" else (lambda x: np.ones_like(x))
     sign = (lambda x: np.where(x > 0.5, -1.0, 1.0)) if name == "NGFChannel" else np.ones_like
-    target = problem.I_w * (2.0 if name == "NGFChannel" else 1.0)
+    target = I_w * (2.0 if name == "NGFChannel" else 1.0)
 
     def rhs(x, y, p):  # type: ignore[no-untyped-def]
         mu, s, r = statics(x, p[0])
@@ -96,10 +95,10 @@ def plain_bvp(problem, tol: float) -> Callable[[np.ndarray], np.ndarray]:  # typ
     def velocity(xx: np.ndarray) -> np.ndarray:
         yy = sol.sol(xx)
         if name == "NGFCouetteFlow":
-            return -(problem.Ri + xx) * (sol.sol(1.0)[3] - yy[3]) / problem.I_w
+            return -(Ri + xx) * (sol.sol(1.0)[3] - yy[3]) / I_w
         if name == "NGFChannel":
             return yy[3] / sol.sol(0.5)[3]
-        return yy[3] / problem.I_w
+        return yy[3] / I_w
 
     return velocity
 
@@ -119,14 +118,17 @@ def main() -> None:
     args = parser.parse_args()
     cases = {
         "C": (
-            NGFCouetteFlow(eps=0.01, Ri=1.0),
-            build_problem({"geometry": "couette", "eps": 0.01, "Ri": 1.0}),
+            Problem(Couette(eps=0.01, Ri=1.0), NGF()),
+            make_problem("cosserat", "couette", {"eps": 0.01, "Ri": 1.0}),
         ),
         "P": (
-            NGFPlaneShear(eps=0.01, B=1.0),
-            build_problem({"geometry": "plane", "eps": 0.01, "B": 1.0}),
+            Problem(Plane(eps=0.01, B=1.0), NGF()),
+            make_problem("cosserat", "plane", {"eps": 0.01, "B": 1.0}),
         ),
-        "V": (NGFChannel(eps=0.02, I_w=0.01), build_problem({"geometry": "channel", "eps": 0.02})),
+        "V": (
+            Problem(VerticalChannel(eps=0.02, I_w=0.01), NGF()),
+            make_problem("cosserat", "channel", {"eps": 0.02}),
+        ),
     }
     for problem, cosserat in cases.values():  # compile and load everything once
         solve(problem)

@@ -21,13 +21,13 @@ import sys
 
 import numpy as np
 
+from cosserat import Cosserat, Couette, Plane, Problem
+
 
 def run(path: str) -> None:
     from cosserat import (
         CosseratError,
-        CouetteFlow,
         Material,
-        PlaneShear,
         Wall,
         shear_layer_thickness,
         solve,
@@ -42,12 +42,14 @@ def run(path: str) -> None:
         K = float(rng.uniform(0, 1.5))
         if rng.random() < 0.35:
             Ri = float(10 ** rng.uniform(-2, 3))
-            p = CouetteFlow(material=Material(28.5), wall=Wall(d, K), eps=eps, Ri=Ri)
+            p = Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=Material(28.5), wall=Wall(d, K)))
         else:
             B = float(10 ** rng.uniform(-2, 2)) if rng.random() < 0.5 else 0.0
             dl = float(rng.uniform(3, 25.5)) if rng.random() < 0.5 else None
             lower = None if dl is None else Wall(dl, K)
-            p = PlaneShear(material=Material(28.5), upper=Wall(d, K), lower=lower, eps=eps, B=B)
+            p = Problem(
+                Plane(eps=eps, B=B), Cosserat(material=Material(28.5), wall=Wall(d, K), lower=lower)
+            )
         try:
             pr = solve(p, check=False, points=3)
             out.append(["ok", shear_layer_thickness(pr), wall_slip(pr)])

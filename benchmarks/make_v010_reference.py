@@ -65,6 +65,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from cosserat import Cosserat, Couette, Plane, Problem
+
 COMMIT = "a3288e4"
 RTOL = 1e-10
 XI = [0.0, 0.001, 0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0]
@@ -188,20 +190,23 @@ def m_fixed_wall_case() -> dict[str, Any]:
 
     v0.1.0 (``problems/plane.py``, ``PlaneShear._validate_m_fixed_wall``) admits
     ``0 <= m_fixed_wall <= b`` with the layer at the upper wall, b =
-    ``problem.couple_stress_bound(fixed_wall)`` (where the radicand of eqn-nd_sigxy vanishes).
+    ``problem.equations.couple_stress_bound(fixed_wall)`` (where the radicand of
+    eqn-nd_sigxy vanishes).
     """
     case = plane(
         "plane-upper20-lower-rough-m-fixed-half-bound-eps0.01", 1e-2, wall(20.0), wall(ROUGH)
     )
     problem = build(case)
-    assert problem.fixed_wall == 0.0, problem.case
-    case["parameters"]["m_fixed_wall"] = 0.5 * problem.couple_stress_bound(problem.fixed_wall)
+    assert problem.equations.fixed_wall == 0.0, problem.equations.case
+    case["parameters"]["m_fixed_wall"] = 0.5 * problem.equations.couple_stress_bound(
+        problem.equations.fixed_wall
+    )
     return case
 
 
 def build(case: dict[str, Any]) -> Any:
     """The v0.1.0 problem of a case record."""
-    from cosserat import FULLY_ROUGH, CouetteFlow, Material, PlaneShear, Wall
+    from cosserat import FULLY_ROUGH, Material, Wall
 
     p = case["parameters"]
 
@@ -210,16 +215,18 @@ def build(case: dict[str, Any]) -> Any:
 
     mat = Material(**p["material"])
     if case["geometry"] == "plane":
-        return PlaneShear(
-            material=mat,
-            upper=make_wall(p["upper"]),
-            lower=make_wall(p["lower"]),
-            eps=p["eps"],
-            B=p["B"],
-            nu=p["nu"],
-            m_fixed_wall=p["m_fixed_wall"],
+        return Problem(
+            Plane(eps=p["eps"], B=p["B"], nu=p["nu"]),
+            Cosserat(
+                material=mat,
+                wall=make_wall(p["upper"]),
+                lower=make_wall(p["lower"]),
+                m_fixed_wall=p["m_fixed_wall"],
+            ),
         )
-    return CouetteFlow(material=mat, wall=make_wall(p["wall"]), eps=p["eps"], Ri=p["Ri"])
+    return Problem(
+        Couette(eps=p["eps"], Ri=p["Ri"]), Cosserat(material=mat, wall=make_wall(p["wall"]))
+    )
 
 
 # --------------------------------------------------------------------------- solving
@@ -240,7 +247,7 @@ def run_case(case: dict[str, Any]) -> dict[str, Any]:
     problem = build(case)
     record = dict(case)
     if case["geometry"] == "plane":
-        record["case"] = problem.case.value
+        record["case"] = problem.equations.case.value
     empty = dict.fromkeys(
         ["Delta", "wall_slip", "wall_omega", "wall_stress", "m_inner", "u", "omega", "m"]
     )

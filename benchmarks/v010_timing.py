@@ -80,6 +80,8 @@ from typing import Any
 
 import numpy as np
 
+from cosserat import Cosserat, Couette, Plane, Problem
+
 EPS = [0.04, 1e-2, 1e-3, 1e-4, 1e-6]
 RTOL = 1e-8
 CURVE_EPS = [float(e) for e in np.geomspace(1e-1, 1e-6, 50)]
@@ -106,15 +108,17 @@ def require_v010() -> Any:
 
 def problems() -> dict[str, Any]:
     """P1, P2, P3, C1 at eps = 0.1 (the eps is replaced)."""
-    from cosserat import CouetteFlow, Material, PlaneShear, Wall
+    from cosserat import Material, Wall
 
     mat = Material(phi=28.5)
     w20 = Wall(delta=20.0, K=0.5)
     return {
-        "P1": PlaneShear(material=mat, upper=w20, lower=w20, eps=0.1),
-        "P2": PlaneShear(material=mat, upper=w20, lower=Wall.fully_rough(K=0.5), eps=0.1),
-        "P3": PlaneShear(material=mat, upper=w20, lower=w20, eps=0.1, B=1.0, nu=1.0),
-        "C1": CouetteFlow(material=mat, wall=w20, eps=0.1, Ri=1.0),
+        "P1": Problem(Plane(eps=0.1), Cosserat(material=mat, wall=w20, lower=w20)),
+        "P2": Problem(
+            Plane(eps=0.1), Cosserat(material=mat, wall=w20, lower=Wall.fully_rough(K=0.5))
+        ),
+        "P3": Problem(Plane(eps=0.1, B=1.0, nu=1.0), Cosserat(material=mat, wall=w20, lower=w20)),
+        "C1": Problem(Couette(eps=0.1, Ri=1.0), Cosserat(material=mat, wall=w20)),
     }
 
 
@@ -127,17 +131,17 @@ DESCRIPTION = {
 
 
 def sweep_cases() -> tuple[list[Any], list[Any]]:
-    from cosserat import CouetteFlow, Material, PlaneShear, Wall
+    from cosserat import Material, Wall
 
     mat = Material(phi=28.5)
     plane = [
-        PlaneShear(material=mat, upper=Wall(delta=float(d), K=k), eps=e, B=b)
+        Problem(Plane(eps=e, B=b), Cosserat(material=mat, wall=Wall(delta=float(d), K=k)))
         for d, k, b, e in itertools.product(
             np.linspace(8.0, 25.0, 10), (0.0, 0.25, 0.5, 0.75, 1.0), (0.0, 1.0), SWEEP_EPS
         )
     ]
     couette = [
-        CouetteFlow(material=mat, wall=Wall(delta=d, K=0.5), eps=e, Ri=ri)
+        Problem(Couette(eps=e, Ri=ri), Cosserat(material=mat, wall=Wall(delta=d, K=0.5)))
         for d, ri, e in itertools.product(
             (10.0, 15.0, 20.0, 25.0), (0.5, 1.0, 2.0, 5.0, 10.0), SWEEP_EPS
         )
@@ -266,7 +270,7 @@ def sweeps(results: dict[str, float], repeat: int) -> None:
 
 def serve() -> None:
     """Answer timing requests on stdin/stdout (module docstring, ``--serve``)."""
-    from cosserat import CouetteFlow, Material, PlaneShear, Wall, solve
+    from cosserat import Material, Wall, solve
     from cosserat.analysis import thickness_curve
 
     wall_quantities = batched()
@@ -320,10 +324,10 @@ def serve() -> None:
             reply = {"seconds": time.perf_counter() - t, "solved": solved}
         elif op == "sweep":
             cases = [
-                PlaneShear(material=mat, upper=Wall(delta=d, K=0.5), eps=e, B=b)
+                Problem(Plane(eps=e, B=b), Cosserat(material=mat, wall=Wall(delta=d, K=0.5)))
                 for d, e, b in req.get("plane", [])
             ] + [
-                CouetteFlow(material=mat, wall=Wall(delta=d, K=0.5), eps=e, Ri=ri)
+                Problem(Couette(eps=e, Ri=ri), Cosserat(material=mat, wall=Wall(delta=d, K=0.5)))
                 for d, e, ri in req.get("couette", [])
             ]
             t = time.perf_counter()

@@ -48,6 +48,7 @@ extensions = [
     "myst_parser",
     "sphinx_gallery.gen_gallery",
     "sphinx-mathjax-offline",  # a local MathJax 3 copy: equations render offline
+    "parameter_tables",  # docs/parameter_tables.py: tables from the parameter declarations
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -135,6 +136,7 @@ class OptionalTocTree(TocTree):
 # the site that shows the same file (the notes stay readable where they are).
 OUTSIDE_LINKS = {
     "../benchmarks/RESULTS.md": "benchmarks.md",
+    "../benchmarks/RESULTS_speed.md": "benchmarks.md",
     "../CHANGELOG.md": "changelog.md",
     "../README.md": "getting_started.rst",
 }

@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from cosserat import Material, PlaneShear, Wall
+from cosserat import Cosserat, Material, Plane, Problem, Wall
 from cosserat.analysis.fitting import fit, model_at, model_profile
 from cosserat.analysis.measurements import MeasuredProfile
 from cosserat.viz.plotting import new_figure, style
@@ -26,8 +26,12 @@ SIGMA = 0.01
 
 def main(n: int = 300, out: str = "coverage.png") -> dict[str, float]:
     mat = Material(28.5)
-    truth = PlaneShear(material=mat, upper=Wall(20.0, 0.5), lower=Wall.fully_rough(), eps=0.02)
-    start = PlaneShear(material=mat, upper=Wall(15.0, 1.0), lower=Wall.fully_rough(), eps=0.02)
+    truth = Problem(
+        Plane(eps=0.02), Cosserat(material=mat, wall=Wall(20.0, 0.5), lower=Wall.fully_rough())
+    )
+    start = Problem(
+        Plane(eps=0.02), Cosserat(material=mat, wall=Wall(15.0, 1.0), lower=Wall.fully_rough())
+    )
     d = np.linspace(0.0, 40.0, 25)
     clean = model_at(model_profile(truth, "closed-form"), d)
     pulls: dict[str, list[float]] = {"delta": [], "K": []}

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from cosserat import CouetteFlow, Material, Wall
+from cosserat import Cosserat, Couette, Material, Problem, Wall
 from cosserat.analysis.fitting import model_at, model_profile
 from cosserat.analysis.measurements import MeasuredProfile, write_profile
 
@@ -20,8 +20,9 @@ SIGMA = 0.01
 
 
 def make(seed: int = 2026, n: int = 30) -> MeasuredProfile:
-    problem = CouetteFlow(
-        material=Material(28.5), wall=Wall(TRUE["delta"], TRUE["K"]), eps=0.05, Ri=2.0
+    problem = Problem(
+        Couette(eps=0.05, Ri=2.0),
+        Cosserat(material=Material(28.5), wall=Wall(TRUE["delta"], TRUE["K"])),
     )
     distance = np.round(np.geomspace(0.25, 15.0, n), 4)
     clean = model_at(model_profile(problem, rtol=1e-10), distance)

@@ -9,11 +9,21 @@ velocity is scaled by its value on the centre line.
 
 import matplotlib.pyplot as plt
 
-from cosserat import Channel, Material, Wall, shear_layer_thickness, solve
+from cosserat import (
+    Cosserat,
+    Material,
+    Problem,
+    VerticalChannel,
+    Wall,
+    shear_layer_thickness,
+    solve,
+)
 
 fig, ax = plt.subplots(figsize=(7.5, 4), layout="constrained")
 for delta in (15.0, 20.0, 25.0):
-    problem = Channel(material=Material(), wall=Wall(delta=delta), eps=0.02)
+    problem = Problem(
+        VerticalChannel(eps=0.02), Cosserat(material=Material(), wall=Wall(delta=delta))
+    )
     profile = solve(problem)
     Delta = shear_layer_thickness(profile)
     ax.plot(profile.xi, profile.u, label=f"delta = {delta:g} deg: Delta = {Delta:.1f} d")

@@ -9,12 +9,20 @@ Between two coaxial cylinders, the inner one turning, the shear stress falls out
 
 import matplotlib.pyplot as plt
 
-from cosserat import CouetteFlow, Material, Wall, shear_layer_thickness, solve
+from cosserat import (
+    Cosserat,
+    Couette,
+    Material,
+    Problem,
+    Wall,
+    shear_layer_thickness,
+    solve,
+)
 
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
 for Ri in (0.5, 1.0, 4.0, 20.0):
     wall = Wall(delta=20.0)
-    problem = CouetteFlow(material=Material(), wall=wall, eps=0.04, Ri=Ri)
+    problem = Problem(Couette(eps=0.04, Ri=Ri), Cosserat(material=Material(), wall=wall))
     profile = solve(problem)
     Delta = shear_layer_thickness(profile)
     label = f"Ri = {Ri:g}: Delta = {Delta:.1f} d"

@@ -13,13 +13,13 @@ from importlib.resources import files
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cosserat import CouetteFlow, Material, Wall
+from cosserat import Cosserat, Couette, Material, Problem, Wall
 from cosserat.analysis.fitting import fit
 from cosserat.analysis.measurements import read_profile
 
 measured = read_profile(files("cosserat") / "data" / "synthetic_couette.csv")
 start_wall = Wall(delta=15.0, K=1.0)  # the starting values of the fit
-start = CouetteFlow(material=Material(), wall=start_wall, eps=0.05, Ri=2.0)
+start = Problem(Couette(eps=0.05, Ri=2.0), Cosserat(material=Material(), wall=start_wall))
 result = fit(measured, start, free=("delta", "K"))
 for name, p in result.parameters.items():
     print(f"{name} = {p.value:.3f} +- {p.stderr:.3f}")

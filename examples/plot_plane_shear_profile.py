@@ -10,10 +10,19 @@ diameters at each wall, and slip at both walls.
 
 import matplotlib.pyplot as plt
 
-from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve, wall_slip
+from cosserat import (
+    Cosserat,
+    Material,
+    Plane,
+    Problem,
+    Wall,
+    shear_layer_thickness,
+    solve,
+    wall_slip,
+)
 
 wall = Wall(delta=20.0, K=0.5)  # angle of wall friction [deg], slip coefficient
-problem = PlaneShear(material=Material(phi=28.5), upper=wall, eps=0.01)
+problem = Problem(Plane(eps=0.01), Cosserat(material=Material(phi=28.5), wall=wall))
 profile = solve(problem)
 print(f"Delta = {shear_layer_thickness(profile):.2f} grain diameters")
 print(f"slip at the moving wall = {wall_slip(profile):.4f} V")

@@ -8,9 +8,9 @@ coordinates) to pandas, xarray, CSV and JSON, so it drops into a notebook.
 
 import matplotlib.pyplot as plt
 
-from cosserat import Material, PlaneShear, Wall, solve
+from cosserat import Cosserat, Material, Plane, Problem, Wall, solve
 
-problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.04)
+problem = Problem(Plane(eps=0.04), Cosserat(material=Material(), wall=Wall(delta=20.0)))
 profile = solve(problem, points=41)
 table = profile.to_dataframe()
 print(list(table.columns))

@@ -11,9 +11,9 @@ thinner than the gap). Here they are side by side at eps = 0.002, near the movin
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cosserat import Material, PlaneShear, Wall, solve
+from cosserat import Cosserat, Material, Plane, Problem, Wall, solve
 
-problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.002)
+problem = Problem(Plane(eps=0.002), Cosserat(material=Material(), wall=Wall(delta=20.0)))
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
 for method, style in (("numerical", "-"), ("closed-form", "--"), ("asymptotic", ":")):
     profile = solve(problem, method=method)

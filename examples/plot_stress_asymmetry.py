@@ -13,11 +13,11 @@ vanishes quickly as the gap widens.
 import matplotlib.pyplot as plt
 from matplotlib.ticker import MaxNLocator
 
-from cosserat import Material, PlaneShear, Wall, solve
+from cosserat import Cosserat, Material, Plane, Problem, Wall, solve
 
 fig, axes = plt.subplots(1, 3, figsize=(10, 3.8), sharex=True, layout="constrained")
 for eps in (0.05, 0.02, 0.01):
-    profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=eps))
+    profile = solve(Problem(Plane(eps=eps), Cosserat(material=Material(), wall=Wall(delta=20.0))))
     label = f"eps = {eps:g}"
     axes[0].plot(profile.xi, profile.m, label=label)
     axes[1].plot(profile.xi, profile.asymmetry, label=label)

@@ -12,13 +12,13 @@ compiled kernel.
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cosserat import Material, PlaneShear, Wall
+from cosserat import Cosserat, Material, Plane, Problem, Wall
 from cosserat.analysis import thickness_curve, thickness_limit
 
 eps_values = np.geomspace(0.05, 1e-6, 12)
 fig, ax = plt.subplots(figsize=(7.5, 4), layout="constrained")
 for delta in (15.0, 20.0, 25.0):
-    problem = PlaneShear(material=Material(), upper=Wall(delta=delta), eps=0.01)
+    problem = Problem(Plane(eps=0.01), Cosserat(material=Material(), wall=Wall(delta=delta)))
     curve = thickness_curve(problem, eps_values)
     label = f"delta = {delta:g} deg"
     (line,) = ax.semilogx(curve.eps, curve.Delta, "o-", ms=3, label=label)

@@ -3,31 +3,30 @@ Three rheologies on one Couette cell
 ====================================
 
 The frictional Cosserat model, the local mu(I) law and the nonlocal granular fluidity (NGF)
-model on the same cell (eps = d/H = 0.04, R_i/H = 1), each through
-:func:`~cosserat.routes.solve`. mu(I) and NGF are rate-dependent and are driven at the inertial
-number I_w = 0.01 of the wall speed; the Cosserat model is rate-independent. Outside its shear
+model on the same cell (eps = d/H = 0.04, R_i/H = 1): one :class:`~cosserat.Couette` cell, three
+rheologies, each :class:`~cosserat.Problem` solved by :func:`~cosserat.solve`. mu(I) and NGF are
+rate-dependent and are driven at the inertial number of the wall speed, the cell's I_w (its
+default, 0.01); the Cosserat model is rate-independent and does not read it. Outside its shear
 layer mu(I) stops dead (a plug), while NGF creeps: its fluidity diffuses into the region below
 the yield stress ratio.
 """
 
 import matplotlib.pyplot as plt
 
-from cosserat import CouetteFlow, Material, Wall, shear_layer_thickness, solve
-from cosserat.model.mui import MuI, MuICouetteFlow
-from cosserat.model.ngf import NGF, NGFCouetteFlow
+from cosserat import NGF, Cosserat, Couette, MuI, Problem, shear_layer_thickness, solve
 
-cell = dict(eps=0.04, Ri=1.0)
+cell = Couette(eps=0.04, Ri=1.0)
 profiles = {
-    "Cosserat": solve(CouetteFlow(material=Material(), wall=Wall(), **cell)),
-    "mu(I)": solve(MuICouetteFlow(rheology=MuI(), I_w=0.01, **cell), method="closed-form"),
-    "NGF": solve(NGFCouetteFlow(rheology=NGF(), I_w=0.01, **cell)),
+    "Cosserat": solve(Problem(cell, Cosserat())),
+    "mu(I)": solve(Problem(cell, MuI()), method="closed-form"),
+    "NGF": solve(Problem(cell, NGF())),
 }
 
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
 for name, profile in profiles.items():
     Delta = shear_layer_thickness(profile)
     label = f"{name}: Delta = {Delta:.2f} d"
-    distance = profile.xi / cell["eps"]
+    distance = profile.xi / cell.eps
     ax1.plot(distance, -profile.u, label=label)
     ax2.semilogy(distance, abs(profile.u), label=label)
 ax1.set_ylabel(r"$v_\theta / V_i$")

@@ -11,13 +11,22 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.ticker import NullFormatter
 
-from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve, wall_slip
+from cosserat import (
+    Cosserat,
+    Material,
+    Plane,
+    Problem,
+    Wall,
+    shear_layer_thickness,
+    solve,
+    wall_slip,
+)
 
 material = Material()
 deltas = np.linspace(8.0, 0.999 * material.fully_rough_delta, 14)
 Delta, slip = [], []
 for delta in deltas:
-    problem = PlaneShear(material=material, upper=Wall(delta=delta), eps=0.01)
+    problem = Problem(Plane(eps=0.01), Cosserat(material=material, wall=Wall(delta=delta)))
     profile = solve(problem)
     Delta.append(shear_layer_thickness(profile))
     slip.append(wall_slip(profile))

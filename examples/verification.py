@@ -11,12 +11,26 @@ from __future__ import annotations
 
 import numpy as np
 
-from cosserat import CouetteFlow, Material, PlaneShear, Wall, shear_layer_thickness, solve
+from cosserat import (
+    Cosserat,
+    Couette,
+    Material,
+    Plane,
+    Problem,
+    Wall,
+    shear_layer_thickness,
+    solve,
+)
 from cosserat.analysis import asymptotic_thickness
 from cosserat.analysis.cell import CouetteCell
 from cosserat.routes.airy import xi_hat_at_fraction
 
 MAT = Material(28.5)
+
+
+def plane(eps, upper, lower=None, B=0.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear with this material."""
+    return Problem(Plane(eps=eps, B=B), Cosserat(material=MAT, wall=upper, lower=lower))
 
 
 def closed_form_agreement() -> None:
@@ -25,7 +39,9 @@ def closed_form_agreement() -> None:
         for eps in (0.04, 1e-3):
             for delta in (10.0, 20.0, 25.5):
                 for lower in (None, Wall.fully_rough()):
-                    p = PlaneShear(material=MAT, upper=Wall(delta), lower=lower, eps=eps)
+                    p = Problem(
+                        Plane(eps=eps), Cosserat(material=MAT, wall=Wall(delta), lower=lower)
+                    )
                     num = solve(p, rtol=rtol, check=False)
                     cf = solve(p, method="closed-form", xi=num.xi, check=False)
                     err = {
@@ -56,13 +72,16 @@ def thickness_table() -> None:
     print("2. Delta for delta = 20 deg (limit -ln f / k = 17.6688)")
     for name, kw in CASES.items():
         ds = [
-            shear_layer_thickness(solve(PlaneShear(material=MAT, eps=e, **kw), check=False))
+            shear_layer_thickness(solve(plane(e, **kw), check=False))
             for e in (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
         ]
         print(f"   {name:62s} " + " ".join(f"{d:.4f}" for d in ds))
     ds = [
         shear_layer_thickness(
-            solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=e, Ri=1.0), check=False)
+            solve(
+                Problem(Couette(eps=e, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))),
+                check=False,
+            )
         )
         for e in (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
     ]
@@ -71,12 +90,12 @@ def thickness_table() -> None:
 
 def small_eps() -> None:
     print("3. eps = 1e-6: finite? largest boundary-condition error, residuals")
-    problems = [PlaneShear(material=MAT, eps=1e-6, **kw) for kw in CASES.values()]
+    problems = [plane(1e-6, **kw) for kw in CASES.values()]
     problems += [
-        PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=1e-6, B=1.0),
-        PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=1e-6),
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=1e-6, Ri=1.0),
-        CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=1e-6, Ri=1.0),
+        Problem(Plane(eps=1e-6, B=1.0), Cosserat(material=MAT, wall=Wall.fully_rough())),
+        Problem(Plane(eps=1e-6), Cosserat(material=MAT, wall=Wall.fully_rough())),
+        Problem(Couette(eps=1e-6, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))),
+        Problem(Couette(eps=1e-6, Ri=1.0), Cosserat(material=MAT, wall=Wall.fully_rough())),
     ]
     for p in problems:
         prof = solve(p)
@@ -91,8 +110,8 @@ def couette_and_cell() -> None:
     for eps in (1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6):
         row = []
         for p in (
-            PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=eps, B=1.0),
-            CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=eps, Ri=1.0),
+            Problem(Plane(eps=eps, B=1.0), Cosserat(material=MAT, wall=Wall.fully_rough())),
+            Problem(Couette(eps=eps, Ri=1.0), Cosserat(material=MAT, wall=Wall.fully_rough())),
         ):
             try:
                 row.append(shear_layer_thickness(solve(p, check=False)) / asymptotic_thickness(p))

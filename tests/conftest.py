@@ -33,3 +33,29 @@ def paper_material() -> Material:
 
 def wall(delta, K=0.5) -> Wall:
     return Wall(delta, K)
+
+
+@pytest.fixture
+def toys():
+    """The toy cell (``tests/toy_cell.py``) and the toy rheology (``tests/toy_rheology.py``)
+    registered for one test, every registry restored afterwards (no toy left registered)."""
+    import importlib
+    import sys
+    from types import SimpleNamespace
+
+    from cosserat.model.cells import CELLS
+    from cosserat.model.rheologies import RHEOLOGIES
+    from cosserat.routes.registry import PICKLABLE, ROUTES
+
+    saved = (dict(CELLS), dict(RHEOLOGIES), dict(ROUTES), set(PICKLABLE))
+    names = ("toy_cell", "toy_rheology")
+    for name in names:
+        sys.modules.pop(name, None)
+    try:
+        yield SimpleNamespace(**{n: importlib.import_module(n) for n in names})
+    finally:
+        for registry, old in zip((CELLS, RHEOLOGIES, ROUTES, PICKLABLE), saved, strict=True):
+            registry.clear()
+            registry.update(old)
+        for name in names:
+            sys.modules.pop(name, None)

@@ -21,6 +21,7 @@ LAYERS = [
         "cosserat._version",
         "cosserat._jit_cache",
         "cosserat._atomic",
+        "cosserat._text",
     ],
     ["cosserat.viz"],
     ["cosserat.model"],

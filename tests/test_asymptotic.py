@@ -8,10 +8,26 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.special import airy
 
-from cosserat import CouetteFlow, Material, MethodNotAvailableError, PlaneShear, Wall, solve
+from cosserat import (
+    Cosserat,
+    Couette,
+    Material,
+    MethodNotAvailableError,
+    Plane,
+    Problem,
+    Wall,
+    solve,
+)
 from cosserat.routes.airy import I_INFINITY, velocity_fraction, xi_hat_at_fraction
 
 MAT = Material(28.5)
+
+
+def plane(eps, upper, lower=None, B=0.0, nu=1.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear with the paper's material (MAT)."""
+    return Problem(Plane(eps=eps, B=B, nu=nu), Cosserat(material=MAT, wall=upper, lower=lower))
+
+
 EPS = [1e-3, 1e-4, 1e-5, 1e-6]
 
 
@@ -26,7 +42,7 @@ def order_of(errors, eps):
 def test_zero_gravity_asymptotics_are_exact_up_to_exponentially_small_terms(lower):
     """eqn-asymp_soln_vels_g0 / _g0_aw differ from the exact solution by O(exp(-k/(2 eps)));
     between identical walls with different K the mid-plane velocity is not 1/2."""
-    problem = PlaneShear(material=MAT, upper=Wall(20.0), lower=lower, eps=1e-3)
+    problem = Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(20.0), lower=lower))
     exact = solve(problem, method="closed-form")
     asym = solve(problem, method="asymptotic", xi=exact.xi)
     assert np.max(np.abs(asym.u - exact.u)) < 1e-12
@@ -44,7 +60,7 @@ def test_zero_gravity_asymptotics_are_exact_up_to_exponentially_small_terms(lowe
 def test_asymptotic_error_shrinks_at_the_predicted_rate(kwargs, order):
     errors = []
     for eps in EPS:
-        problem = PlaneShear(material=MAT, eps=eps, **kwargs)
+        problem = plane(eps, **kwargs)
         num = solve(problem)
         asym = solve(problem, method="asymptotic", xi=num.xi)
         errors.append(np.max(np.abs(num.u - asym.u)))
@@ -69,7 +85,7 @@ def test_I_infinity_and_the_airy_fraction_against_quadrature():
 
 
 def test_fully_rough_identical_walls_shear_uniformly_at_leading_order():
-    problem = PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=1e-3)
+    problem = Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall.fully_rough()))
     uniform = solve(problem, method="asymptotic")
     np.testing.assert_allclose(uniform.u, uniform.xi)
     np.testing.assert_allclose(uniform.omega, -0.5)
@@ -80,16 +96,32 @@ def test_fully_rough_identical_walls_shear_uniformly_at_leading_order():
 @pytest.mark.parametrize(
     ("problem", "needle"),
     [
-        (PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=1e-3, B=1e-12), "B nu >> eps"),
-        (CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=0.04, Ri=1e6), "thinner than"),
-        (PlaneShear(material=Material(28.5, L=1e8), upper=Wall(20.0), eps=1e-3), "thinner than"),
-        (PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3, B=1e6), "changes too fast"),
-        (CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=0.04, Ri=1.0), "thinner than"),
-        # identical walls: layers at both walls and the centre leave no outer region
-        (PlaneShear(material=MAT, upper=Wall(20.0), eps=5e-3), "fill the gap"),
         (
-            PlaneShear(
-                material=MAT, upper=Wall(20.0), lower=Wall(25.0), eps=1e-3, m_fixed_wall=0.1
+            Problem(Plane(eps=1e-3, B=1e-12), Cosserat(material=MAT, wall=Wall.fully_rough())),
+            "B nu >> eps",
+        ),
+        (
+            Problem(Couette(eps=0.04, Ri=1e6), Cosserat(material=MAT, wall=Wall.fully_rough())),
+            "thinner than",
+        ),
+        (
+            Problem(Plane(eps=1e-3), Cosserat(material=Material(28.5, L=1e8), wall=Wall(20.0))),
+            "thinner than",
+        ),
+        (
+            Problem(Plane(eps=1e-3, B=1e6), Cosserat(material=MAT, wall=Wall(20.0))),
+            "changes too fast",
+        ),
+        (
+            Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=Wall.fully_rough())),
+            "thinner than",
+        ),
+        # identical walls: layers at both walls and the centre leave no outer region
+        (Problem(Plane(eps=5e-3), Cosserat(material=MAT, wall=Wall(20.0))), "fill the gap"),
+        (
+            Problem(
+                Plane(eps=1e-3),
+                Cosserat(material=MAT, wall=Wall(20.0), lower=Wall(25.0), m_fixed_wall=0.1),
             ),
             "m_fixed_wall",
         ),

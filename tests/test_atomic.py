@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pytest
 
-from cosserat import Material, PlaneShear, Wall, solve
+from cosserat import Cosserat, Material, Plane, Problem, Wall, solve
 from cosserat._atomic import atomic_open, save_figure, write_text
 
 
@@ -52,7 +52,7 @@ def test_figures_keep_their_format(tmp_path):
 
 
 def test_a_profile_export_is_atomic(tmp_path, monkeypatch):
-    profile = solve(PlaneShear(material=Material(), upper=Wall(), eps=0.04))
+    profile = solve(Problem(Plane(eps=0.04), Cosserat(material=Material(), wall=Wall())))
     target = tmp_path / "profile.csv"
     profile.to_csv(target)
     before = target.read_text()
@@ -62,6 +62,6 @@ def test_a_profile_export_is_atomic(tmp_path, monkeypatch):
 
     monkeypatch.setattr(os, "replace", fail)
     with pytest.raises(OSError, match="disk full"):
-        solve(PlaneShear(material=Material(), upper=Wall(), eps=0.01)).to_csv(target)
+        solve(Problem(Plane(eps=0.01), Cosserat(material=Material(), wall=Wall()))).to_csv(target)
     assert target.read_text() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["profile.csv", "profile.json"]

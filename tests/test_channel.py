@@ -25,17 +25,20 @@ from scipy.integrate import solve_bvp
 from scipy.optimize import brentq
 
 from cosserat import (
-    Channel,
     ConvergenceError,
+    Cosserat,
     MethodNotAvailableError,
+    MuI,
     NoSolutionError,
     ParameterError,
+    Problem,
+    VerticalChannel,
     shear_layer_thickness,
     solve,
     wall_omega,
     wall_slip,
 )
-from cosserat.model import build_problem
+from cosserat.model import make_problem
 from cosserat.model.parameters import Material, Wall
 from cosserat.routes.airy import I_INFINITY, xi_hat_at_fraction
 from cosserat.routes.channel import asymptotic_thickness
@@ -43,12 +46,12 @@ from cosserat.routes.channel import asymptotic_thickness
 MAT = Material()  # phi = 28.5 deg, L = 10, A = 1/3
 
 
-def smooth(eps: float, **kw) -> Channel:  # type: ignore[no-untyped-def]
-    return Channel(material=MAT, wall=Wall(), eps=eps, **kw)
+def smooth(eps: float, **kw) -> Problem:  # type: ignore[no-untyped-def]
+    return Problem(VerticalChannel(eps=eps, **kw), Cosserat(material=MAT, wall=Wall()))
 
 
-def rough(eps: float) -> Channel:
-    return Channel(material=MAT, wall=Wall.fully_rough(), eps=eps)
+def rough(eps: float) -> Problem:
+    return Problem(VerticalChannel(eps=eps), Cosserat(material=MAT, wall=Wall.fully_rough()))
 
 
 CASES = {
@@ -68,11 +71,15 @@ def solved(request):  # type: ignore[no-untyped-def]
 def test_statics_from_the_balances():
     p = smooth(0.01)
     x = np.linspace(0.0, 1.0, 11)
-    np.testing.assert_array_equal(p.sigma_c(x), 1.0)
-    np.testing.assert_allclose(p.sigma_yx(x), 2.0 * math.tan(math.radians(20.0)) * (x - 0.5))
+    np.testing.assert_array_equal(p.equations.sigma_c(x), 1.0)
+    np.testing.assert_allclose(
+        p.equations.sigma_yx(x), 2.0 * math.tan(math.radians(20.0)) * (x - 0.5)
+    )
     # friction fully mobilised by default: B nu = 2 tan(delta), the same group as plane shear
-    assert p.B * p.nu == pytest.approx(2.0 * math.tan(math.radians(20.0)), rel=1e-15)
-    assert p.slips and not smooth(0.01, B=0.5).slips
+    assert p.equations.B * p.equations.nu == pytest.approx(
+        2.0 * math.tan(math.radians(20.0)), rel=1e-15
+    )
+    assert p.equations.slips and not smooth(0.01, B=0.5).equations.slips
 
 
 def test_lower_half_is_the_mirror_image_by_construction(solved):
@@ -102,8 +109,8 @@ def test_wall_and_centre_conditions(solved):
     ends = prof.evaluate([0.0, 0.5, 1.0])
     assert ends.u[1] == pytest.approx(1.0, abs=1e-12)
     assert ends.m[1] == pytest.approx(-math.sqrt(MAT.c2), abs=1e-14)
-    if problem.slips:
-        eK = problem.eps * problem.wall.K
+    if problem.equations.slips:
+        eK = problem.eps * problem.equations.wall.K
         assert ends.u[2] == pytest.approx(eK * ends.omega[2], abs=1e-12)
         # construction check: the lower half is the reflection of the upper one
         assert ends.u[0] == pytest.approx(-eK * ends.omega[0], abs=1e-12)
@@ -122,13 +129,13 @@ def test_residuals_of_the_returned_profile(solved):
 
 
 # ----------------------------------------------------------------- physical equations, again
-def physical_rates(problem: Channel, xi, m):  # type: ignore[no-untyped-def]
+def physical_rates(problem: Problem, xi, m):  # type: ignore[no-untyped-def]
     """(dm/dxi, F1, F2) of the upper half in the physical variables, written out from the
     balances: sigma_yx = B nu (xi - 1/2) > 0, sigma_c = 1 and the root of eqn-nd_sigxy with
     sigma_xy + A sigma_yx = +sqrt(S) (the mirror image of the paper's root)."""
     A, sp = MAT.A, MAT.sin_phi
     ea = problem.eps * MAT.alpha
-    syx = problem.B * problem.nu * (xi - 0.5)
+    syx = problem.equations.B * problem.equations.nu * (xi - 0.5)
     S = (A * A - 1.0) * syx**2 + 2.0 * (A + 1.0) * sp**2 - 4.0 * (A + 1.0) ** 2 * m**2
     root = np.sqrt(np.maximum(S, 0.0))
     sxy = -A * syx + root
@@ -164,12 +171,12 @@ def test_physical_equations_hold_on_the_profile(solved):
     assert np.max(np.abs(yc)) < 1e-13
 
 
-def centre_series(problem: Channel) -> float:
+def centre_series(problem: Problem) -> float:
     """mu of m = -(c - mu s^2): the O(s) balance of the couple-stress equation, solved here by
     root finding on sqrt(2 c mu - beta) = B nu/2 - 2 eps alpha mu (doc section 4)."""
     A, c = MAT.A, math.sqrt(MAT.c2)
     ea = problem.eps * MAT.alpha
-    Bn = problem.B * problem.nu
+    Bn = problem.equations.B * problem.equations.nu
     beta = Bn**2 * (1 - A) / (4 * (1 + A))
     lo, hi = beta / (2 * c), Bn / (4 * ea)
     return brentq(
@@ -177,7 +184,7 @@ def centre_series(problem: Channel) -> float:
     )
 
 
-def bvp_profile(problem: Channel):  # type: ignore[no-untyped-def]
+def bvp_profile(problem: Problem):  # type: ignore[no-untyped-def]
     """solve_bvp on the physical equations in t = ln(xi - 1/2) (m, l = ln(omega/omega_w), u;
     unknown omega_w), from s_0 = 1e-3 to the wall (the naive radicand of eqn-nd_sigxy used here
     loses ~1e-16/S of relative accuracy near the centre line, where S ~ s^2)."""
@@ -185,7 +192,7 @@ def bvp_profile(problem: Channel):  # type: ignore[no-untyped-def]
     c = math.sqrt(MAT.c2)
     m0 = -(c - centre_series(problem) * s0**2)
     ea = problem.eps * MAT.alpha
-    eK = problem.eps * problem.wall.K if problem.slips else 0.0
+    eK = problem.eps * problem.equations.wall.K if problem.equations.slips else 0.0
 
     def rhs(t, y, par):  # type: ignore[no-untyped-def]
         s = np.exp(t)
@@ -197,13 +204,17 @@ def bvp_profile(problem: Channel):  # type: ignore[no-untyped-def]
         return np.array([ya[0] - m0, yb[1], yb[2] - eK * par[0], ya[2] - 1.0])
 
     # the leading-order layer as the first guess (k = 1 stands in at fully rough walls)
-    k = problem.slip_constants.k or 1.0
-    K = problem.wall.K if problem.slips else 0.0
+    k = problem.equations.slip_constants.k or 1.0
+    K = problem.equations.wall.K if problem.equations.slips else 0.0
     t = np.linspace(math.log(s0), math.log(0.5), 400)
     x = 0.5 + np.exp(t)
     decay = np.exp(-k * (1 - x) / problem.eps)
     guess = np.vstack(
-        [problem.outer_couple_stress(x), np.log(decay), 1.0 - (2 / k) / (K + 2 / k) * decay]
+        [
+            problem.equations.outer_couple_stress(x),
+            np.log(decay),
+            1.0 - (2 / k) / (K + 2 / k) * decay,
+        ]
     )
     w_guess = 1.0 / (problem.eps * (K + 2 / k))
     sol = solve_bvp(rhs, bc, t, guess, p=[w_guess], tol=1e-8, max_nodes=200000)
@@ -226,7 +237,7 @@ def test_second_discretisation_agrees_to_1e_6(name):
     # (the lower half: test_whole_width_solve_agrees_on_both_halves_and_is_symmetric)
 
 
-def physical_rates_signed(problem: Channel, xi, m):  # type: ignore[no-untyped-def]
+def physical_rates_signed(problem: Problem, xi, m):  # type: ignore[no-untyped-def]
     """(dm/dxi, F1, F2) on either half in the physical variables: sigma_yx = B nu (xi - 1/2)
     of either sign, and the root R = sigma_xy + A sigma_yx = sign(xi - 1/2) sqrt(S), the paper's
     root of each half (doc section 2), which passes through 0 with S on the centre line. The
@@ -234,7 +245,7 @@ def physical_rates_signed(problem: Channel, xi, m):  # type: ignore[no-untyped-d
     ratios of the yield function's gradient components). Nothing here mirrors anything."""
     A, sp = MAT.A, MAT.sin_phi
     ea = problem.eps * MAT.alpha
-    syx = problem.B * problem.nu * (xi - 0.5)
+    syx = problem.equations.B * problem.equations.nu * (xi - 0.5)
     S = (A * A - 1.0) * syx**2 + 2.0 * (A + 1.0) * sp**2 - 4.0 * (A + 1.0) ** 2 * m**2
     R = np.sign(xi - 0.5) * np.sqrt(np.maximum(S, 0.0))
     sxy = -A * syx + R
@@ -244,7 +255,7 @@ def physical_rates_signed(problem: Channel, xi, m):  # type: ignore[no-untyped-d
     return dm, F1, F2
 
 
-def whole_width_bvp(problem: Channel):  # type: ignore[no-untyped-def]
+def whole_width_bvp(problem: Problem):  # type: ignore[no-untyped-def]
     """solve_bvp on the WHOLE width: the upper half (xi = 1/2 + s) and the lower half
     (xi = 1/2 - s) as one system in t = ln s, s from s_0 = 1e-3 to 1/2, each half with its own
     equations (physical_rates_signed), its own wall and its own unknown wall spin; nothing
@@ -260,7 +271,7 @@ def whole_width_bvp(problem: Channel):  # type: ignore[no-untyped-def]
     c = math.sqrt(MAT.c2)
     m0 = -(c - centre_series(problem) * s0**2)
     ea = problem.eps * MAT.alpha
-    eK = problem.eps * problem.wall.K if problem.slips else 0.0
+    eK = problem.eps * problem.equations.wall.K if problem.equations.slips else 0.0
 
     def rhs(t, y, par):  # type: ignore[no-untyped-def]
         s = np.exp(t)
@@ -285,11 +296,11 @@ def whole_width_bvp(problem: Channel):  # type: ignore[no-untyped-def]
             ]
         )  # fmt: skip
 
-    k = problem.slip_constants.k or 1.0
-    K = problem.wall.K if problem.slips else 0.0
+    k = problem.equations.slip_constants.k or 1.0
+    K = problem.equations.wall.K if problem.equations.slips else 0.0
     t = np.linspace(math.log(s0), math.log(0.5), 400)
     d = 0.5 - np.exp(t)  # distance from the wall
-    m_out = problem.outer_couple_stress(0.5 + np.exp(t))
+    m_out = problem.equations.outer_couple_stress(0.5 + np.exp(t))
     guess = []
     for kk in (k, 0.7 * k):  # asymmetric: the lower half's layer 1/0.7 times thicker
         decay = np.exp(-kk * d / problem.eps)
@@ -355,7 +366,7 @@ def test_smooth_walls_delta_tends_to_a_constant():
     -3.6e-2, -4.0e-3, -4.1e-4, -4.1e-5; (limit - Delta)/eps -> 1848."""
     eps = np.array([1e-3, 1e-4, 1e-5, 1e-6, 1e-7])
     deltas = np.array([shear_layer_thickness(solve(smooth(e), check=False)) for e in eps])
-    limit = -math.log(0.05) / smooth(1e-3).slip_constants.k
+    limit = -math.log(0.05) / smooth(1e-3).equations.slip_constants.k
     assert limit == pytest.approx(17.6688, abs=1e-4)
     slopes = np.diff(np.log(deltas)) / np.diff(np.log(eps))
     assert abs(slopes[-1]) < 1e-4
@@ -382,7 +393,7 @@ def test_fully_rough_walls_delta_grows_as_eps_to_minus_one_third():
     assert gap_slope == pytest.approx(2.0 / 3.0, abs=0.02)
 
 
-def asymptotic_errors(problem: Channel) -> tuple[float, float]:
+def asymptotic_errors(problem: Problem) -> tuple[float, float]:
     """(max |u_num - u_asy| over 40 eps of the wall, |Delta_asy/Delta_num - 1|)."""
     num = solve(problem, rtol=1e-10)
     asy = solve(problem, method="asymptotic")
@@ -429,7 +440,7 @@ def test_asymptotic_route_approaches_the_numerical_one_fully_rough_walls():
     errs = np.array([asymptotic_errors(rough(e)) for e in eps])
     du, dD = errs[:, 0], np.abs(errs[:, 1])
     pr = rough(1e-6)
-    D1 = pr.wall.K / (2.0 * pr.inner_scale() * I_INFINITY)
+    D1 = pr.equations.wall.K / (2.0 * pr.equations.inner_scale() * I_INFINITY)
     lead = D1 * eps ** (1.0 / 3.0)
     assert np.all(np.abs(du / lead - 1.0) < eps ** (1.0 / 3.0))
     gamma_over_a2 = 4.0 * MAT.c2 / (0.5 * MAT.sin_phi) ** 2
@@ -442,10 +453,10 @@ def test_asymptotic_route_approaches_the_numerical_one_fully_rough_walls():
 
 
 # ----------------------------------------------------------------- small B nu
-def centre_condition_holds(problem: Channel) -> bool:
+def centre_condition_holds(problem: Problem) -> bool:
     """eps alpha B nu (1 - A) <= 2 c (1 + A): a regular solution leaves the centre line (doc
     section 4), written out here."""
-    Bn = problem.B * problem.nu
+    Bn = problem.equations.B * problem.equations.nu
     return problem.eps * MAT.alpha * Bn * (1 - MAT.A) <= 2 * math.sqrt(MAT.c2) * (1 + MAT.A)
 
 
@@ -551,12 +562,12 @@ def test_asymptotic_route_refuses_thick_layers():
         solve(smooth(0.05), method="asymptotic")
 
 
-def test_build_problem_and_pickle():
-    p = build_problem({"geometry": "channel", "eps": 0.02})
-    assert isinstance(p, Channel) and p.slips
-    assert build_problem({"geometry": "channel", "eps": 0.02, "B": 0.6}).case.value.endswith(
-        "not-slip"
-    )
+def test_make_problem_and_pickle():
+    p = make_problem("cosserat", "channel", {"eps": 0.02})
+    assert p.cell_name == "channel" and p.equations.slips
+    assert make_problem(
+        "cosserat", "channel", {"eps": 0.02, "B": 0.6}
+    ).equations.case.value.endswith("not-slip")
     prof = solve(p)
     back = pickle.loads(pickle.dumps(prof))
     np.testing.assert_array_equal(back.evaluate([0.9]).u, prof.evaluate([0.9]).u)
@@ -570,7 +581,7 @@ def mui_velocity_by_hand(problem, x):  # type: ignore[no-untyped-def]
     mu = B nu t, integrated from the wall by scipy's quad and scaled by the centre line."""
     from scipy.integrate import quad
 
-    law, Bn = problem.rheology, problem.B * problem.nu
+    law, Bn = problem.rheology, problem.cell.B * problem.cell.nu
 
     def rate(t):  # type: ignore[no-untyped-def]
         mu = Bn * t
@@ -588,9 +599,8 @@ def mui_velocity_by_hand(problem, x):  # type: ignore[no-untyped-def]
 
 @pytest.mark.parametrize("B", [0.8, 1.0, 1.25])
 def test_mui_channel_closed_form(B):
-    from cosserat.model.mui import MuIChannel
 
-    problem = MuIChannel(eps=0.01, B=B)
+    problem = Problem(VerticalChannel(eps=0.01, B=B), MuI())
     prof = solve(problem, method="closed-form")
     x = np.linspace(0.0, 1.0, 101)
     u_hand, I_w = mui_velocity_by_hand(problem, x)
@@ -608,20 +618,19 @@ def test_mui_channel_closed_form(B):
     num = solve(problem)
     np.testing.assert_allclose(num.evaluate(x).u, prof.evaluate(x).u, rtol=0, atol=1e-12)
     assert shear_layer_thickness(num) == pytest.approx(shear_layer_thickness(prof), rel=1e-10)
-    # stresses: symmetric, mu = B nu |xi - 1/2|; spin = half the vorticity
+    # stresses: symmetric, mu = B nu |xi - 1/2|; no grain spin of its own (absent, not zero)
     f = prof.evaluate(x)
     np.testing.assert_allclose(f.sigma_yx, B * (x - 0.5))
     np.testing.assert_array_equal(f.sigma_xy, f.sigma_yx)
-    np.testing.assert_allclose(f.omega, -0.5 * f.du_dxi)
+    assert f.omega is None and f.m is None
 
 
 def test_mui_channel_without_flow_or_without_steady_rate():
-    from cosserat.model.mui import MuIChannel
 
     with pytest.raises(NoSolutionError, match="plug"):
-        MuIChannel(eps=0.01, B=0.7)  # B nu/2 = 0.35 < mu_s = 0.382
+        solve(Problem(VerticalChannel(eps=0.01, B=0.7), MuI()))  # B nu/2 = 0.35 < mu_s = 0.382
     with pytest.raises(NoSolutionError, match="mu_2"):
-        MuIChannel(eps=0.01, B=1.4)  # B nu/2 = 0.7 > mu_2 = 0.644
+        solve(Problem(VerticalChannel(eps=0.01, B=1.4), MuI()))  # B nu/2 = 0.7 > mu_2 = 0.644
 
 
 def test_wall_quantities_match_the_profiles():

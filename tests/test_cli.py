@@ -164,10 +164,16 @@ def test_thickness_reports_eps_without_solution(capsys):
 @pytest.mark.parametrize(
     ("args", "needle"),
     [
-        (["solve", "plane", "--eps", "0.7"], "eps = d_p/H must satisfy 0 < eps <= 0.5"),
+        (
+            ["solve", "plane", "--eps", "0.7"],
+            "eps (grain diameter over gap, d_p/H) must satisfy 0 < eps <= 0.5",
+        ),
         (["solve", "plane", "--eps", "0.1", "--delta", "40"], "tan(delta) <= sin(phi)"),
-        (["solve", "plane", "--eps", "0.1", "--A", "1.5"], "A must satisfy -1 < A < 1"),
-        (["solve", "plane", "--eps", "0.1", "--K", "-1"], "K must satisfy K >= 0"),
+        (
+            ["solve", "plane", "--eps", "0.1", "--A", "1.5"],
+            "must satisfy -1 < A < 1 (the quadratic form in eqn-yc2 must be positive); got 1.5",
+        ),
+        (["solve", "plane", "--eps", "0.1", "--K", "-1"], "must satisfy 0 <= K; got -1"),
         (
             ["solve", "plane", "--eps", "0.1", "--B", "1", "--method", "closed-form"],
             "no closed form",
@@ -177,7 +183,10 @@ def test_thickness_reports_eps_without_solution(capsys):
         (["solve", "plane"], "required: --eps"),
         (["solve", "plane", "--eps", "abc"], "invalid float value"),
         (["thickness", "plane", "--eps", "0.1", "--f", "2"], "--f must satisfy 0 < f < 1"),
-        (["solve", "couette", "--eps", "0.1", "--Ri", "-1"], "Ri = R_i/H must satisfy"),
+        (
+            ["solve", "couette", "--eps", "0.1", "--Ri", "-1"],
+            "Ri (inner radius over gap, R_i/H) must satisfy",
+        ),
         (["solve", "couette", "--eps", "0.04", "--Ri", "0.05"], "no real solution"),
         (["solve", "couette", "--eps", "0.1", "--B", "1"], "unrecognized arguments: --B"),
     ],
@@ -243,7 +252,9 @@ def test_a_malformed_measured_profile_names_the_file_and_the_line(capsys, tmp_pa
     assert f"{bad}: line 7, column 'u_over_uw': 'abc' is not a number" in err
     binary = tmp_path / "binary.csv"
     binary.write_bytes(b"\xff\xfe\x00\x81")
-    assert "not a text (CSV) file" in _one_line_exit_2(capsys, "compare", str(binary))
+    assert f"{binary}: not a text file (it holds NUL bytes" in _one_line_exit_2(
+        capsys, "compare", str(binary)
+    )
 
 
 @pytest.mark.parametrize(
@@ -304,8 +315,10 @@ def test_sweep_spec_and_table_that_cannot_be_used(capsys, tmp_path):
 def test_a_model_error_from_a_file_header_names_the_parameter(capsys, tmp_path):
     bad = tmp_path / "h.csv"
     bad.write_text(PROFILE.replace("# eps: 0.05", "# eps: abc"))
-    assert "eps must be a number; got 'abc'" in _one_line_exit_2(capsys, "compare", str(bad))
-    assert "B applies to geometry 'plane' only" in _one_line_exit_2(
+    assert "eps (grain diameter over gap, d_p/H) must be a number; got 'abc'" in _one_line_exit_2(
+        capsys, "compare", str(bad)
+    )
+    assert "--B do(es) not apply to --model cosserat on the couette cell" in _one_line_exit_2(
         capsys, "compare", str(bad), "--preset", "glass", "--geometry", "couette", "--B", "1"
     )
 

@@ -12,7 +12,16 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from cosserat import CouetteFlow, Material, PlaneShear, Wall, shear_layer_thickness, solve
+from cosserat import (
+    Cosserat,
+    Couette,
+    Material,
+    Plane,
+    Problem,
+    Wall,
+    shear_layer_thickness,
+    solve,
+)
 from cosserat.analysis.cell import CouetteCell
 from cosserat.cli import main
 
@@ -34,7 +43,7 @@ def synthetic(request):
 def test_solve_prints_a_readable_summary_by_default(capsys):
     code, out, err = run(capsys, "solve", "plane", "--eps", "0.04", "--points", "51")
     assert code == 0 and err == ""
-    prof = solve(PlaneShear(material=Material(), upper=Wall(), eps=0.04), points=51)
+    prof = solve(Problem(Plane(eps=0.04), Cosserat(material=Material(), wall=Wall())), points=51)
     assert out.startswith(prof.problem.describe())
     assert f"Delta = {shear_layer_thickness(prof):.6g} grain diameters" in out
     assert "wall slip = " in out
@@ -154,7 +163,7 @@ def test_cell_gives_torque_stress_slip_and_velocity_in_si(capsys):
     assert code == 0 and err == ""
     rec = json.loads(out)
     cell = CouetteCell(rho_p=2500, d_p=1e-3, gap=0.02, R_i=0.05, fill_depth=0.1, rotation_rate=1)
-    prof = solve(CouetteFlow(material=Material(), wall=Wall(), eps=0.05, Ri=2.5))
+    prof = solve(Problem(Couette(eps=0.05, Ri=2.5), Cosserat(material=Material(), wall=Wall())))
     assert rec["eps"] == 0.05 and rec["Ri"] == 2.5
     assert rec["torque"] == pytest.approx(cell.torque(prof), rel=1e-9)
     # the total torque is the per-height torque at the bottom times D/2 (stress linear in depth)

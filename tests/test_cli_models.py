@@ -4,17 +4,15 @@ option of another model."""
 
 from __future__ import annotations
 
-import dataclasses
 import json
 
 import pytest
 
-from cosserat import solve
+from cosserat import Couette, MuI, Plane, Problem, solve
 from cosserat.cli import main, make_parser
-from cosserat.cli.params import parameters_of, valid_keys
-from cosserat.model.mui import MuI, MuICouetteFlow, MuIPlaneShear
-from cosserat.model.rheology import Rheology
-from cosserat.routes import RHEOLOGIES
+from cosserat.cli.params import valid_keys
+from cosserat.model import problem_parameters
+from cosserat.routes import RHEOLOGIES, cells_for
 
 
 def run(capsys, *args):
@@ -37,7 +35,7 @@ def test_mui_through_param_is_the_api_problem(capsys):
     )  # fmt: skip
     assert code == 0
     record = json.loads(out)
-    problem = MuICouetteFlow(rheology=MuI(mu_s=0.4), eps=0.01, Ri=2.0, I_w=0.05)
+    problem = Problem(Couette(eps=0.01, Ri=2.0, I_w=0.05), MuI(mu_s=0.4))
     assert record["parameters"] == problem.parameters()
     assert record["u"] == solve(problem, points=21).u.tolist()
     assert record["r"][0] == 2.0 and "m" not in record["columns"]
@@ -50,7 +48,7 @@ def test_cell_options_map_to_any_model_that_has_them(capsys):
     )  # fmt: skip
     assert code == 0
     params = json.loads(out)["parameters"]
-    assert params == MuIPlaneShear(eps=0.01, B=2.0, nu=0.6).parameters()
+    assert params == Problem(Plane(eps=0.01, B=2.0, nu=0.6), MuI()).parameters()
 
 
 def test_cosserat_param_is_the_same_as_its_option(capsys):
@@ -93,40 +91,32 @@ def test_unknown_and_unavailable_models(capsys):
     assert "kinetic model of Bocquet et al." in err and "not implemented" in err
 
 
-def test_a_model_without_the_cell_names_the_cells_it_has(capsys, monkeypatch):
-    only_plane = Rheology(
-        name="planeonly", title="test", reference="-", cells={"plane": MuIPlaneShear}, routes={}
-    )
-    monkeypatch.setitem(RHEOLOGIES, "planeonly", only_plane)
-    err = one_line_error(capsys, "solve", "couette", "--eps", "0.01", "--model", "planeonly")
-    assert "model 'planeonly' has no couette cell; it supports: plane" in err
+def test_a_model_without_the_cell_names_the_cells_it_has(capsys, toys):
+    err = one_line_error(capsys, "solve", "stratified", "--eps", "0.01", "--model", "ngf")
+    assert "model 'ngf' has no stratified cell; it supports: plane, couette, channel" in err
 
 
-def test_a_newly_registered_cell_appears_without_edits(capsys, monkeypatch):
-    annulus = Rheology(
-        name="ring", title="test", reference="-", cells={"annulus": MuICouetteFlow}, routes={}
-    )
-    monkeypatch.setitem(RHEOLOGIES, "ring", annulus)
+def test_a_newly_registered_cell_appears_without_edits(capsys, toys):
     solve_parser = make_parser()._subparsers._group_actions[0].choices["solve"]
-    assert "annulus" in solve_parser._subparsers._group_actions[0].choices
+    assert "stratified" in solve_parser._subparsers._group_actions[0].choices
     code, out, _ = run(
-        capsys, "solve", "annulus", "--model", "ring", "--eps", "0.01", "--param", "Ri=3",
+        capsys, "solve", "stratified", "--model", "mui", "--eps", "0.01", "--param", "c=3",
         "--format", "json", "--points", "5",
     )  # fmt: skip
-    assert code == 0 and json.loads(out)["parameters"]["Ri"] == 3.0
-    err = one_line_error(capsys, "solve", "annulus", "--eps", "0.01")
-    assert "model 'cosserat' has no annulus cell; it supports: plane, couette" in err
+    assert code == 0 and json.loads(out)["parameters"]["c"] == 3.0
+    err = one_line_error(capsys, "solve", "stratified", "--eps", "0.01")
+    assert "model 'cosserat' has no stratified cell; it supports: plane, couette" in err
 
 
 def test_every_registered_model_and_cell_is_on_the_command_line():
     solve_parser = make_parser()._subparsers._group_actions[0].choices["solve"]
     cells = solve_parser._subparsers._group_actions[0].choices
-    for name, rheology in RHEOLOGIES.items():
-        for cell, cls in rheology.cells.items():
+    for name in RHEOLOGIES:
+        for cell in cells_for(name):
             assert cell in cells
-            assert valid_keys(name, cell)  # every class states its parameters
-            for param in parameters_of(cls).values():
-                assert param.key and "$" not in param.meaning
+            assert valid_keys(name, cell)  # every pair states its parameters
+            for key, param in problem_parameters(name, cell).items():
+                assert param.cli_key == key and param.meaning and "$" not in param.meaning
 
 
 def test_thickness_compare_and_fit_take_a_model(capsys, request):
@@ -157,13 +147,13 @@ def test_thickness_compare_and_fit_take_a_model(capsys, request):
 
 @pytest.mark.parametrize(
     ("model", "cell"),
-    [(name, cell) for name, rheology in RHEOLOGIES.items() for cell in rheology.cells],
+    [(name, cell) for name in RHEOLOGIES for cell in cells_for(name)],
 )
 def test_every_model_solves_on_every_cell_from_the_command_line(capsys, model, cell):
     required = [
-        p.key
-        for p in parameters_of(RHEOLOGIES[model].cells[cell]).values()
-        if p.default is dataclasses.MISSING and p.key not in ("eps", "Ri")
+        key
+        for key, p in problem_parameters(model, cell).items()
+        if not p.has_default and key != "eps"
     ]
     given = [a for key in required for a in ("--param", f"{key}=1")]  # e.g. a channel's B
     code, out, err = run(

@@ -8,6 +8,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
+from cosserat import Cosserat, Couette, Problem
 from cosserat.cli import main
 
 DATA = Path(__file__).resolve().parents[1] / "src" / "cosserat" / "data" / "synthetic_couette.csv"
@@ -57,11 +58,13 @@ def test_thickness_vs_gap_reports_each_model_and_the_paper_law(capsys):
         assert s["gaps"] == [20.0, 40.0, 80.0]
         assert all(d is not None and d > 0 for d in s["Delta"])
     # each Delta is the one a direct solve of that cell at eps = d/H gives
-    from cosserat import CouetteFlow, Material, Wall, shear_layer_thickness, solve
+    from cosserat import Material, Wall, shear_layer_thickness, solve
 
     rough = next(s for s in record["series"] if s["label"] == "cosserat, fully rough")
     for g, d in zip(rough["gaps"], rough["Delta"], strict=True):
-        problem = CouetteFlow(material=Material(), wall=Wall.fully_rough(), eps=1 / g, Ri=1.0)
+        problem = Problem(
+            Couette(eps=1 / g, Ri=1.0), Cosserat(material=Material(), wall=Wall.fully_rough())
+        )
         assert d == pytest.approx(shear_layer_thickness(solve(problem)), rel=1e-6)
 
 
@@ -85,7 +88,7 @@ def test_thickness_vs_gap_on_the_channel_gives_every_model_a_row(capsys):
     cannot be set up is a row with the reason, never the end of the study."""
     assert main(["thickness", "channel", "--vs-gap", "10", "20", "--format", "json"]) == 0
     series = {s["label"]: s for s in json.loads(capsys.readouterr().out)["series"]}
-    assert series["mui"]["Delta"][0] > 0  # its own default B = 1 (model.mui.MuIChannel)
+    assert series["mui"]["Delta"][0] > 0  # driven by the one default I_w (no B given)
     assert all(any(d is not None for d in s["Delta"]) for s in series.values())
     assert main(["thickness", "channel", "--vs-gap", "10", "--B", "0.1", "--format", "json"]) == 0
     rows = {s["model"]: s for s in json.loads(capsys.readouterr().out)["series"]}

@@ -6,17 +6,18 @@ from __future__ import annotations
 import json
 import math
 import pickle
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from cosserat import (
-    CouetteFlow,
+    Cosserat,
+    Couette,
     Material,
     NoSolutionError,
-    PlaneShear,
+    Plane,
+    Problem,
     Wall,
     config,
     shear_layer_thickness,
@@ -33,6 +34,18 @@ from cosserat.routes.assemble import fields_from_state
 from cosserat.routes.numerical import parameter_vector, run_kernel, wall_quantities
 
 REFERENCE = json.loads((Path(__file__).parent / "data" / "v010_reference.json").read_text())
+
+
+def plane_problem(*, material, upper, lower=None, eps, B=0.0, nu=1.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear (what plane_problem(...) was)."""
+    return Problem(Plane(eps=eps, B=B, nu=nu), Cosserat(material=material, wall=upper, lower=lower))
+
+
+def couette_problem(*, material, wall, eps, Ri):  # type: ignore[no-untyped-def]
+    """The Cosserat model in Couette flow (what couette_problem(...) was)."""
+    return Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=material, wall=wall))
+
+
 MAT = Material(28.5)
 
 
@@ -44,15 +57,17 @@ def _problem(case: dict):
     par = case["parameters"]
     mat = Material(**par["material"])
     if case["geometry"] == "couette":
-        return CouetteFlow(material=mat, wall=_wall(par["wall"]), eps=par["eps"], Ri=par["Ri"])
-    return PlaneShear(
-        material=mat,
-        upper=_wall(par["upper"]),
-        lower=_wall(par["lower"]),
-        eps=par["eps"],
-        B=par["B"],
-        nu=par["nu"],
-        m_fixed_wall=par["m_fixed_wall"],
+        return Problem(
+            Couette(eps=par["eps"], Ri=par["Ri"]), Cosserat(material=mat, wall=_wall(par["wall"]))
+        )
+    return Problem(
+        Plane(eps=par["eps"], B=par["B"], nu=par["nu"]),
+        Cosserat(
+            material=mat,
+            wall=_wall(par["upper"]),
+            lower=_wall(par["lower"]),
+            m_fixed_wall=par["m_fixed_wall"],
+        ),
     )
 
 
@@ -90,7 +105,9 @@ def test_analytic_torque_derivatives_match_finite_differences(syx, sc, m):
 
 
 def test_couple_stress_jacobian_of_couette_matches_finite_differences():
-    p = parameter_vector(CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=1.0))
+    p = parameter_vector(
+        Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
+    )
     mu, h = -0.2, 1e-7
     for xi in (0.0, 0.3, 1.0):
         y = -0.21
@@ -121,12 +138,12 @@ def _fields_by_numpy(sol, xi):
 @pytest.mark.parametrize(
     "problem",
     [
-        PlaneShear(material=MAT, upper=Wall(20.0), eps=0.04),
-        PlaneShear(material=MAT, upper=Wall(20.0), lower=Wall.fully_rough(), eps=1e-3),
-        PlaneShear(material=MAT, upper=Wall.fully_rough(), lower=Wall(15.0), eps=0.01),
-        PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-4, B=1.0),
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=1.0),
-        CouetteFlow(material=MAT, wall=Wall(10.0), eps=1e-5, Ri=30.0),
+        plane_problem(material=MAT, upper=Wall(20.0), eps=0.04),
+        plane_problem(material=MAT, upper=Wall(20.0), lower=Wall.fully_rough(), eps=1e-3),
+        plane_problem(material=MAT, upper=Wall.fully_rough(), lower=Wall(15.0), eps=0.01),
+        plane_problem(material=MAT, upper=Wall(20.0), eps=1e-4, B=1.0),
+        couette_problem(material=MAT, wall=Wall(20.0), eps=0.04, Ri=1.0),
+        couette_problem(material=MAT, wall=Wall(10.0), eps=1e-5, Ri=30.0),
     ],
     ids=["symmetric", "upper", "lower", "gravity", "couette", "couette-thin"],
 )
@@ -142,41 +159,47 @@ def test_compiled_fields_are_those_of_the_problems_formulation(problem):
 
 @pytest.mark.parametrize("eps", [0.07, 0.04, 0.01, 1e-3, 1e-6])
 def test_couette_newton_agrees_with_the_bracketing_search(eps):
-    p = parameter_vector(CouetteFlow(material=MAT, wall=Wall(20.0), eps=eps, Ri=1.0))
+    p = parameter_vector(couette_problem(material=MAT, wall=Wall(20.0), eps=eps, Ri=1.0))
     rtol, atol = 1e-8, 1e-10
     tol = rtol * abs(p[kernel.P_M0])
     counters = np.zeros(4)
     found, mu, ts, hs, ys, Q = kernel.couette_newton(p, rtol, atol, 100_000, counters)
     assert found
-    assert counters[3] <= 3  # passes: the secant took 2-5 trials, then one more pass
     assert abs(ys[-1, 0] - mu) <= tol
-    code, mu_secant, _, _ = kernel.couette_inner_couple_stress(p, rtol, atol, 100_000, np.zeros(4))
+    secant = np.zeros(4)
+    code, mu_secant, _, _ = kernel.couette_inner_couple_stress(p, rtol, atol, 100_000, secant)
     assert code == kernel.OK
+    # Newton's passes, the last one included, take fewer steps than the secant's trials
+    # without the final pass they are followed by (observed: 0.4-0.6 of them)
+    assert counters[1] < 0.7 * secant[1]
     assert abs(mu - mu_secant) <= 2.0 * tol
     # the returned pass (possibly moved by its last Newton step, on its linearisation) is the
-    # couple stress of m(0) = mu: a fresh pass from m(1; mu) gives the same profile
+    # couple stress of m(0) = mu, as accurate as a fresh pass from m(1; mu): both against a
+    # pass at rtol 1e-13 (observed: the same error, 4e-11 to 7e-9)
     args = (p[kernel.P_TAN_DELTA], p[kernel.P_RI], p[kernel.P_COUPLE], MAT.A, MAT.sin_phi)
     m1, _ = outer_wall_couple_stress(mu, *args)
     assert abs(ys[0, 0] - m1) <= 1e-3 * tol
-    status, ts2, hs2, ys2, Q2, *_ = kernel.couple_pass(
-        p, mu, m1, 1.0, 0.0, 0.1 * rtol, 0.1 * atol, 100_000
-    )
-    assert status == 0
     x = np.linspace(0.0, 1.0, 501)
-    difference = dense_eval(ts, hs, ys, Q, x) - dense_eval(ts2, hs2, ys2, Q2, x)
-    assert np.max(np.abs(difference)) < rtol * np.max(np.abs(ys2))
+    runs = {}
+    for name, r in (("fresh", 0.1 * rtol), ("reference", 1e-13)):
+        status, *solution = kernel.couple_pass(p, mu, m1, 1.0, 0.0, r, 0.01 * r, 1_000_000)[:5]
+        assert status == 0
+        runs[name] = dense_eval(*solution, x)
+    error = np.max(np.abs(dense_eval(ts, hs, ys, Q, x) - runs["reference"]))
+    error_fresh = np.max(np.abs(runs["fresh"] - runs["reference"]))
+    assert error <= 2.0 * error_fresh + 1e-12
 
 
 def _profiles():
-    plane = PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3, B=1.0)
-    couette = CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=1.0)
-    symmetric = PlaneShear(material=MAT, upper=Wall(20.0), eps=0.04)
+    plane = Problem(Plane(eps=1e-3, B=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
+    couette = Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
+    symmetric = Problem(Plane(eps=0.04), Cosserat(material=MAT, wall=Wall(20.0)))
     return [
         solve(plane),
         solve(couette),
         solve(symmetric),
         solve(symmetric, method="closed-form"),
-        solve(replace(couette, eps=1e-3), method="asymptotic"),
+        solve(couette.with_values({"eps": 1e-3}), method="asymptotic"),
     ]
 
 
@@ -192,12 +215,12 @@ def test_profiles_pickle_and_evaluate_the_same_afterwards(index):
 
 
 def test_residuals_are_computed_when_read_and_are_the_eager_ones():
-    problem = CouetteFlow(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0)
+    problem = couette_problem(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0)
     profile = solve(problem)
     deferred = profile.diagnostics.residuals
     assert isinstance(deferred, DeferredResiduals) and deferred._values is None
     sol = run_kernel(problem, 1e-8, 1e-10)
-    eager = residuals(sol.formulation(), sol, problem.output_grid(config.CHECK_POINTS))
+    eager = residuals(sol.formulation(), sol, problem.equations.output_grid(config.CHECK_POINTS))
     assert dict(deferred) == eager and deferred == eager and eager == deferred
     assert deferred._values is eager or deferred._values == eager
     assert set(deferred) == {"couple_stress", "spin", "velocity"}
@@ -209,7 +232,7 @@ def test_residuals_are_computed_when_read_and_are_the_eager_ones():
 
 
 def test_repr_is_a_few_lines_and_stats_are_carried():
-    profile = solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0))
+    profile = solve(Problem(Couette(eps=1e-3, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))))
     text = repr(profile)
     assert len(text.splitlines()) <= 4
     assert len(text) < 600
@@ -223,11 +246,15 @@ def test_repr_is_a_few_lines_and_stats_are_carried():
 
 def test_batch_returns_a_status_per_case_and_no_nan():
     problems = [
-        PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3),
-        PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1, B=1.0),  # no real solution
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=0.05),  # no real solution
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0),
-        PlaneShear(material=MAT, upper=Wall(1e-5), eps=1e-3),  # at the edge: undecidable
+        Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(20.0))),
+        Problem(Plane(eps=0.1, B=1.0), Cosserat(material=MAT, wall=Wall(20.0))),  # no real solution
+        Problem(
+            Couette(eps=0.04, Ri=0.05), Cosserat(material=MAT, wall=Wall(20.0))
+        ),  # no real solution
+        Problem(Couette(eps=1e-3, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))),
+        Problem(
+            Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(1e-5))
+        ),  # at the edge: undecidable
     ]
     results = wall_quantities(problems)
     assert [r.status for r in results] == ["ok", "no-solution", "no-solution", "ok", "error"]
@@ -245,7 +272,7 @@ def test_batch_returns_a_status_per_case_and_no_nan():
 
 
 def test_kernel_status_codes_are_not_nan_in_disguise():
-    p = parameter_vector(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1, B=1.0))
+    p = parameter_vector(Problem(Plane(eps=0.1, B=1.0), Cosserat(material=MAT, wall=Wall(20.0))))
     status, info = kernel.solve_batch(p[None, :], 1e-8, 1e-10, 0.05, 20000)
     assert status[0] == kernel.NO_SOLUTION
     assert 0.0 <= info[0, kernel.I_XI_FAIL] <= 1.0
@@ -257,20 +284,24 @@ def test_thin_inner_cylinder_at_small_eps_is_solved(Ri, eps):
     """v0.1.0 stalled here (the outer couple stress within 1e-9 of its yield bound) and gave
     up after ~3 s; the compiled core, with a bounded Newton Jacobian, solves it: boundary
     conditions to round-off, residuals within the dense-output error (docs/numerics.md)."""
-    profile = solve(CouetteFlow(material=Material(30.0), wall=Wall(20.0), eps=eps, Ri=Ri))
+    profile = solve(
+        Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=Material(30.0), wall=Wall(20.0)))
+    )
     assert max(abs(v) for v in profile.diagnostics.bc_errors.values()) < 1e-10
     assert max(profile.diagnostics.residuals.values()) < 1e3 * 1e-8
     assert 1.0 < shear_layer_thickness(profile) < 30.0
 
 
 def test_a_thin_cylinder_without_a_real_solution_says_so():
-    problem = CouetteFlow(material=Material(30.0), wall=Wall(20.0), eps=1e-4, Ri=1e-3)
+    problem = Problem(
+        Couette(eps=1e-4, Ri=1e-3), Cosserat(material=Material(30.0), wall=Wall(20.0))
+    )
     with pytest.raises(NoSolutionError, match="for no couple stress"):
         solve(problem)
 
 
 def test_step_budget_is_reported_as_a_convergence_error():
-    p = parameter_vector(PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3))
+    p = parameter_vector(Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(20.0))))
     status, _, _, _, _ = kernel.solve_case(p, 1e-10, 1e-12, 0.05, 3)
     assert status == kernel.TOO_MANY_STEPS
 

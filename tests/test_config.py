@@ -15,8 +15,7 @@ import pytest
 
 from cosserat import config
 from cosserat.cli import make_parser
-from cosserat.model import build_problem
-from cosserat.model.build import DEFAULTS
+from cosserat.model import make_problem, problem_parameters
 from cosserat.model.parameters import Material, Wall
 from cosserat.studies.experiments import PRESETS
 from cosserat.studies.sweep import SweepSpec, parse_spec
@@ -24,9 +23,9 @@ from cosserat.studies.sweep import SweepSpec, parse_spec
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "cosserat"
 
 
-def test_build_defaults_are_configs():
-    assert dict(DEFAULTS) == {
-        "geometry": "plane",
+def test_declared_defaults_are_configs():
+    declared = {**problem_parameters("cosserat", "plane"), **problem_parameters("mui", "couette")}
+    assert {k: declared[k].default for k in ("phi", "L", "A", "delta", "K", "B", "nu", "Ri")} == {
         "phi": config.PHI,
         "L": config.L,
         "A": config.A,
@@ -36,11 +35,13 @@ def test_build_defaults_are_configs():
         "nu": config.NU,
         "Ri": config.RI,
     }
-    plane = build_problem({"eps": 0.1})
-    assert plane.material == Material(config.PHI, config.L, config.A)
-    assert plane.upper == plane.lower == Wall(config.DELTA, config.K)
-    assert (plane.B, plane.nu) == (config.B, config.NU)
-    assert build_problem({"geometry": "couette", "eps": 0.1}).Ri == config.RI
+    assert declared["I_w"].default == config.MUI_I_W  # one default for every rheology
+    assert problem_parameters("ngf", "plane")["I_w"].default == config.MUI_I_W
+    plane = make_problem("cosserat", "plane", {"eps": 0.1})
+    assert plane.rheology.material == Material(config.PHI, config.L, config.A)
+    assert plane.rheology.wall == plane.rheology.lower_wall == Wall(config.DELTA, config.K)
+    assert (plane.cell.B, plane.cell.nu) == (config.B, config.NU)
+    assert make_problem("cosserat", "couette", {"eps": 0.1}).cell.Ri == config.RI
 
 
 def test_sweep_and_fit_tolerances_are_configs():
@@ -63,17 +64,20 @@ def test_help_texts_show_the_config_values():
     text = _help("solve", "plane")
     for option, value in [
         ("--phi PHI angle of internal friction [deg]", config.PHI),
-        ("wall slip coefficient of the moving wall [-]", config.K),
+        (
+            "slip coefficient of eqn-bc3; 0: no slip, 1/2: a grain rolling without sliding [-]",
+            config.K,
+        ),
         ("relative tolerance of --method numerical [-]", config.RTOL),
         ("layers resolved", config.OUTPUT_POINTS),
     ]:
         assert f"{option} (default: {config.text(value)}" in text
-    assert f"yield-condition ratio A = a2/a1 [-] (default: {config.text(config.A)})" in text
+    assert f"yield-condition constants, eqn-yc2 [-] (default: {config.text(config.A)})" in text
     assert config.text(config.A) == "1/3"
     assert f"of its wall value [-] (default: {config.text(config.DEFAULT_F)})" in _help(
         "thickness", "couette"
     )
-    assert f"R_i/H (Couette) [-] (default: {config.text(config.RI)})" in _help("solve", "couette")
+    assert f"R_i/H [-] (default: {config.text(config.RI)})" in _help("solve", "couette")
 
 
 @pytest.mark.parametrize(

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cosserat import Material, NoSolutionError, PlaneShear, Wall
+from cosserat import Cosserat, Material, NoSolutionError, Plane, Problem, Wall
 from cosserat.model.constitutive import (
     second_shear_stress,
     spin_ratio,
@@ -77,7 +77,9 @@ def test_symmetric_couple_stress_is_the_papers_m0():
 
 
 def test_cancellation_free_torque_matches_the_direct_form_away_from_cancellation(rng):
-    form = PlaneShear(material=MAT, upper=Wall(15.0), eps=0.1, B=1.0).formulation()
+    form = Problem(
+        Plane(eps=0.1, B=1.0), Cosserat(material=MAT, wall=Wall(15.0))
+    ).equations.formulation()
     xi = rng.uniform(0, 1, 100)
     m = rng.uniform(0, 0.2, 100)
     st = form.stresses(xi, m)
@@ -87,5 +89,7 @@ def test_cancellation_free_torque_matches_the_direct_form_away_from_cancellation
 
 
 def test_fully_rough_torque_vanishes_exactly_at_m_zero():
-    form = PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=1e-6).formulation()
+    form = Problem(
+        Plane(eps=1e-6), Cosserat(material=MAT, wall=Wall.fully_rough())
+    ).equations.formulation()
     assert form.dm_dxi(np.array([0.7]), np.array([0.0]))[0] == 0.0

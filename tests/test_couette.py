@@ -10,11 +10,13 @@ import pytest
 from reference import delta_limit_by_hand
 
 from cosserat import (
-    CouetteFlow,
+    Cosserat,
+    Couette,
     Material,
     NoSolutionError,
     ParameterError,
-    PlaneShear,
+    Plane,
+    Problem,
     Wall,
     shear_layer_thickness,
     solve,
@@ -28,19 +30,20 @@ MAT = Material(28.5)
 
 def test_parameter_bounds():
     with pytest.raises(
-        ParameterError, match=r"Ri = R_i/H must satisfy 0.001 <= Ri <= 1e\+06; got 0"
+        ParameterError,
+        match=r"Ri \(inner radius over gap, R_i/H\) must satisfy 0.001 <= Ri <= 1e\+06; got 0",
     ):
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.1, Ri=0.0)
+        Problem(Couette(eps=0.1, Ri=0.0), Cosserat(material=MAT, wall=Wall(20.0)))
     with pytest.raises(ParameterError, match="eps"):
-        CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.0, Ri=1.0)
+        Problem(Couette(eps=0.0, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
     with pytest.raises(ParameterError, match=r"tan\(delta\) <= sin\(phi\)"):
-        CouetteFlow(material=MAT, wall=Wall(30.0), eps=0.1, Ri=1.0)
+        Problem(Couette(eps=0.1, Ri=1.0), Cosserat(material=MAT, wall=Wall(30.0)))
 
 
 def fine_profile(wall: Wall):  # type: ignore[no-untyped-def]
     """(xi, fields, r = Ri + xi) at eps = 0.04, Ri = 1, rtol = 1e-10, on a grid fine enough
     for second-order finite differences."""
-    prof = solve(CouetteFlow(material=MAT, wall=wall, eps=0.04, Ri=1.0), rtol=1e-10)
+    prof = solve(Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=wall)), rtol=1e-10)
     x = np.linspace(0.0, 1.0, 40001)
     return x, prof.evaluate(x), 1.0 + x
 
@@ -76,10 +79,10 @@ def test_flow_rule_holds_by_finite_differences(wall):
 
 
 def test_boundary_conditions_and_signs():
-    problem = CouetteFlow(material=MAT, wall=Wall(20.0, 0.5), eps=0.04, Ri=1.0)
+    problem = Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0, 0.5)))
     prof = solve(problem)
     assert max(abs(v) for v in prof.diagnostics.bc_errors.values()) < 1e-9
-    assert prof.sigma_yx[0] == pytest.approx(-problem.tan_delta)
+    assert prof.sigma_yx[0] == pytest.approx(-problem.equations.tan_delta)
     assert prof.u[0] == pytest.approx(-1 - problem.eps * 0.5 * prof.omega[0])
     assert np.all(prof.m <= 0.0)  # the paper's "couple stress is negative"
     assert np.all(np.diff(prof.u) >= 0.0)  # |u| falls away from the inner cylinder
@@ -91,11 +94,13 @@ def test_large_radius_limit_is_plane_shear_with_a_rougher_fixed_wall_not_the_sym
     slipping wall facing a non-slipping one (eqn-soln_aw_vels, mirrored: xi -> 1 - xi, u -> -u,
     m -> -m), not the symmetric gravity-free case the paper names."""
     eps = 0.04
-    plane = PlaneShear(material=MAT, upper=Wall(20.0), lower=Wall.fully_rough(), eps=eps)
-    symmetric = PlaneShear(material=MAT, upper=Wall(20.0), eps=eps)
+    plane = Problem(
+        Plane(eps=eps), Cosserat(material=MAT, wall=Wall(20.0), lower=Wall.fully_rough())
+    )
+    symmetric = Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall(20.0)))
     gaps, m_gaps = [], []
     for Ri in (1e2, 1e3, 1e4):
-        cou = solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=eps, Ri=Ri))
+        cou = solve(Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=MAT, wall=Wall(20.0))))
         ref = solve(plane, method="closed-form", xi=1.0 - cou.xi[::-1])
         sym = solve(symmetric, method="closed-form", xi=1.0 - cou.xi[::-1])
         gaps.append(np.max(np.abs(cou.u + ref.u[::-1])))
@@ -114,7 +119,7 @@ def test_asymptotic_error_shrinks_at_the_predicted_rate(wall, order):
     eps_values = [1e-4, 1e-5, 1e-6]
     errors = []
     for eps in eps_values:
-        problem = CouetteFlow(material=MAT, wall=wall, eps=eps, Ri=1.0)
+        problem = Problem(Couette(eps=eps, Ri=1.0), Cosserat(material=MAT, wall=wall))
         num = solve(problem, check=False)
         asym = solve(problem, method="asymptotic", xi=num.xi, check=False)
         errors.append(np.max(np.abs(num.u - asym.u)))
@@ -123,7 +128,7 @@ def test_asymptotic_error_shrinks_at_the_predicted_rate(wall, order):
 
 
 def test_thickness_laws():
-    rough = CouetteFlow(material=MAT, wall=Wall.fully_rough(), eps=1e-6, Ri=1.0)
+    rough = Problem(Couette(eps=1e-6, Ri=1.0), Cosserat(material=MAT, wall=Wall.fully_rough()))
     law = xi_hat_at_fraction(0.05) * 1e-6 ** (-1 / 3) * (MAT.L**2 * 1.0 / 4) ** (1 / 3)
     assert asymptotic_thickness(rough) == pytest.approx(law, rel=1e-12)  # eqn-delta_soln_fr b
     assert shear_layer_thickness(solve(rough, check=False)) / law == pytest.approx(1.0, abs=2e-3)
@@ -131,7 +136,10 @@ def test_thickness_laws():
     gaps = [
         abs(
             shear_layer_thickness(
-                solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=eps, Ri=1.0), check=False)
+                solve(
+                    Problem(Couette(eps=eps, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))),
+                    check=False,
+                )
             )
             - delta_limit_by_hand()
         )
@@ -144,7 +152,7 @@ def test_thickness_laws():
 
 @pytest.mark.parametrize(("eps", "Ri"), [(0.5, 1e4), (1e-6, 1e4), (1e-6, 0.05), (1e-3, 0.05)])
 def test_robust_corners_of_the_parameter_range(eps, Ri):
-    prof = solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=eps, Ri=Ri))
+    prof = solve(Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=MAT, wall=Wall(20.0))))
     for values in prof.columns().values():
         assert np.all(np.isfinite(values))
     assert max(abs(v) for v in prof.diagnostics.bc_errors.values()) < 1e-8
@@ -153,7 +161,9 @@ def test_robust_corners_of_the_parameter_range(eps, Ri):
 def test_large_radius_velocity_is_accurate_to_the_requested_tolerance():
     # u = (Ri + xi)(u_s/Ri - w_s P): at Ri = 1e5 an absolute tolerance on P that ignores the
     # velocity weight 1/(Ri + xi) once cost u three orders of magnitude (found by Hypothesis)
-    problem = CouetteFlow(material=Material(5.0, L=1.0), wall=Wall(2.49), eps=1e-4, Ri=1e5)
+    problem = Problem(
+        Couette(eps=1e-4, Ri=1e5), Cosserat(material=Material(5.0, L=1.0), wall=Wall(2.49))
+    )
     ref = solve(problem, points=401, rtol=1e-12, check=False)
     for rtol in (1e-6, 1e-8):
         prof = solve(problem, points=401, rtol=rtol)
@@ -166,14 +176,16 @@ def test_root_above_the_leading_order_guess_is_bracketed_below_the_real_domain_e
     # the real domain; the bracket must close in on the root instead of giving up
     mat = Material(5.0, L=0.5)
     for Ri in (0.2288, 0.2371):
-        prof = solve(CouetteFlow(material=mat, wall=Wall.fully_rough(0.0), eps=0.3162, Ri=Ri))
+        prof = solve(
+            Problem(Couette(eps=0.3162, Ri=Ri), Cosserat(material=mat, wall=Wall.fully_rough(0.0)))
+        )
         assert max(abs(v) for v in prof.diagnostics.bc_errors.values()) < 1e-8
         assert max(prof.diagnostics.residuals.values()) < 1e-6
 
 
 def test_small_radius_and_wide_grains_has_no_real_solution_and_says_so():
     with pytest.raises(NoSolutionError, match=r"for no couple stress m\(0\) at the inner"):
-        solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=0.05))
+        solve(Problem(Couette(eps=0.04, Ri=0.05), Cosserat(material=MAT, wall=Wall(20.0))))
 
 
 def test_torque_is_the_same_on_every_cylinder_and_includes_the_couple_stress():
@@ -185,7 +197,7 @@ def test_torque_is_the_same_on_every_cylinder_and_includes_the_couple_stress():
     T = cell.torque_density(prof, depth=0.1)
     assert np.max(np.abs(T - T[0])) < 1e-8 * abs(T[0])
     # the drive torque differs from the classical 2 pi R_i^2 sigma_c tan(delta) by the couple
-    classical = 2 * math.pi * cell.R_i**2 * cell.mean_stress(0.1) * problem.tan_delta
+    classical = 2 * math.pi * cell.R_i**2 * cell.mean_stress(0.1) * problem.equations.tan_delta
     couple_part = (
         2
         * math.pi
@@ -197,7 +209,7 @@ def test_torque_is_the_same_on_every_cylinder_and_includes_the_couple_stress():
     assert abs(couple_part) > 1e-3 * classical
     assert cell.torque(prof) == pytest.approx(0.5 * T[0] * 0.1)
     assert cell.wall_shear_stress(prof, 0.1) == pytest.approx(
-        2500 * 9.81 * 0.6 * 0.1 * problem.tan_delta
+        2500 * 9.81 * 0.6 * 0.1 * problem.equations.tan_delta
     )
     assert cell.slip_velocity(prof) > 0
     np.testing.assert_allclose(cell.velocity(prof)[0], cell.wall_speed - cell.slip_velocity(prof))

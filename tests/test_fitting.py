@@ -8,7 +8,16 @@ import json
 import numpy as np
 import pytest
 
-from cosserat import CouetteFlow, Material, PlaneShear, Wall
+from cosserat import (
+    NGF,
+    Cosserat,
+    Couette,
+    Material,
+    MuI,
+    Plane,
+    Problem,
+    Wall,
+)
 from cosserat.analysis.fitting import compare, fit, model_at, model_profile
 from cosserat.analysis.measurements import MeasuredProfile, write_profile
 from cosserat.cli import main
@@ -21,7 +30,9 @@ D = np.linspace(0.0, 40.0, 25)
 
 def plane(delta=TRUE["delta"], K=TRUE["K"]):
     # gravity-free layer at the upper wall: the closed form makes many fits cheap
-    return PlaneShear(material=MAT, upper=Wall(delta, K), lower=Wall.fully_rough(), eps=0.02)
+    return Problem(
+        Plane(eps=0.02), Cosserat(material=MAT, wall=Wall(delta, K), lower=Wall.fully_rough())
+    )
 
 
 def synthetic(seed, problem=None, distance=D, method="closed-form"):
@@ -39,6 +50,7 @@ def test_compare_is_exact_on_noise_free_model_data():
     assert cmp.rms < 1e-14 and cmp.chi2 < 1e-20
 
 
+@pytest.mark.slow
 def test_recovery_coverage_over_many_seeds():
     """68% nominal: the true value lies within one standard error in about 68% of fits."""
     n = 120
@@ -79,11 +91,13 @@ def test_K_without_points_near_the_wall_is_flagged():
 
 
 def test_couette_fit_recovers_delta_and_K_within_uncertainties():
-    truth = CouetteFlow(material=MAT, wall=Wall(23.0, 0.3), eps=0.05, Ri=2.0)
+    truth = Problem(Couette(eps=0.05, Ri=2.0), Cosserat(material=MAT, wall=Wall(23.0, 0.3)))
     distance = np.geomspace(0.25, 15.0, 30)
     meas = synthetic(11, truth, distance, method="numerical")
     res = fit(
-        meas, CouetteFlow(material=MAT, wall=Wall(20.0, 1.0), eps=0.05, Ri=2.0), interval_for=()
+        meas,
+        Problem(Couette(eps=0.05, Ri=2.0), Cosserat(material=MAT, wall=Wall(20.0, 1.0))),
+        interval_for=(),
     )
     for name, true in (("delta", 23.0), ("K", 0.3)):
         p = res.parameters[name]
@@ -275,12 +289,10 @@ def test_the_moving_wall_is_read_from_the_cell_for_every_rheology():
     """Couette flow is driven by the inner cylinder whatever the rheology (mu(I) and NGF too)."""
     from cosserat.analysis.fitting import moving_wall
     from cosserat.errors import MethodNotAvailableError
-    from cosserat.model.mui import MuICouetteFlow, MuIPlaneShear
-    from cosserat.model.ngf import NGFCouetteFlow
 
-    assert moving_wall(MuICouetteFlow(eps=0.01, Ri=1.0)) == (0.0, -1.0)
-    assert moving_wall(NGFCouetteFlow(eps=0.01, Ri=1.0)) == (0.0, -1.0)
-    assert moving_wall(MuIPlaneShear(eps=0.01)) == (1.0, 1.0)
+    assert moving_wall(Problem(Couette(eps=0.01, Ri=1.0), MuI())) == (0.0, -1.0)
+    assert moving_wall(Problem(Couette(eps=0.01, Ri=1.0), NGF())) == (0.0, -1.0)
+    assert moving_wall(Problem(Plane(eps=0.01), MuI())) == (1.0, 1.0)
 
     class Still:
         def wall_velocity(self, xi):

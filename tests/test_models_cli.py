@@ -9,7 +9,8 @@ import pytest
 
 from cosserat.analysis.corpus import write_run
 from cosserat.cli import main
-from cosserat.routes import RHEOLOGIES
+from cosserat.model import problem_parameters
+from cosserat.routes import RHEOLOGIES, cells_for
 
 
 def test_models_lists_every_registered_rheology_with_units_and_reference(capsys):
@@ -17,20 +18,31 @@ def test_models_lists_every_registered_rheology_with_units_and_reference(capsys)
     text = capsys.readouterr().out
     for name, rheology in RHEOLOGIES.items():
         assert f"{name}: {rheology.title}" in text and rheology.reference in text
-        for cell in rheology.cells:
+        for cell in cells_for(name):
             assert f"cell {cell} (" in text
-    assert "phi [deg], default 28.5" in text
+    assert "phi [deg], default 28.5; 0 < phi < 90; fit 10 to 60; material" in text
+    assert "A [-], default 1/3" in text
+    assert "I_w [-], default 0.01; 0 < I_w <= 1; fit 1e-06 to 1 (log); drive" in text
 
 
-def test_models_json(capsys):
+def test_models_json_is_the_declarations(capsys):
+    """Meaning, unit, default, bounds, fit range, role and source of every parameter, as
+    declared: the rheology's own, and per cell the cell's it reads."""
     assert main(["models", "--format", "json"]) == 0
     models = {m["name"]: m for m in json.loads(capsys.readouterr().out)}
     assert set(models) == set(RHEOLOGIES)
-    phi = next(r for r in models["cosserat"]["parameters"]["Material"] if r["name"] == "phi")
+    phi = next(r for r in models["cosserat"]["parameters"] if r["name"] == "phi")
     assert phi["unit"] == "deg" and phi["default"] == 28.5 and not phi["required"]
+    assert phi["fit_range"] == [10.0, 60.0] and phi["role"] == "material" and phi["source"]
     eps = next(r for r in models["mui"]["cells"]["couette"]["parameters"] if r["name"] == "eps")
-    assert eps["required"] and eps["unit"] == "-"
-    assert set(models["mui"]["parameters"]["MuI"][0]) >= {"name", "default", "unit"}
+    assert eps["required"] and eps["unit"] == "-" and eps["bounds"] == "0 < eps <= 0.5"
+    for name, model in models.items():
+        for cell, c in model["cells"].items():
+            keys = [r["name"] for r in c["parameters"]] + c["model_parameters"]
+            assert sorted(keys) == sorted(problem_parameters(name, cell))
+    assert models["mui"]["default_free"] == ["mu_s", "I_w"]
+    # the rate-independent Cosserat model reads no drive
+    assert "I_w" not in [r["name"] for r in models["cosserat"]["cells"]["plane"]["parameters"]]
 
 
 def _corpus(folder, gaps=(20.0, 40.0, 80.0)):

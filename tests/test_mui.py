@@ -16,26 +16,35 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from cosserat import NoSolutionError, ParameterError, shear_layer_thickness, solve, wall_slip
+from cosserat import (
+    Couette,
+    NoSolutionError,
+    ParameterError,
+    Plane,
+    Problem,
+    shear_layer_thickness,
+    solve,
+    wall_slip,
+)
 from cosserat.config import DEFAULT_F, MUI_I0, MUI_MU_2, MUI_MU_S
 from cosserat.errors import MethodNotAvailableError
-from cosserat.model.mui import MuI, MuICouetteFlow, MuIPlaneShear
-from cosserat.model.rheology import Cell
-from cosserat.routes import MUI, RHEOLOGIES
+from cosserat.model.cells import Cell
+from cosserat.model.rheologies import MuI
+from cosserat.routes import RHEOLOGIES, cells_for
 from cosserat.routes.mui import plug_mask
 
 LAW = MuI()
 COUETTE = [
-    MuICouetteFlow(eps=0.01, Ri=1.0, I_w=0.01),  # plug in the outer part
-    MuICouetteFlow(eps=0.01, Ri=0.2, I_w=0.05),
-    MuICouetteFlow(eps=0.02, Ri=5.0, I_w=0.2),  # no plug
-    MuICouetteFlow(eps=0.01, Ri=1.0, I_w=0.9),  # mu within 1e-8 of mu_2 at the wall
-    MuICouetteFlow(eps=0.01, Ri=1.0, I_w=1e-5),  # a thin layer
+    Problem(Couette(eps=0.01, Ri=1.0, I_w=0.01), MuI()),  # plug in the outer part
+    Problem(Couette(eps=0.01, Ri=0.2, I_w=0.05), MuI()),
+    Problem(Couette(eps=0.02, Ri=5.0, I_w=0.2), MuI()),  # no plug
+    Problem(Couette(eps=0.01, Ri=1.0, I_w=0.9), MuI()),  # mu within 1e-8 of mu_2 at the wall
+    Problem(Couette(eps=0.01, Ri=1.0, I_w=1e-5), MuI()),  # a thin layer
 ]
 PLANE_G = [
-    MuIPlaneShear(eps=0.01, B=1.0, I_w=0.01),
-    MuIPlaneShear(eps=0.01, B=0.3, nu=0.6, I_w=0.1),
-    MuIPlaneShear(eps=0.01, B=10.0, I_w=1.0),
+    Problem(Plane(eps=0.01, B=1.0, I_w=0.01), MuI()),
+    Problem(Plane(eps=0.01, B=0.3, nu=0.6, I_w=0.1), MuI()),
+    Problem(Plane(eps=0.01, B=10.0, I_w=1.0), MuI()),
 ]
 
 
@@ -49,14 +58,15 @@ def test_glass_bead_defaults_are_jop_et_al():
 
 
 def test_mui_is_registered_and_its_problems_are_cells():
-    assert RHEOLOGIES["mui"] is MUI
-    assert isinstance(COUETTE[0], Cell) and isinstance(PLANE_G[0], Cell)
+    assert RHEOLOGIES["mui"] is MuI
+    assert cells_for("mui")[:3] == ["plane", "couette", "channel"]
+    assert isinstance(COUETTE[0].cell, Cell) and isinstance(PLANE_G[0].cell, Cell)
     with pytest.raises(MethodNotAvailableError, match="method='numerical'"):
         solve(PLANE_G[0], method="closed-form")
 
 
 # ----------------------------------------------------------------- closed form vs numerical
-@pytest.mark.parametrize("problem", COUETTE, ids=lambda p: f"Ri{p.Ri:g}-Iw{p.I_w:g}")
+@pytest.mark.parametrize("problem", COUETTE, ids=lambda p: f"Ri{p.cell.Ri:g}-Iw{p.cell.I_w:g}")
 def test_couette_closed_form_agrees_with_numerical(problem):
     closed = solve(problem, method="closed-form")
     num = solve(problem, method="numerical", xi=closed.xi)
@@ -73,7 +83,7 @@ def test_couette_closed_form_agrees_with_numerical(problem):
 
 @pytest.mark.parametrize("I_w", [1e-4, 0.01, 0.5])
 def test_plane_shear_without_gravity_is_uniform_at_mu_of_I_w(I_w):
-    problem = MuIPlaneShear(eps=0.02, I_w=I_w)
+    problem = Problem(Plane(eps=0.02, I_w=I_w), MuI())
     for method in ("closed-form", "numerical"):
         p = solve(problem, method=method)
         np.testing.assert_allclose(p.u, p.xi, atol=1e-12)
@@ -89,7 +99,7 @@ def test_plane_shear_without_gravity_is_uniform_at_mu_of_I_w(I_w):
 def _trapezoid(problem, n):
     """u on a uniform grid of n points by the trapezoidal rule, with this test's own mu(I)
     and its own root-find on the stress ratio at the moving wall."""
-    mu_s, mu_2, I_0, I_w = MUI_MU_S, MUI_MU_2, MUI_I0, problem.I_w
+    mu_s, mu_2, I_0, I_w = MUI_MU_S, MUI_MU_2, MUI_I0, problem.equations.I_w
     xi = np.linspace(0.0, 1.0, n)
 
     def inertial(mu):
@@ -98,8 +108,8 @@ def _trapezoid(problem, n):
     def cumulative(f):  # int_0^xi f
         return np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(xi))])
 
-    if isinstance(problem, MuICouetteFlow):
-        Ri = problem.Ri
+    if problem.cell_name == "couette":
+        Ri = problem.cell.Ri
 
         def velocity(T):
             f = inertial(T * (Ri / (Ri + xi)) ** 2) / (Ri + xi)
@@ -108,7 +118,7 @@ def _trapezoid(problem, n):
 
         T = brentq(lambda T: velocity(T)[0] + 1.0, mu_s, mu_2 * (1 - 1e-12), xtol=1e-15)
     else:
-        s = 1.0 + problem.B * problem.nu * (1.0 - xi)
+        s = 1.0 + problem.cell.B * problem.cell.nu * (1.0 - xi)
 
         def velocity(T):
             return cumulative(np.sqrt(s) * inertial(T / s)) / I_w
@@ -133,7 +143,10 @@ NS = np.array([65, 129, 257, 513, 1025, 2049])
 def test_an_independent_discretisation_converges_at_second_order_where_the_rate_is_smooth(
     problem,
 ):
-    assert problem.plug_extent(solve(problem, check=False).diagnostics.stats["gap_to_mu_2"]) is None
+    assert (
+        problem.equations.plug_extent(solve(problem, check=False).diagnostics.stats["gap_to_mu_2"])
+        is None
+    )
     errors = _trapezoid_errors(problem, NS)
     order = -np.polyfit(np.log(NS - 1.0), np.log(errors), 1)[0]
     assert 1.9 < order < 2.1, (order, errors)
@@ -159,7 +172,8 @@ def test_an_independent_discretisation_agrees_across_a_plug_edge(problem):
 @pytest.mark.parametrize("problem", COUETTE + PLANE_G, ids=lambda p: p.describe()[:40])
 def test_walls_monotone_friction_range_and_plug(problem):
     p = solve(problem, method="numerical")
-    mw, fw = problem.moving_wall, problem.fixed_wall
+    mw = problem.cell.moving_wall
+    fw = 1.0 - mw
     ends = p.evaluate([mw, fw])
     assert ends.u[0] == pytest.approx(problem.wall_velocity(mw), abs=1e-12)
     assert ends.u[1] == 0.0
@@ -170,7 +184,7 @@ def test_walls_monotone_friction_range_and_plug(problem):
     np.testing.assert_array_equal(plug, mu <= LAW.mu_s)
     # mu_2 - mu from the statics (|sigma_yx|/sigma_yy rounds to mu_2 when the wall is within
     # round-off of saturation, B = 10 and I_w = 1 here)
-    gap = problem.saturation_gap(p.xi, p.diagnostics.stats["gap_to_mu_2"])
+    gap = problem.equations.saturation_gap(p.xi, p.diagnostics.stats["gap_to_mu_2"])
     assert np.all((mu[~plug] > LAW.mu_s) & (gap[~plug] > 0.0))
     assert np.all(p.u[plug] == 0.0) and np.all(p.du_dxi[plug] == 0.0)
     extent = p.diagnostics.stats["plug"]
@@ -179,11 +193,10 @@ def test_walls_monotone_friction_range_and_plug(problem):
     else:
         assert plug.any() and "plug at rest" in p.diagnostics.message
         assert fw in extent  # the plug sits at the fixed wall
-    # what a local rheology does not have, stated and honest
-    np.testing.assert_array_equal(p.m, 0.0)
-    np.testing.assert_array_equal(p.asymmetry, 0.0)
-    np.testing.assert_allclose(p.spin_minus_half_vorticity, 0.0, atol=1e-12)
-    assert "half the vorticity" in p.diagnostics.message and "m = 0" in p.diagnostics.message
+    # what a local rheology does not have: absent, not zero, and stated
+    assert p.m is None and p.omega is None and p.asymmetry is None
+    assert p.spin_minus_half_vorticity is None
+    assert "no omega or m" in p.diagnostics.message
     assert all(abs(v) < 1e-12 for v in p.diagnostics.bc_errors.values())
 
 
@@ -191,11 +204,9 @@ def test_an_imposed_stress_gives_back_the_wall_speed():
     for problem in (COUETTE[0], PLANE_G[0]):
         by_speed = solve(problem, method="numerical")
         T = by_speed.diagnostics.stats["stress_ratio"]
-        cls = type(problem)
-        kwargs = problem.parameters()
-        kwargs = {k: kwargs[k] for k in kwargs if k in ("eps", "Ri", "B", "nu")}
-        by_stress = solve(cls(**kwargs, stress_ratio=T), method="numerical", xi=by_speed.xi)
-        assert by_stress.diagnostics.stats["I_w"] == pytest.approx(problem.I_w, rel=1e-9)
+        by_stress = problem.with_values({"I_w": None, "stress_ratio": T})
+        by_stress = solve(by_stress, method="numerical", xi=by_speed.xi)
+        assert by_stress.diagnostics.stats["I_w"] == pytest.approx(problem.equations.I_w, rel=1e-9)
         np.testing.assert_allclose(by_stress.u, by_speed.u, atol=1e-9)
 
 
@@ -207,7 +218,7 @@ def test_quasi_static_limit_couette_is_a_parabolic_layer_of_width_sqrt_I_w():
     I_ws = np.array([1e-4, 1e-5, 1e-6, 1e-7])
     shape_err, width_err = [], []
     for I_w in I_ws:
-        problem = MuICouetteFlow(eps=1e-3, Ri=Ri, I_w=I_w)
+        problem = Problem(Couette(eps=1e-3, Ri=Ri, I_w=I_w), MuI())
         p = solve(problem, method="closed-form", check=False)
         xi_c = p.diagnostics.stats["plug"][0]
         width_err.append(abs(xi_c / (scale * math.sqrt(I_w)) - 1.0))
@@ -226,7 +237,7 @@ def test_quasi_static_limit_plane_shear_under_gravity_is_a_parabolic_surface_lay
     I_ws = np.array([1e-4, 1e-5, 1e-6, 1e-7])
     errs = []
     for I_w in I_ws:
-        p = solve(MuIPlaneShear(eps=1e-3, B=B, I_w=I_w), method="numerical", check=False)
+        p = solve(Problem(Plane(eps=1e-3, B=B, I_w=I_w), MuI()), method="numerical", check=False)
         h = 1.0 - p.diagnostics.stats["plug"][1]
         assert h / (scale * math.sqrt(I_w)) == pytest.approx(1.0, rel=10 * h)
         errs.append(np.max(np.abs(p.evaluate(1.0 - h + eta * h).u - eta**2)))
@@ -238,13 +249,13 @@ def test_quasi_static_limit_plane_shear_under_gravity_is_a_parabolic_surface_lay
 @pytest.mark.parametrize("method", ["closed-form", "numerical"])
 def test_a_stress_ratio_at_or_above_mu_2_has_no_steady_solution(method):
     for problem, where in (
-        (MuICouetteFlow(eps=0.01, Ri=1.0, stress_ratio=0.7), "inner cylinder"),
-        (MuIPlaneShear(eps=0.01, stress_ratio=MUI_MU_2), "upper wall"),
+        (Problem(Couette(eps=0.01, Ri=1.0, stress_ratio=0.7), MuI()), "inner cylinder"),
+        (Problem(Plane(eps=0.01, stress_ratio=MUI_MU_2), MuI()), "upper wall"),
     ):
         with pytest.raises(NoSolutionError, match=rf">= mu_2 = 0.643468 at the .*{where}"):
             solve(problem, method=method)
     with pytest.raises(NoSolutionError, match="whole gap is a plug"):
-        solve(MuICouetteFlow(eps=0.01, Ri=1.0, stress_ratio=0.3), method=method)
+        solve(Problem(Couette(eps=0.01, Ri=1.0, stress_ratio=0.3), MuI()), method=method)
     with pytest.raises(NoSolutionError, match="no steady shear rate"):
         LAW.inertial_number(np.array([0.5, 0.65]))
 
@@ -252,18 +263,24 @@ def test_a_stress_ratio_at_or_above_mu_2_has_no_steady_solution(method):
 @pytest.mark.parametrize(
     ("make", "match"),
     [
-        (lambda: MuI(mu_s=-0.1), "mu_s must satisfy mu_s > 0; got -0.1"),
+        (
+            lambda: MuI(mu_s=-0.1),
+            r"mu_s \(static friction coefficient\) must satisfy 0 < mu_s; got -0.1",
+        ),
         (lambda: MuI(mu_2=0.3), "mu_2 must satisfy mu_2 > mu_s = 0.381863; got 0.3"),
-        (lambda: MuI(I_0=0.0), "I_0 must satisfy I_0 > 0; got 0"),
-        (lambda: MuI(I_0=float("nan")), "I_0 must be finite"),
-        (lambda: MuIPlaneShear(eps=0.01, I_w=0.0), r"I_w .* must satisfy 0 < I_w <= 1 .*; got 0"),
-        (lambda: MuIPlaneShear(eps=0.01, I_w=2.0), r"0 < I_w <= 1 .*; got 2"),
-        (lambda: MuIPlaneShear(eps=0.01, I_w=0.1, stress_ratio=0.5), "not both"),
-        (lambda: MuIPlaneShear(eps=0.7), "eps = d_p/H must satisfy 0 < eps <= 0.5"),
-        (lambda: MuIPlaneShear(eps=0.01, B=-1.0), "B = rho_p g H / N must satisfy 0 <= B"),
-        (lambda: MuIPlaneShear(eps=0.01, nu=0.0), "nu .* must satisfy 0 < nu <= 1"),
-        (lambda: MuICouetteFlow(eps=0.01, Ri=0.0), "Ri = R_i/H must satisfy 0.001 <= Ri"),
-        (lambda: MuICouetteFlow(eps=0.01, Ri=1.0, rheology=1), "rheology must be a MuI"),
+        (lambda: MuI(I_0=0.0), r"I_0 \(.*\) must satisfy 0 < I_0; got 0"),
+        (lambda: MuI(I_0=float("nan")), r"I_0 \(.*\) must be finite"),
+        (
+            lambda: Problem(Plane(eps=0.01, I_w=0.0), MuI()),
+            r"I_w .* must satisfy 0 < I_w <= 1 .*; got 0",
+        ),
+        (lambda: Problem(Plane(eps=0.01, I_w=2.0), MuI()), r"0 < I_w <= 1 .*; got 2"),
+        (lambda: Problem(Plane(eps=0.01, I_w=0.1, stress_ratio=0.5), MuI()), "not both"),
+        (lambda: Problem(Plane(eps=0.7), MuI()), r"eps \(.*\) must satisfy 0 < eps <= 0.5"),
+        (lambda: Problem(Plane(eps=0.01, B=-1.0), MuI()), r"B \(.*\) must satisfy 0 <= B"),
+        (lambda: Problem(Plane(eps=0.01, nu=0.0), MuI()), "nu .* must satisfy 0 < nu <= 1"),
+        (lambda: Problem(Couette(eps=0.01, Ri=0.0), MuI()), r"Ri \(.*\) must satisfy 0.001 <= Ri"),
+        (lambda: Problem(Couette(eps=0.01, Ri=1.0), 1), "rheology must be a Rheology"),
     ],
 )
 def test_parameter_errors_name_the_parameter_and_the_bound(make, match):
@@ -272,7 +289,9 @@ def test_parameter_errors_name_the_parameter_and_the_bound(make, match):
 
 
 def test_defaults_and_options():
-    assert MuICouetteFlow(eps=0.01, Ri=1.0).I_w == 0.01
+    problem = Problem(Couette(eps=0.01, Ri=1.0), MuI())
+    assert problem.cell.I_w is None and problem.equations.I_w == 0.01  # the declared default
+    assert problem.parameters()["I_w"] == 0.01
     with pytest.raises(ParameterError, match="rtol must satisfy"):
         solve(COUETTE[0], method="numerical", rtol=1.0)
     with pytest.raises(ParameterError, match="do not apply"):
@@ -285,7 +304,7 @@ def test_defaults_and_options():
 
 @pytest.mark.parametrize("method", ["closed-form", "numerical"])
 def test_profiles_pickle_with_their_evaluator(method):
-    for problem in (COUETTE[0], MuIPlaneShear(eps=0.05)):
+    for problem in (COUETTE[0], Problem(Plane(eps=0.05), MuI())):
         p = solve(problem, method=method, points=21)
         back = pickle.loads(pickle.dumps(p))
         np.testing.assert_array_equal(back.u, p.u)

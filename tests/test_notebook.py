@@ -11,21 +11,25 @@ import pandas as pd
 import pytest
 
 from cosserat import (
-    CouetteFlow,
+    Cosserat,
+    Couette,
     Material,
-    PlaneShear,
+    MuI,
+    Plane,
+    Problem,
     Wall,
     shear_layer_thickness,
     solve,
     wall_omega,
     wall_slip,
 )
-from cosserat.model.mui import MuICouetteFlow, MuIPlaneShear
 
 
 @pytest.fixture(scope="module")
 def profile():
-    return solve(CouetteFlow(material=Material(28.5), wall=Wall(20.0), eps=0.04, Ri=1.0))
+    return solve(
+        Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=Material(28.5), wall=Wall(20.0)))
+    )
 
 
 def test_dataframe_holds_every_column_and_the_parameters(profile):
@@ -40,7 +44,7 @@ def test_dataframe_holds_every_column_and_the_parameters(profile):
 def test_xarray_dataset_has_the_coordinate_and_units(profile):
     ds = profile.to_xarray()
     assert list(ds.coords) == ["r"]
-    np.testing.assert_array_equal(ds["r"].to_numpy(), profile.problem.Ri + profile.xi)
+    np.testing.assert_array_equal(ds["r"].to_numpy(), profile.problem.cell.Ri + profile.xi)
     assert "radius" in ds["r"].attrs["long_name"]
     assert set(ds.data_vars) >= {"sigma_theta_r", "sigma_r_theta", "sigma_rr"}
     np.testing.assert_array_equal(ds["omega"].to_numpy(), profile.omega)
@@ -57,7 +61,9 @@ def test_html_summary_is_short_and_states_delta(profile):
 
 
 def test_html_summary_of_a_layer_that_fills_the_gap_says_so():
-    wide = solve(PlaneShear(material=Material(28.5), upper=Wall.fully_rough(), eps=0.5))
+    wide = solve(
+        Problem(Plane(eps=0.5), Cosserat(material=Material(28.5), wall=Wall.fully_rough()))
+    )
     text = wide._repr_html_()
     assert "Delta =" in text
 
@@ -105,7 +111,7 @@ def test_the_sidecar_holds_parameters_delta_slip_units_and_diagnostics(profile, 
 
 
 def test_plane_shear_exports_in_y(tmp_path):
-    prof = solve(PlaneShear(material=Material(), upper=Wall(), eps=0.04), points=21)
+    prof = solve(Problem(Plane(eps=0.04), Cosserat(material=Material(), wall=Wall())), points=21)
     frame = pd.read_csv(io.StringIO(prof.to_csv()))
     assert list(frame.columns[:7]) == ["y", "u", "omega", "m", "sigma_xy", "sigma_yx", "sigma_yy"]
     np.testing.assert_array_equal(frame["y"].to_numpy(), prof.xi)
@@ -120,22 +126,23 @@ def test_plane_shear_exports_in_y(tmp_path):
 
 def test_stdout_csv_writes_no_sidecar(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    prof = solve(PlaneShear(material=Material(), upper=Wall(), eps=0.04), points=5)
+    prof = solve(Problem(Plane(eps=0.04), Cosserat(material=Material(), wall=Wall())), points=5)
     prof.to_csv()
     assert list(tmp_path.iterdir()) == []
 
 
 def test_a_local_rheology_exports_no_cosserat_only_columns(tmp_path):
-    couette = solve(MuICouetteFlow(eps=0.01, Ri=2.0), points=9)
+    """No grain spin or couple stress of its own: omega, m and the asymmetry are absent."""
+    couette = solve(Problem(Couette(eps=0.01, Ri=2.0), MuI()), points=9)
     frame = pd.read_csv(io.StringIO(couette.to_csv()))
-    assert list(frame.columns) == ["r", "u", "omega", "sigma_theta_r", "sigma_r_theta", "sigma_rr"]
+    assert list(frame.columns) == ["r", "u", "sigma_theta_r", "sigma_r_theta", "sigma_rr"]
     np.testing.assert_allclose(frame["r"].to_numpy(), 2.0 + couette.xi, rtol=0, atol=1e-15)
-    plane = solve(MuIPlaneShear(eps=0.01), points=9)
+    plane = solve(Problem(Plane(eps=0.01), MuI()), points=9)
     plane.to_csv(tmp_path / "mui.csv")
     meta = json.loads((tmp_path / "mui.json").read_text())
     assert meta["rheology"] == "mui" and next(iter(meta["columns"])) == "y"
-    assert "half the vorticity" in meta["columns"]["omega"]["meaning"]
-    assert "m" not in meta["columns"]
+    assert "omega" not in meta["columns"] and "m" not in meta["columns"]
+    assert meta["wall_omega"] is None
 
 
 def test_a_sidecar_never_overwrites_its_csv(tmp_path):

@@ -10,18 +10,27 @@ from reference import delta_limit_by_hand
 
 from cosserat import (
     ConvergenceError,
-    CouetteFlow,
+    Cosserat,
+    Couette,
     Material,
     MethodNotAvailableError,
     NoSolutionError,
     ParameterError,
-    PlaneShear,
+    Plane,
     PlaneShearCase,
+    Problem,
     Wall,
     solve,
 )
 
 MAT = Material(28.5)
+
+
+def plane(eps, upper, lower=None, B=0.0, nu=1.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear with the paper's material (MAT)."""
+    return Problem(Plane(eps=eps, B=B, nu=nu), Cosserat(material=MAT, wall=upper, lower=lower))
+
+
 FIELDS = ("u", "omega", "m")
 
 
@@ -42,7 +51,7 @@ def test_numerical_matches_closed_form_to_tolerance(eps, delta, lower, rtol):
     case is 5.8 rtol (delta = 1 deg, eps = 0.04, rtol = 1e-10), typical 0.1-3 rtol.
     """
     lower_wall = {None: None, "rougher": Wall.fully_rough(), "smoother": Wall(0.5)}[lower]
-    problem = PlaneShear(material=MAT, upper=Wall(delta), lower=lower_wall, eps=eps)
+    problem = Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall(delta), lower=lower_wall))
     num = solve(problem, rtol=rtol, check=False)
     ref = solve(problem, method="closed-form", xi=num.xi, check=False)
     for name in FIELDS:
@@ -50,10 +59,10 @@ def test_numerical_matches_closed_form_to_tolerance(eps, delta, lower, rtol):
 
 
 def test_lower_layer_closed_form_is_the_mirror_image():
-    problem = PlaneShear(material=MAT, upper=Wall(20.0), lower=Wall(10.0), eps=0.02)
-    assert problem.case is PlaneShearCase.LOWER
+    problem = Problem(Plane(eps=0.02), Cosserat(material=MAT, wall=Wall(20.0), lower=Wall(10.0)))
+    assert problem.equations.case is PlaneShearCase.LOWER
     low = solve(problem, method="closed-form")
-    up = solve(problem.mirrored(), method="closed-form", xi=1.0 - low.xi[::-1])
+    up = solve(problem.equations.mirrored(), method="closed-form", xi=1.0 - low.xi[::-1])
     np.testing.assert_allclose(low.u, 1.0 - up.u[::-1], atol=1e-14)
     np.testing.assert_allclose(low.omega, up.omega[::-1], rtol=1e-12)
     np.testing.assert_allclose(low.m, -up.m[::-1], atol=1e-15)
@@ -61,7 +70,7 @@ def test_lower_layer_closed_form_is_the_mirror_image():
 
 def test_closed_form_spin_and_velocity_satisfy_the_flow_rule_independently():
     """The symmetric closed form (derived in docs) checked by finite differences here."""
-    problem = PlaneShear(material=MAT, upper=Wall(15.0), eps=0.05)
+    problem = Problem(Plane(eps=0.05), Cosserat(material=MAT, wall=Wall(15.0)))
     prof = solve(problem, method="closed-form")
     x = np.linspace(0.5, 1.0, 20001)
     f = prof.evaluate(x)
@@ -79,7 +88,7 @@ def test_closed_form_spin_and_velocity_satisfy_the_flow_rule_independently():
 
 def test_fully_rough_symmetric_is_uniform_shear_vel_g0():
     eps, K = 0.04, 0.5
-    problem = PlaneShear(material=MAT, upper=Wall.fully_rough(K), eps=eps)
+    problem = Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall.fully_rough(K)))
     omega_1 = -1.0 / (2.0 + 2.0 * eps * K)  # omega1_g0
     for method in ("closed-form", "numerical"):
         prof = solve(problem, method=method)
@@ -90,12 +99,17 @@ def test_fully_rough_symmetric_is_uniform_shear_vel_g0():
 
 def test_symmetric_closed_form_tends_to_uniform_shear_as_walls_become_fully_rough():
     eps = 0.04
-    rough = solve(PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=eps), method="closed-form")
+    rough = solve(
+        Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall.fully_rough())),
+        method="closed-form",
+    )
     gap = [
         np.max(
             np.abs(
                 solve(
-                    PlaneShear(material=MAT, upper=Wall(MAT.fully_rough_delta - d), eps=eps),
+                    Problem(
+                        Plane(eps=eps), Cosserat(material=MAT, wall=Wall(MAT.fully_rough_delta - d))
+                    ),
                     method="closed-form",
                     xi=rough.xi,
                 ).u
@@ -118,7 +132,7 @@ def test_symmetric_closed_form_tends_to_uniform_shear_as_walls_become_fully_roug
 )
 def test_convergence_under_tolerance_refinement(kwargs):
     """No closed form under gravity: errors against a tight reference shrink with rtol."""
-    problem = PlaneShear(material=MAT, eps=1e-2, **kwargs)
+    problem = plane(1e-2, **kwargs)
     ref = solve(problem, rtol=1e-12)
     errors = []
     for rtol in (1e-5, 1e-7, 1e-9):
@@ -142,7 +156,7 @@ CASES = {
 @pytest.mark.parametrize("name", list(CASES))
 @pytest.mark.parametrize("eps", [0.04, 1e-6])
 def test_invariants_and_boundary_conditions(name, eps):
-    problem = PlaneShear(material=MAT, eps=eps, **CASES[name])
+    problem = plane(eps, **CASES[name])
     prof = solve(problem)
     for values in prof.columns().values():
         assert np.all(np.isfinite(values))
@@ -150,7 +164,7 @@ def test_invariants_and_boundary_conditions(name, eps):
     assert prof.diagnostics.residuals["velocity"] < 1e-7
     assert prof.diagnostics.residuals["spin"] < 1e-7
     assert prof.diagnostics.residuals["couple_stress"] < 1e-5
-    if problem.B == 0.0:
+    if problem.equations.B == 0.0:
         # The paper's root forces sigma_yx - sigma_xy >= 0 without gravity. Under gravity
         # |m| follows the depth (eqn-asymp_eta_g) and eqn-nd_zangmom gives the asymmetry the
         # sign of dm/dxi: negative in the bulk when the layer is at the upper wall
@@ -159,7 +173,7 @@ def test_invariants_and_boundary_conditions(name, eps):
     assert np.all(np.diff(prof.u) >= -1e-12)  # monotone velocity
     assert np.all(prof.omega <= 0.0)  # clockwise grains
     assert prof.u.min() >= -1e-14 and prof.u.max() <= 1.0 + 1e-14  # round-off
-    bound = np.array([problem.couple_stress_bound(x) for x in prof.xi])
+    bound = np.array([problem.equations.couple_stress_bound(x) for x in prof.xi])
     assert np.all(np.abs(prof.m) <= bound * (1 + 1e-12))
     # the couple stress has the sign of the layer's wall
     side = np.abs(prof.xi - problem.slip_wall) < 0.25
@@ -169,17 +183,19 @@ def test_invariants_and_boundary_conditions(name, eps):
 def test_couple_stress_at_the_fixed_wall_barely_changes_the_velocity():
     """Figure 5: m(0) anywhere in (0, b) leaves u indistinguishable."""
     eps = 0.04
-    base = PlaneShear(material=MAT, upper=Wall(10.0), lower=Wall(25.0), eps=eps)
-    b = base.slip_constants.b
+    base = Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall(10.0), lower=Wall(25.0)))
+    b = base.equations.slip_constants.b
     ref = solve(base)
     other_delta = solve(
-        PlaneShear(material=MAT, upper=Wall(15.0), lower=Wall(25.0), eps=eps), xi=ref.xi
+        Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall(15.0), lower=Wall(25.0))),
+        xi=ref.xi,
     )
     delta_effect = np.max(np.abs(other_delta.u - ref.u))
     for frac in (0.05, 0.5, 1.0):
         prof = solve(
-            PlaneShear(
-                material=MAT, upper=Wall(10.0), lower=Wall(25.0), eps=eps, m_fixed_wall=frac * b
+            Problem(
+                Plane(eps=eps),
+                Cosserat(material=MAT, wall=Wall(10.0), lower=Wall(25.0), m_fixed_wall=frac * b),
             ),
             xi=ref.xi,
         )
@@ -190,28 +206,41 @@ def test_couple_stress_at_the_fixed_wall_barely_changes_the_velocity():
         assert change < 1e-2
         assert change < 0.05 * delta_effect
         # m approaches the common asymptote m0 towards the upper wall (figure 5a)
-        assert prof.m[-1] == pytest.approx(base.slip_constants.m0, rel=1e-2)
+        assert prof.m[-1] == pytest.approx(base.equations.slip_constants.m0, rel=1e-2)
 
 
 def test_no_real_solution_is_reported_in_words():
     with pytest.raises(NoSolutionError, match=r"no real solution.*yield bound at xi = 0\.\d+"):
-        solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1, B=1.0))
+        solve(Problem(Plane(eps=0.1, B=1.0), Cosserat(material=MAT, wall=Wall(20.0))))
     with pytest.raises(NoSolutionError, match="no real solution"):
         solve(
-            PlaneShear(material=Material(28.5, A=-0.8), upper=Wall.fully_rough(), eps=0.04, B=1.0)
+            Problem(
+                Plane(eps=0.04, B=1.0),
+                Cosserat(material=Material(28.5, A=-0.8), wall=Wall.fully_rough()),
+            )
         )
 
 
 def test_routes_that_do_not_exist_say_so():
-    gravity = PlaneShear(material=MAT, upper=Wall(20.0), eps=0.01, B=1.0)
+    gravity = Problem(Plane(eps=0.01, B=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
     with pytest.raises(MethodNotAvailableError, match="no closed form for plane shear under"):
         solve(gravity, method="closed-form")
     with pytest.raises(ParameterError, match="method must be one of"):
         solve(gravity, method="shooting")
-    with pytest.raises(MethodNotAvailableError, match="no closed-form route for CouetteFlow"):
-        solve(CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.1, Ri=1.0), method="closed-form")
+    with pytest.raises(
+        MethodNotAvailableError,
+        match="no closed-form route for the cosserat rheology on the couette cell",
+    ):
+        solve(
+            Problem(Couette(eps=0.1, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))),
+            method="closed-form",
+        )
     with pytest.raises(ParameterError, match="rtol do not apply to method='closed-form'"):
-        solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1), method="closed-form", rtol=1e-6)
+        solve(
+            Problem(Plane(eps=0.1), Cosserat(material=MAT, wall=Wall(20.0))),
+            method="closed-form",
+            rtol=1e-6,
+        )
     with pytest.raises(ParameterError, match=r"rtol must satisfy 1e-13 <= rtol <= 0.01"):
         solve(gravity, rtol=1.0)
 
@@ -219,7 +248,7 @@ def test_routes_that_do_not_exist_say_so():
 def test_export_round_trip(tmp_path):
     import json
 
-    prof = solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3), points=51)
+    prof = solve(Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(20.0))), points=51)
     record = json.loads(prof.to_json(tmp_path / "p.json"))
     assert record["y"][0] == 0.0 and record["y"][-1] == 1.0
     assert math.isclose(record["thickness"], delta_limit_by_hand(), rel_tol=1e-6)
@@ -231,7 +260,7 @@ def test_export_round_trip(tmp_path):
 
 
 def test_quick_plot_has_four_panels():
-    prof = solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.04), points=51)
+    prof = solve(Problem(Plane(eps=0.04), Cosserat(material=MAT, wall=Wall(20.0))), points=51)
     fig = prof.plot()
     assert len(fig.axes) == 4
 
@@ -240,4 +269,4 @@ def test_nearly_frictionless_wall_fails_fast_and_says_why():
     """A couple stress starting within round-off of its yield bound makes the couple-stress
     equation singular; the solver stops with a reason instead of grinding."""
     with pytest.raises(ConvergenceError, match=r"within the tolerance of its yield bound"):
-        solve(PlaneShear(material=MAT, upper=Wall(1e-5), eps=1e-3))
+        solve(Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(1e-5))))

@@ -9,11 +9,13 @@ from hypothesis import strategies as st
 
 from cosserat import (
     ConvergenceError,
-    CouetteFlow,
+    Cosserat,
+    Couette,
     Material,
     MethodNotAvailableError,
     NoSolutionError,
-    PlaneShear,
+    Plane,
+    Problem,
     Wall,
     solve,
 )
@@ -41,24 +43,26 @@ def walls(draw, mat):
 @st.composite
 def plane_problems(draw):
     mat = draw(materials())
-    return PlaneShear(
-        material=mat,
-        upper=draw(walls(mat)),
-        lower=draw(walls(mat)) if draw(st.booleans()) else None,
-        eps=10 ** draw(log_eps),
-        B=draw(st.sampled_from([0.0, 0.0, 0.1, 1.0, 5.0, 100.0])),
-        nu=draw(st.floats(0.5, 1.0)),
+    return Problem(
+        Plane(
+            eps=10 ** draw(log_eps),
+            B=draw(st.sampled_from([0.0, 0.0, 0.1, 1.0, 5.0, 100.0])),
+            nu=draw(st.floats(0.5, 1.0)),
+        ),
+        Cosserat(
+            material=mat,
+            wall=draw(walls(mat)),
+            lower=draw(walls(mat)) if draw(st.booleans()) else None,
+        ),
     )
 
 
 @st.composite
 def couette_problems(draw):
     mat = draw(materials())
-    return CouetteFlow(
-        material=mat,
-        wall=draw(walls(mat)),
-        eps=10 ** draw(log_eps),
-        Ri=10 ** draw(st.floats(-3.0, 6.0)),
+    return Problem(
+        Couette(eps=10 ** draw(log_eps), Ri=10 ** draw(st.floats(-3.0, 6.0))),
+        Cosserat(material=mat, wall=draw(walls(mat))),
     )
 
 
@@ -107,7 +111,7 @@ def test_closed_form_agrees_with_numerical_and_asymptotic_never_returns_nan(prob
     try:
         cf = solve(problem, method="closed-form", points=41, check=False)
     except MethodNotAvailableError:
-        assert problem.B > 0 or problem.m_fixed_wall is not None
+        assert problem.equations.B > 0 or problem.equations.m_fixed_wall is not None
     else:
         for values in cf.columns().values():
             assert np.all(np.isfinite(values))

@@ -8,9 +8,19 @@ import csv
 import numpy as np
 import pytest
 
-from cosserat import CouetteFlow, Material, ParameterError, PlaneShear, Wall, solve
+from cosserat import (
+    Cosserat,
+    Couette,
+    Material,
+    ParameterError,
+    Plane,
+    Problem,
+    Wall,
+    solve,
+)
 from cosserat.analysis import shear_layer_thickness, wall_omega, wall_slip
 from cosserat.cli import main
+from cosserat.errors import NoSolutionError
 from cosserat.routes.numerical import wall_quantities
 from cosserat.studies.sweep import load_spec, parse_spec, run_sweep
 
@@ -52,16 +62,20 @@ def test_spec_expansion_and_errors(tmp_path):
 
 
 PROBLEMS = [
-    PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-3),
-    PlaneShear(material=MAT, upper=Wall(15.0, 0.2), lower=Wall(25.0), eps=0.02),
-    PlaneShear(material=MAT, upper=Wall(25.0), lower=Wall(20.0), eps=1e-4, B=0.2),
-    PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=1e-5, B=1.0),
-    PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=0.04),
-    PlaneShear(material=Material(35.0, L=5, A=0.0), upper=Wall(28.0, 1.0), eps=0.01, B=2.0),
-    PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1, B=1.0),  # no real solution
-    CouetteFlow(material=MAT, wall=Wall(20.0), eps=1e-3, Ri=1.0),
-    CouetteFlow(material=MAT, wall=Wall.fully_rough(0.0), eps=0.05, Ri=10.0),
-    CouetteFlow(material=MAT, wall=Wall(20.0), eps=0.04, Ri=0.05),  # no real solution
+    Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(20.0))),
+    Problem(Plane(eps=0.02), Cosserat(material=MAT, wall=Wall(15.0, 0.2), lower=Wall(25.0))),
+    Problem(Plane(eps=1e-4, B=0.2), Cosserat(material=MAT, wall=Wall(25.0), lower=Wall(20.0))),
+    Problem(Plane(eps=1e-5, B=1.0), Cosserat(material=MAT, wall=Wall.fully_rough())),
+    Problem(Plane(eps=0.04), Cosserat(material=MAT, wall=Wall.fully_rough())),
+    Problem(
+        Plane(eps=0.01, B=2.0), Cosserat(material=Material(35.0, L=5, A=0.0), wall=Wall(28.0, 1.0))
+    ),
+    Problem(Plane(eps=0.1, B=1.0), Cosserat(material=MAT, wall=Wall(20.0))),  # no real solution
+    Problem(Couette(eps=1e-3, Ri=1.0), Cosserat(material=MAT, wall=Wall(20.0))),
+    Problem(Couette(eps=0.05, Ri=10.0), Cosserat(material=MAT, wall=Wall.fully_rough(0.0))),
+    Problem(
+        Couette(eps=0.04, Ri=0.05), Cosserat(material=MAT, wall=Wall(20.0))
+    ),  # no real solution
 ]
 
 
@@ -70,7 +84,7 @@ def test_batched_wall_quantities_match_single_solves():
     for problem, res in zip(PROBLEMS, results, strict=True):
         try:
             prof = solve(problem, rtol=1e-11, check=False)
-        except Exception as exc:
+        except NoSolutionError as exc:
             assert res.status == "no-solution" and "no real solution" in res.message
             assert "no real solution" in str(exc)
             continue
@@ -92,12 +106,16 @@ def test_sweep_records_every_case_and_is_the_same_in_one_or_two_processes(tmp_pa
     assert len(one) == len(spec.cases) == len(two)
     assert one == two
     status = [r["status"] for r in one]
-    assert status.count("invalid") == 1 and "eps = d_p/H must satisfy" in one[-1]["message"]
+    assert (
+        status.count("invalid") == 1
+        and "eps (grain diameter over gap, d_p/H) must satisfy" in one[-1]["message"]
+    )
     assert status.count("no-solution") >= 1
     fine = [r for r in one if r["status"] == "ok"]
     assert all(np.isfinite(r["Delta"]) for r in fine)
 
 
+@pytest.mark.slow
 def test_sweep_on_a_dask_local_cluster_gives_the_same_rows():
     distributed = pytest.importorskip("distributed")
     spec = parse_spec(__import__("tomllib").loads(SPEC))
@@ -120,7 +138,7 @@ def test_sweep_cli(tmp_path, capsys):
     assert "26 cases" in capsys.readouterr().out
 
 
-# --------------------------------------------------------------------------- one build_problem
+# --------------------------------------------------------------------------- one builder
 SAME = [
     {"geometry": "plane", "eps": 0.01},
     {"geometry": "plane", "eps": 0.02, "phi": 30.0, "L": 5.0, "A": 0.0, "delta": 15.0, "K": 0.2},
@@ -146,33 +164,41 @@ def _cli_problem(params):
 
 @pytest.mark.parametrize("params", SAME)
 def test_the_cli_and_the_sweep_build_the_same_problem(params):
-    from cosserat.model import build_problem
+    from cosserat.model import make_problem
+    from cosserat.studies.sweep import case_problem
 
     from_cli = _cli_problem(params)
     (case,) = parse_spec({"fixed": dict(params)}).cases
-    from_sweep = build_problem(case)
-    assert from_cli == from_sweep == build_problem(params)
-    assert type(from_cli) is type(from_sweep)
+    from_sweep = case_problem(case)
+    values = {k: v for k, v in params.items() if k != "geometry"}
+    assert from_cli == from_sweep == make_problem("cosserat", params["geometry"], values)
     assert from_cli.parameters() == from_sweep.parameters()
 
 
-def test_there_is_one_build_problem():
-    import cosserat.cli.common as cli
+def test_there_is_one_builder():
+    import cosserat.analysis.gap as gap
+    import cosserat.analysis.ranking as ranking
+    import cosserat.cli.params as cli
     import cosserat.studies.sweep as sweep
-    from cosserat.model import build_problem
-    from cosserat.model.build import build_problem as built
+    from cosserat.model import make_problem
+    from cosserat.model.build import make_problem as built
 
-    assert sweep.build_problem is cli.build_problem is build_problem is built
+    assert sweep.make_problem is cli.make_problem is make_problem is built
+    assert ranking.make_problem is gap.make_problem is built
 
 
-def test_the_defaults_are_the_papers():
-    from cosserat.model import build_problem
+def test_the_defaults_are_the_declared_ones():
+    from cosserat.model import make_problem
 
-    assert build_problem({"eps": 0.1}) == PlaneShear(material=Material(), upper=Wall(), eps=0.1)
-    assert build_problem({"geometry": "couette", "eps": 0.1}) == CouetteFlow(
-        material=Material(), wall=Wall(), eps=0.1, Ri=1.0
+    assert make_problem("cosserat", "plane", {"eps": 0.1}) == Problem(
+        Plane(eps=0.1), Cosserat(material=Material(), wall=Wall())
     )
-    assert build_problem({"eps": 0.1, "phi": None, "K_lower": None}) == build_problem({"eps": 0.1})
+    assert make_problem("cosserat", "couette", {"eps": 0.1}) == Problem(
+        Couette(eps=0.1, Ri=1.0), Cosserat(material=Material(), wall=Wall())
+    )
+    assert make_problem("cosserat", "plane", {"eps": 0.1, "phi": None, "K_lower": None}) == (
+        make_problem("cosserat", "plane", {"eps": 0.1})
+    )
 
 
 @pytest.mark.parametrize(
@@ -180,37 +206,51 @@ def test_the_defaults_are_the_papers():
     [
         (
             {"geometry": "annulus", "eps": 0.1},
-            r"geometry must be one of 'plane', 'couette'(, '\w+')*; got 'annulus'",
+            r"cell must be one of 'plane', 'couette'(, '\w+')*; got 'annulus'",
         ),
-        ({"eps": 0.1, "zeta": 1.0}, r"unknown parameter\(s\) zeta; known: geometry, phi"),
+        (
+            {"eps": 0.1, "zeta": 1.0},
+            r"unknown parameter\(s\) zeta for model 'cosserat' on the plane cell; "
+            r"valid: phi \[deg\]",
+        ),
         ({"eps": 0.1, "Phi": 30.0}, r"unknown parameter\(s\) Phi"),
-        ({"phi": 30.0}, r"eps .* must be given"),
+        ({"phi": 30.0}, r"eps \(grain diameter over gap, d_p/H\) must be given"),
         (
             {"eps": 0.1, "delta": "smooth"},
-            r"delta must be an angle in degrees or 'fully-rough'; got 'smooth'",
+            r"delta \(angle of wall friction.*\) must be a number or 'fully-rough'; got 'smooth'",
         ),
-        ({"eps": 0.1, "delta_lower": "x"}, r"delta_lower must be an angle"),
-        ({"eps": 0.1, "phi": True}, r"phi must be a number; got True"),
-        ({"eps": 0.1, "phi": "abc"}, r"phi must be a number; got 'abc'"),
-        ({"eps": 0.1, "K_lower": -1.0}, r"lower wall .*K must satisfy K >= 0; got -1"),
-        ({"eps": 0.1, "geometry": "couette", "B": 1.0}, r"B applies to geometry 'plane' only"),
-        ({"eps": 0.1, "geometry": "couette", "delta_lower": 10.0}, r"delta_lower applies to"),
-        ({"eps": 0.1, "Ri": 2.0}, r"Ri applies to geometry 'couette' only; got Ri = 2.0"),
+        (
+            {"eps": 0.1, "delta_lower": "x"},
+            r"lower wall \(delta_lower, K_lower\): delta \(.*\) must be a number",
+        ),
+        ({"eps": 0.1, "phi": True}, r"phi \(.*\) must be a number; got True"),
+        ({"eps": 0.1, "phi": "abc"}, r"phi \(.*\) must be a number; got 'abc'"),
+        ({"eps": 0.1, "K_lower": -1.0}, r"lower wall .*K \(.*\) must satisfy 0 <= K; got -1"),
+        (
+            {"eps": 0.1, "geometry": "couette", "B": 1.0},
+            r"unknown parameter\(s\) B for model 'cosserat' on the couette cell",
+        ),
+        (
+            {"eps": 0.1, "geometry": "couette", "delta_lower": 10.0},
+            r"unknown parameter\(s\) delta_lower .* couette cell",
+        ),
+        ({"eps": 0.1, "Ri": 2.0}, r"unknown parameter\(s\) Ri for model 'cosserat' on the plane"),
     ],
 )
-def test_build_problem_errors_name_the_key(params, pattern):
-    from cosserat.model import build_problem
+def test_make_problem_errors_name_the_key(params, pattern):
+    from cosserat.model import make_problem
 
+    values = {k: v for k, v in params.items() if k != "geometry"}
     with pytest.raises(ParameterError, match=pattern):
-        build_problem(params)
+        make_problem("cosserat", params.get("geometry", "plane"), values)
 
 
 def test_a_bad_case_is_an_invalid_row_naming_the_key():
     spec = parse_spec({"fixed": {"eps": 0.1}, "cases": [{"geometry": "annulus"}, {"phi": "x"}]})
     rows = run_sweep(spec, workers=1)
     assert [r["status"] for r in rows] == ["invalid", "invalid"]
-    assert "geometry must be one of 'plane', 'couette'" in rows[0]["message"]
-    assert "phi must be a number" in rows[1]["message"]
+    assert "cell must be one of 'plane', 'couette'" in rows[0]["message"]
+    assert "phi (angle of internal friction) must be a number" in rows[1]["message"]
 
 
 @pytest.mark.parametrize(
@@ -244,7 +284,7 @@ def test_spec_files_that_cannot_be_read(tmp_path):
         load_spec(tmp_path)
     binary = tmp_path / "b.toml"
     binary.write_bytes(b"\xff\xfe\x00\x81")
-    with pytest.raises(InputError, match=r"not a text \(TOML\) file"):
+    with pytest.raises(InputError, match=r"b.toml: not a text file \(it holds NUL bytes"):
         load_spec(binary)
 
 
@@ -298,6 +338,7 @@ def _interrupt_after(proc, journal, rows, sig):
     return proc.communicate(timeout=300)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", ["SIGINT", "SIGKILL"])
 def test_an_interrupted_sweep_keeps_its_rows_and_resume_computes_only_the_rest(tmp_path, sig):
     import signal
@@ -362,6 +403,7 @@ def test_resume_refuses_a_journal_of_another_spec(tmp_path):
         run_sweep_to_table(spec, tmp_path / "t.csv", resume=True, workers=1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("allowed_failures", [3, 0])
 def test_a_dask_worker_killed_mid_sweep_loses_no_row(allowed_failures):
     """A worker process is killed (SIGKILL) while it holds tasks. With Dask's default retries
@@ -408,7 +450,7 @@ def test_a_dask_worker_killed_mid_sweep_loses_no_row(allowed_failures):
 def test_ctrl_c_inside_a_compiled_kernel_counts_as_an_interruption():
     """numba reports a KeyboardInterrupt raised during a kernel call as a SystemError caused by
     it: the command line must still say 'interrupted' (exit 130), not print a traceback."""
-    from cosserat.cli.sweep import _interrupted
+    from cosserat.cli.common import interrupted as _interrupted
 
     try:
         try:

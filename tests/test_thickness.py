@@ -8,18 +8,35 @@ import math
 import pytest
 from reference import delta_limit_by_hand
 
-from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve, wall_omega, wall_slip
+from cosserat import (
+    Cosserat,
+    Material,
+    Plane,
+    Problem,
+    Wall,
+    shear_layer_thickness,
+    solve,
+    wall_omega,
+    wall_slip,
+)
 from cosserat.analysis import asymptotic_thickness, thickness_curve, thickness_limit
 
 MAT = Material(28.5)
+
+
+def plane(eps, upper, lower=None, B=0.0, nu=1.0):  # type: ignore[no-untyped-def]
+    """The Cosserat model in plane shear with the paper's material (MAT)."""
+    return Problem(Plane(eps=eps, B=B, nu=nu), Cosserat(material=MAT, wall=upper, lower=lower))
+
+
 F = 0.05
 
 
 def test_the_papers_limit_is_17_67():
     assert round(delta_limit_by_hand(), 2) == 17.67
-    assert thickness_limit(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.1)) == pytest.approx(
-        delta_limit_by_hand(), rel=1e-13
-    )
+    assert thickness_limit(
+        Problem(Plane(eps=0.1), Cosserat(material=MAT, wall=Wall(20.0)))
+    ) == pytest.approx(delta_limit_by_hand(), rel=1e-13)
 
 
 CASES = {
@@ -32,7 +49,7 @@ CASES = {
 
 @pytest.mark.parametrize("name", list(CASES))
 def test_delta_approaches_17_67_in_every_plane_case(name):
-    problem = PlaneShear(material=MAT, eps=1e-2, **CASES[name])
+    problem = plane(1e-2, **CASES[name])
     eps = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6]
     curve = thickness_curve(problem, eps)
     gaps = [abs(d - delta_limit_by_hand()) for d in curve.Delta]
@@ -44,7 +61,7 @@ def test_delta_approaches_17_67_in_every_plane_case(name):
 def test_thickness_of_uniform_shear_is_exact():
     """Fully rough identical walls: linear u, so Delta = (1 - u0)(1 - f)/eps with u0 = 1/2."""
     eps = 0.02
-    problem = PlaneShear(material=MAT, upper=Wall.fully_rough(), eps=eps)
+    problem = Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall.fully_rough()))
     for method in ("closed-form", "numerical"):
         assert shear_layer_thickness(solve(problem, method=method)) == pytest.approx(
             0.5 * (1 - F) / eps, rel=1e-9
@@ -53,14 +70,14 @@ def test_thickness_of_uniform_shear_is_exact():
 
 
 def test_thickness_does_not_depend_on_the_output_grid():
-    problem = PlaneShear(material=MAT, upper=Wall(20.0), eps=1e-4, B=1.0)
+    problem = Problem(Plane(eps=1e-4, B=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
     coarse = solve(problem, points=5)
     fine = solve(problem, points=2001)
     assert shear_layer_thickness(coarse) == pytest.approx(shear_layer_thickness(fine), rel=1e-12)
 
 
 def test_thickness_definition_holds_on_the_profile():
-    problem = PlaneShear(material=MAT, upper=Wall(15.0), eps=1e-3)
+    problem = Problem(Plane(eps=1e-3), Cosserat(material=MAT, wall=Wall(15.0)))
     prof = solve(problem)
     d = shear_layer_thickness(prof, f=0.1)
     u_w, u_d = prof.evaluate([1.0, 1.0 - problem.eps * d]).u
@@ -69,8 +86,8 @@ def test_thickness_definition_holds_on_the_profile():
 
 def test_wall_slip_and_spin_match_the_closed_form():
     eps, K = 1e-3, 0.5
-    problem = PlaneShear(material=MAT, upper=Wall(20.0, K), lower=Wall(25.0), eps=eps)
-    k = problem.slip_constants.k
+    problem = Problem(Plane(eps=eps), Cosserat(material=MAT, wall=Wall(20.0, K), lower=Wall(25.0)))
+    k = problem.equations.slip_constants.k
     omega_1 = -1.0 / eps / (2.0 / k + K - 2.0 * math.exp(-k / eps) / k)  # eqn-omega1_g0aw
     prof = solve(problem)
     assert wall_omega(prof) == pytest.approx(omega_1, rel=1e-7)
@@ -78,10 +95,10 @@ def test_wall_slip_and_spin_match_the_closed_form():
 
 
 def test_thickness_curve_records_no_solution_instead_of_failing():
-    problem = PlaneShear(material=MAT, upper=Wall(20.0), eps=0.01, B=1.0)
+    problem = Problem(Plane(eps=0.01, B=1.0), Cosserat(material=MAT, wall=Wall(20.0)))
     curve = thickness_curve(problem, [0.1, 0.01])
     assert curve.Delta[0] is None and "no real solution" in curve.failures[0.1]
     single = shear_layer_thickness(
-        solve(PlaneShear(material=MAT, upper=Wall(20.0), eps=0.01, B=1.0))
+        solve(Problem(Plane(eps=0.01, B=1.0), Cosserat(material=MAT, wall=Wall(20.0))))
     )
     assert curve.Delta[1] == pytest.approx(single, rel=1e-12)

@@ -15,8 +15,9 @@ from cosserat.analysis.corpus import (
     synthetic_run,
     write_run,
 )
-from cosserat.analysis.ranking import model_problem, model_solve
+from cosserat.analysis.ranking import model_solve
 from cosserat.errors import InputError
+from cosserat.model import make_problem
 from cosserat.results.wall import shear_layer_thickness
 from cosserat.studies.validate import measured_thickness, thickness_of, validate
 
@@ -117,7 +118,7 @@ def test_model_profiles_rank_their_model_and_the_report_is_complete(tmp_path):
     corpus = tmp_path / "corpus"
     for i, model in enumerate(("cosserat", "mui")):
         own = {"delta": 22.0} if model == "cosserat" else {"I_w": 0.05}
-        profile = model_solve(model_problem(model, "couette", {"eps": 1 / 30, "Ri": 2.0} | own))
+        profile = model_solve(make_problem(model, "couette", {"eps": 1 / 30, "Ri": 2.0} | own))
         synthetic_run(corpus, f"{model}_couette", profile, noise=0.003, seed=i,
                       wall={"kind": "smooth-frictional"})  # fmt: skip
     out = tmp_path / "report"
@@ -148,7 +149,7 @@ def test_model_profiles_rank_their_model_and_the_report_is_complete(tmp_path):
 
 
 def test_measured_thickness_agrees_with_the_model_it_came_from(tmp_path):
-    profile = model_solve(model_problem("cosserat", "plane", {"eps": 0.01, "B": 1.0}), points=401)
+    profile = model_solve(make_problem("cosserat", "plane", {"eps": 0.01, "B": 1.0}), points=401)
     run = read_run(synthetic_run(tmp_path, "p", profile, noise=1e-4, seed=0))
     measured = measured_thickness(run)
     exact = shear_layer_thickness(profile)
@@ -232,13 +233,19 @@ def test_corpus_folder_errors(tmp_path):
         read_corpus(tmp_path)
 
 
-def test_shipped_corpus_reads_or_says_it_is_missing():
-    if any(shipped_corpus().glob("*.csv")):
-        corpus = read_corpus()
-        assert corpus.runs and all(r.meta["format"] == "cosserat-corpus/1" for r in corpus.runs)
-    else:
-        with pytest.raises(InputError, match="no corpus is shipped"):
-            read_corpus()
+def test_the_shipped_corpus_is_there_and_reads():
+    """The package ships its corpus: a broken package-data path fails here (not a skip)."""
+    assert len(list(shipped_corpus().glob("*.csv"))) >= 4
+    corpus = read_corpus()
+    assert corpus.runs and all(r.meta["format"] == "cosserat-corpus/1" for r in corpus.runs)
+
+
+def test_an_installation_without_the_corpus_says_so(tmp_path, monkeypatch):
+    from cosserat.analysis import corpus
+
+    monkeypatch.setattr(corpus, "shipped_corpus", lambda: tmp_path / "absent")
+    with pytest.raises(InputError, match="no corpus is shipped in this installation"):
+        read_corpus()
 
 
 def test_a_channel_run_has_its_spin_compared_and_says_why_nothing_else(tmp_path):
@@ -262,7 +269,7 @@ def test_profiles_of_the_cosserat_model_at_small_gaps_cannot_decide_its_limit_la
     # at H/d = 20-80 the model's own Delta still grows with the gap (the limits are
     # H/d -> infinity): data that follow the model agree with its slope there, not with 0
     for i, g in enumerate((20, 40, 80)):
-        p = model_problem("cosserat", "plane", {"eps": 1 / g, "B": 1.0, "delta": 20.0})
+        p = make_problem("cosserat", "plane", {"eps": 1 / g, "B": 1.0, "delta": 20.0})
         synthetic_run(tmp_path, f"smooth_{g}", model_solve(p, points=401), noise=0.01, seed=i,
                       wall={"kind": "smooth-frictional"})  # fmt: skip
     report = validate(tmp_path, models=["cosserat"])

@@ -39,3 +39,13 @@ class InputError(CosseratError, ValueError):
 
     The message names it and says why (no such file, a directory, permission denied, ...).
     """
+
+
+def shown(value: object) -> str:
+    """A value as error messages show it: a number plainly (a NumPy scalar too: ``-1.0``, not
+    ``np.float64(-1.0)``), anything else by its ``repr`` (a string in quotes)."""
+    if isinstance(value, bool) or not hasattr(value, "__float__"):
+        return repr(value)
+    if hasattr(value, "item") and type(value).__module__ == "numpy":  # a NumPy scalar
+        value = value.item()
+    return repr(value)

@@ -48,6 +48,7 @@ def _scipy(rtol, args):
     )  # fmt: skip
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rtol", [1e-4, 1e-8, 1e-11])
 def test_same_steps_as_scipy(rtol):
     args = np.array([5.0, 3.0])
@@ -91,6 +92,7 @@ def test_terminal_event_keeps_the_step_it_fired_in():
     assert ts[-1] < 2.0
 
 
+@pytest.mark.slow
 def test_step_budget():
     @njit
     def run():

@@ -17,6 +17,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+import pytest
 from numba import njit
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
@@ -187,6 +188,7 @@ def robertson_reference():
     return scipy_run(rob_rhs, rob_jac, 0.0, ROB_T, y0, 1e-12, atol, dense_output=True)
 
 
+@pytest.mark.slow
 def test_robertson_against_scipy():
     r = run(rob_rhs, rob_jac, 0.0, ROB_T, [1.0, 0.0, 0.0], ROB_RTOL, ROB_ATOL)
     assert r.status == SUCCESS and r.ts[-1] == ROB_T and math.isnan(r.t_event)
@@ -220,6 +222,7 @@ def vdp_reference():
     )
 
 
+@pytest.mark.slow
 def test_van_der_pol_against_scipy():
     r = run(vdp_rhs, vdp_jac, 0.0, VDP_T, [2.0, 0.0], VDP_RTOL, VDP_ATOL, VDP_ARGS)
     assert r.status == SUCCESS and r.ts[-1] == VDP_T
@@ -242,6 +245,7 @@ def test_van_der_pol_against_scipy():
 K = 50.0
 
 
+@pytest.mark.slow
 def test_dense_output_against_closed_form():
     rtol, atol = 1e-6, 1e-9
     r = run(lin_rhs, lin_jac, 0.0, 2.0, [0.0], rtol, atol, lin_args(K))
@@ -307,6 +311,7 @@ def _scipy_event(args):
     return g
 
 
+@pytest.mark.slow
 def test_terminal_event_matches_solve_ivp_and_closed_form():
     rtol, atol, level = 1e-8, 1e-10, 0.5
     args = lin_args(K, level)
@@ -346,6 +351,7 @@ def test_event_in_backward_integration():
 
 
 # ----------------------------------------------------------------------------- failure paths
+@pytest.mark.slow
 def test_blow_up_is_not_success():
     r = Result(*blow_up(2.0))
     assert r.status in (STEP_TOO_SMALL, NOT_FINITE), r.status

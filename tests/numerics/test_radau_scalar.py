@@ -37,8 +37,9 @@ def lin_dfdy(t, y, args):
 
 
 @njit
-def lin_dfdp(t, y, args):
-    return args[0] * math.cos(t)
+def lin_derivatives(t, y, args):
+    """(df/dy, df/dp)."""
+    return -args[0], args[0] * math.cos(t)
 
 
 @njit
@@ -80,6 +81,11 @@ def cubic_dfdy(t, y, args):
 @njit
 def cubic_dfdp(t, y, args):
     return args[0] * math.sin(t)
+
+
+@njit
+def cubic_derivatives(t, y, args):
+    return cubic_dfdy(t, y, args), cubic_dfdp(t, y, args)
 
 
 @njit
@@ -173,12 +179,12 @@ def test_radau_matrix_is_the_eigen_decomposition_of_radau5():
 
 
 # ----------------------------------------------------------------------------- sensitivity
-def _solve_with_sensitivity(f, dfdy, dfdp, t0, t1, y0, s0, rtol, args):
+def _solve_with_sensitivity(f, dfdy, derivatives, t0, t1, y0, s0, rtol, args):
     status, ts, hs, ys, Q, Zs, *_ = radau5_scalar(
         f, dfdy, no_event_scalar, t0, t1, y0, rtol, rtol * 1e-3, args, 100_000, 0.0
     )
     assert status == SUCCESS
-    ss, dQ = sensitivity(dfdy, dfdp, args, ts, hs, ys, Zs, s0)
+    ss, dQ = sensitivity(derivatives, args, ts, hs, ys, Zs, s0)
     return ts, hs, ys, Q, ss, dQ
 
 
@@ -188,7 +194,7 @@ def test_sensitivity_of_a_linear_problem_is_its_closed_form():
     k = K
     args = args_of(p=2.0)
     ts, hs, ys, Q, ss, dQ = _solve_with_sensitivity(
-        lin_f, lin_dfdy, lin_dfdp, 0.0, 2.0, 0.0, 0.0, 1e-9, args
+        lin_f, lin_dfdy, lin_derivatives, 0.0, 2.0, 0.0, 0.0, 1e-9, args
     )
 
     # closed form of s' = -k (s - cos t), s(0) = 0
@@ -196,7 +202,7 @@ def test_sensitivity_of_a_linear_problem_is_its_closed_form():
         part = k * (k * np.cos(t) + np.sin(t)) / (k * k + 1.0)
         return part - (k * k / (k * k + 1.0)) * np.exp(-k * t)
 
-    assert np.max(np.abs(ss[:, 0] - s_exact(ts))) < 1e-8
+    assert np.max(np.abs(ss[:, 0] - s_exact(ts))) < 1e-9  # observed 2.3e-11
     # y = p s for y(0) = 0: the sensitivity of the computed y is y/p to round-off
     np.testing.assert_allclose(ss[:, 0] * 2.0, ys[:, 0], rtol=1e-12, atol=1e-14)
     tt = np.linspace(0.0, 2.0, 777)
@@ -216,12 +222,16 @@ def test_sensitivity_of_a_nonlinear_stiff_problem_against_the_variational_equati
     ref = solve_ivp(augmented, (0.0, 3.0), [2.0, 0.0], method="Radau", rtol=1e-12, atol=1e-14,
                     dense_output=True)  # fmt: skip
     for rtol in (1e-6, 1e-9):
-        ts, hs, _, _, ss, dQ = _solve_with_sensitivity(
-            cubic_f, cubic_dfdy, cubic_dfdp, 0.0, 3.0, 2.0, 0.0, rtol, args
+        ts, hs, ys, Q, ss, dQ = _solve_with_sensitivity(
+            cubic_f, cubic_dfdy, cubic_derivatives, 0.0, 3.0, 2.0, 0.0, rtol, args
         )
-        err = np.max(np.abs(ss[:, 0] - ref.sol(ts)[1]))
         # the derivative of the computed solution is as accurate as the solution itself
-        assert err < 10.0 * rtol, (rtol, err)
+        # (observed at the steps: 1.0e-6 against 1.5e-6 at rtol 1e-6, 2.8e-10 against 4.7e-10 at
+        # 1e-9; on the dense output 2.9e-5 against 4.3e-5 and 7.5e-10 against 1.2e-9)
+        err_y = np.max(np.abs(ys[:, 0] - ref.sol(ts)[0]))
+        err_s = np.max(np.abs(ss[:, 0] - ref.sol(ts)[1]))
+        assert err_s < 2.0 * err_y, (rtol, err_s, err_y)
         tt = np.linspace(0.0, 3.0, 501)
-        err_dense = np.max(np.abs(dense_eval(ts, hs, ss, dQ, tt)[:, 0] - ref.sol(tt)[1]))
-        assert err_dense < 100.0 * rtol, (rtol, err_dense)
+        dense_y = np.max(np.abs(dense_eval(ts, hs, ys, Q, tt)[:, 0] - ref.sol(tt)[0]))
+        dense_s = np.max(np.abs(dense_eval(ts, hs, ss, dQ, tt)[:, 0] - ref.sol(tt)[1]))
+        assert dense_s < 2.0 * dense_y, (rtol, dense_s, dense_y)

@@ -1,6 +1,7 @@
 """A real Couette cell: dimensional inputs in, dimensional profiles, stresses and torque out.
 
-The dimensionless Couette profile (:class:`~cosserat.problems.couette.CouetteFlow`) does not
+The dimensionless Couette profile (:class:`~cosserat.model.cells.couette.Couette` with the
+:class:`~cosserat.model.rheologies.cosserat.Cosserat` model) does not
 depend on depth at leading order in the Froude number: stresses scale with the local mean
 stress ``sigma_c = rho_p g nu z`` at depth z below the free surface (``eqn-nd_zmom_cyl``), and the
 velocity with the inner cylinder's surface speed ``V_i = Omega R_i``.
@@ -27,9 +28,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
+from ..model import Cosserat, Couette, Problem
 from ..model.constitutive import FloatArray
-from ..model.couette import CouetteFlow
 from ..model.parameters import Material, Wall, require_finite
+from ..model.rheologies.cosserat import CosseratCouette
 from ..results.profile import Profile
 
 
@@ -123,9 +125,9 @@ class CouetteCell:
         """C = V_i^2 / (R_i g) [-]."""
         return self.wall_speed**2 / (self.R_i * self.g)
 
-    def problem(self, material: Material, wall: Wall) -> CouetteFlow:
-        """The dimensionless problem of this cell."""
-        return CouetteFlow(material=material, wall=wall, eps=self.eps, Ri=self.Ri)
+    def problem(self, material: Material, wall: Wall) -> Problem:
+        """The dimensionless problem of this cell: the Cosserat model on the Couette cell."""
+        return Problem(Couette(eps=self.eps, Ri=self.Ri), Cosserat(material=material, wall=wall))
 
     def mean_stress(self, depth: float | FloatArray) -> FloatArray:
         """sigma_c = rho_p g nu z at depth z below the free surface [Pa]."""
@@ -140,8 +142,10 @@ class CouetteCell:
         return -profile.u * self.wall_speed
 
     def spin(self, profile: Profile) -> FloatArray:
-        """Grain spin omega_z about the upward axis [rad/s]: omega V_i / H."""
-        return profile.omega * self.wall_speed / self.gap
+        """Grain spin omega_z about the upward axis [rad/s]: omega V_i / H (the material spin,
+        half the vorticity, for a rheology without grain spin of its own)."""
+        omega = profile.omega if profile.omega is not None else profile.half_vorticity
+        return omega * self.wall_speed / self.gap
 
     def slip_velocity(self, profile: Profile) -> float:
         """V_i - v_theta at the inner cylinder [m/s] (>= 0: the grains lag the wall)."""
@@ -177,7 +181,12 @@ class CouetteCell:
         return 0.5 * per_height * self.fill_depth
 
 
-def _couette(profile: Profile) -> CouetteFlow:
-    if not isinstance(profile.problem, CouetteFlow):
-        raise ParameterError("a CouetteCell needs a Couette profile")
-    return profile.problem
+def _couette(profile: Profile) -> CosseratCouette:
+    problem = profile.problem
+    if not (
+        isinstance(problem, Problem)
+        and problem.cell_name == "couette"
+        and problem.model == "cosserat"
+    ):
+        raise ParameterError("a CouetteCell needs a Couette profile of the Cosserat model")
+    return problem.equations  # type: ignore[return-value]

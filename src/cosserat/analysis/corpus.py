@@ -23,6 +23,7 @@ positive; spins and vorticities with the same sign change (a mirror image of the
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
 from dataclasses import dataclass, field
@@ -33,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import atomic_open, write_text
+from .._text import read_text
 from ..errors import InputError
 from ..model.constitutive import FloatArray
 from .measurements import MeasuredProfile
@@ -226,14 +228,22 @@ class Corpus:
 
 
 # ---------------------------------------------------------------------- reading
+def _reason(exc: OSError) -> str:
+    """The operating system's reason, lower case ("permission denied")."""
+    text = exc.strerror or str(exc) or type(exc).__name__
+    return text[:1].lower() + text[1:]
+
+
 def _read_sidecar(path: Path) -> dict[str, Any]:
     try:
-        text = path.read_text()
+        text = read_text(path)
     except FileNotFoundError:
         raise InputError(
             f"{path.with_suffix('.csv').name}: no sidecar {path.name} beside it (each run is "
             "<run>.csv and <run>.json)"
         ) from None
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {_reason(exc)}") from None
     try:
         meta = json.loads(text)
     except json.JSONDecodeError as exc:
@@ -271,14 +281,15 @@ def _read_sidecar(path: Path) -> dict[str, Any]:
 
 def _read_columns(path: Path) -> dict[str, FloatArray]:
     try:
-        with path.open(newline="") as fh:
-            rows = list(csv.reader(fh))
+        rows = list(csv.reader(io.StringIO(read_text(path), newline="")))
     except FileNotFoundError:
         raise InputError(f"{path}: no such file") from None
-    except UnicodeDecodeError:
-        raise InputError(f"{path}: not a text CSV file") from None
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {_reason(exc)}") from None
     if not rows:
         raise InputError(f"{path}: empty file")
+    if len(rows) == 1:
+        raise InputError(f"{path}: no data rows after the column header (line 1)")
     names = [n.strip() for n in rows[0]]
     if len(set(names)) != len(names):
         raise InputError(f"{path}, line 1: repeated column names")
@@ -394,8 +405,8 @@ def _is_sidecar(path: Path) -> bool:
     """A JSON file that says it is a run's sidecar (other JSON files in a corpus folder, such
     as a run log, are not runs)."""
     try:
-        meta = json.loads(path.read_text())
-    except (OSError, ValueError):
+        meta = json.loads(read_text(path))
+    except (OSError, ValueError):  # InputError (not UTF-8) is a ValueError
         return True  # unreadable: report it rather than skip it
     return isinstance(meta, dict) and meta.get("format") == FORMAT
 
@@ -482,15 +493,18 @@ def synthetic_run(
     _, uw = moving_wall(problem)
     f = profile.evaluate(xi)
     half = -0.5 * (f.du_dxi + f.kappa * f.u)
+    # a rheology without grain spin of its own: the grains turn with the material
+    spin = half if f.omega is None else f.omega
     rng = np.random.default_rng(seed)
     s_spin = noise * eps if spin_noise is None else spin_noise
-    Ri_d = float(problem.Ri) * gap if cell == "couette" else None
+    params = problem.parameters()
+    Ri_d = float(params["Ri"]) * gap if cell == "couette" else None
     coord = xi * gap + (Ri_d or 0.0)
     columns = {
         COORDINATE[cell]: coord,
         "u": f.u / uw + rng.normal(0.0, noise, n),
         "u_se": np.full(n, noise),
-        "omega": eps * f.omega + rng.normal(0.0, s_spin, n),
+        "omega": eps * spin + rng.normal(0.0, s_spin, n),
         "omega_se": np.full(n, s_spin),
         "half_vorticity": eps * half + rng.normal(0.0, s_spin, n),
         "half_vorticity_se": np.full(n, s_spin),
@@ -499,7 +513,7 @@ def synthetic_run(
         "cell": cell,
         "gap_d": gap,
         "Ri_d": Ri_d,
-        "B": float(getattr(problem, "B", 0.0)) * float(getattr(problem, "nu", 1.0)),
+        "B": float(params.get("B") or 0.0) * float(params.get("nu") or 1.0),
         "wall": wall or {"kind": "glued-grains"},
         "seed": seed,
         "source": "synthetic",

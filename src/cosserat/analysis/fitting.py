@@ -16,7 +16,9 @@ one residual variance), which is one-sided when it reaches the fully rough bound
 
 Parameters are fitted in bounded internal coordinates: ``t = tan(delta)/sin(phi)`` in
 (tan 1 deg / sin phi, 1] for delta (so the fully rough wall t = 1 is a bound, whatever phi is),
-and K, L, phi, A directly.
+and K, L, phi, A directly. The ranges are the declared fit ranges of the Cosserat model's
+parameters (:meth:`cosserat.model.rheologies.cosserat.Cosserat.declared`), delta's capped at
+the fully rough angle.
 """
 
 from __future__ import annotations
@@ -31,15 +33,15 @@ from scipy.optimize import brentq, least_squares
 
 from .. import config
 from ..errors import MethodNotAvailableError, NoSolutionError, ParameterError
-from ..model import CouetteFlow, Problem
+from ..model import Cosserat, Problem
 from ..model.constitutive import FloatArray
-from ..model.parameters import FULLY_ROUGH, Material, Wall
+from ..model.parameters import FULLY_ROUGH, Wall
 from ..results.profile import Profile
 from ..routes import solve
 from .measurements import MeasuredProfile
 
 FREE_PARAMETERS = ("delta", "K", "L", "phi", "A")
-BOUNDS = {"K": (0.0, 10.0), "L": (0.5, 100.0), "phi": (10.0, 60.0), "A": (-0.95, 0.95)}
+"""The Cosserat model's parameters :func:`fit` can free."""
 NO_SOLUTION_RESIDUAL = 1e3
 CORRELATION_LIMIT = 0.95
 """|r| above which two fitted parameters are reported as strongly correlated."""
@@ -48,6 +50,13 @@ FLAT_RATIO = 1e-8
 the finite-difference error of the Jacobian, squared (relative step ~1e-4)."""
 FLAT_COMPONENT = 0.05
 """Parameters whose share of a flat eigenvector is at least this get no standard error."""
+
+
+def fit_range(name: str) -> tuple[float, float]:
+    """The declared fit range of the Cosserat parameter ``name`` [its unit]."""
+    rng = Cosserat.declared()[name].fit_range
+    assert rng is not None
+    return rng
 
 
 def moving_wall(problem: Any) -> tuple[float, float]:
@@ -65,8 +74,9 @@ def moving_wall(problem: Any) -> tuple[float, float]:
         u = float(problem.wall_velocity(xi))
         if u != 0.0:
             return xi, u
+    name = getattr(problem, "cell_name", type(problem).__name__)
     raise MethodNotAvailableError(
-        f"{type(problem).__name__}: no wall moves, so a profile over the wall speed cannot be "
+        f"the {name} cell: no wall moves, so a profile over the wall speed cannot be "
         "compared with it (the gravity-driven cell needs its own velocity scale)"
     )
 
@@ -125,12 +135,13 @@ def compare(
 
 # --------------------------------------------------------------------------- parameters
 def _moving(problem: Problem) -> Wall:
-    return problem.wall if isinstance(problem, CouetteFlow) else problem.upper
+    return problem.rheology.wall  # type: ignore[attr-defined, no-any-return]
 
 
 def natural_value(problem: Problem, name: str) -> float:
-    """Current value of a fittable parameter (delta in degrees, fully rough as its angle)."""
-    mat = problem.material
+    """Current value of a fittable parameter of the Cosserat model (delta in degrees, fully
+    rough as its angle)."""
+    mat = problem.rheology.material  # type: ignore[attr-defined]
     if name == "delta":
         wall = _moving(problem)
         return mat.fully_rough_delta if wall.is_fully_rough else float(wall.delta)
@@ -140,16 +151,19 @@ def natural_value(problem: Problem, name: str) -> float:
 
 
 def with_values(problem: Problem, values: dict[str, float]) -> Problem:
-    """``problem`` with the moving wall's delta, K and the material's L, phi, A replaced.
+    """``problem`` (of the Cosserat model) with the moving wall's delta, K and the material's
+    L, phi, A replaced (:meth:`~cosserat.model.problem.Problem.with_values`).
 
-    delta = "fully-rough" when tan(delta) reaches sin(phi). Between identical plane walls both
-    walls change together.
+    delta = "fully-rough" when tan(delta) reaches sin(phi), and a wall left rougher than fully
+    rough by a lower phi is clamped to it. Between identical plane walls both walls change
+    together (a plane cell's lower wall follows the moving one unless it was given).
     """
-    mat = problem.material
-    material = Material(
-        values.get("phi", mat.phi), L=values.get("L", mat.L), A=values.get("A", mat.A)
+    law: Cosserat = problem.rheology  # type: ignore[assignment]
+    mat = law.material
+    material = replace(
+        mat, phi=values.get("phi", mat.phi), L=values.get("L", mat.L), A=values.get("A", mat.A)
     )
-    old = _moving(problem)
+    old = law.wall
     delta: float | str = old.delta
     if "delta" in values:
         tan_d = math.tan(math.radians(values["delta"]))
@@ -157,11 +171,11 @@ def with_values(problem: Problem, values: dict[str, float]) -> Problem:
         delta = FULLY_ROUGH if rough else values["delta"]
     elif not old.is_fully_rough and math.tan(math.radians(float(old.delta))) > material.sin_phi:
         delta = FULLY_ROUGH  # phi changed below the wall's friction: clamp
-    wall = Wall(delta, values.get("K", old.K))
-    if isinstance(problem, CouetteFlow):
-        return replace(problem, material=material, wall=wall)
-    lower = wall if problem.lower_wall == problem.upper else problem.lower_wall
-    return replace(problem, material=material, upper=wall, lower=lower)
+    new = {"phi": material.phi, "L": material.L, "A": material.A, "delta": delta}
+    new["K"] = values.get("K", old.K)
+    if law.lower is not None and law.lower == law.wall:
+        new["delta_lower"], new["K_lower"] = delta, new["K"]
+    return problem.with_values(new)
 
 
 @dataclass
@@ -175,7 +189,7 @@ class _Coordinates:
         return (
             float(theta[self.names.index("phi")])
             if "phi" in self.names
-            else (self.base.material.phi)
+            else (self.base.rheology.material.phi)  # type: ignore[attr-defined]
         )
 
     def to_natural(self, theta: FloatArray) -> dict[str, float]:
@@ -189,7 +203,7 @@ class _Coordinates:
         return out
 
     def to_internal(self, natural: dict[str, float]) -> FloatArray:
-        phi = natural.get("phi", self.base.material.phi)
+        phi = natural.get("phi", self.base.rheology.material.phi)  # type: ignore[attr-defined]
         out = []
         for name in self.names:
             if name == "delta":
@@ -201,16 +215,20 @@ class _Coordinates:
 
     def natural_ranges(self, natural: dict[str, float]) -> FloatArray:
         """The allowed range of each free parameter in natural units [deg for angles]."""
-        phi = natural.get("phi", self.base.material.phi)
+        phi = natural.get("phi", self.base.rheology.material.phi)  # type: ignore[attr-defined]
         rough = math.degrees(math.atan(math.sin(math.radians(phi))))
         return np.asarray(
-            [rough - 1.0 if n == "delta" else BOUNDS[n][1] - BOUNDS[n][0] for n in self.names]
+            [
+                rough - fit_range("delta")[0] if n == "delta" else fit_range(n)[1] - fit_range(n)[0]
+                for n in self.names
+            ]
         )
 
     def bounds(self) -> tuple[FloatArray, FloatArray]:
         lo, hi = [], []
         for name in self.names:
-            b = (max(1e-6, math.tan(math.radians(1.0))), 1.0) if name == "delta" else BOUNDS[name]
+            lowest = math.tan(math.radians(fit_range("delta")[0]))
+            b = (max(1e-6, lowest), 1.0) if name == "delta" else fit_range(name)
             lo.append(b[0])
             hi.append(b[1])
         return np.asarray(lo), np.asarray(hi)
@@ -241,7 +259,7 @@ class FitResult:
     """Best-fit parameters with uncertainties (angles in degrees).
 
     ``covariance`` and ``correlation`` hold NaN where a parameter is not identifiable (its
-    ``stderr`` is None); :meth:`to_dict` writes None there.
+    ``stderr`` is None); :meth:`FitResult.to_dict` writes None there.
     """
 
     parameters: dict[str, FitParameter]
@@ -261,6 +279,8 @@ class FitResult:
         return self.comparison.rms
 
     def to_dict(self) -> dict[str, Any]:
+        """Plain data (JSON): the parameters, the fit statistics, the warnings, the
+        correlation matrix (None where a parameter is not identifiable) and the problem."""
         return {
             "parameters": {k: v.to_dict() for k, v in self.parameters.items()},
             "rms": self.rms,
@@ -349,8 +369,9 @@ def fit(
     Parameters
     ----------
     measured : MeasuredProfile
-    problem : PlaneShear or CouetteFlow
-        The cell and the starting values; parameters not in ``free`` stay fixed.
+    problem : Problem
+        The Cosserat model on a cell with a moving wall, at the starting values; parameters
+        not in ``free`` stay fixed.
     free : sequence of {"delta", "K", "L", "phi", "A"}
         delta is the moving wall's friction angle [deg], K its slip coefficient.
     method : str
@@ -358,6 +379,11 @@ def fit(
     interval_for : sequence of str
         Parameters that also get a profile-likelihood interval (default: delta).
     """
+    if getattr(problem, "model", None) != "cosserat":
+        raise ParameterError(
+            "fit() fits the Cosserat model's walls and material; "
+            "cosserat.analysis.ranking.fit_model fits any registered model"
+        )
     names = list(dict.fromkeys(free))
     bad = [n for n in names if n not in FREE_PARAMETERS]
     if bad or not names:
@@ -546,11 +572,13 @@ def _profile_interval(
 ) -> tuple[float, float]:
     """Where the refitted chi-square rises by ``scale`` (one residual variance) [units of name]."""
     others = [n for n in names if n != name]
-    phi = best.get("phi", problem.material.phi)
+    phi = best.get("phi", problem.rheology.material.phi)  # type: ignore[attr-defined]
     upper_bound = (
-        math.degrees(math.atan(math.sin(math.radians(phi)))) if name == "delta" else BOUNDS[name][1]
+        math.degrees(math.atan(math.sin(math.radians(phi))))
+        if name == "delta"
+        else fit_range(name)[1]
     )
-    lower_bound = 1.0 if name == "delta" else BOUNDS[name][0]
+    lower_bound = fit_range(name)[0]
     start = {k: best[k] for k in others}
     cache: dict[float, float] = {}
 
@@ -678,6 +706,7 @@ __all__ = [
     "FlatDirection",
     "compare",
     "fit",
+    "fit_range",
     "model_at",
     "moving_wall",
     "with_values",

@@ -27,11 +27,12 @@ import numpy as np
 from .. import config
 from ..config import DEFAULT_F
 from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
+from ..model import make_problem
 from ..model.constitutive import FloatArray
 from ..model.parameters import FULLY_ROUGH
 from ..results.wall import shear_layer_thickness
-from ..routes import RHEOLOGIES
-from .ranking import get_parameter, model_problem, model_solve, parameter_names
+from ..routes import models_for
+from .ranking import get_parameter, model_solve, parameter_names
 
 DEFAULT_GAPS = (10.0, 20.0, 40.0, 80.0, 160.0, 320.0)
 """Gaps H/d of :func:`thickness_vs_gap` by default [-]."""
@@ -337,7 +338,7 @@ def thickness_vs_gap(
     if not gap_list or any(not math.isfinite(g) or g < 2.0 for g in gap_list):
         raise ParameterError(f"gaps H/d must be finite and >= 2 (eps = d/H <= 0.5); got {gaps}")
     gap_list = sorted(set(gap_list))
-    names = [m for m, r in RHEOLOGIES.items() if cell in r.cells] if models is None else models
+    names = models_for(cell) if models is None else models
     if not names:
         raise MethodNotAvailableError(f"no registered model is defined on the {cell!r} cell")
     cp = dict(DEFAULT_CELL.get(cell, {}) if cell_parameters is None else cell_parameters)
@@ -347,7 +348,7 @@ def thickness_vs_gap(
     for model, label, own in _default_series(list(names), model_parameters or {}):
         base = {**cp, **own}
         try:
-            template = model_problem(model, cell, {**base, "eps": 1.0 / g_ref})
+            template = make_problem(model, cell, {**base, "eps": 1.0 / g_ref})
         except (ParameterError, MethodNotAvailableError, NoSolutionError) as exc:
             # this model cannot be set up on the cell with these parameters: a row saying why,
             # not the end of the whole study
@@ -365,7 +366,7 @@ def thickness_vs_gap(
             for k, expo in own_scale.items():
                 params[k] = float(get_parameter(template, k)) * (g / g_ref) ** expo
             try:
-                prof = model_solve(model_problem(model, cell, params))
+                prof = model_solve(make_problem(model, cell, params))
                 deltas.append(shear_layer_thickness(prof, f))
             except (NoSolutionError, ConvergenceError) as exc:
                 deltas.append(None)

@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import atomic_open
+from .._text import read_text
 from ..errors import CosseratError
 from ..model.constitutive import FloatArray
 
@@ -88,8 +89,10 @@ class MeasuredProfile:
     def __post_init__(self) -> None:
         d = np.asarray(self.distance_d, dtype=float)
         u = np.asarray(self.u_over_uw, dtype=float)
-        if d.ndim != 1 or d.shape != u.shape or d.size == 0:
+        if d.ndim != 1 or d.shape != u.shape:
             raise MeasurementError("distance and velocity must be 1-D arrays of the same length")
+        if d.size == 0:
+            raise MeasurementError("no points: a measured profile needs at least one")
         if self.u_err is not None:
             e = np.asarray(self.u_err, dtype=float)
             if e.shape != d.shape:
@@ -154,7 +157,17 @@ def read_profile(source: str | Path | Any, **meta: Any) -> MeasuredProfile:
     """Read a measured profile from a CSV file, CSV text, or a pandas DataFrame.
 
     Keyword arguments supply or override header values (e.g. ``d_p=1e-3`` to convert
-    ``distance_m``, ``wall_speed=0.01`` to convert ``u_m_s``).
+    ``distance_m``, ``wall_speed=0.01`` to convert ``u_m_s``). A file is read as UTF-8, with or
+    without a byte-order mark.
+
+    Raises
+    ------
+    MeasurementError
+        Malformed content (the message names the line and the column), or no data rows.
+    InputError
+        A file that is not UTF-8 text (the message names the line, column and byte).
+    OSError
+        A file that cannot be read (no such file, a directory, no permission).
     """
     if hasattr(source, "columns") and hasattr(source, "__getitem__"):
         columns = {
@@ -162,7 +175,7 @@ def read_profile(source: str | Path | Any, **meta: Any) -> MeasuredProfile:
         }
         rows_meta: dict[str, Any] = dict(getattr(source, "attrs", {}) or {})
         return _assemble(columns, {**rows_meta, **meta}, first_data_line=1)
-    text = Path(source).read_text() if _is_path(source) else str(source)
+    text = read_text(source) if _is_path(source) else str(source).removeprefix("\ufeff")
     header: dict[str, Any] = {}
     lines = text.splitlines()
     i = 0
@@ -190,6 +203,8 @@ def read_profile(source: str | Path | Any, **meta: Any) -> MeasuredProfile:
             )
         for name, cell in zip(names, row, strict=True):
             columns[name].append(_number(cell.strip(), line, name))
+    if not any(columns.values()):
+        raise MeasurementError(f"no data rows after the column header (line {i + 1})")
     arrays = {k: np.asarray(v, dtype=float) for k, v in columns.items()}
     return _assemble(arrays, {**header, **meta}, first_data_line=i + 2)
 
@@ -242,13 +257,13 @@ def _assemble(
         if bad.size:
             raise MeasurementError(
                 f"line {first_data_line + int(bad[0])}, column {ERROR_COLUMNS[v_name]!r}: "
-                f"uncertainties must be finite and > 0; got {err[bad[0]]!r}"
+                f"uncertainties must be finite and > 0; got {float(err[bad[0]]):g}"
             )
     bad = np.flatnonzero(d < 0)
     if bad.size:
         raise MeasurementError(
             f"line {first_data_line + int(bad[0])}, column {d_name!r}: distances from the wall "
-            f"must be >= 0; got {d[bad[0]]!r}"
+            f"must be >= 0; got {float(d[bad[0]]):g}"
         )
     return MeasuredProfile(d, u, err, meta)
 

@@ -15,6 +15,10 @@ Information criteria, k free parameters, n points (:func:`information_criteria`)
 The constant dropped is the same for every model fitted to the same data, so differences
 between models are meaningful and the values themselves are not.
 
+The free parameters (by default the rheology's ``default_free``) are searched over their
+declared fit ranges, in the logarithm where the declared scale is "log"
+(:mod:`cosserat.model.declare`): no range is written here.
+
 Uncertainties come from the Jacobian at the optimum (forward differences stepping away from any
 bound), propagated to the natural units of each parameter. Where a parameter is not
 identifiable (at a bound of its range, or the Jacobian is singular along it) its uncertainty is
@@ -23,13 +27,11 @@ None and the reason is given, never NaN.
 
 from __future__ import annotations
 
-import dataclasses
 import inspect
 import itertools
 import math
-import typing
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, fields, is_dataclass, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -42,41 +44,15 @@ from ..errors import (
     NoSolutionError,
     ParameterError,
 )
-from ..model import CouetteFlow, PlaneShear
-from ..model.build import GEOMETRIES, build_problem
+from ..model import Problem, make_problem
 from ..model.constitutive import FloatArray
+from ..model.rheologies import RHEOLOGIES
 from ..results.profile import Profile
-from ..routes import RHEOLOGIES, solve
+from ..routes import models_for, solve
+from ..routes.registry import find as find_route
 from .fitting import FREE_PARAMETERS as COSSERAT_PARAMETERS
 from .fitting import Comparison, model_at, moving_wall, natural_value, with_values
 from .measurements import MeasuredProfile
-
-DEFAULT_FREE: dict[str, tuple[str, ...]] = {
-    "cosserat": ("delta", "K"),
-    "mui": ("mu_s", "I_w"),
-    "ngf": ("A", "I_w"),
-}
-"""Parameters fitted by default for each model known when this was written. A model registered
-later without an entry here gets the numeric fields of its own parameter class."""
-
-BOUNDS: dict[str, tuple[float, float]] = {
-    "K": (0.0, 10.0),
-    "L": (0.5, 100.0),
-    "phi": (10.0, 60.0),
-    "A": (-0.95, 0.95),
-    "mu_s": (0.05, 1.2),
-    "mu_2": (0.06, 2.0),
-    "I_0": (1e-4, 10.0),
-    "I_w": (1e-6, 1.0),
-    "b": (1e-2, 10.0),
-}
-"""Search ranges of fittable parameters [their units]. delta's is (1 deg, fully rough); a
-parameter not listed searches between 1e-3 and 1e3 times its starting value."""
-
-NGF_BOUNDS = {"A": (0.03, 5.0)}
-"""NGF's nonlocal amplitude A (it shares its name with the Cosserat A = a2/a1): positive, and
-not below 0.03, where the cooperativity length is a few hundredths of a grain, the profile is
-the local law's (which ``mui`` covers) and NGF's solver needs over 10 times longer."""
 
 CELL_PARAMETERS = ("eps", "Ri", "B", "nu")
 """Parameters of the cell rather than of the material: d/H, R_i/H, rho_s g H/N, nu [-]."""
@@ -89,85 +65,50 @@ _SOLVE_ERRORS = (NoSolutionError, ParameterError, ConvergenceError)
 
 # --------------------------------------------------------------------------- the models
 def rheology_and_cell(problem: Any) -> tuple[str, str]:
-    """(model name, cell name) of a problem of a registered rheology.
+    """(model name, cell name) of a problem.
 
     Raises
     ------
     ParameterError
-        No registered rheology has this problem class.
+        Not a :class:`~cosserat.model.problem.Problem`.
     """
-    for name, rheology in RHEOLOGIES.items():
-        for cell, cls in rheology.cells.items():
-            if type(problem) is cls:
-                return name, cell
-    raise ParameterError(f"{type(problem).__name__} is not a problem of a registered rheology")
-
-
-def problem_class(model: str, cell: str) -> type:
-    """The problem class of ``model`` on ``cell``.
-
-    Raises
-    ------
-    ParameterError
-        Unknown model name (the message lists the registered ones).
-    MethodNotAvailableError
-        The model is not defined on this cell (the message lists its cells).
-    """
-    if model not in RHEOLOGIES:
-        raise ParameterError(f"unknown model {model!r}: registered are {', '.join(RHEOLOGIES)}")
-    cells = RHEOLOGIES[model].cells
-    if cell not in cells:
-        raise MethodNotAvailableError(
-            f"model {model!r} has no {cell!r} cell; it is defined on {', '.join(cells)}"
+    if not isinstance(problem, Problem):
+        raise ParameterError(
+            f"{type(problem).__name__} is not a Problem(cell, rheology) of a registered rheology"
         )
-    return cells[cell]
-
-
-def _nested(problem: Any) -> dict[str, Any]:
-    """The parameter objects inside a problem (its dataclass-valued fields)."""
-    return {
-        f.name: getattr(problem, f.name)
-        for f in fields(problem)
-        if is_dataclass(getattr(problem, f.name, None))
-    }
+    return problem.model, problem.cell_name
 
 
 def parameter_names(problem: Any) -> list[str]:
-    """Every numeric parameter name :func:`set_parameters` accepts for ``problem``."""
-    names = [f.name for f in fields(problem) if not is_dataclass(getattr(problem, f.name, None))]
-    for sub in _nested(problem).values():
-        names += [f.name for f in fields(sub)]
-    if isinstance(problem, PlaneShear | CouetteFlow):
-        names += list(COSSERAT_PARAMETERS)
-    return list(dict.fromkeys(names))
+    """Every numeric parameter name :func:`set_parameters` accepts for ``problem`` (its
+    declared keys, :meth:`~cosserat.model.problem.Problem.declared`)."""
+    return [k for k, p in problem.declared().items() if p.numeric]
 
 
 def get_parameter(problem: Any, name: str) -> Any:
-    """Value of parameter ``name`` of ``problem`` (its own field, or one of a parameter object).
+    """Value of parameter ``name`` of ``problem`` (its command-line key; I_w as it drives the
+    flow, its default included).
 
     For the Cosserat model ``delta`` is the moving wall's friction angle [deg] (the fully rough
     wall as its angle) and ``K`` its slip coefficient.
     """
-    if isinstance(problem, PlaneShear | CouetteFlow) and name in COSSERAT_PARAMETERS:
+    if problem.model == "cosserat" and name in COSSERAT_PARAMETERS:
         return natural_value(problem, name)
-    if name in {f.name for f in fields(problem)}:
-        return getattr(problem, name)
-    for sub in _nested(problem).values():
-        if name in {f.name for f in fields(sub)}:
-            return getattr(sub, name)
-    raise ParameterError(
-        f"{type(problem).__name__} has no parameter {name!r}; it has "
-        f"{', '.join(parameter_names(problem))}"
-    )
+    values = {**problem.values(), **problem.cell_values()}
+    if name not in values:
+        raise ParameterError(
+            f"the {problem.model} rheology on the {problem.cell_name} cell has no parameter "
+            f"{name!r}; it has {', '.join(parameter_names(problem))}"
+        )
+    return values[name]
 
 
 def set_parameters(problem: Any, values: Mapping[str, Any]) -> Any:
-    """``problem`` with parameters replaced by name (validated again by the classes).
-
-    Names are the problem's own fields (``eps``, ``B``, ``Ri``, ``I_w``, ...) or the fields of
-    its parameter objects (``phi``, ``mu_s``, ...); for the Cosserat model ``delta`` and ``K``
-    are the moving wall's (both walls when the plane walls are identical,
-    :func:`cosserat.analysis.fitting.with_values`).
+    """``problem`` with parameters replaced by key (validated again): the problem's
+    :meth:`~cosserat.model.problem.Problem.with_values`, and for the Cosserat model's
+    ``delta``, ``K`` and material :func:`cosserat.analysis.fitting.with_values` (a wall made
+    rougher than fully rough by a lower phi is clamped to it; both walls change together when
+    the plane cell's walls are alike).
 
     Raises
     ------
@@ -175,63 +116,13 @@ def set_parameters(problem: Any, values: Mapping[str, Any]) -> Any:
         A name the problem does not have, or a value out of its bounds.
     """
     rest = dict(values)
-    if isinstance(problem, PlaneShear | CouetteFlow):
+    if problem.model == "cosserat":
         wall = {k: float(rest.pop(k)) for k in list(rest) if k in COSSERAT_PARAMETERS}
         if wall:
             problem = with_values(problem, wall)
     if not rest:
         return problem
-    own = {f.name for f in fields(problem)}
-    direct = {k: rest.pop(k) for k in list(rest) if k in own}
-    for attr, sub in _nested(problem).items():
-        mine = {k: rest.pop(k) for k in list(rest) if k in {f.name for f in fields(sub)}}
-        if mine:
-            direct[attr] = replace(sub, **mine)
-    if rest:
-        raise ParameterError(
-            f"{type(problem).__name__} has no parameter(s) {', '.join(rest)}; it has "
-            f"{', '.join(parameter_names(problem))}"
-        )
-    return replace(problem, **direct)
-
-
-def model_problem(model: str, cell: str, parameters: Mapping[str, Any] | None = None) -> Any:
-    """The problem of ``model`` on ``cell`` with ``parameters``, the model's defaults elsewhere.
-
-    Parameters
-    ----------
-    model : str
-        A registered rheology (``cosserat``, ``mui``, ...).
-    cell : str
-        ``plane``, ``couette`` (``channel`` where registered).
-    parameters : mapping
-        ``eps`` (required by every cell) and any other parameter by name
-        (:func:`set_parameters`); None values are left at the defaults. For the Cosserat model
-        ``delta`` may be "fully-rough".
-
-    Raises
-    ------
-    ParameterError, MethodNotAvailableError
-        Unknown model, a cell the model lacks, a parameter this problem does not have.
-    """
-    cls = problem_class(model, cell)
-    params = {k: v for k, v in (parameters or {}).items() if v is not None}
-    if "eps" not in params:
-        raise ParameterError("the cell parameters need eps = d/H")
-    if model == "cosserat" and cell in GEOMETRIES:
-        return build_problem({"geometry": cell, **params})
-    hints = typing.get_type_hints(cls)
-    kwargs: dict[str, Any] = {}
-    for f in fields(cls):
-        if f.name in params:
-            kwargs[f.name] = params.pop(f.name)
-        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
-            kind = hints.get(f.name)
-            if isinstance(kind, type) and is_dataclass(kind):
-                kwargs[f.name] = kind()  # the parameter class's defaults
-            else:
-                raise ParameterError(f"{cls.__name__} needs {f.name!r}")
-    return set_parameters(cls(**kwargs), params)
+    return problem.with_values(rest)
 
 
 model_velocity = model_at
@@ -243,31 +134,27 @@ def model_solve(problem: Any, points: int = 3, **options: Any) -> Profile:
     by its numerical route at ``rtol`` = :data:`cosserat.config.RTOL` (unless given): the fit's
     finite-difference steps are far above that. A coarse output grid: the fit evaluates the
     dense solution at the data points."""
-    model, _ = rheology_and_cell(problem)
-    routes = RHEOLOGIES[model].routes
-    if type(problem) in routes.get("closed-form", {}) and not options:
+    model, cell = rheology_and_cell(problem)
+    if find_route(model, cell, "closed-form") is not None and not options:
         try:
             return solve(problem, method="closed-form", check=False, points=points)
         except MethodNotAvailableError:
             pass
-    route = routes["numerical"][type(problem)]
-    if "rtol" in inspect.signature(route).parameters:
+    route = find_route(model, cell, "numerical")
+    if route is not None and "rtol" in inspect.signature(route).parameters:
         options = {"rtol": config.RTOL, **options}
     return solve(problem, method="numerical", check=False, points=points, **options)
 
 
 def default_free(model: str, problem: Any) -> tuple[str, ...]:
-    """The parameters fitted by default: :data:`DEFAULT_FREE`, or for a model registered
-    later the numeric fields of its parameter class."""
-    if model in DEFAULT_FREE:
-        names = tuple(n for n in DEFAULT_FREE[model] if n in parameter_names(problem))
-        if names:
-            return names
-    subs = [s for a, s in _nested(problem).items() if a not in ("material",)]
-    out = []
-    for sub in subs:
-        out += [f.name for f in fields(sub) if isinstance(getattr(sub, f.name), float)]
-    return tuple(out)
+    """The parameters fitted by default: the rheology's
+    :attr:`~cosserat.model.rheologies.base.Rheology.default_free` that this problem has, or else
+    every parameter of the rheology with a declared fit range."""
+    names = tuple(n for n in RHEOLOGIES[model].default_free if n in parameter_names(problem))
+    if names:
+        return names
+    own = RHEOLOGIES[model].declared(problem.cell_name)
+    return tuple(k for k, p in own.items() if p.fittable and p.numeric)
 
 
 # --------------------------------------------------------------------------- statistics
@@ -373,26 +260,31 @@ class ModelFit:
         }
 
 
-def _bounds(name: str, problem: Any, start: float, model: str) -> tuple[float, float]:
-    if name == "delta" and isinstance(problem, PlaneShear | CouetteFlow):
-        return 1.0, problem.material.fully_rough_delta
-    if model == "ngf" and name in NGF_BOUNDS:
-        return NGF_BOUNDS[name]
-    if name in BOUNDS:
-        return BOUNDS[name]
+def _bounds(name: str, problem: Any, start: float) -> tuple[tuple[float, float], bool]:
+    """The search range of ``name`` and whether it is searched in its logarithm: the declared
+    fit range and scale (delta's capped at the fully rough angle); a parameter without one
+    searches between 1e-3 and 1e3 times its starting value, in the logarithm."""
+    declared = problem.declared().get(name)
+    if declared is not None and declared.fit_range is not None:
+        lo, hi = declared.fit_range
+        if name == "delta" and problem.model == "cosserat":
+            hi = min(hi, problem.rheology.material.fully_rough_delta)
+        return (lo, hi), declared.scale == "log"
     if start > 0.0:
-        return start * 1e-3, start * 1e3
+        return (start * 1e-3, start * 1e3), True
     if start < 0.0:
-        return start * 1e3, start * 1e-3
-    return -1.0, 1.0
+        return (start * 1e3, start * 1e-3), False
+    return (-1.0, 1.0), False
 
 
 class _Coordinates:
-    """Internal coordinates: the logarithm for a positive range wider than a factor of 100."""
+    """Internal coordinates: the logarithm where the range's declared scale is "log"."""
 
-    def __init__(self, names: Sequence[str], bounds: Sequence[tuple[float, float]]):
+    def __init__(
+        self, names: Sequence[str], bounds: Sequence[tuple[float, float]], log: Sequence[bool]
+    ):
         self.names = list(names)
-        self.log = np.array([lo > 0.0 and hi / lo > 100.0 for lo, hi in bounds])
+        self.log = np.array([bool(x) for x in log], dtype=bool)
         lo = np.array([b[0] for b in bounds], dtype=float)
         hi = np.array([b[1] for b in bounds], dtype=float)
         self.lo = np.where(self.log, np.log(np.where(self.log, lo, 1.0)), lo)
@@ -506,8 +398,8 @@ def fit_model(
         raise ParameterError(f"{measured.n} points cannot determine {len(names)} parameters")
     measured.xi(problem.eps, moving_wall(problem)[0])  # the points lie in the gap
     start = np.array([float(get_parameter(problem, n)) for n in names], dtype=float)
-    bounds = [_bounds(n, problem, s, model) for n, s in zip(names, start, strict=True)]
-    coords = _Coordinates(names, bounds)
+    ranges = [_bounds(n, problem, s) for n, s in zip(names, start, strict=True)]
+    coords = _Coordinates(names, [r for r, _ in ranges], [log for _, log in ranges])
     obj = _Objective(measured, problem, coords, dict(options))
     absolute = measured.u_err is not None
     warnings: list[str] = []
@@ -813,9 +705,7 @@ def rank_models(
     if not cell:
         raise ParameterError("say which cell: geometry = plane | couette in the cell parameters")
     params = {k: v for k, v in cell_parameters.items() if k != "geometry"}
-    names = (
-        [m for m, r in RHEOLOGIES.items() if cell in r.cells] if models is None else list(models)
-    )
+    names = models_for(cell) if models is None else list(models)
     for m in names:
         if m not in RHEOLOGIES:
             raise ParameterError(f"unknown model {m!r}: registered are {', '.join(RHEOLOGIES)}")
@@ -823,7 +713,7 @@ def rank_models(
     for m in names:
         try:
             start = {**params, **dict((model_parameters or {}).get(m, {}))}
-            problem = model_problem(m, cell, start)
+            problem = make_problem(m, cell, start)
         except (MethodNotAvailableError, ParameterError) as exc:
             # the model is not defined on this cell, or needs what the cell does not give
             fits.append(ModelFit(model=m, cell=cell, status="failed", message=str(exc)))
@@ -838,19 +728,17 @@ def rank_models(
 
 
 __all__ = [
-    "DEFAULT_FREE",
     "Estimate",
     "ModelFit",
     "Ranking",
+    "default_free",
     "fit_model",
     "get_parameter",
     "information_criteria",
     "measured_cell",
-    "model_problem",
     "model_velocity",
     "moving_wall",
     "parameter_names",
-    "problem_class",
     "rank_models",
     "set_parameters",
 ]

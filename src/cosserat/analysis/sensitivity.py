@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from .. import config
 from ..errors import NoSolutionError
 from ..model import Problem
-from ..model.parameters import Material
 
 
 @dataclass(frozen=True)
@@ -25,11 +24,11 @@ def has_solution(problem: Problem, **options: object) -> bool:
 
     Examples
     --------
-    >>> from cosserat import CouetteFlow, Material, Wall
+    >>> from cosserat import Cosserat, Couette, Problem, Wall
     >>> from cosserat.analysis.sensitivity import has_solution
-    >>> has_solution(CouetteFlow(material=Material(), wall=Wall(delta=20.0), eps=0.04, Ri=1.0))
+    >>> has_solution(Problem(Couette(eps=0.04, Ri=1.0), Cosserat(wall=Wall(delta=20.0))))
     True
-    >>> has_solution(CouetteFlow(material=Material(), wall=Wall(delta=5.0), eps=0.04, Ri=1.0))
+    >>> has_solution(Problem(Couette(eps=0.04, Ri=1.0), Cosserat(wall=Wall(delta=5.0))))
     False
     """
     from ..routes import solve
@@ -54,8 +53,7 @@ def existence_bound_A(
     """
 
     def with_A(a: float) -> Problem:
-        m = problem.material
-        return replace(problem, material=Material(m.phi, L=m.L, A=a))
+        return problem.with_values({"A": a})
 
     solves = 0
     if not has_solution(with_A(hi)):

@@ -3,18 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..config import DEFAULT_F
 from ..errors import ConvergenceError, NoSolutionError, ParameterError
-from ..model import CouetteFlow, PlaneShear
 from ..results.wall import shear_layer_thickness
 from ..routes import solve
-from ..routes.numerical import wall_quantities
-
-BATCH_PROBLEMS = (PlaneShear, CouetteFlow)
-"""Problems the compiled batch (:func:`cosserat.routes.numerical.wall_quantities`) solves."""
+from ..routes.numerical import is_batched, wall_quantities
 
 if TYPE_CHECKING:
     from ..model import Problem
@@ -42,22 +38,23 @@ def thickness_curve(
 
     An eps at which the model has no real solution (:class:`NoSolutionError`) gives None and
     its reason in ``failures``; other errors propagate. The numerical route of the Cosserat
-    model on plane shear and Couette flow (:data:`BATCH_PROBLEMS`) solves the whole curve in
-    one call of the compiled batch kernel (the same kernel as a single solve); the other
-    routes, cells and rheologies solve eps by eps, calling ``progress(i, n)`` after each.
+    model on plane shear and Couette flow (:func:`cosserat.routes.numerical.is_batched`)
+    solves the whole curve in one call of the compiled batch kernel (the same kernel as a
+    single solve); the other routes, cells and rheologies solve eps by eps, calling
+    ``progress(i, n)`` after each.
 
     Examples
     --------
-    >>> from cosserat import Material, PlaneShear, Wall
+    >>> from cosserat import Cosserat, Plane, Problem, Wall
     >>> from cosserat.analysis import thickness_curve
-    >>> problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01)
+    >>> problem = Problem(Plane(eps=0.01), Cosserat(wall=Wall(delta=20.0)))
     >>> curve = thickness_curve(problem, [1e-2, 1e-4, 1e-6])
     >>> [round(D, 2) for D in curve.Delta]
     [18.35, 17.67, 17.67]
     """
-    problems = [replace(problem, eps=eps) for eps in eps_values]
+    problems = [problem.with_values({"eps": eps}) for eps in eps_values]
     eps_list = [float(e) for e in eps_values]
-    if method == "numerical" and isinstance(problem, BATCH_PROBLEMS):
+    if method == "numerical" and is_batched(problem):
         unknown = sorted(set(options) - {"rtol", "atol"})
         if unknown:
             raise ParameterError(

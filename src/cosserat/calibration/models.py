@@ -14,6 +14,7 @@ uses it; ``fields=("u", "stress_ratio")`` leaves spin out.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -22,11 +23,13 @@ from typing import Any
 import numpy as np
 
 from .. import config
-from ..analysis.ranking import model_problem, model_solve
+from ..analysis.ranking import model_solve
 from ..errors import ConvergenceError, NoSolutionError, ParameterError
+from ..model.build import make_problem, problem_parameters
+from ..model.cells import CELLS
 from ..model.constitutive import FloatArray
 from ..model.declare import Param
-from ..routes import RHEOLOGIES
+from ..model.rheologies import RHEOLOGIES
 from ..routes.numerical import predict_many
 from .data import FIELDS, RunData
 
@@ -61,88 +64,45 @@ class ModelParam:
         return self.declared.role
 
 
-def _p(
-    key: str,
-    meaning: str,
-    unit: str,
-    default: float,
-    fit_range: tuple[float, float],
-    role: str,
-    scale: str = "linear",
-    bounds: tuple[float, float] | None = None,
-    free: bool = True,
-) -> ModelParam:
-    lo, hi = bounds or (-math.inf, math.inf)
-    return ModelParam(
-        key,
-        Param(
-            name=key,
-            meaning=meaning,
-            unit=unit,
-            default=default,
-            bounds=(lo, hi),
-            fit_range=fit_range,
-            scale=scale,
-            role=role,
-        ),  # type: ignore[arg-type]
-        free,
-    )
-
-
-# The search ranges of the fits (the old ranking.BOUNDS); the declarations of issue 17 take
-# these over when the cell x rheology composition lands.
-_PARAMS: dict[str, tuple[ModelParam, ...]] = {
-    "cosserat": (
-        _p("phi", "angle of internal friction", "deg", config.PHI, (10.0, 60.0), "material"),
-        _p(
-            "L",
-            "material length over grain diameter",
-            "-",
-            config.L,
-            (0.5, 100.0),
-            "material",
-            "log",
-        ),
-        _p(
-            "A", "yield-condition ratio a2/a1", "-", config.A, (-0.95, 0.95), "material", free=False
-        ),
-        _p(
-            "roughness",
-            "tan(delta)/sin(phi) of the wall (1: fully rough)",
-            "-",
-            0.7,
-            (0.05, 1.0),
-            "wall",
-        ),
-        _p("K", "wall slip coefficient", "-", config.K, (0.0, 10.0), "wall"),
-    ),
-    "mui": (
-        _p("mu_s", "static friction coefficient", "-", config.MUI_MU_S, (0.05, 0.6), "material"),
-        _p(
-            "mu_2",
-            "limiting friction coefficient",
-            "-",
-            config.MUI_MU_2,
-            (0.61, 2.0),
-            "material",
-            free=False,
-        ),
-        _p("I_0", "inertial number scale", "-", config.MUI_I0, (1e-4, 10.0), "material", "log"),
-    ),
-    "ngf": (
-        _p("mu_s", "static friction coefficient", "-", 0.3819, (0.05, 0.6), "material"),
-        _p(
-            "b",
-            "slope of the local law mu = mu_s + b I",
-            "-",
-            0.9377,
-            (1e-4, 10.0),
-            "material",
-            "log",
-        ),
-        _p("A", "nonlocal amplitude", "-", 0.48, (0.03, 5.0), "material", "log"),
-    ),
+HELD: dict[str, dict[str, str]] = {
+    "cosserat": {
+        "A": "a2/a1 of the yield condition changes the layer's width much as L does: velocity "
+        "profiles do not tell the two apart (free it with --free A)",
+    },
+    "mui": {
+        "mu_2": "at the small inertial numbers of slow flow mu(I) depends on mu_2 and I_0 only "
+        "through (mu_2 - mu_s)/I_0 (free it with --free mu_2)",
+    },
 }
+"""Material parameters a calibration holds at their declared defaults unless freed, and why."""
+
+ROUGHNESS = Param(
+    name="roughness",
+    meaning="the wall's roughness tan(delta)/sin(phi) (1: fully rough, eqn-bc_fullyrough)",
+    unit="-",
+    default=0.7,
+    bounds=(0.0, 1.0),
+    closed=(False, True),
+    fit_range=(0.05, 1.0),
+    role="wall",
+    source="the calibration's coordinate for the declared delta: its upper end, fully rough, "
+    "is tan(delta) = sin(phi), which moves with phi",
+)
+"""The Cosserat wall's friction as a calibration fits it (``docs/calibration.md``): the declared
+``delta`` through ``tan(delta) = roughness * sin(phi)``, so that "fully rough" is the end of a
+fixed range rather than a bound tied to another parameter."""
+
+WALL_KEYS = {"delta": "roughness", "K": "K"}
+"""The declared wall keys a calibration fits, by their calibration names; the fixed wall's own
+(``delta_lower``, ``K_lower``) are the same parameters of another wall kind."""
+
+
+def _declared(model: str, cells: Sequence[str]) -> dict[str, Param]:
+    out: dict[str, Param] = {}
+    for cell in cells:
+        for key, p in problem_parameters(model, cell).items():
+            out.setdefault(key, p)
+    return out
 
 
 class Model:
@@ -160,8 +120,6 @@ class Model:
     def __init__(self, name: str, local_spin: bool = True):
         if name not in RHEOLOGIES:
             raise ParameterError(f"unknown model {name!r}: registered are {', '.join(RHEOLOGIES)}")
-        if name not in _PARAMS:
-            raise ParameterError(f"model {name!r} has no calibration parameters declared")
         self.name = name
         self.local_spin = local_spin
         self._guess: dict[str, float] = {}  # Couette m(0) of the last solve of each run
@@ -184,10 +142,32 @@ class Model:
         return tuple(f for f in FIELDS if f != "omega")
 
     def parameters(self) -> tuple[ModelParam, ...]:
-        return _PARAMS[self.name]
+        """The model's material and wall parameters with a declared fit range, from the
+        declarations (``cosserat.model.build.problem_parameters``); the Cosserat wall's delta
+        as its :data:`ROUGHNESS`."""
+        declared = _declared(self.name, [c for c in ("plane", "couette") if c in self.cells()])
+        held = HELD.get(self.name, {})
+        out = []
+        for key, p in declared.items():
+            if p.fit_range is None or p.role not in ("material", "wall"):
+                continue
+            if p.default is None:
+                continue  # a form of the law chosen by its absence (NGF's linear local law)
+            if p.role == "wall":
+                if key not in WALL_KEYS:
+                    continue  # the fixed wall's keys: the same parameters, another wall kind
+                if key == "delta" and self.name == "cosserat":
+                    out.append(ModelParam("roughness", ROUGHNESS, True))
+                    continue
+            if self.name == "mui" and key == "mu_s":
+                mu_2 = declared["mu_2"].default
+                lo, hi = p.fit_range
+                p = dataclasses.replace(p, fit_range=(lo, min(hi, 0.98 * mu_2)))
+            out.append(ModelParam(key, dataclasses.replace(p, name=key), key not in held))
+        return tuple(out)
 
     def cells(self) -> tuple[str, ...]:
-        return tuple(RHEOLOGIES[self.name].cells)
+        return tuple(c for c in CELLS if RHEOLOGIES[self.name].supports(c))
 
     # ------------------------------------------------------------------ problems
     def problem(self, run: RunData, values: Mapping[str, Any]) -> Any:
@@ -213,7 +193,7 @@ class Model:
             if run.cell == "plane" and run.walls["fixed"] != run.walls["moving"]:
                 params["delta_lower"] = angle(float(values[("roughness", "fixed")]))
                 params["K_lower"] = float(values[("K", "fixed")])
-            return model_problem("cosserat", run.cell, params)
+            return make_problem("cosserat", run.cell, params)
         if run.I_w is None:
             raise ParameterError(
                 f"run {run.name}: {self.name} needs the wall's inertial number I_w, and the "
@@ -221,7 +201,7 @@ class Model:
             )
         params.update(material)
         params["I_w"] = run.I_w
-        return model_problem(self.name, run.cell, params)
+        return make_problem(self.name, run.cell, params)
 
     def predict(
         self, run: RunData, values: Mapping[Any, Any], fields: Sequence[str]
@@ -342,7 +322,11 @@ def models(names: Sequence[str] | None, local_spin: bool = True) -> list[Model]:
     ParameterError
         An unknown name, or a name given twice.
     """
-    chosen = list(_PARAMS) if names is None else list(names)
+    chosen = (
+        [n for n, law in RHEOLOGIES.items() if law.supports("plane") or law.supports("couette")]
+        if names is None
+        else list(names)
+    )
     twice = sorted({n for n in chosen if chosen.count(n) > 1})
     if twice:
         raise ParameterError(f"model(s) named twice: {', '.join(twice)}")

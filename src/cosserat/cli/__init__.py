@@ -2,8 +2,12 @@
 
 Bad input (a :class:`~cosserat.errors.CosseratError`, or a usage error) exits with status 2 and
 one line on stderr saying what is wrong; anything else is a bug and shows as one (a traceback,
-exit status 1). Defaults are the paper's, from :mod:`cosserat.config`, filled in by
-:func:`cosserat.model.build_problem` (the same as for sweeps).
+exit status 1). Ctrl-C and SIGTERM stop the command as cleanly (worker processes stopped,
+temporary files removed, finished outputs kept) and exit with one line and the shell's status,
+130 (128 + SIGINT) or 143 (128 + SIGTERM). A full disk (or quota, or read-only file system)
+is reported in one line too, exit status 2 (:data:`FULL`). Defaults are the paper's, from
+:mod:`cosserat.config`, filled in by :func:`cosserat.model.build_problem` (the same as for
+sweeps).
 
 Each command lives in its own module with an ``add_parsers(sub)`` function; :data:`COMMANDS`
 lists them in the order ``cosserat --help`` shows them.
@@ -12,13 +16,28 @@ lists them in the order ``cosserat --help`` shows them.
 from __future__ import annotations
 
 import argparse
+import contextlib
+import errno
+import signal
 import sys
-from collections.abc import Sequence
+import threading
+from collections.abc import Iterator, Sequence
 
+from .._atomic import destination_of
 from .._version import __version__
 from ..errors import CosseratError
 from . import calibrate, cell, data, dem, models, paper, solve, sweep
-from .common import Parser, UsageError, add_quiet, problem_from_args, set_quiet
+from .common import (
+    Parser,
+    Terminated,
+    UsageError,
+    add_quiet,
+    interrupt_hint,
+    interrupted,
+    problem_from_args,
+    set_interrupt_hint,
+    set_quiet,
+)
 
 COMMANDS = (solve, cell, paper, data, calibrate, sweep, dem, models)
 """The command modules, each with ``add_parsers(sub)``."""
@@ -37,23 +56,78 @@ def make_parser() -> argparse.ArgumentParser:
     return parser
 
 
+INTERRUPTED = 128 + signal.SIGINT
+"""Exit status after Ctrl-C (128 + SIGINT, the shell's convention)."""
+TERMINATED = 128 + signal.SIGTERM
+"""Exit status after SIGTERM (128 + SIGTERM)."""
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status (0, or 2 for bad input)."""
+    """Run the command line; returns the exit status (0; 2 for bad input; 130 or 143 when
+    interrupted by Ctrl-C or SIGTERM)."""
     parser = make_parser()
-    try:
-        args = parser.parse_args(argv)
-        set_quiet(getattr(args, "quiet", False))
-        if getattr(args, "f", None) is not None and not 0.0 < args.f < 1.0:
-            raise UsageError(f"--f must satisfy 0 < f < 1; got {args.f:g}")
-        args.func(args)
-    except UsageError as exc:
-        print(" ".join(str(exc).split()), file=sys.stderr)
-        return 2
-    except CosseratError as exc:  # a model or input problem; anything else is a bug
-        message = " ".join(str(exc).split()) or type(exc).__name__
-        print(f"cosserat: error: {message}", file=sys.stderr)
-        return 2
+    with _sigterm_as_interruption():
+        set_interrupt_hint(None)
+        try:
+            args = parser.parse_args(argv)
+            set_quiet(getattr(args, "quiet", False))
+            if getattr(args, "f", None) is not None and not 0.0 < args.f < 1.0:
+                raise UsageError(f"--f must satisfy 0 < f < 1; got {args.f:g}")
+            args.func(args)
+        except UsageError as exc:
+            print(" ".join(str(exc).split()), file=sys.stderr)
+            return 2
+        except CosseratError as exc:  # a model or input problem; anything else is a bug
+            message = " ".join(str(exc).split()) or type(exc).__name__
+            print(f"cosserat: error: {message}", file=sys.stderr)
+            return 2
+        except OSError as exc:
+            if exc.errno not in FULL:  # anything else is a bug, or a CosseratError already
+                raise
+            print(f"cosserat: error: {_full_message(exc)}", file=sys.stderr)
+            return 2
+        except (KeyboardInterrupt, SystemError) as exc:
+            if not interrupted(exc):
+                raise
+            hint = interrupt_hint()
+            newline = "\n" if sys.stderr.isatty() else ""  # off the terminal's "^C"
+            print(f"{newline}cosserat: interrupted{'; ' + hint if hint else ''}", file=sys.stderr)
+            return TERMINATED if interrupted(exc, Terminated) else INTERRUPTED
     return 0
+
+
+FULL = {getattr(errno, e) for e in ("ENOSPC", "EDQUOT", "EFBIG", "EROFS") if hasattr(errno, e)}
+"""Errors of a write the command line reports in one line (exit 2) wherever they arise: a full
+disk, a quota, a file too large, a read-only file system. They are never bugs, and every
+output is written whole or not at all (:mod:`cosserat._atomic`), so nothing half-written is
+left behind."""
+
+
+def _full_message(exc: OSError) -> str:
+    reason = exc.strerror or str(exc)
+    if not exc.filename:
+        return f"cannot write the output: {reason[:1].lower() + reason[1:]}"
+    name = destination_of(exc.filename)
+    return f"cannot write {name}: {reason[:1].lower() + reason[1:]}"
+
+
+def _raise_terminated(signum: int, frame: object) -> None:
+    raise Terminated
+
+
+@contextlib.contextmanager
+def _sigterm_as_interruption() -> Iterator[None]:
+    """SIGTERM raises :class:`Terminated` (a KeyboardInterrupt), so that a terminated command
+    cleans up as after Ctrl-C (Python's default for SIGTERM ends at once, skipping it). Only
+    in the main thread, where Python runs signal handlers; the old handler comes back after."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -30,7 +30,7 @@ from .common import (
     check_outputs,
     deliver,
     model_problem,
-    problem_parameters,
+    option_values,
     solver_options,
     table,
 )
@@ -88,7 +88,7 @@ def compute(args: argparse.Namespace) -> tuple[dict[str, Any], Any, CouetteCell]
         raise ParameterError(
             f"--depth must satisfy 0 < depth <= fill depth = {cell.fill_depth:g} m; got {depth:g}"
         )
-    given = problem_parameters(args, cell.eps)
+    given = option_values(args, cell.eps)
     given["Ri"] = cell.Ri
     problem = model_problem("cosserat", "couette", given, {})
     profile = solve(problem, method=args.method, points=args.points, **solver_options(args))

@@ -8,15 +8,17 @@ import argparse
 import json
 import sys
 from collections.abc import Callable
-from dataclasses import MISSING
 from pathlib import Path
 from typing import Any, NoReturn
 
 from .. import config
-from ..model import Problem, build_problem
-from ..model.build import DEFAULTS, ROUGH_WORDS
-from ..model.parameters import FULLY_ROUGH
-from ..routes import METHODS, RHEOLOGIES
+from ..errors import InputError
+from ..model import Problem
+from ..model import problem_parameters as declared_parameters
+from ..model.cells import CELLS
+from ..model.declare import Param
+from ..model.parameters import FULLY_ROUGH, ROUGH_WORDS
+from ..routes import METHODS
 from . import files, params
 from .params import UsageError
 
@@ -28,11 +30,8 @@ PRESETS = ("mustard", "poppy", "glass")
 MAX_POINTS = 1_000_000
 """Most output points ``solve --points`` accepts (more would only exhaust memory)."""
 FORMATS = ("text", "json", "csv")
-CELL_DEFAULTS = {"couette": ("Ri",)}
-"""Cell parameters whose command-line default (:data:`cosserat.model.build.DEFAULTS`) also
-applies to the other models on that cell (``--Ri``'s help states it)."""
 
-_STATE = {"quiet": False}
+_STATE: dict[str, Any] = {"quiet": False, "interrupt_hint": None}
 
 
 class Parser(argparse.ArgumentParser):
@@ -61,24 +60,28 @@ def positive_int(text: str) -> int:
     return value
 
 
-def default_text(name: str) -> str:
-    """The default of parameter ``name`` as help texts show it."""
-    return config.text(DEFAULTS[name])
+def _declared(name: str, cell: str) -> Param:
+    """The declaration of the Cosserat model's (or the cell's) parameter ``name``."""
+    return declared_parameters(params.DEFAULT_MODEL, cell)[name]
 
 
-def _help(name: str, default: str) -> str:
-    meaning, unit = params.COSSERAT_PARAMS[name]
-    return f"{meaning} [{unit}] (default: {default})"
+def default_text(name: str, cell: str = "plane") -> str:
+    """The declared default of parameter ``name`` as help texts show it."""
+    return _declared(name, cell).default_text()
+
+
+def _help(name: str, cell: str, default: str | None = None) -> str:
+    p = _declared(name, cell)
+    return f"{p.meaning} [{p.unit}] (default: {default or p.default_text()})"
 
 
 def cell_help(cell: str) -> str:
-    """One line on a cell for ``--help`` (its problem classes' docstrings for a new cell)."""
+    """One line on a cell for ``--help`` (the first line of a new cell's docstring)."""
     if cell in GEOMETRIES:
         return GEOMETRIES[cell]
-    for rheology in RHEOLOGIES.values():
-        cls = rheology.cells.get(cell)
-        if cls is not None and cls.__doc__:
-            return cls.__doc__.strip().splitlines()[0].rstrip(".")
+    cls = CELLS.get(cell)
+    if cls is not None and cls.__doc__:
+        return cls.__doc__.strip().splitlines()[0].rstrip(".")
     return cell
 
 
@@ -86,7 +89,7 @@ def cell_help(cell: str) -> str:
 def add_model(p: argparse.ArgumentParser, cell: str | None = None) -> None:
     """``--model`` and ``--param`` (``cell``: the sub-command's cell, for the help text)."""
     g = p.add_argument_group("model")
-    models = [m for m in RHEOLOGIES if cell is None or cell in RHEOLOGIES[m].cells]
+    models = list(params.RHEOLOGIES) if cell is None else params.cells().get(cell, [])
     g.add_argument(
         "--model",
         default=params.DEFAULT_MODEL,
@@ -109,49 +112,42 @@ def add_model(p: argparse.ArgumentParser, cell: str | None = None) -> None:
 
 
 def applies(name: str, cell: str) -> bool:
-    """True if the :func:`build_problem` parameter ``name`` applies to ``cell``."""
-    from ..model import build
-
-    where = build.APPLIES_TO.get(name)
-    also = getattr(build, "ALSO_APPLIES_TO", {}).get(name, ())
-    return where is None or where == cell or cell in also
+    """True if the Cosserat model's (or the cell's) parameter ``name`` applies to ``cell``
+    (its declaration, :func:`cosserat.model.problem_parameters`)."""
+    return name in declared_parameters(params.DEFAULT_MODEL, cell)
 
 
 def add_material_and_walls(p: argparse.ArgumentParser, cell: str, ri: bool = True) -> None:
-    """The Cosserat model's options (``--model cosserat``) that apply to ``cell``, with the
-    paper's defaults (``ri=False``: no ``--Ri``, for a cell given in SI units)."""
+    """The Cosserat model's options (``--model cosserat``) and the cell's that apply to
+    ``cell``, with their declared defaults (``ri=False``: no ``--Ri``, for a cell given in SI
+    units). Help texts are the declarations' meaning, unit and default."""
     g = p.add_argument_group("material and walls of the Cosserat model (defaults: the paper's)")
-    g.add_argument("--phi", type=float, help=_help("phi", f"{default_text('phi')} deg"))
+    g.add_argument("--phi", type=float, help=_help("phi", cell))
     wall = g.add_mutually_exclusive_group()
-    wall.add_argument(
-        "--delta",
-        type=angle_or_rough,
-        help=_help("delta", f"{default_text('delta')} deg"),
-    )
+    wall.add_argument("--delta", type=angle_or_rough, help=_help("delta", cell))
     wall.add_argument(
         "--fully-rough", action="store_true", help="fully rough wall(s): tan(delta) = sin(phi)"
     )
-    g.add_argument("--L", type=float, help=_help("L", default_text("L")))
-    g.add_argument("--A", type=float, help=_help("A", default_text("A")))
-    g.add_argument("--K", type=float, help=_help("K", default_text("K")))
+    g.add_argument("--L", type=float, help=_help("L", cell))
+    g.add_argument("--A", type=float, help=_help("A", cell))
+    g.add_argument("--K", type=float, help=_help("K", cell))
     if applies("Ri", cell) and ri:
-        g.add_argument("--Ri", type=float, help=_help("Ri", default_text("Ri")))
+        g.add_argument("--Ri", type=float, help=_help("Ri", cell))
     if applies("delta_lower", cell):
         g.add_argument(
-            "--delta-lower", type=angle_or_rough, help=_help("delta_lower", "as --delta")
+            "--delta-lower", type=angle_or_rough, help=_help("delta_lower", cell, "as --delta")
         )
     if applies("K_lower", cell):
-        g.add_argument("--K-lower", type=float, help=_help("K_lower", "as --K"))
+        g.add_argument("--K-lower", type=float, help=_help("K_lower", cell, "as --K"))
     if applies("B", cell):
-        default = f"{default_text('B')}: no gravity" if cell == "plane" else "the cell's"
-        g.add_argument("--B", type=float, help=_help("B", default))
+        g.add_argument("--B", type=float, help=_help("B", cell))
     if applies("nu", cell):
-        g.add_argument("--nu", type=float, help=_help("nu", default_text("nu")))
+        g.add_argument("--nu", type=float, help=_help("nu", cell))
     if applies("m_wall", cell):
         g.add_argument(
             "--m-wall",
             type=float,
-            help=_help("m_wall", "the paper's condition sigma_xy = sigma_yx there"),
+            help=_help("m_wall", cell, "the paper's condition sigma_xy = sigma_yx there"),
         )
 
 
@@ -223,8 +219,38 @@ def set_quiet(quiet: bool) -> None:
     _STATE["quiet"] = bool(quiet)
 
 
+# --------------------------------------------------------------------------- interruptions
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised as Ctrl-C is so that the same cleanup runs (``cosserat.cli.main``)."""
+
+
+def set_interrupt_hint(hint: str | None) -> None:
+    """What the one line after an interruption adds (where the finished work is, how to go
+    on); None: nothing."""
+    _STATE["interrupt_hint"] = hint
+
+
+def interrupt_hint() -> str | None:
+    """The hint :func:`set_interrupt_hint` left, once (then cleared)."""
+    hint: str | None = _STATE["interrupt_hint"]
+    _STATE["interrupt_hint"] = None
+    return hint
+
+
+def interrupted(exc: BaseException | None, kind: type[BaseException] = KeyboardInterrupt) -> bool:
+    """True if ``exc`` is an interruption of type ``kind`` (Ctrl-C, or SIGTERM as
+    :class:`Terminated`), also when it arrived inside a compiled kernel, which reports it as
+    a SystemError caused by the KeyboardInterrupt."""
+    seen = 0
+    while exc is not None and seen < 20:
+        if isinstance(exc, kind):
+            return True
+        exc, seen = exc.__cause__ or exc.__context__, seen + 1
+    return False
+
+
 # --------------------------------------------------------------------------- problems
-def problem_parameters(args: argparse.Namespace, eps: Any) -> dict[str, Any]:
+def option_values(args: argparse.Namespace, eps: Any) -> dict[str, Any]:
     """The named parameters the options give (None: not given, the default applies)."""
     out: dict[str, Any] = {
         "geometry": args.geometry,
@@ -240,20 +266,15 @@ def problem_parameters(args: argparse.Namespace, eps: Any) -> dict[str, Any]:
 
 def model_problem(model: str, cell: str, given: dict[str, Any], extra: dict[str, str]) -> Problem:
     """The problem of ``model`` on ``cell`` from the options ``given`` (None: not given) and
-    the ``--param`` values ``extra``.
-
-    The Cosserat model on the cells :func:`build_problem` knows is built by it (its names);
-    any other model or cell from its problem class's fields (:mod:`cosserat.cli.params`).
-    """
-    params.problem_class(model, cell)  # a known model on one of its cells
+    the ``--param`` values ``extra``, built by :func:`cosserat.model.make_problem` (absent
+    keys take their declared defaults, the same as in the Python API and sweeps)."""
+    params.check_model(model, cell)
     params.check_keys(model, cell, extra)
     values = {k: v for k, v in given.items() if v is not None and k != "geometry"}
     twice = sorted(set(values) & set(extra))
     if twice:
         raise UsageError(f"{', '.join(twice)} given both as an option and as --param")
-    if params.uses_build_problem(model, cell):
-        return build_problem({**values, **extra, "geometry": cell})
-    valid = {v.split(" [")[0] for v in params.valid_keys(model, cell)}
+    valid = params.parameters(model, cell)
     stray = sorted(k for k in values if k not in valid)
     if stray:
         flags = ", ".join("--" + k.replace("_", "-") for k in stray)
@@ -261,12 +282,7 @@ def model_problem(model: str, cell: str, given: dict[str, Any], extra: dict[str,
             f"{flags} do(es) not apply to --model {model} on the {cell} cell; its parameters "
             f"(--param KEY=VALUE): {', '.join(params.valid_keys(model, cell))}"
         )
-    values = {**values, **extra}
-    for name, param in params.parameters_of(params.problem_class(model, cell)).items():
-        # a cell parameter the class leaves required takes the default --help states (Ri)
-        if name not in values and param.default is MISSING and name in CELL_DEFAULTS.get(cell, ()):
-            values[name] = DEFAULTS[name]
-    return params.build(model, cell, values)
+    return params.build(model, cell, {**values, **extra})
 
 
 def problem_from_args(args: argparse.Namespace, eps: Any) -> Problem:
@@ -274,7 +290,7 @@ def problem_from_args(args: argparse.Namespace, eps: Any) -> Problem:
     return model_problem(
         getattr(args, "model", params.DEFAULT_MODEL),
         args.geometry,
-        problem_parameters(args, eps),
+        option_values(args, eps),
         params.parse_params(getattr(args, "param", None)),
     )
 
@@ -328,15 +344,24 @@ def deliver(args: argparse.Namespace, render: Callable[[str], str], meta: Any, l
 
 
 def check_outputs(args: argparse.Namespace) -> None:
-    """Fail on an unusable --out or --plot before any computation."""
-    if getattr(args, "out", None):
-        files.check_output_file(args.out)
+    """Fail on an unusable --out or --plot before any computation: a folder that does not
+    exist, a directory, a FIFO or device, no permission, a figure without a known image
+    suffix, or --plot naming the same file as --out."""
+    out = getattr(args, "out", None)
+    if out:
+        files.check_output_file(out)
         if getattr(args, "format", None) == "csv":
             from ..results.profile import sidecar_path
 
-            files.check_output_file(str(sidecar_path(args.out)), "--out's sidecar")
-    if getattr(args, "plot", None):
-        files.check_plot_file(args.plot)
+            files.check_output_file(str(sidecar_path(out)), "--out's sidecar")
+    plot = getattr(args, "plot", None)
+    if plot:
+        files.check_plot_file(plot)
+        if out and files.same_file_key(plot) == files.same_file_key(out):
+            raise InputError(
+                f"cannot write --plot {plot}: it is the same file as --out; give the figure "
+                "another name"
+            )
 
 
 def table(header: list[str], rows: list[list[Any]], digits: int = 6) -> list[str]:

@@ -21,7 +21,7 @@ from .common import (
     default_text,
     deliver,
     model_problem,
-    problem_parameters,
+    option_values,
     progress_messages,
     table,
 )
@@ -89,17 +89,18 @@ _CELL_NAMES = ("eps", "Ri", "B", "nu")
 
 def data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     """The measured profile and the model problem: command line > preset > file header >
-    the paper's defaults (those of :func:`cosserat.model.build_problem`). The header's Ri is
-    used for Couette flow only, its B and nu for plane shear only. For a model other than the
-    Cosserat one, only the cell (eps, Ri, B, nu) comes from the preset and the header."""
-    from ..model.build import APPLIES_TO
+    the declared defaults (those of :func:`cosserat.model.make_problem`). The header's Ri is
+    used for Couette flow only, its B and nu for plane shear only (as the declarations say).
+    For a model other than the Cosserat one, only the cell (eps, Ri, B, nu) comes from the
+    preset and the header."""
+    from ..model import problem_parameters
     from ..studies.experiments import PRESETS as PRESET_CELLS
 
     check_outputs(args)
     measured = files.read_measured(args.data)
     header = measured.meta
     preset = PRESET_CELLS[args.preset] if args.preset else None
-    given = problem_parameters(args, args.eps)
+    given = option_values(args, args.eps)
     cosserat = args.model == params.DEFAULT_MODEL
 
     def from_file(name: str) -> Any:
@@ -116,11 +117,13 @@ def data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
         raise UsageError(
             "give --geometry plane|couette (or a 'geometry:' header line, or --preset)"
         )
+    params.check_model(args.model, geometry)
+    applies = problem_parameters(args.model, geometry)
     values: dict[str, Any] = {}
     for name, value in given.items():
         if name == "geometry":
             continue
-        if value is None and APPLIES_TO.get(name, geometry) == geometry:
+        if value is None and name in applies:
             value = from_file(name)
         values[name] = value
     if values["eps"] is None:
@@ -132,10 +135,8 @@ def data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
 
 
 def _units(model: str, problem: Any) -> dict[str, str]:
-    """Units of the fittable parameters of ``problem`` (for the tables)."""
-    if model == params.DEFAULT_MODEL:
-        return {k: u for k, (_, u) in params.COSSERAT_PARAMS.items()}
-    return {k: p.unit for k, p in params.parameters_of(type(problem)).items()}
+    """Units of the parameters of ``problem`` (for the tables), from their declarations."""
+    return {k: p.unit for k, p in problem.declared().items()}
 
 
 def _figure(comparison: Any, title: str, path: str) -> None:

@@ -27,7 +27,7 @@ def read_measured(path: str, what: str = "measured profile") -> Any:
     Raises
     ------
     InputError
-        The file does not exist, is a directory, cannot be read, or is not text.
+        The file does not exist, is a directory, cannot be read, or is not UTF-8 text.
     MeasurementError
         Its content is malformed (the message starts with the file name).
     """
@@ -37,50 +37,70 @@ def read_measured(path: str, what: str = "measured profile") -> Any:
         return read_profile(Path(path))
     except OSError as exc:
         raise InputError(f"cannot read the {what} {path}: {reason(exc)}") from None
-    except UnicodeDecodeError:
-        raise InputError(f"cannot read the {what} {path}: not a text (CSV) file") from None
     except MeasurementError as exc:
         raise MeasurementError(f"{path}: {exc}") from None
 
 
 def check_output_file(path: str, option: str = "--out") -> None:
-    """Raise :class:`InputError` unless ``path`` can be created or overwritten as a file."""
-    p = Path(path)
-    folder = p.parent
-    if p.is_dir():
-        raise InputError(f"cannot write {option} {path}: it is a directory")
+    """Raise :class:`InputError` unless ``path`` can be created or overwritten as a regular
+    file (a symbolic link: its target is written, the link stays; a directory, FIFO, device
+    or socket is refused, never replaced)."""
+    why = atomic.refusal(path)
+    if why is not None:
+        raise InputError(f"cannot write {option} {path}: {why}")
+    target = atomic.destination(path)
+    folder = target.parent
     if not folder.is_dir():
         raise InputError(f"cannot write {option} {path}: no such folder {folder}")
-    if not os.access(folder, os.W_OK | os.X_OK) or (p.exists() and not os.access(p, os.W_OK)):
+    if not os.access(folder, os.W_OK | os.X_OK) or (
+        target.exists() and not os.access(target, os.W_OK)
+    ):
         raise InputError(f"cannot write {option} {path}: permission denied")
+
+
+def same_file_key(path: str) -> str:
+    """What identifies the file a write to ``path`` lands in (links and ``..`` resolved)."""
+    return os.path.realpath(path)
 
 
 def write_text(text: str, path: str, option: str = "--out") -> None:
     """Write ``text`` (ending in a newline) to ``path``; failures as :class:`InputError`."""
     try:
         atomic.write_text(path, text if text.endswith("\n") else text + "\n")
+    except InputError as exc:
+        why = atomic.refusal(path)
+        raise InputError(f"cannot write {option} {path}: {why}" if why else str(exc)) from None
     except OSError as exc:
         raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
 
 
 def check_plot_file(path: str, option: str = "--plot") -> None:
-    """Raise :class:`InputError` unless matplotlib can write ``path`` (format and folder)."""
+    """Raise :class:`InputError` unless matplotlib can write ``path``: a file it may write
+    (:func:`check_output_file`) with a suffix naming a format it knows."""
     from matplotlib.backend_bases import FigureCanvasBase
 
     suffix = Path(path).suffix.lower().lstrip(".")
     formats = FigureCanvasBase.get_supported_filetypes()
-    if suffix and suffix not in formats:
+    check_output_file(path, option)
+    if not suffix:
+        raise InputError(
+            f"cannot write {option} {path}: no suffix to tell the image format; add one of "
+            f"{', '.join(sorted(formats))} (e.g. {path}.png)"
+        )
+    if suffix not in formats:
         raise InputError(
             f"cannot write {option} {path}: unknown image format {suffix!r}; use one of "
             f"{', '.join(sorted(formats))}"
         )
-    check_output_file(path, option)
 
 
 def save_figure(fig: Any, path: str, option: str = "--plot") -> None:
     """``fig.savefig(path)``; failures to write as :class:`InputError`."""
     try:
         atomic.save_figure(fig, path)
+    except InputError as exc:
+        why = atomic.refusal(path)
+        raise InputError(f"cannot write {option} {path}: {why}" if why else str(exc)) from None
     except OSError as exc:
         raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
 

@@ -1,32 +1,18 @@
-"""``cosserat models`` (every registered rheology, its parameters, defaults, units and
-reference) and ``cosserat validate`` (the models against a corpus of measured profiles)."""
+"""``cosserat models`` (every registered rheology, its parameters as declared: meaning, unit,
+default, bounds, fit range, role, source; its cells and methods; its reference) and ``cosserat
+validate`` (the models against a corpus of measured profiles)."""
 
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import math
-import re
 import sys
-import typing
 from typing import Any
 
 from .. import config
 from . import files
 from .common import UsageError, progress_bar
-from .params import doc_parameters, nested_class, plain_text
-
-_UNIT = re.compile(r"\[([^\[\],]*)\]")
-
-
-def _unit(description: str) -> str:
-    """The unit in brackets in a parameter's description ("-" for dimensionless)."""
-    for match in _UNIT.finditer(description):
-        text = match.group(1).strip()
-        if text == "-" or re.search(r"[A-Za-z]", text):
-            return text
-    return ""
 
 
 def _plain(value: Any) -> Any:
@@ -37,64 +23,40 @@ def _plain(value: Any) -> Any:
     return str(value)
 
 
-def class_parameters(cls: type) -> list[dict[str, Any]]:
-    """Every field of a parameter or problem class: name, default (None: required), unit,
-    description; dataclass-valued fields (the material, the rheology's constants) listed as
-    such with their own class name."""
-    docs = doc_parameters(cls)
-    hints = typing.get_type_hints(cls)
-    rows = []
-    for f in dataclasses.fields(cls):  # type: ignore[arg-type]
-        kind = nested_class(hints.get(f.name))
-        nested = kind is not None
-        if f.default is not dataclasses.MISSING:
-            default = f.default
-        elif f.default_factory is not dataclasses.MISSING:
-            default = f.default_factory()
-        else:
-            default = dataclasses.MISSING
-        text = docs.get(f.name, "")
-        rows.append(
-            {
-                "name": f.name,
-                "required": default is dataclasses.MISSING and not nested,
-                "default": None if default is dataclasses.MISSING or nested else _plain(default),
-                "unit": _unit(text),
-                "description": plain_text(text).rstrip("."),
-                "class": kind.__name__ if nested else None,
-            }
-        )
-    return rows
+def _row(p: Any) -> dict[str, Any]:
+    """One parameter as ``cosserat models`` lists it (its declaration as plain data)."""
+    row = p.to_dict()
+    row["default"] = _plain(row["default"])
+    row["default_text"] = p.default_text()
+    row["required"] = not p.has_default
+    return row
 
 
 def describe_models() -> list[dict[str, Any]]:
-    """Every registered rheology as plain data (what ``cosserat models`` prints)."""
-    from ..routes import RHEOLOGIES
+    """Every registered rheology as plain data (what ``cosserat models`` prints): its own
+    parameters, and for each cell it is solvable on, the methods and the cell's parameters it
+    reads, all from the declarations (:func:`cosserat.model.problem_parameters`)."""
+    from ..model import problem_parameters
+    from ..routes import RHEOLOGIES, cells_for, methods_for
 
     out = []
-    for name, rheology in RHEOLOGIES.items():
-        constitutive: dict[str, list[dict[str, Any]]] = {}
+    for name, law in RHEOLOGIES.items():
+        own = law.declared()
         cells = {}
-        for cell, cls in rheology.cells.items():
-            rows = class_parameters(cls)
-            hints = typing.get_type_hints(cls)
-            for row in rows:
-                kind = nested_class(hints[row["name"]])
-                if kind is not None and kind.__name__ not in constitutive:
-                    constitutive[kind.__name__] = class_parameters(kind)
-            methods = [m for m, table in rheology.routes.items() if cls in table]
+        for cell in cells_for(name):
+            declared = problem_parameters(name, cell)
             cells[cell] = {
-                "problem_class": cls.__name__,
-                "methods": methods,
-                "parameters": [r for r in rows if not r["class"]],
-                "parameter_objects": {r["name"]: r["class"] for r in rows if r["class"]},
+                "methods": methods_for(name, cell),
+                "parameters": [_row(p) for k, p in declared.items() if k not in own],
+                "model_parameters": [k for k in declared if k in own],
             }
         out.append(
             {
                 "name": name,
-                "title": rheology.title,
-                "reference": rheology.reference,
-                "parameters": constitutive,
+                "title": law.title,
+                "reference": law.reference,
+                "default_free": list(law.default_free),
+                "parameters": [_row(p) for p in own.values()],
                 "cells": cells,
             }
         )
@@ -102,26 +64,31 @@ def describe_models() -> list[dict[str, Any]]:
 
 
 def _row_text(row: dict[str, Any]) -> str:
-    default = "required" if row["required"] else f"default {row['default']}"
+    default = "required" if row["required"] else f"default {row['default_text']}"
+    parts = [default]
+    if row["bounds"]:
+        parts.append(row["bounds"])
+    if row["fit_range"]:
+        lo, hi = row["fit_range"]
+        parts.append(f"fit {lo:g} to {hi:g}" + (" (log)" if row["scale"] == "log" else ""))
+    parts.append(row["role"])
+    if row["cells"]:
+        parts.append(f"{'/'.join(row['cells'])} only")
     unit = f" [{row['unit']}]" if row["unit"] else ""
-    desc = f": {row['description']}" if row["description"] else ""
-    return f"    {row['name']}{unit}, {default}{desc}"
+    source = f" ({row['source']})" if row["source"] else ""
+    return f"    {row['name']}{unit}, {'; '.join(parts)}: {row['meaning']}{source}"
 
 
 def models_text(models: list[dict[str, Any]]) -> str:
     lines = []
     for m in models:
         lines += [f"{m['name']}: {m['title']}", f"  reference: {m['reference']}"]
-        for cls, rows in m["parameters"].items():
-            lines.append(f"  {cls}:")
-            lines += [_row_text(r) for r in rows]
+        if m["default_free"]:
+            lines.append(f"  fitted by default: {', '.join(m['default_free'])}")
+        lines.append("  parameters:")
+        lines += [_row_text(r) for r in m["parameters"]]
         for cell, c in m["cells"].items():
-            lines.append(
-                f"  cell {cell} ({c['problem_class']}; methods {', '.join(c['methods'])}):"
-            )
-            if c["parameter_objects"]:
-                objects = ", ".join(f"{k} ({v})" for k, v in c["parameter_objects"].items())
-                lines.append(f"    parameter objects: {objects}")
+            lines.append(f"  cell {cell} (methods {', '.join(c['methods'])}):")
             lines += [_row_text(r) for r in c["parameters"]]
         lines.append("")
     return "\n".join(lines)

@@ -5,7 +5,14 @@ from __future__ import annotations
 import argparse
 
 from . import files
-from .common import PRESETS, UsageError, add_quiet, positive_int, progress_bar
+from .common import (
+    PRESETS,
+    UsageError,
+    add_quiet,
+    positive_int,
+    progress_bar,
+    set_interrupt_hint,
+)
 
 
 def _stage_bar():  # type: ignore[no-untyped-def]
@@ -29,6 +36,10 @@ def cmd_reproduce(args: argparse.Namespace) -> None:
     from ..paper.reproduce import reproduce
 
     files.output_folder(args.out)
+    set_interrupt_hint(
+        f"the figures finished so far are in {args.out}; run the same command again to finish "
+        "(the report is written at the end)"
+    )
     out = reproduce(args.out, figures=args.only, workers=args.workers, progress=_stage_bar())
     print(f"wrote {out}/index.html and {out}/report.md")
 

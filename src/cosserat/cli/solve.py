@@ -5,14 +5,13 @@ from __future__ import annotations
 import argparse
 import json
 import re
-from dataclasses import replace
 from typing import Any
 
 from .. import config
 from ..analysis import thickness_curve, thickness_limit
 from ..analysis.laws import thickness_curve_asymptote
 from ..model.parameters import FULLY_ROUGH
-from ..routes import RHEOLOGIES, solve
+from ..routes import solve
 from . import files, params
 from .common import (
     MAX_POINTS,
@@ -52,10 +51,12 @@ def profile_text(profile: Any) -> str:
             f"Delta = {s['Delta']:.6g} grain diameters (where the velocity relative to the "
             f"far field has fallen to {config.DEFAULT_F:g} of its wall value)"
         )
-    lines.append(
-        f"wall slip = {s['wall_slip']:.6g}, wall spin = {s['wall_omega']:.6g} (in the scales "
-        "of u and omega)"
+    spin = (
+        "no grain spin in this rheology"
+        if s["wall_omega"] is None
+        else f"wall spin = {s['wall_omega']:.6g}"
     )
+    lines.append(f"wall slip = {s['wall_slip']:.6g}, {spin} (in the scales of u and omega)")
     cols = profile.columns()
     n = profile.xi.size
     picks = sorted({round(k * (n - 1) / (TABLE_ROWS - 1)) for k in range(TABLE_ROWS)})
@@ -248,7 +249,7 @@ def cmd_thickness(args: argparse.Namespace) -> None:
     eps_values = list(args.eps)
     problem = problem_from_args(args, eps_values[0])
     for e in eps_values[1:]:
-        replace(problem, eps=e)  # validate every eps before any solve
+        problem.with_values({"eps": e})  # validate every eps before any solve
     check_outputs(args)
     curve = thickness_curve(
         problem,
@@ -258,7 +259,7 @@ def cmd_thickness(args: argparse.Namespace) -> None:
         progress=progress_bar("thickness") if len(eps_values) > 1 else None,
         **solver_options(args),
     )
-    cosserat = type(problem) in RHEOLOGIES[params.DEFAULT_MODEL].cells.values()
+    cosserat = problem.model == params.DEFAULT_MODEL
     limit = thickness_limit(problem, args.f) if cosserat else None
     asym = thickness_curve_asymptote(problem, eps_values, args.f) if cosserat else None
     record = {
@@ -303,9 +304,7 @@ def cmd_thickness(args: argparse.Namespace) -> None:
 
 # --------------------------------------------------------------------------- parsers
 def _add_cell_options(p: argparse.ArgumentParser, cell: str) -> None:
-    if params.DEFAULT_MODEL in params.cells().get(cell, []) and params.uses_build_problem(
-        params.DEFAULT_MODEL, cell
-    ):
+    if params.DEFAULT_MODEL in params.cells().get(cell, []):
         add_material_and_walls(p, cell)
     add_model(p, cell)
 

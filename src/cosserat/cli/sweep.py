@@ -3,14 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
 from . import files
-from .common import positive_int, progress_bar
-
-INTERRUPTED = 130
-"""Exit status after Ctrl-C (128 + SIGINT, the shell's convention)."""
+from .common import positive_int, progress_bar, set_interrupt_hint
 
 
 def cmd_sweep(args: argparse.Namespace) -> None:
@@ -23,24 +19,19 @@ def cmd_sweep(args: argparse.Namespace) -> None:
     check_table_format(out)
     files.check_output_file(out, "--out" if args.out else "the sweep table")
     start = time.perf_counter()
-    try:
-        run = run_sweep_to_table(
-            spec,
-            out,
-            resume=args.resume,
-            workers=args.workers,
-            scheduler=args.scheduler,
-            progress=progress_bar("sweep"),
-        )
-    except (KeyboardInterrupt, SystemError) as exc:
-        if not _interrupted(exc):
-            raise
-        print(
-            f"\ninterrupted: the finished rows are in {journal_path(out)}; run the same command "
-            f"with --resume to finish the sweep",
-            file=sys.stderr,
-        )
-        raise SystemExit(INTERRUPTED) from None
+    set_interrupt_hint(
+        f"the finished rows are in {journal_path(out)}; run the same command with --resume to "
+        "finish the sweep"
+    )
+    run = run_sweep_to_table(
+        spec,
+        out,
+        resume=args.resume,
+        workers=args.workers,
+        scheduler=args.scheduler,
+        progress=progress_bar("sweep"),
+    )
+    set_interrupt_hint(None)
     rows = run.rows
     states = ("ok", "no-solution", "error", "invalid")
     counts = {s: sum(r.get("status") == s for r in rows) for s in states}
@@ -49,17 +40,6 @@ def cmd_sweep(args: argparse.Namespace) -> None:
         f"{len(rows)} cases in {time.perf_counter() - start:.1f} s -> {out} "
         f"({', '.join(f'{k}: {v}' for k, v in counts.items())}{reused})"
     )
-
-
-def _interrupted(exc: BaseException | None) -> bool:
-    """True for Ctrl-C, also when it arrived inside a compiled kernel, which reports it as a
-    SystemError caused by the KeyboardInterrupt."""
-    seen = 0
-    while exc is not None and seen < 20:
-        if isinstance(exc, KeyboardInterrupt):
-            return True
-        exc, seen = exc.__cause__ or exc.__context__, seen + 1
-    return False
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]

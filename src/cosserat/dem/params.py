@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Literal
 
-from ..errors import ParameterError
+from ..errors import ParameterError, shown
 
 ContactModel = Literal["hooke", "hertz"]
 WallKind = Literal["glued-grains", "smooth-frictional"]
@@ -28,7 +28,7 @@ def _check(name: str, value: float, low: float, high: float = math.inf, *, open_
         bound = f"{'>' if open_low else '>='} {low:g}" + (
             f" and <= {high:g}" if math.isfinite(high) else ""
         )
-        raise ParameterError(f"{name} must be {bound}; got {value!r}")
+        raise ParameterError(f"{name} must be {bound}; got {shown(value)}")
 
 
 @dataclass(frozen=True)
@@ -211,7 +211,7 @@ class RunLength:
         for name in ("settle_steps", "steps", "dump_every"):
             value = getattr(self, name)
             if not isinstance(value, int) or value < (0 if name == "settle_steps" else 1):
-                raise ParameterError(f"{name} must be a whole number >= 1; got {value!r}")
+                raise ParameterError(f"{name} must be a whole number >= 1; got {shown(value)}")
         if self.steps < 10 * self.dump_every:
             raise ParameterError(
                 f"steps ({self.steps}) must hold at least 10 samples of dump_every "
@@ -258,7 +258,7 @@ class PlaneShearDEM:
         _check("wall_speed", self.wall_speed, 0.0, 10.0)
         _check("nu_nominal", self.nu_nominal, 0.3, 0.91)
         if not isinstance(self.seed, int) or self.seed < 1:
-            raise ParameterError(f"seed must be a whole number >= 1; got {self.seed!r}")
+            raise ParameterError(f"seed must be a whole number >= 1; got {shown(self.seed)}")
 
     @property
     def gravity(self) -> float:
@@ -302,7 +302,7 @@ class CouetteDEM:
         _check("nu_fill", self.nu_fill, 0.3, 0.88)
         _check("wall_speed", self.wall_speed, 0.0, 10.0)
         if not isinstance(self.seed, int) or self.seed < 1:
-            raise ParameterError(f"seed must be a whole number >= 1; got {self.seed!r}")
+            raise ParameterError(f"seed must be a whole number >= 1; got {shown(self.seed)}")
 
 
 @dataclass(frozen=True)
@@ -343,7 +343,7 @@ class ChannelDEM:
         _check("shear_ratio", self.shear_ratio, 0.0, 5.0)
         _check("nu_nominal", self.nu_nominal, 0.3, 0.91)
         if not isinstance(self.seed, int) or self.seed < 1:
-            raise ParameterError(f"seed must be a whole number >= 1; got {self.seed!r}")
+            raise ParameterError(f"seed must be a whole number >= 1; got {shown(self.seed)}")
 
     @property
     def gravity(self) -> float:

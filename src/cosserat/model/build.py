@@ -1,217 +1,131 @@
-"""A problem from a plain mapping of named parameters: the one recipe the command line, the
-sweeps and any other front end share.
+"""Problems from names: the one builder the command line, sweeps, fitting and calibration use.
 
-The names are those of the command line and of sweep specs (``docs/model.md`` gives the
-symbols and units)::
+``make_problem(model, cell, values)`` makes the :class:`~cosserat.model.problem.Problem` of the
+rheology ``model`` on the cell ``cell`` from ``values`` by command-line key (absent keys and None
+take the declared defaults; numbers may be given as numeric strings, as read from a file or the
+command line; a wall's delta also as "fully-rough"). ``problem_parameters(model, cell)`` lists
+the keys with their declarations (meaning, unit, default, bounds, fit range, role); a problem's
+``with_values`` changes some of them.
 
-    geometry      "plane" (default), "couette" or "channel"
-    phi, L, A     the material [deg, -, -]
-    delta, K      the moving wall (the upper plate, or both cylinders), or both channel walls
-                    [deg or "fully-rough", -]
-    delta_lower,  the fixed lower plate (plane; default: as the upper wall) [deg or
-    K_lower         "fully-rough", -]
-    B, nu         gravity parameter and solids fraction (plane, channel) [-]; in the channel
-                    B = rho_p g H / N with N the wall normal stress, and its default (absent,
-                    None or 0) is B nu = 2 tan(delta): wall friction fully mobilised
-    m_wall        couple stress at the wall that does not slip (plane; default eqn-nd_bc4) [-]
-    Ri            inner radius over gap (Couette) [-]
-    eps           grain diameter over gap, d_p/H [-] (required)
-
-Missing keys, and keys whose value is None, take the paper's defaults (:data:`DEFAULTS`, from
-:mod:`cosserat.config`).
+Examples
+--------
+>>> from cosserat.model.build import make_problem, problem_parameters
+>>> problem = make_problem("mui", "couette", {"eps": 0.01, "I_w": "0.05"})
+>>> problem.values()["I_w"], problem.values()["Ri"]
+(0.05, 1.0)
+>>> [k for k, p in problem_parameters("cosserat", "plane").items() if p.role == "wall"]
+['delta', 'K', 'delta_lower', 'K_lower']
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from types import MappingProxyType
-from typing import Any, Literal
+from typing import Any
 
-from .. import config
 from ..errors import ParameterError
-from .channel import Channel
-from .couette import CouetteFlow
-from .parameters import FULLY_ROUGH, Material, Wall
-from .plane import PlaneShear
+from .cells import CELLS, cell_class
+from .declare import Param
+from .problem import Problem, pair_parameters
+from .rheologies import RHEOLOGIES, rheology_class
 
-GEOMETRIES: tuple[str, ...] = ("plane", "couette", "channel")
-"""The cells a problem can be built for."""
-
-PARAMETERS: tuple[str, ...] = (
-    "geometry",
-    "phi",
-    "L",
-    "A",
-    "delta",
-    "K",
-    "delta_lower",
-    "K_lower",
-    "B",
-    "nu",
-    "m_wall",
-    "Ri",
-    "eps",
-)
-"""Every name :func:`build_problem` accepts, in the order tables list them."""
-
-DEFAULTS: Mapping[str, Any] = MappingProxyType(
-    {
-        "geometry": "plane",
-        "phi": config.PHI,
-        "L": config.L,
-        "A": config.A,
-        "delta": config.DELTA,
-        "K": config.K,
-        "B": config.B,
-        "nu": config.NU,
-        "Ri": config.RI,
-    }
-)
-"""The value of every parameter that has a default (read-only). ``delta_lower`` and ``K_lower``
-default to the upper wall's, ``m_wall`` to ``eqn-nd_bc4``; ``eps`` has none."""
-
-APPLIES_TO: Mapping[str, str] = MappingProxyType(
-    {
-        "delta_lower": "plane",
-        "K_lower": "plane",
-        "B": "plane",
-        "nu": "plane",
-        "m_wall": "plane",
-        "Ri": "couette",
-    }
-)
-"""Parameters of one geometry only; given for the other, they must be None or the default."""
-
-ALSO_APPLIES_TO: Mapping[str, tuple[str, ...]] = MappingProxyType(
-    {"B": ("channel",), "nu": ("channel",)}
-)
-"""Further geometries a parameter of :data:`APPLIES_TO` applies to (the channel's B and nu)."""
-
-ROUGH_WORDS = ("fully-rough", "fully_rough", "rough")
-"""Spellings of a fully rough wall accepted for ``delta`` and ``delta_lower`` (any case)."""
-
-_NUMBERS = ("phi", "L", "A", "K", "K_lower", "B", "nu", "m_wall", "Ri", "eps")
+UNAVAILABLE = ("kinetic",)
+"""Models the package names but does not implement (:mod:`cosserat.model.kinetic` says why)."""
 
 
-def wall_angle(name: str, value: Any) -> float | Literal["fully-rough"]:
-    """``value`` as a :class:`Wall` takes it: an angle [deg] (validated by the wall), or
-    :data:`FULLY_ROUGH` for any of ``ROUGH_WORDS`` ("fully-rough", "fully_rough", "rough").
+def check_pair(model: str, cell: str) -> None:
+    """Raise if ``model`` is not a registered rheology, ``cell`` not a registered cell, or the
+    rheology has no equations on that cell.
 
     Raises
     ------
     ParameterError
-        A string other than those words, or a boolean (the message names ``name``).
+        Unknown model or cell (listing the registered ones), or a model without this cell
+        (listing the cells it has).
+    MethodNotAvailableError
+        A model the package names but does not implement (the kinetic model: why).
     """
-    if isinstance(value, str):
-        if value.strip().lower() in ROUGH_WORDS:
-            return FULLY_ROUGH
-        try:
-            return float(value)
-        except ValueError:
-            raise ParameterError(
-                f"{name} must be an angle in degrees or 'fully-rough'; got {value!r}"
-            ) from None
-    if isinstance(value, bool):
-        raise ParameterError(f"{name} must be an angle in degrees or 'fully-rough'; got {value!r}")
-    return value  # type: ignore[no-any-return]
+    if model in UNAVAILABLE and model not in RHEOLOGIES:
+        from .kinetic import unavailable
 
-
-def _is_default(name: str, value: Any) -> bool:
-    default = DEFAULTS.get(name)
-    if default is None or isinstance(value, bool) or not isinstance(value, int | float | str):
-        return False
-    try:
-        return float(value) == default
-    except ValueError:
-        return False
-
-
-def build_problem(parameters: Mapping[str, Any]) -> PlaneShear | CouetteFlow | Channel:
-    """The :class:`PlaneShear` or :class:`CouetteFlow` that ``parameters`` describe.
-
-    Parameters
-    ----------
-    parameters : mapping of str to value
-        Names among :data:`PARAMETERS` (module docstring: meaning and units). Absent names and
-        None values take :data:`DEFAULTS`; ``eps`` is required. Numbers may also be given as
-        numeric strings (as read from a file); ``delta`` and ``delta_lower`` also as
-        "fully-rough" (or "rough").
-
-    Returns
-    -------
-    PlaneShear or CouetteFlow
-        Validated: every bound of the model is checked on construction.
-
-    Raises
-    ------
-    ParameterError
-        An unknown name (listing the known ones), an unknown geometry (listing the allowed
-        ones), a missing ``eps``, a parameter of the other geometry set to a value other than
-        its default, or a value out of its bounds; the message names the parameter.
-    """
-    if not isinstance(parameters, Mapping):
+        raise unavailable(cell)
+    law = rheology_class(model)
+    cell_class(cell)
+    if not law.supports(cell):
         raise ParameterError(
-            f"the parameters must be a mapping of name to value; got {type(parameters).__name__}"
+            f"model {model!r} has no {cell} cell; it supports: {', '.join(law.cells())}"
         )
-    unknown = sorted(str(k) for k in parameters if k not in PARAMETERS)
+
+
+def problem_parameters(model: str, cell: str) -> dict[str, Param]:
+    """Every parameter of ``model`` on ``cell`` by command-line key, with its declaration:
+    the rheology's (those that apply to this cell), then the cell's (its drive only for a
+    rate-dependent rheology).
+
+    Raises
+    ------
+    ParameterError, MethodNotAvailableError
+        As :func:`check_pair`.
+    """
+    check_pair(model, cell)
+    return pair_parameters(RHEOLOGIES[model], CELLS[cell])
+
+
+def make_problem(model: str, cell: str, values: Mapping[str, Any] | None = None) -> Problem:
+    """The problem of the rheology ``model`` on the cell ``cell`` with the parameters
+    ``values`` by command-line key (module docstring).
+
+    Raises
+    ------
+    ParameterError
+        An unknown model or cell, a key this pair does not have (the message lists those it
+        has with their units), a required parameter not given (eps), or a value out of its
+        bounds (the message names the parameter).
+    MethodNotAvailableError
+        A model the package names but does not implement.
+    NoSolutionError
+        A pair that can have no solution (as :class:`~cosserat.model.problem.Problem`).
+    """
+    if values is not None and not isinstance(values, Mapping):
+        raise ParameterError(
+            f"the parameters must be a mapping of name to value; got {type(values).__name__}"
+        )
+    keys = problem_parameters(model, cell)
+    given = {k: v for k, v in (values or {}).items() if v is not None}
+    unknown = sorted(str(k) for k in given if k not in keys)
     if unknown:
         raise ParameterError(
-            f"unknown parameter(s) {', '.join(unknown)}; known: {', '.join(PARAMETERS)}"
+            f"unknown parameter(s) {', '.join(unknown)} for model {model!r} on the {cell} "
+            f"cell; valid: {', '.join(describe_keys(keys))}"
         )
-    given = {k: v for k, v in parameters.items() if v is not None}
-    geometry = given.get("geometry", DEFAULTS["geometry"])
-    if not isinstance(geometry, str) or geometry not in GEOMETRIES:
+    missing = [k for k, p in keys.items() if not p.has_default and k not in given]
+    if missing:
         raise ParameterError(
-            f"geometry must be one of {', '.join(repr(g) for g in GEOMETRIES)}; got {geometry!r}"
+            f"{', '.join(f'{k} ({keys[k].meaning})' for k in missing)} must be given; "
+            "it has no default"
         )
-    if "eps" not in given:
-        raise ParameterError(
-            "eps (grain diameter over gap, d_p/H) must be given; it has no default"
-        )
-    for name in _NUMBERS:
-        if isinstance(given.get(name), bool):
-            raise ParameterError(f"{name} must be a number; got {given[name]!r}")
-    for name, where in APPLIES_TO.items():
-        if where != geometry and geometry not in ALSO_APPLIES_TO.get(name, ()):
-            if name not in given or _is_default(name, given[name]):
-                continue
-            raise ParameterError(
-                f"{name} applies to geometry {where!r} only; got {name} = {given[name]!r} for "
-                f"geometry {geometry!r}"
-            )
-    p = {**DEFAULTS, **given}
-    material = Material(p["phi"], p["L"], p["A"])
-    delta = wall_angle("delta", p["delta"])
-    upper = Wall(delta, p["K"])
-    if geometry == "couette":
-        return CouetteFlow(material=material, wall=upper, eps=p["eps"], Ri=p["Ri"])
-    if geometry == "channel":  # B absent or at the plane default (0): friction mobilised
-        B = None if _is_default("B", p["B"]) else p["B"]
-        return Channel(material=material, wall=upper, eps=p["eps"], B=B, nu=p["nu"])
-    lower = None
-    if "delta_lower" in given or "K_lower" in given:
-        delta_lower = wall_angle("delta_lower", given.get("delta_lower", delta))
-        try:
-            lower = Wall(delta_lower, given.get("K_lower", p["K"]))
-        except ParameterError as exc:
-            raise ParameterError(f"lower wall (delta_lower, K_lower): {exc}") from None
-    return PlaneShear(
-        material=material,
-        upper=upper,
-        lower=lower,
-        eps=p["eps"],
-        B=p["B"],
-        nu=p["nu"],
-        m_fixed_wall=p.get("m_wall"),
-    )
+    geometry = CELLS[cell]
+    own = geometry.declared()
+    names = {p.cli_key: n for n, p in _declarations(geometry).items()}
+    cell_kwargs = {names[k]: v for k, v in given.items() if k in own}
+    law = RHEOLOGIES[model].from_values({k: v for k, v in given.items() if k not in own})
+    return Problem(geometry(**cell_kwargs), law)
+
+
+def describe_keys(params: Mapping[str, Param]) -> list[str]:
+    """``key [unit]`` for each parameter (as error messages and ``--help`` list them)."""
+    return [f"{k} [{p.unit}]" for k, p in params.items()]
+
+
+def _declarations(cls: Any) -> dict[str, Param]:
+    from .declare import declarations
+
+    return declarations(cls)
 
 
 __all__ = [
-    "ALSO_APPLIES_TO",
-    "APPLIES_TO",
-    "DEFAULTS",
-    "GEOMETRIES",
-    "PARAMETERS",
-    "build_problem",
-    "wall_angle",
+    "UNAVAILABLE",
+    "check_pair",
+    "describe_keys",
+    "make_problem",
+    "problem_parameters",
 ]

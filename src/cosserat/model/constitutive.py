@@ -108,6 +108,16 @@ def k_torque_dsyx(syx: float, sc: float, m: float, A: float, sin_phi: float, flo
 
 
 @njit(**_KERNEL)
+def k_torque_gradient(
+    syx: float, sc: float, m: float, A: float, sin_phi: float, floor: float
+) -> tuple[float, float]:
+    """(:func:`k_torque_dm`, :func:`k_torque_dsyx`) together, with one square root [-]."""
+    S = k_radicand(syx, sc, m, A, sin_phi)
+    root = max(math.sqrt(S) if S > 0.0 else 0.0, floor)
+    return -2.0 * (A + 1.0) * m / root, 0.5 + (A - 1.0) * syx / (2.0 * root)
+
+
+@njit(**_KERNEL)
 def k_velocity_ratio(syx: float, sc: float, m: float, A: float, sin_phi: float) -> float:
     """F1 = (A+1)(sxy + syx)/(sxy + A syx) of ``eqn-nd_fr1`` on the paper's root [-].
 

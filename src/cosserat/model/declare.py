@@ -42,10 +42,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from ..errors import ParameterError
+from ..errors import ParameterError, shown
 
 Role = Literal["material", "wall", "cell", "drive", "option"]
 ROLES: tuple[str, ...] = ("material", "wall", "cell", "drive", "option")
+"""What a parameter can be to a calibration (the module docstring says what each means)."""
 Scale = Literal["linear", "log"]
 
 
@@ -96,6 +97,11 @@ class Param:
         None is a valid value (the default then says what None means).
     key : str
         The name on the command line and in sweep specs when it differs from ``name``.
+    numeric : bool
+        False for a parameter that takes only one of its ``choices`` (a boundary condition).
+    cells : tuple of str
+        The cells the parameter applies to (empty: every cell); a wall parameter of the plane
+        cell's fixed lower plate, for instance.
     """
 
     name: str = ""
@@ -112,6 +118,8 @@ class Param:
     choices: tuple[str, ...] = ()
     optional: bool = False
     key: str = ""
+    numeric: bool = True
+    cells: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.role not in ROLES:
@@ -142,6 +150,10 @@ class Param:
     def fittable(self) -> bool:
         return self.fit_range is not None
 
+    def applies_to(self, cell: str) -> bool:
+        """True if the parameter applies to the cell named ``cell``."""
+        return not self.cells or cell in self.cells
+
     def admits(self, x: float) -> bool:
         """True if ``x`` lies inside the bounds (ends included where ``closed`` says)."""
         lo, hi = self.bounds
@@ -170,6 +182,8 @@ class Param:
         ParameterError
             Naming the parameter, its meaning, the bound and the value received.
         """
+        if type(value) is float and self.numeric and math.isfinite(value) and self.admits(value):
+            return value  # the common case, without the checks below
         n = name or self.cli_key
         if value is None and self.optional:
             return None
@@ -178,18 +192,23 @@ class Param:
             for choice in self.choices:
                 if word == choice or word.replace("_", "-") == choice:
                     return choice
+        if not self.numeric:
+            raise ParameterError(
+                f"{n} ({self.meaning}) must be one of "
+                f"{', '.join(repr(c) for c in self.choices)}; got {shown(value)}"
+            )
         if isinstance(value, bool) or not isinstance(value, numbers.Real | str):
             raise ParameterError(
-                f"{n} ({self.meaning}) must be a number{self._or()}; got {value!r}"
+                f"{n} ({self.meaning}) must be a number{self._or()}; got {shown(value)}"
             )
         try:
             x = float(value)
         except ValueError:
             raise ParameterError(
-                f"{n} ({self.meaning}) must be a number{self._or()}; got {value!r}"
+                f"{n} ({self.meaning}) must be a number{self._or()}; got {shown(value)}"
             ) from None
         if not math.isfinite(x):
-            raise ParameterError(f"{n} ({self.meaning}) must be finite; got {value!r}")
+            raise ParameterError(f"{n} ({self.meaning}) must be finite; got {shown(value)}")
         if not self.admits(x):
             unit = f" [{self.unit}]" if self.unit not in ("", "-") else ""
             why = f" ({self.reason})" if self.reason else ""
@@ -200,6 +219,16 @@ class Param:
 
     def _or(self) -> str:
         return "".join(f" or {c!r}" for c in self.choices) + (" or None" if self.optional else "")
+
+    def default_text(self) -> str:
+        """The default as help texts show it (``config.text``); "required" if there is none."""
+        from ..config import text
+
+        if not self.has_default:
+            return "required"
+        if isinstance(self.default, bool) or not isinstance(self.default, numbers.Real):
+            return str(self.default)
+        return text(float(self.default))
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data (for JSON, ``cosserat models --format json`` and the docs' tables)."""
@@ -213,40 +242,64 @@ class Param:
             "scale": self.scale,
             "role": self.role,
             "source": self.source,
+            "choices": list(self.choices),
+            "cells": list(self.cells),
         }
+
+
+_SAME: Any = object()
 
 
 def param(
     default: Any = REQUIRED,
     meaning: str = "",
     unit: str = "-",
+    *,
+    field_default: Any = _SAME,
     **spec: Any,
 ) -> Any:
-    """A dataclass field declared with its :class:`Param` (``spec``: its other attributes)."""
+    """A dataclass field declared with its :class:`Param` (``spec``: its other attributes).
+
+    ``field_default``: the field's own default when it differs from the declared one: None for
+    a value the class resolves itself (a wall's inertial number takes its declared default
+    unless the wall stress is imposed instead).
+    """
     declared = Param(meaning=meaning, unit=unit, default=default, **spec)
-    if default is REQUIRED:
+    value = default if field_default is _SAME else field_default
+    if value is REQUIRED:
         return dataclasses.field(metadata={"param": declared})
-    return dataclasses.field(default=default, metadata={"param": declared})
+    return dataclasses.field(default=value, metadata={"param": declared})
+
+
+_DECLARED: dict[type, dict[str, Param]] = {}
+
+
+def _declared(cls: Any) -> dict[str, Param]:
+    """:func:`declarations` itself, the cached dict (not to be changed)."""
+    klass = cls if isinstance(cls, type) else type(cls)
+    found = _DECLARED.get(klass)
+    if found is None:
+        found = {}
+        if dataclasses.is_dataclass(klass):
+            for f in dataclasses.fields(klass):
+                p = f.metadata.get("param")
+                if p is not None:
+                    found[f.name] = dataclasses.replace(p, name=f.name)
+        _DECLARED[klass] = found
+    return found
 
 
 def declarations(cls: Any) -> dict[str, Param]:
     """Every declared field of the dataclass ``cls`` (or of an instance's class), by field name,
-    in field order, each :class:`Param` with its ``name`` set."""
-    if not dataclasses.is_dataclass(cls):
-        return {}
-    out: dict[str, Param] = {}
-    for f in dataclasses.fields(cls):
-        p = f.metadata.get("param")
-        if p is not None:
-            out[f.name] = dataclasses.replace(p, name=f.name)
-    return out
+    in field order, each :class:`Param` with its ``name`` set (computed once per class)."""
+    return dict(_declared(cls))
 
 
 def validate(obj: Any, skip: tuple[str, ...] = ()) -> None:
     """Check and normalise every declared field of the frozen dataclass ``obj`` in place
     (:meth:`Param.check`); call it first in ``__post_init__``, then check what ties fields
     together."""
-    for name, p in declarations(obj).items():
+    for name, p in _declared(obj).items():
         if name in skip:
             continue
         object.__setattr__(obj, name, p.check(getattr(obj, name), name))
@@ -254,7 +307,7 @@ def validate(obj: Any, skip: tuple[str, ...] = ()) -> None:
 
 def values(obj: Any) -> dict[str, Any]:
     """Declared field -> value of ``obj`` (its command-line keys)."""
-    return {p.cli_key: getattr(obj, name) for name, p in declarations(obj).items()}
+    return {p.cli_key: getattr(obj, name) for name, p in _declared(obj).items()}
 
 
 def table(params: Mapping[str, Param]) -> list[dict[str, Any]]:

@@ -20,7 +20,8 @@ plane shear). With ``sigma_yx`` the shear stress on planes parallel to the walls
   so ``w`` is an exponential of an integral (integrate the exponent, never ``w`` itself) and
   ``u`` follows by one quadrature.
 
-The problem classes (:mod:`cosserat.problems.plane`, :mod:`cosserat.problems.couette`) supply
+The Cosserat model's equations on each cell (:mod:`cosserat.model.rheologies.cosserat.plane`,
+:mod:`cosserat.model.rheologies.cosserat.couette`) supply
 ``sigma_yx(xi, m)``, ``sigma_c(xi)`` and ``kappa(xi)``; the solvers use only this module.
 """
 

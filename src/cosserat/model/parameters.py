@@ -22,10 +22,14 @@ from dataclasses import dataclass
 from typing import Literal
 
 from .. import config
-from ..errors import ParameterError
+from ..errors import ParameterError, shown
+from .declare import param, validate
 
 FULLY_ROUGH: Literal["fully-rough"] = "fully-rough"
 """Value of ``Wall.delta`` for a fully rough wall, tan(delta) = sin(phi) (``eqn-bc_fullyrough``)."""
+ROUGH_WORDS = ("fully-rough", "fully_rough", "rough")
+"""Spellings of a fully rough wall accepted for a wall's delta (any case)."""
+PAPER = "Mohan, Kesava Rao & Nott, J. Fluid Mech. 457 (2002): the paper's figures"
 
 
 def require_finite(name: str, value: float) -> float:
@@ -33,9 +37,9 @@ def require_finite(name: str, value: float) -> float:
     try:
         x = float(value)
     except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number; got {value!r}") from None
+        raise ParameterError(f"{name} must be a number; got {shown(value)}") from None
     if not math.isfinite(x):
-        raise ParameterError(f"{name} must be finite; got {value!r}")
+        raise ParameterError(f"{name} must be finite; got {shown(value)}")
     return x
 
 
@@ -75,17 +79,36 @@ class Material:
     26.565
     """
 
-    phi: float = config.PHI
-    L: float = config.L
-    A: float = config.A
+    phi: float = param(
+        config.PHI,
+        "angle of internal friction",
+        "deg",
+        bounds=(0.0, 90.0),
+        fit_range=(10.0, 60.0),
+        role="material",
+        source=f"glass beads; {PAPER}",
+    )
+    L: float = param(
+        config.L,
+        "material length scale over the grain diameter, eqn-yc2",
+        bounds=(0.0, math.inf),
+        fit_range=(0.5, 100.0),
+        scale="log",
+        role="material",
+        source=PAPER,
+    )
+    A: float = param(
+        config.A,
+        "ratio a2/a1 of the yield-condition constants, eqn-yc2",
+        bounds=(-1.0, 1.0),
+        fit_range=(-0.95, 0.95),
+        role="material",
+        reason="the quadratic form in eqn-yc2 must be positive",
+        source=PAPER,
+    )
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "phi", require_open_interval("phi", self.phi, 0.0, 90.0, " [deg]"))
-        L = require_finite("L", self.L)
-        if L <= 0.0:
-            raise ParameterError(f"L must satisfy L > 0; got {L:g}")
-        object.__setattr__(self, "L", L)
-        object.__setattr__(self, "A", require_open_interval("A", self.A, -1.0, 1.0))
+        validate(self)
 
     @functools.cached_property
     def sin_phi(self) -> float:
@@ -136,18 +159,30 @@ class Wall:
     True
     """
 
-    delta: float | Literal["fully-rough"] = config.DELTA
-    K: float = config.K
+    delta: float | Literal["fully-rough"] = param(
+        config.DELTA,
+        "angle of wall friction, or fully-rough: tan delta = sin phi",
+        "deg",
+        bounds=(0.0, 90.0),
+        choices=(FULLY_ROUGH,),
+        fit_range=(1.0, 45.0),
+        role="wall",
+        source=f"smooth walls; {PAPER}",
+    )
+    K: float = param(
+        config.K,
+        "slip coefficient of eqn-bc3; 0: no slip, 1/2: a grain rolling without sliding",
+        bounds=(0.0, math.inf),
+        closed=(True, False),
+        fit_range=(0.0, 10.0),
+        role="wall",
+        source=PAPER,
+    )
 
     def __post_init__(self) -> None:
-        if self.delta != FULLY_ROUGH:
-            object.__setattr__(
-                self, "delta", require_open_interval("delta", self.delta, 0.0, 90.0, " [deg]")
-            )
-        K = require_finite("K", self.K)
-        if K < 0.0:
-            raise ParameterError(f"K must satisfy K >= 0; got {K:g}")
-        object.__setattr__(self, "K", K)
+        if isinstance(self.delta, str) and self.delta.strip().lower() in ROUGH_WORDS:
+            object.__setattr__(self, "delta", FULLY_ROUGH)
+        validate(self)
 
     @classmethod
     def fully_rough(cls, K: float = config.K) -> Wall:

@@ -28,7 +28,8 @@ import math
 import numpy as np
 from numba import njit
 
-from ..model.channel import k_channel_radicand, k_torque_numerator, shear_stress
+from ..model.cells.channel import shear_stress
+from ..model.rheologies.cosserat.channel import k_channel_radicand, k_torque_numerator
 from .dop853 import dop853, dop853_eval1
 from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1, radau5
 from .roots import B as ROOT

@@ -32,23 +32,22 @@ import math
 import numpy as np
 from numba import njit
 
+from ..model.cells.plane import mean_stress
 from ..model.constitutive import (
     RADICAND_ROUNDOFF,
     k_radicand,
     k_spin_ratio,
     k_torque,
-    k_torque_dm,
-    k_torque_dsyx,
+    k_torque_gradient,
     k_velocity_ratio,
 )
-from ..model.couette import (
+from ..model.rheologies.cosserat.couette import (
     outer_wall_couple_stress,
     outer_wall_couple_stress_dm_inner,
     shear_stress,
     shear_stress_dm,
     shear_stress_dm_inner,
 )
-from ..model.plane import mean_stress
 from .dop853 import dop853, dop853_eval1
 from .radau import EVENT, MAX_STEPS, SUCCESS, dense_eval1
 from .radau_scalar import radau5_scalar, sensitivity
@@ -119,7 +118,7 @@ SECANT_STEPS = 12
 # tolerance of its first pass, the allowed second-order remainder of its last step (a fraction
 # of the tolerance on m(0)), and |F''|/2 assumed before two passes have measured it
 NEWTON_TRIALS = 8
-NEWTON_LOOSE_RTOL = 1e-6
+NEWTON_LOOSE_RTOL = 1e-4
 NEWTON_REMAINDER = 0.01
 NEWTON_CURVATURE_PRIOR = 1.0
 # floor on sqrt(S) in the Jacobian, relative to sigma_c sin(phi) (couple_jac)
@@ -174,7 +173,7 @@ def couple_rhs(xi, m, args):
 
 @njit(cache=True, nogil=True)
 def couple_jac(xi, m, args):
-    """d(dm/dxi)/dm, analytic (:func:`k_torque_dm`, :func:`k_torque_dsyx`)."""
+    """d(dm/dxi)/dm, analytic (:func:`k_torque_gradient`)."""
     p, mu = args
     syx = _shear_stress(xi, m, p, mu)
     sc = _mean_stress(xi, p)
@@ -182,23 +181,27 @@ def couple_jac(xi, m, args):
     # Near the yield bound dT/dm ~ 1/sqrt(S) is unbounded; Newton needs only an approximate
     # Jacobian, and a bounded one lets a step cross S = 0, where the event stops the pass.
     floor = JACOBIAN_ROOT_FLOOR * sc * sp
-    dT_dm = k_torque_dm(syx, sc, m, A, sp, floor)
-    dT_dsyx = k_torque_dsyx(syx, sc, m, A, sp, floor)
+    dT_dm, dT_dsyx = k_torque_gradient(syx, sc, m, A, sp, floor)
     dT = dT_dm + dT_dsyx * _shear_stress_dm(xi, p)
     return dT / (p[P_EPS] * p[P_ALPHA]) - _curvature(xi, p)
 
 
 @njit(cache=True, nogil=True)
-def couple_dmu(xi, m, args):
-    """d(dm/dxi)/d m(0) at fixed m (Couette; 0 in plane shear): m(0) enters through s_rt."""
+def couple_derivatives(xi, m, args):
+    """(d(dm/dxi)/dm, d(dm/dxi)/d m(0)) at fixed m: :func:`couple_jac`, and the dependence on
+    the inner-wall couple stress m(0) through s_rt in Couette flow (0 in plane shear)."""
     p, mu = args
-    if p[P_GEOMETRY] == PLANE:
-        return 0.0
     syx = _shear_stress(xi, m, p, mu)
     sc = _mean_stress(xi, p)
-    floor = JACOBIAN_ROOT_FLOOR * sc * p[P_SIN_PHI]
-    dT_dsyx = k_torque_dsyx(syx, sc, m, p[P_A], p[P_SIN_PHI], floor)
-    return dT_dsyx * shear_stress_dm_inner(xi, p[P_RI], p[P_COUPLE]) / (p[P_EPS] * p[P_ALPHA])
+    A, sp = p[P_A], p[P_SIN_PHI]
+    floor = JACOBIAN_ROOT_FLOOR * sc * sp
+    dT_dm, dT_dsyx = k_torque_gradient(syx, sc, m, A, sp, floor)
+    dT = dT_dm + dT_dsyx * _shear_stress_dm(xi, p)
+    ea = p[P_EPS] * p[P_ALPHA]
+    dfdm = dT / ea - _curvature(xi, p)
+    if p[P_GEOMETRY] == PLANE:
+        return dfdm, 0.0
+    return dfdm, dT_dsyx * shear_stress_dm_inner(xi, p[P_RI], p[P_COUPLE]) / ea
 
 
 @njit(cache=True, nogil=True)
@@ -362,7 +365,7 @@ def couple_pass(p, mu, m_start, x_start, x_end, rtol, atol, max_steps):
 @njit(cache=True, nogil=True)
 def couple_sensitivity(p, mu, ts, hs, ys, Zs, s_start):
     """d m / d m(0) along a Couette couple-stress pass (:func:`sensitivity`): (ss, dQ)."""
-    return sensitivity(couple_jac, couple_dmu, (p, mu), ts, hs, ys, Zs, s_start)
+    return sensitivity(couple_derivatives, (p, mu), ts, hs, ys, Zs, s_start)
 
 
 @njit(cache=True, nogil=True)
@@ -522,49 +525,52 @@ def couette_inner_couple_stress(p, rtol, atol, max_steps, counters):
 
 @njit(cache=True, nogil=True)
 def _newton_trial(p, mu, rtol, atol, max_steps, counters):
-    """One pass at m(0) = mu with its sensitivity: (code, F, dF/dmu, ts, hs, ys, Q, ss, dQ).
-
-    F(mu) = m(0; mu) - mu; dF/dmu = s(0) - 1 with s = dm/dmu, the derivative of the computed
-    pass (:func:`couple_sensitivity`), started from dm(1)/dmu of ``eqn-nd_bc1_cyl``.
-    """
-    tan_d, Ri, cf, A, sp = p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
-    m1, disc = outer_wall_couple_stress(mu, tan_d, Ri, cf, A, sp)
+    """One pass at m(0) = mu: (code, F, ts, hs, ys, Q, Zs), F(mu) = m(0; mu) - mu."""
+    m1, disc = outer_wall_couple_stress(
+        mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+    )
     counters[3] += 1.0
-    e1 = np.zeros(1)
-    e2 = np.zeros((1, 1))
-    e3 = np.zeros((0, 1, 3))
     if disc <= 0.0:
-        return NO_SOLUTION, 0.0, 0.0, e1, e1, e2, e3, e2, e3
+        e1 = np.zeros(1)
+        return NO_SOLUTION, 0.0, e1, e1, np.zeros((1, 1)), np.zeros((0, 1, 3)), np.zeros((0, 3))
     status, ts, hs, ys, Q, Zs, _, nfev, nsteps, nlu = couple_pass(
         p, mu, m1, 1.0, 0.0, rtol, atol, max_steps
     )
     counters[0] += nfev
     counters[1] += nsteps
     counters[2] += nlu
-    code = _pass_status(status)
-    if code != OK:
-        return code, 0.0, 0.0, ts, hs, ys, Q, e2, e3
-    s1 = outer_wall_couple_stress_dm_inner(mu, tan_d, Ri, cf, A, sp)
+    return _pass_status(status), ys[-1, 0] - mu, ts, hs, ys, Q, Zs
+
+
+@njit(cache=True, nogil=True)
+def _newton_slope(p, mu, ts, hs, ys, Zs):
+    """(dF/dmu, dm/dmu along the pass, its dense output): dF/dmu = s(0) - 1 with s = dm/dmu,
+    the derivative of the computed pass (:func:`couple_sensitivity`), started from dm(1)/dmu
+    of ``eqn-nd_bc1_cyl``."""
+    s1 = outer_wall_couple_stress_dm_inner(
+        mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+    )
     ss, dQ = couple_sensitivity(p, mu, ts, hs, ys, Zs, s1)
-    return OK, ys[-1, 0] - mu, ss[-1, 0] - 1.0, ts, hs, ys, Q, ss, dQ
+    return ss[-1, 0] - 1.0, ss, dQ
 
 
 @njit(cache=True, nogil=True)
 def couette_newton(p, rtol, atol, max_steps, counters):
     """(found, mu, ts, hs, ys, Q): m(0) by Newton's method, and its final couple-stress pass.
 
-    Each pass returns F(mu) = m(0; mu) - mu and, by internal differentiation, dF/dmu
-    (:func:`_newton_trial`), so each pass is one Newton step. Only the last pass needs the
-    final tolerance (rtol/10, as every trial of :func:`couette_inner_couple_stress`): the first
-    runs at ``NEWTON_LOOSE_RTOL`` (unless the caller gave a guess of m(0)), and a pass whose
-    Newton step will still be large runs at a tolerance a hundred times below the error of
-    m(0) expected after it. The result is accepted when |F| <= tol (``tol`` as in
-    :func:`couette_inner_couple_stress`), or when the final pass's own Newton step is so small
-    that its second-order remainder, estimated from the previous step (``c |step|^2``, with
-    ``c`` the smaller of |F|/|previous step|^2 and |change of dF/dmu|/(2 |previous step|),
-    both upper estimates of |F''|/2 up to the passes' errors), is below
-    ``NEWTON_REMAINDER`` tol: then the step is taken on the computed solution itself, through
-    its linearisation ``m + step dm/dmu`` (exact to first order for the discrete equations).
+    Each pass returns F(mu) = m(0; mu) - mu (:func:`_newton_trial`) and, by internal
+    differentiation, dF/dmu (:func:`_newton_slope`), so each pass is one Newton step. Only the
+    last pass needs the final tolerance (rtol/10, as every trial of
+    :func:`couette_inner_couple_stress`): the first runs at ``NEWTON_LOOSE_RTOL`` (unless the
+    caller gave a guess of m(0)), and a pass whose Newton step will still be large runs at a
+    tolerance a hundred times below the error of m(0) expected after it. The result is
+    accepted when |F| <= tol (``tol`` as in :func:`couette_inner_couple_stress`), or when the
+    final pass's own Newton step is so small that its second-order remainder, estimated from
+    the previous step (``c |step|^2``, with ``c`` the smaller of |F|/|previous step|^2 and
+    |change of dF/dmu|/(2 |previous step|), both upper estimates of |F''|/2 up to the passes'
+    errors), is below ``NEWTON_REMAINDER`` tol: then the step is taken on the computed
+    solution itself, through its linearisation ``m + step dm/dmu`` (exact to first order for
+    the discrete equations).
     A step whose pass leaves the real domain is halved (the root lies between the last
     admissible trial and it, F decreasing), and no later step goes beyond it. Anything else
     unexpected (a first pass outside the real domain, a pass that fails otherwise, dF/dmu >= 0,
@@ -586,7 +592,7 @@ def couette_newton(p, rtol, atol, max_steps, counters):
     limit = math.nan  # the nearest trial beyond the real domain (F decreases; failures bound mu)
     for _ in range(NEWTON_TRIALS):
         final = pass_rtol <= final_rtol
-        code, F, dF, ts, hs, ys, Q, ss, dQ = _newton_trial(
+        code, F, ts, hs, ys, Q, Zs = _newton_trial(
             p, mu, pass_rtol, final_atol * (pass_rtol / final_rtol), max_steps, counters
         )
         if code == NO_SOLUTION and math.isfinite(mu_ok):
@@ -595,10 +601,13 @@ def couette_newton(p, rtol, atol, max_steps, counters):
             mu = 0.5 * (mu_ok + mu)
             prev_step = math.nan
             continue
-        if code != OK or not (math.isfinite(F) and math.isfinite(dF) and dF < 0.0):
+        if code != OK or not math.isfinite(F):
             break
         if final and abs(F) <= tol:
             return True, mu, ts, hs, ys, Q
+        dF, ss, dQ = _newton_slope(p, mu, ts, hs, ys, Zs)
+        if not (math.isfinite(dF) and dF < 0.0):
+            break
         step = -F / dF
         if not abs(step) <= bound:
             break
@@ -687,58 +696,22 @@ def _crossed_by_round_off(ts: np.ndarray, ys: np.ndarray, p: np.ndarray) -> bool
 
 # ----------------------------------------------------------------- one case
 @njit(cache=True, nogil=True)
-def solve_case(p, rtol, atol, f, max_steps):
-    """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
+def _empty_solution():
+    """(couple-stress, spin) solutions of a case that stopped before them."""
+    couple = (np.zeros(1), np.zeros(0), np.zeros((1, 1)), np.zeros((0, 1, 3)))
+    spin = (np.zeros(1), np.zeros((1, 2)), np.zeros((0, 7, 2)))
+    return couple, spin
 
-    ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
-    :func:`~cosserat.numerics.radau_scalar.radau5_scalar`, the spin one (ts, ys, F) of
-    :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
-    xi(tau) given by the pass geometry ``[xi_slip, span, singular]``.
-    """
-    info = np.zeros(N_INFO)
-    info[I_DELTA] = math.nan
-    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
-    empty1 = np.zeros(1)
-    empty2 = np.zeros((1, 1))
-    empty3 = np.zeros((0, 1, 3))
-    no_spin = (empty1, np.zeros((1, 2)), np.zeros((0, 7, 2)))
-    g = np.zeros(3)
+
+@njit(cache=True, nogil=True)
+def _after_couple_pass(p, mu, status, cs, counters, info, rtol, atol, f, max_steps):
+    """From a couple-stress pass to the case's result (:func:`solve_case`): the pass's status,
+    then the spin pass, the velocity constants and the thickness."""
+    ts1, _, ys1, _ = cs
     xs, x0 = walls(p)
-    mu = 0.0
-    have_pass = False
-    ts1, hs1, ys1, Q1 = empty1, np.zeros(0), empty2, empty3
-    if p[P_GEOMETRY] == COUETTE:
-        pass_rtol, pass_atol = rtol * 0.1, atol * 0.1
-        have_pass, mu, ts1, hs1, ys1, Q1 = couette_newton(p, rtol, atol, max_steps, counters)
-        if not have_pass:
-            code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
-            if code != OK:
-                info[I_MU] = mu
-                info[I_ITERATIONS] = counters[3]
-                info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
-                return code, info, (empty1, np.zeros(0), empty2, empty3), no_spin, g
-        info[I_MU] = mu
-        info[I_ITERATIONS] = counters[3]
-        m1, _ = outer_wall_couple_stress(
-            mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
-        )
-        m_start = m1
-    else:
-        m_start = p[P_M_START]
-        pass_rtol, pass_atol = rtol, atol
-    if have_pass:
-        status = SUCCESS
-        m_start = ys1[0, 0]
-        info[I_STEPS_COUPLE] = ts1.size - 1
-    else:
-        status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
-            p, mu, m_start, x0, xs, pass_rtol, pass_atol, max_steps
-        )
-        counters[0] += nfev
-        counters[1] += nsteps
-        counters[2] += nlu
-        info[I_STEPS_COUPLE] = nsteps
-    cs = (ts1, hs1, ys1, Q1)
+    m_start = ys1[0, 0]
+    g = np.zeros(3)
+    _, no_spin = _empty_solution()
     code = _pass_status(status)
     if code == NO_SOLUTION and _crossed_by_round_off(ts1, ys1, p):
         code = AT_YIELD_EDGE
@@ -808,6 +781,75 @@ def solve_case(p, rtol, atol, f, max_steps):
     info[I_DELTA] = delta
     info[I_DELTA_OK] = 1.0 if delta_ok else 0.0
     return OK, info, cs, sp, g
+
+
+@njit(cache=True, nogil=True)
+def solve_plane_case(p, rtol, atol, f, max_steps):
+    """:func:`solve_case` for plane shear (compiled without the Couette search)."""
+    info = np.zeros(N_INFO)
+    info[I_DELTA] = math.nan
+    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
+    xs, x0 = walls(p)
+    status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
+        p, 0.0, p[P_M_START], x0, xs, rtol, atol, max_steps
+    )
+    counters[0] += nfev
+    counters[1] += nsteps
+    counters[2] += nlu
+    info[I_STEPS_COUPLE] = nsteps
+    cs = (ts1, hs1, ys1, Q1)
+    return _after_couple_pass(p, 0.0, status, cs, counters, info, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, nogil=True)
+def solve_couette_case(p, rtol, atol, f, max_steps):
+    """:func:`solve_case` for Couette flow: m(0) by Newton's method (:func:`couette_newton`),
+    or by the bracketing search (:func:`couette_inner_couple_stress`) if that fails."""
+    info = np.zeros(N_INFO)
+    info[I_DELTA] = math.nan
+    counters = np.zeros(4)  # nfev, nsteps, nlu, trials
+    found, mu, ts1, hs1, ys1, Q1 = couette_newton(p, rtol, atol, max_steps, counters)
+    status = SUCCESS
+    if found:
+        info[I_STEPS_COUPLE] = ts1.size - 1
+    else:
+        code, mu, xf, mf = couette_inner_couple_stress(p, rtol, atol, max_steps, counters)
+        if code != OK:
+            info[I_MU] = mu
+            info[I_ITERATIONS] = counters[3]
+            info[I_XI_FAIL], info[I_M_FAIL] = xf, mf
+            cs, sp = _empty_solution()
+            return code, info, cs, sp, np.zeros(3)
+        m1, _ = outer_wall_couple_stress(
+            mu, p[P_TAN_DELTA], p[P_RI], p[P_COUPLE], p[P_A], p[P_SIN_PHI]
+        )
+        status, ts1, hs1, ys1, Q1, _, _, nfev, nsteps, nlu = couple_pass(
+            p, mu, m1, 1.0, 0.0, rtol * 0.1, atol * 0.1, max_steps
+        )
+        counters[0] += nfev
+        counters[1] += nsteps
+        counters[2] += nlu
+        info[I_STEPS_COUPLE] = nsteps
+    info[I_MU] = mu
+    info[I_ITERATIONS] = counters[3]
+    cs = (ts1, hs1, ys1, Q1)
+    return _after_couple_pass(p, mu, status, cs, counters, info, rtol, atol, f, max_steps)
+
+
+@njit(cache=True, nogil=True)
+def solve_case(p, rtol, atol, f, max_steps):
+    """Solve one problem: (status, info, couple-stress solution, spin solution, pass geometry).
+
+    ``info`` holds the scalars ``I_*``; the solutions are (ts, hs, ys, Q) of
+    :func:`~cosserat.numerics.radau_scalar.radau5_scalar`, the spin one (ts, ys, F) of
+    :func:`~cosserat.numerics.dop853.dop853` in the pass variable tau with
+    xi(tau) given by the pass geometry ``[xi_slip, span, singular]``. One problem of a known
+    cell is cheaper to compile through :func:`solve_plane_case` or :func:`solve_couette_case`
+    (a first run compiles only what it calls).
+    """
+    if p[P_GEOMETRY] == COUETTE:
+        return solve_couette_case(p, rtol, atol, f, max_steps)
+    return solve_plane_case(p, rtol, atol, f, max_steps)
 
 
 @njit(cache=True, nogil=True)

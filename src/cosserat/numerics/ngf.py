@@ -17,9 +17,10 @@ imposed I_w.
 
 Cells (``kind``): 0 plane shear (``shape`` = B nu), 1 Couette flow (``shape`` = Ri),
 2 vertical channel (``shape`` unused). The local law: ``mu_2 = 0`` is the linear one. The
-statics and the local law are the compiled functions of :mod:`cosserat.model.ngf`
-(:func:`~cosserat.model.ngf.statics`, :func:`~cosserat.model.ngf.local_fluidity`), which the
-model's cells use too.
+statics and the local law are the compiled functions of :mod:`cosserat.model.rheologies.ngf`
+(:func:`~cosserat.model.rheologies.ngf.statics`, which calls the cells' compiled statics, and
+:func:`~cosserat.model.rheologies.ngf.local_fluidity`), which NGF's equations on arrays use
+too.
 Status codes: of :func:`fluidity`, 0 solved, 3 singular (a pivot of the tridiagonal solve is
 0 or not finite: k = 0 in double precision, so F is not determined); of :func:`stress_level`,
 0 converged, 1 no bracket found (the wall speed exceeds what any admissible stress level
@@ -33,7 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..model.ngf import CHANNEL, COUETTE, PLANE, local_fluidity, statics
+from ..model.rheologies.ngf import CHANNEL, COUETTE, PLANE, local_fluidity, statics
 from .roots import brent_accept, brent_next, brent_start
 
 CONVERGED, NO_BRACKET, NO_CONVERGENCE, SINGULAR = 0, 1, 2, 3

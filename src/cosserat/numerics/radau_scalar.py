@@ -519,8 +519,7 @@ def radau5_scalar(
 
 @njit(**_INLINE)
 def sensitivity(
-    dfdy: Callable,
-    dfdp: Callable,
+    derivatives: Callable,
     args: object,
     ts: np.ndarray,
     hs: np.ndarray,
@@ -537,12 +536,12 @@ def sensitivity(
     system ``(I - h A diag(J_j)) dZ = h A (J s + g)``, ``J_j = df/dy``, ``g_j = df/dp`` at the
     stages, and ``s_new = s + dZ_3``. This is the exact derivative of the computed solution on
     its step sequence (to the Newton tolerance), with no error control of its own and no
-    second integration: the cost is three evaluations of ``dfdy`` and ``dfdp`` per step.
+    second integration: the cost is three evaluations of ``derivatives`` per step.
 
     Parameters
     ----------
-    dfdy, dfdp : numba functions
-        ``(t, y, args) -> float``: the derivatives of ``fun`` in y and in p.
+    derivatives : numba function
+        ``(t, y, args) -> (float, float)``: the derivatives of ``fun`` in y and in p.
     ts, hs, ys, Zs : arrays
         As returned by :func:`radau5_scalar` (every step accepted and whole: not after an event).
     s0 : float
@@ -569,8 +568,9 @@ def sensitivity(
         for j in range(3):
             tj = t + C[j] * h
             yj = y + Zs[i, j]
-            Jv[j] = dfdy(tj, yj, args)
-            rhs[j] = Jv[j] * s + dfdp(tj, yj, args)
+            dfdy, dfdp = derivatives(tj, yj, args)
+            Jv[j] = dfdy
+            rhs[j] = dfdy * s + dfdp
         for a in range(3):
             r[a] = h * (RADAU_A[a, 0] * rhs[0] + RADAU_A[a, 1] * rhs[1] + RADAU_A[a, 2] * rhs[2])
             for b in range(3):

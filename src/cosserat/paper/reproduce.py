@@ -20,11 +20,11 @@ from pathlib import Path
 from typing import Any
 
 from .. import config
-from .._atomic import atomic_open, write_text
+from .._atomic import atomic_open, remove_stale_temporaries, write_text
 from ..analysis.sensitivity import existence_bound_A
-from ..model import PlaneShear
+from ..model import Cosserat, Plane, Problem
 from ..model.parameters import Wall
-from ..numerics.runtime import process_pool
+from ..numerics.runtime import worker_processes
 from ..routes.airy import xi_hat_at_fraction
 from .figures import FIGURES, FigureData, make_figure
 from .figures.paper import MATERIAL
@@ -120,7 +120,7 @@ def _later_claims(figures: dict[int, FigureData]) -> list[Claim]:
             )
         )
         alt = existence_bound_A(
-            PlaneShear(material=MATERIAL, upper=Wall.fully_rough(), eps=0.02, B=1.0)
+            Problem(Plane(eps=0.02, B=1.0), Cosserat(material=MATERIAL, wall=Wall.fully_rough()))
         )
         claims.append(
             Claim(
@@ -152,27 +152,38 @@ def reproduce(
     workers: int | None = None,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> Path:
-    """Compute and write every figure and the report into ``out``; returns ``out``."""
+    """Compute and write every figure and the report into ``out``; returns ``out``.
+
+    Each file appears whole (written beside and renamed). An interrupted run (Ctrl-C,
+    SIGTERM) stops its workers and removes their temporary files: ``out`` keeps the figures
+    finished so far and the earlier run's report. Temporary files of a run that was killed
+    (SIGKILL) are removed by the next run into ``out``.
+    """
     start = time.perf_counter()
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(out)  # of an earlier run that was killed while writing
     numbers = list(FIGURES) if figures is None else list(figures)
     workers = workers or min(len(numbers), os.cpu_count() or 1, 4)
     results: dict[int, FigureData] = {}
     # longest first, so the parallel run ends together
     order = sorted(numbers, key=lambda n: (n != 14, n != 15, n != 9, n))
-    if workers <= 1:
-        for i, n in enumerate(order):
-            results[n] = _figure_job(n, str(out))
-            if progress:
-                progress("figures", i + 1, len(order))
-    else:
-        with process_pool(workers) as pool:
-            futures = {pool.submit(_figure_job, n, str(out)): n for n in order}
-            for i, fut in enumerate(as_completed(futures)):
-                results[futures[fut]] = fut.result()
+    try:
+        if workers <= 1:
+            for i, n in enumerate(order):
+                results[n] = _figure_job(n, str(out))
                 if progress:
                     progress("figures", i + 1, len(order))
+        else:
+            with worker_processes(workers) as pool:  # stopped at once on an interruption
+                futures = {pool.submit(_figure_job, n, str(out)): n for n in order}
+                for i, fut in enumerate(as_completed(futures)):
+                    results[futures[fut]] = fut.result()
+                    if progress:
+                        progress("figures", i + 1, len(order))
+    except BaseException:
+        remove_stale_temporaries(out)  # of workers killed while writing (they are stopped)
+        raise
     # a partial run (--only) updates what an earlier run wrote instead of replacing it
     previous, previous_claims = _previous_state(out) if figures is not None else ({}, [])
     entries = {n: e for n, e in previous.items() if n not in results}

@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike
 from .._atomic import write_text
 from ..config import DEFAULT_F
 from ..errors import ConvergenceError, CosseratError, ParameterError
+from ..model.cells import Coordinate
 from ..model.constitutive import FloatArray
 from .wall import shear_layer_thickness, wall_omega, wall_slip
 
@@ -34,11 +35,12 @@ if TYPE_CHECKING:
 
 
 class Fields(NamedTuple):
-    """Fields at a set of points xi [-] (paper's scalings, ``dimlessvar``)."""
+    """Fields at a set of points xi [-] (paper's scalings, ``dimlessvar``); ``omega`` and ``m``
+    are None for a rheology without grain spin and couple stress (local mu(I), NGF)."""
 
     u: FloatArray
-    omega: FloatArray
-    m: FloatArray
+    omega: FloatArray | None
+    m: FloatArray | None
     sigma_xy: FloatArray
     sigma_yx: FloatArray
     sigma_yy: FloatArray
@@ -105,91 +107,32 @@ FIELD_MEANINGS = {
 }
 """What each field of the profile means (all dimensionless; ``docs/model.md``). The exports
 (:meth:`Profile.columns` and everything built on it) name them in the cell's own coordinates:
-:data:`CELL_NAMES`."""
+the cell's :attr:`~cosserat.model.cells.base.Cell.coordinate`."""
 
-COSSERAT_ONLY = ("m", "asymmetry", "spin_minus_half_vorticity")
-"""Fields a local rheology (no couple stress, symmetric stress) has identically zero: its
-profiles do not export them."""
-
-
-@dataclass(frozen=True)
-class CellNames:
-    """The names and meanings an export uses for one cell.
-
-    Attributes
-    ----------
-    coordinate : str
-        Name of the wall-normal coordinate column.
-    coordinate_meaning : str
-        What it holds, with its scaling.
-    position : callable
-        ``position(problem, xi)``: the coordinate at the gap fractions ``xi`` [-].
-    fields : mapping of str to (str, str)
-        Profile field -> (export name, meaning) where the cell renames it.
-    """
-
-    coordinate: str
-    coordinate_meaning: str
-    position: Callable[[Any, FloatArray], FloatArray]
-    fields: Mapping[str, tuple[str, str]] = field(default_factory=dict)
+COSSERAT_ONLY = ("omega", "m", "asymmetry", "spin_minus_half_vorticity")
+"""Fields only a rheology with grain spin and couple stress has: a profile of any other
+(local mu(I), NGF) has them as None, and its exports leave them out."""
 
 
-CELL_NAMES: dict[str, CellNames] = {
-    "plane": CellNames(
-        "y",
-        "height above the fixed lower wall over the gap, y/H (0 to 1)",
-        lambda problem, xi: xi,
-        {
-            "u": ("u", "velocity u_x over the moving upper wall's speed V"),
-            "omega": ("omega", "grain spin omega_z H / V"),
-            "sigma_xy": ("sigma_xy", "shear stress sigma_xy over the normal stress N"),
-            "sigma_yx": ("sigma_yx", "shear stress on wall-parallel planes sigma_yx over N"),
-            "sigma_yy": ("sigma_yy", "normal stress sigma_yy over N"),
-        },
-    ),
-    "couette": CellNames(
-        "r",
-        "radius over the gap, r/H (inner cylinder at r/H = R_i/H, outer at R_i/H + 1)",
-        lambda problem, xi: problem.Ri + xi,
-        {
-            "u": ("u", "velocity -v_theta over the inner cylinder's speed V_i (-1 at it)"),
-            "omega": ("omega", "grain spin omega_z H / V_i"),
-            "m": ("m", "couple stress M_rz / (L sqrt(2(A+1)) sigma_c d_p)"),
-            "sigma_xy": ("sigma_theta_r", "shear stress sigma_theta_r over the mean stress"),
-            "sigma_yx": (
-                "sigma_r_theta",
-                "shear stress on cylinders sigma_r_theta over the mean stress",
-            ),
-            "sigma_yy": ("sigma_rr", "radial normal stress sigma_rr over the mean stress"),
-            "asymmetry": ("asymmetry", "stress asymmetry sigma_r_theta - sigma_theta_r"),
-        },
-    ),
-    "channel": CellNames(
-        "y",
-        "distance across the channel over its width, y/H (walls at 0 and 1)",
-        lambda problem, xi: xi,
-        {
-            "u": ("u", "downward velocity over its centre-line value"),
-            "omega": ("omega", "grain spin omega_z H / u_centre"),
-            "sigma_xy": ("sigma_xy", "shear stress sigma_xy over the wall normal stress N"),
-            "sigma_yx": ("sigma_yx", "shear stress on wall-parallel planes sigma_yx over N"),
-            "sigma_yy": ("sigma_yy", "normal stress sigma_yy over N"),
-        },
-    ),
-}
-"""Export names by cell (the ``geometry`` of ``problem.parameters()``). A cell not listed
-here exports ``xi`` and the plane names: add it here with its own coordinate."""
+_GENERIC = Coordinate("xi", FIELD_MEANINGS["xi"], lambda cell, xi: xi)
 
 
-def cell_names(problem: Any) -> CellNames:
-    """The :class:`CellNames` of ``problem``'s cell (the generic ``xi`` names if unknown)."""
-    geometry = problem.parameters().get("geometry")
-    return CELL_NAMES.get(geometry, CellNames("xi", FIELD_MEANINGS["xi"], lambda problem, xi: xi))
+def cell_names(problem: Any) -> Coordinate:
+    """The export names of ``problem``'s cell (:attr:`~cosserat.model.cells.base.Cell.coordinate`;
+    the generic ``xi`` names for an object without a cell)."""
+    cell = getattr(problem, "cell", None)
+    return getattr(cell, "coordinate", _GENERIC)
+
+
+def _position(problem: Any, xi: FloatArray) -> FloatArray:
+    cell = getattr(problem, "cell", None)
+    return np.asarray(cell_names(problem).position(cell, xi), dtype=float)
 
 
 def is_local(problem: Any) -> bool:
     """True for a rheology without couple stress or independent spin (not the Cosserat one)."""
-    return problem.parameters().get("rheology", "cosserat") != "cosserat"
+    law = getattr(problem, "rheology", None)
+    return not getattr(law, "couple_stresses", True)
 
 
 @dataclass(frozen=True, eq=False)
@@ -198,12 +141,15 @@ class Profile:
 
     Attributes
     ----------
-    problem : PlaneShear or CouetteFlow
-        The parameters that made the profile.
+    problem : Problem
+        The cell and rheology that made the profile.
     xi : ndarray
         Wall-normal coordinate, 0 (lower wall / inner cylinder) to 1 [-].
-    u, omega, m : ndarray
-        Velocity / V, spin omega_z H / V, scaled couple stress (``dimlessvar``) [-].
+    u : ndarray
+        Velocity / V [-].
+    omega, m : ndarray or None
+        Spin omega_z H / V, scaled couple stress (``dimlessvar``) [-]; None for a rheology
+        without grain spin and couple stress (local mu(I), NGF): absent, not zero.
     sigma_xy, sigma_yx, sigma_yy : ndarray
         Shear stresses and the normal stress / N (Couette: sigma_theta_r, sigma_r_theta,
         sigma_rr / sigma_c) [-].
@@ -221,8 +167,8 @@ class Profile:
     problem: Problem
     xi: FloatArray
     u: FloatArray
-    omega: FloatArray
-    m: FloatArray
+    omega: FloatArray | None
+    m: FloatArray | None
     sigma_xy: FloatArray
     sigma_yx: FloatArray
     sigma_yy: FloatArray
@@ -256,13 +202,16 @@ class Profile:
     def __repr__(self) -> str:
         d = self.diagnostics
         n = self.xi.size
+        ranges = [
+            f"{name} in [{v.min():.6g}, {v.max():.6g}]"
+            for name, v in (("u", self.u), ("omega", self.omega), ("m", self.m))
+            if v is not None
+        ]
         lines = [
             f"<Profile: {self.problem.describe()}",
             f"  {d.method}, {n} points, xi in [{self.xi[0]:g}, {self.xi[-1]:g}]"
             + ("" if d.rtol is None else f", rtol = {d.rtol:g}"),
-            f"  u in [{self.u.min():.6g}, {self.u.max():.6g}], "
-            f"omega in [{self.omega.min():.6g}, {self.omega.max():.6g}], "
-            f"m in [{self.m.min():.6g}, {self.m.max():.6g}]>",
+            f"  {', '.join(ranges)}>",
         ]
         return "\n".join(lines)
 
@@ -271,17 +220,34 @@ class Profile:
         return self.diagnostics.method
 
     @property
-    def asymmetry(self) -> FloatArray:
-        """sigma_yx - sigma_xy, >= 0 with the paper's root [-]."""
+    def has_spin(self) -> bool:
+        """True if the rheology has a grain spin and couple stress of its own (omega, m)."""
+        return self.omega is not None
+
+    @property
+    def asymmetry(self) -> FloatArray | None:
+        """sigma_yx - sigma_xy, >= 0 with the paper's root [-]; None for a rheology without
+        couple stress (its stress is symmetric by construction)."""
+        if self.m is None:
+            return None
         return self.sigma_yx - self.sigma_xy
 
     @property
-    def spin_minus_half_vorticity(self) -> FloatArray:
-        """omega + (du/dxi + kappa u)/2: spin minus half the vorticity [-].
+    def half_vorticity(self) -> FloatArray:
+        """-(du/dxi + kappa u)/2: half the vorticity, the material spin of a classical
+        continuum (paper's signs) [-]."""
+        return -0.5 * (self.du_dxi + self.kappa * self.u)
+
+    @property
+    def spin_minus_half_vorticity(self) -> FloatArray | None:
+        """omega + (du/dxi + kappa u)/2: spin minus half the vorticity [-]; None without
+        grain spin.
 
         In plane shear this is the paper's ``omega + 1/2 du/dxi``; in Couette flow the
         vorticity has the extra u/r term.
         """
+        if self.omega is None:
+            return None
         return self.omega + 0.5 * (self.du_dxi + self.kappa * self.u)
 
     def evaluate(self, xi: ArrayLike) -> Fields:
@@ -303,28 +269,29 @@ class Profile:
         Plane shear: ``y`` (= y/H), ``u``, ``omega``, ``m``, ``sigma_xy``, ``sigma_yx``,
         ``sigma_yy``, ``asymmetry``, ``spin_minus_half_vorticity``; Couette flow: ``r``
         (= r/H), ..., ``sigma_theta_r``, ``sigma_r_theta``, ``sigma_rr``, ... (meanings:
-        :meth:`column_meanings`). A local rheology has no ``m``, ``asymmetry`` or
-        ``spin_minus_half_vorticity`` (identically zero), and its ``omega`` is half the
-        vorticity.
+        :meth:`column_meanings`). A rheology without grain spin and couple stress (local
+        mu(I), NGF) has no ``omega``, ``m``, ``asymmetry`` or ``spin_minus_half_vorticity``
+        column: those fields are absent.
         """
         names = cell_names(self.problem)
-        out = {names.coordinate: np.asarray(names.position(self.problem, self.xi), dtype=float)}
+        out = {names.name: _position(self.problem, self.xi)}
         for name in FIELD_MEANINGS:
-            if name == "xi" or (name in COSSERAT_ONLY and is_local(self.problem)):
+            if name == "xi":
                 continue
-            out[names.fields.get(name, (name, ""))[0]] = getattr(self, name)
+            values = getattr(self, name)
+            if values is None:
+                continue
+            out[names.fields.get(name, (name, ""))[0]] = values
         return out
 
     def column_meanings(self) -> dict[str, str]:
         """What each column of :meth:`columns` holds, with its scaling (all dimensionless)."""
         names = cell_names(self.problem)
-        out = {names.coordinate: names.coordinate_meaning}
+        out = {names.name: names.meaning}
         for name, meaning in FIELD_MEANINGS.items():
-            if name == "xi" or (name in COSSERAT_ONLY and is_local(self.problem)):
+            if name == "xi" or getattr(self, name) is None:
                 continue
             export, cell_meaning = names.fields.get(name, (name, meaning))
-            if name == "omega" and is_local(self.problem):
-                cell_meaning = "material spin, half the vorticity (no independent grain spin)"
             out[export] = cell_meaning
         return out
 
@@ -340,7 +307,7 @@ class Profile:
             "rheology": params.get("rheology", "cosserat"),
             "method": self.method,
             "parameters": params,
-            "coordinate": cell_names(self.problem).coordinate,
+            "coordinate": cell_names(self.problem).name,
             "points": int(self.xi.size),
         }
         try:
@@ -429,7 +396,7 @@ class Profile:
             raise ImportError("Profile.to_xarray needs xarray: pip install xarray") from None
         cols = self.columns()
         meanings = self.column_meanings()
-        coord = cell_names(self.problem).coordinate
+        coord = cell_names(self.problem).name
         position = cols.pop(coord)
         data = {
             name: (coord, values, {"long_name": meanings[name], "units": "1"})
@@ -452,7 +419,7 @@ class Profile:
         """A short HTML summary for notebooks: parameters, Delta, slip, a few rows."""
         rows = np.unique(np.linspace(0, self.xi.size - 1, 7).round().astype(int))
         columns = self.columns()
-        cols = [c for c in columns if c in (*CELL_COORDINATES, "u", "omega", "m", "asymmetry")]
+        cols = [c for c in columns if c in (*_coordinates(), "u", "omega", "m", "asymmetry")]
         table = "".join(
             "<tr>" + "".join(f"<td>{columns[c][i]:.6g}</td>" for c in cols) + "</tr>" for i in rows
         )
@@ -476,7 +443,10 @@ class Profile:
         return quick_profile_plot(self, fig)
 
 
-CELL_COORDINATES = ("xi", *(names.coordinate for names in CELL_NAMES.values()))
+def _coordinates() -> tuple[str, ...]:
+    from ..model.cells import CELLS
+
+    return ("xi", *(c.coordinate.name for c in CELLS.values()))
 
 
 def sidecar_path(path: str | Path) -> Path:

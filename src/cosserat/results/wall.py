@@ -28,13 +28,14 @@ def shear_layer_thickness(profile: Profile, f: float = DEFAULT_F) -> float:
         u(xi_w -+ eps Delta) - u_0 = f (u(xi_w) - u_0)
 
     u_0 is 1/2 between identical walls without gravity, the velocity of the non-slipping wall
-    otherwise (0, or 1 for a layer at the lower wall). Solved with Brent's method on the
-    profile's dense evaluator, so it does not depend on the output grid.
+    otherwise (0, or 1 for a layer at the lower wall), the centre-line velocity in the channel.
+    Solved with Brent's method on the profile's dense evaluator, so it does not depend on the
+    output grid; in a cell symmetric about its centre line (the channel) over the half gap.
 
     Examples
     --------
-    >>> from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve
-    >>> profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01))
+    >>> from cosserat import Cosserat, Plane, Problem, Wall, shear_layer_thickness, solve
+    >>> profile = solve(Problem(Plane(eps=0.01), Cosserat(wall=Wall(delta=20.0))))
     >>> round(shear_layer_thickness(profile), 2)
     18.35
     >>> round(shear_layer_thickness(profile, f=0.1), 2)
@@ -52,7 +53,7 @@ def shear_layer_thickness(profile: Profile, f: float = DEFAULT_F) -> float:
     u0 = profile.reference_velocity
     u_w = float(profile.velocity_at([xw])[0])
     target = f * (u_w - u0)
-    span = 1.0
+    span = float(getattr(getattr(profile.problem, "cell", None), "span", 1.0))
     eps = profile.problem.eps
 
     def g(d: float) -> float:
@@ -75,8 +76,8 @@ def wall_slip(profile: Profile) -> float:
 
     Examples
     --------
-    >>> from cosserat import Material, PlaneShear, Wall, solve, wall_slip
-    >>> profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01))
+    >>> from cosserat import Cosserat, Plane, Problem, Wall, solve, wall_slip
+    >>> profile = solve(Problem(Plane(eps=0.01), Cosserat(wall=Wall(delta=20.0))))
     >>> round(wall_slip(profile), 4)
     0.0202
     """
@@ -85,17 +86,21 @@ def wall_slip(profile: Profile) -> float:
     return abs(u - profile.problem.wall_velocity(xw))
 
 
-def wall_omega(profile: Profile) -> float:
-    """omega at the slipping wall (paper's sign; negative for the cases shown) [-].
+def wall_omega(profile: Profile) -> float | None:
+    """omega at the slipping wall (paper's sign; negative for the cases shown) [-]; None for a
+    rheology without grain spin (local mu(I), NGF).
 
     Examples
     --------
-    >>> from cosserat import Material, PlaneShear, Wall, solve, wall_omega
-    >>> profile = solve(PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01))
+    >>> from cosserat import Cosserat, Plane, Problem, Wall, solve, wall_omega
+    >>> profile = solve(Problem(Plane(eps=0.01), Cosserat(wall=Wall(delta=20.0))))
     >>> round(wall_omega(profile), 3)
     -4.035
     """
-    value = float(profile.evaluate([profile.slip_wall]).omega[0])
+    omega = profile.evaluate([profile.slip_wall]).omega
+    if omega is None:
+        return None
+    value = float(omega[0])
     if not math.isfinite(value):
         raise ConvergenceError(f"non-finite wall spin {value!r}")
     return value

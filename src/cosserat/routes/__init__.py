@@ -1,4 +1,10 @@
-"""Solution routes and the single entry point :func:`solve`."""
+"""Solution routes and the single entry point :func:`solve`.
+
+Routes register per (rheology, cell, method) in :mod:`.registry`: the Cosserat model's in
+:mod:`.cosserat`, local mu(I)'s in :mod:`.mui`, NGF's in :mod:`.ngf`. :func:`solve` looks the
+problem's up; a rheology registered later (a module calling
+:func:`~cosserat.routes.registry.register_route`) is solved the same way.
+"""
 
 from __future__ import annotations
 
@@ -9,58 +15,26 @@ from dataclasses import replace
 from typing import Any
 
 from ..errors import MethodNotAvailableError, ParameterError
-from ..model import Channel, CouetteFlow, PlaneShear, Problem
-from ..model.rheology import Rheology
+from ..model import Problem
+from ..model.rheologies import RHEOLOGIES
 from ..results.profile import Profile
-from . import asymptotic, channel, closed_form, numerical
-from .mui import MUI
-from .ngf import NGF_RHEOLOGY
-
-COSSERAT = Rheology(
-    name="cosserat",
-    title="frictional Cosserat model",
-    reference=(
-        "Mohan, Kesava Rao & Nott, A frictional Cosserat model for the slow shearing of "
-        "granular materials, J. Fluid Mech. 457 (2002) 377-409"
-    ),
-    cells={"plane": PlaneShear, "couette": CouetteFlow, "channel": Channel},
-    routes={
-        "numerical": {
-            PlaneShear: numerical.solve_plane,
-            CouetteFlow: numerical.solve_couette,
-            Channel: channel.solve_numerical,
-        },
-        "closed-form": {PlaneShear: closed_form.solve_plane},
-        "asymptotic": {
-            PlaneShear: asymptotic.solve_plane,
-            CouetteFlow: asymptotic.solve_couette,
-            Channel: channel.solve_asymptotic,
-        },
-    },
-    picklable=frozenset({numerical.solve_plane, numerical.solve_couette, channel.solve_numerical}),
+from . import cosserat as _cosserat  # noqa: F401  (registers the Cosserat model's routes)
+from . import mui as _mui  # noqa: F401  (registers mu(I)'s)
+from . import ngf as _ngf  # noqa: F401  (registers NGF's)
+from .registry import (
+    PICKLABLE,
+    ROUTES,
+    cells_for,
+    find,
+    methods,
+    methods_for,
+    models_for,
+    register_route,
+    register_routes,
 )
-"""The frictional Cosserat model on its two cells, through the seam every rheology uses."""
 
-RHEOLOGIES: dict[str, Rheology] = {}
-"""The registered rheologies by name (``"cosserat"``, ``"mui"``, ...); see :func:`register`."""
-_ROUTES: dict[str, dict[type, Callable[..., Profile]]] = {}
-_PICKLABLE: set[Callable[..., Profile]] = set()
-
-
-def register(rheology: Rheology) -> None:
-    """Make ``rheology``'s problem classes solvable by :func:`solve` (``docs/architecture.md``)."""
-    if rheology.name in RHEOLOGIES:
-        raise ParameterError(f"a rheology named {rheology.name!r} is already registered")
-    RHEOLOGIES[rheology.name] = rheology
-    for method, table in rheology.routes.items():
-        _ROUTES.setdefault(method, {}).update(table)
-    _PICKLABLE.update(rheology.picklable)
-
-
-register(COSSERAT)
-register(MUI)
-register(NGF_RHEOLOGY)
-METHODS = tuple(_ROUTES)
+METHODS = methods()
+"""The methods of the built-in routes ("numerical", "closed-form", "asymptotic")."""
 
 
 @functools.cache
@@ -70,30 +44,39 @@ def _options(route: Callable[..., Profile]) -> list[str]:
 
 
 def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profile:
-    """Solve ``problem`` by the route ``method``.
+    """Solve ``problem`` (any rheology on any of its cells) by the route ``method``.
 
     Parameters
     ----------
-    problem : PlaneShear or CouetteFlow
-    method : {"numerical", "closed-form", "asymptotic"}
-        "numerical" works for every problem and eps; "closed-form" exists for plane shear
-        without gravity; "asymptotic" is the leading order in eps of the paper's Appendix.
+    problem : Problem
+        A cell and a rheology, ``Problem(cell, rheology)``: the Cosserat model, local mu(I),
+        nonlocal fluidity or a rheology registered later, on plane shear, Couette flow, the
+        vertical channel or a cell registered later.
+    method : str
+        A registered method: "numerical" (every built-in rheology on every cell and eps),
+        "closed-form" (the Cosserat model in plane shear without gravity; mu(I) in Couette
+        flow, the channel and plane shear without gravity), "asymptotic" (the Cosserat model's
+        leading order in eps, the paper's Appendix). A bad name lists the valid ones.
     **options
-        ``points`` (output grid size, default 201) or ``xi`` (explicit grid); ``check``
-        (compute residuals and boundary errors, default True); for "numerical" also ``rtol``
-        (default 1e-8) and ``atol``.
+        Every route takes ``points`` (output grid size, default 201) or ``xi`` (an explicit
+        grid) and ``check`` (recompute residuals and boundary errors, default True). The
+        numerical routes also take ``rtol`` (Cosserat default 1e-8, mu(I) 1e-12), the
+        Cosserat ones ``atol``, NGF's ``cells``, ``resolution`` and ``extrapolate``; an option
+        a route does not take is an error that lists the ones it does.
 
     Returns
     -------
     Profile
+        The fields across the gap; ``omega`` and ``m`` are None for a rheology without grain
+        spin and couple stress (local mu(I), NGF).
 
     Raises
     ------
     ParameterError
-        Unknown method or option, or a problem that is neither PlaneShear nor CouetteFlow.
+        Not a problem, an unknown method or option.
     MethodNotAvailableError
-        The route does not exist for this problem (no closed form under gravity or in
-        Couette flow; the asymptotics where the layer is not thin), with the route to use.
+        The route does not exist for this rheology on this cell (no closed form under
+        gravity, the asymptotics where the layer is not thin), with the routes to use.
     NoSolutionError
         The model has no real solution for these parameters.
     ConvergenceError
@@ -101,8 +84,8 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
 
     Examples
     --------
-    >>> from cosserat import Material, PlaneShear, Wall, shear_layer_thickness, solve
-    >>> problem = PlaneShear(material=Material(), upper=Wall(delta=20.0), eps=0.01)
+    >>> from cosserat import Cosserat, Plane, Problem, Wall, shear_layer_thickness, solve
+    >>> problem = Problem(Plane(eps=0.01), Cosserat(wall=Wall(delta=20.0)))
     >>> profile = solve(problem)
     >>> profile.xi.shape
     (201,)
@@ -112,22 +95,27 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
     >>> round(shear_layer_thickness(closed), 2)
     18.35
     """
-    try:
-        routes = _ROUTES[method]
-    except KeyError:
+    if not isinstance(problem, Problem):
         raise ParameterError(
-            f"method must be one of {', '.join(repr(m) for m in METHODS)}; got {method!r}"
-        ) from None
-    solvable = {t for table in _ROUTES.values() for t in table}
-    if type(problem) not in solvable:
-        names = ", ".join(sorted(t.__name__ for t in solvable))
-        raise ParameterError(f"cannot solve a {type(problem).__name__}: give one of {names}")
-    route = routes.get(type(problem))
+            f"cannot solve a {type(problem).__name__}: give a Problem(cell, rheology), e.g. "
+            "Problem(Plane(eps=0.01), Cosserat())"
+        )
+    known = methods()
+    if method not in known:
+        raise ParameterError(
+            f"method must be one of {', '.join(repr(m) for m in known)}; got {method!r}"
+        )
+    route = find(problem.model, problem.cell_name, method)
     if route is None:
-        available = [m for m, r in _ROUTES.items() if type(problem) in r]
+        available = methods_for(problem.model, problem.cell_name)
+        if not available:
+            raise ParameterError(
+                f"no route solves the {problem.model} rheology on the {problem.cell_name} "
+                f"cell; it has routes on {', '.join(cells_for(problem.model)) or 'no cell'}"
+            )
         raise MethodNotAvailableError(
-            f"no {method} route for {type(problem).__name__}: use one of "
-            f"{', '.join(repr(m) for m in available)}"
+            f"no {method} route for the {problem.model} rheology on the {problem.cell_name} "
+            f"cell: use one of {', '.join(repr(m) for m in available)}"
         )
     accepted = _options(route)
     unknown = sorted(set(options) - set(accepted))
@@ -137,10 +125,21 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
             f"{', '.join(accepted)}"
         )
     profile = route(problem, **options)
-    if route not in _PICKLABLE:
+    if route not in PICKLABLE:
         # closures: the profile pickles as its arrays and this recipe (Profile.__getstate__)
         profile = replace(profile, recipe=(route, {k: v for k, v in options.items() if k != "xi"}))
     return profile
 
 
-__all__ = ["COSSERAT", "METHODS", "MUI", "NGF_RHEOLOGY", "RHEOLOGIES", "register", "solve"]
+__all__ = [
+    "METHODS",
+    "RHEOLOGIES",
+    "ROUTES",
+    "cells_for",
+    "methods",
+    "methods_for",
+    "models_for",
+    "register_route",
+    "register_routes",
+    "solve",
+]

@@ -54,14 +54,15 @@ def make_profile(
     grid when they are first read (:class:`~cosserat.results.diagnostics.DeferredResiduals`);
     sweeps that need only wall quantities may skip both.
     """
-    grid = problem.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
+    eq = problem.equations
+    grid = eq.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
     f = evaluate(grid)
     # The returned stresses must be real: a profile never carries a clipped radicand.
     check_radicand(
-        radicand(f.sigma_yx, f.sigma_yy, f.m, problem.material),
+        radicand(f.sigma_yx, f.sigma_yy, f.m, eq.material),
         f.sigma_yy,
         f.m,
-        problem.material,
+        eq.material,
         grid,
     )
     for name, values in f._asdict().items():
@@ -78,8 +79,8 @@ def make_profile(
     res: Mapping[str, float]
     if check:
         # the ODE residuals are computed when first read (DeferredResiduals)
-        res = DeferredResiduals(form, evaluate, lambda: problem.output_grid(config.CHECK_POINTS))
-        bc = problem.boundary_errors(evaluate)
+        res = DeferredResiduals(form, evaluate, lambda: eq.output_grid(config.CHECK_POINTS))
+        bc = eq.boundary_errors(evaluate)
     else:
         res, bc = {}, {}
     diag = Diagnostics(

@@ -20,21 +20,21 @@ Fully rough walls without gravity shear uniformly at leading order (u = xi, omeg
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from ..errors import MethodNotAvailableError, NoSolutionError
 from ..model import Problem
 from ..model.constitutive import FloatArray, symmetric_couple_stress
-from ..model.couette import CouetteFlow
-from ..model.plane import PlaneShear, PlaneShearCase
+from ..model.rheologies.cosserat import CosseratCouette, CosseratPlane, PlaneShearCase
 from ..results.profile import Fields, Profile
 from .airy import airy_layer, inner_couple_stress
 from .assemble import make_profile
 from .laws import asymptotic_thickness
 
 
-def plane_outer_couple_stress(problem: PlaneShear, xi: FloatArray) -> FloatArray:
+def plane_outer_couple_stress(eq: CosseratPlane, xi: FloatArray) -> FloatArray:
     """m^(0): the couple stress at which sigma_xy = sigma_yx, with the case's sign [-].
 
     ``eqn-asymp_soln_eta_g0`` (m0) without gravity, ``eqn-asymp_eta_g`` (a) with it.
@@ -42,11 +42,11 @@ def plane_outer_couple_stress(problem: PlaneShear, xi: FloatArray) -> FloatArray
     x = np.asarray(xi, dtype=float)
     mag = np.array(
         [
-            symmetric_couple_stress(problem.sigma_yx, float(s), problem.material)
-            for s in np.ravel(problem.sigma_c(x))
+            symmetric_couple_stress(eq.sigma_yx, float(s), eq.material)
+            for s in np.ravel(eq.sigma_c(x))
         ]
     ).reshape(x.shape)
-    case = problem.case
+    case = eq.case
     if case is PlaneShearCase.SYMMETRIC:
         return np.where(x >= 0.5, mag, -mag)
     return mag if case is PlaneShearCase.UPPER else -mag
@@ -75,7 +75,7 @@ def exponential_layer(
 THIN_LAYER = 0.1
 
 
-def require_valid(problem: Problem, thickness: float) -> None:
+def require_valid(eq: Any, thickness: float) -> None:
     """Raise :class:`MethodNotAvailableError` unless the small-eps expansion applies.
 
     Checks that the layer is thin (``thickness`` = eps Delta of the leading-order law at most
@@ -85,7 +85,7 @@ def require_valid(problem: Problem, thickness: float) -> None:
     sqrt(S) = 0), so eps alpha |dm0/dxi + kappa m0| must stay well below a = |sigma_yx|/2
     (``docs/derivation_plane.md`` section 6).
     """
-    if getattr(problem, "m_fixed_wall", None) is not None:
+    if getattr(eq, "m_fixed_wall", None) is not None:
         raise MethodNotAvailableError(
             "the asymptotic route assumes sigma_xy = sigma_yx at the fixed wall (eqn-nd_bc4); "
             "with m_fixed_wall use method='numerical'"
@@ -97,8 +97,8 @@ def require_valid(problem: Problem, thickness: float) -> None:
             f"method='numerical'"
         )
     x = np.linspace(0.0, 1.0, 401)
-    layers = [problem.slip_wall]  # and the inner layer at the centre between identical walls
-    if isinstance(problem, PlaneShear) and problem.case is PlaneShearCase.SYMMETRIC:
+    layers = [eq.slip_wall]  # and the inner layer at the centre between identical walls
+    if eq.problem.cell_name == "plane" and eq.case is PlaneShearCase.SYMMETRIC:
         layers += [0.0, 0.5]
     for centre in layers:
         x = x[np.abs(x - centre) > 3.0 * thickness + 0.01]
@@ -109,15 +109,9 @@ def require_valid(problem: Problem, thickness: float) -> None:
             f"{', '.join(f'{c:g}' for c in sorted(set(layers)))} fill the gap: use "
             f"method='numerical'"
         )
-    m0 = outer_couple_stress(problem, x)
-    form = (
-        problem.formulation(float(m0[0]))
-        if isinstance(problem, CouetteFlow)
-        else (problem.formulation())
-    )
-    need = (
-        problem.eps * problem.material.alpha * np.abs(np.gradient(m0, x) + form.curvature(x) * m0)
-    )
+    m0 = outer_couple_stress(eq, x)
+    form = eq.formulation(float(m0[0])) if eq.problem.cell_name == "couette" else (eq.formulation())
+    need = eq.eps * eq.material.alpha * np.abs(np.gradient(m0, x) + form.curvature(x) * m0)
     a = 0.5 * np.abs(np.asarray(form.sigma_yx(x, m0), dtype=float))
     if np.any(need > 0.5 * a):
         i = int(np.argmax(need / np.maximum(a, 1e-300)))
@@ -129,18 +123,18 @@ def require_valid(problem: Problem, thickness: float) -> None:
         )
 
 
-def outer_couple_stress(problem: Problem, xi: FloatArray) -> FloatArray:
-    """m^(0) of either geometry: the couple stress at which the stress is symmetric [-]."""
-    if isinstance(problem, CouetteFlow):
-        return problem.outer_couple_stress(xi)
-    return plane_outer_couple_stress(problem, xi)
+def outer_couple_stress(eq: Any, xi: FloatArray) -> FloatArray:
+    """m^(0) on either cell: the couple stress at which the stress is symmetric [-]."""
+    if eq.problem.cell_name == "couette":
+        return eq.outer_couple_stress(xi)
+    return plane_outer_couple_stress(eq, xi)
 
 
-def _profile(problem: Problem, form, evaluate, **kw):  # type: ignore[no-untyped-def]
+def _profile(eq: Any, form, evaluate, **kw):  # type: ignore[no-untyped-def]
     """make_profile, with a composite that leaves the yield surface reported as the
     expansion's failure, not the model's."""
     try:
-        return make_profile(problem, form, evaluate, method="asymptotic", **kw)
+        return make_profile(eq.problem, form, evaluate, method="asymptotic", **kw)
     except NoSolutionError as exc:
         raise MethodNotAvailableError(
             f"the leading-order asymptotic profile leaves the yield surface ({exc}); eps is "
@@ -149,32 +143,38 @@ def _profile(problem: Problem, form, evaluate, **kw):  # type: ignore[no-untyped
 
 
 def solve_plane(
-    problem: PlaneShear,
+    problem: Problem,
     *,
     points: int | None = None,
     xi: FloatArray | None = None,
     check: bool = True,
 ) -> Profile:
-    """The leading-order small-eps profile of a plane-shear problem."""
-    eps = problem.eps
-    case = problem.case
-    const = problem.slip_constants
-    sigma_yx = problem.sigma_yx
+    """The leading-order small-eps profile of the Cosserat model in plane shear."""
+    return _solve_plane(problem.equations, points=points, xi=xi, check=check)
+
+
+def _solve_plane(
+    eq: CosseratPlane, *, points: int | None, xi: FloatArray | None, check: bool
+) -> Profile:
+    eps = eq.eps
+    case = eq.case
+    const = eq.slip_constants
+    sigma_yx = eq.sigma_yx
 
     # k = 0 (fully rough slipping wall) happens only between identical fully rough walls
     # without gravity, or at the upper wall under gravity: no wall is rougher than fully rough.
     if const.k == 0.0:
-        if problem.B > 0.0:
-            return solve_plane_fully_rough(problem, points=points, xi=xi, check=check)
-        require_valid(problem, 0.0)
+        if eq.B > 0.0:
+            return solve_plane_fully_rough(eq, points=points, xi=xi, check=check)
+        require_valid(eq, 0.0)
 
         def uniform(x: FloatArray) -> Fields:
             x = np.asarray(x, dtype=float)
-            return _fields(x, np.zeros_like(x), x.copy(), np.full_like(x, -0.5), sigma_yx, problem)
+            return _fields(x, np.zeros_like(x), x.copy(), np.full_like(x, -0.5), sigma_yx, eq)
 
         return _profile(
-            problem,
-            problem.formulation(),
+            eq,
+            eq.formulation(),
             uniform,
             points=points,
             xi=xi,
@@ -184,12 +184,12 @@ def solve_plane(
         )
 
     k = const.k
-    require_valid(problem, eps * asymptotic_thickness(problem))
+    require_valid(eq, eps * asymptotic_thickness(eq.problem))
     if case is PlaneShearCase.SYMMETRIC:
         # both walls slip; omega even, u - u_c odd; the layers each carry 2 omega_1 eps/k of
         # velocity, so u(1) - u(0) = 1 + eps (K_u + K_l) omega_1 gives omega_1, and the sum of
         # the slip conditions u_c (as the closed form's symmetric_wall_constants)
-        K_u, K_l = problem.upper.K, problem.lower_wall.K
+        K_u, K_l = eq.upper.K, eq.lower_wall.K
         omega_1 = -1.0 / (eps * (4.0 / k + K_u + K_l))
         u0 = 0.5 * (1.0 + eps * (K_u - K_l) * omega_1)
 
@@ -199,31 +199,31 @@ def solve_plane(
                 up, low = np.exp(-k * (1.0 - x) / eps), np.exp(-k * x / eps)
             u = u0 - 2.0 * omega_1 * (eps / k) * (up - low)
             return _fields(
-                x, plane_outer_couple_stress(problem, x), u, omega_1 * (up + low), sigma_yx, problem
+                x, plane_outer_couple_stress(eq, x), u, omega_1 * (up + low), sigma_yx, eq
             )
 
         message = f"eqn-asymp_soln_vels_g0 (both walls), k = {k:.6g}, u_c = {u0:.6g}"
     else:
-        xs = problem.slip_wall
-        u0 = problem.reference_velocity
+        xs = eq.slip_wall
+        u0 = eq.reference_velocity
         layer = {
             "eps": eps,
             "k": k,
-            "K": problem.slipping.K,
-            "u_wall": problem.wall_velocity(xs),
+            "K": eq.slipping.K,
+            "u_wall": eq.wall_velocity(xs),
             "u_ref": u0,
-            "slip_sign": problem.slip_sign(xs),
+            "slip_sign": eq.slip_sign(xs),
         }
 
         def evaluate(x: FloatArray) -> Fields:
             x = np.asarray(x, dtype=float)
             u, omega = exponential_layer(xs - x, **layer)
-            return _fields(x, plane_outer_couple_stress(problem, x), u, omega, sigma_yx, problem)
+            return _fields(x, plane_outer_couple_stress(eq, x), u, omega, sigma_yx, eq)
 
         message = f"eqn-asymp_vels at leading order in eps (k = {k:.6g}, u_0 = {u0:g})"
     return _profile(
-        problem,
-        problem.formulation(),
+        eq,
+        eq.formulation(),
         evaluate,
         points=points,
         xi=xi,
@@ -234,7 +234,7 @@ def solve_plane(
 
 
 def solve_couette(
-    problem: CouetteFlow,
+    problem: Problem,
     *,
     points: int | None = None,
     xi: FloatArray | None = None,
@@ -246,27 +246,33 @@ def solve_couette(
     ``eqn-asymp_soln_vels_g0_aw`` near the inner cylinder. Fully rough: the Airy inner layer
     (``eqn-asymp_soln_vels_cyl_fr``).
     """
-    const = problem.slip_constants
+    return _solve_couette(problem.equations, points=points, xi=xi, check=check)
+
+
+def _solve_couette(
+    eq: CosseratCouette, *, points: int | None, xi: FloatArray | None, check: bool
+) -> Profile:
+    const = eq.slip_constants
     if const.k == 0.0:
-        return solve_couette_fully_rough(problem, points=points, xi=xi, check=check)
-    require_valid(problem, problem.eps * asymptotic_thickness(problem))
+        return solve_couette_fully_rough(eq, points=points, xi=xi, check=check)
+    require_valid(eq, eq.eps * asymptotic_thickness(eq.problem))
     layer = {
-        "eps": problem.eps,
+        "eps": eq.eps,
         "k": const.k,
-        "K": problem.wall.K,
-        "u_wall": problem.wall_velocity(0.0),
+        "K": eq.wall.K,
+        "u_wall": eq.wall_velocity(0.0),
         "u_ref": 0.0,
-        "slip_sign": problem.slip_sign(0.0),
+        "slip_sign": eq.slip_sign(0.0),
     }
-    form = problem.formulation(float(problem.outer_couple_stress(np.array([0.0]))[0]))
+    form = eq.formulation(float(eq.outer_couple_stress(np.array([0.0]))[0]))
 
     def evaluate(x: FloatArray) -> Fields:
         x = np.asarray(x, dtype=float)
         u, omega = exponential_layer(x, **layer)
-        return couette_leading_order_fields(problem, x, problem.outer_couple_stress(x), u, omega)
+        return couette_leading_order_fields(eq, x, eq.outer_couple_stress(x), u, omega)
 
     return _profile(
-        problem,
+        eq,
         form,
         evaluate,
         points=points,
@@ -278,10 +284,10 @@ def solve_couette(
 
 
 def couette_leading_order_fields(
-    problem: CouetteFlow, x: FloatArray, m: FloatArray, u: FloatArray, omega: FloatArray
+    eq: CosseratCouette, x: FloatArray, m: FloatArray, u: FloatArray, omega: FloatArray
 ) -> Fields:
     """Leading order: s_rt = s_tr = -tan(delta)/(1 + xi/Ri)^2 and du/dxi = -2 omega."""
-    s = -problem.tan_delta / (1.0 + x / problem.Ri) ** 2
+    s = -eq.tan_delta / (1.0 + x / eq.Ri) ** 2
     return Fields(
         u=u,
         omega=omega,
@@ -290,7 +296,7 @@ def couette_leading_order_fields(
         sigma_yx=s,
         sigma_yy=np.ones_like(x),
         du_dxi=-2.0 * omega,
-        kappa=problem.curvature(x),
+        kappa=eq.curvature(x),
     )
 
 
@@ -300,7 +306,7 @@ def _fields(
     u: FloatArray,
     omega: FloatArray,
     sigma_yx: float,
-    problem: PlaneShear,
+    eq: CosseratPlane,
 ) -> Fields:
     """Leading-order fields: symmetric stress, so du/dxi = -2 omega (``eqn-nd_fr1``)."""
     return Fields(
@@ -309,7 +315,7 @@ def _fields(
         m=m,
         sigma_xy=np.full_like(x, sigma_yx),
         sigma_yx=np.full_like(x, sigma_yx),
-        sigma_yy=problem.sigma_c(x),
+        sigma_yy=eq.sigma_c(x),
         du_dxi=-2.0 * omega,
         kappa=np.zeros_like(x),
     )
@@ -317,28 +323,28 @@ def _fields(
 
 # ----------------------------------------------------------------- fully rough walls: Airy layer
 def solve_plane_fully_rough(
-    problem: PlaneShear, *, points: int | None, xi: FloatArray | None, check: bool
+    eq: CosseratPlane, *, points: int | None, xi: FloatArray | None, check: bool
 ) -> Profile:
     """Plane shear under gravity, fully rough upper wall (``eqn-eta_g_unif``,
     ``eqn-asymp_soln_vels_g_fr``, ``eqn-asymp_soln_vels_g__fr_consts``, ``eqn-vel_g_unif``)."""
-    eps, mat = problem.eps, problem.material
-    B_nu = problem.B * problem.nu
+    eps, mat = eq.eps, eq.material
+    B_nu = eq.B * eq.nu
     if B_nu < 10.0 * eps:
         raise MethodNotAvailableError(
             f"the Airy inner layer needs B nu >> eps (the paper: not valid when B nu ~ eps); "
             f"got B nu = {B_nu:g}, eps = {eps:g}: use method='numerical'"
         )
-    require_valid(problem, eps * asymptotic_thickness(problem))
-    a = 0.5 * problem.tan_delta_upper
-    scale = problem.inner_scale()
+    require_valid(eq, eps * asymptotic_thickness(eq.problem))
+    a = 0.5 * eq.tan_delta_upper
+    scale = eq.inner_scale()
     inner_amp = (4.0 * a * mat.alpha * B_nu * mat.c2) ** (1.0 / 3.0) * eps ** (1.0 / 3.0)
-    sigma_yx = problem.sigma_yx
+    sigma_yx = eq.sigma_yx
 
     def evaluate(x: FloatArray) -> Fields:
         x = np.asarray(x, dtype=float)
         depth = 1.0 - x
         xh = depth * eps ** (-2.0 / 3.0) / scale
-        sc = problem.sigma_c(x)
+        sc = eq.sigma_c(x)
         outer = math.sqrt(mat.c2) * np.sqrt(np.maximum(sc**2 - 1.0, 0.0))
         common = np.sqrt(2.0 * B_nu * mat.c2 * depth)
         m = outer + inner_amp * inner_couple_stress(xh) - common
@@ -355,8 +361,8 @@ def solve_plane_fully_rough(
         )
 
     return _profile(
-        problem,
-        problem.formulation(),
+        eq,
+        eq.formulation(),
         evaluate,
         points=points,
         xi=xi,
@@ -367,31 +373,31 @@ def solve_plane_fully_rough(
 
 
 def solve_couette_fully_rough(
-    problem: CouetteFlow, *, points: int | None, xi: FloatArray | None, check: bool
+    eq: CosseratCouette, *, points: int | None, xi: FloatArray | None, check: bool
 ) -> Profile:
     """Couette flow, fully rough cylinders: the Airy inner layer at the inner cylinder with
     x_hat = xi eps^(-2/3) (L^2 Ri/4)^(-1/3) and the composite couple stress of the Appendix."""
-    require_valid(problem, problem.eps * asymptotic_thickness(problem))
-    eps, Ri = problem.eps, problem.Ri
-    scale = problem.inner_scale()
-    d = problem.tan_delta / math.sqrt(2.0 * (problem.material.A + 1.0))
-    inner_amp = eps ** (1.0 / 3.0) * d * (4.0 * problem.material.L / Ri) ** (1.0 / 3.0)
+    require_valid(eq, eq.eps * asymptotic_thickness(eq.problem))
+    eps, Ri = eq.eps, eq.Ri
+    scale = eq.inner_scale()
+    d = eq.tan_delta / math.sqrt(2.0 * (eq.material.A + 1.0))
+    inner_amp = eps ** (1.0 / 3.0) * d * (4.0 * eq.material.L / Ri) ** (1.0 / 3.0)
 
     def evaluate(x: FloatArray) -> Fields:
         x = np.asarray(x, dtype=float)
         xh = x * eps ** (-2.0 / 3.0) / scale
         # composite: outer + inner - common; the inner m_hat = Ai'/Ai solves dm/dx + m^2 = x
         m = (
-            problem.outer_couple_stress(x)
+            eq.outer_couple_stress(x)
             - inner_amp * inner_couple_stress(xh)
             + d * np.sqrt(4.0 * x / Ri)
         )
         u, omega = airy_layer(xh, eps=eps, scale=scale, u_wall=-1.0, slip_sign=-1.0)
-        return couette_leading_order_fields(problem, x, m, u, omega)
+        return couette_leading_order_fields(eq, x, m, u, omega)
 
-    form = problem.formulation(float(evaluate(np.array([0.0])).m[0]))
+    form = eq.formulation(float(evaluate(np.array([0.0])).m[0]))
     return _profile(
-        problem,
+        eq,
         form,
         evaluate,
         points=points,

@@ -1,4 +1,5 @@
-"""Routes for the vertical channel (:class:`~cosserat.model.channel.Channel`).
+"""Routes of the Cosserat model in the vertical channel
+(:mod:`cosserat.model.rheologies.cosserat.channel`).
 
 * ``solve_numerical``: the compiled kernel :mod:`cosserat.numerics.channel` on the upper half,
   mirrored onto the lower half (u and m even, omega and the shear stresses odd about xi = 1/2).
@@ -22,7 +23,8 @@ import numpy as np
 
 from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
-from ..model.channel import Channel, shear_stress
+from ..model import Problem
+from ..model.cells.channel import shear_stress
 from ..model.constitutive import FloatArray
 from ..numerics import channel as kernel
 from ..numerics.radau import dense_eval
@@ -46,23 +48,23 @@ MAX_RETRIES = 2
 centre) before the event is trusted (away from the centre) or the solve gives up [-]."""
 
 
-def parameter_vector(problem: Channel, start_offset: float = START_OFFSET) -> FloatArray:
+def parameter_vector(problem: Problem, start_offset: float = START_OFFSET) -> FloatArray:
     """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.channel`)."""
-    mat = problem.material
+    mat = problem.equations.material
     p = np.zeros(kernel.N_PARAMS)
     p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
     p[kernel.P_EPS] = problem.eps
-    p[kernel.P_B_NU] = problem.B_nu
-    p[kernel.P_WALL_GAP] = problem.wall_gap
-    p[kernel.P_C] = problem.c
-    p[kernel.P_MU] = problem.centre_expansion()  # raises NoSolutionError in words
+    p[kernel.P_B_NU] = problem.equations.B_nu
+    p[kernel.P_WALL_GAP] = problem.equations.wall_gap
+    p[kernel.P_C] = problem.equations.c
+    p[kernel.P_MU] = problem.equations.centre_expansion()  # raises NoSolutionError in words
     p[kernel.P_S0] = start_offset
-    p[kernel.P_EPS_K] = problem.eps * problem.wall.K if problem.slips else 0.0
-    p[kernel.P_Y_SCALE] = problem.deficit_scale
+    p[kernel.P_EPS_K] = problem.eps * problem.equations.wall.K if problem.equations.slips else 0.0
+    p[kernel.P_Y_SCALE] = problem.equations.deficit_scale
     return p
 
 
-def raise_for_status(problem: Channel, status: int, info: FloatArray, rtol: float) -> None:
+def raise_for_status(problem: Problem, status: int, info: FloatArray, rtol: float) -> None:
     """The package's error for a kernel status (a yield event only once :func:`run_kernel` has
     confirmed it away from the centre line)."""
     if status == kernel.OK:
@@ -96,7 +98,7 @@ def physical_fields(
     m_hat: FloatArray,
     sigma_xy_hat: FloatArray,
     du_hat: FloatArray,
-    problem: Channel,
+    problem: Problem,
     sign: FloatArray,
 ) -> Fields:
     """Channel fields at x from mapped ones at the mirrored points (u, m even; omega,
@@ -107,7 +109,7 @@ def physical_fields(
         omega=-sign * w_hat,
         m=-m_hat,
         sigma_xy=-sign * sigma_xy_hat,
-        sigma_yx=problem.sigma_yx(x),
+        sigma_yx=problem.equations.sigma_yx(x),
         sigma_yy=np.ones_like(x),
         du_dxi=-sign * du_hat,
         kappa=np.zeros_like(x),
@@ -118,7 +120,7 @@ def physical_fields(
 class ChannelSolution:
     """Dense solution of the channel kernel on [0, 1] (plain arrays: it pickles)."""
 
-    problem: Channel
+    problem: Problem
     params: FloatArray
     info: FloatArray
     couple: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
@@ -147,7 +149,7 @@ class ChannelSolution:
         with np.errstate(under="ignore"):
             w_hat = info[kernel.I_W_S] * np.exp(ell)
         u_hat = info[kernel.I_U_S] - info[kernel.I_W_S] * P
-        A = self.problem.material.A
+        A = self.problem.equations.material.A
         return Fields(
             u=u_hat,
             omega=w_hat,
@@ -183,10 +185,10 @@ class ChannelSolution:
         return float(delta)
 
 
-def check_grid(problem: Channel) -> FloatArray:
+def check_grid(problem: Problem) -> FloatArray:
     """Points of the upper half for the residual check: the layer-resolving grid, and a
     geometric grading towards the centre line, where the spin rate grows like 1/s."""
-    grid = problem.output_grid(config.CHECK_POINTS)
+    grid = problem.equations.output_grid(config.CHECK_POINTS)
     grid = grid[grid >= 0.5]
     near = 0.5 + np.geomspace(10.0 * START_OFFSET, 0.05, 60)
     return np.unique(np.concatenate([near, grid[grid > near[-1]]]))
@@ -212,13 +214,13 @@ def _mapped_evaluator(evaluate: Any) -> Any:
 
 
 def _finish(
-    problem: Channel, evaluate: Any, *, method: str, points: int | None,
+    problem: Problem, evaluate: Any, *, method: str, points: int | None,
     xi: FloatArray | None, check: bool, **kw: Any,
 ) -> Profile:  # fmt: skip
     """make_profile, then the channel's own residuals (mapped upper half) and wall errors."""
     profile = make_profile(
         problem,  # type: ignore[arg-type]
-        problem.mapped_formulation(),
+        problem.equations.mapped_formulation(),
         evaluate,
         method=method,
         points=points,
@@ -229,13 +231,15 @@ def _finish(
     )
     if not check:
         return profile
-    res = residuals(problem.mapped_formulation(), _mapped_evaluator(evaluate), check_grid(problem))
-    bc = problem.boundary_errors(evaluate)
+    res = residuals(
+        problem.equations.mapped_formulation(), _mapped_evaluator(evaluate), check_grid(problem)
+    )
+    bc = problem.equations.boundary_errors(evaluate)
     return replace(profile, diagnostics=replace(profile.diagnostics, residuals=res, bc_errors=bc))
 
 
 def solve_numerical(
-    problem: Channel,
+    problem: Problem,
     *,
     rtol: float = config.RTOL,
     atol: float | None = None,
@@ -278,7 +282,7 @@ def solve_numerical(
 
 
 def run_kernel(
-    problem: Channel, rtol: float, atol: float, f: float = config.DEFAULT_F
+    problem: Problem, rtol: float, atol: float, f: float = config.DEFAULT_F
 ) -> ChannelSolution:
     """Solve on the compiled kernel; raise the package's error if it fails.
 
@@ -325,7 +329,7 @@ def run_kernel(
 
 
 def wall_quantities(
-    problems: Sequence[Channel],
+    problems: Sequence[Problem],
     rtol: float = config.RTOL,
     f: float = config.DEFAULT_F,
     *,
@@ -339,8 +343,11 @@ def wall_quantities(
         raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
     out = []
     for pr in problems:
-        if not isinstance(pr, Channel):
-            raise ParameterError(f"expected a Channel; got {type(pr).__name__}")
+        if not (isinstance(pr, Problem) and pr.model == "cosserat" and pr.cell_name == "channel"):
+            raise ParameterError(
+                "expected the Cosserat model on the channel cell; got "
+                f"{getattr(pr, 'model', type(pr).__name__)} on {getattr(pr, 'cell_name', '?')}"
+            )
         try:
             sol = run_kernel(pr, rtol, atol, f)
         except NoSolutionError as exc:
@@ -352,7 +359,7 @@ def wall_quantities(
         info = sol.info
         slip = abs(1.0 - info[kernel.I_U_S])  # u at the wall = 1 - u_hat_w
         omega = -float(info[kernel.I_W_S])
-        stress = pr.wall_stress
+        stress = pr.equations.wall_stress
         if not info[kernel.I_DELTA_OK]:
             message = f"f = {f:g}: Delta is not defined (the velocity does not fall to f)"
             out.append(WallResult("error", None, slip, omega, stress, message))
@@ -366,38 +373,38 @@ THIN_LAYER = 0.1
 """The expansion needs eps Delta at most this fraction of the channel width."""
 
 
-def asymptotic_thickness(problem: Channel, f: float = config.DEFAULT_F) -> float:
+def asymptotic_thickness(problem: Problem, f: float = config.DEFAULT_F) -> float:
     """Leading-order Delta [d_p]: -ln f / k (walls not fully rough: independent of eps), or
     x_f eps^(-1/3) (L^2/4)^(1/3) at fully rough slipping walls (doc sections 5-6)."""
-    k = problem.slip_constants.k
+    k = problem.equations.slip_constants.k
     if k > 0.0:
         return -math.log(f) / k
-    return xi_hat_at_fraction(f) * problem.eps ** (-1.0 / 3.0) * problem.inner_scale()
+    return xi_hat_at_fraction(f) * problem.eps ** (-1.0 / 3.0) * problem.equations.inner_scale()
 
 
 class _AsymptoticEvaluator:
     """Leading-order fields with the channel's thickness law attached."""
 
-    def __init__(self, problem: Channel) -> None:
+    def __init__(self, problem: Problem) -> None:
         self.problem = problem
 
     def thickness(self, f: float) -> float:
         """Delta of the leading-order profile for the fraction f [d_p]."""
         if not 0.0 < f < 1.0:
             raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
-        if self.problem.is_fully_rough:
+        if self.problem.equations.is_fully_rough:
             return asymptotic_thickness(self.problem, f)
         # the exponential layer: u_hat = u_hat_w e^(-k d/eps) falls to f u_hat_w at d = eps Delta
         return asymptotic_thickness(self.problem, f)
 
     def mapped(self, h: FloatArray) -> Fields:
         pr = self.problem
-        mat, eps = pr.material, pr.eps
+        mat, eps = pr.equations.material, pr.eps
         d = 1.0 - h
-        tau = shear_stress(np.asarray(h, dtype=float), pr.B_nu)
-        m_outer = -pr.outer_couple_stress(h)
-        if pr.is_fully_rough:
-            scale = pr.inner_scale()
+        tau = shear_stress(np.asarray(h, dtype=float), pr.equations.B_nu)
+        m_outer = -pr.equations.outer_couple_stress(h)
+        if pr.equations.is_fully_rough:
+            scale = pr.equations.inner_scale()
             x_hat = d * eps ** (-2.0 / 3.0) / scale
             a = 0.5 * mat.sin_phi
             gamma = 4.0 * mat.c2  # m_outer^2 ~ gamma d at the wall (doc section 6)
@@ -411,8 +418,8 @@ class _AsymptoticEvaluator:
             m_hat = m_outer + np.minimum(correction, room)
             u_hat, w_hat = airy_layer(x_hat, eps=eps, scale=scale, u_wall=1.0, slip_sign=1.0)
         else:
-            k = pr.slip_constants.k
-            K = pr.wall.K if pr.slips else 0.0
+            k = pr.equations.slip_constants.k
+            K = pr.equations.wall.K if pr.equations.slips else 0.0
             with np.errstate(under="ignore"):
                 decay = np.exp(-k * d / eps)
             u_hat = (2.0 / k) / (K + 2.0 / k) * decay
@@ -437,7 +444,7 @@ class _AsymptoticEvaluator:
 
 
 def solve_asymptotic(
-    problem: Channel,
+    problem: Problem,
     *,
     points: int | None = None,
     xi: FloatArray | None = None,
@@ -460,7 +467,7 @@ def solve_asymptotic(
         )
     order = (
         "Airy inner layer of thickness ~ eps^(2/3) at the fully rough walls"
-        if problem.is_fully_rough
+        if problem.equations.is_fully_rough
         else "exponential layer of constant thickness eps/k at the walls"
     )
     try:

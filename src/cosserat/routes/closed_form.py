@@ -20,38 +20,40 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError, MethodNotAvailableError
+from ..model import PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
-from ..model.plane import PlaneShear, PlaneShearCase
+from ..model.rheologies.cosserat import CosseratPlane
 from ..results.profile import Fields, Profile
 from .assemble import make_profile
 
 
 def solve_plane(
-    problem: PlaneShear,
+    problem: Problem,
     *,
     points: int | None = None,
     xi: FloatArray | None = None,
     check: bool = True,
 ) -> Profile:
-    """The closed-form profile of a gravity-free plane-shear problem."""
-    if problem.B != 0.0:
+    """The closed-form profile of the Cosserat model in plane shear without gravity."""
+    eq = problem.equations
+    if eq.B != 0.0:
         raise MethodNotAvailableError(
             "no closed form for plane shear under gravity (B > 0): use method='numerical' "
             "or method='asymptotic'"
         )
-    if problem.m_fixed_wall is not None:
+    if eq.m_fixed_wall is not None:
         raise MethodNotAvailableError(
             "no closed form with a prescribed m at the fixed wall (m_fixed_wall): "
             "use method='numerical'"
         )
-    case = problem.case
+    case = eq.case
     if case is PlaneShearCase.SYMMETRIC:
-        evaluate, reference, message = _symmetric(problem)
+        evaluate, reference, message = _symmetric(eq)
     elif case is PlaneShearCase.UPPER:
-        evaluate = _layer_at_upper(problem)
+        evaluate = _layer_at_upper(eq)
         reference, message = 0.0, "eqn-soln_aw_vels / eqn-omega1_g0aw (m = m0)"
     else:
-        upper_eval = _layer_at_upper(problem.mirrored())
+        upper_eval = _layer_at_upper(eq.mirrored().equations)
 
         def evaluate(x: FloatArray) -> Fields:
             f = upper_eval(1.0 - np.asarray(x, dtype=float))
@@ -60,7 +62,7 @@ def solve_plane(
         reference, message = 1.0, "mirror image of eqn-soln_aw_vels (layer at the lower wall)"
     return make_profile(
         problem,
-        problem.formulation(),
+        eq.formulation(),
         evaluate,
         method="closed-form",
         points=points,
@@ -100,7 +102,7 @@ def _one_minus_exp_ratio(z: FloatArray) -> FloatArray:
     return np.where(small, 1.0 - 0.5 * z, -np.expm1(-safe) / safe)
 
 
-def _layer_at_upper(problem: PlaneShear):  # type: ignore[no-untyped-def]
+def _layer_at_upper(problem: CosseratPlane):  # type: ignore[no-untyped-def]
     """``eqn-soln_aw_vels``: m = m0, omega = omega_1 exp(-k(1-xi)/eps), no slip at xi = 0."""
     eps, K = problem.eps, problem.upper.K
     tan_d = problem.tan_delta_upper
@@ -122,7 +124,7 @@ def _layer_at_upper(problem: PlaneShear):  # type: ignore[no-untyped-def]
     return evaluate
 
 
-def _symmetric(problem: PlaneShear):  # type: ignore[no-untyped-def]
+def _symmetric(problem: CosseratPlane):  # type: ignore[no-untyped-def]
     """Identical walls without gravity: m(1/2) = 0, both walls slip."""
     eps, mat = problem.eps, problem.material
     A, ea = mat.A, eps * mat.alpha

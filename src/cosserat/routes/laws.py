@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 
 from ..config import DEFAULT_F
-from ..model import CouetteFlow, PlaneShearCase, Problem
+from ..model import PlaneShearCase, Problem
 from .airy import xi_hat_at_fraction
 
 
@@ -22,14 +22,14 @@ def thickness_limit(problem: Problem, f: float = DEFAULT_F) -> float | None:
 
     Examples
     --------
-    >>> from cosserat import Material, PlaneShear, Wall
+    >>> from cosserat import Cosserat, Plane, Problem, Wall
     >>> from cosserat.analysis import thickness_limit
-    >>> round(thickness_limit(PlaneShear(material=Material(), upper=Wall(), eps=0.01)), 2)
+    >>> round(thickness_limit(Problem(Plane(eps=0.01), Cosserat())), 2)
     17.67
-    >>> print(thickness_limit(PlaneShear(material=Material(), upper=Wall.fully_rough(), eps=0.01)))
+    >>> print(thickness_limit(Problem(Plane(eps=0.01), Cosserat(wall=Wall.fully_rough()))))
     None
     """
-    k = problem.slip_constants.k
+    k = problem.equations.slip_constants.k
     return -math.log(f) / k if k > 0.0 else None
 
 
@@ -38,10 +38,10 @@ def asymptotic_thickness(problem: Problem, f: float = DEFAULT_F) -> float:
     limit = thickness_limit(problem, f)
     if limit is not None:
         return limit
-    eps = problem.eps
-    if isinstance(problem, CouetteFlow):  # eqn-delta_soln_fr (b)
-        return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * problem.inner_scale()
-    if problem.B > 0.0:  # eqn-delta_soln_fr (a)
-        return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * problem.inner_scale()
-    u0 = 0.5 if problem.case is PlaneShearCase.SYMMETRIC else 0.0
+    eps, eq = problem.eps, problem.equations
+    if problem.cell_name == "couette":  # eqn-delta_soln_fr (b)
+        return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * eq.inner_scale()
+    if eq.B > 0.0:  # eqn-delta_soln_fr (a)
+        return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * eq.inner_scale()
+    u0 = 0.5 if eq.case is PlaneShearCase.SYMMETRIC else 0.0
     return (1.0 - u0) * (1.0 - f) / eps

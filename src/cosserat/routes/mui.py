@@ -1,24 +1,29 @@
-"""Routes of the local mu(I) rheology (``docs/derivation_mui.md``) and its :class:`Rheology`.
+"""Routes of the local mu(I) rheology (``docs/derivation_mui.md``).
 
-* "closed-form": Couette flow (the velocity in closed form, eqn. (C2) of the derivation) and
-  plane shear without gravity (uniform shear, u = xi); the stress level by Brent's method on
-  the closed-form wall-speed condition.
-* "numerical": every cell. The rate comes from the inverse law I(mu) on the cell's statics,
-  the velocity by adaptive Gauss-Kronrod quadrature (``scipy.integrate.quad``) on intervals
-  split geometrically towards the moving wall (where mu -> mu_2 makes the rate peak) and at
-  the plug edge (a kink in the rate), and the stress level by Brent's method on
-  ``integral of the rate = wall speed``. No compiled kernel: one profile takes milliseconds.
+* "numerical": every cell, a new one included: it reads only the cell's statics
+  (:class:`~cosserat.model.rheologies.mui.MuIFlow`). The rate comes from the inverse law I(mu) on
+  the statics, the velocity by adaptive Gauss-Kronrod quadrature (``scipy.integrate.quad_vec``)
+  on intervals split geometrically towards the wall of the largest stress ratio (where
+  mu -> mu_2 makes the rate peak) and at the plug edge (a kink in the rate), and the stress level
+  by Brent's method on ``the velocity at the scale point = its value there`` (the wall speed, or
+  the channel's centre line).
+* "closed-form": plane shear without gravity (uniform shear, u = xi), Couette flow (eqn. (C2)
+  of the derivation) and the channel (``docs/derivation_channel.md`` section 7); the stress
+  level by Brent's method on the closed-form condition.
 
 Both return the package's :class:`~cosserat.results.profile.Profile`. A local rheology has no
-grain spin and no couple stress of its own: ``omega`` is the material spin of a classical
-continuum, half the vorticity, ``-(du/dxi + kappa u)/2`` in the paper's signs (so
-``spin_minus_half_vorticity`` is 0), ``m = 0`` and ``sigma_xy = sigma_yx`` (symmetric stress).
-The diagnostics message says so, and where the plug is; :func:`plug_mask` gives it pointwise.
+grain spin and no couple stress of its own: the profile's ``omega`` and ``m`` are None (absent,
+not zero), and ``sigma_xy = sigma_yx`` (symmetric stress). The diagnostics message says so, and
+where the plug is; :func:`plug_mask` gives it pointwise.
+
+With W = u/r (r the cell's radius, 1 between plane walls) and t the distance from the wall of
+the largest stress ratio, ``I_w |dW/dxi| = sqrt(p/N) I(mu)/r``, integrated from the wall at rest
+(u = 0): ``u(xi) = sign(u_s) r(xi) Phi(t)/I_w`` with ``Phi(t) = |int_{t_rest}^t sqrt(p) I/r|``,
+and the velocity scale ``u(xi_s) = u_s`` fixes ``I_w = r(xi_s) Phi(t_s)/|u_s|``.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 import warnings
 from typing import Any
@@ -29,46 +34,58 @@ from scipy.optimize import brentq
 
 from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
+from ..model import Problem
 from ..model.constitutive import FloatArray
-from ..model.mui import GAP_MIN, MuIChannel, MuICouetteFlow, MuIPlaneShear, MuIProblem
-from ..model.rheology import Rheology
+from ..model.rheologies import ANY_CELL
+from ..model.rheologies.mui import GAP_MIN, REFERENCE, MuIFlow
 from ..results.profile import Diagnostics, Fields, Profile
 from .assemble import given_grid
-
-REFERENCE = (
-    "GDR MiDi, On dense granular flows, Eur. Phys. J. E 14 (2004) 341-365; Jop, Forterre & "
-    "Pouliquen, A constitutive law for dense granular flows, Nature 441 (2006) 727-730"
-)
+from .registry import register_route
 
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(12)
 
 
+# ----------------------------------------------------------------- where the velocity is fixed
+def _rest(eq: MuIFlow) -> float:
+    """t of a wall at rest, where the integration of the velocity starts [-]."""
+    for wall in (0.0, 1.0):
+        if eq.cell.wall_velocity(wall) == 0.0:
+            return float(eq.cell.distance(np.array([wall]))[0])
+    raise ParameterError(f"the {eq.cell.name} cell has no wall at rest to integrate from")
+
+
+def _scale(eq: MuIFlow) -> tuple[float, float, float]:
+    """(xi, t, u) of the point that scales the velocity [-]."""
+    xs, us = eq.cell.velocity_scale
+    return float(xs), float(eq.cell.distance(np.array([xs]))[0]), float(us)
+
+
 # ----------------------------------------------------------------- the velocity, two ways
-def _breakpoints(problem: MuIProblem, gap: float) -> FloatArray:
-    """Distances t = |xi - moving wall| that split the gap for the quadrature: geometric on
-    the width over which mu_2 - mu doubles (the rate peaks at the moving wall), and the plug
-    edge. Distances, not xi, so that a layer of width 1e-300 is still resolved."""
-    w = problem.peak_width(gap)
-    steps = [0.0, 1.0]
-    if w < 1.0:
-        steps += list(w * 4.0 ** np.arange(0, math.ceil(math.log(1.0 / w, 4.0))))
-    plug = problem.plug_extent(gap)
+def _breakpoints(eq: MuIFlow, gap: float) -> FloatArray:
+    """Distances t from the peak wall that split [0, span] for the quadrature: geometric on
+    the width over which mu_2 - mu doubles (the rate peaks there), and the plug edge.
+    Distances, not xi, so that a layer of width 1e-300 is still resolved."""
+    span = eq.cell.span
+    w = eq.peak_width(gap)
+    steps = [0.0, span]
+    if w < span:
+        steps += list(w * 4.0 ** np.arange(0, math.ceil(math.log(span / w, 4.0))))
+    plug = eq.plug_extent(gap)
     if plug is not None:
-        steps += [abs(e - problem.moving_wall) for e in plug]
-    return np.unique(np.clip(np.asarray(steps, dtype=float), 0.0, 1.0))
+        steps += [float(t) for t in eq.cell.distance(np.array(plug))]
+    return np.unique(np.clip(np.asarray(steps, dtype=float), 0.0, span))
 
 
-def _integrand(problem: MuIProblem, gap: float):  # type: ignore[no-untyped-def]
-    """f(t) on an array of distances t from the moving wall, whose integral from t to 1 (the
-    fixed wall) is I_w u (plane shear) or -I_w u/(Ri + xi) (Couette flow)."""
-    if isinstance(problem, MuIPlaneShear):
-        return lambda t: problem.rate_times_I_w_at(t, gap)
-    Ri = problem.Ri
-    return lambda t: problem.inertial_number_at(t, gap) / (Ri + t)
+def _plug_distance(eq: MuIFlow, gap: float) -> float | None:
+    """The distance from the peak wall beyond which the material is a plug, or None."""
+    plug = eq.plug_extent(gap)
+    if plug is None:
+        return None
+    return float(np.min(eq.cell.distance(np.array(plug))))
 
 
-def _quad_intervals(problem: MuIProblem, gap: float, nodes: FloatArray, rtol: float) -> FloatArray:
-    """Integral of :func:`_integrand` over each interval of the distances ``nodes`` [-].
+def _quad_intervals(eq: MuIFlow, gap: float, nodes: FloatArray, rtol: float) -> FloatArray:
+    """Integral of ``eq.integrand_at`` over each interval of the distances ``nodes`` [-].
 
     Every interval at once: each is mapped onto [0, 1] and SciPy's adaptive Gauss-Kronrod
     ``quad_vec`` integrates the vector of them, one array evaluation of the law per node (the
@@ -76,9 +93,13 @@ def _quad_intervals(problem: MuIProblem, gap: float, nodes: FloatArray, rtol: fl
     the plug edge). The error is controlled in the largest piece's scale (``norm="max"``),
     which is the scale of the velocity they sum to.
     """
-    f = _integrand(problem, gap)
-    plug = problem.plug_extent(gap)
-    t_plug = None if plug is None else min(abs(e - problem.moving_wall) for e in plug)
+
+    integrand = eq.integrand_at
+
+    def f(t: FloatArray) -> FloatArray:
+        return integrand(t, gap)
+
+    t_plug = _plug_distance(eq, gap)
     a, b = nodes[:-1], nodes[1:]
     live = b > a
     if t_plug is not None:
@@ -89,7 +110,7 @@ def _quad_intervals(problem: MuIProblem, gap: float, nodes: FloatArray, rtol: fl
     a, width = a[live], (b - a)[live]
 
     def pieces(s: float) -> FloatArray:
-        return f(a + s * width) * width
+        return integrand(a + s * width, gap) * width
 
     value, _, info = quad_vec(
         pieces,
@@ -104,49 +125,82 @@ def _quad_intervals(problem: MuIProblem, gap: float, nodes: FloatArray, rtol: fl
     if not info.success:
         # round-off in the smallest pieces (at the plug edge, where I -> 0) can keep the
         # global estimate above the target: integrate piece by piece, each to its own rtol
-        return _quad_each(f, nodes, live, rtol, problem)
+        return _quad_each(f, nodes, live, rtol, eq, gap)
     out[live] = value
     return out
 
 
-def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, problem: MuIProblem):  # type: ignore[no-untyped-def]
-    """The pieces of :func:`_quad_intervals` one by one with QUADPACK (slower, robust)."""
+def _rounding(eq: MuIFlow, gap: float, a: float, b: float) -> float:
+    """The integral over [a, b] of the integrand's own rounding error: the excess mu - mu_s
+    is known to about eps (mu_2 - mu_s), so I = I_0 excess/(mu_2 - mu) to about
+    I_0 eps (mu_2 - mu_s)/(mu_2 - mu), largest at a (nearest the peak wall) [-]. A piece
+    cannot be integrated more precisely than this."""
+    law, t = eq.rheology, np.array([a])
+    g = float(eq.saturation_gap_at(t, gap)[0])
+    scale = math.sqrt(float(eq.cell.normal_stress_at(t)[0])) / float(eq.cell.radius_at(t)[0])
+    return 8.0 * np.finfo(float).eps * (b - a) * law.I_0 * (law.mu_2 - law.mu_s) / g * scale
+
+
+def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow, gap: float):  # type: ignore[no-untyped-def]
+    """The pieces of :func:`_quad_intervals` one by one with QUADPACK (slower, robust), each
+    to its own rtol or to the rounding of its integrand (:func:`_rounding`)."""
     out = np.zeros(nodes.size - 1)
     for i in np.flatnonzero(live):
         a, b = nodes[i], nodes[i + 1]
+        floor = _rounding(eq, gap, a, b)
         with warnings.catch_warnings():
             warnings.simplefilter("error", IntegrationWarning)
             try:
                 out[i] = quad(
-                    lambda t: float(f(np.array([t]))[0]), a, b, epsabs=0.0, epsrel=rtol, limit=200
-                )[0]
+                    lambda t: float(f(np.array([t]))[0]), a, b, epsabs=floor, epsrel=rtol,
+                    limit=200,
+                )[0]  # fmt: skip
             except IntegrationWarning as exc:
                 raise ConvergenceError(
-                    f"mu(I) quadrature at distances [{a:.6g}, {b:.6g}] from the moving wall "
-                    f"for {problem.describe()}: {exc}"
+                    f"mu(I) quadrature at distances [{a:.6g}, {b:.6g}] from the "
+                    f"{eq.wall_name} for {eq.describe()}: {exc}"
                 ) from None
     return out
 
 
-def _numerical_velocity(problem: MuIProblem, gap: float, I_w: float, x: FloatArray, rtol: float):
-    """u at ``x`` by quadrature from the fixed wall, and the wall-speed integral G."""
+ROUNDING_EXCESS = 64.0 * np.finfo(float).eps
+"""An excess of the peak stress ratio over mu_s below this fraction of mu_2 - mu_s is rounding:
+the rate there is noise of its own size, and the velocity integral is taken as 0 (no flow)."""
+
+
+def _numerical_velocity(eq: MuIFlow, gap: float, I_w: float, x: FloatArray, rtol: float):
+    """u at ``x`` by quadrature from the wall at rest, and the scale integral G (module
+    docstring: I_w = G). A stress level within rounding of mu_s (:data:`ROUNDING_EXCESS`;
+    met only while the root-find brackets the level) gives no flow."""
     x = np.asarray(x, dtype=float)
-    t_x = np.abs(x - problem.moving_wall)
-    nodes = np.unique(np.concatenate([_breakpoints(problem, gap), t_x]))
-    pieces = _quad_intervals(problem, gap, nodes, rtol)
-    tail = np.concatenate([np.cumsum(pieces[::-1])[::-1], [0.0]])  # int_t^1 f
-    tail_x = tail[np.searchsorted(nodes, t_x)]
-    if isinstance(problem, MuIPlaneShear):
-        return tail_x / I_w, float(tail[0])
-    return -(problem.Ri + x) * tail_x / I_w, float(problem.Ri * tail[0])
+    law = eq.rheology
+    if law.mu_2 - law.mu_s - gap <= ROUNDING_EXCESS * (law.mu_2 - law.mu_s):
+        return np.zeros_like(x), 0.0
+    cell = eq.cell
+    xs, ts, us = _scale(eq)
+    t_x = cell.distance(x)
+    nodes = np.unique(np.concatenate([_breakpoints(eq, gap), t_x, [ts]]))
+    pieces = _quad_intervals(eq, gap, nodes, rtol)
+    if _rest(eq) == 0.0:  # int_0^t f
+        phi = np.concatenate([[0.0], np.cumsum(pieces)])
+    else:  # int_t^span f
+        phi = np.concatenate([np.cumsum(pieces[::-1])[::-1], [0.0]])
+    phi_x = phi[np.searchsorted(nodes, t_x)]
+    G = float(cell.radius(np.array([xs]))[0] * phi[np.searchsorted(nodes, ts)] / abs(us))
+    return math.copysign(1.0, us) * cell.radius(x) * phi_x / I_w, G
 
 
-def _couette_J(problem: MuICouetteFlow, gap: float, x: FloatArray) -> FloatArray:
+def _plane_closed(eq: MuIFlow, gap: float, I_w: float, x: FloatArray):
+    """Plane shear without gravity: uniform shear, u = xi; G = I(T)."""
+    return x.copy(), float(eq.rate_times_I_w(np.array([1.0]), gap)[0])
+
+
+def _couette_J(eq: MuIFlow, gap: float, x: FloatArray) -> FloatArray:
     """J(xi) = int_xi^xi_c I(mu)/(Ri + xi') dxi' in closed form (derivation, eqn. (C1)) [-]."""
-    law, Ri = problem.rheology, problem.Ri
-    plug = problem.plug_extent(gap)
+    law, Ri = eq.rheology, eq.cell.Ri
+    plug = eq.plug_extent(gap)
     xi_c = 1.0 if plug is None else plug[0]
-    g_c = law.mu_2 - law.mu_s if plug is not None else float(problem.saturation_gap(1.0, gap))
+    g_c = law.mu_2 - law.mu_s if plug is not None else float(eq.saturation_gap(1.0, gap))
     x = np.asarray(x, dtype=float)
     xx = np.minimum(x, xi_c)
     ratio = law.mu_s / law.mu_2
@@ -155,76 +209,92 @@ def _couette_J(problem: MuICouetteFlow, gap: float, x: FloatArray) -> FloatArray
         * law.I_0
         * (
             2.0 * ratio * np.log((Ri + xx) / (Ri + xi_c))
-            + (1.0 - ratio) * np.log(g_c / problem.saturation_gap(xx, gap))
+            + (1.0 - ratio) * np.log(g_c / eq.saturation_gap(xx, gap))
         )
     )
     return np.where(x >= xi_c, 0.0, J)  # the plug is at rest: exactly, not to round-off
 
 
-def _closed_velocity(problem: MuIProblem, gap: float, I_w: float, x: FloatArray):
-    """u at ``x`` and G in closed form (Couette; plane shear without gravity)."""
-    x = np.asarray(x, dtype=float)
-    if isinstance(problem, MuIPlaneShear):
-        return x.copy(), float(problem.rate_times_I_w(np.array([1.0]), gap)[0])
-    J = _couette_J(problem, gap, x)
-    G = problem.Ri * float(_couette_J(problem, gap, np.array([0.0]))[0])
-    return -(problem.Ri + x) * J / I_w, G
+def _couette_closed(eq: MuIFlow, gap: float, I_w: float, x: FloatArray):
+    Ri = eq.cell.Ri
+    J = _couette_J(eq, gap, x)
+    G = Ri * float(_couette_J(eq, gap, np.array([0.0]))[0])
+    return -(Ri + x) * J / I_w, G
+
+
+def _channel_J(eq: MuIFlow, gap: float, x: FloatArray) -> FloatArray:
+    """J(xi) = I_w u(xi) in the channel (``docs/derivation_channel.md`` section 7) [-]:
+    ``I_0 [-(1/2 - t_lo) + ((mu_2 - mu_s)/(B nu)) ln((mu_2 - B nu t_lo)/(mu_2 - B nu/2))]``
+    with ``t_lo = max(|xi - 1/2|, t_s)``, B nu = 2T and t_s = mu_s/(B nu); even about 1/2."""
+    law = eq.rheology
+    Bn = 2.0 * (law.mu_2 - gap)
+    t_lo = np.maximum(np.abs(np.asarray(x, dtype=float) - 0.5), law.mu_s / Bn)
+    log = np.log1p(Bn * (0.5 - t_lo) / gap)
+    return law.I_0 * (-(0.5 - t_lo) + (law.mu_2 - law.mu_s) / Bn * log)
+
+
+def _channel_closed(eq: MuIFlow, gap: float, I_w: float, x: FloatArray):
+    return _channel_J(eq, gap, x) / I_w, float(_channel_J(eq, gap, np.array([0.5]))[0])
+
+
+CLOSED_FORMS = {"plane": _plane_closed, "couette": _couette_closed, "channel": _channel_closed}
+"""The cells with a closed-form mu(I) velocity: ``(u at x, G)`` for a wall gap and I_w."""
 
 
 class _Evaluator:
     """Dense output of a mu(I) profile: plain data, so the profile pickles as it is."""
 
-    def __init__(self, problem: MuIProblem, gap: float, I_w: float, numerical: bool, rtol: float):
-        self.problem, self.gap, self.I_w = problem, gap, I_w
+    def __init__(self, eq: MuIFlow, gap: float, I_w: float, numerical: bool, rtol: float):
+        self.eq, self.gap, self.I_w = eq, gap, I_w
         self.numerical, self.rtol = numerical, rtol
 
     def velocity(self, x: FloatArray) -> FloatArray:
         x = np.atleast_1d(np.asarray(x, dtype=float))
         if self.numerical:
-            return _numerical_velocity(self.problem, self.gap, self.I_w, x, self.rtol)[0]
-        return _closed_velocity(self.problem, self.gap, self.I_w, x)[0]
+            return _numerical_velocity(self.eq, self.gap, self.I_w, x, self.rtol)[0]
+        return CLOSED_FORMS[self.eq.cell.name](self.eq, self.gap, self.I_w, x)[0]
 
     def plug(self, x: FloatArray) -> FloatArray:
-        """True where the material is a plug at rest (|tau|/p <= mu_s)."""
-        return self.problem.plug(np.atleast_1d(np.asarray(x, dtype=float)), self.gap)
+        """True where the material is a plug (|tau|/p <= mu_s)."""
+        return self.eq.plug(np.atleast_1d(np.asarray(x, dtype=float)), self.gap)
 
     def __call__(self, x: FloatArray) -> Fields:
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        p, gap = self.problem, self.gap
+        eq, gap, cell = self.eq, self.gap, self.eq.cell
         u = self.velocity(x)
-        kappa = p.curvature(x)
-        rate = p.rate_times_I_w(x, gap) / self.I_w
-        # plane: du/dxi = rate; Couette: (Ri + xi) d(u/(Ri + xi))/dxi = rate
+        kappa = cell.curvature(x)
+        rate = eq.shear_sign(x, gap) * eq.rate_times_I_w(x, gap) / self.I_w
+        # r d(u/r)/dxi = rate, so du/dxi = rate + kappa u
         du = rate + kappa * u
-        mu = p.friction_ratio(x, gap)
-        sigma_c = p.sigma_c(x)
-        sigma = -mu * sigma_c
+        # the stress from the same stress ratio the plug test reads (one rounding, not two)
+        sign = np.sign(cell.shear_stress(x, 1.0))
+        sigma = sign * eq.friction_ratio(x, gap) * cell.normal_stress(x)
         return Fields(
             u=u,
-            omega=-0.5 * (du + kappa * u),
-            m=np.zeros_like(x),
+            omega=None,
+            m=None,
             sigma_xy=sigma,
             sigma_yx=sigma.copy(),
-            sigma_yy=sigma_c,
+            sigma_yy=cell.normal_stress(x),
             du_dxi=du,
             kappa=kappa,
         )
 
 
 # ----------------------------------------------------------------- the stress level
-def _stress_level(problem: MuIProblem, G_of_gap, rtol: float) -> tuple[float, float, int]:  # type: ignore[no-untyped-def]
-    """gap = mu_2 - mu(moving wall) and I_w; the root-find's iterations (0 if imposed)."""
-    if problem.stress_ratio is not None:
-        gap = problem.gap_of_stress_ratio()
+def _stress_level(eq: MuIFlow, G_of_gap, rtol: float) -> tuple[float, float, int]:  # type: ignore[no-untyped-def]
+    """gap = mu_2 - T and I_w; the root-find's iterations (0 if the level is imposed)."""
+    if eq.stress_ratio is not None:
+        gap = eq.gap_of_stress_ratio()
         return gap, G_of_gap(gap), 0
-    I_w = problem.I_w
+    I_w = eq.I_w
     assert I_w is not None
-    law = problem.rheology
+    law = eq.rheology
     hi = math.log(law.mu_2 - law.mu_s)  # G = 0: the wall's stress ratio is mu_s
     lo = math.log(GAP_MIN)
     if G_of_gap(GAP_MIN) < I_w:
         raise ConvergenceError(
-            f"{problem.describe()}: the wall speed needs the stress ratio at the moving wall "
+            f"{eq.describe()}: the wall speed needs the stress ratio at the {eq.wall_name} "
             f"closer to mu_2 than {GAP_MIN:g}, which double precision cannot resolve; lower I_w"
         )
     # G grows like ln(1/gap) near mu_2 and like (mu - mu_s)^2 near mu_s: a start in ln(gap)
@@ -238,70 +308,76 @@ def _stress_level(problem: MuIProblem, G_of_gap, rtol: float) -> tuple[float, fl
         full_output=True,
     )
     if not info.converged:
-        raise ConvergenceError(f"{problem.describe()}: the stress-level root-find did not converge")
+        raise ConvergenceError(f"{eq.describe()}: the stress-level root-find did not converge")
     return math.exp(z), I_w, int(info.iterations)
 
 
 # ----------------------------------------------------------------- profiles
-def _grid(problem: MuIProblem, gap: float, points: int | None, xi: FloatArray | None) -> FloatArray:
+def _grid(eq: MuIFlow, gap: float, points: int | None, xi: FloatArray | None) -> FloatArray:
     if xi is not None:
         return given_grid(xi)
     n = max(int(points or config.OUTPUT_POINTS), 3)
-    plug = problem.plug_extent(gap)
+    plug = eq.plug_extent(gap)
     if plug is None:
         parts = [np.linspace(0.0, 1.0, n)]
+    elif eq.cell.symmetric:  # a plug riding on the centre line
+        parts = [np.linspace(0.0, 1.0, n), np.array(plug)]
     else:
         flow = (plug[1], 1.0) if plug[0] == 0.0 else (0.0, plug[0])
         n_plug = max(n // 4, 2)
         parts = [np.linspace(*flow, n - n_plug + 1), np.linspace(*plug, n_plug)]
-    w = problem.peak_width(gap)
-    if w < 0.01:  # a boundary layer at the moving wall: points geometric into it
-        d = np.geomspace(w * 1e-2, 0.1, max(n // 8, 4))
-        parts.append(d if problem.moving_wall == 0.0 else 1.0 - d)
+    w = eq.peak_width(gap)
+    if w < 0.01:  # a boundary layer at the peak wall: points geometric into it
+        d = eq.cell.position(np.geomspace(w * 1e-2, 0.1, max(n // 8, 4)))
+        parts += [d, 1.0 - d] if eq.cell.symmetric else [d]
     return np.unique(np.clip(np.concatenate(parts), 0.0, 1.0))
 
 
-def _check(problem: MuIProblem, ev: _Evaluator) -> tuple[dict[str, float], dict[str, float]]:
+def _check(eq: MuIFlow, ev: _Evaluator) -> tuple[dict[str, float], dict[str, float]]:
     """Residuals recomputed on the evaluator, and the wall conditions (``lhs - rhs``).
 
-    "velocity": the integral form of the velocity equation over the intervals of a check
-    grid, with 12-point Gauss-Legendre quadrature of the law (independent of the route's
-    quadrature), relative to the wall speed. "law": |mu(I) - |sigma_yx|/sigma_yy| where the
-    material flows, with I recovered from the returned du/dxi.
+    "velocity": the integral form of the velocity equation, ``u/r`` across each interval of a
+    check grid against 12-point Gauss-Legendre quadrature of the law (independent of the
+    route's quadrature), relative to the velocity scale. "law": |mu(I) - |sigma_yx|/sigma_yy|
+    where the material flows, with I recovered from the returned du/dxi.
     """
-    grid = _grid(problem, ev.gap, config.CHECK_POINTS, None)
+    cell = eq.cell
+    grid = _grid(eq, ev.gap, config.CHECK_POINTS, None)
     a, b = grid[:-1], grid[1:]
     half = 0.5 * (b - a)
     nodes = (0.5 * (a + b))[:, None] + half[:, None] * _GL_NODES[None, :]
     weights = half[:, None] * _GL_WEIGHTS[None, :]
-    rate = (problem.rate_times_I_w(nodes.ravel(), ev.gap) / ev.I_w).reshape(nodes.shape)
+    flat = nodes.ravel()
+    rate = eq.shear_sign(flat, ev.gap) * eq.rate_times_I_w(flat, ev.gap) / ev.I_w
+    rate = (rate / cell.radius(flat)).reshape(nodes.shape)
     ends = ev(grid)
-    r = 1.0 / ends.kappa if isinstance(problem, MuICouetteFlow) else np.ones_like(grid)
-    if isinstance(problem, MuICouetteFlow):
-        rate = rate / (problem.Ri + nodes)
+    r = cell.radius(grid)
     jump = ends.u[1:] / r[1:] - ends.u[:-1] / r[:-1]
     velocity = float(np.max(np.abs(jump - np.sum(weights * rate, axis=1)) * r[1:]))
     flowing = ~ev.plug(grid)
-    recovered = (ends.du_dxi - ends.kappa * ends.u) * ev.I_w / np.sqrt(ends.sigma_yy)
-    law = problem.rheology
+    recovered = np.abs(ends.du_dxi - ends.kappa * ends.u) * ev.I_w / np.sqrt(ends.sigma_yy)
+    law = eq.rheology
     mu_back = law.friction(recovered[flowing])
     mu_stress = np.abs(ends.sigma_yx[flowing]) / ends.sigma_yy[flowing]
     law_res = float(np.max(np.abs(mu_back - mu_stress))) if np.any(flowing) else 0.0
     u_ends = ev.velocity(np.array([0.0, 1.0]))
-    mw, fw = problem.moving_wall, problem.fixed_wall
     bc = {
-        f"u - u_wall at the moving wall (xi = {mw:g}) [no slip]": float(
-            u_ends[int(mw)] - problem.wall_velocity(mw)
-        ),
-        f"u - u_wall at the fixed wall (xi = {fw:g}) [no slip]": float(
-            u_ends[int(fw)] - problem.wall_velocity(fw)
-        ),
+        f"u - u_wall at xi = {w:g} [no slip]": float(u_ends[i] - cell.wall_velocity(w))
+        for i, w in enumerate((0.0, 1.0))
     }
+    xs, _, us = _scale(eq)
+    if xs not in (0.0, 1.0):
+        bc[f"u({xs:g}) - {us:g} [velocity scale]"] = float(ev.velocity(np.array([xs]))[0] - us)
+    if cell.symmetric:
+        probe = np.linspace(0.0, 0.5, 11)
+        bc["max |u(xi) - u(1 - xi)| [symmetry]"] = float(
+            np.max(np.abs(ev.velocity(probe) - ev.velocity(1.0 - probe)))
+        )
     return {"velocity": velocity, "law": law_res}, bc
 
 
 def _profile(
-    problem: MuIProblem,
+    problem: Problem,
     *,
     method: str,
     points: int | None,
@@ -309,40 +385,47 @@ def _profile(
     check: bool,
     rtol: float,
 ) -> Profile:
+    eq: MuIFlow = problem.equations  # type: ignore[assignment]
     numerical = method == "numerical"
+    closed = CLOSED_FORMS.get(eq.cell.name)
 
     def G(gap: float) -> float:
-        if numerical:
-            return _numerical_velocity(problem, gap, 1.0, np.array([0.0]), rtol)[1]
-        return _closed_velocity(problem, gap, 1.0, np.array([0.0]))[1]
+        if numerical or closed is None:
+            return _numerical_velocity(eq, gap, 1.0, np.array([0.0]), rtol)[1]
+        return closed(eq, gap, 1.0, np.array([0.0]))[1]
 
-    gap, I_w, iterations = _stress_level(problem, G, rtol)
-    ev = _Evaluator(problem, gap, I_w, numerical, rtol)
-    grid = _grid(problem, gap, points, xi)
+    gap, I_w, iterations = _stress_level(eq, G, rtol)
+    ev = _Evaluator(eq, gap, I_w, numerical, rtol)
+    grid = _grid(eq, gap, points, xi)
     f = ev(grid)
     for name, values in f._asdict().items():
-        if not np.all(np.isfinite(values)):
+        if values is not None and not np.all(np.isfinite(values)):
             raise ConvergenceError(f"the {method} mu(I) solution has non-finite {name}")
-    res, bc = _check(problem, ev) if check else ({}, {})
-    law = problem.rheology
+    res, bc = _check(eq, ev) if check else ({}, {})
+    law = eq.rheology
     T = law.mu_2 - gap
-    plug = problem.plug_extent(gap)
-    plug_text = (
-        "no plug: the whole gap flows"
-        if plug is None
-        else f"plug at rest (|tau|/p <= mu_s, u = 0 exactly) on xi in "
-        f"[{plug[0]:.6g}, {plug[1]:.6g}]"
-    )
+    plug = eq.plug_extent(gap)
+    if plug is None:
+        plug_text = "no plug: the whole gap flows"
+    elif eq.cell.symmetric:
+        plug_text = (
+            f"plug (|tau|/p <= mu_s, no shear) on the centre line, xi in "
+            f"[{plug[0]:.6g}, {plug[1]:.6g}]"
+        )
+    else:
+        plug_text = (
+            f"plug at rest (|tau|/p <= mu_s, u = 0 exactly) on xi in [{plug[0]:.6g}, {plug[1]:.6g}]"
+        )
     how = (
         "velocity by adaptive quadrature of the rate, stress level by Brent's method"
         if numerical
         else "velocity in closed form (docs/derivation_mui.md)"
     )
     message = (
-        f"local mu(I) (Jop et al. 2006), {how}; stress ratio at the moving wall "
+        f"local mu(I) (Jop et al. 2006), {how}; stress ratio at the {eq.wall_name} "
         f"|tau|/p = {T:.12g} (mu_2 - it = {gap:.6g}), I_w = {I_w:.12g}; {plug_text}. "
-        "No grain spin or couple stress in this rheology: omega = -(du/dxi + kappa u)/2 is half "
-        "the vorticity (the material spin), m = 0, sigma_xy = sigma_yx (symmetric stress)."
+        "No grain spin or couple stress in this rheology: the profile has no omega or m, and "
+        "sigma_xy = sigma_yx (symmetric stress)."
     )
     stats: dict[str, Any] = {
         "stress_ratio": T,
@@ -352,11 +435,11 @@ def _profile(
         "root_iterations": iterations,
     }
     return Profile(
-        problem=problem,  # type: ignore[arg-type]
+        problem=problem,
         xi=grid,
         **f._asdict(),
-        slip_wall=float(problem.slip_wall),
-        reference_velocity=problem.reference_velocity,
+        slip_wall=float(eq.slip_wall),
+        reference_velocity=eq.reference_velocity,
         diagnostics=Diagnostics(
             method=method,
             rtol=rtol if numerical else None,
@@ -378,19 +461,22 @@ def _rtol(rtol: float) -> float:
     return float(rtol)
 
 
+@register_route("mui", ANY_CELL, "numerical")
 def solve_numerical(
-    problem: MuIProblem,
+    problem: Problem,
     *,
     points: int | None = None,
     xi: FloatArray | None = None,
     check: bool = True,
     rtol: float = config.MUI_RTOL,
 ) -> Profile:
-    """The mu(I) profile by quadrature of the rate and a root-find on the stress level.
+    """The mu(I) profile on any cell by quadrature of the rate and a root-find on the stress
+    level (module docstring).
 
     Parameters
     ----------
-    problem : MuIPlaneShear or MuICouetteFlow
+    problem : Problem
+        mu(I) on a cell (``Problem(cell, MuI(...))``).
     points : int, optional
         About this many output points (default :data:`cosserat.config.OUTPUT_POINTS`),
         concentrated in the flowing region; or ``xi``, an explicit grid.
@@ -411,14 +497,16 @@ def solve_numerical(
     )
 
 
+@register_route("mui", tuple(CLOSED_FORMS), "closed-form")
 def solve_closed_form(
-    problem: MuIProblem,
+    problem: Problem,
     *,
     points: int | None = None,
     xi: FloatArray | None = None,
     check: bool = True,
 ) -> Profile:
-    """The mu(I) profile in closed form: Couette flow, and plane shear without gravity.
+    """The mu(I) profile in closed form: Couette flow, the channel, and plane shear without
+    gravity.
 
     Raises
     ------
@@ -427,7 +515,7 @@ def solve_closed_form(
     NoSolutionError
         As :func:`solve_numerical`.
     """
-    if isinstance(problem, MuIPlaneShear) and problem.B * problem.nu != 0.0:
+    if problem.cell_name == "plane" and problem.cell.B_nu != 0.0:
         raise MethodNotAvailableError(
             "no closed form for mu(I) plane shear under gravity (B > 0): use method='numerical'"
         )
@@ -437,8 +525,7 @@ def solve_closed_form(
 
 
 def plug_mask(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
-    """True where a mu(I) profile is a plug at rest (|tau|/p <= mu_s), on ``profile.xi`` or
-    at ``xi``.
+    """True where a mu(I) profile is a plug (|tau|/p <= mu_s), on ``profile.xi`` or at ``xi``.
 
     Raises
     ------
@@ -446,214 +533,15 @@ def plug_mask(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
         The profile is not a mu(I) profile.
     """
     ev = profile.evaluator
-    if not isinstance(ev, _Evaluator | _ChannelEvaluator):
+    if not isinstance(ev, _Evaluator):
         raise ParameterError("plug_mask: not a mu(I) profile (plugs are a mu(I) notion)")
     return ev.plug(profile.xi if xi is None else np.asarray(xi, dtype=float))
 
 
-# ----------------------------------------------------------------- the vertical channel
-def _channel_J_numerical(problem: MuIChannel, x: FloatArray, rtol: float) -> FloatArray:
-    """I_w u(x) by adaptive quadrature of the rate I(mu) from the wall, piece by piece between
-    the sorted distances from the centre line (the plug edge a breakpoint) [-]."""
-    t_s = problem.plug_half_width
-    t = np.maximum(np.abs(np.asarray(x, dtype=float) - 0.5), t_s)
-    nodes = np.unique(np.concatenate([t, [0.5]]))[::-1]  # from the wall inwards
-    Bn = problem.B * problem.nu
-    law = problem.rheology
-
-    def rate(tt: float) -> float:
-        return float(law.inertial_number(np.array([Bn * tt]))[0])
-
-    pieces = [0.0]
-    for hi, lo in itertools.pairwise(nodes):
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", IntegrationWarning)
-            try:
-                val, _ = quad(rate, lo, hi, epsabs=0.0, epsrel=rtol, limit=200)
-            except IntegrationWarning as exc:
-                raise ConvergenceError(
-                    f"mu(I) channel: the quadrature of the rate on [{lo:.6g}, {hi:.6g}] failed "
-                    f"({exc})"
-                ) from None
-        pieces.append(val)
-    J_nodes = np.cumsum(pieces)
-    return np.interp(t, nodes[::-1], J_nodes[::-1])
-
-
-class _ChannelEvaluator:
-    """Dense output of a mu(I) channel profile (plain data: the profile pickles as it is)."""
-
-    def __init__(self, problem: MuIChannel, numerical: bool, rtol: float) -> None:
-        self.problem, self.numerical, self.rtol = problem, numerical, rtol
-        self.I_w = float(self.J(np.array([0.5]))[0])
-
-    def J(self, x: FloatArray) -> FloatArray:
-        if self.numerical:
-            return _channel_J_numerical(self.problem, x, self.rtol)
-        return self.problem.closed_form_J(x)
-
-    def velocity(self, x: FloatArray) -> FloatArray:
-        return self.J(np.atleast_1d(np.asarray(x, dtype=float))) / self.I_w
-
-    def plug(self, x: FloatArray) -> FloatArray:
-        return self.problem.plug(np.atleast_1d(np.asarray(x, dtype=float)))
-
-    def thickness(self, f: float) -> float:
-        """Delta: distance from a wall, over eps, where 1 - u = f (u_0 = u(1/2) = 1) [d_p]."""
-        if not 0.0 < f < 1.0:
-            raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
-        span = 0.5 - self.problem.plug_half_width
-
-        def g(d: float) -> float:
-            return float(self.velocity(np.array([1.0 - d]))[0]) - (1.0 - f)
-
-        d = brentq(g, 0.0, span, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=400)
-        return float(d) / self.problem.eps
-
-    def __call__(self, x: FloatArray) -> Fields:
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        p = self.problem
-        u = self.velocity(x)
-        du = -np.sign(x - 0.5) * p.rate_times_I_w(x) / self.I_w
-        sigma = p.sigma_yx(x)
-        return Fields(
-            u=u,
-            omega=-0.5 * du,
-            m=np.zeros_like(x),
-            sigma_xy=sigma,
-            sigma_yx=sigma.copy(),
-            sigma_yy=p.sigma_c(x),
-            du_dxi=du,
-            kappa=np.zeros_like(x),
-        )
-
-
-def _channel_profile(
-    problem: MuIChannel, *, method: str, points: int | None, xi: FloatArray | None, check: bool,
-    rtol: float,
-) -> Profile:  # fmt: skip
-    numerical = method == "numerical"
-    ev = _ChannelEvaluator(problem, numerical, rtol)
-    t_s = problem.plug_half_width
-    if xi is None:
-        n = points or config.OUTPUT_POINTS
-        grid = np.unique(np.concatenate([np.linspace(0.0, 1.0, n), [0.5 - t_s, 0.5 + t_s]]))
-    else:
-        grid = given_grid(xi)
-    f = ev(grid)
-    for name, values in f._asdict().items():
-        if not np.all(np.isfinite(values)):
-            raise ConvergenceError(f"the {method} mu(I) channel solution has non-finite {name}")
-    res: dict[str, float] = {}
-    bc: dict[str, float] = {}
-    if check:
-        # velocity: u(b) - u(a) - int_a^b du/dxi on intervals of the upper half (GL-12)
-        cg = np.unique(np.concatenate([np.linspace(0.5, 1.0, 401), [0.5 + t_s]]))
-        a, b = cg[:-1], cg[1:]
-        half = 0.5 * (b - a)
-        nodes = (0.5 * (a + b))[:, None] + half[:, None] * _GL_NODES[None, :]
-        integral = np.sum(half[:, None] * _GL_WEIGHTS[None, :] * ev(nodes.ravel()).du_dxi.reshape(
-            nodes.shape), axis=1)  # fmt: skip
-        res["velocity"] = float(np.max(np.abs(ev.velocity(b) - ev.velocity(a) - integral)))
-        ends = ev(np.array([0.0, 0.5, 1.0]))
-        probe = np.linspace(0.0, 0.5, 11)
-        bc = {
-            "u at the lower wall [no slip]": float(ends.u[0]),
-            "u at the upper wall [no slip]": float(ends.u[2]),
-            "u(1/2) - 1 [centre-line velocity scale]": float(ends.u[1] - 1.0),
-            "max |u(xi) - u(1 - xi)| [symmetry]": float(
-                np.max(np.abs(ev.velocity(probe) - ev.velocity(1.0 - probe)))
-            ),
-        }
-    how = (
-        "velocity by adaptive quadrature of the rate"
-        if numerical
-        else "velocity in closed form (docs/derivation_channel.md, section 7)"
-    )
-    message = (
-        f"local mu(I) (Jop et al. 2006) in the vertical channel, {how}; wall stress ratio "
-        f"B nu/2 = {problem.wall_stress_ratio:.12g}; plug at rest (|tau|/p <= mu_s) on "
-        f"|xi - 1/2| <= {t_s:.6g}; velocity scaled by the centre line, whose inertial number is "
-        f"I_w = {ev.I_w:.12g}. No grain spin or couple stress in this rheology: omega = "
-        "-(du/dxi)/2 is half the vorticity, m = 0, sigma_xy = sigma_yx."
-    )
-    return Profile(
-        problem=problem,  # type: ignore[arg-type]
-        xi=grid,
-        **f._asdict(),
-        slip_wall=1.0,
-        reference_velocity=problem.reference_velocity,
-        diagnostics=Diagnostics(
-            method=method,
-            rtol=rtol if numerical else None,
-            atol=None,
-            residuals=res,
-            bc_errors=bc,
-            message=message,
-            stats={"I_w": ev.I_w, "plug": [0.5 - t_s, 0.5 + t_s]},
-        ),
-        evaluator=ev,
-        velocity=ev.velocity,
-    )
-
-
-def solve_channel_numerical(
-    problem: MuIChannel,
-    *,
-    points: int | None = None,
-    xi: FloatArray | None = None,
-    check: bool = True,
-    rtol: float = config.MUI_RTOL,
-) -> Profile:
-    """The mu(I) channel by adaptive quadrature of the rate (``docs/derivation_channel.md``
-    section 7); the centre-line velocity scales u, and its inertial number I_w is reported."""
-    return _channel_profile(
-        problem, method="numerical", points=points, xi=xi, check=check, rtol=_rtol(rtol)
-    )
-
-
-def solve_channel_closed_form(
-    problem: MuIChannel,
-    *,
-    points: int | None = None,
-    xi: FloatArray | None = None,
-    check: bool = True,
-) -> Profile:
-    """The mu(I) channel in closed form (``docs/derivation_channel.md`` section 7)."""
-    return _channel_profile(
-        problem, method="closed-form", points=points, xi=xi, check=check, rtol=config.MUI_RTOL
-    )
-
-
-MUI = Rheology(
-    name="mui",
-    title="local mu(I) rheology",
-    reference=REFERENCE,
-    cells={"plane": MuIPlaneShear, "couette": MuICouetteFlow, "channel": MuIChannel},
-    routes={
-        "numerical": {
-            MuIPlaneShear: solve_numerical,
-            MuICouetteFlow: solve_numerical,
-            MuIChannel: solve_channel_numerical,
-        },
-        "closed-form": {
-            MuIPlaneShear: solve_closed_form,
-            MuICouetteFlow: solve_closed_form,
-            MuIChannel: solve_channel_closed_form,
-        },
-    },
-    picklable=frozenset(
-        {solve_numerical, solve_closed_form, solve_channel_numerical, solve_channel_closed_form}
-    ),
-)
-"""Local mu(I) on plane shear and Couette flow, through the seam (``docs/architecture.md``)."""
-
 __all__ = [
-    "MUI",
+    "CLOSED_FORMS",
     "REFERENCE",
     "plug_mask",
-    "solve_channel_closed_form",
-    "solve_channel_numerical",
     "solve_closed_form",
     "solve_numerical",
 ]

@@ -1,5 +1,5 @@
-"""Routes of the nonlocal granular fluidity model (``docs/derivation_ngf.md``) and its
-:class:`Rheology`.
+"""Routes of the nonlocal granular fluidity model (``docs/derivation_ngf.md``), registered for
+the cells its kernel has a branch for (:data:`~cosserat.model.rheologies.ngf.KINDS`).
 
 * "numerical": every cell. The fluidity equation by vertex-centred finite volumes (second
   order, :mod:`cosserat.numerics.ngf`), the stress level by Brent's method on the wall-speed
@@ -11,7 +11,8 @@
   saying so.
 
 The profile is the package's :class:`~cosserat.results.profile.Profile`: as for local mu(I),
-``omega`` is half the vorticity, ``m = 0`` and the stress is symmetric. The NGF fields the
+it has no ``omega`` or ``m`` (None: no grain spin or couple stress of its own) and the stress is
+symmetric. The NGF fields the
 profile has no column for are read with :func:`fluidity`, :func:`friction_ratio`,
 :func:`shear_rate` and :func:`creep_mask`.
 """
@@ -27,19 +28,20 @@ from scipy.interpolate import CubicHermiteSpline, CubicSpline
 from scipy.optimize import brentq
 
 from .. import config
-from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError, ParameterError
+from ..errors import (
+    ConvergenceError,
+    MethodNotAvailableError,
+    NoSolutionError,
+    ParameterError,
+    shown,
+)
+from ..model import Problem
 from ..model.constitutive import FloatArray
-from ..model.ngf import NGFChannel, NGFCouetteFlow, NGFPlaneShear, NGFProblem
-from ..model.rheology import Rheology
+from ..model.rheologies.ngf import KINDS, REFERENCE, NGFFlow
 from ..numerics import ngf as kernel
 from ..results.profile import Diagnostics, Fields, Profile
 from .assemble import given_grid
-
-REFERENCE = (
-    "Kamrin & Koval, Nonlocal constitutive relation for steady granular flow, Phys. Rev. Lett. "
-    "108 (2012) 178301; Henann & Kamrin, A predictive, size-dependent continuum model for dense "
-    "granular flows, Proc. Natl. Acad. Sci. USA 110 (2013) 6730-6735"
-)
+from .registry import register_route
 
 RESOLUTION = 16.0
 """Default cells per shortest cooperativity length A d/sqrt(max |mu - mu_s|): second-order
@@ -55,24 +57,23 @@ XTOL = 1e-15
 
 
 # ----------------------------------------------------------------- grid and stress level
-def _max_excess(problem: NGFProblem, T: float) -> float:
+def _max_excess(eq: NGFFlow, T: float) -> float:
     """max |mu - mu_s| over the gap for the stress level T (mu is monotone or, in the
     channel, V-shaped, so the ends and the centre suffice)."""
     xs = np.array([0.0, 0.5, 1.0])
-    return float(np.max(np.abs(problem.friction_ratio(xs, T) - problem.rheology.mu_s)))
+    return float(np.max(np.abs(eq.friction_ratio(xs, T) - eq.rheology.mu_s)))
 
 
-def _required_cells(problem: NGFProblem, T: float, resolution: float) -> int:
+def _required_cells(eq: NGFFlow, T: float, resolution: float) -> int:
     """Cells for ``resolution`` cells per shortest cooperativity length, and, with the
     saturating law, per width over which mu_2 - mu doubles at the wall."""
-    law = problem.rheology
-    length = law.A * problem.eps / math.sqrt(max(_max_excess(problem, T), 1e-300))
+    law = eq.rheology
+    length = law.A * eq.eps / math.sqrt(max(_max_excess(eq, T), 1e-300))
     need = resolution / length
     if law.mu_2 is not None:
-        wall = problem.moving_wall
+        wall = eq.moving_wall
         slope = (
-            abs(float(problem.friction_ratio(np.array([wall + 1e-7 * (1 - 2 * wall)]), T)[0]) - T)
-            / 1e-7
+            abs(float(eq.friction_ratio(np.array([wall + 1e-7 * (1 - 2 * wall)]), T)[0]) - T) / 1e-7
         )
         if slope > 0.0:
             need = max(need, resolution / ((law.mu_2 - T) / slope))
@@ -94,76 +95,76 @@ class _Level:
     solves: int
 
 
-def _args(problem: NGFProblem) -> tuple[Any, ...]:
-    law = problem.rheology
+def _args(eq: NGFFlow) -> tuple[Any, ...]:
+    law = eq.rheology
     return (
-        problem.kind,
-        problem.shape,
-        law.A * problem.eps,
+        eq.kind,
+        eq.shape,
+        law.A * eq.eps,
         law.mu_s,
         law.b,
         0.0 if law.mu_2 is None else law.mu_2,
-        problem.fluidity_bc == "local",
+        eq.fluidity_bc == "local",
     )
 
 
-def _singular(problem: NGFProblem, T: float) -> ConvergenceError:
+def _singular(eq: NGFFlow, T: float) -> ConvergenceError:
     """The error for a fluidity solve whose tridiagonal system is singular at double precision."""
-    law = problem.rheology
-    excess = _max_excess(problem, T)
-    length = law.A * problem.eps / math.sqrt(excess) if excess > 0.0 else math.inf
+    law = eq.rheology
+    excess = _max_excess(eq, T)
+    length = law.A * eq.eps / math.sqrt(excess) if excess > 0.0 else math.inf
     return ConvergenceError(
-        f"{problem.describe()}: the fluidity equation is singular in double precision at the "
+        f"{eq.describe()}: the fluidity equation is singular in double precision at the "
         f"stress level {T:.17g} (max |mu - mu_s| = {excess:.3g} over the gap, the cooperativity "
         f"length {length:.3g} gaps): k = |mu - mu_s|/(A eps)^2 vanishes there, so the flow "
         "cannot be told from rest and g is not determined"
     )
 
 
-def _fluidity(problem: NGFProblem, T: float, n: int, F: FloatArray) -> float:
+def _fluidity(eq: NGFFlow, T: float, n: int, F: FloatArray) -> float:
     """The wall-speed integral at the stress level T on n cells (F filled in)."""
-    kind, shape, a_eps, mu_s, b, mu_2, dirichlet = _args(problem)
+    kind, shape, a_eps, mu_s, b, mu_2, dirichlet = _args(eq)
     G, status = kernel.fluidity(kind, shape, T, n, a_eps, mu_s, b, mu_2, dirichlet, F)
     if status != kernel.SOLVED:
-        raise _singular(problem, T)
+        raise _singular(eq, T)
     return float(G)
 
 
-def _solve_at(problem: NGFProblem, n: int, hint: float | None) -> _Level:
+def _solve_at(eq: NGFFlow, n: int, hint: float | None) -> _Level:
     """The stress level (imposed, or for the wall speed I_w) and F on n cells."""
-    kind, shape, a_eps, mu_s, b, mu_2, dirichlet = _args(problem)
+    kind, shape, a_eps, mu_s, b, mu_2, dirichlet = _args(eq)
     F = np.empty(n + 1)
-    if problem.I_w is None:
-        T = problem.check_imposed_level()
-        return _Level(n, T, F, _fluidity(problem, T, n, F), 0, 1)
+    if eq.I_w is None:
+        T = eq.check_imposed_level()
+        return _Level(n, T, F, _fluidity(eq, T, n, F), 0, 1)
     top = math.inf if mu_2 == 0.0 else mu_2 - SATURATION_MARGIN * (mu_2 - mu_s)
     if hint is not None:
         lo, hi = mu_s + (hint - mu_s) * (1 - 1e-3), min(mu_s + (hint - mu_s) * (1 + 1e-3), top)
     else:
         lo, hi = mu_s, min(2.0 * mu_s, top)
-    args = (kind, shape, n, a_eps, mu_s, b, mu_2, dirichlet, problem.I_w)
+    args = (kind, shape, n, a_eps, mu_s, b, mu_2, dirichlet, eq.I_w)
     T, status, iterations, solves = kernel.stress_level(*args, lo, hi, XTOL, 200, F)
     if status == kernel.NO_BRACKET and hi < top:  # the hint was too low (saturating law)
         T, status, iterations, more = kernel.stress_level(*args, mu_s, top, XTOL, 200, F)
         solves += more
     if status == kernel.SINGULAR:
-        raise _singular(problem, T)
+        raise _singular(eq, T)
     if status == kernel.NO_BRACKET:
         if mu_2 == 0.0:
             raise ConvergenceError(
-                f"{problem.describe()}: no stress level up to {T:.3g} gives the wall speed"
+                f"{eq.describe()}: no stress level up to {T:.3g} gives the wall speed"
             )
-        reach = _fluidity(problem, top, n, F)
+        reach = _fluidity(eq, top, n, F)
         raise NoSolutionError(
-            f"{problem.describe()}: I_w = {problem.I_w:g} is beyond the fastest steady NGF flow "
+            f"{eq.describe()}: I_w = {eq.I_w:g} is beyond the fastest steady NGF flow "
             f"with the saturating local law in this cell (I_w -> about {reach:.3g} as the stress "
-            f"ratio at the {problem.wall_name} tends to mu_2 = {mu_2:.6g}; beyond mu_2 the "
+            f"ratio at the {eq.wall_name} tends to mu_2 = {mu_2:.6g}; beyond mu_2 the "
             "local law has no rate, and the fluidity stays finite because it diffuses away "
             "from the wall)"
         )
     if status != kernel.CONVERGED:
-        raise ConvergenceError(f"{problem.describe()}: the stress-level root-find did not converge")
-    return _Level(n, T, F, _fluidity(problem, T, n, F), iterations, solves)
+        raise ConvergenceError(f"{eq.describe()}: the stress-level root-find did not converge")
+    return _Level(n, T, F, _fluidity(eq, T, n, F), iterations, solves)
 
 
 # ----------------------------------------------------------------- the velocity
@@ -175,9 +176,9 @@ def _cumtrapz(f: FloatArray, h: float) -> FloatArray:
     return np.concatenate([[0.0], np.cumsum(0.5 * h * (f[1:] + f[:-1]))])
 
 
-def _sign(problem: NGFProblem, x: FloatArray) -> FloatArray:
+def _sign(eq: NGFFlow, x: FloatArray) -> FloatArray:
     """Sign of the shear: du/dxi >= 0 except in the channel's lower half-flow (xi > 1/2)."""
-    if isinstance(problem, NGFChannel):
+    if eq.cell.name == "channel":
         return np.where(x > 0.5, -1.0, 1.0)
     return np.ones_like(x)
 
@@ -195,7 +196,7 @@ class _Nodal:
     dprim: FloatArray
 
 
-def _nodal(problem: NGFProblem, level: _Level, I_w: float) -> _Nodal:
+def _nodal(eq: NGFFlow, level: _Level, I_w: float) -> _Nodal:
     """The velocity of one level on its nodes, by the trapezoidal rule (second order).
 
     Plane and channel: ``u' = sign F mu / I_w``, u(0) = 0. Couette: ``W = u/(Ri + xi)`` with
@@ -203,13 +204,13 @@ def _nodal(problem: NGFProblem, level: _Level, I_w: float) -> _Nodal:
     """
     x = _nodes(level.n)
     h = 1.0 / level.n
-    rate = level.F * problem.friction_ratio(x, level.T) / I_w  # |gamma_dot| H / V
-    if isinstance(problem, NGFCouetteFlow):
-        dW = rate / problem.radius(x)
+    rate = level.F * eq.friction_ratio(x, level.T) / I_w  # |gamma_dot| H / V
+    if eq.cell.name == "couette":
+        dW = rate / eq.radius(x)
         # summed from the outer wall, so that the creep tail keeps its relative accuracy
         W = -_cumtrapz(dW[::-1], h)[::-1]
         return _Nodal(x, level.T, I_w, level.F, W, dW)
-    du = _sign(problem, x) * rate
+    du = _sign(eq, x) * rate
     return _Nodal(x, level.T, I_w, level.F, _cumtrapz(du, h), du)
 
 
@@ -251,8 +252,8 @@ class _Evaluator:
     gives the rate between nodes), the fluidity by a cubic spline through its nodal values.
     """
 
-    def __init__(self, problem: NGFProblem, nodal: _Nodal, n: int):
-        self.problem, self.T, self.I_w, self.n = problem, nodal.T, nodal.I_w, n
+    def __init__(self, eq: NGFFlow, nodal: _Nodal, n: int):
+        self.eq, self.T, self.I_w, self.n = eq, nodal.T, nodal.I_w, n
         self.nodes = nodal.x
         self.F = nodal.F
         self._prim = CubicHermiteSpline(nodal.x, nodal.prim, nodal.dprim)
@@ -261,7 +262,7 @@ class _Evaluator:
     def velocity(self, x: FloatArray) -> FloatArray:
         x = np.atleast_1d(np.asarray(x, dtype=float))
         p = self._prim(x)
-        return p * self.problem.radius(x) if isinstance(self.problem, NGFCouetteFlow) else p
+        return p * self.eq.radius(x) if self.eq.cell.name == "couette" else p
 
     def fluidity(self, x: FloatArray) -> FloatArray:
         """F(xi) = I_w g H / V: the fluidity in units of sqrt(N/rho_s)/d [-]."""
@@ -270,19 +271,19 @@ class _Evaluator:
         return self._F(np.atleast_1d(np.asarray(x, dtype=float)))
 
     def friction_ratio(self, x: FloatArray) -> FloatArray:
-        return self.problem.friction_ratio(np.atleast_1d(np.asarray(x, dtype=float)), self.T)
+        return self.eq.friction_ratio(np.atleast_1d(np.asarray(x, dtype=float)), self.T)
 
     def shear_rate(self, x: FloatArray) -> FloatArray:
         """|gamma_dot| H / V = g mu H / V, from the velocity's dense output [-]."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        return np.abs(self._prim(x, 1)) * self.problem.radius(x)
+        return np.abs(self._prim(x, 1)) * self.eq.radius(x)
 
     def creep(self, x: FloatArray) -> FloatArray:
-        return self.problem.creep(np.atleast_1d(np.asarray(x, dtype=float)), self.T)
+        return self.eq.creep(np.atleast_1d(np.asarray(x, dtype=float)), self.T)
 
     def __call__(self, x: FloatArray) -> Fields:
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        p = self.problem
+        p = self.eq
         u = self.velocity(x)
         kappa = p.curvature(x)
         rate = _sign(p, x) * self.shear_rate(x)
@@ -292,8 +293,8 @@ class _Evaluator:
         sigma = -_sign(p, x) * mu * s
         return Fields(
             u=u,
-            omega=-0.5 * (du + kappa * u),
-            m=np.zeros_like(x),
+            omega=None,
+            m=None,
             sigma_xy=sigma,
             sigma_yx=sigma.copy(),
             sigma_yy=s,
@@ -312,26 +313,26 @@ class _ChannelEvaluator(_Evaluator):
             lambda t: float(self.velocity(np.array([1.0 - t]))[0]) - target,
             0.0,
             0.5,
-            xtol=1e-15 * self.problem.eps,
+            xtol=1e-15 * self.eq.eps,
             rtol=4 * np.finfo(float).eps,
             maxiter=400,
         )
-        return float(d) / self.problem.eps
+        return float(d) / self.eq.eps
 
 
 # ----------------------------------------------------------------- the profile
-def _grid(problem: NGFProblem, T: float, points: int | None, xi: FloatArray | None) -> FloatArray:
+def _grid(eq: NGFFlow, T: float, points: int | None, xi: FloatArray | None) -> FloatArray:
     if xi is not None:
         return given_grid(xi)
     n = max(int(points or config.OUTPUT_POINTS), 3)
     parts = [np.linspace(0.0, 1.0, n)]
-    extent = problem.creep_extent(T)
+    extent = eq.creep_extent(T)
     if extent is not None:
         parts.append(np.array(extent))
     return np.unique(np.clip(np.concatenate(parts), 0.0, 1.0))
 
 
-def _wall_fluidity_errors(problem: NGFProblem, ev: _Evaluator) -> dict[str, float]:
+def _wall_fluidity_errors(eq: NGFFlow, ev: _Evaluator) -> dict[str, float]:
     """The fluidity's wall condition at both walls, from the nodal solution: for
     ``n . grad g = 0`` the one-sided fourth-order dF/dxi times the wall's cooperativity length
     over max F (dimensionless); for ``g = g_loc``, F - F_loc over max F."""
@@ -340,14 +341,14 @@ def _wall_fluidity_errors(problem: NGFProblem, ev: _Evaluator) -> dict[str, floa
     scale = float(np.max(F))
     out = {}
     for wall, f in ((0.0, F[:5]), (1.0, F[::-1][:5])):
-        if problem.fluidity_bc == "local":
-            loc = float(problem.local_fluidity(np.array([wall]), ev.T)[0])
+        if eq.fluidity_bc == "local":
+            loc = float(eq.local_fluidity(np.array([wall]), ev.T)[0])
             out[f"g - g_loc at xi = {wall:g} (over max g)"] = float(f[0] - loc) / scale
         else:
             ell = float(
-                problem.rheology.cooperativity_length(
-                    problem.friction_ratio(np.array([wall]), ev.T), problem.eps
-                )[0]
+                eq.rheology.cooperativity_length(eq.friction_ratio(np.array([wall]), ev.T), eq.eps)[
+                    0
+                ]
             )
             # one-sided, fourth order: its own error stays below the scheme's
             slope = float(np.dot([-25.0, 48.0, -36.0, 16.0, -3.0], f)) / (12.0 * h)
@@ -356,7 +357,7 @@ def _wall_fluidity_errors(problem: NGFProblem, ev: _Evaluator) -> dict[str, floa
 
 
 def _profile(
-    problem: NGFProblem,
+    eq: NGFFlow,
     *,
     points: int | None,
     xi: FloatArray | None,
@@ -368,46 +369,46 @@ def _profile(
     if cells is not None:
         if int(cells) != cells or cells < 8 or cells % 4 or cells > MAX_CELLS:
             raise ParameterError(
-                f"cells must be a multiple of 4 in [8, {MAX_CELLS}]; got {cells!r}"
+                f"cells must be a multiple of 4 in [8, {MAX_CELLS}]; got {shown(cells)}"
             )
-        half = _solve_at(problem, int(cells) // 2, None)
-        level = _solve_at(problem, int(cells), half.T)
+        half = _solve_at(eq, int(cells) // 2, None)
+        level = _solve_at(eq, int(cells), half.T)
     else:
         if not 1.0 <= resolution <= 1e4:
             raise ParameterError(
                 f"resolution must satisfy 1 <= resolution <= 1e4; got {resolution:g}"
             )
         # a coarse stress level, then the grid it needs (and half of it, for the estimate)
-        level = _solve_at(problem, MIN_CELLS, None)
+        level = _solve_at(eq, MIN_CELLS, None)
         n, first = MIN_CELLS, True
-        while (need := _required_cells(problem, level.T, resolution)) > n or first:
+        while (need := _required_cells(eq, level.T, resolution)) > n or first:
             first = False
             if need > MAX_CELLS:
                 raise ConvergenceError(
-                    f"{problem.describe()}: resolving the shortest cooperativity length (and, "
+                    f"{eq.describe()}: resolving the shortest cooperativity length (and, "
                     f"with mu_2, the peak of g_loc at the wall) needs {need} cells across the "
                     f"gap, more than {MAX_CELLS}; lower the resolution or the driving"
                 )
             n = max(need, n)
-            half = _solve_at(problem, n // 2, level.T)
-            level = _solve_at(problem, n, half.T)
-    I_w = problem.I_w if problem.I_w is not None else level.wall_integral
-    I_w_half = problem.I_w if problem.I_w is not None else half.wall_integral
-    fine, coarse = _nodal(problem, level, I_w), _nodal(problem, half, I_w_half)
+            half = _solve_at(eq, n // 2, level.T)
+            level = _solve_at(eq, n, half.T)
+    I_w = eq.I_w if eq.I_w is not None else level.wall_integral
+    I_w_half = eq.I_w if eq.I_w is not None else half.wall_integral
+    fine, coarse = _nodal(eq, level, I_w), _nodal(eq, half, I_w_half)
     nodal = _extrapolate(fine, coarse) if extrapolate else fine
-    cls = _ChannelEvaluator if isinstance(problem, NGFChannel) else _Evaluator
-    ev = cls(problem, nodal, level.n)
-    grid = _grid(problem, ev.T, points, xi)
+    cls = _ChannelEvaluator if eq.cell.name == "channel" else _Evaluator
+    ev = cls(eq, nodal, level.n)
+    grid = _grid(eq, ev.T, points, xi)
     f = ev(grid)
     for name, values in f._asdict().items():
-        if not np.all(np.isfinite(values)):
+        if values is not None and not np.all(np.isfinite(values)):
             raise ConvergenceError(f"the NGF solution has non-finite {name}")
-    law = problem.rheology
+    law = eq.rheology
     residuals: dict[str, float] = {}
     bc: dict[str, float] = {}
     if check:
         u_fine, u_coarse = (
-            ev.problem.radius(n.x) * n.prim if isinstance(problem, NGFCouetteFlow) else n.prim
+            ev.eq.radius(n.x) * n.prim if eq.cell.name == "couette" else n.prim
             for n in (fine, coarse)
         )
         residuals["discretisation (u, second order, Richardson estimate)"] = float(
@@ -418,11 +419,9 @@ def _profile(
         )
         ends = ev.velocity(np.array([0.0, 1.0]))
         for wall, u_end in zip((0.0, 1.0), ends, strict=True):
-            bc[f"u - u_wall at xi = {wall:g} [no slip]"] = float(
-                u_end - problem.wall_velocity(wall)
-            )
-        bc.update(_wall_fluidity_errors(problem, ev))
-    extent = problem.creep_extent(ev.T)
+            bc[f"u - u_wall at xi = {wall:g} [no slip]"] = float(u_end - eq.wall_velocity(wall))
+        bc.update(_wall_fluidity_errors(eq, ev))
+    extent = eq.creep_extent(ev.T)
     creep_text = (
         "no creeping region: mu > mu_s across the gap"
         if extent is None
@@ -434,10 +433,10 @@ def _profile(
         f"nonlocal granular fluidity (Henann & Kamrin 2013), {form}; second-order finite "
         f"volumes on {level.n} cells"
         + (f" and {half.n}, Richardson-extrapolated" if extrapolate else "")
-        + f", stress level by Brent's method; stress ratio at the {problem.wall_name} "
+        + f", stress level by Brent's method; stress ratio at the {eq.wall_name} "
         f"{ev.T:.12g}, I_w = {ev.I_w:.12g}; {creep_text}. No grain spin or "
-        "couple stress in this rheology: omega = -(du/dxi + kappa u)/2 is half the vorticity "
-        "(the material spin), m = 0, sigma_xy = sigma_yx (symmetric stress)."
+        "couple stress in this rheology: the profile has no omega or m, and sigma_xy = sigma_yx "
+        "(symmetric stress)."
     )
     stats: dict[str, Any] = {
         "stress_ratio": ev.T,
@@ -448,14 +447,14 @@ def _profile(
         "root_iterations": level.iterations,
         "fluidity_solves": level.solves + half.solves,
     }
-    if isinstance(problem, NGFChannel):
+    if eq.cell.name == "channel":
         stats["B_nu"] = 2.0 * ev.T
     return Profile(
-        problem=problem,  # type: ignore[arg-type]
+        problem=eq.problem,
         xi=grid,
         **f._asdict(),
-        slip_wall=float(problem.slip_wall),
-        reference_velocity=problem.reference_velocity,
+        slip_wall=float(eq.slip_wall),
+        reference_velocity=eq.reference_velocity,
         diagnostics=Diagnostics(
             method="numerical",
             rtol=None,
@@ -470,8 +469,9 @@ def _profile(
     )
 
 
+@register_route("ngf", tuple(KINDS), "numerical")
 def solve_numerical(
-    problem: NGFProblem,
+    problem: Problem,
     *,
     points: int | None = None,
     xi: FloatArray | None = None,
@@ -484,7 +484,7 @@ def solve_numerical(
 
     Parameters
     ----------
-    problem : NGFPlaneShear, NGFCouetteFlow or NGFChannel
+    eq : NGFPlaneShear, NGFCouetteFlow or NGFChannel
     points : int, optional
         About this many output points (default :data:`cosserat.config.OUTPUT_POINTS`), or
         ``xi``, an explicit grid.
@@ -509,7 +509,7 @@ def solve_numerical(
         The grid would need more than :data:`MAX_CELLS` cells, or the root-find failed.
     """
     return _profile(
-        problem,
+        problem.equations,
         points=points,
         xi=xi,
         check=check,
@@ -521,14 +521,15 @@ def solve_numerical(
 
 def _not_available(method: str, why: str):  # type: ignore[no-untyped-def]
     def route(
-        problem: NGFProblem,
+        problem: Problem,
         *,
         points: int | None = None,
         xi: FloatArray | None = None,
         check: bool = True,
     ) -> Profile:
         raise MethodNotAvailableError(
-            f"no {method} route for {type(problem).__name__}: {why}; use method='numerical'"
+            f"no {method} route for the ngf rheology on the {problem.cell_name} cell: {why}; "
+            "use method='numerical'"
         )
 
     route.__name__ = f"solve_{method.replace('-', '_')}"
@@ -580,22 +581,10 @@ def creep_mask(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
     return _evaluator(profile, "creep_mask").creep(_at(profile, xi))
 
 
-NGF_RHEOLOGY = Rheology(
-    name="ngf",
-    title="nonlocal granular fluidity",
-    reference=REFERENCE,
-    cells={"plane": NGFPlaneShear, "couette": NGFCouetteFlow, "channel": NGFChannel},
-    routes={
-        "numerical": {c: solve_numerical for c in (NGFPlaneShear, NGFCouetteFlow, NGFChannel)},
-        "closed-form": {c: solve_closed_form for c in (NGFPlaneShear, NGFCouetteFlow, NGFChannel)},
-        "asymptotic": {c: solve_asymptotic for c in (NGFPlaneShear, NGFCouetteFlow, NGFChannel)},
-    },
-    picklable=frozenset({solve_numerical, solve_closed_form, solve_asymptotic}),
-)
-"""NGF on plane shear, Couette flow and the vertical channel (``docs/architecture.md``)."""
+register_route("ngf", tuple(KINDS), "closed-form")(solve_closed_form)
+register_route("ngf", tuple(KINDS), "asymptotic")(solve_asymptotic)
 
 __all__ = [
-    "NGF_RHEOLOGY",
     "REFERENCE",
     "creep_mask",
     "fluidity",

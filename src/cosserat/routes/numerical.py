@@ -1,8 +1,10 @@
 """Numerical route: every problem, every eps in (0, 0.5], on the compiled core.
 
 This layer only validates, translates a problem into the kernel's parameter vector, calls
-:func:`cosserat.numerics.cosserat.solve_case` (one problem) or ``solve_batch`` (many), turns
-status codes into the package's errors and wraps the result as a
+:func:`cosserat.numerics.cosserat.solve_case` (one problem; ``solve_plane_case`` or
+``solve_couette_case``), ``solve_batch`` (the wall quantities of many) or ``predict_batch``
+(chosen fields of many at given points: :func:`predict`, :func:`predict_many`), turns status
+codes into the package's errors and wraps the result as a
 :class:`~cosserat.results.profile.Profile` (``docs/numerics.md``).
 """
 
@@ -16,8 +18,8 @@ from typing import Any
 import numpy as np
 
 from .. import config
-from ..errors import ConvergenceError, NoSolutionError, ParameterError
-from ..model import CouetteFlow, PlaneShear, PlaneShearCase, Problem
+from ..errors import ConvergenceError, NoSolutionError, ParameterError, shown
+from ..model import PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
 from ..model.formulation import Formulation
 from ..numerics import cosserat as kernel
@@ -40,39 +42,41 @@ def tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
     if not (isinstance(rtol, int | float) and lo <= rtol <= hi):
         raise ParameterError(
             f"rtol must satisfy {lo:g} <= rtol <= {hi:g} (relative tolerance of the "
-            f"integration); got {rtol!r}"
+            f"integration); got {shown(rtol)}"
         )
     if atol is None:
         return float(rtol), float(rtol) * config.ATOL_OVER_RTOL
     if not (isinstance(atol, int | float) and 0.0 < atol <= 1.0):
-        raise ParameterError(f"atol must satisfy 0 < atol <= 1; got {atol!r}")
+        raise ParameterError(f"atol must satisfy 0 < atol <= 1; got {shown(atol)}")
     return float(rtol), float(atol)
 
 
 def parameter_vector(problem: Problem, mu_guess: float | None = None) -> FloatArray:
-    """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.cosserat`)."""
+    """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.cosserat`)
+    for the Cosserat model on the plane or Couette cell."""
+    eq = problem.equations
     p = np.zeros(kernel.N_PARAMS)
-    mat = problem.material
+    mat = eq.material
     p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
-    p[kernel.P_EPS] = problem.eps
-    const = problem.slip_constants
+    p[kernel.P_EPS] = eq.eps
+    const = eq.slip_constants
     p[kernel.P_M0], p[kernel.P_B_BOUND] = const.m0, const.b
     p[kernel.P_MU_GUESS] = math.nan if mu_guess is None else float(mu_guess)
-    if isinstance(problem, CouetteFlow):
+    if problem.cell_name == "couette":
         p[kernel.P_GEOMETRY] = kernel.COUETTE
-        p[kernel.P_TAN_DELTA] = problem.tan_delta
-        p[kernel.P_RI] = problem.Ri
-        p[kernel.P_COUPLE] = problem.couple_factor
-        p[kernel.P_K_SLIP] = problem.wall.K
+        p[kernel.P_TAN_DELTA] = eq.tan_delta
+        p[kernel.P_RI] = eq.Ri
+        p[kernel.P_COUPLE] = eq.couple_factor
+        p[kernel.P_K_SLIP] = eq.wall.K
         return p
-    case = problem.case
+    case = eq.case
     p[kernel.P_GEOMETRY] = kernel.PLANE
     p[kernel.P_CASE] = _CASES[case]
-    p[kernel.P_SIGMA_YX] = problem.sigma_yx
-    p[kernel.P_B_NU] = problem.B * problem.nu
-    p[kernel.P_M_START] = 0.0 if case is PlaneShearCase.SYMMETRIC else problem.m_at_fixed_wall
-    p[kernel.P_K_SLIP] = problem.slipping.K
-    p[kernel.P_K_OTHER] = problem.lower_wall.K
+    p[kernel.P_SIGMA_YX] = eq.sigma_yx
+    p[kernel.P_B_NU] = eq.B * eq.nu
+    p[kernel.P_M_START] = 0.0 if case is PlaneShearCase.SYMMETRIC else eq.m_at_fixed_wall
+    p[kernel.P_K_SLIP] = eq.slipping.K
+    p[kernel.P_K_OTHER] = eq.lower_wall.K
     return p
 
 
@@ -82,7 +86,7 @@ def raise_for_status(problem: Problem, status: int, info: FloatArray) -> None:
         return
     xi, m = float(info[kernel.I_XI_FAIL]), float(info[kernel.I_M_FAIL])
     if status == kernel.NO_SOLUTION:
-        if isinstance(problem, CouetteFlow):
+        if problem.cell_name == "couette":
             raise NoSolutionError(
                 f"no real solution for {problem.describe()}: for no couple stress m(0) at the "
                 f"inner cylinder does the couple-stress balance, integrated from the outer "
@@ -131,7 +135,8 @@ class NumericalSolution:
 
     Attributes
     ----------
-    problem : PlaneShear or CouetteFlow
+    problem : Problem
+        The Cosserat model on the plane or Couette cell.
     params, info : ndarray
         The kernel's parameter and result vectors (``P_*``, ``I_*``).
     couple : tuple of ndarray
@@ -155,14 +160,15 @@ class NumericalSolution:
         return float(self.info[kernel.I_MU])
 
     def formulation(self) -> Formulation:
-        if isinstance(self.problem, CouetteFlow):
-            return self.problem.formulation(self.mu)
-        return self.problem.formulation()
+        if self.problem.cell_name == "couette":
+            return self.problem.equations.formulation(self.mu)
+        return self.problem.equations.formulation()
 
     @property
     def symmetric(self) -> bool:
         return (
-            isinstance(self.problem, PlaneShear) and self.problem.case is PlaneShearCase.SYMMETRIC
+            self.problem.cell_name == "plane"
+            and self.problem.equations.case is PlaneShearCase.SYMMETRIC
         )
 
     def _half(self, x: FloatArray) -> FloatArray:
@@ -217,7 +223,11 @@ def run_kernel(
 ) -> NumericalSolution:
     """Solve ``problem`` on the compiled core; raise the package's error if it fails."""
     p = parameter_vector(problem, mu_guess)
-    status, info, couple, spin, geometry = kernel.solve_case(p, rtol, atol, f, config.MAX_STEPS)
+    # one cell's entry point: a first run compiles only that cell's search
+    solve_case = (
+        kernel.solve_couette_case if problem.cell_name == "couette" else kernel.solve_plane_case
+    )
+    status, info, couple, spin, geometry = solve_case(p, rtol, atol, f, config.MAX_STEPS)
     raise_for_status(problem, int(status), info)
     return NumericalSolution(problem, p, info, couple, spin, geometry, float(f))
 
@@ -234,7 +244,7 @@ def _stats(info: FloatArray) -> dict[str, Any]:
 
 
 def solve_plane(
-    problem: PlaneShear,
+    problem: Problem,
     *,
     rtol: float = DEFAULT_RTOL,
     atol: float | None = None,
@@ -255,7 +265,7 @@ def solve_plane(
 
 
 def solve_couette(
-    problem: CouetteFlow,
+    problem: Problem,
     *,
     rtol: float = DEFAULT_RTOL,
     atol: float | None = None,
@@ -264,19 +274,21 @@ def solve_couette(
     check: bool = True,
     m_inner_guess: float | None = None,
 ) -> Profile:
-    """Couette flow: m(0) by a compiled secant/Brent iteration on ``m(0; mu) - mu``
-    (``eqn-nd_shsts_cyl``), the couple stress from the outer cylinder inwards for each trial;
-    then spin and velocity from the inner cylinder outwards. ``m_inner_guess`` (e.g. from a
-    neighbouring eps in a sweep) replaces the leading-order starting value."""
+    """Couette flow: m(0) by compiled Newton iterations on ``m(0; mu) - mu``
+    (``eqn-nd_shsts_cyl``; secant/Brent if they fail), the couple stress from the outer
+    cylinder inwards for each trial; then spin and velocity from the inner cylinder outwards.
+    ``m_inner_guess`` (e.g. from a neighbouring eps in a sweep) replaces the leading-order
+    starting value."""
     rtol, atol = tolerances(rtol, atol)
     if m_inner_guess is not None and not math.isfinite(float(m_inner_guess)):
-        raise ParameterError(f"m_inner_guess must be finite; got {m_inner_guess!r}")
+        raise ParameterError(f"m_inner_guess must be finite; got {shown(m_inner_guess)}")
     sol = run_kernel(problem, rtol, atol, m_inner_guess)
     stats = _stats(sol.info)
     stats["m_inner"] = sol.mu
     stats["shooting_iterations"] = int(sol.info[kernel.I_ITERATIONS])
     message = (
-        "compiled: secant/Brent on m(0); Radau IIA couple stress (outer to inner), "
+        "compiled: Newton (secant/Brent as fallback) on m(0); Radau IIA couple stress "
+        "(outer to inner), "
         "DOP853 spin and velocity"
     )
     return _profile(sol, rtol, atol, points, xi, check, message, stats)
@@ -311,6 +323,25 @@ def _profile(
 
 
 # ----------------------------------------------------------------- many problems at once
+BATCHED = ("plane", "couette")
+"""The cells the batch kernel solves for the Cosserat model."""
+
+
+def is_batched(problem: Any) -> bool:
+    """True for a problem of the Cosserat model on a cell of :data:`BATCHED`."""
+    return (
+        isinstance(problem, Problem)
+        and problem.model == "cosserat"
+        and problem.cell_name in BATCHED
+    )
+
+
+def _name(problem: Any) -> str:
+    if isinstance(problem, Problem):
+        return f"the {problem.model} rheology on the {problem.cell_name} cell"
+    return f"a {type(problem).__name__}"
+
+
 @dataclass(frozen=True)
 class WallResult:
     """Wall quantities of one problem (dimensionless; ``None`` where there is no solution).
@@ -347,9 +378,10 @@ def wall_quantities(
     if not problems:
         return []
     for pr in problems:
-        if not isinstance(pr, PlaneShear | CouetteFlow):
+        if not is_batched(pr):
             raise ParameterError(
-                f"cannot solve a {type(pr).__name__}: give a PlaneShear or a CouetteFlow"
+                f"the batch kernel solves the Cosserat model on the plane and Couette cells; "
+                f"got {_name(pr)}"
             )
     params = np.stack([parameter_vector(pr) for pr in problems])
     status, info = map_batches(params, rtol, atol, float(f), config.MAX_STEPS)
@@ -367,7 +399,7 @@ def _wall_result(problem: Problem, code: int, row: FloatArray, f: float) -> Wall
             return WallResult("no-solution", None, None, None, None, str(exc))
         except ConvergenceError as exc:
             return WallResult("error", None, None, None, None, str(exc))
-    m_inner = float(row[kernel.I_MU]) if isinstance(problem, CouetteFlow) else None
+    m_inner = float(row[kernel.I_MU]) if problem.cell_name == "couette" else None
     if not row[kernel.I_DELTA_OK]:
         return WallResult(
             "error",
@@ -464,10 +496,14 @@ def _predict(
     rtol, atol = tolerances(rtol, atol)
     rows = _field_rows(fields)
     for pr in problems:
-        if not isinstance(pr, PlaneShear | CouetteFlow):
+        if not (
+            isinstance(pr, Problem)
+            and pr.rheology.name == "cosserat"
+            and pr.cell_name in ("plane", "couette")
+        ):
             raise ParameterError(
-                f"cannot predict a {type(pr).__name__} here: give a PlaneShear or a CouetteFlow "
-                f"(other problems: solve(problem, xi=...))"
+                f"cannot predict {pr!r} here: give the Cosserat model on the plane or Couette "
+                f"cell (other problems: solve(problem, xi=...))"
             )
     n = len(problems)
     point_sets = _point_sets(xi, n)
@@ -505,7 +541,8 @@ def predict_many(
 
     Parameters
     ----------
-    problems : sequence of PlaneShear or CouetteFlow
+    problems : sequence of Problem
+        The Cosserat model on the plane or Couette cell.
     xi : array or sequence of arrays
         Points in [0, 1], any order: one array for every problem, or one per problem [-].
     fields : sequence of str
@@ -534,7 +571,7 @@ def predict_many(
     names = [FIELDS[r] for r in rows]
     result = []
     for i, pr in enumerate(problems):
-        couette = isinstance(pr, CouetteFlow)
+        couette = pr.cell_name == "couette"
         if status[i] != kernel.OK:
             wall = _wall_result(pr, int(status[i]), info[i], config.DEFAULT_F)
             result.append(Prediction(wall.status, None, wall.message))

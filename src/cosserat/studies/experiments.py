@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .. import config
-from ..model import CouetteFlow
+from ..model import Cosserat, Couette, Problem
 from ..model.parameters import Material, Wall
 
 
@@ -54,11 +54,13 @@ class ExperimentPreset:
         """atan(sin phi) - 2 deg: the paper's solid lines, which fit the data better [deg]."""
         return self.material.fully_rough_delta - 2.0
 
-    def problem(self, delta: float | str | None = None) -> CouetteFlow:
-        """The preset cell with wall friction ``delta`` [deg] or "fully-rough"
-        (default: :attr:`default_delta`)."""
+    def problem(self, delta: float | str | None = None) -> Problem:
+        """The preset cell with the Cosserat model, wall friction ``delta`` [deg] or
+        "fully-rough" (default: :attr:`default_delta`)."""
         wall = Wall(self.default_delta if delta is None else delta, self.K)
-        return CouetteFlow(material=self.material, wall=wall, eps=self.eps, Ri=self.Ri)
+        return Problem(
+            Couette(eps=self.eps, Ri=self.Ri), Cosserat(material=self.material, wall=wall)
+        )
 
 
 PRESETS = {

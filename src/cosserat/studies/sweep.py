@@ -2,10 +2,14 @@
 
 Spec (``cosserat sweep SPEC.toml``)::
 
-    geometry = "plane"              # or "couette"; may also vary in [grid] or [[cases]]
-    rtol = 1e-8                     # numerical tolerance (optional)
+    model = "cosserat"              # any registered rheology (cosserat, mui, ngf, ...);
+                                    #   may also vary in [grid] or [[cases]]
+    cell = "plane"                  # any registered cell (plane, couette, channel, ...);
+                                    #   "geometry" is the same key; may also vary
+    rtol = 1e-8                     # tolerance of the Cosserat model's kernels (optional)
     f = 0.05                        # fraction defining Delta (optional)
     output = "sweep.csv"            # .csv, or .parquet if pyarrow is installed (optional)
+    max_cases = 1000000             # refuse a spec of more cases (optional; the default)
 
     [fixed]                         # parameters common to every case
     phi = 28.5
@@ -20,16 +24,27 @@ Spec (``cosserat sweep SPEC.toml``)::
     eps = 0.01
     delta = 22.0
 
-Parameters: phi, L, A [material]; delta, K [the moving wall; "fully-rough" allowed];
-delta_lower, K_lower, B, nu, m_wall [plane]; Ri [Couette]; eps. Defaults are the paper's
-(:data:`cosserat.model.build.DEFAULTS`, from :mod:`cosserat.config`), and every case is built
-by :func:`cosserat.model.build_problem`, as on the command line. ``rtol`` and ``f`` default to
-``config.RTOL`` and ``config.DEFAULT_F``.
+Parameters: the command-line keys of the case's model on its cell
+(:func:`cosserat.model.problem_parameters`; ``cosserat models`` lists them): for the Cosserat
+model phi, L, A, delta, K ("fully-rough" allowed), delta_lower, K_lower, m_wall (plane); for
+mu(I) mu_s, mu_2, I_0; for NGF mu_s, b, A, mu_2, fluidity_bc; and the cell's eps, B, nu
+(plane, channel), Ri (Couette), I_w, stress_ratio (the drive of mu(I) and NGF). Absent keys take
+their declared defaults, and every case is built by :func:`cosserat.model.make_problem`, as on
+the command line; a key the case's model or cell does not have makes that case's row
+"invalid". ``rtol`` and ``f`` default to ``config.RTOL`` and ``config.DEFAULT_F``.
 
-Every case gives a row: its parameters, Delta, wall_slip, wall_omega, wall_stress, and
-``status`` ("ok"; "no-solution": the model has no real solution; "error": the solver could not
-finish, e.g. a singular start on the yield bound; "invalid": a parameter out of bounds) with the
-reason in ``message``: failed cases are recorded, never dropped. Cases run in chunks in local
+The number of cases is counted from the spec before any case is made, and a spec of more than
+``max_cases`` (default :data:`MAX_CASES`, one million: about a gigabyte of memory for the cases
+and their rows, and hours of work on a few cores) is refused with its count; give a larger
+``max_cases`` at the top of the spec to run it anyway.
+
+Every case gives a row: its parameters (the declared defaults filled in), Delta, wall_slip,
+wall_omega (empty for a rheology without grain spin), wall_stress, and ``status`` ("ok";
+"no-solution": the model has no real solution; "error": the solver could not finish, e.g. a
+singular start on the yield bound; "invalid": a parameter out of bounds or of another model)
+with the reason in ``message``: failed cases are recorded, never dropped. The Cosserat model on
+plane shear and Couette flow runs on the compiled batch kernel, every other case by its
+numerical route (:func:`cosserat.routes.walls.wall_quantities`). Cases run in chunks in local
 worker processes, or on a Dask cluster (``scheduler="tcp://..."``); the rows are the same either
 way, and a chunk whose Dask worker is lost is run again.
 
@@ -58,12 +73,20 @@ import numpy as np
 
 from .. import config
 from .._atomic import atomic_open
+from .._text import read_text
 from ..errors import CosseratError, InputError, ParameterError
-from ..model import Problem, build_problem
-from ..model.build import DEFAULTS, PARAMETERS
-from ..numerics.runtime import process_pool
+from ..model import Problem, make_problem
+from ..model.build import problem_parameters
+from ..numerics.runtime import worker_processes
+
+DEFAULT_MODEL, DEFAULT_CELL = "cosserat", "plane"
+"""The model and cell of a case that names none."""
 
 RESULTS = ("Delta", "wall_slip", "wall_omega", "wall_stress", "status", "message")
+
+MAX_CASES = 1_000_000
+"""Most cases a spec may have unless it gives ``max_cases`` (each case and its row take about a
+kilobyte in memory, so a grid of 10^12 cases would exhaust any machine before it starts)."""
 
 
 @dataclass
@@ -113,6 +136,37 @@ def _values(name: str, spec: Any) -> list[Any]:
     )
 
 
+def _count(spec: Any) -> int:
+    """How many values a grid entry gives (:func:`_values`), counted without making them; a
+    malformed entry counts 1 (then :func:`_values` says what is wrong with it)."""
+    if isinstance(spec, list):
+        return len(spec)
+    if isinstance(spec, dict) and len(spec) == 1:
+        ((kind, args),) = spec.items()
+        if kind in ("geomspace", "linspace") and isinstance(args, list) and len(args) == 3:
+            n = args[2]
+            if isinstance(n, int) and not isinstance(n, bool) and n >= 1:
+                return n
+    return 1
+
+
+def _check_size(grid: dict[str, Any], listed: int, limit: Any) -> None:
+    """Refuse a spec of more than ``limit`` cases, counted before any case is made."""
+    if isinstance(limit, bool) or not isinstance(limit, int) or limit < 1:
+        raise ParameterError(f"max_cases must be a whole number >= 1; got {limit!r}")
+    counts = {name: _count(spec) for name, spec in grid.items()}
+    total = (math.prod(counts.values()) if grid else 0) + listed
+    if total > limit:
+        product = " x ".join(f"{n} {name}" for name, n in counts.items())
+        parts = ([product] if grid else []) + ([f"{listed} [[cases]]"] if listed else [])
+        raise ParameterError(
+            f"the sweep spec has {total:,} cases ({' + '.join(parts)}), more than max_cases = "
+            f"{limit:,}: each case takes about a kilobyte of memory and some milliseconds of "
+            f"work; make the grid smaller, or put max_cases = {total} at the top of the spec "
+            "to run it anyway"
+        )
+
+
 def _table(where: str, value: Any) -> dict[str, Any]:
     if not isinstance(value, dict):
         raise ParameterError(
@@ -139,41 +193,49 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
     Raises
     ------
     ParameterError
-        An unknown key or parameter, a table or grid entry of the wrong form, a case without
-        eps, or ``rtol`` (within ``config.RTOL_RANGE``), ``f`` (0 < f < 1), ``chunk`` (>= 1) or
-        ``output`` (a file name) out of bounds. A parameter *value* out of bounds is not an
+        An unknown key or parameter, a table or grid entry of the wrong form, more cases than
+        ``max_cases`` (default :data:`MAX_CASES`), a case without eps, or ``rtol`` (within
+        ``config.RTOL_RANGE``), ``f`` (0 < f < 1), ``chunk`` (>= 1) or ``output`` (a file
+        name) out of bounds. A parameter *value* out of bounds is not an
         error here: that case gives a row with status "invalid".
     """
-    known = {"geometry", "rtol", "f", "output", "chunk", "fixed", "grid", "cases"}
+    known = {
+        "model", "cell", "geometry", "rtol", "f", "output", "chunk", "max_cases", "fixed", "grid",
+        "cases",
+    }
     unknown = set(data) - known
     if unknown:
         raise ParameterError(f"unknown top-level key(s) in the sweep spec: {sorted(unknown)}")
-    fixed = dict(_table("fixed", data.get("fixed", {})))
-    if "geometry" in data:
-        fixed.setdefault("geometry", data["geometry"])
-    grid = _table("grid", data.get("grid", {}))
+    fixed = _named(dict(_table("fixed", data.get("fixed", {}))), "fixed")
+    top = _named({k: data[k] for k in ("model", "cell", "geometry") if k in data}, "the spec")
+    for key, value in top.items():
+        fixed.setdefault(key, value)
+    grid = _named(dict(_table("grid", data.get("grid", {}))), "grid")
     listed = data.get("cases", [])
     if not isinstance(listed, list):
         raise ParameterError(f"cases must be an array of tables ([[cases]]); got {listed!r}")
-    listed = [_table("cases", c) for c in listed]
+    listed = [_named(dict(_table("cases", c)), "cases") for c in listed]
+    allowed = parameter_keys()
     for where, table in [("fixed", fixed), ("grid", grid), *[("cases", c) for c in listed]]:
-        bad = set(table) - set(PARAMETERS)
+        bad = set(table) - set(allowed)
         if bad:
             raise ParameterError(
-                f"unknown parameter(s) {sorted(bad)} in [{where}]; known: {', '.join(PARAMETERS)}"
+                f"unknown parameter(s) {sorted(bad)} in [{where}]; known: {', '.join(allowed)}"
             )
+    _check_size(grid, len(listed), data.get("max_cases", MAX_CASES))
     cases: list[dict[str, Any]] = []
     if grid:
         names = list(grid)
         for combo in itertools.product(*(_values(n, grid[n]) for n in names)):
-            cases.append({**DEFAULTS, **fixed, **dict(zip(names, combo, strict=True))})
-    cases += [{**DEFAULTS, **fixed, **c} for c in listed]
+            cases.append({**fixed, **dict(zip(names, combo, strict=True))})
+    cases += [{**fixed, **c} for c in listed]
     if not grid and not listed:
-        cases.append({**DEFAULTS, **fixed})
+        cases.append(dict(fixed))
+    cases = [_with_defaults(c) for c in cases]
     for i, c in enumerate(cases):
         if "eps" not in c:
             raise ParameterError(f"case {i}: no eps (give it in [fixed], [grid] or [[cases]])")
-    columns = [p for p in PARAMETERS if any(p in c for c in cases)]
+    columns = [p for p in allowed if any(p in c for c in cases)]
     rtol = _number("rtol", data.get("rtol", config.RTOL), *config.RTOL_RANGE, closed=True)
     f = _number("f", data.get("f", config.DEFAULT_F), 0.0, 1.0)
     chunk = data.get("chunk", 64)
@@ -185,22 +247,72 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
     return SweepSpec(cases, rtol, f, output, chunk, columns)
 
 
+def parameter_keys() -> list[str]:
+    """Every key a case may have: ``model``, ``geometry`` and the command-line keys of every
+    registered model on every cell it has (:func:`cosserat.model.problem_parameters`), in the
+    order of the registries."""
+    from ..routes import RHEOLOGIES, cells_for
+
+    keys = ["model", "geometry"]
+    for model in RHEOLOGIES:
+        for cell in cells_for(model):
+            keys += list(problem_parameters(model, cell))
+    return list(dict.fromkeys(keys))
+
+
+def _named(table: dict[str, Any], where: str) -> dict[str, Any]:
+    """``cell`` is another name of ``geometry`` (not both)."""
+    if "cell" in table:
+        if "geometry" in table:
+            raise ParameterError(f"give cell or geometry in [{where}], not both")
+        table["geometry"] = table.pop("cell")
+    return table
+
+
+def _with_defaults(case: dict[str, Any]) -> dict[str, Any]:
+    """``case`` with its model, cell and the declared defaults of their parameters filled in
+    (the row shows the values the case ran with); a case naming an unknown model or cell is
+    left as it is (its row says why it is invalid)."""
+    out = {"model": DEFAULT_MODEL, "geometry": DEFAULT_CELL, **case}
+    try:
+        declared = problem_parameters(str(out["model"]), str(out["geometry"]))
+    except CosseratError:
+        return out
+    for key, p in declared.items():
+        if key not in out and p.has_default and p.default is not None:
+            out[key] = p.default
+    return out
+
+
+def case_problem(case: dict[str, Any]) -> Problem:
+    """The problem of one case (:func:`cosserat.model.make_problem`).
+
+    Raises
+    ------
+    ParameterError
+        An unknown model or cell, a key the case's model or cell does not have, a value out of
+        its bounds.
+    """
+    values = {k: v for k, v in case.items() if k not in ("model", "geometry")}
+    return make_problem(
+        str(case.get("model", DEFAULT_MODEL)), str(case.get("geometry", DEFAULT_CELL)), values
+    )
+
+
 def load_spec(path: str | Path) -> SweepSpec:
     """Read and parse a sweep spec (TOML).
 
     Raises
     ------
     InputError
-        The file cannot be read (missing, a directory, no permission, not text).
+        The file cannot be read (missing, a directory, no permission, not UTF-8 text).
     ParameterError
         Not valid TOML, or a spec :func:`parse_spec` rejects.
     """
     try:
-        text = Path(path).read_text()
+        text = read_text(path, f"cannot read the sweep spec {path}")  # UTF-8, as TOML is
     except OSError as exc:
         raise InputError(f"cannot read the sweep spec {path}: {_reason(exc)}") from None
-    except UnicodeDecodeError:
-        raise InputError(f"cannot read the sweep spec {path}: not a text (TOML) file") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -215,8 +327,9 @@ def _reason(exc: OSError) -> str:
 
 
 def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[dict[str, Any]]:
-    """Solve a chunk of cases with the compiled batch kernel; one row per case, in order."""
-    from ..routes.numerical import wall_quantities
+    """Solve a chunk of cases (:func:`cosserat.routes.walls.wall_quantities`: the compiled
+    batch kernel where it applies); one row per case, in order."""
+    from ..routes.walls import wall_quantities
 
     rows: list[dict[str, Any]] = []
     problems: list[Problem] = []
@@ -224,9 +337,9 @@ def run_chunk(cases: Sequence[dict[str, Any]], rtol: float, f: float) -> list[di
     for case in cases:
         row = dict(case)
         try:
-            problems.append(build_problem(case))
+            problems.append(case_problem(case))
             slots.append(len(rows))
-        except CosseratError as exc:  # build_problem raises ParameterError for any bad value
+        except CosseratError as exc:  # make_problem raises ParameterError for any bad value
             row.update(status="invalid", message=" ".join(str(exc).split()))
         rows.append(row)
     for slot, res in zip(slots, wall_quantities(problems, rtol=rtol, f=f), strict=True):
@@ -284,8 +397,9 @@ def run_chunks(
 
     On a Dask cluster a chunk whose worker dies is run again: Dask reschedules the tasks of a
     lost worker itself, and a chunk that Dask gives up on (``KilledWorker``) is resubmitted up to
-    :data:`MAX_RESUBMITS` times. Local processes are cancelled on an interruption (Ctrl-C):
-    the chunks already passed to ``on_rows`` are all that is kept.
+    :data:`MAX_RESUBMITS` times. Local processes are stopped at once on an interruption (Ctrl-C,
+    SIGTERM; :func:`cosserat.numerics.runtime.worker_processes`) and end by themselves if this
+    process is killed: the chunks already passed to ``on_rows`` are all that is kept.
     """
     total = sum(len(c) for c in chunks)
     done = 0
@@ -305,15 +419,10 @@ def run_chunks(
         for i, c in enumerate(chunks):
             collect(i, run_chunk(c, rtol, f))
     else:
-        pool = process_pool(workers)
-        try:
+        with worker_processes(workers) as pool:  # stopped at once on an interruption
             futs = {pool.submit(run_chunk, c, rtol, f): i for i, c in enumerate(chunks)}
             for fut in as_completed(futs):
                 collect(futs[fut], fut.result())
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
-        pool.shutdown()
 
 
 def _run_on_dask(
@@ -441,7 +550,8 @@ def run_sweep_to_table(
     Raises
     ------
     InputError
-        A journal exists and ``resume`` is False (it holds the rows of an unfinished run), a
+        A journal with rows exists and ``resume`` is False (the rows of an unfinished run; a
+        journal with its header alone holds nothing and is replaced), a
         journal or table to resume from belongs to a sweep with other columns, or a file
         cannot be read or written.
     """
@@ -449,7 +559,7 @@ def run_sweep_to_table(
     check_table_format(path)
     journal = journal_path(path)
     header = [*spec.columns, *RESULTS]
-    if journal.exists() and not resume:
+    if not resume and _holds_rows(journal):
         raise InputError(
             f"{journal} holds the finished rows of an interrupted sweep: run again with "
             f"--resume to finish it, or delete it to start again"
@@ -505,11 +615,33 @@ def run_sweep_to_table(
                 None if progress is None else lambda i, n: progress(reused + i, reused + n),
             )
     except OSError as exc:
+        _drop_if_empty(journal, length)
         raise InputError(f"cannot write the sweep journal {journal}: {_reason(exc)}") from None
+    except BaseException:
+        _drop_if_empty(journal, length)  # a sweep that failed before any row keeps nothing
+        raise
     rows = [r for r in slots if r is not None]
     write_table(rows, path, spec.columns)
     journal.unlink(missing_ok=True)
     return SweepRun(rows, path, reused, len(pending))
+
+
+def _holds_rows(journal: Path) -> bool:
+    """True if ``journal`` exists and holds anything beyond its header line (rows to keep)."""
+    try:
+        data = journal.read_bytes()
+    except FileNotFoundError:
+        return False
+    except OSError:
+        return True  # cannot tell: let the caller refuse rather than lose rows
+    first = data.find(b"\n")
+    return first >= 0 and bool(data[first + 1 :].strip())
+
+
+def _drop_if_empty(journal: Path, length: int) -> None:
+    """Delete the journal this run started (``length`` 0) if it holds no row."""
+    if not length and not _holds_rows(journal):
+        journal.unlink(missing_ok=True)
 
 
 def _csv_lines(rows: Iterable[Sequence[str]]) -> bytes:
@@ -573,6 +705,6 @@ def write_table(rows: Iterable[dict[str, Any]], path: str | Path, columns: Seque
 
 
 def _fmt(value: Any) -> str:
-    if isinstance(value, float):
-        return repr(value) if math.isfinite(value) else ""
+    if isinstance(value, float):  # a NumPy float too: written as a plain number
+        return repr(float(value)) if math.isfinite(value) else ""
     return str(value)

@@ -216,7 +216,9 @@ def compare_spin(
         xi = d if xw == 0.0 else 1.0 - d
         fields = prof.evaluate(xi)
         model_half = -0.5 * (fields.du_dxi + fields.kappa * fields.u) * eps
-        model_omega = fields.omega * eps
+        # a rheology without grain spin of its own (omega absent) predicts that the grains
+        # turn with the material: spin = half the vorticity, no departure
+        model_omega = model_half if fields.omega is None else fields.omega * eps
         # the data's rotation sense against the model's, from the half vorticities
         dot = float(np.sum(model_half * half))
         sign = -1.0 if dot < 0.0 else 1.0
@@ -554,9 +556,9 @@ def _fit_run(run: Run, models: Sequence[str] | None, grid: int) -> tuple[Ranking
     try:
         names = models
         if names is not None:
-            from ..routes import RHEOLOGIES
+            from ..routes import cells_for
 
-            names = [m for m in names if run.cell in RHEOLOGIES[m].cells]
+            names = [m for m in names if run.cell in cells_for(m)]
         ranking = rank_models(run.measured(), run.cell_parameters(), names, grid=grid)
     except CosseratError as exc:
         return None, " ".join(str(exc).split())

@@ -114,7 +114,11 @@ def new_figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float
 
 
 def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
-    """u, omega + du/dxi/2, sigma_yx - sigma_xy and m against xi (as the paper's figure 2)."""
+    """u, omega + du/dxi/2, sigma_yx - sigma_xy and m against xi (as the paper's figure 2).
+
+    A rheology without grain spin and couple stress (its omega and m are None) has only the
+    velocity and the shear stress to show: those two panels, and a note in the others that
+    the fields are absent."""
     with style():
         if fig is None:
             fig, axes = new_figure(2, 2, height=5.6)
@@ -127,7 +131,16 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
             ("asymmetry", profile.asymmetry),
             ("m", profile.m),
         ]
+        if profile.m is None:
+            panels[1:] = [("sigma_yx", profile.sigma_yx), ("absent", None), ("absent", None)]
         for ax, (name, values) in zip(axes.ravel(), panels, strict=True):
+            if values is None:
+                ax.axis("off")
+                ax.text(
+                    0.5, 0.5, "no grain spin or couple stress\nin this rheology",
+                    ha="center", va="center", transform=ax.transAxes,
+                )  # fmt: skip
+                continue
             ax.plot(values, profile.xi, color="k")
             ax.set_xlabel(field_label(profile.problem, name))
             upright_ylabel(ax, field_label(profile.problem, "xi"))

@@ -13,9 +13,10 @@ import numpy as np
 
 from ... import config
 from ...analysis.gap import thickness_vs_gap
-from ...analysis.ranking import model_problem, model_solve
+from ...analysis.ranking import model_solve
 from ...errors import CosseratError
-from ...routes import RHEOLOGIES
+from ...model import make_problem
+from ...routes import RHEOLOGIES, models_for
 from .base import LINESTYLES, MARKERS, FigureData, Panel, draw
 
 CELLS = {
@@ -47,7 +48,7 @@ def _style(styles: dict[str, dict], label: str, markevery: int | None = None) ->
 
 
 def _models(cell: str) -> list[str]:
-    return [m for m, r in RHEOLOGIES.items() if cell in r.cells]
+    return models_for(cell)
 
 
 def compute_models() -> FigureData:
@@ -67,7 +68,7 @@ def compute_models() -> FigureData:
         for model in _models(cell):
             own = {"delta": "fully-rough"} if model == "cosserat" else {}
             try:
-                prof = model_solve(model_problem(model, cell, {**params, **own}), points=POINTS)
+                prof = model_solve(make_problem(model, cell, {**params, **own}), points=POINTS)
             except CosseratError as exc:
                 notes.append(f"{model} on the {cell} cell: {' '.join(str(exc).split())}")
                 continue
@@ -75,7 +76,7 @@ def compute_models() -> FigureData:
             style = _style(styles, label, markevery=max(1, POINTS // 8))
             u_panel.add(label, prof.u, prof.xi, **style)
             spin = prof.spin_minus_half_vorticity
-            if np.any(spin != 0.0):
+            if spin is not None and np.any(spin != 0.0):
                 s_panel.add(label, spin, prof.xi, **style)
             else:
                 spinless.add(model)

@@ -7,14 +7,13 @@ caption does not give a value (which delta, which B), the choice is stated in th
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from ... import config
 from ...analysis import asymptotic_thickness, shear_layer_thickness, thickness_curve
-from ...model import CouetteFlow, PlaneShear, Problem
+from ...model import Cosserat, Couette, Plane, Problem
 from ...model.constitutive import FloatArray
 from ...model.parameters import FULLY_ROUGH, Material, Wall
 from ...results.profile import Profile
@@ -26,6 +25,27 @@ PHI, EPS, L, A, K = config.PHI, config.EPS, config.L, config.A, config.K
 DELTA, RI = config.DELTA, config.RI
 MATERIAL = Material(PHI, L=L, A=A)
 POINTS = 401
+
+
+def plane_shear(
+    *,
+    material: Material,
+    upper: Wall,
+    lower: Wall | None = None,
+    eps: float,
+    B: float = 0.0,
+) -> Problem:
+    """The Cosserat model in plane shear: ``Problem(Plane(eps, B), Cosserat(material, upper,
+    lower))``."""
+    return Problem(Plane(eps=eps, B=B), Cosserat(material=material, wall=upper, lower=lower))
+
+
+def couette_flow(*, material: Material, wall: Wall, eps: float, Ri: float) -> Problem:
+    """The Cosserat model in Couette flow: ``Problem(Couette(eps, Ri), Cosserat(material,
+    wall))``."""
+    return Problem(Couette(eps=eps, Ri=Ri), Cosserat(material=material, wall=wall))
+
+
 SYMBOLS = 18
 """Symbols per asymptotic curve (spaced along the curve as drawn)."""
 _t = config.text
@@ -99,7 +119,7 @@ def profile_panels(
 def compute_zero_g() -> FigureData:
     walls = [Wall.fully_rough(K), Wall(25.0, K), Wall(DELTA, K), Wall(10.0, K)]
     curves = [
-        (*_delta_label(w), solve(PlaneShear(material=MATERIAL, upper=w, eps=EPS), points=POINTS))
+        (*_delta_label(w), solve(plane_shear(material=MATERIAL, upper=w, eps=EPS), points=POINTS))
         for w in walls
     ]
     return FigureData(
@@ -119,7 +139,7 @@ def compute_zero_g_aw() -> FigureData:
     curves = [
         (
             *_delta_label(w),
-            solve(PlaneShear(material=MATERIAL, upper=w, lower=rough, eps=EPS), points=POINTS),
+            solve(plane_shear(material=MATERIAL, upper=w, lower=rough, eps=EPS), points=POINTS),
         )
         for w in walls
     ]
@@ -141,8 +161,8 @@ def compute_zero_g_aw() -> FigureData:
 def compute_asymp_g0() -> FigureData:
     eps = 1e-3
     cases = {
-        "identical walls": PlaneShear(material=MATERIAL, upper=Wall(DELTA, K), eps=eps),
-        "rougher lower wall": PlaneShear(
+        "identical walls": plane_shear(material=MATERIAL, upper=Wall(DELTA, K), eps=eps),
+        "rougher lower wall": plane_shear(
             material=MATERIAL, upper=Wall(DELTA, K), lower=Wall.fully_rough(K), eps=eps
         ),
     }
@@ -180,14 +200,14 @@ def compute_asymp_g0() -> FigureData:
 
 # --------------------------------------------------------------------------- 5: fig-bc
 def compute_bc() -> FigureData:
-    base = PlaneShear(material=MATERIAL, upper=Wall(10.0, K), lower=Wall.fully_rough(K), eps=EPS)
-    b = base.slip_constants.b
+    base = plane_shear(material=MATERIAL, upper=Wall(10.0, K), lower=Wall.fully_rough(K), eps=EPS)
+    b = base.equations.slip_constants.b
     fractions = [1.0, 0.7, 0.4, 0.1]
     curves = [
         (
             rf"$m(0) = {f:g}\,b$",
             f"m(0) = {f:g} b",
-            solve(replace(base, m_fixed_wall=f * b), points=POINTS),
+            solve(base.with_values({"m_wall": f * b}), points=POINTS),
         )
         for f in fractions
     ]
@@ -198,7 +218,9 @@ def compute_bc() -> FigureData:
         "Couple stress and velocity for four m(0) in 0 < m(0) <= b (solid: m(0) = b); "
         "delta = 10 deg, delta_L > delta, other parameters as figure 2.",
         profile_panels(curves, ["m", "u"]),
-        notes=[f"b = {b:.6g}; m0 = {base.slip_constants.m0:.6g} (the value eqn-nd_bc4 gives)"],
+        notes=[
+            f"b = {b:.6g}; m0 = {base.equations.slip_constants.m0:.6g} (the value eqn-nd_bc4 gives)"
+        ],
         extra={"b": b, "fractions": fractions},
     )
 
@@ -211,7 +233,7 @@ def compute_finite_g() -> FigureData:
             rf"$B = {B:g}$",
             f"B = {B:g}",
             solve(
-                PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=B),
+                plane_shear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=B),
                 points=POINTS,
             ),
         )
@@ -235,10 +257,10 @@ def compute_finite_g() -> FigureData:
 def compute_asymp_g_c() -> FigureData:
     eps = 1e-3
     cases = {
-        ("plane, B = 1", "plane, B = 1", XI_NAME): PlaneShear(
+        ("plane, B = 1", "plane, B = 1", XI_NAME): plane_shear(
             material=MATERIAL, upper=Wall.fully_rough(K), eps=eps, B=1.0
         ),
-        (COUETTE, COUETTE_NAME, R_GAP_NAME): CouetteFlow(
+        (COUETTE, COUETTE_NAME, R_GAP_NAME): couette_flow(
             material=MATERIAL, wall=Wall.fully_rough(K), eps=eps, Ri=RI
         ),
     }
@@ -308,7 +330,7 @@ def compute_cyl_couette() -> FigureData:
             r"$\bar R_i = \infty$" if R > 1e5 else rf"$\bar R_i = {R:g}$",
             "Ri = inf" if R > 1e5 else f"Ri = {R:g}",
             solve(
-                CouetteFlow(material=MATERIAL, wall=Wall.fully_rough(K), eps=EPS, Ri=R),
+                couette_flow(material=MATERIAL, wall=Wall.fully_rough(K), eps=EPS, Ri=R),
                 points=POINTS,
             ),
         )
@@ -400,7 +422,7 @@ def compute_A_sensitivity() -> FigureData:
     from ...analysis.sensitivity import existence_bound_A
 
     bound = existence_bound_A(
-        PlaneShear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=1.0)
+        plane_shear(material=MATERIAL, upper=Wall.fully_rough(K), eps=EPS, B=1.0)
     )
     A_values = [A, 0.9, 0.0, round(bound.value + 0.02, 2)]
     curves = [
@@ -408,7 +430,7 @@ def compute_A_sensitivity() -> FigureData:
             rf"$A = {a:.3g}$",
             f"A = {a:.3g}",
             solve(
-                PlaneShear(
+                plane_shear(
                     material=Material(PHI, L=L, A=a), upper=Wall.fully_rough(K), eps=EPS, B=1.0
                 ),
                 points=POINTS,
@@ -439,7 +461,7 @@ def compute_K_sensitivity() -> FigureData:
             rf"$K = {k:g}$",
             f"K = {k:g}",
             solve(
-                PlaneShear(material=MATERIAL, upper=Wall.fully_rough(k), eps=EPS, B=1.0),
+                plane_shear(material=MATERIAL, upper=Wall.fully_rough(k), eps=EPS, B=1.0),
                 points=POINTS,
             ),
         )
@@ -465,12 +487,12 @@ def thickness_problems(fully_rough: bool) -> dict[str, Problem]:
     """The four problems of figure 14 (panel b: fully rough walls)."""
     wall = Wall.fully_rough(K) if fully_rough else Wall(DELTA, K)
     problems: dict[str, Problem] = {
-        "plane, identical walls": PlaneShear(material=MATERIAL, upper=wall, eps=EPS),
-        "plane, rougher lower wall": PlaneShear(
+        "plane, identical walls": plane_shear(material=MATERIAL, upper=wall, eps=EPS),
+        "plane, rougher lower wall": plane_shear(
             material=MATERIAL, upper=wall, lower=Wall.fully_rough(K), eps=EPS
         ),
-        "plane, gravity B = 1": PlaneShear(material=MATERIAL, upper=wall, eps=EPS, B=1.0),
-        COUETTE_NAME: CouetteFlow(material=MATERIAL, wall=wall, eps=EPS, Ri=RI),
+        "plane, gravity B = 1": plane_shear(material=MATERIAL, upper=wall, eps=EPS, B=1.0),
+        COUETTE_NAME: couette_flow(material=MATERIAL, wall=wall, eps=EPS, Ri=RI),
     }
     if fully_rough:  # no wall is rougher than fully rough
         problems.pop("plane, rougher lower wall")
@@ -509,7 +531,7 @@ def compute_slt() -> FigureData:
             label = SLT_LABELS.get(name, name)
             panel.add_symbols(label, eps_ok, delta_ok, SLT_MARKERS[name], markersize=6, name=name)
             fine = np.geomspace(EPS_SLT[-1], EPS_SLT[0], 60)
-            asym = [asymptotic_thickness(replace(problem, eps=e)) for e in fine]
+            asym = [asymptotic_thickness(problem.with_values({"eps": e})) for e in fine]
             panel.add(
                 label,  # one legend entry: the symbol over its line
                 fine,
@@ -523,7 +545,7 @@ def compute_slt() -> FigureData:
                 "eps": list(EPS_SLT),
                 "Delta": curve.Delta,
                 "Delta_asymptotic": [
-                    asymptotic_thickness(replace(problem, eps=e)) for e in EPS_SLT
+                    asymptotic_thickness(problem.with_values({"eps": e})) for e in EPS_SLT
                 ],
             }
         panels.append(panel)
