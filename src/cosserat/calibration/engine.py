@@ -8,11 +8,12 @@ Parameters (``docs/calibration.md``):
   coefficient) is one number per wall kind;
 * what a run's metadata give (eps, Ri, B, nu, the wall's inertial number I_w) is fixed.
 
-The objective is the Gaussian likelihood of the error model of :mod:`~cosserat.calibration.
-noise` (AR(1)-correlated bins within a field, fields and runs independent): the fit minimises
-the sum of squared whitened residuals with lmfit's ``least_squares`` (SciPy's trust-region
-reflective method, bounds handled natively), from the best of a Latin-hypercube set of starts.
-Parameters with a log scale in their declaration are fitted in log10.
+The objective is the Gaussian likelihood of the error model of
+:mod:`~cosserat.calibration.noise` (AR(1)-correlated bins within a field, fields and runs
+independent): the fit minimises the sum of squared whitened residuals with lmfit's
+``least_squares`` (SciPy's trust-region reflective method, bounds handled natively), from the
+best of a Latin-hypercube set of starts. Parameters with a log scale in their declaration are
+fitted in log10.
 
 Uncertainties come from the Jacobian of the whitened residuals at the optimum (central
 differences in the fit's coordinates, one-sided at a bound), through one identifiability rule

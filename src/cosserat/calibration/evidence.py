@@ -25,8 +25,11 @@ from ..model.constitutive import FloatArray
 from .result import ModelCalibration
 
 LIVE_POINTS_PER_DIMENSION = 25
+"""Live points of the nested sampler per free parameter."""
 MIN_LIVE_POINTS = 75
+"""Fewest live points of the nested sampler."""
 DLOGZ = 0.1
+"""The nested sampler stops when the evidence left in the live points is below this (in ln Z)."""
 
 
 def nested_evidence(mc: ModelCalibration, seed: int = 0) -> ModelCalibration:

@@ -61,6 +61,7 @@ def log_prior(s: Setup, theta: FloatArray) -> float:
 
 
 def log_probability(s: Setup, theta: FloatArray) -> float:
+    """ln posterior of ``theta`` (fit coordinates) up to a constant: prior plus likelihood."""
     lp = log_prior(s, theta)
     if not math.isfinite(lp):
         return -math.inf

@@ -1,6 +1,7 @@
 """A calibration as text, as a folder (JSON, Markdown report, figures), and as figure data.
 
-The text (:func:`text`), the JSON (:meth:`Calibration.to_dict`) and the report
+The text (:func:`text`), the JSON
+(:meth:`~cosserat.calibration.result.Calibration.to_dict`) and the report
 (:func:`write_report`) say the same things: the comparison with its assumptions, each model's
 parameters with errors and roles, chi^2 with its p-value per run and field, the runs tests, and
 every warning naming its run.

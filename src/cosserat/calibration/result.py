@@ -237,7 +237,7 @@ class ModelCalibration:
 
     @property
     def log10_p_value(self) -> float | None:
-        """log10 of :attr:`p_value`, finite where the p-value underflows to 0."""
+        """log10 of ``p_value``, finite where the p-value underflows to 0."""
         from .diagnostics import chi2_log10_p
 
         return None if self.chi2 is None or self.dof <= 0 else chi2_log10_p(self.chi2, self.dof)
@@ -404,6 +404,7 @@ class Calibration:
         return {k: v / total for k, v in w.items()}
 
     def to_dict(self) -> dict[str, Any]:
+        """The JSON contract of ``cosserat calibrate --format json`` (module docstring)."""
         out: dict[str, Any] = {
             "format": "cosserat-calibration/1",
             "models": [m.to_dict() for m in self.models],

@@ -63,7 +63,8 @@ class Diagnostics:
         Tolerances requested from the numerical solver (None for the other routes).
     residuals : dict
         Largest defect of each ODE, recomputed on the returned profile in integral form over
-        the intervals of a layer-resolving check grid (:func:`cosserat.diagnostics.residuals`):
+        the intervals of a layer-resolving check grid
+        (:func:`cosserat.results.diagnostics.residuals`):
         "couple_stress" (relative to the stress scale), "spin" (relative to the wall spin),
         "velocity" (relative to the wall speed).
     bc_errors : dict
