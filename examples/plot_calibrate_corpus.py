@@ -27,5 +27,6 @@ cal = calibrate(
 )
 print(text(cal))
 
-fig = run_figure(figure_data(cal)[1])  # the plane-shear run
+(plane,) = [entry for entry in figure_data(cal) if entry["name"] == "plane_rough_H40"]
+fig = run_figure(plane)
 plt.show()
