@@ -414,3 +414,59 @@ def test_p_values_past_underflow():
     lead = (-x + (a - 1.0) * math.log(x) - math.lgamma(a)) / math.log(10.0)
     assert abs(lead - stats.chi2.logsf(1200.0, 170) / math.log(10.0)) < 0.1
     assert dg.p_text(-123.4) == "p = 10^-123"
+
+
+def test_leave_one_out_agrees_on_data_made_by_the_model():
+    runs = make_runs(Model("cosserat"), TRUTH["cosserat"], seed=12)
+    cal = calibrate(runs, models=["cosserat"], leave_one_out=True)
+    m = cal["cosserat"]
+    phi = m.parameters["phi"]
+    lo, hi, se = phi.jackknife
+    assert lo <= phi.value <= hi or abs(phi.value - lo) < 3 * phi.stderr
+    # one material made the runs: no warning that they disagree
+    assert not [w for w in m.warnings if "do not agree" in w]
+    assert m.to_dict()["parameters"]["phi"]["leave_one_out"]["se"] == pytest.approx(se)
+
+
+def test_a_long_one_sided_stretch_is_said_where_correlation_hides_it():
+    s = np.arange(0.5, 30.0)
+    z = np.r_[np.ones(5), -np.ones(25)] * 1.5
+    assert dg.longest_stretch(s, z)[:1] == (25,)
+    runs = make_runs(Model("ngf"), TRUTH["ngf"], rho={"u": 0.9}, seed=4)
+    m = calibrate_model(Model("cosserat"), runs)
+    # a long stretch on one side is tested against the error model, both ways
+    for w in [w for w in m.warnings if "neighbouring bins" in w]:
+        assert "rests on that estimate" in w or "improbable even" in w
+    # the test itself: 25 of 30 on one side is rare for independent bins, common at rho 0.95
+    assert dg.stretch_p_value(30, 0.0, 25) < 1e-3 < dg.stretch_p_value(30, 0.95, 25)
+    assert 0.2 < dg.stretch_p_value(20, 0.0, 5) < 0.8
+
+
+def test_the_posterior_predictive_carries_the_noise():
+    pytest.importorskip("emcee")
+    from cosserat.calibration.posterior import predictive, sample_posterior
+
+    s = np.linspace(0.0, 10.0, 25)
+    y = 1.0 + 0.5 * s
+    se = np.full_like(s, 0.3)
+    field = Field("u", s, y, se, Correlation(0.0, "given"))
+    run = RunData("line", "plane", 10.0, {"eps": 0.1}, None, "m", {"moving": "w", "fixed": "w"},
+                  {"u": field})  # fmt: skip
+    mc = sample_posterior(calibrate_model(Line(), [run]), 2000, seed=2)
+    setup_, _, chain = mc.internal
+    rep = predictive(setup_, chain, draws=400, seed=3)["line/u"]
+    bare = predictive(setup_, chain, draws=400, seed=3, noise=False)["line/u"]
+    # replicated data scatter by the noise (0.3) on top of the parameters' spread
+    assert np.std(rep - bare) == pytest.approx(0.3, rel=0.1)
+
+
+def test_leave_one_out_names_the_run_of_another_material():
+    """Two runs made with phi = 20 deg and one with phi = 26 deg, calibrated as one material:
+    leaving the odd run out moves phi more than the errors allow, and the warning names it."""
+    made = TRUTH["cosserat"]
+    runs = template_runs()
+    same = make_runs(Model("cosserat"), made, runs=runs[:2], seed=5)
+    odd = make_runs(Model("cosserat"), {**made, "phi": 26.0}, runs=runs[2:], seed=6)
+    cal = calibrate([*same, *odd], models=["cosserat"], leave_one_out=True)
+    notes = [w for w in cal["cosserat"].warnings if "do not agree" in w and "phi" in w]
+    assert notes and odd[0].name in notes[0]

@@ -66,28 +66,73 @@ def p_text(log10_p: float) -> str:
 
 def tail_decades(s: FloatArray, data: FloatArray, se: FloatArray, model: FloatArray) -> str | None:
     """Where a velocity profile's creep tail (measured u below :data:`TAIL_U`, yet more than
-    2 se above 0) lies a decade or more above the model, say by how many decades."""
+    2 se above 0) lies a decade or more above the model, say where and by how many decades
+    (the smallest and largest over those bins), or that the model is at rest there."""
     s, data, se, model = (np.asarray(x, dtype=float) for x in (s, data, se, model))
     tail = (data < TAIL_U) & (data > 2.0 * se)
     if np.count_nonzero(tail) < REGION_BINS:
         return None
-    at_rest = model[tail] <= 0.0
+    st, dt, mt = s[tail], data[tail], model[tail]
+    at_rest = mt <= 0.0
     if np.count_nonzero(at_rest) >= REGION_BINS:
         return (
-            f"in the creep tail (s = {s[tail][at_rest].min():.3g}-{s[tail][at_rest].max():.3g} "
-            f"d, {np.count_nonzero(at_rest)} bins) the model is at rest (a rigid plug) where "
-            f"the data creep at u = {data[tail][at_rest].min():.2g}-"
-            f"{data[tail][at_rest].max():.2g}"
+            f"in the creep tail (s = {_span(st[at_rest])} d, {np.count_nonzero(at_rest)} bins) "
+            f"the model predicts no flow (a rigid plug) where the data creep at u = "
+            f"{_span(dt[at_rest], '.2g')}"
         )
-    ratio = np.log10(np.maximum(model[tail], 1e-300) / data[tail])
-    if np.median(ratio) > -1.0:
+    below = ~at_rest & (mt < 0.1 * dt)
+    if np.count_nonzero(below) < REGION_BINS:
         return None
-    lo, hi = np.percentile(-ratio, [10, 90])
+    decades = np.log10(dt[below] / mt[below])
     return (
-        f"in the creep tail (s = {s[tail].min():.3g}-{s[tail].max():.3g} d, "
-        f"{np.count_nonzero(tail)} bins where u is measured above 2 se) the model lies "
-        f"{max(lo, 0):.1f}-{hi:.1f} decades below the data"
+        f"in the creep tail (s = {_span(st[below])} d, {np.count_nonzero(below)} bins where u is "
+        f"measured above 2 se) the model lies {decades.min():.1f}-{decades.max():.1f} decades "
+        "below the data"
     )
+
+
+def _span(x: FloatArray, fmt: str = ".3g") -> str:
+    """``a-b`` of an array's smallest and largest values, or ``a`` if they are equal."""
+    lo, hi = float(np.min(x)), float(np.max(x))
+    return f"{lo:{fmt}}" if f"{lo:{fmt}}" == f"{hi:{fmt}}" else f"{lo:{fmt}}-{hi:{fmt}}"
+
+
+def stretch_p_value(n: int, rho: float, length: int, sims: int = 4000, seed: int = 0) -> float:
+    """P(the longest stretch of same-sign residuals among ``n`` bins is at least ``length``)
+    when the residuals are AR(1) noise with lag-1 correlation ``rho`` (Monte Carlo, ``sims``
+    draws, seeded: the same answer every time)."""
+    if length <= 1 or n < length:
+        return 1.0 if length <= 1 else 0.0
+    rng = np.random.default_rng(seed)
+    e = rng.standard_normal((sims, n))
+    x = np.empty_like(e)
+    x[:, 0] = e[:, 0]
+    c = math.sqrt(1.0 - rho * rho)
+    for i in range(1, n):
+        x[:, i] = rho * x[:, i - 1] + c * e[:, i]
+    sign = x > 0.0
+    run = np.ones(sims, dtype=int)
+    longest = np.ones(sims, dtype=int)
+    for i in range(1, n):
+        run = np.where(sign[:, i] == sign[:, i - 1], run + 1, 1)
+        longest = np.maximum(longest, run)
+    return float((np.count_nonzero(longest >= length) + 1) / (sims + 1))
+
+
+def longest_stretch(s: FloatArray, z: FloatArray) -> tuple[int, float, float, int]:
+    """The longest stretch of neighbouring bins whose (not whitened) residuals ``z`` share a
+    sign: (bins, first s, last s, sign)."""
+    z = np.asarray(z, dtype=float)
+    best = (0, 0.0, 0.0, 0)
+    i = 0
+    while i < z.size:
+        j = i
+        while j + 1 < z.size and np.sign(z[j + 1]) == np.sign(z[i]) != 0:
+            j += 1
+        if j - i + 1 > best[0] and z[i] != 0:
+            best = (j - i + 1, float(s[i]), float(s[j]), int(np.sign(z[i])))
+        i = j + 1
+    return best
 
 
 def chi2_p_low(chi2: float, dof: int) -> float | None:
@@ -157,9 +202,31 @@ class Region:
     def describe(self) -> str:
         side = "above" if self.sign > 0 else "below"
         return (
-            f"{self.where} (s = {self.start:.3g}-{self.stop:.3g} d, {self.bins} bins), the model "
+            f"{self.where} (s = {_span(np.array([self.start, self.stop]))} d, {self.bins} bins), "
+            "the model "
             f"{side} the data by up to {self.worst:.1f} se"
         )
+
+
+def _where(start: float, stop: float, u: FloatArray | None) -> str:
+    """Name a stretch of bins by where it lies: at the moving wall (within 2 d), in the shear
+    band (measured u at least TAIL_U), in the creep tail (below), or across them."""
+    parts = []
+    if start < 2.0:
+        parts.append("the moving wall")
+    if u is None or np.any(u >= TAIL_U):
+        parts.append("the shear band")
+    if u is not None and np.any(u < TAIL_U):
+        parts.append("the creep tail")
+    if start < 2.0 and stop < 4.0:
+        return "at the moving wall"
+    if len(parts) == 1:
+        return "in " + parts[0]
+    return (
+        "from " + " into ".join(parts[:1]) + " into " + parts[-1]
+        if len(parts) == 2
+        else ("from the moving wall through the shear band into the creep tail")
+    )
 
 
 def misfit_regions(
@@ -188,12 +255,8 @@ def misfit_regions(
         while j + 1 < z.size and flag[j + 1] == flag[i]:
             j += 1
         if j - i + 1 >= REGION_BINS:
-            if s[i] < 2.0:
-                where = "at the moving wall"
-            elif u_measured is not None and np.all(np.asarray(u_measured)[i : j + 1] < TAIL_U):
-                where = "in the creep tail"
-            else:
-                where = "in the shear band"
+            u = None if u_measured is None else np.asarray(u_measured)[i : j + 1]
+            where = _where(float(s[i]), float(s[j]), u)
             out.append(
                 Region(
                     float(s[i]),
@@ -281,9 +344,11 @@ __all__ = [
     "chi2_p_low",
     "chi2_p_value",
     "flat_directions",
+    "longest_stretch",
     "misfit_regions",
     "p_text",
     "runs_test",
+    "stretch_p_value",
     "strong_correlations",
     "tail_decades",
 ]

@@ -36,7 +36,7 @@ from scipy.stats import qmc
 
 from ..errors import ConvergenceError, ParameterError
 from ..model.constitutive import FloatArray
-from .data import Field, RunData
+from .data import FIELDS, Field, RunData
 from .models import SOLVE_ERRORS, Model, ModelParam
 from .noise import log_normalisation, whiten
 
@@ -304,7 +304,7 @@ def setup(
     predicted = model.fields()
     use = tuple(f for f in (fields or predicted) if f in predicted)
     if fields is not None:
-        unknown = [f for f in fields if f not in ("u", "omega", "stress_ratio")]
+        unknown = [f for f in fields if f not in FIELDS]
         if unknown:
             raise ParameterError(f"unknown field(s) {', '.join(unknown)}")
     if not any(f in run.fields for run in runs for f in use):

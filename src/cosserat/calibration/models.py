@@ -70,8 +70,10 @@ HELD: dict[str, dict[str, str]] = {
         "profiles do not tell the two apart (free it with --free A)",
     },
     "mui": {
-        "mu_2": "at the small inertial numbers of slow flow mu(I) depends on mu_2 and I_0 only "
-        "through (mu_2 - mu_s)/I_0 (free it with --free mu_2)",
+        "mu_2": "held at its declared value, tan(32.76 deg) of glass beads (Jop, Forterre & "
+        "Pouliquen 2006): at the small inertial numbers of slow flow mu(I) depends on mu_2 and "
+        "I_0 only through (mu_2 - mu_s)/I_0, so I_0 is fitted given it (free it with --free "
+        "mu_2)",
     },
 }
 """Material parameters a calibration holds at their declared defaults unless freed, and why."""

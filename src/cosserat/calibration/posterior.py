@@ -10,7 +10,9 @@ walkers started in a small ball around the least-squares optimum; the first
 :data:`BURN_IN` steps (or five integrated autocorrelation times, if longer and measurable)
 are dropped. Files (``out``): ``posterior_<model>.nc`` (InferenceData: the ``posterior`` group
 in natural units, ``sample_stats`` with the log-probability, ``observed_data`` with every
-field, ``posterior_predictive`` on a subsample of draws) and ``corner_<model>.png``.
+field, ``constant_data`` with each field's positions s [d] and standard errors,
+``posterior_predictive``: replicated data, the model at a subsample of draws plus the error
+model's noise) and ``corner_<model>.png``.
 Needs the extra ``posterior`` (ArviZ, h5netcdf, corner).
 """
 
@@ -29,6 +31,8 @@ from .._atomic import atomic_path, save_figure
 from ..errors import MethodNotAvailableError
 from ..model.constitutive import FloatArray
 from .engine import Optimum, Setup
+from .models import SOLVE_ERRORS
+from .noise import covariance
 from .result import ModelCalibration, PosteriorSummary
 
 log = logging.getLogger(__name__)
@@ -180,21 +184,30 @@ def _natural(s: Setup, chain: FloatArray) -> dict[str, FloatArray]:
 
 
 def predictive(
-    s: Setup, chain: FloatArray, draws: int = PREDICTIVE_DRAWS, seed: int = 0
+    s: Setup, chain: FloatArray, draws: int = PREDICTIVE_DRAWS, seed: int = 0, noise: bool = True
 ) -> dict[str, FloatArray]:
-    """Model fields at the data's bins for ``draws`` posterior draws: ``run/field`` ->
-    (draws, bins)."""
+    """Replicated data at the data's bins for ``draws`` posterior draws: ``run/field`` ->
+    (draws, bins); each draw is the model at a posterior sample plus, with ``noise``, a draw of
+    the error model's noise (AR(1) with the field's se and rho): the posterior predictive
+    distribution of the data."""
     flat = chain.reshape(-1, chain.shape[-1])
     rng = np.random.default_rng(seed)
     pick = rng.choice(flat.shape[0], size=min(draws, flat.shape[0]), replace=False)
     out: dict[str, list[FloatArray]] = {}
+    chol = {
+        (run.name, name): np.linalg.cholesky(covariance(f.se, f.correlation.rho))
+        for run in s.runs
+        for name, f in run.fields.items()
+    }
     for theta in flat[pick]:
         try:
             pred = s.predict(theta)
-        except Exception:
-            continue
+        except SOLVE_ERRORS:
+            continue  # a draw without a solution has zero posterior mass
         for run, fields in pred.items():
             for name, values in fields.items():
+                if noise:
+                    values = values + chol[(run, name)] @ rng.standard_normal(values.size)
                 out.setdefault(f"{run}/{name}", []).append(values)
     return {k: np.array(v) for k, v in out.items()}
 
@@ -217,11 +230,14 @@ def write_inference_data(
     _require("h5netcdf")
     chain = mc.internal[2] if len(mc.internal) > 2 else None
     post = {_var(n): v for n, v in natural.items()}
-    observed = {}
+    observed: dict[str, FloatArray] = {}
+    constant: dict[str, FloatArray] = {}
     for run in s.runs:
         for name in s.fields:
             if name in run.fields:
                 observed[_var(f"{run.name}/{name}")] = run.fields[name].value
+                constant[_var(f"{run.name}/{name}/s")] = run.fields[name].s
+                constant[_var(f"{run.name}/{name}/se")] = run.fields[name].se
     steps_chain = np.stack([natural[n].T for n in s.names], axis=-1)  # (steps, walkers, k)
     del chain
     pp = predictive(s, _to_internal(s, steps_chain), seed=seed)
@@ -229,6 +245,7 @@ def write_inference_data(
         posterior=post,
         sample_stats={"lp": lp.T},
         observed_data=observed,
+        constant_data=constant,
         posterior_predictive={_var(k): v[None, ...] for k, v in pp.items()},
         attrs={
             "model": mc.model,

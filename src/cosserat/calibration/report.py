@@ -47,6 +47,9 @@ def _value(e: Any) -> str:
         note.append(e.reason)
     if e.shared:
         note.append(f"shared by {len(e.runs)} runs")
+    if e.jackknife is not None:
+        lo, hi, se = e.jackknife
+        note.append(f"one run left out: {lo:.4g}-{hi:.4g}, jackknife se {se:.2g}")
     return f"{e.value:.5g}{err}{unit}" + (f" ({'; '.join(note)})" if note else "")
 
 

@@ -71,6 +71,7 @@ class Estimate:
     fit_range: tuple[float, float] | None = None
     derived: bool = False
     scale: float = 1.0
+    jackknife: tuple[float, float, float] | None = None
 
     @property
     def stderr_scaled(self) -> float | None:
@@ -84,6 +85,9 @@ class Estimate:
             "stderr": _num(self.stderr),
             "stderr_scaled": _num(self.stderr_scaled),
             "derived": self.derived,
+            "leave_one_out": None
+            if self.jackknife is None
+            else {"min": self.jackknife[0], "max": self.jackknife[1], "se": self.jackknife[2]},
             "free": self.free,
             "shared": self.shared,
             "unit": self.unit,
@@ -369,7 +373,8 @@ class Calibration:
                 out.append(
                     f"run {f.run}, {f.field}: every model misses it alike (chi^2 per bin "
                     f"{min(chis):.3g}-{max(chis):.3g}): the scatter of the data exceeds their "
-                    "standard errors, or the statics the models share do not hold there"
+                    "standard errors, or what the models share (their statics; for the spin, its "
+                    "kinematics) does not hold there"
                 )
         return out
 

@@ -9,7 +9,7 @@ from typing import Any
 
 from .common import UsageError, add_quiet, progress_messages
 
-FIELDS = ("u", "omega", "stress_ratio")
+FIELDS = ("u", "omega", "stress_ratio", "wall_ratio")
 
 
 def _pairs(items: list[str] | None, option: str) -> dict[str, str]:
@@ -104,6 +104,7 @@ def cmd_calibrate(args: argparse.Namespace) -> None:
         seed=args.seed,
         progress=progress_messages("calibrate"),
         holdout=[h.strip() for h in (args.holdout or "").split(",") if h.strip()],
+        leave_one_out=args.leave_one_out,
     )
     result = dataclasses.replace(result, skipped=skipped)
     if args.out:
@@ -187,6 +188,11 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         metavar="RUN[,RUN]",
         default=None,
         help="leave these runs out of the fit and predict them with the fitted parameters",
+    )
+    p.add_argument(
+        "--leave-one-out",
+        action="store_true",
+        help="refit with each run left out in turn: does every run agree on one material?",
     )
     p.add_argument("--seed", type=int, default=0, help="seed of the starts and samplers")
     g = p.add_argument_group("output")

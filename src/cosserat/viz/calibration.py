@@ -31,7 +31,10 @@ MODEL_STYLES = {
     "ngf": {"color": "C2", "linestyle": "-."},
 }
 U_FLOOR = 1e-5
-"""Lower limit of the log velocity axis [-]: below, a point is shown at the axis edge."""
+"""Lower limit of the log velocity axis [-], lowered to a decade below the smallest positive
+measured u (not below :data:`U_FLOOR_MIN`); a point at or below it is shown at the axis edge."""
+U_FLOOR_MIN = 1e-8
+"""The lowest the log velocity axis goes [-]."""
 
 
 def run_figure(entry: Mapping[str, Any]) -> Figure:
@@ -67,22 +70,26 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 label = COUETTE_AXES[name]
             d = entry["fields"][name]
             s, y, se = (np.asarray(d[k], dtype=float) for k in ("s", "data", "se"))
+            floor = U_FLOOR
             if scale == "log":
                 ax.set_yscale("log")
-                low = y <= U_FLOOR  # measured at or below the floor (zero, negative): open marks
+                positive = y[y > 0.0]
+                if positive.size:  # a decade below the smallest positive measured u
+                    floor = max(min(U_FLOOR, 0.1 * float(positive.min())), U_FLOOR_MIN)
+                low = y <= floor  # measured at or below the floor (zero, negative): open marks
                 if np.any(low):
                     ax.plot(
                         s[low],
-                        np.full(np.count_nonzero(low), U_FLOOR * 1.15),
+                        np.full(np.count_nonzero(low), floor * 1.15),
                         "v",
                         mfc="none",
                         mec="0.4",
                         ms=4,
-                        label=f"data <= {U_FLOOR:g}",
+                        label="data <= 0, or off the axis",
                     )
                 s, y, se = s[~low], y[~low], se[~low]
-                shown = np.maximum(y, U_FLOOR)
-                lower = np.minimum(np.clip(y - se, U_FLOOR, None), shown)
+                shown = np.maximum(y, floor)
+                lower = np.minimum(np.clip(y - se, floor, None), shown)
                 ax.errorbar(
                     s,
                     shown,
@@ -96,7 +103,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                     label="data",
                     zorder=3,
                 )
-                ax.set_ylim(U_FLOOR, 1.5)
+                ax.set_ylim(floor, 1.5)
             else:
                 ax.errorbar(
                     s,
