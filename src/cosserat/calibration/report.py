@@ -105,7 +105,7 @@ def text(cal: Calibration, full: bool = False) -> str:
         lines.append(f"best by AIC: {cal.best or '-'}")
     else:
         lines.append(
-            f"lowest AIC: {cal.best or '-'}; the weights are NOT calibrated: a model misfits "
+            f"lowest AIC: {cal.lowest_aic or '-'}; the weights are NOT calibrated: a model misfits "
             "(p < 1e-3), and being the least bad does not make a model right"
         )
     if cal.notes:

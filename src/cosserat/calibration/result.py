@@ -8,7 +8,8 @@
                  "per_run": {run: {"chi2", "n", "fields": {field: {...}}}},
                  "chi2", "dof", "n", "k", "p_value", "log_likelihood", "aic", "bic",
                  "evidence", "warnings": [...], "assumptions": [...]}],
-     "best", "comparison", "runs": [...], "posterior": {model: summary} (when sampled)}
+     "best" (null unless the weights are calibrated), "lowest_aic", "comparison",
+     "runs": [...], "posterior": {model: summary} (when sampled)}
 """
 
 from __future__ import annotations
@@ -379,12 +380,20 @@ class Calibration:
         return out
 
     @property
-    def best(self) -> str | None:
-        """The model with the lowest AIC among those fitted to the same fields."""
+    def lowest_aic(self) -> str | None:
+        """The model with the lowest AIC among those fitted to the same fields, whether or not
+        any of them describes the data."""
         ok = [m for m in self.models if m.ok and m.aic is not None]
         if not ok:
             return None
         return min(ok, key=lambda m: m.aic if m.aic is not None else math.inf).model
+
+    @property
+    def best(self) -> str | None:
+        """The model with the lowest AIC where the weights are calibrated (every compared model
+        describes the data); None otherwise: the least bad of models that all misfit is not a
+        best model (:attr:`lowest_aic` still names it)."""
+        return self.lowest_aic if self.calibrated_weights else None
 
     def weights(self, criterion: str = "aic") -> dict[str, float]:
         """Akaike (or BIC, or evidence) weights of the fitted models [-]."""
@@ -414,6 +423,7 @@ class Calibration:
             "format": "cosserat-calibration/1",
             "models": [m.to_dict() for m in self.models],
             "best": self.best,
+            "lowest_aic": self.lowest_aic,
             "weights": {
                 "aic": self.weights("aic"),
                 "bic": self.weights("bic"),
