@@ -389,6 +389,16 @@ def calibrate_model(
         return ModelCalibration(
             model=model.name, status="failed", message=str(exc), seconds=time.perf_counter() - t0
         )
+    return assemble(s, opt, t0)
+
+
+def assemble(s: Setup, opt: Optimum, t0: float | None = None) -> ModelCalibration:
+    """The :class:`ModelCalibration` of the optimum ``opt`` of ``s``: the estimates and their
+    errors by the one identifiability rule, the field fits, the warnings (what
+    :func:`calibrate_model` returns; ``cosserat.calibration.single`` calls it on a prepared
+    setup). ``t0``: the ``time.perf_counter()`` at the start, for ``seconds``."""
+    model = s.model
+    t0 = time.perf_counter() if t0 is None else t0
     estimates, flat, corr, cov = _estimates(s, opt)
     estimates.update(_derived(model, s, opt, cov, estimates))
     predictions = s.predict(opt.theta)
@@ -667,4 +677,4 @@ def calibrate(
     )
 
 
-__all__ = ["COMPARISON", "calibrate", "calibrate_model"]
+__all__ = ["COMPARISON", "assemble", "calibrate", "calibrate_model"]
