@@ -456,9 +456,12 @@ def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
         for i in range(k):
             params.add(_ident(i), value=float(candidates[idx][i]), min=lo[i], max=hi[i])
         mini = lmfit.Minimizer(residual, params, scale_covar=False)
-        res = mini.least_squares(
-            x_scale=hi - lo, diff_step=FD_STEP, max_nfev=200 * (k + 1), xtol=1e-10, ftol=1e-10
-        )
+        # lmfit's own covariance (unused: the errors come from :func:`jacobian`) takes square
+        # roots of a singular fit's negative round-off: quiet where the caller made that raise
+        with np.errstate(invalid="ignore", divide="ignore"):
+            res = mini.least_squares(
+                x_scale=hi - lo, diff_step=FD_STEP, max_nfev=200 * (k + 1), xtol=1e-10, ftol=1e-10
+            )
         theta = np.array([res.params[_ident(i)].value for i in range(k)])
         r = s.residuals(theta)
         if best is None or float(r @ r) < float(best.residuals @ best.residuals):

@@ -44,7 +44,7 @@ def _estimates(
     J = opt.jacobian
     flat = dg.flat_directions(J, names, widths)
     unidentified = {n for d in flat for n in d.components}
-    cov = np.linalg.pinv(J.T @ J, rcond=1e-15) if J.size else np.zeros((0, 0))
+    cov = dg.identified_covariance(J, widths) if J.size else np.zeros((0, 0))
     natural = s.natural(opt.theta)
     out: dict[str, Estimate] = {}
     i = 0
@@ -92,7 +92,8 @@ def _estimates(
             value=value, stderr=stderr, free=True, at_bound=at, reason=reason, **common
         )
         i += 1
-    return out, flat, dg.strong_correlations(cov, names), cov
+    strong = [c for c in dg.strong_correlations(cov, names) if not {c[0], c[1]} & unidentified]
+    return out, flat, strong, cov
 
 
 def _derived(

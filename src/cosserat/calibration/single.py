@@ -167,15 +167,15 @@ class SingleFit(ModelCalibration):
         return out
 
     def text(self) -> str:
-        """The free (and derived) parameters, one per line."""
+        """The free parameters (:meth:`shown`), one per line."""
         return "\n".join(f"  {n} = {estimate_text(e)}" for n, e in self.shown().items())
 
     def shown(self) -> dict[str, Estimate]:
-        """The parameters a reader wants: free and derived ones (the Cosserat wall's delta
-        rather than its roughness coordinate)."""
+        """The parameters a reader wants: the free ones, the Cosserat wall's as its delta
+        rather than its roughness coordinate."""
         out = {}
         for n, e in self.parameters.items():
-            if not (e.free or e.derived):
+            if not e.free:
                 continue
             if e.key == "roughness" and self.model == "cosserat":
                 continue
