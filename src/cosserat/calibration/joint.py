@@ -355,7 +355,10 @@ def _assumptions(s: Setup) -> list[str]:
         "rate-dependent models only): "
         + "; ".join(
             f"{r.name}: "
-            + ", ".join(f"{k} = {v:.4g}" for k, v in r.cell_values.items())
+            + ", ".join(
+                f"{k} = {v:.4g}" if isinstance(v, int | float) else f"{k} = {v}"
+                for k, v in r.cell_values.items()
+            )
             + (f", I_w = {r.I_w:.3g}" if r.I_w is not None else "")
             for r in s.runs
         ),

@@ -15,10 +15,10 @@ its result (:class:`~cosserat.calibration.result.ModelCalibration`, JSON and
 * **Names of one run.** The parameters are named by the model's keys: the moving wall's
   roughness ``tan(delta)/sin(phi)``, ``K`` and the derived ``delta`` [deg]; a plane cell's lower
   wall, where it differs from the moving one, is held at its own values (``delta_lower``).
-* **Defaults of one profile.** The Cosserat model frees ``delta`` and ``K`` (a velocity profile
-  alone does not separate phi and L from the wall's friction; the joint calibration does, with
-  the stresses); the other rheologies free what their calibration frees
-  (:meth:`~cosserat.calibration.models.Model.parameters`).
+* **Defaults of one profile** (:data:`SINGLE_RUN_FREE`). The Cosserat model frees ``delta``
+  and ``K``, NGF ``A`` and ``b`` (a velocity profile alone does not determine the rest; the
+  joint calibration does, with the stresses); the other rheologies free what their
+  calibration frees (:meth:`~cosserat.calibration.models.Model.parameters`).
 * **Errors.** With the points' errors ``u_err`` they are taken as absolute; without, every
   point weighs the same and the errors are scaled by the residual variance
   ``RSS / (n - k)`` (the likelihood then has sigma at its maximum, ``RSS/n``). The bins are taken
@@ -62,9 +62,12 @@ from .models import Model
 from .noise import Correlation
 from .result import Calibration, Estimate, ModelCalibration
 
-SINGLE_RUN_FREE: dict[str, tuple[str, ...]] = {"cosserat": ("delta", "K")}
+SINGLE_RUN_FREE: dict[str, tuple[str, ...]] = {"cosserat": ("delta", "K"), "ngf": ("A", "b")}
 """What a fit to one velocity profile frees by default, where it differs from the model's
-calibration (module docstring)."""
+calibration (module docstring): a velocity profile alone does not separate the Cosserat
+material (phi, L) from the wall's friction, nor NGF's mu_s from its b and A (one flat
+direction, about +0.93 mu_s +0.24 b +0.27 A on a 40-grain Couette profile); the stresses of a
+joint calibration do."""
 CELL_KEYS = {"geometry": "geometry", "eps": "eps", "ri": "Ri", "b": "B", "nu": "nu", "i_w": "I_w"}
 """Header keys (lower case) of a measured profile that fix the cell, by parameter key."""
 NEAR_WALL_D = 2.0
