@@ -414,7 +414,7 @@ def jacobian(s: Setup, theta: FloatArray, f0: FloatArray | None = None) -> Float
     return J
 
 
-def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
+def fit(s: Setup, starts: int | None = None, seed: int = 0, with_jacobian: bool = True) -> Optimum:
     """Minimise the whitened residuals of ``s`` (module docstring).
 
     Parameters
@@ -424,6 +424,9 @@ def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
         Latin-hypercube starts besides the declared defaults (default ``4 k + 4``).
     seed : int
         Seed of the start design.
+    with_jacobian : bool
+        Compute the Jacobian at the optimum (False: an empty one, for refits that need only
+        the optimum, such as a profile likelihood's).
 
     Raises
     ------
@@ -470,7 +473,7 @@ def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
     return Optimum(
         best.theta,
         best.residuals,
-        jacobian(s, best.theta, best.residuals),
+        jacobian(s, best.theta, best.residuals) if with_jacobian else np.zeros((0, 0)),
         s.nfev,
         best.message,
         best.lmfit_result,

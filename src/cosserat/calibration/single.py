@@ -451,6 +451,9 @@ def fit(
         (_rename(n) if e.derived else n): dataclasses.replace(e, name=_rename(e.name))
         for n, e in mc.parameters.items()
     }
+    # the free parameters first, in the order asked for (delta for the Cosserat roughness)
+    first = ["delta" if n == "roughness" and "delta" in params else n for n in names]
+    params = {**{n: params[n] for n in first}, **params}
     extra: list[str] = list(notes)
     if not absolute:
         n = s.n
@@ -464,7 +467,9 @@ def fit(
             continue
         if progress:
             progress(f"profile likelihood for {key}")
-        lo_hi = _profile_interval(s, opt, slot_name, key, scale, progress)
+        j = list(mc.covariance_names).index(slot_name)
+        guess = math.sqrt(max(float(np.asarray(mc.covariance)[j, j]), 0.0))
+        lo_hi = _profile_interval(s, opt, slot_name, key, scale, progress, guess)
         params[key] = dataclasses.replace(params[key], interval=lo_hi)
     best = model.problem(run, s.run_values(s.runs[0], opt.theta))
     profile = (
@@ -535,10 +540,12 @@ def _profile_interval(
     key: str,
     scale: float,
     progress: Callable[[str], None] | None,
+    guess: float = 0.0,
 ) -> tuple[float, float]:
     """Where the refitted chi-square rises by ``scale`` over its minimum, in the natural unit
     of ``key`` (delta [deg] from the roughness with the refit's phi); an end at the search
-    range's bound where it rises less (one-sided)."""
+    range's bound where it rises less (one-sided). ``guess``: the slot's standard error in the
+    fit's coordinate, the first step of the search (else 1e-3 of the range)."""
     names = s.names
     j = names.index(slot_name)
     lo, hi = s.bounds()
@@ -560,7 +567,7 @@ def _profile_interval(
         sub = Setup(s.model, s.runs, s.fields, slots)
         try:
             if sub.free:
-                o = engine_fit(sub, starts=0)
+                o = engine_fit(sub, starts=0, with_jacobian=False)
                 r, nat = o.residuals, sub.natural(o.theta)
             else:
                 r, nat = sub.residuals(np.zeros(0)), sub.natural(np.zeros(0))
@@ -595,7 +602,7 @@ def _profile_interval(
     width = float(hi[j] - lo[j])
     ends = []
     for direction, limit in ((-1.0, float(lo[j])), (1.0, float(hi[j]))):
-        step = 1e-3 * width
+        step = guess if 0.0 < guess < width else 1e-3 * width
         inner, found = center, None
         while True:
             trial = center + direction * step
