@@ -4,8 +4,8 @@ What is not fitting: :func:`compare` (model minus data, RMS and chi-square), :fu
 :func:`model_profile`, :func:`moving_wall`, and the Cosserat parameters' accessors
 :func:`natural_value` and :func:`with_values`.
 
-Fitting is a calibration of one run (``docs/calibration.md``): :func:`cosserat.calibration.fit`
-(``cosserat.calibration.single``). ``cosserat.analysis.fitting.fit``, ``FitResult``,
+Fitting is a calibration of one run (``docs/calibration.md``):
+:func:`cosserat.calibration.single.fit`. ``cosserat.analysis.fitting.fit``, ``FitResult``,
 ``FitParameter`` and ``FlatDirection`` are deprecated aliases of it for one release (a
 :class:`DeprecationWarning` names the replacement).
 """

@@ -2,8 +2,9 @@
 their parameters by key, their solution at the data's points and the information criteria.
 
 Fitting and ranking are calibrations of one run (``docs/calibration.md``):
-:func:`cosserat.calibration.fit_model`, :func:`cosserat.calibration.rank_models` and
-:class:`cosserat.calibration.Ranking` (``cosserat.calibration.single``). The names
+:func:`cosserat.calibration.single.fit_model`,
+:func:`~cosserat.calibration.single.rank_models` and :class:`~cosserat.calibration.single.Ranking`.
+The names
 ``fit_model``, ``rank_models``, ``Ranking``, ``ModelFit`` and ``Estimate`` here are deprecated
 aliases of them for one release (a :class:`DeprecationWarning` names the replacement).
 

@@ -397,10 +397,10 @@ def calibrate_model(
 
 
 def assemble(s: Setup, opt: Optimum, t0: float | None = None) -> ModelCalibration:
-    """The :class:`ModelCalibration` of the optimum ``opt`` of ``s``: the estimates and their
-    errors by the one identifiability rule, the field fits, the warnings (what
-    :func:`calibrate_model` returns; ``cosserat.calibration.single`` calls it on a prepared
-    setup). ``t0``: the ``time.perf_counter()`` at the start, for ``seconds``."""
+    """The :class:`~cosserat.calibration.result.ModelCalibration` of the optimum ``opt`` of
+    ``s``: the estimates and their errors by the one identifiability rule, the field fits, the
+    warnings (what :func:`calibrate_model` returns; ``cosserat.calibration.single`` calls it on
+    a prepared setup). ``t0``: the ``time.perf_counter()`` at the start, for ``seconds``."""
     model = s.model
     t0 = time.perf_counter() if t0 is None else t0
     estimates, flat, corr, cov = _estimates(s, opt)
