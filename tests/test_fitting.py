@@ -414,3 +414,21 @@ def test_the_old_names_are_deprecated_aliases():
         assert ranking.Ranking is single.Ranking
     with pytest.raises(AttributeError):
         fitting.no_such_name  # noqa: B018
+
+
+def test_a_corpus_run_fixes_I_w_from_its_wall_speed():
+    """validate fits run.measured(): its header carries the I_w the wall speed gives, the same
+    as the joint calibration's, and mu(I) is fitted at it (never fitting I_w)."""
+    from cosserat.analysis.corpus import read_corpus, shipped_corpus
+    from cosserat.calibration.data import from_run
+    from cosserat.calibration.single import rank_models
+
+    corpus = shipped_corpus()
+    corpus = corpus if hasattr(corpus, "runs") else read_corpus(corpus)
+    run = next(r for r in corpus.runs if r.cell == "couette")
+    measured = run.measured()
+    assert measured.meta["i_w"] == pytest.approx(from_run(run).I_w, rel=1e-15)
+    (mui,) = rank_models(measured, run.cell_parameters(), ["mui"]).fits
+    assert mui.ok and mui.problem.cell_values()["I_w"] == pytest.approx(measured.meta["i_w"])
+    assert "I_w" not in mui.shown() and not any("I_w" in w for w in mui.warnings)
+    assert not any("fixed at the problem's value" in a for a in mui.assumptions)

@@ -832,11 +832,14 @@ def rank_models(
         if m not in RHEOLOGIES:
             raise ParameterError(f"unknown model {m!r}: registered are {', '.join(RHEOLOGIES)}")
     fits: list[SingleFit] = []
+    header_I_w = _header_cell(measured).get("I_w")
     for m in names:
         try:
             given = dict(params)
             if not RHEOLOGIES[m].rate_dependent:
                 given.pop("I_w", None)
+            elif "I_w" not in given and header_I_w is not None:
+                given["I_w"] = float(header_I_w)  # what the data fix, not a problem's default
             start = {**given, **dict((model_parameters or {}).get(m, {}))}
             problem = make_problem(m, cell, start)
             moving_wall(problem)
