@@ -318,7 +318,7 @@ class ModelCalibration:
         return _dataframe(self.parameter_rows())
 
     def to_json(self, path: str | Path | None = None, indent: int | None = 1) -> str:
-        """:meth:`to_dict` as JSON text (no NaN), written to ``path`` if given."""
+        """``to_dict()`` as JSON text (no NaN), written to ``path`` if given."""
         text = json.dumps(self.to_dict(), indent=indent, allow_nan=False)
         if path is not None:
             write_text(path, text + "\n")

@@ -142,7 +142,7 @@ class SingleFit(ModelCalibration):
 
     @property
     def correlation(self) -> FloatArray:
-        """Correlation matrix of the free parameters (:attr:`covariance_names`) [-]."""
+        """Correlation matrix of the free parameters (in the order of ``covariance_names``) [-]."""
         c = np.asarray(self.covariance if self.covariance is not None else np.zeros((0, 0)))
         d = np.sqrt(np.clip(np.diag(c), 0.0, None))
         with np.errstate(invalid="ignore", divide="ignore"):
