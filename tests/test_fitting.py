@@ -258,7 +258,7 @@ def test_well_posed_uncertainties_agree_with_a_parametric_bootstrap():
         assert np.std(values, ddof=1) == pytest.approx(np.median(stderr), rel=0.25), name
 
 
-def test_fit_progress_reports_the_start_and_a_closing_message():
+def test_fit_progress_reports_improvements_and_a_closing_message():
     seen: list[str] = []
     res = fit(
         synthetic(9),
@@ -268,6 +268,10 @@ def test_fit_progress_reports_the_start_and_a_closing_message():
         progress=seen.append,
     )
     assert seen[0] == "fitting delta, K, L, phi, A to 25 points"
+    better = [m for m in seen[1:-1] if "chi-square" in m and " solves, " in m]
+    assert better and "delta = " in better[0]
+    chi2 = [float(m.split("chi-square ")[1].split(" at")[0]) for m in better]
+    assert chi2 == sorted(chi2, reverse=True)  # improvements only
     assert any(m.startswith("profile likelihood for delta") for m in seen[1:-1])
     assert seen[-1].startswith(f"done after {res.n_solves} solves")
     assert "warning(s)" in seen[-1]

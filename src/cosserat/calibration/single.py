@@ -196,6 +196,35 @@ def estimate_text(e: Estimate) -> str:
 
 
 # --------------------------------------------------------------------------- one run
+@dataclass
+class _Reporting(Setup):
+    """A :class:`~cosserat.calibration.engine.Setup` that reports each improvement of
+    chi-square to ``progress`` (the command line's progress line)."""
+
+    progress: Callable[[str], None] | None = None
+    best: float = math.inf
+
+    def residuals(self, theta: FloatArray) -> FloatArray:
+        r = super().residuals(theta)
+        chi2 = float(r @ r)
+        if self.progress is not None and chi2 < self.best * (1.0 - 1e-6):
+            values = ", ".join(
+                f"{'delta' if s.key == 'roughness' else s.name} = "
+                f"{_delta_of(self, theta) if s.key == 'roughness' else v:.4g}"
+                for s, v in zip(self.free, np.atleast_1d(theta), strict=True)
+            )
+            self.progress(f"{self.nfev} solves, chi-square {chi2:.6g} at {values}")
+        self.best = min(self.best, chi2)
+        return r
+
+
+def _delta_of(s: Setup, theta: FloatArray) -> float:
+    """The moving wall's delta [deg] at ``theta`` (from its roughness and phi)."""
+    nat = s.natural(theta)
+    phi = nat.get("phi", 0.0)
+    return math.degrees(math.atan(nat["roughness"] * math.sin(math.radians(phi))))
+
+
 def _header_cell(measured: MeasuredProfile) -> dict[str, Any]:
     return {CELL_KEYS[k]: v for k, v in measured.meta.items() if k in CELL_KEYS and v is not None}
 
@@ -437,11 +466,13 @@ def fit(
     start = {k: v for k, v in values.items() if k in freed}
     s = setup(model, [run], ("u",), fix=fix, free=names, start=start)
     renamed = [dataclasses.replace(sl, name=_rename(sl.name)) for sl in s.slots]
-    s = Setup(model, s.runs, s.fields, renamed)
+    watched = _Reporting(model, s.runs, s.fields, renamed, progress=progress)
+    s = watched
     shown = ", ".join("delta" if n == "roughness" else n for n in names)
     if progress:
         progress(f"fitting {shown} to {measured.n} points")
     opt = engine_fit(s, starts=starts, seed=seed)
+    watched.progress = None  # the search is over: refits and Jacobians are not improvements
     rss = float(opt.residuals @ opt.residuals)
     absolute = measured.u_err is not None
     if not absolute:
