@@ -878,7 +878,7 @@ def sweeps(rep: Report, old: V010 | None, n_plane: int, n_couette: int, repeat: 
 
 # ----------------------------------------------------------------- 6. fit
 def fitting(rep: Report, repeat: int) -> None:
-    from cosserat.analysis.fitting import fit
+    from cosserat.calibration.single import fit
     from cosserat.cli import make_parser
     from cosserat.cli.data import data_problem
 

@@ -16,8 +16,9 @@ import time
 import numpy as np
 
 from cosserat import Cosserat, Material, Plane, Problem, Wall
-from cosserat.analysis.fitting import fit, model_at, model_profile
+from cosserat.analysis.fitting import model_at, model_profile
 from cosserat.analysis.measurements import MeasuredProfile
+from cosserat.calibration import fit
 from cosserat.viz.plotting import new_figure, style
 
 TRUE = {"delta": 20.0, "K": 0.5}

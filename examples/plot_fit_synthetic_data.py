@@ -14,14 +14,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cosserat import Cosserat, Couette, Material, Problem, Wall
-from cosserat.analysis.fitting import fit
 from cosserat.analysis.measurements import read_profile
+from cosserat.calibration import fit
 
 measured = read_profile(files("cosserat") / "data" / "synthetic_couette.csv")
 start_wall = Wall(delta=15.0, K=1.0)  # the starting values of the fit
 start = Problem(Couette(eps=0.05, Ri=2.0), Cosserat(material=Material(), wall=start_wall))
 result = fit(measured, start, free=("delta", "K"))
-for name, p in result.parameters.items():
+for name, p in result.shown().items():  # the free parameters
     print(f"{name} = {p.value:.3f} +- {p.stderr:.3f}")
 print(f"rms residual = {result.rms:.4f}")
 

@@ -141,7 +141,10 @@ def test_thickness_compare_and_fit_take_a_model(capsys, request):
     assert code == 0 and json.loads(out)["problem"]["rheology"] == "mui"
     code, out, _ = run(capsys, "fit", data, "--model", "mui", "--free", "mu_s", "--format", "json")
     record = json.loads(out)
-    assert code == 0 and record["model"] == "mui" and set(record["parameters"]) == {"mu_s"}
+    assert code == 0 and record["model"] == "mui"
+    # the calibration's contract: every parameter, the fixed ones with free = false
+    assert {k for k, v in record["parameters"].items() if v["free"]} == {"mu_s"}
+    assert record["parameters"]["I_0"]["reason"] == "fixed"
     assert "phi" in one_line_error(capsys, "fit", data, "--model", "mui", "--free", "phi")
 
 

@@ -29,7 +29,7 @@ from cosserat import (
     solve,
 )
 from cosserat.analysis.measurements import MeasuredProfile
-from cosserat.analysis.ranking import fit_model, rank_models
+from cosserat.calibration.single import fit_model, rank_models
 from cosserat.cli import main
 from cosserat.config import DEFAULT_F, MUI_I0, MUI_MU_2, MUI_MU_S
 from cosserat.model.cells import CELLS

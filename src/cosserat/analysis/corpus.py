@@ -26,6 +26,7 @@ import csv
 import io
 import json
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -204,12 +205,37 @@ class Run:
         """The velocity profile as :mod:`cosserat.analysis.measurements` reads one."""
         u, se = self.quantity("u")
         order = np.argsort(self.distance_d)
-        return MeasuredProfile(
-            self.distance_d[order],
-            u[order],
-            se[order],
-            {"label": self.name, "geometry": self.cell, "source": self.meta.get("source", "")},
-        )
+        meta: dict[str, Any] = {
+            "label": self.name,
+            "geometry": self.cell,
+            "source": self.meta.get("source", ""),
+        }
+        I_w = wall_inertial_number(self.meta, self.gap_d)
+        if I_w is not None:  # what the wall speed fixes (docs/calibration.md): never fitted
+            meta["i_w"] = I_w
+        return MeasuredProfile(self.distance_d[order], u[order], se[order], meta)
+
+
+def wall_inertial_number(meta: Mapping[str, Any], gap_d: float) -> float | None:
+    """``I_w = V d / (H sqrt(p_w / rho_s))``, the moving wall's inertial number, from a corpus
+    sidecar's metadata (``docs/calibration.md``) [-].
+
+    ``V`` is ``wall_speed`` (in the deck's units, sqrt(N/rho_s) with d = 1), ``p_w`` the moving
+    wall's measured normal stress ``wall_stress.normal`` [N] (1 if not measured: the applied
+    load) and ``rho_s`` the grains' ``density``; None where the speed is not given.
+    """
+    if "I_w" in meta and meta["I_w"] is not None:
+        return float(meta["I_w"])
+    speed = meta.get("moving_wall_speed", meta.get("wall_speed"))
+    if not isinstance(speed, int | float) or speed <= 0.0:
+        return None
+    stress = meta.get("wall_stress")
+    p = stress.get("normal") if isinstance(stress, Mapping) else None
+    p = float(p) if isinstance(p, int | float) and p > 0.0 else 1.0
+    grains = meta.get("grains")
+    rho = grains.get("density") if isinstance(grains, Mapping) else None
+    rho = float(rho) if isinstance(rho, int | float) and rho > 0.0 else 1.0
+    return float(speed) / (gap_d * math.sqrt(p / rho))
 
 
 @dataclass(frozen=True)
@@ -540,5 +566,6 @@ __all__ = [
     "shipped_corpus",
     "synthetic_run",
     "usable",
+    "wall_inertial_number",
     "write_run",
 ]

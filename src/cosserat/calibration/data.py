@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis.corpus import Run, read_corpus, read_run, usable
+from ..analysis.corpus import Run, read_corpus, read_run, usable, wall_inertial_number
 from ..analysis.measurements import MeasuredProfile, read_profile
 from ..errors import InputError, ParameterError
 from ..model.constitutive import FloatArray
@@ -198,27 +198,6 @@ def _wall_label(wall: Any) -> str:
     kind = str(wall.get("kind", "wall"))
     rest = {k: v for k, v in wall.items() if k != "kind"}
     return f"{kind}-{_label(rest)}" if rest else kind
-
-
-def wall_inertial_number(meta: Mapping[str, Any], gap_d: float) -> float | None:
-    """``I_w = V d / (H sqrt(p_w / rho_s))`` from a corpus sidecar (module docstring) [-].
-
-    ``V`` is ``wall_speed`` (in the deck's units, sqrt(N/rho_s) with d = 1), ``p_w`` the moving
-    wall's measured normal stress ``wall_stress.normal`` [N] (1 if not measured: the applied
-    load) and ``rho_s`` the grains' ``density``; None where the speed is not given.
-    """
-    if "I_w" in meta and meta["I_w"] is not None:
-        return float(meta["I_w"])
-    speed = meta.get("moving_wall_speed", meta.get("wall_speed"))
-    if not isinstance(speed, int | float) or speed <= 0.0:
-        return None
-    stress = meta.get("wall_stress")
-    p = stress.get("normal") if isinstance(stress, Mapping) else None
-    p = float(p) if isinstance(p, int | float) and p > 0.0 else 1.0
-    grains = meta.get("grains")
-    rho = grains.get("density") if isinstance(grains, Mapping) else None
-    rho = float(rho) if isinstance(rho, int | float) and rho > 0.0 else 1.0
-    return float(speed) / (gap_d * math.sqrt(p / rho))
 
 
 def _ordered(s: FloatArray, *arrays: FloatArray) -> tuple[FloatArray, ...]:

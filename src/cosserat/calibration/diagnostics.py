@@ -6,8 +6,8 @@
   field of one run (too few sign changes: the model misses a trend);
 * :func:`misfit_regions`: stretches of neighbouring bins the model misses on the same side,
   named by where they lie (at the moving wall, in the band, in the creep tail);
-* :func:`flat_directions` and :func:`strong_correlations`: the one identifiability rule of the
-  package (:data:`UNIDENTIFIED_FRACTION`).
+* :func:`flat_directions`, :func:`identified_covariance` and :func:`strong_correlations`: the
+  one identifiability rule of the package (:data:`UNIDENTIFIED_FRACTION`).
 """
 
 from __future__ import annotations
@@ -313,6 +313,25 @@ def flat_directions(
     return out
 
 
+def identified_covariance(jacobian: FloatArray, widths: FloatArray) -> FloatArray:
+    """The covariance of the fit's coordinates from the whitened Jacobian, with the directions
+    :func:`flat_directions` names left out (a pseudo-inverse on the identified subspace): the
+    errors of the identified parameters hold the unidentified combinations at their best-fit
+    values instead of carrying their arbitrary size. Parameters of a flat direction get no
+    error anyway."""
+    w = np.asarray(widths, dtype=float)
+    J = np.asarray(jacobian, dtype=float) * w[None, :]
+    if J.size == 0:
+        return np.zeros((w.size, w.size))
+    _, sv, vt = np.linalg.svd(J, full_matrices=False)
+    with np.errstate(divide="ignore"):
+        sigma = np.where(sv > 0.0, 1.0 / np.where(sv > 0.0, sv, 1.0), np.inf)
+    keep = sigma <= UNIDENTIFIED_FRACTION
+    v = vt[keep]
+    cov_scaled = (v.T * (sigma[keep] ** 2)) @ v
+    return cov_scaled * np.outer(w, w)
+
+
 def strong_correlations(
     covariance: FloatArray, names: Sequence[str]
 ) -> list[tuple[str, str, float]]:
@@ -344,6 +363,7 @@ __all__ = [
     "chi2_p_low",
     "chi2_p_value",
     "flat_directions",
+    "identified_covariance",
     "longest_stretch",
     "misfit_regions",
     "p_text",

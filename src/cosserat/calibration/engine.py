@@ -414,7 +414,7 @@ def jacobian(s: Setup, theta: FloatArray, f0: FloatArray | None = None) -> Float
     return J
 
 
-def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
+def fit(s: Setup, starts: int | None = None, seed: int = 0, with_jacobian: bool = True) -> Optimum:
     """Minimise the whitened residuals of ``s`` (module docstring).
 
     Parameters
@@ -424,6 +424,9 @@ def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
         Latin-hypercube starts besides the declared defaults (default ``4 k + 4``).
     seed : int
         Seed of the start design.
+    with_jacobian : bool
+        Compute the Jacobian at the optimum (False: an empty one, for refits that need only
+        the optimum, such as a profile likelihood's).
 
     Raises
     ------
@@ -456,9 +459,12 @@ def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
         for i in range(k):
             params.add(_ident(i), value=float(candidates[idx][i]), min=lo[i], max=hi[i])
         mini = lmfit.Minimizer(residual, params, scale_covar=False)
-        res = mini.least_squares(
-            x_scale=hi - lo, diff_step=FD_STEP, max_nfev=200 * (k + 1), xtol=1e-10, ftol=1e-10
-        )
+        # lmfit's own covariance (unused: the errors come from :func:`jacobian`) takes square
+        # roots of a singular fit's negative round-off: quiet where the caller made that raise
+        with np.errstate(invalid="ignore", divide="ignore"):
+            res = mini.least_squares(
+                x_scale=hi - lo, diff_step=FD_STEP, max_nfev=200 * (k + 1), xtol=1e-10, ftol=1e-10
+            )
         theta = np.array([res.params[_ident(i)].value for i in range(k)])
         r = s.residuals(theta)
         if best is None or float(r @ r) < float(best.residuals @ best.residuals):
@@ -467,7 +473,7 @@ def fit(s: Setup, starts: int | None = None, seed: int = 0) -> Optimum:
     return Optimum(
         best.theta,
         best.residuals,
-        jacobian(s, best.theta, best.residuals),
+        jacobian(s, best.theta, best.residuals) if with_jacobian else np.zeros((0, 0)),
         s.nfev,
         best.message,
         best.lmfit_result,

@@ -44,7 +44,7 @@ def _estimates(
     J = opt.jacobian
     flat = dg.flat_directions(J, names, widths)
     unidentified = {n for d in flat for n in d.components}
-    cov = np.linalg.pinv(J.T @ J, rcond=1e-15) if J.size else np.zeros((0, 0))
+    cov = dg.identified_covariance(J, widths) if J.size else np.zeros((0, 0))
     natural = s.natural(opt.theta)
     out: dict[str, Estimate] = {}
     i = 0
@@ -92,7 +92,8 @@ def _estimates(
             value=value, stderr=stderr, free=True, at_bound=at, reason=reason, **common
         )
         i += 1
-    return out, flat, dg.strong_correlations(cov, names), cov
+    strong = [c for c in dg.strong_correlations(cov, names) if not {c[0], c[1]} & unidentified]
+    return out, flat, strong, cov
 
 
 def _derived(
@@ -354,7 +355,10 @@ def _assumptions(s: Setup) -> list[str]:
         "rate-dependent models only): "
         + "; ".join(
             f"{r.name}: "
-            + ", ".join(f"{k} = {v:.4g}" for k, v in r.cell_values.items())
+            + ", ".join(
+                f"{k} = {v:.4g}" if isinstance(v, int | float) else f"{k} = {v}"
+                for k, v in r.cell_values.items()
+            )
             + (f", I_w = {r.I_w:.3g}" if r.I_w is not None else "")
             for r in s.runs
         ),
@@ -389,6 +393,16 @@ def calibrate_model(
         return ModelCalibration(
             model=model.name, status="failed", message=str(exc), seconds=time.perf_counter() - t0
         )
+    return assemble(s, opt, t0)
+
+
+def assemble(s: Setup, opt: Optimum, t0: float | None = None) -> ModelCalibration:
+    """The :class:`~cosserat.calibration.result.ModelCalibration` of the optimum ``opt`` of
+    ``s``: the estimates and their errors by the one identifiability rule, the field fits, the
+    warnings (what :func:`calibrate_model` returns; ``cosserat.calibration.single`` calls it on
+    a prepared setup). ``t0``: the ``time.perf_counter()`` at the start, for ``seconds``."""
+    model = s.model
+    t0 = time.perf_counter() if t0 is None else t0
     estimates, flat, corr, cov = _estimates(s, opt)
     estimates.update(_derived(model, s, opt, cov, estimates))
     predictions = s.predict(opt.theta)
@@ -667,4 +681,4 @@ def calibrate(
     )
 
 
-__all__ = ["COMPARISON", "calibrate", "calibrate_model"]
+__all__ = ["COMPARISON", "assemble", "calibrate", "calibrate_model"]

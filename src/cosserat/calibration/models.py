@@ -129,13 +129,14 @@ class Model:
 
     @property
     def has_spin(self) -> bool:
-        """The rheology's own spin field (the Cosserat model's)."""
-        return self.name == "cosserat"
+        """The rheology's own spin field (the Cosserat model's: ``couple_stresses``)."""
+        return bool(RHEOLOGIES[self.name].couple_stresses)
 
     @property
     def rate_dependent(self) -> bool:
-        """Needs the wall's inertial number I_w (mu(I), NGF)."""
-        return self.name != "cosserat"
+        """Needs the wall's inertial number I_w (mu(I), NGF: the rheology's
+        ``rate_dependent``)."""
+        return bool(RHEOLOGIES[self.name].rate_dependent)
 
     def fields(self) -> tuple[str, ...]:
         """The measured fields this model predicts (:data:`~cosserat.calibration.data.FIELDS`)."""
@@ -196,6 +197,9 @@ class Model:
                 params["delta_lower"] = angle(float(values[("roughness", "fixed")]))
                 params["K_lower"] = float(values[("K", "fixed")])
             return make_problem("cosserat", run.cell, params)
+        if not self.rate_dependent:
+            params.update(material)
+            return make_problem(self.name, run.cell, params)
         if run.I_w is None:
             raise ParameterError(
                 f"run {run.name}: {self.name} needs the wall's inertial number I_w, and the "

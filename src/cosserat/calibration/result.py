@@ -73,6 +73,7 @@ class Estimate:
     derived: bool = False
     scale: float = 1.0
     jackknife: tuple[float, float, float] | None = None
+    interval: tuple[float, float] | None = None
 
     @property
     def stderr_scaled(self) -> float | None:
@@ -98,6 +99,7 @@ class Estimate:
             "reason": self.reason or None,
             "meaning": self.meaning,
             "fit_range": list(self.fit_range) if self.fit_range else None,
+            "interval": None if self.interval is None else [_num(x) for x in self.interval],
         }
 
 
@@ -312,6 +314,17 @@ class ModelCalibration:
             {"model": self.model, "parameter": n, **e.to_dict()} for n, e in self.parameters.items()
         ]
 
+    def to_dataframe(self) -> Any:
+        """One row per parameter (pandas), as :meth:`Calibration.to_dataframe` gives them."""
+        return _dataframe(self.parameter_rows())
+
+    def to_json(self, path: str | Path | None = None, indent: int | None = 1) -> str:
+        """``to_dict()`` as JSON text (no NaN), written to ``path`` if given."""
+        text = json.dumps(self.to_dict(), indent=indent, allow_nan=False)
+        if path is not None:
+            write_text(path, text + "\n")
+        return text
+
 
 @dataclass(frozen=True)
 class Calibration:
@@ -449,16 +462,19 @@ class Calibration:
 
     def to_dataframe(self) -> Any:
         """One row per model and parameter (pandas; ``pip install pandas``)."""
-        try:
-            import pandas as pd
-        except ImportError:  # pragma: no cover - pandas is in the notebook and test extras
-            from ..errors import MethodNotAvailableError
+        return _dataframe([row for m in self.models for row in m.parameter_rows()])
 
-            raise MethodNotAvailableError(
-                "to_dataframe needs pandas: pip install 'cosserat-granular[notebook]'"
-            ) from None
-        rows = [row for m in self.models for row in m.parameter_rows()]
-        return pd.DataFrame(rows)
+
+def _dataframe(rows: list[dict[str, Any]]) -> Any:
+    try:
+        import pandas as pd
+    except ImportError:  # pragma: no cover - pandas is in the notebook and test extras
+        from ..errors import MethodNotAvailableError
+
+        raise MethodNotAvailableError(
+            "to_dataframe needs pandas: pip install 'cosserat-granular[notebook]'"
+        ) from None
+    return pd.DataFrame(rows)
 
 
 def _run_dict(run: RunData) -> dict[str, Any]:

@@ -34,7 +34,10 @@ def _add_data_model(p: argparse.ArgumentParser) -> None:
         help="measured profile: CSV of distance_d (from the moving wall [d_p]), u_over_uw "
         "[-], optional u_err [-], header lines such as '# eps: 0.05' (docs/measurements.md)",
     )
-    g = p.add_argument_group("the cell (command line > --preset > the file's header > defaults)")
+    g = p.add_argument_group(
+        "the cell (command line > --preset > the file's header > defaults; fit: what the "
+        "header states wins, with a warning where the command line disagrees)"
+    )
     g.add_argument(
         "--preset",
         choices=PRESETS,
@@ -134,11 +137,6 @@ def data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     return measured, model_problem(args.model, geometry, values, extra)
 
 
-def _units(model: str, problem: Any) -> dict[str, str]:
-    """Units of the parameters of ``problem`` (for the tables), from their declarations."""
-    return {k: p.unit for k, p in problem.declared().items()}
-
-
 def _figure(comparison: Any, title: str, path: str) -> None:
     from ..viz.plotting import comparison_plot
 
@@ -217,12 +215,11 @@ def cmd_compare(args: argparse.Namespace) -> None:
 
 def _local_comparison(measured: Any, problem: Any, args: argparse.Namespace, opts: dict) -> Any:
     """compare() for any registered rheology: the model as it is (no free parameter)."""
-    from ..analysis.ranking import fit_model
+    from ..analysis.fitting import compare
 
     if args.method != "numerical":
         raise UsageError(f"--model {args.model}: compare uses --method numerical")
-    fitted = fit_model(measured, problem, free=[], grid=0, **opts)
-    return fitted.comparison(measured)
+    return compare(problem, measured, method="numerical", **opts)
 
 
 def _error_text(stderr: Any, reason: str | None = None) -> str:
@@ -233,7 +230,7 @@ def _error_text(stderr: Any, reason: str | None = None) -> str:
 
 def cmd_fit_models(args: argparse.Namespace) -> None:
     """``fit --models a,b,...``: fit each model and rank them (chi^2, AIC, BIC)."""
-    from ..analysis.ranking import rank_models
+    from ..calibration.single import rank_models
 
     names = [m.strip() for m in args.models.split(",") if m.strip()]
     if not names:
@@ -298,89 +295,71 @@ def cmd_fit_models(args: argparse.Namespace) -> None:
 
 
 def cmd_fit(args: argparse.Namespace) -> None:
+    """``fit``: a calibration of one run (``cosserat.calibration.single.fit``)."""
+    import warnings
+
+    from ..calibration.single import CellMismatchWarning, fit
+
     if args.models:
         cmd_fit_models(args)
         return
     measured, problem = data_problem(args)
     free = [f.strip() for f in args.free.split(",") if f.strip()] if args.free else None
     opts = {} if args.rtol is None else {"rtol": args.rtol}
-    units = _units(args.model, problem)
-    if args.model == params.DEFAULT_MODEL:
-        from ..analysis.fitting import fit
-
-        bar = progress_messages("fit")
-        try:
+    cosserat = args.model == params.DEFAULT_MODEL
+    if not cosserat and args.method != "numerical":
+        raise UsageError(f"--model {args.model}: fit uses --method numerical")
+    bar = progress_messages("fit")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", CellMismatchWarning)  # among the result's warnings
             result = fit(
                 measured,
                 problem,
-                free=free or ["delta", "K"],
+                free=free,
                 method=args.method,
+                interval_for=("delta",) if cosserat else (),
                 progress=bar,
                 **opts,
             )
-        finally:
-            if bar is not None:
-                bar.close()  # type: ignore[attr-defined]
-        record = result.to_dict()
-        comparison, best = result.comparison, result.problem
-        rows = [
-            (
-                name,
-                par.value,
-                getattr(par, "stderr", None),
-                getattr(par, "reason", None),
-                par.interval,
-            )
-            for name, par in result.parameters.items()
-        ]
-        n_solves, warnings = result.n_solves, list(result.warnings)
-        rms, rchi2 = result.rms, result.reduced_chi2
-    else:
-        from ..analysis.ranking import fit_model
-
-        if args.method != "numerical":
-            raise UsageError(f"--model {args.model}: fit uses --method numerical")
-        fitted = fit_model(measured, problem, free=free, **opts)
-        record = fitted.to_dict()
-        comparison, best = fitted.comparison(measured), fitted.problem
-        rows = [
-            (name, est.value, est.stderr, est.reason, None)
-            for name, est in fitted.parameters.items()
-        ]
-        n_solves, warnings = fitted.solves, list(fitted.warnings)
-        rms, rchi2 = comparison.rms, fitted.reduced_chi2
-        record["rms"] = rms
+    finally:
+        if bar is not None:
+            bar.close()  # type: ignore[attr-defined]
+    record = result.to_dict()
     record["model_name"] = args.model
+    best = result.problem
+    rows = [(n, e.value, e.stderr, e.reason, e.interval, e.unit) for n, e in result.shown().items()]
     if args.plot:
-        _figure(comparison, "fit: " + best.describe(), args.plot)
+        _figure(result.comparison, "fit: " + best.describe(), args.plot)
     names = ", ".join(r[0] for r in rows)
+    rms, rchi2 = result.rms or 0.0, result.reduced_chi2
 
     def render(fmt: str) -> str:
         if fmt == "json":
             return json.dumps(record, allow_nan=False)
         if fmt == "csv":
             out = ["parameter,unit,value,stderr,interval_low,interval_high"]
-            for name, value, err, _, interval in rows:
-                cells = [name, units.get(name, ""), repr(float(value))]
+            for name, value, err, _, interval, unit in rows:
+                cells = [name, unit, repr(float(value))]
                 cells.append("" if err is None or not math.isfinite(err) else repr(float(err)))
                 cells += ["", ""] if interval is None else [repr(float(v)) for v in interval]
                 out.append(",".join(cells))
             return "\n".join(out)
         lines = [
-            f"fit of {names} (model {args.model}) to {measured.n} points ({n_solves} solves)",
+            f"fit of {names} (model {args.model}) to {measured.n} points ({result.n_solves} "
+            "solves; a calibration of one run)",
             f"best fit: {best.describe()}",
         ]
-        for name, value, err, reason, interval in rows:
-            unit = units.get(name, "")
+        for name, value, err, reason, interval, unit in rows:
             unit = f" [{unit}]" if unit and unit not in ("-", "1") else ""
             extra = "" if interval is None else f", interval [{interval[0]:.4g}, {interval[1]:.4g}]"
             lines.append(f"  {name} = {value:.5g} {_error_text(err, reason)}{unit}{extra}")
         tail = "" if rchi2 is None else f", reduced chi-square = {rchi2:.3g}"
         lines.append(f"rms(data - model) = {rms:.4g}{tail}")
-        lines += [f"warning: {w}" for w in warnings]
+        lines += [f"warning: {w}" for w in result.warnings]
         return "\n".join(lines)
 
-    meta = {k: v for k, v in record.items() if k != "parameters"}
+    meta = {k: v for k, v in record.items() if k not in ("parameters", "per_run")}
     meta["columns"] = {
         "parameter": {"meaning": "fitted parameter", "unit": ""},
         "unit": {"meaning": "its unit ('-': dimensionless)", "unit": ""},
