@@ -1,7 +1,7 @@
 """Validate the models against a corpus of measured profiles, and judge the paper's claims.
 
 For every run of a corpus (:mod:`cosserat.analysis.corpus`): fit each registered model to the
-velocity profile and rank them (:func:`cosserat.analysis.ranking.rank_models`); compare the
+velocity profile and rank them (:func:`cosserat.calibration.single.rank_models`); compare the
 measured spin with half the measured vorticity and with each fitted model's spin; measure the
 shear-layer thickness Delta from the data. Across the runs of one cell and wall at several
 gaps: the power law of Delta against H/d. Then a verdict on each of the paper's claims, in
@@ -49,7 +49,8 @@ from scipy.stats import chi2 as chi2_dist
 from .._atomic import save_figure, write_text
 from ..analysis.corpus import Corpus, Run, read_corpus, usable
 from ..analysis.gap import PAPER_SLOPES, SlopeFit, power_law_slope
-from ..analysis.ranking import Ranking, moving_wall, rank_models
+from ..analysis.fitting import moving_wall
+from ..calibration.single import Ranking, rank_models
 from ..config import DEFAULT_F
 from ..errors import CosseratError, ParameterError
 from ..model.constitutive import FloatArray
