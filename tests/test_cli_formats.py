@@ -216,8 +216,11 @@ def test_cell_by_wall_speed_text_csv_and_depth(capsys, tmp_path):
     ("extra", "needle"),
     [
         (["--rotation-rate", "1", "--depth", "0.2"], "--depth must satisfy 0 < depth <= fill"),
-        (["--rotation-rate", "1", "--wall-speed", "1"], "not allowed with argument"),
-        ([], "one of the arguments --rotation-rate --wall-speed is required"),
+        (
+            ["--rotation-rate", "1", "--wall-speed", "1"],
+            "give --rotation-rate or --wall-speed, not",
+        ),
+        ([], "the couette cell needs --rotation-rate (or --wall-speed)"),
         (["--wall-speed", "-1"], "--wall-speed must be > 0 m/s"),
     ],
 )
