@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 import warnings
 from typing import Any
@@ -129,7 +130,13 @@ def _lab_cell(args: argparse.Namespace) -> LabCell:
         extra = {"normal_stress": args.normal_stress, "centre_speed": args.centre_speed}
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        lab = LAB_CELLS[kind](**common, **extra)
+        try:
+            lab = LAB_CELLS[kind](**common, **extra)
+        except ParameterError as exc:  # the API's names -> the flags
+            text = str(exc)
+            for name in sorted({**common, **extra}, key=len, reverse=True):
+                text = re.sub(rf"(?<![\w-]){name}\b", _flag(name), text)
+            raise ParameterError(text) from None
     for w in caught:
         print(f"cosserat: warning: {' '.join(str(w.message).split())}", file=sys.stderr)
     return lab
@@ -165,7 +172,15 @@ def compute(args: argparse.Namespace) -> tuple[dict[str, Any], Any, LabCell]:
         raise UsageError(
             f"--param {', '.join(taken)}: computed from the cell in SI units here, not given"
         )
-    problem = model_problem(model, kind, given, extra)
+    try:
+        problem = model_problem(model, kind, given, extra)
+    except ParameterError as exc:
+        if "I_w" in given and str(exc).startswith("I_w "):
+            raise ParameterError(
+                f"the cell's inertial number I_w = V d_p / (H sqrt(p / rho_p)) = "
+                f"{given['I_w']:.4g} is out of the range of {model}: {exc}"
+            ) from None
+        raise
     profile = solve(problem, method=args.method, points=args.points, **solver_options(args))
     results = lab.results(profile, depth)
     record: dict[str, Any] = {

@@ -18,6 +18,7 @@ def cmd_sweep(args: argparse.Namespace) -> None:
     out = args.out or spec.output or str(Path(args.spec).with_suffix(".csv"))
     check_table_format(out)
     files.check_output_file(out, "--out" if args.out else "the sweep table")
+    files.make_folder_of(out, "--out" if args.out else "the sweep table")
     start = time.perf_counter()
     set_interrupt_hint(
         f"the finished rows are in {journal_path(out)}; run the same command with --resume to "
