@@ -200,22 +200,22 @@ class LabCell:
 
     @property
     def d_p(self) -> float:
-        """Deprecated: :attr:`grain_diameter` [m]."""
+        """Deprecated: ``grain_diameter`` [m]."""
         return self._old("d_p")
 
     @property
     def rho_p(self) -> float:
-        """Deprecated: :attr:`density` [kg/m^3]."""
+        """Deprecated: ``density`` [kg/m^3]."""
         return self._old("rho_p")
 
     @property
     def nu(self) -> float:
-        """Deprecated: :attr:`solids_fraction` [-]."""
+        """Deprecated: ``solids_fraction`` [-]."""
         return self._old("nu")
 
     @property
     def g(self) -> float:
-        """Deprecated: :attr:`gravity` [m/s^2]."""
+        """Deprecated: ``gravity`` [m/s^2]."""
         return self._old("g")
 
     # ----------------------------------------------------------------- groups
@@ -499,7 +499,7 @@ class CouetteCell(LabCell):
 
     @property
     def R_i(self) -> float:
-        """Deprecated: :attr:`inner_radius` [m]."""
+        """Deprecated: ``inner_radius`` [m]."""
         return self._old("R_i")
 
     @property

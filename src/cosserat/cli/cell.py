@@ -132,14 +132,19 @@ def _lab_cell(args: argparse.Namespace) -> LabCell:
         warnings.simplefilter("always")
         try:
             lab = LAB_CELLS[kind](**common, **extra)
-        except ParameterError as exc:  # the API's names -> the flags
-            text = str(exc)
-            for name in sorted({**common, **extra}, key=len, reverse=True):
-                text = re.sub(rf"(?<![\w-]){name}\b", _flag(name), text)
-            raise ParameterError(text) from None
+        except ParameterError as exc:
+            raise ParameterError(_flags(str(exc))) from None
     for w in caught:
         print(f"cosserat: warning: {' '.join(str(w.message).split())}", file=sys.stderr)
     return lab
+
+
+def _flags(text: str) -> str:
+    """A message of :mod:`cosserat.analysis.cell` with its names as the flags."""
+    for name in sorted(UNITS, key=len, reverse=True):
+        if "_" in name or name in ("gap", "density", "gravity", "depth"):
+            text = re.sub(rf"(?<![\w-]){name}\b", _flag(name), text)
+    return text
 
 
 def _missing(kind: str, names: list[str]) -> str:
@@ -165,7 +170,10 @@ def compute(args: argparse.Namespace) -> tuple[dict[str, Any], Any, LabCell]:
                 f"with depth below the free surface); got {depth:g}"
             )
     given = option_values(args, lab.eps)
-    given.update(lab.values(rate_dependent, depth))
+    try:
+        given.update(lab.values(rate_dependent, depth))
+    except ParameterError as exc:
+        raise ParameterError(_flags(str(exc))) from None
     given["geometry"] = kind
     taken = sorted(k for k in extra if k in lab.values(rate_dependent, depth) or k == "I_w")
     if taken:
