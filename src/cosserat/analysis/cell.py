@@ -17,7 +17,9 @@ one ``Problem(cell, rheology)`` every route solves. The groups it computes, neve
 The results use one vocabulary in Python and on the command line (``cosserat cell``):
 ``grain_diameter`` (``--grain-diameter``), ``density`` (``--density``), ``gap``,
 ``solids_fraction``, ``gravity``, ... The paper's symbols ``d_p``, ``rho_p``, ``R_i``, ``nu``
-and ``g`` are accepted as deprecated keyword aliases for one release.
+and ``g`` are accepted as deprecated keyword aliases for one release. ``density`` is the
+intrinsic density of the grains, the paper's rho_p and the rho_s of the mu(I) and NGF
+literature (``I = gamma_dot d / sqrt(p / rho_s)``): one quantity, one name here.
 
 Couette torque. In a Cosserat medium the torque per unit height carried across the cylinder
 of radius r is not the shear stress alone: with the traction and the couple per unit area on

@@ -403,7 +403,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         "--density",
         type=float,
         metavar="KG_M3",
-        help="intrinsic density of the grains [kg/m^3] (glass: about 2500)",
+        help=(
+            "intrinsic density of the grains, rho_p (the rho_s of mu(I) and NGF) [kg/m^3] "
+            "(glass: about 2500)"
+        ),
     )
     g.add_argument(
         "--gap",
