@@ -242,3 +242,18 @@ def test_models_and_help_state_the_defaults_the_commands_use():
     assert '"I_w"' in models.stdout and "0.01" in models.stdout
     channel = cosserat("solve", "channel", "--help").stdout
     assert "moving wall" not in channel
+
+
+@pytest.mark.parametrize(
+    ("body", "needle"),
+    [
+        ("distance_d,u_over_uw\n", "no data rows after the column header (line 1)"),
+        ("distance_d,u_over_uw\n-1,0.5\n",
+         "line 2, column 'distance_d': distances from the wall must be >= 0; got -1"),
+    ],
+)  # fmt: skip
+def test_csv_errors_say_what_is_wrong_with_plain_numbers(tmp_path, body, needle):
+    data = tmp_path / "d.csv"
+    data.write_text(body)
+    err = one_error_line(cosserat("compare", str(data), "--geometry", "plane", "--eps", "0.05"))
+    assert needle in err and "1-D arrays" not in err
