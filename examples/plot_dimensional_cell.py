@@ -14,10 +14,10 @@ from cosserat import Material, Wall, solve
 from cosserat.cell import CouetteCell
 
 cell = CouetteCell(
-    rho_p=2500,  # grain density [kg/m^3]
-    d_p=1e-3,  # grain diameter [m]
+    density=2500,  # grain density [kg/m^3]
+    grain_diameter=1e-3,  # grain diameter [m]
     gap=0.02,  # [m]
-    R_i=0.02,  # inner radius [m]
+    inner_radius=0.02,  # inner radius [m]
     fill_depth=0.1,  # [m]
     rotation_rate=0.5,  # inner cylinder [rad/s]
 )

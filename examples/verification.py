@@ -121,7 +121,13 @@ def couette_and_cell() -> None:
         print(f"   eps {eps:g}: plane B = 1 {row[0]:.4f}, Couette Ri = 1 {row[1]:.4f}")
     print(f"   x_hat(f = 0.05) = {xi_hat_at_fraction(0.05):.6f}")
     cell = CouetteCell(
-        rho_p=2500.0, d_p=1e-3, gap=0.02, R_i=0.02, fill_depth=0.1, rotation_rate=0.5, nu=0.6
+        density=2500.0,
+        grain_diameter=1e-3,
+        gap=0.02,
+        inner_radius=0.02,
+        fill_depth=0.1,
+        rotation_rate=0.5,
+        solids_fraction=0.6,
     )
     prof = solve(cell.problem(MAT, Wall(20.0, 0.5)))
     T = cell.torque_density(prof, depth=0.1)

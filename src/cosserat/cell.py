@@ -1,6 +1,6 @@
 """Former home of :class:`CouetteCell`; kept so that ``from cosserat.cell import CouetteCell``
-works. The class lives in :mod:`cosserat.analysis.cell`."""
+works. The laboratory cells live in :mod:`cosserat.analysis.cell`."""
 
-from .analysis.cell import CouetteCell
+from .analysis.cell import ChannelCell, CouetteCell, PlaneCell
 
-__all__ = ["CouetteCell"]
+__all__ = ["ChannelCell", "CouetteCell", "PlaneCell"]

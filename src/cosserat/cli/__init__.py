@@ -1,7 +1,8 @@
 """The ``cosserat`` command line: a thin layer over the API (no physics here).
 
 Bad input (a :class:`~cosserat.errors.CosseratError`, or a usage error) exits with status 2 and
-one line on stderr saying what is wrong; anything else is a bug and shows as one (a traceback,
+one line on stderr, ``cosserat: error: ...``, saying what is wrong (every command, every kind
+of bad input: one prefix); anything else is a bug and shows as one (a traceback,
 exit status 1). Ctrl-C and SIGTERM stop the command as cleanly (worker processes stopped,
 temporary files removed, finished outputs kept) and exit with one line and the shell's status,
 130 (128 + SIGINT) or 143 (128 + SIGTERM). A full disk (or quota, or read-only file system)
@@ -50,7 +51,9 @@ def make_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="cosserat", description=__doc__.splitlines()[0].replace("``", ""))
     parser.add_argument("--version", action="version", version=f"cosserat {__version__}")
     add_quiet(parser)
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    sub = parser.add_subparsers(
+        dest="command", required=False, parser_class=Parser, metavar="COMMAND"
+    )
     for module in COMMANDS:
         module.add_parsers(sub)
     return parser
@@ -70,12 +73,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         set_interrupt_hint(None)
         try:
             args = parser.parse_args(argv)
+            if getattr(args, "command", None) is None:  # bare `cosserat`: the command list
+                parser.print_help()
+                return 0
             set_quiet(getattr(args, "quiet", False))
             if getattr(args, "f", None) is not None and not 0.0 < args.f < 1.0:
                 raise UsageError(f"--f must satisfy 0 < f < 1; got {args.f:g}")
             args.func(args)
         except UsageError as exc:
-            print(" ".join(str(exc).split()), file=sys.stderr)
+            print(f"cosserat: error: {' '.join(str(exc).split())}", file=sys.stderr)
             return 2
         except CosseratError as exc:  # a model or input problem; anything else is a bug
             message = " ".join(str(exc).split()) or type(exc).__name__

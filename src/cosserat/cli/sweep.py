@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 
 from . import files
-from .common import positive_int, progress_bar, set_interrupt_hint
+from .common import add_quiet, positive_int, progress_bar, set_interrupt_hint
 
 
 def cmd_sweep(args: argparse.Namespace) -> None:
@@ -18,6 +18,7 @@ def cmd_sweep(args: argparse.Namespace) -> None:
     out = args.out or spec.output or str(Path(args.spec).with_suffix(".csv"))
     check_table_format(out)
     files.check_output_file(out, "--out" if args.out else "the sweep table")
+    files.make_folder_of(out, "--out" if args.out else "the sweep table")
     start = time.perf_counter()
     set_interrupt_hint(
         f"the finished rows are in {journal_path(out)}; run the same command with --resume to "
@@ -36,6 +37,18 @@ def cmd_sweep(args: argparse.Namespace) -> None:
     states = ("ok", "no-solution", "error", "invalid")
     counts = {s: sum(r.get("status") == s for r in rows) for s in states}
     reused = f", {run.reused} reused from an earlier run" if run.reused else ""
+    if args.format == "json":
+        import json
+
+        summary = {
+            "cases": len(rows),
+            "seconds": round(time.perf_counter() - start, 3),
+            "out": out,
+            "status": counts,
+            "reused": run.reused,
+        }
+        print(json.dumps(summary))
+        return
     print(
         f"{len(rows)} cases in {time.perf_counter() - start:.1f} s -> {out} "
         f"({', '.join(f'{k}: {v}' for k, v in counts.items())}{reused})"
@@ -74,4 +87,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         default=None,
         help="Dask scheduler address (tcp://host:port) instead of local processes",
     )
+    sw.add_argument(
+        "--format",
+        choices=("text", "json"),
+        default="text",
+        help=(
+            "the summary on stdout: text, one line (default), or json (cases, seconds, out, "
+            "status counts, reused); the table's format is --out's suffix"
+        ),
+    )
+    add_quiet(sw)
     sw.set_defaults(func=cmd_sweep)

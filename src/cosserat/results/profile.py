@@ -329,14 +329,16 @@ class Profile:
         return _finite(out)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready record: parameters, columns (cell's own names), derived wall quantities,
-        what each column means, and diagnostics."""
+        """JSON-ready record: parameters, columns (cell's own names), derived wall quantities
+        (``Delta``, as in every command's JSON; ``thickness``, its name in 0.1, is kept one
+        release), what each column means, and diagnostics."""
         out: dict[str, Any] = {
             "problem": self.problem.parameters()["geometry"],
             "parameters": self.problem.parameters(),
         }
         out.update({k: v.tolist() for k, v in self.columns().items()})
-        out["thickness"] = shear_layer_thickness(self)
+        out["Delta"] = shear_layer_thickness(self)
+        out["thickness"] = out["Delta"]  # the key of 0.1, kept one release (CHANGELOG)
         out["wall_slip"] = wall_slip(self)
         out["wall_omega"] = wall_omega(self)
         out["columns"] = self.column_meanings()
