@@ -60,8 +60,8 @@ def eps_param() -> Any:
         closed=(True, True),
         role="cell",
         reason=(
-            "at least two grain diameters across the gap, at most 1e8 (below eps = 1e-8 the "
-            "solvers' answers are not verified)"
+            "at least two grain diameters across the gap; below 1e-8 the solvers' answers are "
+            "not verified"
         ),
         source="the run's geometry",
     )
@@ -81,7 +81,11 @@ def wall_inertial_number_param(where: str = "moving wall") -> Any:
         role="drive",
         optional=True,
         field_default=None,
-        reason="dense flow, the range of mu(I)",
+        reason=(
+            "dense flow, the range of mu(I); mu(I) and NGF also need I_w >= 1e-7 mu_s I_0/"
+            "(mu_2 - mu_s) (NGF: 1e-7 mu_s/b), or the flow cannot be told from rest in double "
+            "precision"
+        ),
         source="slow, dense shear (mu(I) is calibrated for I up to about 0.5)",
     )
 

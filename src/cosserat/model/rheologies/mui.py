@@ -65,6 +65,7 @@ def friction_spread() -> tuple[Constraint, ...]:
         ),
     )
 
+
 REFERENCE = (
     "GDR MiDi, On dense granular flows, Eur. Phys. J. E 14 (2004) 341-365; Jop, Forterre & "
     "Pouliquen, A constitutive law for dense granular flows, Nature 441 (2006) 727-730"
