@@ -164,6 +164,18 @@ def test_the_airy_layer_refuses_where_it_misses_its_slip_condition():
     assert 0.0 < max(abs(v) for v in fine.diagnostics.bc_errors.values()) < AIRY_BC_TOL
 
 
+def test_the_channel_airy_layer_refuses_where_it_misses_its_slip_condition():
+    values = {"eps": 0.015, "L": 0.6, "K": 1.2, "delta": "fully-rough"}
+    problem = make_problem("cosserat", "channel", values)
+    with pytest.raises(MethodNotAvailableError, match="misses the boundary condition"):
+        solve(problem, method="asymptotic")
+    fine = solve(
+        make_problem("cosserat", "channel", {"eps": 1e-3, "delta": "fully-rough"}),
+        method="asymptotic",
+    )
+    assert 0.0 < max(abs(v) for v in fine.diagnostics.bc_errors.values()) < AIRY_BC_TOL
+
+
 def test_the_quick_plot_draws_round_off_as_zero():
     import matplotlib
 
