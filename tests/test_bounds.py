@@ -56,6 +56,13 @@ class Span:
         validate(self)
 
 
+def test_the_declarations_say_why_a_bound_is_there():
+    eps = Plane.declared()["eps"].to_dict()
+    assert eps["bounds"] == "1e-08 <= eps <= 0.5" and "not verified" in eps["reason"]
+    assert [c.text for c in constraints(VerticalChannel)] == ["B nu >= 0.0001"]
+    assert [c.text for c in constraints(MuI)] == [c.text for c in constraints(NGF)]
+
+
 def test_a_constraint_ties_two_fields_and_names_the_first():
     assert constraints(Span) == Span.constraints and Span(0.0, 1.0).hi == 1.0
     with pytest.raises(ParameterError) as info:

@@ -238,6 +238,7 @@ class Param:
             "unit": self.unit,
             "default": None if not self.has_default else self.default,
             "bounds": self.interval(),
+            "reason": self.reason,
             "fit_range": list(self.fit_range) if self.fit_range else None,
             "scale": self.scale,
             "role": self.role,
