@@ -8,7 +8,9 @@ registries), so that the docs cannot disagree with the code::
     .. cosserat-parameters:: cell plane            (the cell's parameters)
     .. cosserat-parameters:: all                   (every rheology, then every cell)
 
-Columns: key, meaning, unit, default, bounds, fit range (and scale), role, source.
+Columns: key, meaning, unit, default, bounds (and why), fit range (and scale), role, source;
+below a table, the constraints that tie its parameters together
+(:class:`cosserat.model.declare.Constraint`), each with why.
 """
 
 from __future__ import annotations
@@ -41,7 +43,8 @@ def _rows(params: dict[str, Any]) -> list[list[str]]:
                 p.meaning + choices + cells,
                 p.unit or " ",
                 p.default_text() if p.has_default else "required",
-                p.interval() or (", ".join(p.choices) if p.choices else "-"),
+                (p.interval() + (f" ({p.reason})" if p.reason and p.interval() else ""))
+                or (", ".join(p.choices) if p.choices else "-"),
                 fit,
                 p.role,
                 p.source or "-",
@@ -50,8 +53,9 @@ def _rows(params: dict[str, Any]) -> list[list[str]]:
     return rows
 
 
-def table_lines(title: str, params: dict[str, Any]) -> list[str]:
-    """An rST list-table of ``params`` (key -> declaration)."""
+def table_lines(title: str, params: dict[str, Any], owner: Any = None) -> list[str]:
+    """An rST list-table of ``params`` (key -> declaration), then the constraints the class
+    ``owner`` declares."""
     head = ["key", "meaning", "unit", "default", "bounds", "fit range", "role", "source"]
     lines = [
         f".. list-table:: {title}",
@@ -63,6 +67,10 @@ def table_lines(title: str, params: dict[str, Any]) -> list[str]:
         lines.append(f"   * - {_cell_text(row[0])}")
         lines += [f"     - {_cell_text(c)}" for c in row[1:]]
     lines.append("")
+    from cosserat.model.declare import constraints
+
+    for c in constraints(owner) if owner is not None else ():
+        lines += [f"Constraint: ``{c.text}`` ({c.reason}).", ""]
     return lines
 
 
@@ -72,10 +80,12 @@ def tables(what: str, name: str | None) -> list[str]:
 
     if what == "rheology":
         law = RHEOLOGIES[name]
-        return table_lines(f"Parameters of the {law.title} (``{name}``)", law.declared())
+        return table_lines(f"Parameters of the {law.title} (``{name}``)", law.declared(), law)
     if what == "cell":
         cell = CELLS[name]
-        return table_lines(f"Parameters of the {cell.title} cell (``{name}``)", cell.declared())
+        return table_lines(
+            f"Parameters of the {cell.title} cell (``{name}``)", cell.declared(), cell
+        )
     lines: list[str] = []
     for key in RHEOLOGIES:
         lines += tables("rheology", key)

@@ -166,7 +166,7 @@ def test_thickness_reports_eps_without_solution(capsys):
     [
         (
             ["solve", "plane", "--eps", "0.7"],
-            "eps (grain diameter over gap, d_p/H) must satisfy 0 < eps <= 0.5",
+            "eps (grain diameter over gap, d_p/H) must satisfy 1e-08 <= eps <= 0.5",
         ),
         (["solve", "plane", "--eps", "0.1", "--delta", "40"], "tan(delta) <= sin(phi)"),
         (

@@ -35,7 +35,7 @@ def test_models_json_is_the_declarations(capsys):
     assert phi["unit"] == "deg" and phi["default"] == 28.5 and not phi["required"]
     assert phi["fit_range"] == [10.0, 60.0] and phi["role"] == "material" and phi["source"]
     eps = next(r for r in models["mui"]["cells"]["couette"]["parameters"] if r["name"] == "eps")
-    assert eps["required"] and eps["unit"] == "-" and eps["bounds"] == "0 < eps <= 0.5"
+    assert eps["required"] and eps["unit"] == "-" and eps["bounds"] == "1e-08 <= eps <= 0.5"
     for name, model in models.items():
         for cell, c in model["cells"].items():
             keys = [r["name"] for r in c["parameters"]] + c["model_parameters"]

@@ -35,8 +35,8 @@ MAT = Material(28.5)
             r"A \(.*\) must satisfy -1 < A < 1 \(the quadratic form .* must be positive\); got -1",
         ),
         ({"phi": 30.0, "A": 1.0}, r"A \(.*\) must satisfy -1 < A < 1 .*; got 1"),
-        ({"phi": 30.0, "L": 0.0}, r"L \(.*\) must satisfy 0 < L; got 0"),
-        ({"phi": 30.0, "L": -2.0}, r"L \(.*\) must satisfy 0 < L; got -2"),
+        ({"phi": 30.0, "L": 0.0}, r"L \(.*\) must satisfy 0.001 <= L <= 10000 .*; got 0"),
+        ({"phi": 30.0, "L": -2.0}, r"L \(.*\) must satisfy 0.001 <= L <= 10000 .*; got -2"),
     ],
 )
 def test_material_bounds(kwargs, pattern):
@@ -71,9 +71,9 @@ def test_wall_rougher_than_fully_rough_is_rejected_with_the_bound():
     [
         (
             {"eps": 0.0},
-            r"eps \(grain diameter over gap, d_p/H\) must satisfy 0 < eps <= 0.5.*got 0",
+            r"eps \(grain diameter over gap, d_p/H\) must satisfy 1e-08 <= eps <= 0.5.*got 0",
         ),
-        ({"eps": 0.6}, r"eps \(.*\) must satisfy 0 < eps <= 0.5.*got 0.6"),
+        ({"eps": 0.6}, r"eps \(.*\) must satisfy 1e-08 <= eps <= 0.5.*got 0.6"),
         (
             {"eps": 0.1, "B": -1.0},
             r"B \(gravity parameter rho_p g H / N.*\) must satisfy 0 <= B <= 1e\+06.*got -1",

@@ -38,7 +38,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import numbers
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -238,6 +238,7 @@ class Param:
             "unit": self.unit,
             "default": None if not self.has_default else self.default,
             "bounds": self.interval(),
+            "reason": self.reason,
             "fit_range": list(self.fit_range) if self.fit_range else None,
             "scale": self.scale,
             "role": self.role,
@@ -245,6 +246,52 @@ class Param:
             "choices": list(self.choices),
             "cells": list(self.cells),
         }
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """A declared bound that ties two or more fields of one class (``mu_2 - mu_s >= 1e-3``),
+    checked by :func:`validate` after every field's own bounds.
+
+    A class declares its constraints in a class attribute ``constraints`` (a tuple of
+    :class:`Constraint`); :func:`constraints` reads them, the docs' parameter tables list them.
+
+    Attributes
+    ----------
+    names : tuple of str
+        The fields the constraint reads (the first is the one the message blames); the
+        constraint is skipped while any of them is None.
+    text : str
+        The bound as users read it, in the fields' command-line keys: ``"mu_2 - mu_s >= 1e-3"``.
+    holds : callable
+        ``holds(*values)`` (in the order of ``names``): True where the values are admissible.
+    reason : str
+        Why the bound is what it is (one line, quoted by the error).
+    """
+
+    names: tuple[str, ...]
+    text: str
+    holds: Callable[..., bool]
+    reason: str
+
+    def check(self, obj: Any) -> None:
+        """Raise :class:`~cosserat.errors.ParameterError` unless the constraint holds on
+        ``obj`` (or some field it reads is None)."""
+        got = [getattr(obj, n) for n in self.names]
+        if any(v is None for v in got) or self.holds(*got):
+            return
+        keys = _declared(obj)
+        pairs = zip(self.names, got, strict=True)
+        shown_values = ", ".join(f"{keys[n].cli_key if n in keys else n} = {v:g}" for n, v in pairs)
+        first = keys.get(self.names[0])
+        what = f"{first.cli_key} ({first.meaning})" if first else self.names[0]
+        raise ParameterError(f"{what} must satisfy {self.text} ({self.reason}); got {shown_values}")
+
+
+def constraints(cls: Any) -> tuple[Constraint, ...]:
+    """The :class:`Constraint` s declared by the class ``cls`` (or an instance's class)."""
+    klass = cls if isinstance(cls, type) else type(cls)
+    return tuple(getattr(klass, "constraints", ()))
 
 
 _SAME: Any = object()
@@ -298,11 +345,15 @@ def declarations(cls: Any) -> dict[str, Param]:
 def validate(obj: Any, skip: tuple[str, ...] = ()) -> None:
     """Check and normalise every declared field of the frozen dataclass ``obj`` in place
     (:meth:`Param.check`); call it first in ``__post_init__``, then check what ties fields
-    together."""
+    together; the class's declared :func:`constraints` are checked last (those that read a
+    field in ``skip`` are left to the caller)."""
     for name, p in _declared(obj).items():
         if name in skip:
             continue
         object.__setattr__(obj, name, p.check(getattr(obj, name), name))
+    for c in constraints(obj):
+        if not any(n in skip for n in c.names):
+            c.check(obj)
 
 
 def values(obj: Any) -> dict[str, Any]:
@@ -318,7 +369,9 @@ def table(params: Mapping[str, Param]) -> list[dict[str, Any]]:
 __all__ = [
     "REQUIRED",
     "ROLES",
+    "Constraint",
     "Param",
+    "constraints",
     "declarations",
     "param",
     "table",

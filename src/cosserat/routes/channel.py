@@ -32,6 +32,7 @@ from ..results.diagnostics import residuals
 from ..results.profile import Fields, Profile
 from .airy import I_INFINITY, airy_layer, inner_couple_stress, xi_hat_at_fraction
 from .assemble import make_profile
+from .asymptotic import require_boundary_conditions
 from .numerical import WallResult, tolerances
 
 START_OFFSET = 1e-4
@@ -455,8 +456,9 @@ def solve_asymptotic(
     Raises
     ------
     MethodNotAvailableError
-        The layer is not thin (eps Delta > 0.1 of the width), or the leading-order profile
-        leaves the yield surface.
+        The layer is not thin (eps Delta > 0.1 of the width), the leading-order profile
+        leaves the yield surface, or at fully rough walls the Airy layer misses a boundary
+        condition by more than :data:`~cosserat.routes.asymptotic.AIRY_BC_TOL`.
     """
     thickness = problem.eps * asymptotic_thickness(problem)
     if thickness > THIN_LAYER:
@@ -471,7 +473,7 @@ def solve_asymptotic(
         else "exponential layer of constant thickness eps/k at the walls"
     )
     try:
-        return _finish(
+        profile = _finish(
             problem,
             _AsymptoticEvaluator(problem),
             method="asymptotic",
@@ -485,6 +487,9 @@ def solve_asymptotic(
             f"the leading-order asymptotic profile leaves the yield surface ({exc}): use "
             f"method='numerical'"
         ) from None
+    if problem.equations.is_fully_rough:
+        return require_boundary_conditions(problem.equations, profile)
+    return profile
 
 
 __all__ = [

@@ -113,12 +113,51 @@ def new_figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float
     return fig, axes
 
 
+ROUND_OFF = 1e-10
+"""A field whose largest magnitude is at most this fraction of its scale (:func:`field_scales`)
+is zero to round-off: the quick plot draws it as zero and says so [-]. The solvers' tolerances
+are 1e-8 and above, so nothing a solver resolves is this small."""
+
+
+def field_scales(profile: Profile) -> dict[str, float]:
+    """The scale each plotted field is measured against: the wall speed (1) for u, the larger
+    of |omega| and |du/dxi|/2 for the spin minus half the vorticity (a difference of the two),
+    the largest stress for the asymmetry sigma_yx - sigma_xy and the couple stress."""
+    import numpy as np
+
+    def biggest(*arrays: object) -> float:
+        values = [float(np.max(np.abs(a))) for a in arrays if a is not None and np.size(a)]
+        return max([*values, 0.0])
+
+    stress = biggest(profile.sigma_yx, profile.sigma_xy, profile.sigma_yy)
+    du = None if profile.du_dxi is None else 0.5 * np.asarray(profile.du_dxi)
+    return {
+        "u": 1.0,
+        "spin_minus_half_vorticity": biggest(profile.omega, du),
+        "asymmetry": stress,
+        "m": stress,
+        "sigma_yx": stress,
+    }
+
+
+def zero_to_round_off(values: object, scale: float) -> bool:
+    """True if every entry of ``values`` is at most :data:`ROUND_OFF` times ``scale`` in
+    magnitude (a field identically zero included)."""
+    import numpy as np
+
+    v = np.asarray(values, dtype=float)
+    return bool(v.size) and float(np.max(np.abs(v))) <= ROUND_OFF * scale
+
+
 def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
     """u, omega + du/dxi/2, sigma_yx - sigma_xy and m against xi (as the paper's figure 2).
 
     A rheology without grain spin and couple stress (its omega and m are None) has only the
     velocity and the shear stress to show: those two panels, and a note in the others that
-    the fields are absent."""
+    the fields are absent. A field zero to round-off (:func:`zero_to_round_off`) is drawn as
+    zero, and the panel says so."""
+    import numpy as np
+
     with style():
         if fig is None:
             fig, axes = new_figure(2, 2, height=5.6)
@@ -133,6 +172,7 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
         ]
         if profile.m is None:
             panels[1:] = [("sigma_yx", profile.sigma_yx), ("absent", None), ("absent", None)]
+        scales = field_scales(profile)
         for ax, (name, values) in zip(axes.ravel(), panels, strict=True):
             if values is None:
                 ax.axis("off")
@@ -141,6 +181,13 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
                     ha="center", va="center", transform=ax.transAxes,
                 )  # fmt: skip
                 continue
+            if zero_to_round_off(values, scales.get(name, 1.0)):
+                size = float(np.max(np.abs(values))) if len(values) else 0.0
+                values = np.zeros_like(values)
+                ax.text(
+                    0.5, 0.92, f"zero to round-off (|max| = {size:.1e})",
+                    ha="center", va="top", transform=ax.transAxes, fontsize=8,
+                )  # fmt: skip
             ax.plot(values, profile.xi, color="k")
             ax.set_xlabel(field_label(profile.problem, name))
             upright_ylabel(ax, field_label(profile.problem, "xi"))

@@ -20,8 +20,15 @@ import numpy as np
 from numba import njit
 
 from ..constitutive import FloatArray
+from ..declare import Constraint
 from .base import Cell, Coordinate, wall_inertial_number_param
 from .plane import gravity_param, nu_param
+
+B_NU_MIN = 1e-4
+"""Smallest B nu, twice the wall stress ratio [-]. The Cosserat channel's layer thins like B
+(Delta = 1.6e-3 grain diameters at B = 1e-4) and its residuals grow as B falls: at eps = 1e-3,
+nu = 0.6 the velocity residual is 1.7e-8 at B = 1e-4, 1.8e-7 at 1e-5, 8e-6 at 1e-6, 3.7e140 at
+1e-8; B = 1e-200 ran past 60 s and 5e-324 divided by zero (measured)."""
 
 
 @njit(cache=True, nogil=True)
@@ -38,9 +45,10 @@ class VerticalChannel(Cell):
     Parameters
     ----------
     eps : float
-        Grain diameter over the channel width d_p/H, ``0 < eps <= 0.5`` [-].
+        Grain diameter over the channel width d_p/H, ``1e-8 <= eps <= 0.5`` [-].
     B : float, optional
-        rho_p g H / N with N the wall normal stress, ``0 < B <= 1e6`` [-]: the wall stress
+        rho_p g H / N with N the wall normal stress, ``0 < B <= 1e6`` and ``B nu >= 1e-4``
+        (:data:`B_NU_MIN`) [-]: the wall stress
         ratio is B nu / 2 (the stress level). None: set by the drive, I_w for a
         rate-dependent rheology, fully mobilised wall friction (B nu = 2 tan delta) for the
         Cosserat model.
@@ -80,6 +88,15 @@ class VerticalChannel(Cell):
     reference_velocity: ClassVar[float] = 1.0
     level_name: ClassVar[str] = "B"
     peak_wall_name: ClassVar[str] = "walls"
+    constraints: ClassVar[tuple[Constraint, ...]] = (
+        Constraint(
+            ("B", "nu"),
+            f"B nu >= {B_NU_MIN:g}",
+            lambda B, nu: B * nu >= B_NU_MIN,
+            "a wall stress ratio B nu/2 below 5e-5 thins the shear layer below 1e-3 grain "
+            "diameters, where the solver's residuals exceed its tolerance",
+        ),
+    )
 
     B: float | None = gravity_param(
         None,

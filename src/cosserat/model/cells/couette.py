@@ -46,7 +46,7 @@ class Couette(Cell):
     Parameters
     ----------
     eps : float
-        Grain diameter over gap d_p/H, ``0 < eps <= 0.5`` [-].
+        Grain diameter over gap d_p/H, ``1e-8 <= eps <= 0.5`` [-].
     Ri : float, default :data:`cosserat.config.RI`
         Inner radius over gap R_i/H, ``1e-3 <= Ri <= 1e6`` [-].
     I_w : float, optional

@@ -81,7 +81,7 @@ class Plane(Cell):
     Parameters
     ----------
     eps : float
-        Grain diameter over gap d_p/H, ``0 < eps <= 0.5`` [-].
+        Grain diameter over gap d_p/H, ``1e-8 <= eps <= 0.5`` [-].
     B : float, default :data:`cosserat.config.B` (0: no gravity)
         Gravity parameter rho_p g H / N, ``0 <= B <= 1e6`` [-].
     nu : float, default :data:`cosserat.config.NU`

@@ -31,11 +31,40 @@ import numpy as np
 from ... import config
 from ...errors import NoSolutionError, ParameterError
 from ..constitutive import FloatArray
-from ..declare import param, validate
+from ..declare import Constraint, param, validate
 from .base import ANY_CELL, Equations, Rheology
 
 GAP_MIN = 1e-300
 """Smallest representable distance of the wall's stress ratio from mu_2 [-]."""
+MU_MAX = 10.0
+"""Largest friction coefficient mu_s or mu_2 (84 deg) [-]: no granular material comes near, and
+mu_2 = 1e300 divided by zero in the Couette quadrature."""
+SPREAD_MIN = 1e-4
+"""Smallest mu_2 - mu_s [-]: the span of stress ratios the rate lives in. NGF's boundary error
+grows like (mu_2 - mu_s)^-2 (1e-14 at 1e-2, 7.7e-13 at 1e-3, 6.5e-11 at 1e-4, measured on plane
+shear at eps = 1e-3) and its kernels divided by zero at mu_2 - mu_s = 1e-5."""
+EXCESS_RTOL = 1e-7
+"""Smallest relative excess (T - mu_s)/mu_s of the wall's stress ratio T over mu_s [-].
+
+The rate is proportional to the excess, computed as (mu_2 - mu_s) - (mu_2 - T) with round-off
+~1e-16 mu_2: plane shear without gravity (u = xi exactly) came out with max |u - xi| = 2e-9 at
+I_w = 1e-8, 2.3e-7 at 1e-10, 1e-4 at 1e-12, and u = 0 everywhere at 1e-15 (measured at
+eps = 1e-3, glass beads). An excess of 1e-7 mu_s keeps the profile to about 1e-9. Through
+``T - mu_s ~ (mu_2 - mu_s) I_w / I_0`` it bounds the wall speed: :attr:`MuI.I_w_min`."""
+
+
+def friction_spread() -> tuple[Constraint, ...]:
+    """The constraint ``mu_2 - mu_s >= SPREAD_MIN`` of every rheology with both (mu(I), NGF's
+    saturating law)."""
+    return (
+        Constraint(
+            ("mu_2", "mu_s"),
+            f"mu_2 - mu_s >= {SPREAD_MIN:g}",
+            lambda mu_2, mu_s: mu_2 - mu_s >= SPREAD_MIN * (1.0 - 1e-9),  # mu_s + 1e-4 passes
+            "the rate lives between mu_s and mu_2; a narrower span loses the rate to round-off",
+        ),
+    )
+
 
 REFERENCE = (
     "GDR MiDi, On dense granular flows, Eur. Phys. J. E 14 (2004) 341-365; Jop, Forterre & "
@@ -52,6 +81,24 @@ class MuIFlow(Equations):
     wall of the largest stress ratio): in distances, a layer of width 1e-300 at that wall is
     resolved.
     """
+
+    def validate(self) -> None:
+        """Refuse a drive too slow for double precision (:data:`EXCESS_RTOL`)."""
+        law, I_w, T = self.rheology, self.I_w, self.stress_ratio
+        if T is None and I_w is not None and I_w < law.I_w_min:
+            raise ParameterError(
+                f"I_w must satisfy I_w >= {EXCESS_RTOL:g} mu_s I_0/(mu_2 - mu_s) = "
+                f"{law.I_w_min:.3g}; got {I_w:g}: a slower wall puts the stress ratio within "
+                f"{EXCESS_RTOL:g} mu_s of mu_s, where the excess that drives the flow has too "
+                "few significant digits in double precision (raise I_w or lower I_0)"
+            )
+        if T is not None and law.mu_s < T < law.mu_s * (1.0 + EXCESS_RTOL):
+            raise ParameterError(
+                f"{self.cell.level_name}: the imposed stress ratio {T:.17g} is within "
+                f"{EXCESS_RTOL:g} mu_s of mu_s = {law.mu_s:.17g}, where the excess that drives "
+                "the flow has too few significant digits in double precision; impose at least "
+                f"mu_s (1 + {EXCESS_RTOL:g}) or at most mu_s"
+            )
 
     @property
     def rheology(self) -> MuI:
@@ -205,9 +252,10 @@ class MuI(Rheology):
     Parameters
     ----------
     mu_s : float, default :data:`cosserat.config.MUI_MU_S` (tan 20.9 deg)
-        Static friction coefficient, ``0 < mu_s < mu_2`` [-].
+        Static friction coefficient, ``0 < mu_s < 10`` [-].
     mu_2 : float, default :data:`cosserat.config.MUI_MU_2` (tan 32.76 deg)
-        Limiting friction coefficient as I -> infinity, ``mu_2 > mu_s`` [-].
+        Limiting friction coefficient as I -> infinity, ``mu_2 < 10`` and
+        ``mu_2 - mu_s >= 1e-4`` (:data:`SPREAD_MIN`) [-].
     I_0 : float, default :data:`cosserat.config.MUI_I0`
         Inertial number at which mu is halfway from mu_s to mu_2, ``I_0 > 0`` [-].
 
@@ -228,11 +276,13 @@ class MuI(Rheology):
     reference: ClassVar[str] = REFERENCE
     default_free: ClassVar[tuple[str, ...]] = ("mu_s", "I_w")
     equations: ClassVar[dict[str, type[Equations]]] = {ANY_CELL: MuIFlow}
+    constraints: ClassVar[tuple[Constraint, ...]] = friction_spread()
 
     mu_s: float = param(
         config.MUI_MU_S,
         "static friction coefficient",
-        bounds=(0.0, math.inf),
+        bounds=(0.0, MU_MAX),
+        reason=f"a friction angle below {math.degrees(math.atan(MU_MAX)):.0f} deg",
         fit_range=(0.05, 1.2),
         role="material",
         source=f"tan 20.9 deg: {_JOP}",
@@ -240,7 +290,8 @@ class MuI(Rheology):
     mu_2: float = param(
         config.MUI_MU_2,
         "limiting friction coefficient as I -> infinity, above mu_s",
-        bounds=(0.0, math.inf),
+        bounds=(0.0, MU_MAX),
+        reason=f"a friction angle below {math.degrees(math.atan(MU_MAX)):.0f} deg",
         fit_range=(0.06, 2.0),
         role="material",
         source=f"tan 32.76 deg: {_JOP}",
@@ -257,10 +308,13 @@ class MuI(Rheology):
 
     def __post_init__(self) -> None:
         validate(self)
-        if self.mu_2 <= self.mu_s:
-            raise ParameterError(
-                f"mu_2 must satisfy mu_2 > mu_s = {self.mu_s:g}; got {self.mu_2:g}"
-            )
+
+    @property
+    def I_w_min(self) -> float:
+        """Smallest admissible wall inertial number, ``EXCESS_RTOL mu_s I_0/(mu_2 - mu_s)``
+        (4.07e-8 for glass beads) [-]: the wall's stress ratio then exceeds mu_s by
+        :data:`EXCESS_RTOL` mu_s (to first order in I_w/I_0)."""
+        return EXCESS_RTOL * self.mu_s * self.I_0 / (self.mu_2 - self.mu_s)
 
     def friction(self, inertial_number: FloatArray) -> FloatArray:
         """mu(I) = mu_s + (mu_2 - mu_s) I/(I_0 + I) [-] for I >= 0 [-]."""
@@ -293,4 +347,13 @@ class MuI(Rheology):
         return f"mu_s = {self.mu_s:.6g}, mu_2 = {self.mu_2:.6g}, I_0 = {self.I_0:g}"
 
 
-__all__ = ["GAP_MIN", "REFERENCE", "MuI", "MuIFlow"]
+__all__ = [
+    "EXCESS_RTOL",
+    "GAP_MIN",
+    "MU_MAX",
+    "REFERENCE",
+    "SPREAD_MIN",
+    "MuI",
+    "MuIFlow",
+    "friction_spread",
+]

@@ -45,9 +45,9 @@ from ..cells.channel import shear_stress as channel_shear_stress
 from ..cells.couette import torque_decay
 from ..cells.plane import mean_stress
 from ..constitutive import FloatArray
-from ..declare import param, validate
+from ..declare import Constraint, param, validate
 from .base import Equations, Rheology
-from .mui import MuI
+from .mui import MU_MAX, MuI, friction_spread
 
 # ----------------------------------------------------------------- the source's values
 NGF_MU_S = 0.3819
@@ -60,6 +60,10 @@ NGF_RHO_S = 2450.0
 """Grain density of glass beads [kg/m^3] (dimensional conversions only)."""
 NGF_I_W = config.MUI_I_W
 """Default inertial number of the reference speed: the cells' one default [-]."""
+A_MIN = 1e-4
+"""Smallest nonlocal amplitude A [-]: at 1e-4 plane shear solves (boundary error 6e-12, eps =
+0.01); at 1e-6 the grid that resolves the cooperativity length needs 2.7e6 points, and near
+1e-300 the kernels divided by zero. Smaller A is the local law: the 'mui' rheology."""
 NGF_EXCESS_RTOL = 1e-7
 """Smallest relative excess (T - mu_s)/mu_s of the stress level T over mu_s [-].
 
@@ -326,11 +330,12 @@ class NGF(Rheology):
         (Henann & Kamrin 2013; it equals (mu_2 - mu_s)/I_0 of Jop et al.'s glass beads).
     A : float, default 0.48
         Nonlocal amplitude of the cooperativity length xi_c = A d / sqrt(|mu - mu_s|),
-        ``A > 0`` [-] (Henann & Kamrin 2013); the limit A -> 0 is the local law.
+        ``A >= 1e-4`` (:data:`A_MIN`) [-] (Henann & Kamrin 2013); the limit A -> 0 is the local law.
     mu_2 : float or None, default None
         None: the linear local law of Henann & Kamrin (2013), ``I_loc = (mu - mu_s)/b``.
-        A number ``mu_2 > mu_s``: the saturating law of Jop et al. (2006), as used by Kamrin &
-        Koval (2012), ``I_loc = I_0 (mu - mu_s)/(mu_2 - mu)`` with ``I_0 = (mu_2 - mu_s)/b`` [-].
+        A number with ``mu_2 - mu_s >= 1e-4``: the saturating law of Jop et al. (2006), as used
+        by Kamrin & Koval (2012), ``I_loc = I_0 (mu - mu_s)/(mu_2 - mu)`` with
+        ``I_0 = (mu_2 - mu_s)/b`` [-].
     rho_s : float, default 2450
         Grain density [kg/m^3]; the dimensionless cells do not use it (it is inside I_w),
         only :meth:`wall_inertial_number` does.
@@ -348,11 +353,13 @@ class NGF(Rheology):
     reference: ClassVar[str] = REFERENCE
     default_free: ClassVar[tuple[str, ...]] = ("A", "I_w")
     equations: ClassVar[dict[str, type[Equations]]] = {name: NGFFlow for name in KINDS}
+    constraints: ClassVar[tuple[Constraint, ...]] = friction_spread()
 
     mu_s: float = param(
         NGF_MU_S,
         "static friction coefficient",
-        bounds=(0.0, math.inf),
+        bounds=(0.0, MU_MAX),
+        reason=f"a friction angle below {math.degrees(math.atan(MU_MAX)):.0f} deg",
         fit_range=(0.05, 1.2),
         role="material",
         source=_HK,
@@ -369,18 +376,23 @@ class NGF(Rheology):
     A: float = param(
         NGF_A,
         "nonlocal amplitude of the cooperativity length xi_c = A d / sqrt(|mu - mu_s|)",
-        bounds=(0.0, math.inf),
+        bounds=(A_MIN, math.inf),
+        closed=(True, False),
         fit_range=(0.03, 5.0),
         scale="log",
         role="material",
-        reason="A -> 0 is local mu(I): use the 'mui' rheology",
+        reason=(
+            "A -> 0 is local mu(I): use the 'mui' rheology; below, the grid cannot resolve the "
+            "cooperativity length"
+        ),
         source=_HK,
     )
     mu_2: float | None = param(
         None,
         "limiting friction coefficient of the saturating local law of Jop et al. (2006), above "
         "mu_s; None: the linear local law of Henann & Kamrin (2013)",
-        bounds=(0.0, math.inf),
+        bounds=(0.0, MU_MAX),
+        reason=f"a friction angle below {math.degrees(math.atan(MU_MAX)):.0f} deg",
         fit_range=(0.06, 2.0),
         optional=True,
         role="material",
@@ -406,10 +418,6 @@ class NGF(Rheology):
 
     def __post_init__(self) -> None:
         validate(self)
-        if self.mu_2 is not None and self.mu_2 <= self.mu_s:
-            raise ParameterError(
-                f"mu_2 must satisfy mu_2 > mu_s = {self.mu_s:g}; got {self.mu_2:g}"
-            )
 
     @property
     def saturating(self) -> bool:
@@ -504,6 +512,7 @@ class NGF(Rheology):
 
 
 __all__ = [
+    "A_MIN",
     "CHANNEL",
     "COUETTE",
     "FLUIDITY_BCS",
