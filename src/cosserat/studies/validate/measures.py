@@ -11,7 +11,7 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
   of Delta against the gap.
 * **Spin at a wall**: z = (omega - half vorticity)/se over the bins within ``near_wall_d`` of
   that wall, se = sqrt(se_omega^2 + se_half^2) (the two taken as independent, and the bins
-  too); chi^2 = sum z^2 with one degree of freedom per bin, and the inverse-variance mean of
+  too); chi^2 = sum z^2 with one degree of freedom per bin, and
   the departure with its standard error. The moving wall and the fixed wall are tested
   separately: the band is at the moving wall; at the fixed wall the material may not shear at
   all (then no model predicts a departure there).
@@ -189,26 +189,23 @@ class WallSpin:
         return self.p is not None and self.p < P_SIGNIFICANT
 
     @property
-    def weights(self) -> FloatArray:
-        return 1.0 / np.asarray(self.stderr) ** 2
+    def nearest(self) -> int:
+        """Index of the bin nearest to the wall (the first layer)."""
+        return int(np.argmin(self.distance_d))
 
     @property
-    def mean(self) -> float | None:
-        """Inverse-variance mean departure [-]."""
-        if self.dof == 0:
-            return None
-        return float(np.sum(self.weights * self.departure) / np.sum(self.weights))
+    def first(self) -> float | None:
+        """The departure in the first layer (the bin nearest to the wall) [-]."""
+        return None if self.dof == 0 else float(self.departure[self.nearest])
 
     @property
-    def mean_se(self) -> float | None:
-        return None if self.dof == 0 else float(1.0 / math.sqrt(float(np.sum(self.weights))))
+    def first_se(self) -> float | None:
+        return None if self.dof == 0 else float(self.stderr[self.nearest])
 
-    def predicted_mean(self, model: str) -> float | None:
-        """The model's departure averaged with the data's weights [-]."""
+    def predicted_first(self, model: str) -> float | None:
+        """The model's departure in the first layer [-]."""
         pred = self.predicted.get(model)
-        if pred is None or self.dof == 0:
-            return None
-        return float(np.sum(self.weights * pred) / np.sum(self.weights))
+        return None if pred is None or self.dof == 0 else float(pred[self.nearest])
 
     def misfit(self, model: str) -> tuple[float | None, int, float | None]:
         """chi^2 of (departure - the model's)/se, its bins and p."""
@@ -242,9 +239,12 @@ class WallSpin:
             "chi2": chi2,
             "p": p,
             "departs": self.departs,
-            "mean_departure": self.mean,
-            "mean_departure_se": self.mean_se,
-            "predicted_mean_departure": {m: self.predicted_mean(m) for m in self.predicted},
+            "first_layer_distance_d": None
+            if self.dof == 0
+            else float(self.distance_d[self.nearest]),
+            "first_layer_departure": self.first,
+            "first_layer_se": self.first_se,
+            "predicted_first_layer": {m: self.predicted_first(m) for m in self.predicted},
             "model_misfit_p": {m: self.misfit(m)[2] for m in self.predicted},
         }
         return out

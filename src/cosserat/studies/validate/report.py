@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -73,7 +74,8 @@ def run_entry(r: RunResult) -> dict[str, Any]:
 
 
 def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
-    """One row per run and wall with spin: the measured mean departure and each model's."""
+    """One row per run and wall with spin: the first layer's measured departure and each
+    model's."""
     rows = []
     for r in report.results:
         for w in r.spin.walls if r.spin.available else []:
@@ -82,10 +84,10 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
             rows.append(
                 {
                     "label": f"{w.run}: {w.wall}",
-                    "mean": w.mean,
-                    "se": w.mean_se,
+                    "first": w.first,
+                    "se": w.first_se,
                     "sheared": w.sheared,
-                    "predicted": {m: w.predicted_mean(m) for m in w.predicted},
+                    "predicted": {m: w.predicted_first(m) for m in w.predicted},
                 }
             )
     return rows
@@ -98,6 +100,7 @@ def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
         out.append(
             {
                 "key": s.key,
+                "label": re.sub(r" \(.*?\)", "", s.key),
                 "gaps": s.gaps,
                 "Delta": s.Delta,
                 "stderr": s.stderr,
@@ -121,8 +124,18 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
         files[r.run.name] = name
     rows = spin_rows(report)
     with style():
-        save_figure(fig.spin_claim_figure(rows, []), out / CLAIM_FIGURES["spin"])
-        save_figure(fig.spin_claim_figure(rows, report.models), out / CLAIM_FIGURES["spin_model"])
+        save_figure(
+            fig.spin_claim_figure(rows, [], "does the spin depart from half the vorticity?"),
+            out / CLAIM_FIGURES["spin"],
+        )
+        save_figure(
+            fig.spin_claim_figure(
+                [r for r in rows if r["sheared"]],
+                report.models,
+                "the measured departure against each model's (sheared walls)",
+            ),
+            out / CLAIM_FIGURES["spin_model"],
+        )
     slopes = {f"slope {v:.3g} ({k})": v for k, v in PAPER_SLOPES.items()}
     for which, title in (
         ("smoother", "walls smoother than the material"),
@@ -144,8 +157,8 @@ def rules() -> str:
         f"departure; each sheared wall on its own (a fixed wall is sheared when its nearest "
         f"bin moves at u >= {SHEARED_U:g}), per run and pooled over runs; 'supported' when "
         f"the pooled p < {P_SIGNIFICANT:g} and at least half the runs depart at p < "
-        f"{P_CONSISTENT:g}. Sign and size: the inverse-variance mean departure at each wall "
-        f"against the model's at the same bins; the sign is determined where |mean| >= "
+        f"{P_CONSISTENT:g}. Sign and size: the departure in the first layer at each wall "
+        f"against the model's there; the sign is determined where |departure| >= "
         f"{SIGN_SIGMAS:g} se. Delta: where the velocity falls to f of its value in the bin "
         f"nearest the moving wall (u_0 = 1/2 for plane shear without gravity, else 0); a band "
         f"with Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws; the slope "
@@ -198,11 +211,11 @@ def context(report: ValidationReport) -> dict[str, Any]:
                     "wall": w.wall,
                     "sheared": w.sheared,
                     "bins": w.dof,
-                    "mean": _g(w.mean, "+.3g"),
-                    "se": _g(w.mean_se, ".2g"),
+                    "first": _g(w.first, "+.3g"),
+                    "se": _g(w.first_se, ".2g"),
                     "chi2": _g(w.chi2),
                     "p": _g(w.p, ".2g"),
-                    "predicted": ", ".join(f"{m} {w.predicted_mean(m):+.3g}" for m in w.predicted),
+                    "predicted": ", ".join(f"{m} {w.predicted_first(m):+.3g}" for m in w.predicted),
                 }
             )
         runs.append(

@@ -8,7 +8,9 @@ series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is :mod:`
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable, Sequence
+from concurrent.futures import as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -41,6 +43,11 @@ from .verdicts import (
     spin_model_verdict,
     spin_verdict,
 )
+
+PARALLEL_MIN_FITS = 12
+"""Fewest model fits for which :func:`validate` starts worker processes by default."""
+MAX_WORKERS = 2
+"""Most worker processes :func:`validate` starts by default."""
 
 CHANNEL_NOTE = (
     "the vertical channel has no moving wall: the models are compared with velocities over a "
@@ -186,6 +193,50 @@ def analyse_run(
     )
 
 
+def _fits_to_do(runs: Sequence[Run], models: Sequence[str] | None) -> int:
+    from ...routes import models_for
+
+    return sum(
+        len(models_for(r.cell) if models is None else models) for r in runs if r.cell != "channel"
+    )
+
+
+def _analyse_all(
+    runs: Sequence[Run],
+    models: Sequence[str] | None,
+    f: float,
+    near_wall_d: float,
+    grid: int,
+    progress: Callable[[str, int, int], None] | None,
+    workers: int | None,
+) -> list[RunResult]:
+    """:func:`analyse_run` of every run, in worker processes when worth it (``validate``)."""
+    if workers is None:
+        many = _fits_to_do(runs, models) >= PARALLEL_MIN_FITS
+        workers = min(MAX_WORKERS, os.cpu_count() or 1, len(runs)) if many else 1
+    if workers <= 1:
+        out = []
+        for i, run in enumerate(runs):
+            out.append(analyse_run(run, models, f, near_wall_d, grid))
+            if progress:
+                progress("runs", i + 1, len(runs))
+        return out
+    from ...numerics.runtime import worker_processes
+
+    done: dict[int, RunResult] = {}
+    # the longest runs (most bins) first, so that the workers end together
+    order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
+    with worker_processes(workers) as pool:
+        futures = {
+            pool.submit(analyse_run, runs[i], models, f, near_wall_d, grid): i for i in order
+        }
+        for k, fut in enumerate(as_completed(futures)):
+            done[futures[fut]] = fut.result()
+            if progress:
+                progress("runs", k + 1, len(runs))
+    return [done[i] for i in range(len(runs))]
+
+
 def judge(results: Sequence[RunResult]) -> tuple[list[DeltaSeries], list[Verdict], list[str]]:
     """The gap series and the verdicts on every claim, from the runs' results."""
     by_name = {r.run.name: r for r in results}
@@ -233,6 +284,7 @@ def validate(
     near_wall_d: float = NEAR_WALL_D,
     grid: int = 3,
     progress: Callable[[str, int, int], None] | None = None,
+    workers: int | None = None,
 ) -> ValidationReport:
     """Fit, compare and judge every run of ``corpus``; write the report into ``out``.
 
@@ -251,6 +303,12 @@ def validate(
         Bins within this distance of a wall count as near it [d].
     grid : int
         Start-grid points per free parameter of each fit.
+    progress : callable, optional
+        Called as ``progress("runs", done, total)`` after each run.
+    workers : int, optional
+        Processes that analyse runs in parallel; None: up to :data:`MAX_WORKERS` (the
+        machine's cores) when there are at least :data:`PARALLEL_MIN_FITS` fits to do, else
+        one (starting a process costs a few seconds).
 
     Raises
     ------
@@ -272,11 +330,7 @@ def validate(
                 f"unknown model(s) {', '.join(bad)}: registered are {', '.join(RHEOLOGIES)}"
             )
     data = corpus if isinstance(corpus, Corpus) else read_corpus(corpus)
-    results: list[RunResult] = []
-    for i, run in enumerate(data.runs):
-        results.append(analyse_run(run, models, f, near_wall_d, grid))
-        if progress:
-            progress("runs", i + 1, len(data.runs))
+    results = _analyse_all(data.runs, models, f, near_wall_d, grid, progress, workers)
     series, verdicts, notes = judge(results)
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)

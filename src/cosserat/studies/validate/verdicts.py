@@ -14,15 +14,16 @@ p-values, the runs used) and what data would change it. The rules:
   >= :data:`P_CONSISTENT` although the departure the Cosserat model predicts (fitted to the
   same velocities) would have given a pooled p < :data:`P_SIGNIFICANT` at these errors;
   "undecided" otherwise.
-* **the model's departure** (:func:`spin_model_verdict`): at each sheared wall, the
-  inverse-variance mean of the measured departure m +- s against the model's at the same bins
-  with the same weights, p_m. The measured sign is determined where |m| >= :data:`SIGN_SIGMAS`
-  s. "refuted" where the model departs with the opposite sign (|p_m| > s) at every wall of
-  determined sign, or with the right sign but a size the data reject (pooled chi^2 of
-  (departure - model)/se, p < :data:`P_SIGNIFICANT`), or predicts none (|p_m| <= s) where the
-  data depart; "supported" when the sign agrees everywhere it is determined and the size is
-  not rejected; "mixed" when the sign agrees at some walls and is opposite at others;
-  "undecided" when no wall has a determined sign.
+* **the model's departure** (:func:`spin_model_verdict`): at each sheared wall, the measured
+  departure in the first layer (the bin nearest to the wall, where the departure is largest) m
+  +- s against the model's there, p_m. The measured sign is determined where |m| >=
+  :data:`SIGN_SIGMAS` s. "refuted" where the model departs with the opposite sign at every wall
+  of determined sign (however small its departure), or with the right sign but a size the data
+  reject (pooled chi^2 of (departure - model)/se, p < :data:`P_SIGNIFICANT`), or predicts none
+  (|p_m| <= :data:`NO_DEPARTURE`, a rheology without a spin of its own) where the data depart;
+  "supported" when the sign agrees everywhere it is determined and the size is not rejected;
+  "mixed" when the sign agrees at some walls and is opposite at others; "undecided" when no wall
+  has a determined sign.
 * **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the slope s
   +- se of ln Delta against ln(H/d) (weighted by the errors of Delta) over at least
   :data:`MIN_GAPS` gaps, runs whose band fills its gap left out (they cannot test a law of the
@@ -36,6 +37,7 @@ p-values, the runs used) and what data would change it. The rules:
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -50,9 +52,12 @@ from .measures import P_SIGNIFICANT, WallSpin, chi2_p
 P_CONSISTENT = 0.05
 """A test with p at or above this shows no departure [-]."""
 SIGN_SIGMAS = 3.0
-"""The measured departure's sign is determined when |mean| >= this many standard errors."""
+"""The measured departure's sign is determined when |first layer| >= this many standard
+errors."""
 MIN_GAPS = 3
 """Fewest gaps for a verdict on how Delta scales with the gap."""
+NO_DEPARTURE = 1e-9
+"""A model's departure below this is none (a rheology without a spin of its own) [-]."""
 SAME_GAP = 0.05
 """Gaps within this relative difference are one gap (replicates) [-]."""
 
@@ -113,7 +118,7 @@ def _walls_text(walls: Sequence[WallSpin]) -> str:
         chi2, n, p = chi2_p(w.z)
         rows.append(
             f"{w.run} ({w.wall} wall, {n} bins within {float(np.max(w.distance_d)):.2g} d): "
-            f"mean departure {_g(w.mean, '+.3g')} +- {_g(w.mean_se, '.2g')}, chi^2 = "
+            f"first layer {_g(w.first, '+.3g')} +- {_g(w.first_se, '.2g')}, chi^2 = "
             f"{_g(chi2)} (p = {_g(p, '.2g')})"
         )
     return "; ".join(rows)
@@ -262,20 +267,20 @@ def spin_model_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Ve
         )
     rows, same, opposite, none, undetermined = [], [], [], [], []
     for w in tested:
-        m, s, pm = w.mean, w.mean_se, w.predicted_mean(model)
+        m, s, pm = w.first, w.first_se, w.predicted_first(model)
         assert m is not None and s is not None and pm is not None
         others = ", ".join(
-            f"{k} {w.predicted_mean(k):+.3g}" for k in sorted(w.predicted) if k != model
+            f"{k} {w.predicted_first(k):+.3g}" for k in sorted(w.predicted) if k != model
         )
         c, n, pp = w.misfit(model)
         rows.append(
-            f"{w.run} ({w.wall} wall, {w.dof} bins): measured {m:+.3g} +- {s:.2g}, {model} "
-            f"predicts {pm:+.3g} (chi^2 of data - model = {_g(c)} for {n} bins, p = "
+            f"{w.run} ({w.wall} wall, first layer): measured {m:+.3g} +- {s:.2g}, {model} "
+            f"predicts {pm:+.3g} (chi^2 of data - model over {n} near-wall bins = {_g(c)}, p = "
             f"{_g(pp, '.2g')})" + (f"; other models {others}" if others else "")
         )
         if abs(m) < SIGN_SIGMAS * s:
             undetermined.append(w)
-        elif abs(pm) <= s:
+        elif abs(pm) <= NO_DEPARTURE:
             none.append(w)
         elif pm * m > 0:
             same.append(w)
@@ -283,9 +288,9 @@ def spin_model_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Ve
             opposite.append(w)
     detail = "; ".join(rows)
     method = (
-        "Method: inverse-variance means of omega - half vorticity over each sheared wall's "
-        f"near-wall bins, the model's averaged with the same weights; the measured sign is "
-        f"determined where |mean| >= {SIGN_SIGMAS:g} se; the size is tested by chi^2 of "
+        "Method: omega - half vorticity in the first layer of each sheared wall (the bin "
+        "nearest to it) against the model's there; the measured sign is "
+        f"determined where |departure| >= {SIGN_SIGMAS:g} se; the size is tested by chi^2 of "
         "(departure - model)/se over the bins of the walls with a determined sign."
     )
     determined = same + opposite + none
@@ -297,14 +302,14 @@ def spin_model_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Ve
         "sign_undetermined": [f"{w.run}:{w.wall}" for w in undetermined],
     }
     if not determined:
-        worst = min(tested, key=lambda w: w.mean_se or math.inf)
+        best = min(tested, key=lambda w: w.first_se or math.inf)
         return Verdict(
             key,
             "undecided",
             f"The data cannot decide: the measured departure's sign is not determined at any "
-            f"wall (|mean| < {SIGN_SIGMAS:g} se). {detail}. {method}",
-            f"errors of the near-wall mean below |mean|/{SIGN_SIGMAS:g} (now "
-            f"{_g(worst.mean_se, '.2g')} at best).",
+            f"wall (|departure| < {SIGN_SIGMAS:g} se in every first layer). {detail}. {method}",
+            f"errors of the first layer's departure below |departure|/{SIGN_SIGMAS:g} (now "
+            f"{_g(best.first_se, '.2g')} at best).",
             runs,
             numbers,
         )
@@ -320,12 +325,14 @@ def spin_model_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Ve
             numbers,
         )
     if opposite:
+        small = sum(1 for w in opposite if abs(w.predicted_first(model) or 0.0) < (w.first_se or 0))
         return Verdict(
             key,
             "refuted",
             f"Refuted: where the measured sign is determined the {model} model, fitted to the "
             f"velocity, departs with the opposite sign ({len(opposite)} of "
-            f"{len(determined)} walls). {detail}. {method}",
+            f"{len(determined)} walls of determined sign; at {small} of them the predicted "
+            f"departure is smaller than the measured error). {detail}. {method}",
             "a fit of the model to the spin as well as the velocity (a joint calibration) "
             "that reverses the predicted sign, or runs where the measured sign turns.",
             runs,
@@ -477,6 +484,11 @@ class DeltaSeries:
         }
 
 
+def short(key: str) -> str:
+    """A series key without its parenthesised wall details."""
+    return re.sub(r" \(.*?\)", "", key)
+
+
 def relevant(series: Sequence[DeltaSeries], which: str) -> list[DeltaSeries]:
     """The series a Delta claim is about: smoother walls (plane or Couette), or fully rough
     walls under gravity or in Couette flow."""
@@ -537,7 +549,7 @@ def delta_law_verdict(series: Sequence[DeltaSeries], which: str) -> Verdict:
         numbers[s.key] = s.to_dict()
         notes = "".join(f"; note: {n}" for n in s.notes)
         if slope is None or s.distinct_gaps < MIN_GAPS:
-            change = f"Delta at {MIN_GAPS} or more gaps (not filling them) in this series"
+            change = f"Delta at {MIN_GAPS} or more gaps (not filling them) in {short(s.key)}"
             calls.append(("undecided", head + (s.reason or "no slope") + notes, change))
             continue
         se = slope.stderr
