@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Sequence
 from concurrent.futures import as_completed
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -44,6 +44,8 @@ from .verdicts import (
     spin_verdict,
 )
 
+QUASI_STATIC_I = 1e-3
+"""Largest local inertial number of the slow flow the models are for [-]."""
 PARALLEL_MIN_FITS = 12
 """Fewest model fits for which :func:`validate` starts worker processes by default."""
 MAX_WORKERS = 2
@@ -272,7 +274,37 @@ def judge(results: Sequence[RunResult]) -> tuple[list[DeltaSeries], list[Verdict
         delta_law_verdict(series, "rough"),
         spin_model_verdict(walls),
     ]
+    verdicts = [
+        replace(v, evidence=f"{v.evidence} {regime([by_name[n] for n in v.runs])}".rstrip())
+        for v in verdicts
+    ]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))
+
+
+def regime(results: Sequence[RunResult]) -> str:
+    """One sentence: the runs' inertial number at the moving wall against the quasi-static
+    bound :data:`QUASI_STATIC_I` of the models (empty without runs)."""
+    if not results:
+        return ""
+    known = [(r.run.name, r.inertial_number) for r in results if r.inertial_number is not None]
+    if not known:
+        return (
+            "Regime: no run used gives its local inertial number (an inertial_number column), "
+            f"so whether it is quasi-static (I <= {QUASI_STATIC_I:g}) is not shown."
+        )
+    values = [i for _, i in known]
+    above = [n for n, i in known if i > QUASI_STATIC_I]
+    text = (
+        f"Regime: the local inertial number next to the moving wall is "
+        f"{min(values):.2g}-{max(values):.2g} in the {len(known)} runs that give it"
+    )
+    if above:
+        return (
+            text + f"; {len(above)} of them are above the quasi-static bound I <= "
+            f"{QUASI_STATIC_I:g} of the rate-independent models, so this verdict holds at "
+            "their rates only."
+        )
+    return text + f", within the quasi-static bound I <= {QUASI_STATIC_I:g}."
 
 
 def validate(
