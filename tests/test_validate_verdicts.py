@@ -274,3 +274,19 @@ def test_results_json_has_the_documented_schema(tmp_path):
     for v in record["verdicts"]:
         assert {"claim", "verdict", "evidence", "would_change", "runs"} <= set(v)
     assert read_run(tmp_path / "c" / "r.csv").name == "r"
+
+
+def test_worker_processes_give_the_same_report_as_one_process(tmp_path):
+    for g in (20.0, 40.0, 80.0):
+        _run(tmp_path, f"r{g:g}", gap_d=g, B=1.0)
+    seen: list[tuple[int, int]] = []
+    one = validate(tmp_path, models=["cosserat"], workers=1)
+    two = validate(tmp_path, models=["cosserat"], workers=2,
+                   progress=lambda stage, i, n: seen.append((i, n)))  # fmt: skip
+    assert [v.to_dict() for v in one.verdicts] == [v.to_dict() for v in two.verdicts]
+    assert [r.run.name for r in two.results] == ["r20", "r40", "r80"]
+    def chi2(report):
+        return [[s.chi2 for s in r.fits.summaries] for r in report.results]
+
+    assert chi2(one) == chi2(two)
+    assert sorted(seen) == [(1, 3), (2, 3), (3, 3)]
