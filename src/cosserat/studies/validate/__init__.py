@@ -16,8 +16,8 @@ measured quantities), whichever way it goes:
 
 Each verdict is "supported", "refuted", "mixed" or "undecided", with its evidence (method,
 numbers, p-values, runs) and what would change it. The orchestration is :mod:`.study`; the
-writers (figures in :mod:`cosserat.viz.validation`, Markdown and HTML from templates through
-:mod:`cosserat.viz.report`, ``results.json``) are :mod:`.report`. The rules and the schema of
+writers (figures in ``cosserat.viz.validation``, Markdown and HTML from templates through
+``cosserat.viz.report``, ``results.json``) are :mod:`.report`. The rules and the schema of
 ``results.json``: ``docs/validation.md``.
 """
 

@@ -1,6 +1,6 @@
-"""Write what :func:`~cosserat.studies.validate.validate` found: figures, ``report.md``,
+"""Write what :func:`~cosserat.studies.validate.study.validate` found: figures, ``report.md``,
 ``index.html`` (from the templates ``validate.*.j2`` through the package's one report writer,
-:mod:`cosserat.viz.report`) and ``results.json`` (schema in ``docs/validation.md``)."""
+``cosserat.viz.report``) and ``results.json`` (schema in ``docs/validation.md``)."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ CLAIM_FIGURES = {
 
 
 def run_entry(r: RunResult) -> dict[str, Any]:
-    """The plain data of a run's figure (:func:`cosserat.viz.validation.run_figure`)."""
+    """The plain data of a run's figure (``cosserat.viz.validation.run_figure``)."""
     m = r.run.measured()
     models: dict[str, Any] = {}
     order: list[str] = []

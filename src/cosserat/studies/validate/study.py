@@ -3,7 +3,8 @@
 For every run: fit the models to its velocity (:mod:`.fits`), measure Delta, the spin at each
 wall, the band's stress ratio and the inertial number at the moving wall (:mod:`.measures`),
 and set each model's predicted spin departure beside the measured one. Across runs: the gap
-series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is :mod:`.report`'s.
+series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is
+:mod:`cosserat.studies.validate.report`'s.
 """
 
 from __future__ import annotations
