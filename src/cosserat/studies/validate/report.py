@@ -27,6 +27,9 @@ from .verdicts import MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, relevant
 if TYPE_CHECKING:
     from .study import RunResult, ValidationReport
 
+RUN_FIGURE_DPI = 150
+"""Resolution of the run figures [dots per inch] (the claim figures have the package's)."""
+
 CLAIM_FIGURES = {
     "spin": "claim_spin.png",
     "smoother": "claim_smoother.png",
@@ -111,17 +114,28 @@ def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
     return out
 
 
+def write_run_figure(r: RunResult, out: Path) -> str:
+    """Draw and write the run's figure ``run_<name>.png`` into ``out``; returns its name."""
+    from ...viz import validation as fig
+    from ...viz.plotting import style
+
+    name = f"run_{r.run.name}.png"
+    with style():
+        save_figure(fig.run_figure(run_entry(r)), out / name, dpi=RUN_FIGURE_DPI)
+    return name
+
+
 def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
+    """Every figure: each run's (unless drawn already, :func:`write_run_figure`) and each
+    claim's."""
     from ...viz import validation as fig
     from ...viz.plotting import style
 
     files: dict[str, str] = {}
     for r in report.results:
-        name = f"run_{r.run.name}.png"
-        with style():
-            save_figure(fig.run_figure(run_entry(r)), out / name)
-        r.figure = name
-        files[r.run.name] = name
+        if not (r.figure and (out / r.figure).is_file()):
+            r.figure = write_run_figure(r, out)
+        files[r.run.name] = r.figure
     rows = spin_rows(report)
     with style():
         save_figure(

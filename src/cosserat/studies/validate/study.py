@@ -153,9 +153,15 @@ def _model_slopes(results: Sequence[RunResult]) -> dict[str, SlopeFit | None]:
 
 
 def analyse_run(
-    run: Run, models: Sequence[str] | None, f: float, near_wall_d: float, grid: int
+    run: Run,
+    models: Sequence[str] | None,
+    f: float,
+    near_wall_d: float,
+    grid: int,
+    figures_to: Path | None = None,
 ) -> RunResult:
-    """Fit, measure and compare one run (module docstring)."""
+    """Fit, measure and compare one run (module docstring); with ``figures_to``, also draw
+    the run's figure there (in the worker that analysed it, when there are workers)."""
     stress = band_stress_ratio(run)
     if run.cell == "channel":
         fits, error = None, CHANNEL_NOTE
@@ -183,7 +189,7 @@ def analyse_run(
             model_delta[name] = thickness_of(
                 m.distance_d, fits.curve(name, m.distance_d), reference_velocity(run), f
             )
-    return RunResult(
+    result = RunResult(
         run,
         fits,
         error,
@@ -194,6 +200,11 @@ def analyse_run(
         stress,
         moving_wall_inertial_number(run),
     )
+    if figures_to is not None:
+        from .report import write_run_figure
+
+        result.figure = write_run_figure(result, figures_to)
+    return result
 
 
 def _fits_to_do(runs: Sequence[Run], models: Sequence[str] | None) -> int:
@@ -212,6 +223,7 @@ def _analyse_all(
     grid: int,
     progress: Callable[[str, int, int], None] | None,
     workers: int | None,
+    figures_to: Path | None = None,
 ) -> list[RunResult]:
     """:func:`analyse_run` of every run, in worker processes when worth it (``validate``)."""
     if workers is None:
@@ -220,7 +232,7 @@ def _analyse_all(
     if workers <= 1:
         out = []
         for i, run in enumerate(runs):
-            out.append(analyse_run(run, models, f, near_wall_d, grid))
+            out.append(analyse_run(run, models, f, near_wall_d, grid, figures_to))
             if progress:
                 progress("runs", i + 1, len(runs))
         return out
@@ -231,7 +243,8 @@ def _analyse_all(
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     with worker_processes(workers) as pool:
         futures = {
-            pool.submit(analyse_run, runs[i], models, f, near_wall_d, grid): i for i in order
+            pool.submit(analyse_run, runs[i], models, f, near_wall_d, grid, figures_to): i
+            for i in order
         }
         for k, fut in enumerate(as_completed(futures)):
             done[futures[fut]] = fut.result()
@@ -363,7 +376,10 @@ def validate(
                 f"unknown model(s) {', '.join(bad)}: registered are {', '.join(RHEOLOGIES)}"
             )
     data = corpus if isinstance(corpus, Corpus) else read_corpus(corpus)
-    results = _analyse_all(data.runs, models, f, near_wall_d, grid, progress, workers)
+    folder = None if out is None else Path(out)
+    if folder is not None:
+        folder.mkdir(parents=True, exist_ok=True)
+    results = _analyse_all(data.runs, models, f, near_wall_d, grid, progress, workers, folder)
     series, verdicts, notes = judge(results)
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
