@@ -285,8 +285,16 @@ def test_worker_processes_give_the_same_report_as_one_process(tmp_path):
                    progress=lambda stage, i, n: seen.append((i, n)))  # fmt: skip
     assert [v.to_dict() for v in one.verdicts] == [v.to_dict() for v in two.verdicts]
     assert [r.run.name for r in two.results] == ["r20", "r40", "r80"]
+
     def chi2(report):
         return [[s.chi2 for s in r.fits.summaries] for r in report.results]
 
     assert chi2(one) == chi2(two)
     assert sorted(seen) == [(1, 3), (2, 3), (3, 3)]
+
+
+def test_a_departure_so_large_that_its_p_underflows_to_zero_still_counts():
+    walls = [wall(r, [-50.0, -20.0, -5.0], 0.01) for r in ("a", "b")]
+    v = spin_verdict(walls)
+    assert v.numbers["pooled_p"] == 0.0
+    assert v.verdict == "supported" and v.numbers["runs_departing_p_significant"] == ["a", "b"]

@@ -164,8 +164,9 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
     by_wall = {
         role: chi2_p(np.concatenate([w.z for w in tested if w.wall == role])) for role in roles
     }
-    showing = [r for r in runs if (per_run[r][2] or 1.0) < P_CONSISTENT]
-    significant = [r for r in runs if (per_run[r][2] or 1.0) < P_SIGNIFICANT]
+    p_run = {r: 1.0 if v[2] is None else v[2] for r, v in per_run.items()}  # p may be 0.0
+    showing = [r for r in runs if p_run[r] < P_CONSISTENT]
+    significant = [r for r in runs if p_run[r] < P_SIGNIFICANT]
     pooled = f"pooled over {len(runs)} runs: chi^2 = {chi2:.4g} for {dof} bins (p = {p:.2g})"
     pooled += "".join(
         f"; {role} walls alone: chi^2 = {c:.4g} for {n} bins (p = {pp:.2g})"
