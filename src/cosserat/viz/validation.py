@@ -114,7 +114,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 pos = u[u > 0]
                 lo = max(min(float(pos.min()) / 3, U_FLOOR) if pos.size else U_FLOOR, 1e-8)
                 ax.set_ylim(lo, 2.0)
-                ax.set_title("log axis: the creep tail", fontsize=8)
+                ax.set_title("log axis: the creep tail (u <= 0 not shown)", fontsize=8)
                 _plain(ax, "x")
             else:
                 ax.set_title("linear axis: the band", fontsize=8)
