@@ -8,7 +8,6 @@ captions. Figures are computed in parallel worker processes.
 from __future__ import annotations
 
 import csv
-import html
 import json
 import logging
 import os
@@ -26,6 +25,7 @@ from ..model import Cosserat, Plane, Problem
 from ..model.parameters import Wall
 from ..numerics.runtime import worker_processes
 from ..routes.airy import xi_hat_at_fraction
+from ..viz.report import write_report
 from .figures import FIGURES, FigureData, make_figure
 from .figures.paper import MATERIAL
 
@@ -245,60 +245,18 @@ def _stem(data: FigureData) -> str:
 def _write_report(
     out: Path, figures: dict[int, dict[str, Any]], claims: list[Claim], elapsed: float
 ) -> None:
-    md = [
-        "# Mohan, Kesava Rao & Nott: the paper's results, reproduced",
-        "",
-        f"Computed by `cosserat reproduce` in {elapsed:.0f} s.",
-        "",
-        "## Stated versus computed",
-        "",
-        "| quantity | paper | computed | where | how |",
-        "|---|---|---|---|---|",
-    ]
-    md += [f"| {c.quantity} | {c.stated} | {c.computed} | {c.where} | {c.how} |" for c in claims]
-    md += ["", "## Figures", ""]
-    rows = "".join(
-        f"<tr><td>{html.escape(c.quantity)}</td><td>{html.escape(c.stated)}</td>"
-        f"<td>{html.escape(c.computed)}</td><td>{html.escape(c.where)}</td>"
-        f"<td>{html.escape(c.how)}</td></tr>"
-        for c in claims
-    )
-    blocks = []
-    for n in sorted(figures):
-        d = figures[n]
-        stem, key, caption = d["stem"], d["key"], d["caption"]
-        notes = " ".join(d["notes"])
-        md += [
-            f"### Figure {n} ({key}): {d['title']}",
-            "",
-            f"![{key}]({stem}.png)",
-            "",
-            caption + (f" *Notes: {notes}*" if notes else ""),
-            "",
-            f"Data: [`{stem}.csv`]({stem}.csv), vector: [`{stem}.pdf`]({stem}.pdf)",
-            "",
-        ]
-        blocks.append(
-            f"<figure><img src='{stem}.png' alt='{key}'><figcaption><b>Figure {n}</b> "
-            f"({html.escape(key)}). {html.escape(caption)}"
-            + (f" <i>{html.escape(notes)}</i>" if notes else "")
-            + f" [<a href='{stem}.csv'>csv</a>, <a href='{stem}.pdf'>pdf</a>]</figcaption>"
-            "</figure>"
-        )
-    write_text(out / "report.md", "\n".join(md) + "\n")
-    write_text(
-        out / "index.html",
-        "<!doctype html><html><head><meta charset='utf-8'><title>cosserat: reproduction"
-        "</title><style>body{font-family:serif;max-width:60em;margin:auto}"
-        "img{max-width:100%}td,th{border:1px solid #ccc;padding:3px}"
-        "table{border-collapse:collapse}figure{margin:2em 0}</style></head><body>"
-        "<h1>A frictional Cosserat model for the slow shearing of granular materials: "
-        "results reproduced</h1>"
-        f"<p>Computed by <code>cosserat reproduce</code> in {elapsed:.0f} s.</p>"
-        "<h2>Stated versus computed</h2><table><tr><th>quantity</th><th>paper</th>"
-        f"<th>computed</th><th>where</th><th>how</th></tr>{rows}</table>"
-        f"<h2>Figures</h2>{''.join(blocks)}</body></html>\n",
-    )
+    """``report.md`` and ``index.html`` from the templates ``reproduce.*.j2``
+    (:func:`cosserat.viz.report.write_report`), and ``figures.json``."""
+    context = {
+        "title": "cosserat: reproduction",
+        "elapsed": elapsed,
+        "claims": [asdict(c) for c in claims],
+        "figures": [
+            {**figures[n], "number": n, "notes": " ".join(figures[n]["notes"])}
+            for n in sorted(figures)
+        ],
+    }
+    write_report(out, "reproduce", context)
     write_text(
         out / "figures.json",
         json.dumps(

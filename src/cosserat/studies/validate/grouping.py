@@ -1,0 +1,164 @@
+"""Gap series: the runs of one cell, material and wall at several gaps.
+
+Two runs are in one series when they have the same cell, the same walls (the sidecars'
+``wall`` and ``wall_fixed``), the same grains and contact law (``grains`` without the number
+of grains, ``contact``), and the cell parameter that a claim holds fixed agrees within a
+tolerance: plane shear's B (relative :data:`REL_TOL`, or both below :data:`ZERO_B`: no
+gravity), Couette's R_i/H (relative :data:`REL_TOL`; the paper's Couette law holds R_i/H
+fixed, so runs at one inner radius R_i/d and several gaps are separate series). The gap
+itself is what varies. Several runs at one gap (a rate-check partner at another wall speed)
+are replicates, named as such.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ...analysis.corpus import Run
+
+REL_TOL = 0.1
+"""Relative tolerance on the held cell parameter (B, R_i/H) within one series [-]."""
+ZERO_B = 0.05
+"""B below this is 'no gravity' [-]."""
+
+
+def held(run: Run) -> tuple[str, float] | None:
+    """(name, value) of the cell parameter a series holds fixed: B (plane), R_i/H (Couette)."""
+    if run.cell == "plane":
+        return "B", run.B
+    if run.cell == "couette":
+        return "Ri/H", float(run.Ri_d or 0.0) / run.gap_d
+    return None
+
+
+def _close(a: float, b: float, name: str) -> bool:
+    if name == "B" and a < ZERO_B and b < ZERO_B:
+        return True
+    return abs(a - b) <= REL_TOL * max(abs(a), abs(b))
+
+
+def _material(run: Run) -> str:
+    """The walls, grains and contacts of a run, as one comparable string."""
+    grains = run.meta.get("grains")
+    if isinstance(grains, dict):
+        grains = {k: v for k, v in grains.items() if k != "n"}
+    record = {
+        "wall": run.meta.get("wall"),
+        "wall_fixed": run.meta.get("wall_fixed"),
+        "grains": grains,
+        "contact": run.meta.get("contact"),
+        "moving_wall": run.moving_wall,
+    }
+    return json.dumps(record, sort_keys=True, default=str)
+
+
+def same_series(a: Run, b: Run) -> bool:
+    """Whether two runs belong to one gap series (module docstring)."""
+    if a.cell != b.cell or _material(a) != _material(b):
+        return False
+    ha, hb = held(a), held(b)
+    if ha is None or hb is None:
+        return ha == hb
+    return _close(ha[1], hb[1], ha[0])
+
+
+@dataclass(frozen=True)
+class Series:
+    """Runs of one gap series, by gap; ``key`` names the cell, wall and held parameter."""
+
+    key: str
+    runs: tuple[Run, ...]
+
+    @property
+    def cell(self) -> str:
+        return self.runs[0].cell
+
+    @property
+    def roughness(self) -> str | None:
+        return self.runs[0].roughness
+
+    @property
+    def gravity(self) -> bool:
+        return self.cell == "plane" and self.runs[0].B >= ZERO_B
+
+    def replicate_notes(self) -> tuple[str, ...]:
+        """Where a series holds several runs at one gap (at different wall speeds: a rate
+        check): they enter the power law as replicates, which is right only if the flow is
+        rate-independent, as the model assumes."""
+        notes = []
+        gaps = [r.gap_d for r in self.runs]
+        done: list[float] = []
+        for g in gaps:
+            if any(abs(g - x) <= 0.05 * g for x in done):
+                continue
+            done.append(g)
+            same = [r for r in self.runs if abs(r.gap_d - g) <= 0.05 * g]
+            if len(same) > 1:
+                speeds = ", ".join(
+                    f"{r.name} (wall speed {r.meta.get('wall_speed', '?')})" for r in same
+                )
+                notes.append(
+                    f"H/d = {g:g} has {len(same)} runs, {speeds}: used as replicates, which "
+                    "assumes the rate independence the model has (compare their profiles to "
+                    "check it)"
+                )
+        return tuple(notes)
+
+
+def series_key(runs: Sequence[Run]) -> str:
+    r = runs[0]
+    w = dict(r.wall)
+    kind = w.pop("kind", "unknown wall")
+    details = ", ".join(f"{k} = {v}" for k, v in sorted(w.items()))
+    text = f"{r.cell}, {kind}" + (f" ({details})" if details else "")
+    h = held(r)
+    if h is not None:
+        values = [held(x)[1] for x in runs]  # type: ignore[index]
+        lo, hi = min(values), max(values)
+        text += f", {h[0]} = {lo:.3g}" + (f"-{hi:.3g}" if hi - lo > 1e-3 * max(hi, 1e-9) else "")
+    return text
+
+
+def group_runs(runs: Sequence[Run]) -> list[Series]:
+    """The gap series of ``runs`` (module docstring), each sorted by gap; a run joins the
+    first series whose first run it matches."""
+    groups: list[list[Run]] = []
+    for run in runs:
+        for g in groups:
+            if same_series(g[0], run):
+                g.append(run)
+                break
+        else:
+            groups.append([run])
+    out = []
+    for g in groups:
+        g.sort(key=lambda r: r.gap_d)
+        out.append(Series(series_key(g), tuple(g)))
+    keys: dict[str, int] = {}
+    for i, s in enumerate(out):  # two series the key cannot tell apart: number them
+        if s.key in keys:
+            out[i] = Series(f"{s.key} [{sum(1 for x in out[:i] if x.key == s.key) + 1}]", s.runs)
+        keys[s.key] = i
+    return sorted(out, key=lambda s: s.key)
+
+
+def couette_note(series: Sequence[Series]) -> list[str]:
+    """Couette series at one gap each whose runs share R_i/d: say why they are not paired."""
+    singles = [s for s in series if s.cell == "couette" and len({r.gap_d for r in s.runs}) == 1]
+    by_ri: dict[Any, list[Run]] = {}
+    for s in singles:
+        by_ri.setdefault(s.runs[0].Ri_d, []).extend(s.runs)
+    notes = []
+    for ri, runs in by_ri.items():
+        if len({r.gap_d for r in runs}) > 1:
+            names = ", ".join(f"{r.name} (R_i/H = {float(ri or 0) / r.gap_d:.3g})" for r in runs)
+            notes.append(
+                f"Couette runs at one inner radius R_i/d = {ri:g} and several gaps ({names}) "
+                "are not a series: the paper's Couette law holds R_i/H fixed, and at fixed "
+                "R_i/d the model's Delta hardly changes with the gap, so such a series tests "
+                "nothing"
+            )
+    return notes

@@ -1,0 +1,386 @@
+"""What validation measures in one run's data: Delta, the spin's departure at each wall, the
+band's stress ratio, the inertial number next to the moving wall.
+
+Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model enters here.
+
+* **Delta** of the data: the distance from the moving wall's surface at which the velocity
+  (linear between bins) has fallen to a fraction f of its value in the bin nearest to that
+  wall, relative to u_0 (1/2 for plane shear without gravity, else 0); its standard error from
+  :data:`DRAWS` redraws of the velocities within their standard errors. A band with
+  Delta > :data:`FILLS_GAP` H fills its gap: the fixed wall shapes it, so it cannot test a law
+  of Delta against the gap.
+* **Spin at a wall**: z = (omega - half vorticity)/se over the bins within ``near_wall_d`` of
+  that wall, se = sqrt(se_omega^2 + se_half^2) (the two taken as independent, and the bins
+  too); chi^2 = sum z^2 with one degree of freedom per bin, and
+  the departure with its standard error. The moving wall and the fixed wall are tested
+  separately: the band is at the moving wall; at the fixed wall the material may not shear at
+  all (then no model predicts a departure there).
+* **Band stress ratio**: |sigma_yx|/sigma_yy (Couette |sigma_rt|/sigma_rr) over the bins where
+  the measured u >= :data:`BAND_U` and farther than :data:`WALL_EXCLUSION_D` from either wall;
+  its inverse-variance mean, with an error that is the larger of the mean's and the bins'
+  scatter over sqrt(n) (the stress bins of a frozen packing scatter more than their block
+  errors say).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy.stats import chi2 as chi2_dist
+
+from ...analysis.corpus import Run, usable
+from ...config import DEFAULT_F
+from ...model.constitutive import FloatArray
+
+P_SIGNIFICANT = 1e-3
+"""p-value below which a departure (or a misfit) is significant [-]."""
+NEAR_WALL_D = 3.0
+"""Bins within this many grain diameters of a wall are 'near the wall' [d]."""
+DRAWS = 400
+"""Redraws of a run's velocities for the standard error of its Delta."""
+FILLS_GAP = 0.5
+"""A band with Delta above this fraction of the gap fills it [-]."""
+BAND_U = 0.05
+"""The band's stress ratio is taken where the measured u is at least this [-]."""
+WALL_EXCLUSION_D = 1.0
+"""Stress bins closer than this to a wall are left out of the band's stress ratio [d]."""
+SHEARED_U = 0.05
+"""A fixed wall is sheared when the measured u in its nearest bin is at least this [-]."""
+
+
+# --------------------------------------------------------------------------- Delta
+@dataclass
+class Thickness:
+    """Delta of a run's data [d] and its standard error, or why there is none."""
+
+    value: float | None
+    stderr: float | None
+    reason: str = ""
+    gap_d: float | None = None
+
+    @property
+    def fills_gap(self) -> bool:
+        """Delta > :data:`FILLS_GAP` of the gap: the band fills its gap."""
+        return (
+            self.value is not None
+            and self.gap_d is not None
+            and self.value > FILLS_GAP * self.gap_d
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "value": self.value,
+            "stderr": self.stderr,
+            "reason": self.reason,
+            "fills_gap": self.fills_gap,
+        }
+
+
+def reference_velocity(run: Run) -> float:
+    """u_0 of Delta: 1/2 in plane shear without gravity (the symmetric profile), else 0."""
+    return 0.5 if run.cell == "plane" and run.B == 0.0 else 0.0
+
+
+def thickness_of(distance_d: FloatArray, u: FloatArray, u0: float, f: float) -> float | None:
+    """Where u (ordered by distance from the moving wall, linear between bins) first falls to
+    ``u0 + f (u[0] - u0)``; None if it does not within the bins [d]."""
+    target = u0 + f * (u[0] - u0)
+    below = np.flatnonzero((u - target) * np.sign(u[0] - u0) <= 0.0)
+    if u[0] == u0 or below.size == 0 or below[0] == 0:
+        return None
+    i = int(below[0])
+    d0, d1, u_a, u_b = distance_d[i - 1], distance_d[i], u[i - 1], u[i]
+    return float(d0 + (target - u_a) * (d1 - d0) / (u_b - u_a))
+
+
+def measured_thickness(run: Run, f: float = DEFAULT_F, seed: int = 0) -> Thickness:
+    """Delta of the run's data with its standard error (module docstring)."""
+    m = run.measured()
+    u0 = reference_velocity(run)
+    value = thickness_of(m.distance_d, m.u_over_uw, u0, f)
+    if value is None:
+        return Thickness(
+            None,
+            None,
+            f"the measured velocity does not fall to {f:g} of its wall value within the gap",
+            run.gap_d,
+        )
+    rng = np.random.default_rng(seed)
+    assert m.u_err is not None
+    draws = []
+    for _ in range(DRAWS):
+        d = thickness_of(m.distance_d, m.u_over_uw + rng.normal(0.0, m.u_err), u0, f)
+        if d is not None:
+            draws.append(d)
+    if len(draws) < 0.9 * DRAWS:
+        return Thickness(
+            value, None, "in over 10% of redraws within the errors Delta is undefined", run.gap_d
+        )
+    t = Thickness(value, float(np.std(draws, ddof=1)), "", run.gap_d)
+    if t.fills_gap:
+        t.reason = (
+            f"the band fills its gap (Delta = {value:.3g} d > {FILLS_GAP:g} H = "
+            f"{FILLS_GAP * run.gap_d:.3g} d)"
+        )
+    return t
+
+
+# --------------------------------------------------------------------------- spin
+def chi2_p(z: FloatArray) -> tuple[float | None, int, float | None]:
+    """(sum z^2, n, its chi^2 p-value with n degrees of freedom); Nones for no z."""
+    z = np.asarray(z, dtype=float)
+    if z.size == 0:
+        return None, 0, None
+    c = float(np.sum(z * z))
+    return c, int(z.size), float(chi2_dist.sf(c, z.size))
+
+
+@dataclass(frozen=True)
+class WallSpin:
+    """The spin's departure from half the vorticity in one run's bins near one wall.
+
+    Attributes
+    ----------
+    run : str
+        The run's name.
+    wall : str
+        "moving" or "fixed" (the channel: "lower" or "upper").
+    sheared : bool
+        The material shears at this wall (the moving wall always; a fixed wall where the
+        measured u of its nearest bin is at least :data:`SHEARED_U`; both channel walls).
+    distance_d : array
+        Distance of each bin from this wall [d].
+    departure, stderr : array
+        omega - half vorticity and its standard error, in the run's units (omega d / V) [-].
+    predicted : mapping of model name to array
+        Each fitted model's departure at the same bins [-] (empty until a model is fitted).
+    """
+
+    run: str
+    wall: str
+    sheared: bool
+    distance_d: FloatArray
+    departure: FloatArray
+    stderr: FloatArray
+    predicted: dict[str, FloatArray] = field(default_factory=dict)
+
+    @property
+    def z(self) -> FloatArray:
+        return np.asarray(self.departure) / np.asarray(self.stderr)
+
+    @property
+    def dof(self) -> int:
+        return int(np.asarray(self.departure).size)
+
+    @property
+    def chi2(self) -> float | None:
+        return chi2_p(self.z)[0]
+
+    @property
+    def p(self) -> float | None:
+        """p of chi^2 against no departure."""
+        return chi2_p(self.z)[2]
+
+    @property
+    def departs(self) -> bool:
+        return self.p is not None and self.p < P_SIGNIFICANT
+
+    @property
+    def nearest(self) -> int:
+        """Index of the bin nearest to the wall (the first layer)."""
+        return int(np.argmin(self.distance_d))
+
+    @property
+    def first(self) -> float | None:
+        """The departure in the first layer (the bin nearest to the wall) [-]."""
+        return None if self.dof == 0 else float(self.departure[self.nearest])
+
+    @property
+    def first_se(self) -> float | None:
+        return None if self.dof == 0 else float(self.stderr[self.nearest])
+
+    def predicted_first(self, model: str) -> float | None:
+        """The model's departure in the first layer [-]."""
+        pred = self.predicted.get(model)
+        return None if pred is None or self.dof == 0 else float(pred[self.nearest])
+
+    def misfit(self, model: str) -> tuple[float | None, int, float | None]:
+        """chi^2 of (departure - the model's)/se, its bins and p."""
+        pred = self.predicted.get(model)
+        if pred is None:
+            return None, 0, None
+        return chi2_p((np.asarray(self.departure) - pred) / np.asarray(self.stderr))
+
+    def shift(self, model: str) -> float:
+        """sum (predicted/se)^2: the chi^2 the model's departure adds to pure noise."""
+        pred = self.predicted.get(model)
+        return 0.0 if pred is None else float(np.sum((pred / np.asarray(self.stderr)) ** 2))
+
+    def with_predictions(self, predicted: dict[str, FloatArray]) -> WallSpin:
+        return WallSpin(
+            self.run,
+            self.wall,
+            self.sheared,
+            self.distance_d,
+            self.departure,
+            self.stderr,
+            dict(predicted),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        chi2, dof, p = chi2_p(self.z)
+        out: dict[str, Any] = {
+            "wall": self.wall,
+            "sheared": self.sheared,
+            "bins": dof,
+            "chi2": chi2,
+            "p": p,
+            "departs": self.departs,
+            "first_layer_distance_d": None
+            if self.dof == 0
+            else float(self.distance_d[self.nearest]),
+            "first_layer_departure": self.first,
+            "first_layer_se": self.first_se,
+            "predicted_first_layer": {m: self.predicted_first(m) for m in self.predicted},
+            "model_misfit_p": {m: self.misfit(m)[2] for m in self.predicted},
+        }
+        return out
+
+
+@dataclass
+class SpinMeasure:
+    """omega - half vorticity of one run: every usable bin, and the tests at each wall."""
+
+    available: bool
+    reason: str = ""
+    distance_d: FloatArray | None = None
+    departure: FloatArray | None = None
+    stderr: FloatArray | None = None
+    half: FloatArray | None = None
+    walls: list[WallSpin] = field(default_factory=list)
+    index: dict[str, FloatArray] = field(default_factory=dict)
+    predicted: dict[str, FloatArray] = field(default_factory=dict)
+    bulk: tuple[float | None, int, float | None] = (None, 0, None)
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def sheared_walls(self) -> list[WallSpin]:
+        return [w for w in self.walls if w.sheared and w.dof > 0]
+
+    @property
+    def near(self) -> tuple[float | None, int, float | None]:
+        """chi^2, bins and p over the bins near the sheared walls (the run's test)."""
+        z = [w.z for w in self.sheared_walls]
+        return chi2_p(np.concatenate(z) if z else np.zeros(0))
+
+    @property
+    def departs(self) -> bool:
+        p = self.near[2]
+        return p is not None and p < P_SIGNIFICANT
+
+    def to_dict(self) -> dict[str, Any]:
+        if not self.available:
+            return {"available": False, "reason": self.reason}
+        chi2, dof, p = self.near
+        return {
+            "available": True,
+            "chi2_near_wall": chi2,
+            "dof_near_wall": dof,
+            "p_near_wall": p,
+            "departs_near_wall": self.departs,
+            "chi2_bulk": self.bulk[0],
+            "dof_bulk": self.bulk[1],
+            "p_bulk": self.bulk[2],
+            "walls": [w.to_dict() for w in self.walls],
+            "notes": self.notes,
+        }
+
+
+def measure_spin(run: Run, near_wall_d: float = NEAR_WALL_D) -> SpinMeasure:
+    """omega - half vorticity of the run near each wall and in the bulk (module docstring)."""
+    if not run.has("omega"):
+        return SpinMeasure(False, "no omega and omega_se columns: the spin was not measured")
+    if not run.has("half_vorticity"):
+        return SpinMeasure(
+            False,
+            "no half_vorticity and half_vorticity_se columns: nothing to set the spin against",
+        )
+    omega, s_o = run.quantity("omega")
+    half, s_h = run.quantity("half_vorticity")
+    ok = usable(omega, s_o) & usable(half, s_h)
+    if np.sum(ok) < 3:
+        return SpinMeasure(False, "fewer than 3 bins with a finite spin and its error")
+    dep = omega[ok] - half[ok]
+    se = np.sqrt(s_o[ok] ** 2 + s_h[ok] ** 2)
+    dist = run.distance_d[ok]
+    other = run.gap_d - dist
+    out = SpinMeasure(True, distance_d=dist, departure=dep, stderr=se, half=half[ok])
+    out.notes.append(
+        "the standard error of omega - half vorticity is sqrt(se_omega^2 + se_half^2): the "
+        "two taken as independent, and the bins too"
+    )
+    # the channel's two walls are both fixed and both sheared (its distance is from y = 0)
+    names = ("lower", "upper") if run.cell == "channel" else ("moving", "fixed")
+    sheared = (True, True)
+    if run.cell != "channel":
+        u, _ = run.quantity("u")
+        sheared = (True, bool(abs(u[int(np.argmax(run.distance_d))]) >= SHEARED_U))
+    near_a, near_b = dist <= near_wall_d, other <= near_wall_d
+    near_b &= ~near_a
+    da, db = dist, other
+    for name, near, d, sh in zip(names, (near_a, near_b), (da, db), sheared, strict=True):
+        out.walls.append(WallSpin(run.name, name, sh, d[near], dep[near], se[near]))
+        out.index[name] = np.flatnonzero(near)
+    bulk = ~(near_a | near_b)
+    out.bulk = chi2_p((dep / se)[bulk])
+    return out
+
+
+# --------------------------------------------------------------------------- stresses
+@dataclass(frozen=True)
+class StressRatio:
+    """The band's measured |shear|/normal stress ratio [-] and its error, over ``bins`` bins."""
+
+    value: float
+    stderr: float
+    bins: int
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"value": self.value, "stderr": self.stderr, "bins": self.bins}
+
+
+def band_stress_ratio(run: Run) -> StressRatio | None:
+    """The band's stress ratio (module docstring), or None where the stresses are absent."""
+    shear, normal = ("sigma_rt", "sigma_rr") if run.cell == "couette" else ("sigma_yx", "sigma_yy")
+    if run.cell == "channel" or not (run.has(shear) and run.has(normal)):
+        return None
+    t, st = run.quantity(shear)
+    n, sn = run.quantity(normal)
+    u, _ = run.quantity("u")
+    s = run.distance_d
+    ok = usable(t, st) & usable(n, sn) & (n > 0.0) & (u >= BAND_U)
+    ok &= (s >= WALL_EXCLUSION_D) & (s <= run.gap_d - WALL_EXCLUSION_D)
+    if np.count_nonzero(ok) < 2:
+        return None
+    ratio = np.abs(t[ok]) / n[ok]
+    se = ratio * np.hypot(st[ok] / np.maximum(np.abs(t[ok]), 1e-300), sn[ok] / n[ok])
+    w = 1.0 / se**2
+    mean = float(np.sum(w * ratio) / np.sum(w))
+    err = max(
+        1.0 / math.sqrt(float(np.sum(w))), float(np.std(ratio, ddof=1)) / math.sqrt(ratio.size)
+    )
+    return StressRatio(mean, err, int(ratio.size))
+
+
+def moving_wall_inertial_number(run: Run, bins: int = 3) -> float | None:
+    """The largest local inertial number in the ``bins`` bins next to the moving wall [-]
+    (None without an ``inertial_number`` column)."""
+    if "inertial_number" not in run.columns or run.cell == "channel":
+        return None
+    values = np.asarray(run.columns["inertial_number"], dtype=float)[np.argsort(run.distance_d)]
+    near = values[:bins]
+    near = near[np.isfinite(near)]
+    return float(np.max(near)) if near.size else None

@@ -1,0 +1,322 @@
+"""Write what :func:`~cosserat.studies.validate.study.validate` found: figures, ``report.md``,
+``index.html`` (from the templates ``validate.*.j2`` through the package's one report writer,
+``cosserat.viz.report``) and ``results.json`` (schema in ``docs/validation.md``)."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..._atomic import save_figure, write_text
+from ...analysis.gap import PAPER_SLOPES
+from ...viz.report import write_report as write_templates
+from .measures import (
+    BAND_U,
+    FILLS_GAP,
+    P_SIGNIFICANT,
+    SHEARED_U,
+    WALL_EXCLUSION_D,
+)
+from .verdicts import MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, relevant
+
+if TYPE_CHECKING:
+    from .study import RunResult, ValidationReport
+
+RUN_FIGURE_DPI = 150
+"""Resolution of the run figures [dots per inch] (the claim figures have the package's)."""
+
+CLAIM_FIGURES = {
+    "spin": "claim_spin.png",
+    "smoother": "claim_smoother.png",
+    "rough": "claim_rough.png",
+    "spin_model": "claim_spin_model.png",
+}
+"""The figure of each claim."""
+
+
+def run_entry(r: RunResult) -> dict[str, Any]:
+    """The plain data of a run's figure (``cosserat.viz.validation.run_figure``)."""
+    m = r.run.measured()
+    models: dict[str, Any] = {}
+    order: list[str] = []
+    if r.fits is not None:
+        order = r.fits.models
+        d = np.linspace(0.0, float(m.distance_d.max()), 300)
+        models = {name: {"d": d, "u": r.fits.curve(name, d)} for name in order}
+    spin = None
+    if r.spin.available:
+        spin = {
+            "distance_d": r.spin.distance_d,
+            "departure": r.spin.departure,
+            "stderr": r.spin.stderr,
+            "predicted": r.spin.predicted,
+            "near_wall_d": max(
+                (float(np.max(w.distance_d)) for w in r.spin.walls if w.dof), default=0.0
+            ),
+            "gap_d": r.run.gap_d,
+        }
+    i_w = r.inertial_number
+    title = f"{r.run.name}: {r.run.cell}, H/d = {r.run.gap_d:g}" + (
+        f", I at the moving wall = {i_w:.2g}" if i_w is not None else ""
+    )
+    return {
+        "name": r.run.name,
+        "title": title,
+        "distance_d": m.distance_d,
+        "u": m.u_over_uw,
+        "u_se": m.u_err,
+        "models": models,
+        "order": order,
+        "spin": spin,
+    }
+
+
+def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
+    """One row per run and wall with spin: the first layer's measured departure and each
+    model's."""
+    rows = []
+    for r in report.results:
+        for w in r.spin.walls if r.spin.available else []:
+            if w.dof == 0:
+                continue
+            rows.append(
+                {
+                    "label": f"{w.run}: {w.wall}",
+                    "first": w.first,
+                    "se": w.first_se,
+                    "sheared": w.sheared,
+                    "predicted": {m: w.predicted_first(m) for m in w.predicted},
+                }
+            )
+    return rows
+
+
+def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
+    by_name = {r.run.name: r for r in report.results}
+    out = []
+    for s in relevant(report.groups, which):
+        out.append(
+            {
+                "key": s.key,
+                "label": re.sub(r" \(.*?\)", "", s.key),
+                "gaps": s.gaps,
+                "Delta": s.Delta,
+                "stderr": s.stderr,
+                "usable": [p.usable for p in s.points],
+                "model": [by_name[p.run].model_delta.get("cosserat") for p in s.points],
+            }
+        )
+    return out
+
+
+def write_run_figure(r: RunResult, out: Path) -> str:
+    """Draw and write the run's figure ``run_<name>.png`` into ``out``; returns its name."""
+    from ...viz import validation as fig
+    from ...viz.plotting import style
+
+    name = f"run_{r.run.name}.png"
+    with style():
+        save_figure(fig.run_figure(run_entry(r)), out / name, dpi=RUN_FIGURE_DPI)
+    return name
+
+
+def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
+    """Every figure: each run's (unless drawn already, :func:`write_run_figure`) and each
+    claim's."""
+    from ...viz import validation as fig
+    from ...viz.plotting import style
+
+    files: dict[str, str] = {}
+    for r in report.results:
+        if not (r.figure and (out / r.figure).is_file()):
+            r.figure = write_run_figure(r, out)
+        files[r.run.name] = r.figure
+    rows = spin_rows(report)
+    with style():
+        save_figure(
+            fig.spin_claim_figure(rows, [], "does the spin depart from half the vorticity?"),
+            out / CLAIM_FIGURES["spin"],
+        )
+        save_figure(
+            fig.spin_claim_figure(
+                [r for r in rows if r["sheared"]],
+                report.models,
+                "the measured departure against each model's (sheared walls)",
+            ),
+            out / CLAIM_FIGURES["spin_model"],
+        )
+    slopes = {f"slope {v:.3g} ({k})": v for k, v in PAPER_SLOPES.items()}
+    for which, title in (
+        ("smoother", "walls smoother than the material"),
+        ("rough", "fully rough walls, under gravity or in Couette flow"),
+    ):
+        with style():
+            save_figure(
+                fig.delta_claim_figure(delta_entries(report, which), slopes, title),
+                out / CLAIM_FIGURES[which],
+            )
+    files.update({f"claim_{k}": v for k, v in CLAIM_FIGURES.items()})
+    return files
+
+
+def rules() -> str:
+    """The decision rules, in one paragraph (the report states them)."""
+    return (
+        f"Spin: z = (omega - half vorticity)/se in the bins near each wall, chi^2 against no "
+        f"departure; each sheared wall on its own (a fixed wall is sheared when its nearest "
+        f"bin moves at u >= {SHEARED_U:g}), per run and pooled over runs; 'supported' when "
+        f"the pooled p < {P_SIGNIFICANT:g} and at least half the runs depart at p < "
+        f"{P_CONSISTENT:g}. Sign and size: the departure in the first layer at each wall "
+        f"against the model's there; the sign is determined where |departure| >= "
+        f"{SIGN_SIGMAS:g} se. Delta: where the velocity falls to f of its value in the bin "
+        f"nearest the moving wall (u_0 = 1/2 for plane shear without gravity, else 0); a band "
+        f"with Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws; the slope "
+        f"of ln Delta on ln(H/d) over at least {MIN_GAPS} gaps supports a claimed exponent "
+        "within 2 standard errors when the other claimed exponent is outside 2, and refutes it "
+        "beyond 2 unless the Cosserat model fitted to the same runs misses it too and the data "
+        "agree with the model's slope (the claims are limits H/d -> infinity). Fits: a fit "
+        f"with p(chi^2) < {P_SIGNIFICANT:g} is a misfit; parameters held at their defaults "
+        "are named; a model's band stress ratio (sin phi, mu_s) that contradicts the run's "
+        f"measured |shear|/normal stress (where u >= {BAND_U:g}, bins farther than "
+        f"{WALL_EXCLUSION_D:g} d from the walls) is flagged."
+    )
+
+
+def _g(x: float | None, spec: str = ".3g") -> str:
+    return "-" if x is None else format(x, spec)
+
+
+def context(report: ValidationReport) -> dict[str, Any]:
+    """The templates' context: plain strings and numbers."""
+    runs = []
+    for r in report.results:
+        fits = []
+        if r.fits is not None:
+            for s in r.fits.summaries:
+                fits.append(
+                    {
+                        "model": s.model,
+                        "ok": s.ok,
+                        "message": s.message,
+                        "reduced_chi2": _g(s.reduced_chi2),
+                        "p": _g(s.p_value, ".2g"),
+                        "parameters": "; ".join(
+                            f"{k} = {v:.4g}" + ("" if e is None else f" +- {e:.2g}")
+                            for k, (v, e) in s.parameters.items()
+                        ),
+                        "pinned": ", ".join(f"{k} = {v:.4g}" for k, v in s.pinned.items()),
+                        "warnings": s.warnings,
+                    }
+                )
+        t = r.thickness
+        delta = "-" if t.value is None else f"{t.value:.4g}"
+        delta += "" if t.stderr is None else f" +- {t.stderr:.2g}"
+        if t.fills_gap:
+            delta += " (fills the gap)"
+        walls = []
+        for w in r.spin.walls if r.spin.available else []:
+            walls.append(
+                {
+                    "wall": w.wall,
+                    "sheared": w.sheared,
+                    "bins": w.dof,
+                    "first": _g(w.first, "+.3g"),
+                    "se": _g(w.first_se, ".2g"),
+                    "chi2": _g(w.chi2),
+                    "p": _g(w.p, ".2g"),
+                    "predicted": ", ".join(f"{m} {w.predicted_first(m):+.3g}" for m in w.predicted),
+                }
+            )
+        runs.append(
+            {
+                "name": r.run.name,
+                "cell": r.run.cell,
+                "gap": f"{r.run.gap_d:g}",
+                "wall": r.run.roughness or "-",
+                "best": (r.fits.best if r.fits else None) or "-",
+                "I_w": _g(r.inertial_number, ".2g"),
+                "stress": "-"
+                if r.stress is None
+                else f"{r.stress.value:.3g} +- {r.stress.stderr:.2g}",
+                "delta": delta,
+                "model_delta": "; ".join(f"{m} {_g(d, '.4g')}" for m, d in r.model_delta.items()),
+                "fits": fits,
+                "walls": walls,
+                "figure": r.figure,
+                "ranking_text": r.fits.to_text().rstrip() if r.fits else "",
+                "error": r.error,
+                "notes": r.skipped + list(r.run.notes) + (r.spin.notes if r.spin.available else []),
+            }
+        )
+    series = []
+    for g in report.groups:
+        pts = ", ".join(
+            f"H/d = {p.gap_d:g}: {_g(p.value, '.4g')}"
+            + ("" if p.stderr is None else f" +- {p.stderr:.2g}")
+            for p in g.points
+        )
+        slope = "no slope" if g.slope is None else f"slope {g.slope.text()}"
+        models = ", ".join(f"{m} {s.slope:.3f}" for m, s in g.model_slopes.items() if s)
+        series.append(
+            {
+                "key": g.key,
+                "points": pts,
+                "slope": slope,
+                "reason": g.reason,
+                "models": models,
+                "notes": list(g.notes),
+            }
+        )
+    return {
+        "title": "cosserat validate",
+        "corpus": str(report.corpus),
+        "n_runs": len(report.results),
+        "models": ", ".join(report.models) or "none",
+        "f": f"{report.f:g}",
+        "near_wall_d": f"{report.near_wall_d:g}",
+        "verdicts": [
+            {
+                "key": v.key,
+                "claim": v.claim,
+                "verdict": v.verdict,
+                "evidence": v.evidence,
+                "would_change": v.would_change,
+                "figure": CLAIM_FIGURES[v.key],
+            }
+            for v in report.verdicts
+        ],
+        "rules": rules(),
+        "runs": runs,
+        "series": series,
+        "notes": report.notes,
+    }
+
+
+def finite(obj: Any) -> Any:
+    """``obj`` with non-finite floats as None and arrays as lists (for JSON)."""
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    if isinstance(obj, dict):
+        return {str(k): finite(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [finite(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return finite(obj.tolist())
+    if isinstance(obj, np.floating | np.integer | np.bool_):
+        return finite(obj.item())
+    return obj
+
+
+def write_report(report: ValidationReport, out: str | Path) -> dict[str, str]:
+    """Write the figures, ``report.md``, ``index.html`` and ``results.json`` into ``out``."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    report.files = write_figures(report, out)
+    write_templates(out, "validate", context(report))
+    write_text(out / "results.json", json.dumps(finite(report.to_dict()), indent=1) + "\n")
+    return report.files

@@ -1,0 +1,642 @@
+"""Verdicts on the paper's claims: small pure functions of measured quantities.
+
+Each takes what was measured (:class:`~cosserat.studies.validate.measures.WallSpin` per run
+and wall, :class:`DeltaSeries` per gap series) and returns a :class:`Verdict`: the claim,
+"supported", "refuted", "mixed" or "undecided", the evidence (the method, the numbers, the
+p-values, the runs used) and what data would change it. The rules:
+
+* **spin departs** (:func:`spin_verdict`): each sheared wall of each run is tested on its own:
+  chi^2 of z = (omega - half vorticity)/se over its near-wall bins against no departure; a
+  run's test adds its sheared walls, the pooled test adds every run's (degrees of freedom
+  added; bins and runs taken as independent). "supported" when the pooled p <
+  :data:`P_SIGNIFICANT` and at least half the runs show a departure at p < :data:`P_CONSISTENT`
+  ("mixed" when fewer do: the pooled result rests on a few runs); "refuted" when the pooled p
+  >= :data:`P_CONSISTENT` although the departure the Cosserat model predicts (fitted to the
+  same velocities) would have given a pooled p < :data:`P_SIGNIFICANT` at these errors;
+  "undecided" otherwise.
+* **the model's departure** (:func:`spin_model_verdict`): at each sheared wall, the measured
+  departure in the first layer (the bin nearest to the wall, where the departure is largest) m
+  +- s against the model's there, p_m. The measured sign is determined where |m| >=
+  :data:`SIGN_SIGMAS` s. "refuted" where the model departs with the opposite sign at every wall
+  of determined sign (however small its departure), or with the right sign but a size the data
+  reject (pooled chi^2 of (departure - model)/se, p < :data:`P_SIGNIFICANT`), or predicts none
+  (|p_m| <= :data:`NO_DEPARTURE`, a rheology without a spin of its own) where the data depart;
+  "supported" when the sign agrees everywhere it is determined and the size is not rejected;
+  "mixed" when the sign agrees at some walls and is opposite at others; "undecided" when no wall
+  has a determined sign.
+* **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the slope s
+  +- se of ln Delta against ln(H/d) (weighted by the errors of Delta) over at least
+  :data:`MIN_GAPS` gaps, runs whose band fills its gap left out (they cannot test a law of the
+  gap, either way); a claimed exponent c is "supported" when |s - c| <= 2 se and the other
+  claimed exponent c' is excluded (|s - c'| > 2 se), "refuted" when |s - c| > 2 se unless the
+  Cosserat model fitted to the same runs misses c too and the data agree with its slope (the
+  claims are limits H/d -> infinity: "undecided", larger gaps needed), "undecided" otherwise.
+  Series that disagree make the verdict "mixed".
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy.stats import chi2 as chi2_dist
+
+from ...analysis.gap import PAPER_SLOPES, SlopeFit, power_law_slope
+from ...errors import ParameterError
+from .measures import P_SIGNIFICANT, WallSpin, chi2_p
+
+P_CONSISTENT = 0.05
+"""A test with p at or above this shows no departure [-]."""
+SIGN_SIGMAS = 3.0
+"""The measured departure's sign is determined when |first layer| >= this many standard
+errors."""
+MIN_GAPS = 3
+"""Fewest gaps for a verdict on how Delta scales with the gap."""
+NO_DEPARTURE = 1e-9
+"""A model's departure below this is none (a rheology without a spin of its own) [-]."""
+SAME_GAP = 0.05
+"""Gaps within this relative difference are one gap (replicates) [-]."""
+
+CLAIMS = {
+    "spin": "The grain spin departs from half the vorticity near the walls.",
+    "smoother": "Delta is independent of the gap H/d for walls smoother than the material.",
+    "rough": "Delta grows as (H/d)^(1/3) for fully rough walls (under gravity, or in Couette "
+    "flow).",
+    "spin_model": "The spin departs from half the vorticity with the sign and size the "
+    "Cosserat model predicts (fitted to the same velocities).",
+}
+"""The claims judged, by key, in the order of the report."""
+VERDICTS = ("supported", "refuted", "mixed", "undecided")
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """A verdict on one claim, with its evidence and what would change it."""
+
+    key: str
+    verdict: str
+    evidence: str
+    would_change: str = ""
+    runs: tuple[str, ...] = ()
+    numbers: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def claim(self) -> str:
+        return CLAIMS[self.key]
+
+    @property
+    def text(self) -> str:
+        """The evidence and what would change the verdict, in one paragraph."""
+        return self.evidence + (
+            f" What would change it: {self.would_change}" if self.would_change else ""
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "key": self.key,
+            "claim": self.claim,
+            "verdict": self.verdict,
+            "evidence": self.evidence,
+            "would_change": self.would_change,
+            "runs": list(self.runs),
+            "numbers": dict(self.numbers),
+            "text": self.text,
+        }
+
+
+def _g(x: float | None, spec: str = ".3g") -> str:
+    return "-" if x is None else format(x, spec)
+
+
+def _walls_text(walls: Sequence[WallSpin]) -> str:
+    rows = []
+    for w in walls:
+        chi2, n, p = chi2_p(w.z)
+        rows.append(
+            f"{w.run} ({w.wall} wall, {n} bins within {float(np.max(w.distance_d)):.2g} d): "
+            f"first layer {_g(w.first, '+.3g')} +- {_g(w.first_se, '.2g')}, chi^2 = "
+            f"{_g(chi2)} (p = {_g(p, '.2g')})"
+        )
+    return "; ".join(rows)
+
+
+SPIN_METHOD = (
+    "Method: z = (omega - half vorticity)/se in the bins near each wall, se = sqrt(se_omega^2 "
+    "+ se_half^2); chi^2 = sum z^2 against no departure, one degree of freedom per bin; each "
+    "sheared wall tested on its own (the moving wall; a fixed wall only where its nearest bin "
+    "moves), a run's test adds its sheared walls, the pooled test adds the runs; bins and runs "
+    "taken as independent (a correlation rho between neighbouring bins would inflate chi^2 by "
+    "about (1 + rho)/(1 - rho))."
+)
+
+
+# --------------------------------------------------------------------------- spin
+def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
+    """Does the spin depart from half the vorticity near the walls (module docstring)?
+
+    Parameters
+    ----------
+    walls : sequence of WallSpin
+        Every run's near-wall tests; unsheared walls are reported, not judged.
+    model : str
+        The model whose predicted departure says whether the errors could have seen one.
+    """
+    tested = [w for w in walls if w.sheared and w.dof > 0]
+    untested = [w for w in walls if not w.sheared and w.dof > 0]
+    key = "spin"
+    if not tested:
+        return Verdict(
+            key,
+            "undecided",
+            "The data cannot decide: no run has the spin and half the vorticity measured near "
+            "a sheared wall.",
+            "omega and half_vorticity columns with their standard errors in the bins next to "
+            "the moving wall.",
+        )
+    runs = sorted({w.run for w in tested})
+    per_run = {r: chi2_p(np.concatenate([w.z for w in tested if w.run == r])) for r in runs}
+    chi2, dof, p = chi2_p(np.concatenate([w.z for w in tested]))
+    roles = sorted({w.wall for w in tested})
+    by_wall = {
+        role: chi2_p(np.concatenate([w.z for w in tested if w.wall == role])) for role in roles
+    }
+    p_run = {r: 1.0 if v[2] is None else v[2] for r, v in per_run.items()}  # p may be 0.0
+    showing = [r for r in runs if p_run[r] < P_CONSISTENT]
+    significant = [r for r in runs if p_run[r] < P_SIGNIFICANT]
+    pooled = f"pooled over {len(runs)} runs: chi^2 = {chi2:.4g} for {dof} bins (p = {p:.2g})"
+    pooled += "".join(
+        f"; {role} walls alone: chi^2 = {c:.4g} for {n} bins (p = {pp:.2g})"
+        for role, (c, n, pp) in by_wall.items()
+    )
+    detail = _walls_text(tested)
+    if untested:
+        detail += (
+            "; not judged (the material does not shear there, no model predicts a departure): "
+            + _walls_text(untested)
+        )
+    numbers: dict[str, Any] = {
+        "pooled_chi2": chi2,
+        "pooled_dof": dof,
+        "pooled_p": p,
+        "by_wall": {k: {"chi2": v[0], "dof": v[1], "p": v[2]} for k, v in by_wall.items()},
+        "runs_departing_p_0.05": showing,
+        "runs_departing_p_significant": significant,
+    }
+    shift = sum(w.shift(model) for w in tested)
+    needed = float(chi2_dist.isf(P_SIGNIFICANT, dof)) - dof
+    p_seen = float(chi2_dist.sf(dof + shift, dof))
+    numbers["p_if_model_departure_were_there"] = p_seen
+    head = (
+        f"{pooled}. {len(showing)} of {len(runs)} runs depart at p < {P_CONSISTENT:g} "
+        f"({len(significant)} at p < {P_SIGNIFICANT:g}). {detail}. {SPIN_METHOD}"
+    )
+    if p < P_SIGNIFICANT:
+        if 2 * len(showing) >= len(runs):
+            return Verdict(
+                key,
+                "supported",
+                f"Supported: the measured spin departs from half the measured vorticity near "
+                f"the sheared walls; {head}",
+                "runs at the same conditions whose near-wall spins agree with half the "
+                "vorticity, or a bin-to-bin correlation of the errors large enough to bring "
+                f"the pooled chi^2 below {float(chi2_dist.isf(P_SIGNIFICANT, dof)):.4g}.",
+                tuple(runs),
+                numbers,
+            )
+        return Verdict(
+            key,
+            "mixed",
+            f"Mixed: the pooled test departs, but only {len(showing)} of {len(runs)} runs "
+            f"do; the pooled result rests on them. {head}",
+            "more runs at the conditions of those that do not depart, to tell a real "
+            "difference between runs from scatter.",
+            tuple(runs),
+            numbers,
+        )
+    if p >= P_CONSISTENT and p_seen < P_SIGNIFICANT:
+        return Verdict(
+            key,
+            "refuted",
+            f"Refuted: no departure near the sheared walls, although the departure the "
+            f"{model} model predicts for these runs (fitted to their velocities) would have "
+            f"given p = {p_seen:.2g}; {head}",
+            "a departure in runs with smaller errors, or a model whose predicted departure "
+            "these errors could not see.",
+            tuple(runs),
+            numbers,
+        )
+    if shift > 0.0:
+        factor = math.sqrt(needed / shift)
+        change = (
+            f"errors smaller by a factor {factor:.2g} (runs about {factor**2:.2g} times "
+            f"longer) would show the {model} model's predicted departure at p < "
+            f"{P_SIGNIFICANT:g}."
+        )
+    else:
+        change = (
+            f"no {model} fit predicts a departure at these bins: errors small enough to see a "
+            f"pooled chi^2 above {needed + dof:.4g}."
+        )
+    return Verdict(
+        key,
+        "undecided",
+        f"The data cannot decide: no significant departure (p = {p:.2g}), and the errors are "
+        f"too large to have seen the departure the {model} model predicts (it would give "
+        f"p = {p_seen:.2g}); {head}",
+        change,
+        tuple(runs),
+        numbers,
+    )
+
+
+def spin_model_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
+    """Has the measured departure the sign and size ``model`` predicts (module docstring)?"""
+    key = "spin_model"
+    tested = [w for w in walls if w.sheared and w.dof > 0 and model in w.predicted]
+    if not tested:
+        return Verdict(
+            key,
+            "undecided",
+            f"The data cannot decide: no run has both the spin near a sheared wall and a fit "
+            f"of the {model} model.",
+            f"a run with omega and half_vorticity near the moving wall that the {model} model "
+            "can be fitted to.",
+        )
+    rows, same, opposite, none, undetermined = [], [], [], [], []
+    for w in tested:
+        m, s, pm = w.first, w.first_se, w.predicted_first(model)
+        assert m is not None and s is not None and pm is not None
+        others = ", ".join(
+            f"{k} {w.predicted_first(k):+.3g}" for k in sorted(w.predicted) if k != model
+        )
+        c, n, pp = w.misfit(model)
+        rows.append(
+            f"{w.run} ({w.wall} wall, first layer): measured {m:+.3g} +- {s:.2g}, {model} "
+            f"predicts {pm:+.3g} (chi^2 of data - model over {n} near-wall bins = {_g(c)}, p = "
+            f"{_g(pp, '.2g')})" + (f"; other models {others}" if others else "")
+        )
+        if abs(m) < SIGN_SIGMAS * s:
+            undetermined.append(w)
+        elif abs(pm) <= NO_DEPARTURE:
+            none.append(w)
+        elif pm * m > 0:
+            same.append(w)
+        else:
+            opposite.append(w)
+    detail = "; ".join(rows)
+    method = (
+        "Method: omega - half vorticity in the first layer of each sheared wall (the bin "
+        "nearest to it) against the model's there; the measured sign is "
+        f"determined where |departure| >= {SIGN_SIGMAS:g} se; the size is tested by chi^2 of "
+        "(departure - model)/se over the bins of the walls with a determined sign."
+    )
+    determined = same + opposite + none
+    runs = tuple(sorted({w.run for w in tested}))
+    numbers: dict[str, Any] = {
+        "same_sign": [f"{w.run}:{w.wall}" for w in same],
+        "opposite_sign": [f"{w.run}:{w.wall}" for w in opposite],
+        "model_predicts_none": [f"{w.run}:{w.wall}" for w in none],
+        "sign_undetermined": [f"{w.run}:{w.wall}" for w in undetermined],
+    }
+    if not determined:
+        best = min(tested, key=lambda w: w.first_se or math.inf)
+        return Verdict(
+            key,
+            "undecided",
+            f"The data cannot decide: the measured departure's sign is not determined at any "
+            f"wall (|departure| < {SIGN_SIGMAS:g} se in every first layer). {detail}. {method}",
+            f"errors of the first layer's departure below |departure|/{SIGN_SIGMAS:g} (now "
+            f"{_g(best.first_se, '.2g')} at best).",
+            runs,
+            numbers,
+        )
+    if opposite and same:
+        return Verdict(
+            key,
+            "mixed",
+            f"Mixed: the {model} model's departure has the measured sign at "
+            f"{len(same)} walls and the opposite sign at {len(opposite)}. {detail}. {method}",
+            "more runs at the conditions of each group, to tell whether the sign depends on "
+            "the wall or the cell.",
+            runs,
+            numbers,
+        )
+    if opposite:
+        small = sum(1 for w in opposite if abs(w.predicted_first(model) or 0.0) < (w.first_se or 0))
+        return Verdict(
+            key,
+            "refuted",
+            f"Refuted: where the measured sign is determined the {model} model, fitted to the "
+            f"velocity, departs with the opposite sign ({len(opposite)} of "
+            f"{len(determined)} walls of determined sign; at {small} of them the predicted "
+            f"departure is smaller than the measured error). {detail}. {method}",
+            "a fit of the model to the spin as well as the velocity (a joint calibration) "
+            "that reverses the predicted sign, or runs where the measured sign turns.",
+            runs,
+            numbers,
+        )
+    c, n, pp = chi2_p(
+        np.concatenate([(w.departure - w.predicted[model]) / w.stderr for w in determined])
+    )
+    numbers.update({"size_chi2": c, "size_dof": n, "size_p": pp})
+    if none:
+        return Verdict(
+            key,
+            "refuted",
+            f"Refuted: the data depart where the {model} model predicts no departure "
+            f"({len(none)} of {len(determined)} walls). {detail}. {method}",
+            "model parameters (a joint calibration on the spin) that make the model depart there.",
+            runs,
+            numbers,
+        )
+    if pp is not None and pp < P_SIGNIFICANT:
+        return Verdict(
+            key,
+            "refuted",
+            f"Refuted: the sign agrees but the size does not: chi^2 of data - model = {c:.4g} "
+            f"for {n} bins (p = {pp:.2g}). {detail}. {method}",
+            "a fit that matches the spin's size as well as the velocity.",
+            runs,
+            numbers,
+        )
+    return Verdict(
+        key,
+        "supported",
+        f"Supported: the measured departure has the sign the {model} model predicts at every "
+        f"wall where it is determined, and its size is not rejected (chi^2 = {_g(c)} for {n} "
+        f"bins, p = {_g(pp, '.2g')}). {detail}. {method}",
+        "a run with smaller errors whose departure differs from the model's in size or sign.",
+        runs,
+        numbers,
+    )
+
+
+# --------------------------------------------------------------------------- Delta
+@dataclass(frozen=True)
+class DeltaPoint:
+    """Delta of one run's data [d] at its gap H/d, with its error and whether it fills it."""
+
+    run: str
+    gap_d: float
+    value: float | None
+    stderr: float | None
+    fills_gap: bool = False
+    reason: str = ""
+
+    @property
+    def usable(self) -> bool:
+        return (
+            self.value is not None
+            and self.value > 0.0
+            and self.stderr is not None
+            and self.stderr > 0.0
+            and not self.fills_gap
+        )
+
+
+@dataclass(frozen=True)
+class DeltaSeries:
+    """Delta against H/d for one gap series, and the fitted models' slopes there."""
+
+    key: str
+    cell: str
+    roughness: str | None
+    gravity: bool
+    points: tuple[DeltaPoint, ...]
+    model_slopes: Mapping[str, SlopeFit | None] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
+
+    @property
+    def gaps(self) -> list[float]:
+        return [p.gap_d for p in self.points]
+
+    @property
+    def Delta(self) -> list[float | None]:
+        return [p.value for p in self.points]
+
+    @property
+    def stderr(self) -> list[float | None]:
+        return [p.stderr for p in self.points]
+
+    @property
+    def distinct_gaps(self) -> int:
+        gaps: list[float] = []
+        for p in self.points:
+            if p.usable and not any(abs(p.gap_d - g) <= SAME_GAP * g for g in gaps):
+                gaps.append(p.gap_d)
+        return len(gaps)
+
+    @property
+    def left_out(self) -> list[DeltaPoint]:
+        return [p for p in self.points if p.fills_gap]
+
+    @property
+    def slope(self) -> SlopeFit | None:
+        """ln Delta against ln(H/d) over the usable points (two distinct gaps at least)."""
+        pts = [p for p in self.points if p.usable]
+        if self.distinct_gaps < 2:
+            return None
+        try:
+            return power_law_slope(
+                [p.gap_d for p in pts],
+                [p.value for p in pts],  # type: ignore[misc]
+                [p.stderr for p in pts],
+            )
+        except ParameterError:
+            return None
+
+    @property
+    def reason(self) -> str:
+        n = self.distinct_gaps
+        out = ""
+        if n < 2:
+            out = f"Delta usable at {n} gap(s): no power law"
+        elif n < MIN_GAPS:
+            out = f"only {n} gaps (a verdict needs {MIN_GAPS})"
+        if self.left_out:
+            out += (
+                ("; " if out else "")
+                + "left out: "
+                + ", ".join(f"{p.run} ({p.reason})" for p in self.left_out)
+            )
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        s = self.slope
+        return {
+            "key": self.key,
+            "cell": self.cell,
+            "roughness": self.roughness,
+            "runs": [p.run for p in self.points],
+            "gaps": self.gaps,
+            "Delta": self.Delta,
+            "stderr": self.stderr,
+            "fills_gap": [p.fills_gap for p in self.points],
+            "slope": None if s is None else s.to_dict(),
+            "reason": self.reason,
+            "model_slopes": {
+                k: None if v is None else v.to_dict() for k, v in self.model_slopes.items()
+            },
+            "notes": list(self.notes),
+        }
+
+
+def short(key: str) -> str:
+    """A series key without its parenthesised wall details."""
+    return re.sub(r" \(.*?\)", "", key)
+
+
+def relevant(series: Sequence[DeltaSeries], which: str) -> list[DeltaSeries]:
+    """The series a Delta claim is about: smoother walls (plane or Couette), or fully rough
+    walls under gravity or in Couette flow."""
+    if which == "smoother":
+        return [s for s in series if s.roughness == "smoother" and s.cell != "channel"]
+    return [
+        s for s in series if s.roughness == "fully-rough" and (s.cell == "couette" or s.gravity)
+    ]
+
+
+def _gaps_needed(s: DeltaSeries, se: float, target: float, other: float) -> str:
+    """What slope error would tell the two exponents apart, and the gaps that would give it."""
+    want = abs(target - other) / 4.0  # 2 se each side
+    pts = [p.gap_d for p in s.points if p.usable]
+    g0, g1 = min(pts), max(pts)
+    if se <= want or g1 <= g0:
+        return ""
+    g_max = g0 * (g1 / g0) ** (se / want)
+    return (
+        f"a slope error below {want:.2g} (now {se:.2g}): gaps up to H/d ~ {g_max:.3g} at the "
+        f"same errors of Delta, or errors of Delta {se / want:.2g} times smaller over "
+        f"H/d = {g0:g}-{g1:g}"
+    )
+
+
+def delta_law_verdict(series: Sequence[DeltaSeries], which: str) -> Verdict:
+    """Claim ``which`` = "smoother" (exponent 0) or "rough" (exponent 1/3) against the gap
+    series (module docstring)."""
+    if which not in ("smoother", "rough"):
+        raise ParameterError(f"which must be 'smoother' or 'rough'; got {which!r}")
+    target = PAPER_SLOPES["smoother walls" if which == "smoother" else "fully rough walls"]
+    other = PAPER_SLOPES["fully rough walls" if which == "smoother" else "smoother walls"]
+    want = f"exponent {target:.3g} claimed"
+    kind = "smoother than the material" if which == "smoother" else "fully rough"
+    rel = relevant(series, which)
+    method = (
+        f"Method: weighted least squares of ln Delta on ln(H/d) (weights from the errors of "
+        f"Delta, the slope's error scaled up by sqrt(reduced chi^2) when above 1), at least "
+        f"{MIN_GAPS} gaps, runs whose band fills its gap left out; claimed {target:.3g} "
+        f"supported within 2 se when {other:.3g} is outside 2 se."
+    )
+    if not rel:
+        return Verdict(
+            which,
+            "undecided",
+            f"The data cannot decide: no series of runs with walls {kind}"
+            + (" under gravity or in Couette flow" if which == "rough" else "")
+            + " (the sidecars' wall.kind says which: smooth-frictional or glued-grains).",
+            f"runs with walls {kind} at {MIN_GAPS} or more gaps.",
+        )
+    calls: list[tuple[str, str, str]] = []
+    runs: list[str] = []
+    numbers: dict[str, Any] = {}
+    for s in rel:
+        head = f"{s.key}: "
+        slope = s.slope
+        runs += [p.run for p in s.points]
+        numbers[s.key] = s.to_dict()
+        notes = "".join(f"; note: {n}" for n in s.notes)
+        if slope is None or s.distinct_gaps < MIN_GAPS:
+            change = f"Delta at {MIN_GAPS} or more gaps (not filling them) in {short(s.key)}"
+            calls.append(("undecided", head + (s.reason or "no slope") + notes, change))
+            continue
+        se = slope.stderr
+        gaps = sorted({p.gap_d for p in s.points if p.usable})
+        text = (
+            head
+            + f"slope {slope.slope:.3f} +- {_g(se, '.2g')} over H/d = "
+            + ", ".join(f"{x:g}" for x in gaps)
+        )
+        text += "".join(
+            f" ({p.run}: Delta = {_g(p.value, '.3g')} +- {_g(p.stderr, '.2g')} d)"
+            for p in s.points
+            if p.usable
+        )
+        cos = s.model_slopes.get("cosserat")
+        if cos is not None:
+            text += f"; the Cosserat fits to these runs give {cos.slope:.3f}"
+        if s.left_out:
+            text += f"; {s.reason}"
+        text += notes
+        if se is None:
+            calls.append(("undecided", text + "; no error on the slope", "replicates"))
+        elif abs(slope.slope - target) <= 2 * se and abs(slope.slope - other) > 2 * se:
+            calls.append(
+                ("supported", text, f"a slope more than 2 se from {target:.3g} at larger gaps")
+            )
+        elif abs(slope.slope - target) > 2 * se:
+            if (
+                cos is not None
+                and abs(cos.slope - target) > 2 * se
+                and abs(slope.slope - cos.slope) <= 2 * se
+            ):
+                calls.append(
+                    (
+                        "undecided",
+                        text + "; at these gaps the Cosserat model itself does not show the "
+                        f"exponent {target:.3g} of the limit H/d -> infinity, and the data agree "
+                        "with the model's own slope: larger gaps are needed to test the law",
+                        "gaps large enough that the model's own slope reaches the limit",
+                    )
+                )
+            else:
+                calls.append(
+                    (
+                        "refuted",
+                        text,
+                        f"larger gaps where the slope turns to {target:.3g}, within the errors",
+                    )
+                )
+        else:
+            calls.append(
+                (
+                    "undecided",
+                    text + f"; the errors cannot tell {target:.3g} from {other:.3g}",
+                    _gaps_needed(s, se, target, other) or "smaller errors of Delta",
+                )
+            )
+    decided = {c for c, _, _ in calls if c != "undecided"}
+    detail = "; ".join(t for _, t, _ in calls)
+    change = "; ".join(f"{c}" for _, _, c in calls if c)
+    runs_t = tuple(runs)
+    if not decided:
+        return Verdict(
+            which,
+            "undecided",
+            f"The data cannot decide ({want}): {detail}. {method}",
+            change + ".",
+            runs_t,
+            numbers,
+        )
+    if len(decided) > 1:
+        return Verdict(
+            which,
+            "mixed",
+            f"Mixed: the wall series disagree ({want}): {detail}. {method}",
+            change + ".",
+            runs_t,
+            numbers,
+        )
+    verdict = decided.pop()
+    word = "Supported" if verdict == "supported" else "Refuted"
+    return Verdict(
+        which,
+        verdict,
+        f"{word}: the measured Delta against H/d ({want}): {detail}. {method}",
+        change + ".",
+        runs_t,
+        numbers,
+    )

@@ -1,0 +1,304 @@
+"""Figures of ``cosserat validate``: one per run, one per claim.
+
+A leaf like :mod:`cosserat.viz.plotting`: every function draws plain data (the dictionaries
+that :mod:`cosserat.studies.validate.report` builds) and imports nothing of the package above
+this layer. Error bars are drawn on every measured point, velocities also on a log axis (a
+creep tail spanning decades is visible there), legends sit outside the axes, tick labels are
+plain numbers.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+from .calibration import MODEL_STYLES
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+U_FLOOR = 1e-4
+"""Lowest velocity on the log axis when the data do not go lower [-]."""
+
+
+def model_style(model: str, order: Sequence[str] = ()) -> dict[str, Any]:
+    """One colour and line style per model, the same in every figure."""
+    if model in MODEL_STYLES:
+        return dict(MODEL_STYLES[model])
+    i = list(order).index(model) if model in order else len(order)
+    return {"color": f"C{(i + 4) % 10}", "linestyle": ["-", "--", "-.", ":"][i % 4]}
+
+
+def _plain(ax: Axes, axis: str = "both") -> None:
+    """Plain tick labels (20, 40, 80 rather than powers of ten) on log axes."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+
+    fmt = FuncFormatter(lambda v, _: f"{v:g}")
+    for name in ("x", "y") if axis == "both" else (axis,):
+        a = ax.xaxis if name == "x" else ax.yaxis
+        if (ax.get_xscale() if name == "x" else ax.get_yscale()) == "log":
+            a.set_major_formatter(fmt)
+            a.set_minor_formatter(NullFormatter())
+
+
+def _legend_below(fig: Figure, axes: Sequence[Axes], ncol: int = 4) -> None:
+    """One legend for the figure, below the panels (off the data)."""
+    handles, labels, seen = [], [], set()
+    for ax in axes:
+        for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+            if lab not in seen:
+                seen.add(lab)
+                handles.append(h)
+                labels.append(lab)
+    if handles:
+        fig.legend(
+            handles,
+            labels,
+            loc="lower center",
+            ncol=min(ncol, len(labels)),
+            frameon=False,
+            fontsize=7,
+            bbox_to_anchor=(0.5, 0.0),
+        )
+
+
+def run_figure(entry: Mapping[str, Any]) -> Figure:
+    """One run: u/V with error bars (linear, and log for the creep tail) beside each fitted
+    model; the spin's departure from half the vorticity with its error bars and each model's.
+
+    Parameters
+    ----------
+    entry : mapping
+        ``name``, ``title``, ``distance_d``, ``u``, ``u_se`` (arrays), ``models`` (model ->
+        {"d", "u"}), ``order`` (model names, best first), optional ``spin`` ({"distance_d",
+        "departure", "stderr", "predicted": model -> array, "near_wall_d", "gap_d"}).
+    """
+    import numpy as np
+
+    from .plotting import new_figure, style
+
+    spin = entry.get("spin")
+    ncols = 3 if spin else 2
+    fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=3.1)
+    order = list(entry.get("order", ()))
+    with style():
+        d = np.asarray(entry["distance_d"], dtype=float)
+        u = np.asarray(entry["u"], dtype=float)
+        se = np.asarray(entry["u_se"], dtype=float)
+        for j, ax in enumerate(axes[0, :2]):
+            log = j == 1
+            show = u > 0 if log else np.ones(u.size, bool)
+            lower = np.minimum(se, u * (1 - 1e-9)) if log else se  # bars stay on a log axis
+            ax.errorbar(
+                d[show],
+                u[show],
+                yerr=[lower[show], se[show]],
+                fmt="o",
+                color="k",
+                markerfacecolor="none",
+                capsize=1.5,
+                elinewidth=0.6,
+                markersize=3,
+                label="DEM data (+- 1 se)",
+            )
+            for name, curve in entry["models"].items():
+                cu = np.asarray(curve["u"], dtype=float)
+                cd = np.asarray(curve["d"], dtype=float)
+                keep = cu > 0 if log else np.ones(cu.size, bool)
+                ax.plot(cd[keep], cu[keep], label=name, **model_style(name, order))
+            ax.set_xlabel(r"distance from the moving wall [$d$]")
+            ax.set_ylabel(r"$u/V$ [-]")
+            if log:
+                ax.set_yscale("log")
+                pos = u[u > 0]
+                lo = max(min(float(pos.min()) / 3, U_FLOOR) if pos.size else U_FLOOR, 1e-8)
+                ax.set_ylim(lo, 2.0)
+                ax.set_title("log axis: the creep tail (u <= 0 not shown)", fontsize=8)
+                _plain(ax, "x")
+            else:
+                ax.set_title("linear axis: the band", fontsize=8)
+        if spin:
+            ax = axes[0, 2]
+            x = np.asarray(spin["distance_d"], dtype=float)
+            o = np.argsort(x)
+            y = np.asarray(spin["departure"], dtype=float)[o]
+            e = np.asarray(spin["stderr"], dtype=float)[o]
+            x = x[o]
+            ax.errorbar(
+                x,
+                y,
+                yerr=e,
+                fmt="o",
+                color="k",
+                markerfacecolor="none",
+                capsize=1.5,
+                elinewidth=0.6,
+                markersize=3,
+                label="DEM data (+- 1 se)",
+            )
+            for name, pred in spin.get("predicted", {}).items():
+                ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **model_style(name, order))
+            ax.axhline(0.0, color="0.5", linewidth=0.6)
+            near, gap = float(spin["near_wall_d"]), float(spin["gap_d"])
+            ax.axvspan(0.0, near, color="0.92", zorder=0)
+            ax.axvspan(gap - near, gap, color="0.92", zorder=0)
+            ax.set_xlabel(r"distance from the moving wall [$d$]")
+            ax.set_ylabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ [-]")
+            ax.set_title("spin departure (shaded: near the walls)", fontsize=8)
+        fig.suptitle(entry["title"], fontsize=8)
+        _legend_below(fig, list(axes[0]))
+        # fixed margins: tight_layout costs more than the drawing (saved with a tight box)
+        fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
+    return fig
+
+
+def spin_claim_figure(
+    rows: Sequence[Mapping[str, Any]], models: Sequence[str] = (), title: str = ""
+) -> Figure:
+    """The measured departure of the spin in the first layer at each wall of each run, with
+    its error bar (2 se), beside each model's prediction there (one row per run and wall).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        ``label``, ``first``, ``se``, ``sheared`` (bool), ``predicted`` (model -> value).
+    models : sequence of str
+        The models to draw, in order.
+    title : str
+        Above the axes.
+    """
+    import numpy as np
+
+    from .plotting import new_figure, style
+
+    n = max(len(rows), 1)
+    fig, axes = new_figure(1, 1, width=7.5, height=1.3 + 0.26 * n)
+    ax = axes[0, 0]
+    with style():
+        y = np.arange(len(rows))[::-1]
+        for yi, r in zip(y, rows, strict=True):
+            label = "measured (+- 2 se)" if r["sheared"] else "measured, wall not sheared"
+            ax.errorbar([r["first"]], [yi], xerr=[2 * r["se"]], fmt="o", color="k", capsize=2,
+                        markerfacecolor="k" if r["sheared"] else "none", elinewidth=0.8,
+                        label=label)  # fmt: skip
+            for j, m in enumerate(models):
+                p = r["predicted"].get(m)
+                if p is not None:
+                    ax.plot([p], [yi - 0.18 * (j + 1) + 0.02], marker="dsv^"[j % 4],
+                            linestyle="none", color=model_style(m, models)["color"],
+                            label=f"{m} (fitted to u)")  # fmt: skip
+        ax.axvline(0.0, color="0.5", linewidth=0.6)
+        ax.set_yticks(y, [r["label"] for r in rows], fontsize=7)
+        ax.set_ylim(-0.8, len(rows) - 0.2)
+        ax.set_xlabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ in the first layer [-]")
+        if title:
+            ax.set_title(title, fontsize=8)
+        if not rows:
+            ax.text(0.5, 0.5, "no spin measured", ha="center", transform=ax.transAxes)
+        handles, labels = ax.get_legend_handles_labels()
+        uniq = dict(zip(labels, handles, strict=True))
+        if uniq:
+            ax.legend(uniq.values(), uniq.keys(), loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                      fontsize=7, frameon=False)  # fmt: skip
+        fig.subplots_adjust(left=0.32, right=0.72, bottom=0.6 / fig.get_figheight() + 0.02,
+                            top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
+    return fig
+
+
+def _nice_ticks(lo: float, hi: float, wanted: Sequence[float]) -> list[float]:
+    return [t for t in wanted if lo <= t <= hi]
+
+
+def delta_claim_figure(
+    series: Sequence[Mapping[str, Any]], exponents: Mapping[str, float], title: str
+) -> Figure:
+    """Measured Delta against H/d on log axes with error bars, one series per cell and wall,
+    the fitted Cosserat model's Delta at the same runs, and the claimed exponents.
+
+    Parameters
+    ----------
+    series : sequence of mapping
+        ``label``, ``gaps``, ``Delta``, ``stderr``, ``usable`` (per point), ``model`` (the
+        Cosserat fits' Delta per point, or None).
+    exponents : mapping
+        Label -> exponent of the reference lines (drawn through the data's geometric mean).
+    """
+    import math
+
+    import numpy as np
+
+    from .plotting import new_figure, style
+
+    fig, axes = new_figure(1, 1, width=6.4, height=3.4)
+    ax = axes[0, 0]
+    markers = ["o", "s", "D", "^", "v", "*"]
+    all_g: list[float] = []
+    all_d: list[float] = []
+    with style():
+        for i, s in enumerate(series):
+            color = f"C{i % 10}"
+            pts = [
+                (g, d, e, u)
+                for g, d, e, u in zip(s["gaps"], s["Delta"], s["stderr"], s["usable"], strict=True)
+                if d is not None and d > 0
+            ]
+            for use in (True, False):
+                sel = [p for p in pts if p[3] == use]
+                if not sel:
+                    continue
+                ax.errorbar(
+                    [p[0] for p in sel],
+                    [p[1] for p in sel],
+                    yerr=[p[2] or 0.0 for p in sel],
+                    fmt=markers[i % 6],
+                    color=color,
+                    markerfacecolor=color if use else "none",
+                    capsize=2,
+                    label=s["label"] + ("" if use else " (fills its gap: left out)"),
+                )
+            all_g += [p[0] for p in pts]
+            all_d += [p[1] for p in pts]
+            model = s.get("model") or []
+            mp = [(g, m) for g, m in zip(s["gaps"], model, strict=False) if m]
+            if mp:
+                ax.plot(
+                    [p[0] for p in mp],
+                    [p[1] for p in mp],
+                    linestyle=":",
+                    marker="x",
+                    color=color,
+                    label=f"{s['label']}: Cosserat fits",
+                )
+        if all_g:
+            g0, g1 = min(all_g) / 1.3, max(all_g) * 1.3
+            gg = np.geomspace(g0, g1, 20)
+            d0 = float(np.exp(np.mean(np.log(all_d))))
+            gm = math.sqrt(g0 * g1)
+            for k, (label, c) in enumerate(exponents.items()):
+                ax.plot(
+                    gg,
+                    d0 * (gg / gm) ** c,
+                    color="0.4",
+                    linestyle=["--", "-."][k % 2],
+                    linewidth=0.8,
+                    label=label,
+                )
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            _plain(ax)
+            ax.set_xticks(_nice_ticks(g0, g1, (5, 10, 20, 40, 80, 160, 320, 640, 1280)))
+            y0, y1 = ax.get_ylim()
+            ax.set_yticks(_nice_ticks(y0, y1, (0.5, 1, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100)))
+            ax.set_ylim(y0, y1)
+            ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7, frameon=False)
+        else:
+            ax.text(0.5, 0.5, "no series for this claim", ha="center", transform=ax.transAxes)
+        ax.set_xlabel(r"$H/d$ [-]")
+        ax.set_ylabel(r"$\Delta$ [$d$]")
+        ax.set_title(title, fontsize=8)
+        fig.subplots_adjust(left=0.1, right=0.55, bottom=0.15, top=0.9)
+    return fig
+
+
+__all__ = ["delta_claim_figure", "model_style", "run_figure", "spin_claim_figure"]

@@ -1,0 +1,300 @@
+"""The verdict functions of ``validate`` on measured quantities made to be decisive (and too
+noisy to decide), the grouping of runs into gap series, and the referee's warnings on fits."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import read_corpus, read_run, write_run
+from cosserat.errors import ParameterError
+from cosserat.studies.validate import (
+    DeltaPoint,
+    DeltaSeries,
+    WallSpin,
+    delta_law_verdict,
+    spin_model_verdict,
+    spin_verdict,
+    validate,
+)
+from cosserat.studies.validate.grouping import couette_note, group_runs
+
+DIST = np.array([0.5, 1.5, 2.5])
+
+
+def wall(run, departure, se, *, wall="moving", sheared=True, predicted=None):
+    """A wall's three near-wall bins with the given departures and standard errors."""
+    dep = np.broadcast_to(np.asarray(departure, dtype=float), DIST.shape).copy()
+    err = np.broadcast_to(np.asarray(se, dtype=float), DIST.shape).copy()
+    pred = {k: np.broadcast_to(np.asarray(v, float), DIST.shape).copy()
+            for k, v in (predicted or {}).items()}  # fmt: skip
+    return WallSpin(run, wall, sheared, DIST, dep, err, pred)
+
+
+# --------------------------------------------------------------------------- the spin
+def test_a_departing_first_layer_is_supported_and_an_idle_fixed_wall_does_not_dilute_it():
+    """Two runs whose first layer departs at 3.9 and 4.2 sigma (the rest at zero), each with
+    a fixed wall where nothing shears: tested at the moving wall, the pooled test departs
+    (chi^2 = 3.9^2 + 4.2^2 = 32.85 for 6 bins, p ~ 1e-5)."""
+    walls = []
+    for name, z in (("a", 3.9), ("b", 4.2)):
+        walls.append(wall(name, [-0.1 * z, 0.0, 0.0], 0.1))
+        walls.append(wall(name, 0.0, 1e-4, wall="fixed", sheared=False))
+    v = spin_verdict(walls)
+    assert v.verdict == "supported", v.text
+    assert v.numbers["pooled_dof"] == 6
+    assert v.numbers["pooled_chi2"] == pytest.approx(3.9**2 + 4.2**2)
+    assert v.numbers["pooled_p"] == pytest.approx(1.1e-5, rel=0.1)
+    assert "not judged (the material does not shear there" in v.evidence
+    assert "Method:" in v.evidence and "What would change it" in v.text
+    assert v.runs == ("a", "b")
+
+
+def test_no_departure_where_the_model_predicts_a_visible_one_refutes_the_claim():
+    walls = [wall(f"r{i}", [0.001, -0.001, 0.0005], 0.005, predicted={"cosserat": 0.05})
+             for i in range(3)]  # fmt: skip
+    v = spin_verdict(walls)
+    assert v.verdict == "refuted", v.text
+    assert v.numbers["p_if_model_departure_were_there"] < 1e-3
+
+
+def test_a_noisy_spin_cannot_decide_and_says_how_much_better_it_must_be():
+    walls = [wall("r", [0.01, 0.0, -0.01], 0.05, predicted={"cosserat": 0.02})]
+    v = spin_verdict(walls)
+    assert v.verdict == "undecided"
+    # the shift the prediction adds is 3 (0.02/0.05)^2 = 0.48; p < 1e-3 at 3 dof needs 13.27
+    factor = np.sqrt((16.266 - 3.0) / 0.48)
+    assert f"errors smaller by a factor {factor:.2g}" in v.would_change
+
+
+def test_one_run_of_four_departing_is_mixed():
+    walls = [wall("big", [-2.0, -1.0, 0.0], 0.1)] + [wall(f"z{i}", 0.0, 0.1) for i in range(3)]
+    assert spin_verdict(walls).verdict == "mixed"
+
+
+def test_no_spin_near_a_sheared_wall_is_undecided():
+    assert spin_verdict([]).verdict == "undecided"
+    assert spin_verdict([wall("r", 1.0, 0.01, sheared=False)]).verdict == "undecided"
+
+
+def test_a_model_departing_with_the_opposite_sign_is_refuted_and_said_so():
+    """The measured first layer spins faster than half the vorticity (-0.09 +- 0.02, 4.5
+    sigma); the model, fitted to the velocity, departs by +0.03: refuted on the sign."""
+    walls = [wall(r, [-0.09, -0.02, 0.0], 0.02, predicted={"cosserat": [0.03, 0.01, 0.0],
+                                                          "mui": 0.0})
+             for r in ("a", "b")]  # fmt: skip
+    v = spin_model_verdict(walls)
+    assert v.verdict == "refuted"
+    assert "departs with the opposite sign (2 of 2 walls" in v.evidence
+    assert "measured -0.09 +- 0.02, cosserat predicts +0.03" in v.evidence
+    assert "other models mui +0" in v.evidence
+
+
+def test_a_model_with_the_measured_sign_and_size_is_supported():
+    walls = [wall("a", [-0.09, -0.02, 0.0], 0.02, predicted={"cosserat": [-0.085, -0.025, 0.0]})]
+    v = spin_model_verdict(walls)
+    assert v.verdict == "supported", v.text
+    assert v.numbers["size_p"] > 1e-3
+
+
+def test_the_right_sign_with_the_wrong_size_is_refuted():
+    walls = [wall("a", [-0.09, -0.06, -0.03], 0.005, predicted={"cosserat": [-0.02, -0.01, 0.0]})]
+    v = spin_model_verdict(walls)
+    assert v.verdict == "refuted" and "the sign agrees but the size does not" in v.evidence
+
+
+def test_a_model_without_a_spin_of_its_own_is_refuted_where_the_data_depart():
+    v = spin_model_verdict([wall("a", [-0.09, 0.0, 0.0], 0.02, predicted={"mui": 0.0})], "mui")
+    assert v.verdict == "refuted" and "predicts no departure" in v.evidence
+
+
+def test_signs_that_disagree_between_walls_are_mixed():
+    walls = [wall("a", [-0.09, 0, 0], 0.02, predicted={"cosserat": [-0.05, 0, 0]}),
+             wall("b", [-0.09, 0, 0], 0.02, predicted={"cosserat": [0.05, 0, 0]})]  # fmt: skip
+    assert spin_model_verdict(walls).verdict == "mixed"
+
+
+def test_a_sign_hidden_in_the_noise_cannot_decide_the_model():
+    v = spin_model_verdict([wall("a", [0.01, 0.0, 0.0], 0.02, predicted={"cosserat": 0.03})])
+    assert v.verdict == "undecided" and "not determined" in v.evidence
+    assert spin_model_verdict([wall("a", 0.1, 0.01)]).verdict == "undecided"  # no fit
+
+
+# --------------------------------------------------------------------------- Delta
+def series(exponent, *, gaps=(20.0, 40.0, 80.0, 160.0), rel_err=0.02, rough=False,
+           fills=(), values=None, cosserat=None):  # fmt: skip
+    vals = values or [3.0 * (g / 20.0) ** exponent for g in gaps]
+    reason = "the band fills its gap"
+    pts = tuple(
+        DeltaPoint(f"H{g:g}", g, v, rel_err * v, g in fills, reason if g in fills else "")
+        for g, v in zip(gaps, vals, strict=True)
+    )
+    from cosserat.analysis.gap import power_law_slope
+
+    slopes = {} if cosserat is None else {"cosserat": power_law_slope(gaps, [
+        3.0 * (g / 20.0) ** cosserat for g in gaps])}  # fmt: skip
+    return DeltaSeries("plane, glued-grains, B = 1" if rough else "plane, smooth-frictional, "
+                       "B = 1", "plane", "fully-rough" if rough else "smoother", True, pts,
+                       slopes)  # fmt: skip
+
+
+def test_delta_laws_decided_by_series_made_for_them():
+    assert delta_law_verdict([series(0.0)], "smoother").verdict == "supported"
+    assert delta_law_verdict([series(1 / 3)], "smoother").verdict == "refuted"
+    assert delta_law_verdict([series(1 / 3, rough=True)], "rough").verdict == "supported"
+    v = delta_law_verdict([series(0.0, rough=True)], "rough")
+    assert v.verdict == "refuted" and "H20" in v.runs
+    # two series that disagree
+    both = [series(0.0), series(1 / 3)]
+    assert delta_law_verdict(both, "smoother").verdict == "mixed"
+
+
+def test_a_band_filling_its_gap_cannot_refute_a_delta_law():
+    """Smoother walls: Delta = 12, 8.5, 6 d at H/d = 20, 40, 80. With the H/d = 20 band (12 d
+    > H/2) it would refute exponent 0 (slope -0.5); left out, two gaps remain: undecided."""
+    made = dict(gaps=(20.0, 40.0, 80.0), values=[12.0, 12.0 / np.sqrt(2.0), 6.0])
+    assert delta_law_verdict([series(0, **made)], "smoother").verdict == "refuted"
+    v = delta_law_verdict([series(0, fills=(20.0,), **made)], "smoother")
+    assert v.verdict == "undecided"
+    assert "left out: H20 (the band fills its gap)" in v.evidence
+
+
+def test_noisy_delta_cannot_decide_and_says_which_gaps_would():
+    v = delta_law_verdict([series(1 / 3, rough=True, rel_err=0.3, gaps=(20.0, 30.0, 40.0))],
+                          "rough")  # fmt: skip
+    assert v.verdict == "undecided" and "cannot tell 0.333 from 0" in v.evidence
+    assert "a slope error below 0.083" in v.would_change and "gaps up to H/d" in v.would_change
+
+
+def test_data_that_follow_the_model_short_of_its_limit_leave_the_law_undecided():
+    v = delta_law_verdict([series(0.4, cosserat=0.42, gaps=(20.0, 40.0, 80.0))], "smoother")
+    assert v.verdict == "undecided" and "larger gaps are needed" in v.evidence
+
+
+def test_too_few_gaps_and_no_series_are_undecided_and_a_bad_claim_is_an_error():
+    assert delta_law_verdict([series(0.0, gaps=(20.0, 40.0))], "smoother").verdict == "undecided"
+    assert delta_law_verdict([], "rough").verdict == "undecided"
+    with pytest.raises(ParameterError, match="which must be 'smoother' or 'rough'"):
+        delta_law_verdict([], "medium")
+
+
+# --------------------------------------------------------------------------- series
+def _run(folder: Path, name: str, **meta) -> Path:
+    y = np.arange(int(meta["gap_d"])) + 0.5
+    u = np.exp(-(meta["gap_d"] - y) / 3.0)
+    base = {"cell": "plane", "B": 1.0, "wall": {"kind": "glued-grains"}}
+    return write_run(folder, name, base | meta, {"y": y, "u": u, "u_se": np.full(y.size, 0.01)})
+
+
+def test_runs_pair_by_tolerance_on_the_held_parameter_not_by_rounding(tmp_path):
+    """B = 0.94 and 1.02 round to 0.9 and 1 at one digit, but agree within 10%: one series;
+    B = 0.5 is another; other grains are another material."""
+    _run(tmp_path, "a", gap_d=20.0, B=0.94)
+    _run(tmp_path, "b", gap_d=40.0, B=1.02)
+    _run(tmp_path, "c", gap_d=80.0, B=0.5)
+    _run(tmp_path, "d", gap_d=80.0, B=1.0, grains={"diameter_range_d": [0.5, 1.5]})
+    groups = group_runs(read_corpus(tmp_path).runs)
+    names = sorted(tuple(r.name for r in g.runs) for g in groups)
+    assert names == [("a", "b"), ("c",), ("d",)]
+
+
+def test_couette_runs_at_one_inner_radius_are_not_a_series_and_the_report_says_why(tmp_path):
+    for h in (10.0, 20.0):
+        r = np.linspace(20.5, 20.0 + h - 0.5, int(h))
+        write_run(tmp_path, f"c{h:g}", {"cell": "couette", "gap_d": h, "Ri_d": 20.0,
+                                        "wall": {"kind": "glued-grains"}},
+                  {"r": r, "u": np.exp(-(r - 20.0) / 2.0),
+                   "u_se": np.full(r.size, 0.01)})  # fmt: skip
+    groups = group_runs(read_corpus(tmp_path).runs)
+    assert len(groups) == 2
+    (note,) = couette_note(groups)
+    assert "R_i/d = 20" in note and "holds R_i/H fixed" in note
+
+
+# --------------------------------------------------------------------------- fits
+def test_misfit_pinned_and_contradicted_parameters_are_warned_in_every_output(tmp_path):
+    """An exponential profile with errors of 1e-3 that the Cosserat model cannot follow
+    (misfit), its phi pinned at 28.5 deg (sin phi = 0.477) while the run's band carries a
+    stress ratio of 0.27: each said in results.json and in the report."""
+    gap = 20.0
+    y = np.arange(int(gap)) + 0.5
+    u = np.exp(-(gap - y) / 2.0)
+    se = np.full(y.size, 1e-3)
+    ratio = np.full(y.size, 0.27)
+    write_run(tmp_path / "c", "run", {"cell": "plane", "gap_d": gap, "B": 1.0,
+                                       "wall": {"kind": "glued-grains"}},
+              {"y": y, "u": u + np.random.default_rng(0).normal(0, 1e-3, y.size), "u_se": se,
+               "sigma_yx": -ratio, "sigma_yx_se": np.full(y.size, 0.005),
+               "sigma_yy": np.ones(y.size), "sigma_yy_se": np.full(y.size, 0.005)})  # fmt: skip
+    report = validate(tmp_path / "c", tmp_path / "out", models=["cosserat"])
+    (result,) = report.results
+    assert result.stress.value == pytest.approx(0.27) and result.stress.bins >= 2
+    (fit,) = result.fits.summaries
+    assert fit.p_value < 1e-3
+    text = " | ".join(fit.warnings)
+    assert "misfit: chi^2 = " in text and "p = " in text
+    assert "pinned (held at the declared default, not fitted): phi = 28.5" in text
+    assert "contradicts the measured stress: phi = 28.5 (pinned) gives sin phi = 0.477" in text
+    record = json.loads((tmp_path / "out" / "results.json").read_text())
+    (entry,) = record["runs"][0]["ranking"]["fits"]
+    assert {"model", "status", "reduced_chi2", "warnings", "p_value", "pinned"} <= set(entry)
+    assert any(w.startswith("misfit:") for w in entry["warnings"])
+    assert entry["pinned"]["phi"] == 28.5
+    md = (tmp_path / "out" / "report.md").read_text()
+    assert "contradicts the measured stress" in md and "misfit: chi^2" in md
+    html = (tmp_path / "out" / "index.html").read_text()
+    assert "contradicts the measured stress" in html
+
+
+def test_results_json_has_the_documented_schema(tmp_path):
+    """``runs[].ranking.fits[]`` (model, status, reduced_chi2, warnings), ``runs[].spin``
+    (p_near_wall, departs_near_wall), ``verdicts[]`` (claim, verdict, evidence)."""
+    y = np.arange(20) + 0.5
+    dist = 20.0 - y
+    u = np.exp(-dist / 3.0)
+    half = 0.5 * u / 3.0
+    se = np.full(20, 0.01)
+    write_run(tmp_path / "c", "r", {"cell": "plane", "gap_d": 20.0, "B": 1.0,
+                                     "wall": {"kind": "glued-grains"}},
+              {"y": y, "u": u, "u_se": se, "omega": half - 0.1 * np.exp(-dist),
+               "omega_se": se, "half_vorticity": half, "half_vorticity_se": se})  # fmt: skip
+    validate(tmp_path / "c", tmp_path / "out", models=["cosserat"])
+    record = json.loads((tmp_path / "out" / "results.json").read_text())
+    run = record["runs"][0]
+    for fit in run["ranking"]["fits"]:
+        assert {"model", "status", "reduced_chi2", "warnings"} <= set(fit)
+    assert {"p_near_wall", "departs_near_wall", "walls"} <= set(run["spin"])
+    assert run["spin"]["departs_near_wall"] is True
+    moving = next(w for w in run["spin"]["walls"] if w["wall"] == "moving")
+    assert moving["first_layer_departure"] == pytest.approx(-0.1 * np.exp(-0.5), abs=1e-9)
+    assert [v["key"] for v in record["verdicts"]] == ["spin", "smoother", "rough", "spin_model"]
+    for v in record["verdicts"]:
+        assert {"claim", "verdict", "evidence", "would_change", "runs"} <= set(v)
+    assert read_run(tmp_path / "c" / "r.csv").name == "r"
+
+
+def test_worker_processes_give_the_same_report_as_one_process(tmp_path):
+    for g in (20.0, 40.0, 80.0):
+        _run(tmp_path, f"r{g:g}", gap_d=g, B=1.0)
+    seen: list[tuple[int, int]] = []
+    one = validate(tmp_path, models=["cosserat"], workers=1)
+    two = validate(tmp_path, models=["cosserat"], workers=2,
+                   progress=lambda stage, i, n: seen.append((i, n)))  # fmt: skip
+    assert [v.to_dict() for v in one.verdicts] == [v.to_dict() for v in two.verdicts]
+    assert [r.run.name for r in two.results] == ["r20", "r40", "r80"]
+
+    def chi2(report):
+        return [[s.chi2 for s in r.fits.summaries] for r in report.results]
+
+    assert chi2(one) == chi2(two)
+    assert sorted(seen) == [(1, 3), (2, 3), (3, 3)]
+
+
+def test_a_departure_so_large_that_its_p_underflows_to_zero_still_counts():
+    walls = [wall(r, [-50.0, -20.0, -5.0], 0.01) for r in ("a", "b")]
+    v = spin_verdict(walls)
+    assert v.numbers["pooled_p"] == 0.0
+    assert v.verdict == "supported" and v.numbers["runs_departing_p_significant"] == ["a", "b"]
