@@ -1,7 +1,7 @@
 """The models fitted to one run's velocity: the only module of validation that fits.
 
-Every call to the fitting machinery (:func:`cosserat.analysis.ranking.rank_models`,
-:class:`~cosserat.analysis.ranking.Ranking`, :func:`~cosserat.analysis.fitting.moving_wall`)
+Every call to the fitting machinery (:func:`cosserat.calibration.single.rank_models`,
+:class:`~cosserat.calibration.single.Ranking`, :func:`~cosserat.analysis.fitting.moving_wall`)
 is here, so that moving validation onto another fitting engine changes this module only. The
 rest of validation sees :class:`RunFits` and :class:`FitSummary`: plain numbers, the fitted
 velocity and spin at given bins, and the warnings a referee asks for:
@@ -30,7 +30,8 @@ import numpy as np
 from scipy.stats import chi2 as chi2_dist
 
 from ...analysis.corpus import Run
-from ...analysis.ranking import Ranking, moving_wall, rank_models
+from ...analysis.fitting import moving_wall
+from ...calibration.single import Ranking, rank_models
 from ...errors import CosseratError
 from ...model.constitutive import FloatArray
 from .measures import BAND_U, P_SIGNIFICANT, StressRatio
