@@ -177,14 +177,15 @@ def test_the_cli_and_the_sweep_build_the_same_problem(params):
 
 def test_there_is_one_builder():
     import cosserat.analysis.gap as gap
-    import cosserat.analysis.ranking as ranking
+    import cosserat.calibration.models as calibration_models
+    import cosserat.calibration.single as single
     import cosserat.cli.params as cli
     import cosserat.studies.sweep as sweep
     from cosserat.model import make_problem
     from cosserat.model.build import make_problem as built
 
     assert sweep.make_problem is cli.make_problem is make_problem is built
-    assert ranking.make_problem is gap.make_problem is built
+    assert single.make_problem is calibration_models.make_problem is gap.make_problem is built
 
 
 def test_the_defaults_are_the_declared_ones():

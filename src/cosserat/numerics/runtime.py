@@ -20,7 +20,9 @@ Workers never outlive their parent, whatever ends it (:func:`process_pool`):
   worker at once; either way the worker first deletes the temporary files it was writing;
 * workers ignore SIGINT: Ctrl-C reaches the whole process group, and the parent, which gets it
   too, stops the pool (:func:`stop_pool`, :func:`worker_processes`) instead of every worker
-  printing its own traceback;
+  printing its own traceback. A worker is started with SIGINT blocked (the mask is inherited
+  through fork and exec), so a Ctrl-C that arrives while it is still importing, before its
+  initializer can ignore SIGINT, does not print a traceback from inside its start-up either;
 * an interrupted parent (Ctrl-C, SIGTERM, any exception) cancels what has not started and
   terminates the workers (:func:`worker_processes`), rather than waiting for their running
   tasks to finish as ``ProcessPoolExecutor.shutdown`` would.
@@ -31,6 +33,7 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import multiprocessing
+import multiprocessing.context
 import os
 import signal
 import sys
@@ -59,6 +62,25 @@ def warm_up() -> None:
     kernel.solve_batch(p[None, :], 1e-6, 1e-8, 0.05, 100)
 
 
+class _SpawnWithoutInterrupt(multiprocessing.context.SpawnProcess):
+    """A spawned process that starts with SIGINT blocked (module docstring); the starting
+    thread's own mask is restored at once, so the parent loses no Ctrl-C."""
+
+    def start(self) -> None:
+        if not hasattr(signal, "pthread_sigmask"):
+            super().start()
+            return
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        try:
+            super().start()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+class _SpawnContext(multiprocessing.context.SpawnContext):
+    Process = _SpawnWithoutInterrupt
+
+
 def process_pool(workers: int | None) -> ProcessPoolExecutor:
     """A pool of ``workers`` spawned processes (their batches run on one thread each) that end
     when this process ends, whatever the signal (module docstring). Use it through
@@ -66,7 +88,7 @@ def process_pool(workers: int | None) -> ProcessPoolExecutor:
     warm_up()
     return ProcessPoolExecutor(
         max_workers=workers,
-        mp_context=multiprocessing.get_context("spawn"),
+        mp_context=_SpawnContext(),
         initializer=_worker_start,
         initargs=(os.getpid(),),
     )

@@ -180,7 +180,7 @@ def fit_run(
         if p is not None and p < P_SIGNIFICANT:
             warnings.append(_misfit_text(f, measured, p, dof))
         values = f.problem.values()
-        free = set(f.parameters)
+        free = {k for k, e in f.parameters.items() if e.free}
         declared = f.problem.declared()
         pinned = {
             k: float(v)
@@ -226,7 +226,9 @@ def try_fit_run(
 
 
 def _misfit_text(fit: Any, measured: Any, p: float, dof: int) -> str:
-    z = np.asarray(fit.residuals, dtype=float) / np.asarray(measured.u_err, dtype=float)
+    # the comparison's residuals are data - model; the text says model - data
+    model_minus_data = -np.asarray(fit.comparison.residuals, dtype=float)
+    z = model_minus_data / np.asarray(measured.u_err, dtype=float)
     u = np.asarray(measured.u_over_uw, dtype=float)
     tail = u < BAND_U
     worst = int(np.argmax(np.abs(z)))
