@@ -34,7 +34,12 @@ def _cell(args: argparse.Namespace):
         restitution=args.restitution,
         rolling_friction=args.rolling_friction,
     )
-    run = RunLength(settle_steps=args.settle, steps=args.steps, dump_every=args.dump_every)
+    run = RunLength(
+        settle_steps=args.settle,
+        steps=args.steps,
+        dump_every=args.dump_every,
+        restart_every=args.restart_every,
+    )
     common = {"gap": args.gap, "wall": wall, "contact": contact, "run": run, "seed": args.seed}
     if args.cell == "plane":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
@@ -66,7 +71,12 @@ def cmd_run(args: argparse.Namespace) -> None:
     from ..dem.corpus import run_cell
 
     profile, seconds = run_cell(
-        _cell(args), args.out, np=args.np, keep_dumps=args.keep_dumps, engine=args.engine
+        _cell(args),
+        args.out,
+        np=args.np,
+        keep_dumps=args.keep_dumps,
+        engine=args.engine,
+        resume=args.resume,
     )
     csv, side = profile.write(args.out, "profile")
     s = profile.sidecar
@@ -115,6 +125,13 @@ def _cell_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--steps", type=positive_int, default=200_000, help="sheared steps")
     p.add_argument("--dump-every", type=positive_int, default=1_000)
     p.add_argument("--seed", type=positive_int, default=1)
+    p.add_argument(
+        "--restart-every",
+        type=int,
+        default=0,
+        help="sheared steps between checkpoints (LAMMPS restart files) so the run can be "
+        "resumed; a multiple of --dump-every dividing --steps (default 0: none)",
+    )
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -137,6 +154,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     run.add_argument("--np", type=positive_int, default=1, help="MPI processes")
     run.add_argument("--engine", choices=("subprocess", "python"), default="subprocess")
     run.add_argument("--keep-dumps", action="store_true", help="keep atoms/contacts dumps")
+    run.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue a stopped run in --out from its last checkpoint (the same options "
+        "as the run it continues, with --restart-every)",
+    )
     run.set_defaults(func=cmd_run)
     corpus = dsub.add_parser("corpus", help="regenerate the shipped corpus")
     corpus.add_argument("--out", required=True, help="folder for the CSV + JSON files")
