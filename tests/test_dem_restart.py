@@ -147,6 +147,24 @@ def test_a_stopped_and_resumed_run_is_the_run_made_in_one_go(tmp_path):
     record = json.loads((parts / "run.json").read_text())
     assert record["seconds"] == pytest.approx(sum(s["seconds"] for s in segments), abs=0.2)
     assert "segments" not in a.sidecar  # one segment: nothing to say
+    # the sidecar's regime and noise measures, as the calibration reads them
+    from cosserat.analysis.corpus import read_run
+    from cosserat.calibration.data import from_run
+    from cosserat.calibration.noise import Correlation
+
+    csv, _ = b.write(tmp_path, "tiny")
+    data = from_run(read_run(csv))
+    upper = b.sidecar["wall_inertial_number"]["upper"]["per_bin"]
+    assert len(upper) == 3 and data.local_inertial_number == max(upper)
+    assert data.quasi_static is b.sidecar["quasi_static"] is (max(upper) <= 1e-3)
+    rho = b.sidecar["bin_correlation"]["u"]
+    assert -1.0 <= rho <= 1.0
+    if rho >= 0:  # the calibration takes a measured correlation in [0, 1)
+        assert data.fields["u"].correlation == Correlation(rho, "metadata")
+    assert set(b.sidecar["steadiness"]["observables"]) == {
+        "wall_shear", "dilation", "mean_velocity", "u_profile", "spin_profile"
+    }  # fmt: skip
+    assert b.sidecar["wall_stress"]["shear_se"] > 0 and b.sidecar["wall_stress"]["normal_se"] > 0
     # resuming a finished run runs nothing and keeps the record
     assert run_segment(cell, parts, resume=True) == 6000
     assert len(json.loads((parts / "run.json").read_text())["segments"]) == 3
