@@ -114,6 +114,22 @@ def test_latest_checkpoint(tmp_path):
     assert latest_checkpoint(tmp_path) == 4000
 
 
+def test_resume_checks_the_folder_before_running_anything(tmp_path):
+    from cosserat.dem.corpus import run_segment
+
+    cell = PlaneShearDEM(gap=12, width=20, run=TINY)
+    with pytest.raises(InputError, match=r"nothing to resume: .*deck\.lmp does not exist"):
+        run_segment(cell, tmp_path, resume=True)
+    build_deck(cell).write(tmp_path)
+    other = PlaneShearDEM(gap=12, width=20, wall_speed=0.05, run=TINY)
+    with pytest.raises(InputError, match="is not the deck of this cell"):
+        run_segment(other, tmp_path, resume=True)
+    plain = PlaneShearDEM(gap=12, width=20, run=_plain(TINY))
+    build_deck(plain).write(tmp_path)
+    with pytest.raises(InputError, match=r"without checkpoints \(restart_every = 0\)"):
+        run_segment(plain, tmp_path, resume=True)
+
+
 # ---------------------------------------------------------------- with LAMMPS
 @needs_lammps
 def test_a_stopped_and_resumed_run_is_the_run_made_in_one_go(tmp_path):

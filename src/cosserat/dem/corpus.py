@@ -192,8 +192,9 @@ def run_segment(
             _write_record(record_path, record)
             return steps
     if not resume or latest_checkpoint(folder) is None:
-        for old in folder.glob("restart.*"):
-            old.unlink()
+        for pattern in ("restart.*", "resume.*.lmp", "log.*.lammps"):  # an older run's
+            for old in folder.glob(pattern):
+                old.unlink()
         deck.write(folder)
         name, log, start_step = "deck.lmp", "log.lammps", 0
         record = {"segments": []} if not resume else record
