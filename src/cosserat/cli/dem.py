@@ -83,8 +83,13 @@ def cmd_run(args: argparse.Namespace) -> None:
     print(
         f"{csv} and {side.name}: {seconds:.1f} s of LAMMPS; steady window "
         f"{s['steady_window']} (dropped {s['dropped_steps']} steps), gap {s['gap_d']} d, "
-        f"mean I {s['inertial_number']:.3g}"
+        f"mean I {s['inertial_number']:.3g}; quasi-static {_yes(s.get('quasi_static'))}, "
+        f"steady {_yes(s.get('steadiness', {}).get('steady'))}"
     )
+
+
+def _yes(flag: bool | None) -> str:
+    return "unknown" if flag is None else ("yes" if flag else "no")
 
 
 def cmd_corpus(args: argparse.Namespace) -> None:
