@@ -269,15 +269,25 @@ def main() -> None:
             total += hours
             models = pred[case]
             large = {H: r for H, r in n.items() if H >= LARGE_GAPS}
-            pairs = {f"{a} vs {b}": (models[a], models[b])
-                     for a, b in (("cosserat", "ngf"), ("cosserat", "mui"), ("ngf", "mui"))}
+            pairs = {
+                f"{a} vs {b}": (models[a], models[b])
+                for a, b in (("cosserat", "ngf"), ("cosserat", "mui"), ("ngf", "mui"))
+            }
             if case == "plane rough":
                 pairs["cosserat smooth vs rough"] = (pred["plane smooth"]["cosserat"],
                                                      models["cosserat"])  # fmt: skip
-            seps = {k: (separation(a, b, n, rel, False), separation(a, b, n, rel, True),
-                        separation(a, b, large, rel, True)) for k, (a, b) in pairs.items()}
-            print(f"{case}: {sum(n.values())} runs at {dict(n)}, {hours:.0f} CPU-hours; "
-                  + "; ".join(f"{k} {a:.1f} / {b:.1f} ({c:.1f})" for k, (a, b, c) in seps.items()))
+            seps = {
+                k: (
+                    separation(a, b, n, rel, False),
+                    separation(a, b, n, rel, True),
+                    separation(a, b, large, rel, True),
+                )
+                for k, (a, b) in pairs.items()
+            }
+            print(
+                f"{case}: {sum(n.values())} runs at {dict(n)}, {hours:.0f} CPU-hours; "
+                + "; ".join(f"{k} {a:.1f} / {b:.1f} ({c:.1f})" for k, (a, b, c) in seps.items())
+            )
             report.setdefault(label, {})[case] = {
                 "replicas": {str(H): r for H, r in n.items()}, "cpu_hours": hours,
                 "separation_absolute_shape_shapelarge": seps}  # fmt: skip
