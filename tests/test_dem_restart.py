@@ -184,6 +184,19 @@ def test_a_stopped_and_resumed_run_is_the_run_made_in_one_go(tmp_path):
     # resuming a finished run runs nothing and keeps the record
     assert run_segment(cell, parts, resume=True) == 6000
     assert len(json.loads((parts / "run.json").read_text())["segments"]) == 3
+    # a finished run of 4000 steps continued to 6000 (an extension) is the 6000-step run
+    from dataclasses import replace
+
+    short = replace(cell, run=replace(TINY, steps=4000))
+    longer = tmp_path / "longer"
+    assert run_segment(short, longer) == 4000
+    assert run_segment(cell, longer, resume=True) == 6000
+    assert (whole / "atoms.dump").read_bytes() == (longer / "atoms.dump").read_bytes()
+    c = analyse_cell(cell, longer)
+    assert c.sidecar["deck_sha256"] == build_deck(short).sha256
+    assert c.sidecar["extended_from_steps"] == 4000 and c.sidecar["steps"] == 6000
+    with pytest.raises(InputError, match="is not the deck of this cell"):
+        run_segment(replace(cell, wall_speed=0.1), longer, resume=True)
 
 
 @needs_lammps

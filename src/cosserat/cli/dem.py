@@ -163,7 +163,8 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
         "--resume",
         action="store_true",
         help="continue a stopped run in --out from its last checkpoint (the same options "
-        "as the run it continues, with --restart-every)",
+        "as the run it continues, with --restart-every; a larger --steps continues it for "
+        "longer)",
     )
     run.set_defaults(func=cmd_run)
     corpus = dsub.add_parser("corpus", help="regenerate the shipped corpus")

@@ -178,10 +178,13 @@ def run_segment(
     if resume:
         if not (folder / "deck.lmp").is_file():
             raise InputError(f"nothing to resume: {folder / 'deck.lmp'} does not exist")
-        if (folder / "deck.lmp").read_text() != deck.text:
-            raise InputError(f"cannot resume: {folder / 'deck.lmp'} is not the deck of this cell")
         if not cell.run.restart_every:
+            if (folder / "deck.lmp").read_text() != deck.text:
+                raise InputError(
+                    f"cannot resume: {folder / 'deck.lmp'} is not the deck of this cell"
+                )
             raise InputError("cannot resume a run without checkpoints (restart_every = 0)")
+        base = deck_cell(cell, folder)  # this cell, or it with fewer steps: an extension
         record = json.loads(record_path.read_text()) if record_path.is_file() else {}
         start_step = latest_checkpoint(folder) or 0
         for seg in record.get("segments", []):
@@ -203,7 +206,7 @@ def run_segment(
             truncate_dump(folder / dump, start_step)
         _truncate_walls(folder / "walls.txt", start_step)
         name, log = f"resume.{start_step}.lmp", f"log.{start_step}.lammps"
-        write_text(folder / name, resume_deck(cell, start_step))
+        write_text(folder / name, resume_deck(cell, start_step, build_deck(base).sha256))
     variables = {} if stop_at is None else {"stop_at": str(stop_at)}
     segment = {"deck": name, "log": log, "from_step": start_step, "to_step": None,
                "seconds": None, "started_utc": _utc(), "status": "running"}  # fmt: skip
@@ -216,6 +219,32 @@ def run_segment(
                    seconds=round(done.seconds, 1), command=done.command)  # fmt: skip
     _write_record(record_path, record)
     return int(reached if reached is not None else 0)
+
+
+def deck_cell(cell: Cell, folder: str | Path) -> Cell:
+    """The cell whose deck is ``folder/deck.lmp``: ``cell`` itself, or, for a checkpointed
+    run continued for longer (``cell`` with more ``steps``, an extension), ``cell`` with the
+    deck's own steps (read from its chunk loop).
+
+    Raises
+    ------
+    InputError
+        ``deck.lmp`` is neither.
+    """
+    path = Path(folder) / "deck.lmp"
+    text = path.read_text()
+    if text == build_deck(cell).text:
+        return cell
+    run = cell.run
+    prefix = "variable chunk loop 1 "
+    loops = [x[len(prefix) :] for x in text.splitlines() if x.startswith(prefix)]
+    if run.restart_every and len(loops) == 1 and loops[0].isdigit():
+        steps = int(loops[0]) * run.restart_every
+        if steps < run.steps:
+            base = replace(cell, run=replace(run, steps=steps))
+            if text == build_deck(base).text:
+                return base
+    raise InputError(f"cannot resume: {path} is not the deck of this cell")
 
 
 def _write_record(path: Path, record: dict) -> None:
@@ -231,12 +260,19 @@ def analyse_cell(cell: Cell, folder: str | Path) -> DEMProfile:
     deck = build_deck(cell)
     folder = Path(folder)
     written = (folder / "deck.lmp").read_text()
+    base = cell
     if written != deck.text:
-        raise InputError(f"{folder / 'deck.lmp'} is not the deck of this cell")
+        try:
+            base = deck_cell(cell, folder)  # a checkpointed run continued for longer
+        except InputError:
+            raise InputError(f"{folder / 'deck.lmp'} is not the deck of this cell") from None
     record = _run_record(folder)
     samples = read_samples(folder, deck)
     profile = steady_profile(samples, deck, lammps_version=record["lammps_version"])
     profile.sidecar["wall_time_s"] = record["seconds"]
+    if base is not cell:  # the sidecar names the deck that ran first, and its length
+        profile.sidecar["deck_sha256"] = build_deck(base).sha256
+        profile.sidecar["extended_from_steps"] = base.run.steps
     if len(record.get("segments") or []) > 1:
         profile.sidecar["segments"] = [
             {k: seg.get(k) for k in ("deck", "from_step", "to_step", "seconds", "status")}
@@ -299,6 +335,7 @@ __all__ = [
     "CORPUS_RUN",
     "HALFSPEED_RUN",
     "corpus_cells",
+    "deck_cell",
     "generate_corpus",
     "latest_checkpoint",
     "run_cell",

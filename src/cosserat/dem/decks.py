@@ -306,13 +306,16 @@ def timestep(cell: Cell) -> float:
     return cell.run.dt_fraction * cell.contact.collision_time(cell.grains)
 
 
-def resume_deck(cell: Cell, step: int) -> str:
+def resume_deck(cell: Cell, step: int, deck_sha256: str | None = None) -> str:
     """The deck that continues a checkpointed run of ``cell`` from its restart file at sheared
     step ``step`` (:func:`restart_name`): it reads the restart file, sets again what a restart
     file does not hold (neighbour settings, fixes in the full deck's order, the sampling,
     appending to the dumps and ``walls.txt``) and runs the remaining chunks. Run from the
     checkpoint, it gives the same trajectory as the full deck (the chunks are separate
     ``run`` commands in both, so each starts from the same state).
+
+    ``deck_sha256`` names the deck that ran first (default: this cell's): a run continued for
+    more steps than its deck's is this cell with the larger ``steps``.
 
     Raises
     ------
@@ -334,7 +337,7 @@ def resume_deck(cell: Cell, step: int) -> str:
     lines = [
         f"# cosserat.dem deck: resume the {cell.cell} cell from sheared step {step}",
         f"# parameters: {cell!r}, restart_every={run.restart_every}",
-        f"# deck.lmp sha256 {full.sha256}",
+        f"# deck.lmp sha256 {deck_sha256 or full.sha256}",
         f"read_restart {restart_name(step)}",
         "comm_modify vel yes",
         "newton off",
