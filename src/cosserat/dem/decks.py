@@ -243,7 +243,7 @@ def _planar_thermo() -> list[str]:
 def _planar_walls(cell: PlaneShearDEM | ChannelDEM, resume: int | None = None) -> str:
     every = cell.run.dump_every
     # resumed: the line of step ``resume`` is written again at the setup (a driver that
-    # resumes drops it from the file first, see cosserat.dem.corpus.resume_cell)
+    # resumes drops it from the file first, see cosserat.dem.corpus.run_segment)
     where = "file walls.txt" if resume is None else "append walls.txt"
     return f"fix walls all ave/time {every} 1 {every} v_gap f_slide[1] f_load[2] {where}"
 
