@@ -65,7 +65,12 @@ def _cell(args: argparse.Namespace):
         rolling_friction=args.rolling_friction,
     )
     _deprecated(args)
-    run = RunLength(settle_steps=args.settle, steps=args.steps, dump_every=args.dump_every)
+    run = RunLength(
+        settle_steps=args.settle,
+        steps=args.steps,
+        dump_every=args.dump_every,
+        restart_every=args.restart_every,
+    )
     common = {"gap": args.gap_d, "wall": wall, "contact": contact, "run": run, "seed": args.seed}
     if args.cell == "plane":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
@@ -105,15 +110,25 @@ def cmd_run(args: argparse.Namespace) -> None:
     from ..dem.corpus import run_cell
 
     profile, seconds = run_cell(
-        _cell(args), args.out, np=args.np, keep_dumps=args.keep_dumps, engine=args.engine
+        _cell(args),
+        args.out,
+        np=args.np,
+        keep_dumps=args.keep_dumps,
+        engine=args.engine,
+        resume=args.resume,
     )
     csv, side = profile.write(args.out, "profile")
     s = profile.sidecar
     print(
         f"{csv} and {side.name}: {seconds:.1f} s of LAMMPS; steady window "
         f"{s['steady_window']} (dropped {s['dropped_steps']} steps), gap {s['gap_d']} d, "
-        f"mean I {s['inertial_number']:.3g}"
+        f"mean I {s['inertial_number']:.3g}; quasi-static {_yes(s.get('quasi_static'))}, "
+        f"steady {_yes(s.get('steadiness', {}).get('steady'))}"
     )
+
+
+def _yes(flag: bool | None) -> str:
+    return "unknown" if flag is None else ("yes" if flag else "no")
 
 
 def cmd_corpus(args: argparse.Namespace) -> None:
@@ -163,6 +178,13 @@ def _cell_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--steps", type=positive_int, default=200_000, help="sheared steps")
     p.add_argument("--dump-every", type=positive_int, default=1_000)
     p.add_argument("--seed", type=positive_int, default=1)
+    p.add_argument(
+        "--restart-every",
+        type=int,
+        default=0,
+        help="sheared steps between checkpoints (LAMMPS restart files) so the run can be "
+        "resumed; a multiple of --dump-every dividing --steps (default 0: none)",
+    )
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -186,6 +208,13 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-a
     run.add_argument("--np", type=positive_int, default=1, help="MPI processes")
     run.add_argument("--engine", choices=("subprocess", "python"), default="subprocess")
     run.add_argument("--keep-dumps", action="store_true", help="keep atoms/contacts dumps")
+    run.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue a stopped run in --out from its last checkpoint (the same options "
+        "as the run it continues, with --restart-every; a larger --steps continues it for "
+        "longer)",
+    )
     run.set_defaults(func=cmd_run)
     corpus = dsub.add_parser("corpus", help="regenerate the shipped corpus")
     corpus.add_argument("--out", required=True, help="folder for the CSV + JSON files")

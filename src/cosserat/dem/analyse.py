@@ -8,6 +8,7 @@ transient (MSER-5 on the flow rate and on the gap), block-averages the rest and 
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 from dataclasses import dataclass, field
@@ -39,6 +40,20 @@ BIN_WIDTH = 1.0
 """Width of the profile bins [d] (the last bin before the far wall may be narrower)."""
 BLOCKS = 10
 """Number of averaging blocks over the steady window."""
+QUASI_STATIC_I = 1e-3
+"""Largest local inertial number of a quasi-static run in each of the :data:`WALL_BINS` bins
+next to the moving wall [-] (the calibration's ``cosserat.calibration.data.QUASI_STATIC_I``)."""
+WALL_BINS = 3
+"""Bins next to each wall whose local inertial number the sidecar records."""
+STEADY_Z = 3.36
+"""A steady observable's second-half mean differs from its first-half mean by at most this
+many standard errors of the difference [-]: the two-sided 1% point of Student's t with 8
+degrees of freedom (two halves of 5 blocks), so each scalar of a steady window fails by chance
+in 1% of runs and the five observables of :func:`steadiness` together in about 6% (2 se, the
+first choice, failed half of all steady windows; ``tests/test_dem_sidecar.py``)."""
+STEADY_BINS = 0.85
+"""A steady profile has at least this fraction of its bins within :data:`STEADY_Z` [-] (the
+rate check's 85%)."""
 
 
 @dataclass
@@ -294,7 +309,158 @@ def steady_profile(
     nu_mean = float(np.average(columns["nu"], weights=samples.bin_area))
     sidecar = _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, lammps_version,
                        steps, first, every, blocks, nu_mean)  # fmt: skip
+    extra = _regime_and_steadiness(cell, run, per_block, columns, coord, lo, hi, first, blocks)
+    ws = extra.pop("wall_stress_se")
+    sidecar["wall_stress"].update(ws)
+    sidecar.update(extra)
     return DEMProfile(columns, sidecar)
+
+
+def block_series(series: np.ndarray, first: int, blocks: int) -> np.ndarray:
+    """Means of a per-sample series over the ``blocks`` blocks of :func:`block_fields`."""
+    n = series.size - first
+    bounds = first + (np.arange(blocks + 1) * n) // blocks
+    return np.array([series[a:b].mean() for a, b in itertools.pairwise(bounds)])
+
+
+def _half_difference(values: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """First- and second-half means of per-block values (axis 0) and the difference's standard
+    error from the spread within each half."""
+    half = values.shape[0] // 2
+    a, b = values[:half], values[half:]
+    se = np.sqrt(a.var(axis=0, ddof=1) / a.shape[0] + b.var(axis=0, ddof=1) / b.shape[0])
+    return a.mean(axis=0), b.mean(axis=0), b.mean(axis=0) - a.mean(axis=0), se
+
+
+def _finite(x: float) -> float | None:
+    return float(x) if np.isfinite(x) else None
+
+
+def steadiness(scalars: dict[str, np.ndarray], profiles: dict[str, np.ndarray]) -> dict:
+    """Is the kept window steady? For each observable, the mean of the second half of the
+    blocks against that of the first half, in standard errors of the difference (from the
+    spread of the blocks within each half).
+
+    Parameters
+    ----------
+    scalars : dict
+        Per-block values of scalar observables, each of shape (blocks,).
+    profiles : dict
+        Per-block profiles, each of shape (blocks, bins).
+
+    Returns
+    -------
+    dict
+        ``observables``: per scalar ``first_half``, ``second_half``, ``z``, ``steady``
+        (|z| <= :data:`STEADY_Z`); per profile ``bins_within`` (fraction of bins with
+        |z| <= :data:`STEADY_Z`), ``max_abs_z``, ``steady`` (``bins_within`` >=
+        :data:`STEADY_BINS`); ``steady``: every observable steady; ``test``: the rule.
+    """
+    out: dict[str, dict] = {}
+    for name, values in scalars.items():
+        a, b, diff, se = _half_difference(np.asarray(values, dtype=float))
+        z = float(diff / se) if se > 0 else (0.0 if diff == 0 else math.inf)
+        out[name] = {"first_half": _finite(a), "second_half": _finite(b),
+                     "z": _finite(round(z, 3)), "steady": bool(abs(z) <= STEADY_Z)}  # fmt: skip
+    for name, values in profiles.items():
+        _, _, diff, se = _half_difference(np.asarray(values, dtype=float))
+        ok = np.isfinite(diff) & np.isfinite(se) & (se > 0)
+        z = diff[ok] / se[ok]
+        within = float(np.mean(np.abs(z) <= STEADY_Z)) if z.size else math.nan
+        out[name] = {"bins_within": _finite(round(within, 3)),
+                     "max_abs_z": _finite(round(float(np.max(np.abs(z))), 3)) if z.size else None,
+                     "steady": bool(within >= STEADY_BINS)}  # fmt: skip
+    return {
+        "test": (
+            f"second half of the blocks against the first: |mean difference| <= {STEADY_Z:g} "
+            "standard errors of the difference (from the blocks' spread within each half) "
+            f"for a scalar, in at least {STEADY_BINS:.0%} of the bins for a profile"
+        ),
+        "observables": out,
+        "steady": all(v["steady"] for v in out.values()),
+    }
+
+
+def bin_correlation(values: np.ndarray) -> float | None:
+    """Lag-1 correlation of neighbouring bins' errors from per-block profiles (blocks, bins):
+    the correlation across blocks of each pair of neighbouring bins' deviations from their
+    means, averaged over the pairs [-]; None with fewer than two usable pairs."""
+    x = np.asarray(values, dtype=float)
+    dev = x - x.mean(axis=0)
+    sd = x.std(axis=0, ddof=1)
+    ok = np.all(np.isfinite(x), axis=0) & (sd > 0)
+    pairs = ok[:-1] & ok[1:]
+    if np.count_nonzero(pairs) < 2:
+        return None
+    z = dev / np.where(ok, sd, 1.0)
+    r = np.sum(z[:, :-1] * z[:, 1:], axis=0) / (x.shape[0] - 1)
+    return round(float(np.clip(np.mean(r[pairs]), -1.0, 1.0)), 4)
+
+
+def _wall_bins(cell, columns: dict[str, np.ndarray], coord: str, lo: float, hi: float) -> dict:
+    """The local inertial number in the :data:`WALL_BINS` bins next to each wall (nearest
+    first), their distances from the wall's surface, and which wall moves."""
+    s = columns[coord]
+    inertial, se = columns["inertial_number"], columns["inertial_number_se"]
+    k = WALL_BINS
+    names = {"plane": ("lower", "upper"), "channel": ("lower", "upper"),
+             "couette": ("inner", "outer")}[cell.cell]  # fmt: skip
+    moving = {"plane": "upper", "couette": "inner", "channel": None}[cell.cell]
+    rec: dict = {"moving": moving, "bins": k, "limit": QUASI_STATIC_I}
+    for name, where, wall in ((names[0], slice(0, k), lo), (names[1], slice(-1, -k - 1, -1), hi)):
+        values = inertial[where]
+        rec[name] = {
+            "per_bin": [float(v) for v in values] if np.all(np.isfinite(values)) else [],
+            "se": [_finite(v) for v in se[where]],
+            "distance_d": [round(float(abs(c - wall)), 4) for c in s[where]],
+        }
+    rec["note"] = (
+        f"local I = |gamma_dot| d / sqrt(p / rho_s) in the {k} bins next to each wall, nearest "
+        "first (distance_d: bin centre from the wall's surface); the sidecar's quasi_static: "
+        "all of the moving wall's at most limit"
+    )
+    return rec
+
+
+def _regime_and_steadiness(cell, run, per_block, columns, coord, lo, hi, first, blocks) -> dict:
+    """Sidecar entries: ``wall_inertial_number``, ``quasi_static``, ``steadiness``,
+    ``bin_correlation`` and the wall stresses' block errors."""
+    walls = _wall_bins(cell, columns, coord, lo, hi)
+    moving = walls["moving"]
+    near = walls[moving]["per_bin"] if moving else []
+    quasi = bool(max(near) <= QUASI_STATIC_I) if near else None
+    scalars = {
+        "wall_shear": block_series(run.wall_shear, first, blocks),
+        "wall_normal" if isinstance(cell, CouetteDEM) else "dilation": block_series(
+            run.wall_normal if isinstance(cell, CouetteDEM) else run.gap, first, blocks
+        ),
+        "mean_velocity": block_series(run.flow, first, blocks),
+    }
+    stack = {k: np.stack([b[k] for b in per_block]) for k in per_block[0]}
+    with np.errstate(invalid="ignore", divide="ignore"):
+        stack["stress_ratio"] = np.abs(stack["sigma_nt"]) / stack["sigma_nn"]
+    steady = steadiness(scalars, {"u_profile": stack["u"], "spin_profile": stack["omega"]})
+    t, n = ("t", "r") if isinstance(cell, CouetteDEM) else ("x", "y")
+    names = {"u": "u", "omega": "omega", "nu": "nu", "stress_ratio": "stress_ratio",
+             "sigma_tt": f"sigma_{t}{t}", "sigma_nn": f"sigma_{n}{n}",
+             "sigma_nt": f"sigma_{n}{t}", "sigma_tn": f"sigma_{t}{n}"}  # fmt: skip
+    correlation = {out: bin_correlation(stack[key]) for key, out in names.items()}
+    sqrt_b = math.sqrt(blocks)
+    return {
+        "wall_inertial_number": walls,
+        "quasi_static": quasi,
+        "steadiness": steady,
+        "bin_correlation": {k: v for k, v in correlation.items() if v is not None},
+        "bin_correlation_note": (
+            "lag-1 correlation of neighbouring bins' errors, from the blocks' deviations "
+            "(correlation across blocks of each neighbouring pair, averaged over the pairs); "
+            "stress_ratio is |sigma_yx| / sigma_yy (couette |sigma_rt| / sigma_rr) per block"
+        ),
+        "wall_stress_se": {
+            "normal_se": float(block_series(run.wall_normal, first, blocks).std(ddof=1) / sqrt_b),
+            "shear_se": float(scalars["wall_shear"].std(ddof=1) / sqrt_b),
+        },
+    }
 
 
 def _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, version, steps, first, every,

@@ -7,14 +7,16 @@ in ``cosserat/data/corpus/`` came from that command (docs/dem.md: what was run, 
 from __future__ import annotations
 
 import json
+import os
 import time
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
 from .._atomic import write_text
+from ..errors import InputError
 from .analyse import DEMProfile, read_samples, steady_profile
-from .decks import build_deck
+from .decks import build_deck, resume_deck
 from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength, WallRoughness
 
 ROUGH = WallRoughness("glued-grains", glued_diameter=1.0, glued_spacing=1.0)
@@ -65,22 +67,192 @@ def corpus_cells() -> dict[str, Cell]:
 
 def run_cell(
     cell: Cell, folder: str | Path, *, np: int = 1, keep_dumps: bool = False,
-    engine: str = "subprocess",
+    engine: str = "subprocess", resume: bool = False,
 ) -> tuple[DEMProfile, float]:  # fmt: skip
     """Write a cell's deck in ``folder``, run it, coarse-grain it; returns the profile and
-    the LAMMPS wall time [s]. The dumps are deleted afterwards unless ``keep_dumps``."""
-    from .runner import run_deck  # LAMMPS only on demand
-
-    build_deck(cell).write(folder)
-    record = run_deck(folder, np=np, engine=engine)
-    write_text(Path(folder) / "run.json", json.dumps(
-        {"seconds": round(record.seconds, 1), "lammps_version": record.lammps_version,
-         "command": record.command}, indent=1) + "\n")  # fmt: skip
+    the LAMMPS wall time [s] of all its segments. The dumps are deleted afterwards unless
+    ``keep_dumps``. With ``resume``, continue a stopped run of the same cell from its last
+    checkpoint (:func:`run_segment`)."""
+    run_segment(cell, folder, np=np, engine=engine, resume=resume)
     profile = analyse_cell(cell, folder)
     if not keep_dumps:
         for name in ("atoms.dump", "contacts.dump"):
             (Path(folder) / name).unlink(missing_ok=True)
-    return profile, record.seconds
+    return profile, float(profile.sidecar["wall_time_s"])
+
+
+def latest_checkpoint(folder: str | Path) -> int | None:
+    """The sheared step of the newest restart file ``restart.<step>.bin`` in ``folder`` (None:
+    none). A file of that name is complete: the deck writes it under another name first."""
+    steps = []
+    for path in Path(folder).glob("restart.*.bin"):
+        middle = path.name[len("restart.") : -len(".bin")]
+        if middle.isdigit():
+            steps.append(int(middle))
+    return max(steps) if steps else None
+
+
+def truncate_dump(path: str | Path, last_step: int) -> int:
+    """Cut a LAMMPS text dump after its snapshot of step ``last_step`` (the snapshots a stopped
+    run wrote after its last checkpoint are written again when it resumes); returns the
+    number of snapshots kept."""
+    path = Path(path)
+    if not path.is_file():
+        return 0
+    kept, offset, cut = 0, 0, None
+    with path.open("rb") as fh:
+        expect_step = False
+        for line in fh:
+            if expect_step:
+                if int(line) > last_step:
+                    break
+                kept += 1
+                expect_step = False
+            elif line == b"ITEM: TIMESTEP\n":
+                expect_step, cut = True, offset
+            offset += len(line)
+        else:
+            cut = None
+    if cut is not None:
+        os.truncate(path, cut)
+    return kept
+
+
+def _truncate_walls(path: Path, before_step: int) -> None:
+    """Keep the comment lines of ``walls.txt`` and its lines of steps below ``before_step``."""
+    if not path.is_file():
+        return
+    lines = path.read_text().splitlines(keepends=True)
+    keep = [
+        x for x in lines if x.startswith("#") or (x.split() and int(x.split()[0]) < before_step)
+    ]
+    write_text(path, "".join(keep))
+
+
+def _loop_seconds(log: Path) -> float:
+    """Sum of the ``Loop time`` of every finished ``run`` in a LAMMPS log [s] (the LAMMPS time
+    of a segment that was stopped: its last, unfinished chunk is not counted)."""
+    if not log.is_file():
+        return 0.0
+    total = 0.0
+    for line in log.read_text(errors="replace").splitlines():
+        if line.startswith("Loop time of "):
+            total += float(line.split()[3])
+    return total
+
+
+def _utc() -> str:
+    return time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+
+
+def run_segment(
+    cell: Cell, folder: str | Path, *, np: int = 1, engine: str = "subprocess",
+    resume: bool = False, stop_at: int | None = None,
+) -> int:  # fmt: skip
+    """Run (or, with ``resume``, continue) a cell in ``folder``; returns the sheared step
+    reached.
+
+    A fresh run writes the deck and starts from the beginning. A resumed run checks that
+    ``deck.lmp`` is this cell's deck, finds the newest restart file (:func:`latest_checkpoint`),
+    cuts the dumps after that step and ``walls.txt`` before it, writes
+    ``resume.<step>.lmp`` (:func:`~cosserat.dem.decks.resume_deck`) and runs it with the log
+    ``log.<step>.lammps``; without a restart file (stopped while settling) it starts again.
+    ``run.json`` records every segment (deck, log, steps from and to, LAMMPS seconds, start
+    time, status); a segment that was stopped is closed at its last checkpoint, its time the
+    sum of its log's finished ``run`` loops. ``stop_at`` stops the segment at the first
+    checkpoint at or after that step (LAMMPS's ``-var stop_at``; for tests and sittings).
+
+    Raises
+    ------
+    InputError
+        ``resume`` where no deck of this cell was run, or a cell without checkpoints.
+    """
+    from .runner import lammps_version, run_deck  # LAMMPS only on demand
+
+    folder = Path(folder)
+    deck = build_deck(cell)
+    steps = cell.run.steps
+    record_path = folder / "run.json"
+    record: dict = {}
+    start_step = 0
+    if resume:
+        if not (folder / "deck.lmp").is_file():
+            raise InputError(f"nothing to resume: {folder / 'deck.lmp'} does not exist")
+        if not cell.run.restart_every:
+            if (folder / "deck.lmp").read_text() != deck.text:
+                raise InputError(
+                    f"cannot resume: {folder / 'deck.lmp'} is not the deck of this cell"
+                )
+            raise InputError("cannot resume a run without checkpoints (restart_every = 0)")
+        base = deck_cell(cell, folder)  # this cell, or it with fewer steps: an extension
+        record = json.loads(record_path.read_text()) if record_path.is_file() else {}
+        start_step = latest_checkpoint(folder) or 0
+        for seg in record.get("segments", []):
+            if seg.get("status") == "running":  # stopped: closed at the checkpoint it reached
+                seg.update(status="stopped", to_step=start_step,
+                           seconds=round(_loop_seconds(folder / seg["log"]), 1))  # fmt: skip
+        if start_step >= steps:
+            _write_record(record_path, record)
+            return steps
+    if not resume or latest_checkpoint(folder) is None:
+        for pattern in ("restart.*", "resume.*.lmp", "log.*.lammps"):  # an older run's
+            for old in folder.glob(pattern):
+                old.unlink()
+        deck.write(folder)
+        name, log, start_step = "deck.lmp", "log.lammps", 0
+        record = {"segments": []} if not resume else record
+    else:
+        for dump in ("atoms.dump", "contacts.dump"):
+            truncate_dump(folder / dump, start_step)
+        _truncate_walls(folder / "walls.txt", start_step)
+        name, log = f"resume.{start_step}.lmp", f"log.{start_step}.lammps"
+        write_text(folder / name, resume_deck(cell, start_step, build_deck(base).sha256))
+    variables = {} if stop_at is None else {"stop_at": str(stop_at)}
+    segment = {"deck": name, "log": log, "from_step": start_step, "to_step": None,
+               "seconds": None, "started_utc": _utc(), "status": "running"}  # fmt: skip
+    record.setdefault("segments", []).append(segment)
+    record["lammps_version"] = lammps_version()
+    _write_record(record_path, record)
+    done = run_deck(folder, np=np, engine=engine, deck=name, log=log, variables=variables)
+    reached = latest_checkpoint(folder) if cell.run.restart_every else steps
+    segment.update(status="finished" if reached == steps else "stopped", to_step=reached,
+                   seconds=round(done.seconds, 1), command=done.command)  # fmt: skip
+    _write_record(record_path, record)
+    return int(reached if reached is not None else 0)
+
+
+def deck_cell(cell: Cell, folder: str | Path) -> Cell:
+    """The cell whose deck is ``folder/deck.lmp``: ``cell`` itself, or, for a checkpointed
+    run continued for longer (``cell`` with more ``steps``, an extension), ``cell`` with the
+    deck's own steps (read from its chunk loop).
+
+    Raises
+    ------
+    InputError
+        ``deck.lmp`` is neither.
+    """
+    path = Path(folder) / "deck.lmp"
+    text = path.read_text()
+    if text == build_deck(cell).text:
+        return cell
+    run = cell.run
+    prefix = "variable chunk loop 1 "
+    loops = [x[len(prefix) :] for x in text.splitlines() if x.startswith(prefix)]
+    if run.restart_every and len(loops) == 1 and loops[0].isdigit():
+        steps = int(loops[0]) * run.restart_every
+        if steps < run.steps:
+            base = replace(cell, run=replace(run, steps=steps))
+            if text == build_deck(base).text:
+                return base
+    raise InputError(f"cannot resume: {path} is not the deck of this cell")
+
+
+def _write_record(path: Path, record: dict) -> None:
+    """``run.json``: the segments, their total LAMMPS time (``seconds``) and the version."""
+    record["seconds"] = round(sum(s.get("seconds") or 0.0 for s in record.get("segments", [])), 1)
+    if record.get("segments"):
+        record["command"] = record["segments"][0].get("command")
+    write_text(path, json.dumps(record, indent=1) + "\n")
 
 
 def analyse_cell(cell: Cell, folder: str | Path) -> DEMProfile:
@@ -88,14 +260,24 @@ def analyse_cell(cell: Cell, folder: str | Path) -> DEMProfile:
     deck = build_deck(cell)
     folder = Path(folder)
     written = (folder / "deck.lmp").read_text()
+    base = cell
     if written != deck.text:
-        from ..errors import InputError
-
-        raise InputError(f"{folder / 'deck.lmp'} is not the deck of this cell")
+        try:
+            base = deck_cell(cell, folder)  # a checkpointed run continued for longer
+        except InputError:
+            raise InputError(f"{folder / 'deck.lmp'} is not the deck of this cell") from None
     record = _run_record(folder)
     samples = read_samples(folder, deck)
     profile = steady_profile(samples, deck, lammps_version=record["lammps_version"])
     profile.sidecar["wall_time_s"] = record["seconds"]
+    if base is not cell:  # the sidecar names the deck that ran first, and its length
+        profile.sidecar["deck_sha256"] = build_deck(base).sha256
+        profile.sidecar["extended_from_steps"] = base.run.steps
+    if len(record.get("segments") or []) > 1:
+        profile.sidecar["segments"] = [
+            {k: seg.get(k) for k in ("deck", "from_step", "to_step", "seconds", "status")}
+            for seg in record["segments"]
+        ]
     return profile
 
 
@@ -127,8 +309,6 @@ def generate_corpus(
     chosen = list(cells) if names is None else names
     unknown = [n for n in chosen if n not in cells]
     if unknown:
-        from ..errors import InputError
-
         raise InputError(f"unknown corpus runs {unknown}; known: {sorted(cells)}")
     out, work = Path(out), Path(work)
     out.mkdir(parents=True, exist_ok=True)
@@ -155,6 +335,10 @@ __all__ = [
     "CORPUS_RUN",
     "HALFSPEED_RUN",
     "corpus_cells",
+    "deck_cell",
     "generate_corpus",
+    "latest_checkpoint",
     "run_cell",
+    "run_segment",
+    "truncate_dump",
 ]

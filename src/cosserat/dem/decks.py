@@ -18,7 +18,7 @@ from pathlib import Path
 
 from .._atomic import write_text
 from .geometry import FREE, LOWER_WALL, UPPER_WALL, Layout, annular_layout, planar_layout
-from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM
+from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength
 
 ATOM_COLUMNS = ("id", "type", "radius", "x", "y", "vx", "vy", "omegaz")
 CONTACT_COLUMNS = ("i", "j", "fnx", "fny", "ftx", "fty", "dx", "dy")
@@ -111,16 +111,53 @@ def _pair_coeffs(cell: Cell) -> list[str]:
     ]
 
 
-def _sampling(every: int) -> list[str]:
+def _sampling(every: int, resume: int | None = None) -> list[str]:
+    """Computes and dumps of the sheared stage; resumed from step ``resume``: appended, and
+    the first sample after it (the one at ``resume`` is in the dumps already, taken before the
+    next chunk's setup re-evaluated the forces)."""
     pair = "compute cf all pair/local fx fy p1 p2 p10 p11"
+    more = "" if resume is None else f" append yes delay {resume + 1}"
     return [
         "compute ids all property/local patom1 patom2",
         pair,
         f"dump atoms all custom {every} atoms.dump {' '.join(ATOM_COLUMNS)}",
-        "dump_modify atoms sort id format float %.9g",
+        f"dump_modify atoms sort id format float %.9g{more}",
         f"dump contacts all local {every} contacts.dump c_ids[1] c_ids[2] c_cf[*]",
-        "dump_modify contacts format float %.9g",
+        f"dump_modify contacts format float %.9g{more}",
     ]
+
+
+def restart_name(step: int) -> str:
+    """The restart file a checkpointed deck writes at sheared step ``step``."""
+    return f"restart.{step}.bin"
+
+
+def _sheared(run: RunLength, first_chunk: int = 1) -> list[str]:
+    """The sheared stage from chunk ``first_chunk``: one ``run`` without checkpoints, else
+    chunks of ``restart_every`` steps, each followed by a restart file (written under a
+    temporary name and renamed, so a ``restart.<step>.bin`` is always complete; the previous
+    one is then removed). ``-var stop_at STEP`` on LAMMPS's command line stops the stage after
+    the chunk that reaches STEP."""
+    if not run.restart_every:
+        return [f"run {run.steps}"]
+    every = run.restart_every
+    lines = []
+    if first_chunk == 1:  # the state at the start of the sheared stage is a checkpoint too
+        lines += ["write_restart restart.new", f"shell mv restart.new {restart_name(0)}"]
+    lines += [
+        f"variable stop_at index {run.steps}",
+        f"variable chunk loop {first_chunk} {run.chunks}",
+        "label shear",
+        f"run {every}",
+        "write_restart restart.new",
+        "shell mv restart.new restart.$(step).bin",
+        f"shell rm -f restart.$(step-{every}).bin",
+        'if "$(step) >= ${stop_at}" then "jump SELF sheared"',
+        "next chunk",
+        "jump SELF shear",
+        "label sheared",
+    ]
+    return lines
 
 
 def _wall_density(cell: Cell) -> list[str]:
@@ -159,9 +196,7 @@ def _header(cell: Cell, data_sha: str, layout: Layout, dt: float, boundary: str)
 
 
 def _planar(cell: PlaneShearDEM | ChannelDEM, layout: Layout, dt: float, data_sha: str) -> str:
-    length = layout.info["length"]
-    n_wall = layout.info["wall_count"]
-    load = -1.0 * length / n_wall  # N = 1 over the wall's length, shared by its disks
+    load = _planar_load(layout)  # N = 1 over the wall's length, shared by its disks
     plane = isinstance(cell, PlaneShearDEM)
     g = cell.gravity
     lines = _header(cell, data_sha, layout, dt, "p fm p")
@@ -177,10 +212,7 @@ def _planar(cell: PlaneShearDEM | ChannelDEM, layout: Layout, dt: float, data_sh
     if plane and g > 0:
         lines.append(f"fix gravity free gravity {g:.10g} vector 0 -1 0")
     lines += [
-        "variable gap equal xcm(upper,y)",
-        "thermo_style custom step ke v_gap f_slide[1] f_load[2]",
-        "thermo 5000",
-        "thermo_modify norm no",
+        *_planar_thermo(),
         f"run {cell.run.settle_steps}",
         "unfix settle",
     ]
@@ -188,22 +220,55 @@ def _planar(cell: PlaneShearDEM | ChannelDEM, layout: Layout, dt: float, data_sh
         lines.append(f"velocity upper set {cell.wall_speed:.10g} NULL NULL")
     else:
         lines.append(f"fix gravity free gravity {g:.10g} vector 1 0 0")
-    lines += [
-        "reset_timestep 0",
-        "fix walls all ave/time "
-        f"{cell.run.dump_every} 1 {cell.run.dump_every} v_gap f_slide[1] f_load[2] "
-        "file walls.txt",
-    ]
+    lines += ["reset_timestep 0", _planar_walls(cell)]
     lines += _sampling(cell.run.dump_every)
-    lines += [f"run {cell.run.steps}", ""]
+    lines += [*_sheared(cell.run), ""]
     return "\n".join(lines)
+
+
+def _planar_load(layout: Layout) -> float:
+    """Force per upper-wall disk along y that makes the normal stress N = 1 [N d]."""
+    return -1.0 * layout.info["length"] / layout.info["wall_count"]
+
+
+def _planar_thermo() -> list[str]:
+    return [
+        "variable gap equal xcm(upper,y)",
+        "thermo_style custom step ke v_gap f_slide[1] f_load[2]",
+        "thermo 5000",
+        "thermo_modify norm no",
+    ]
+
+
+def _planar_walls(cell: PlaneShearDEM | ChannelDEM, resume: int | None = None) -> str:
+    every = cell.run.dump_every
+    # resumed: the line of step ``resume`` is written again at the setup (a driver that
+    # resumes drops it from the file first, see cosserat.dem.corpus.run_segment)
+    where = "file walls.txt" if resume is None else "append walls.txt"
+    return f"fix walls all ave/time {every} 1 {every} v_gap f_slide[1] f_load[2] {where}"
+
+
+def _planar_sheared_fixes(cell: PlaneShearDEM | ChannelDEM, layout: Layout) -> list[str]:
+    """The fixes of the planar sheared stage, in the order the full deck leaves them."""
+    lines = [
+        "fix move free nve/sphere disc",
+        "fix wall upper nve",
+        f"fix load upper aveforce NULL {_planar_load(layout):.10g} NULL",
+        "fix slide upper setforce 0.0 NULL 0.0",
+    ]
+    g = cell.gravity
+    if isinstance(cell, PlaneShearDEM):
+        if g > 0:
+            lines.append(f"fix gravity free gravity {g:.10g} vector 0 -1 0")
+    else:
+        lines.append(f"fix gravity free gravity {g:.10g} vector 1 0 0")
+    return lines
 
 
 def _annular(cell: CouetteDEM, layout: Layout, dt: float, data_sha: str) -> str:
     grow_loops = 20
     factor = (1.0 / layout.info["shrink"]) ** (1.0 / grow_loops)
     per_loop = max(1, cell.run.settle_steps // (grow_loops + 1))
-    period = 2.0 * math.pi * cell.inner_radius / cell.wall_speed
     lines = _header(cell, data_sha, layout, dt, "f f p")
     lines += _pair_coeffs(cell)
     lines += [
@@ -224,16 +289,80 @@ def _annular(cell: CouetteDEM, layout: Layout, dt: float, data_sha: str) -> str:
         f"run {per_loop}",
         "unfix settle",
         "reset_timestep 0",
-        f"fix turn lower move rotate 0 0 0 0 0 1 {period:.10g}",
+        _turn(cell),
     ]
     lines += _sampling(cell.run.dump_every)
-    lines += [f"run {cell.run.steps}", ""]
+    lines += [*_sheared(cell.run), ""]
     return "\n".join(lines)
+
+
+def _turn(cell: CouetteDEM) -> str:
+    period = 2.0 * math.pi * cell.inner_radius / cell.wall_speed
+    return f"fix turn lower move rotate 0 0 0 0 0 1 {period:.10g}"
 
 
 def timestep(cell: Cell) -> float:
     """The time step: ``dt_fraction`` of the smallest grains' collision time [time]."""
     return cell.run.dt_fraction * cell.contact.collision_time(cell.grains)
+
+
+def resume_deck(cell: Cell, step: int, deck_sha256: str | None = None) -> str:
+    """The deck that continues a checkpointed run of ``cell`` from its restart file at sheared
+    step ``step`` (:func:`restart_name`): it reads the restart file, sets again what a restart
+    file does not hold (neighbour settings, fixes in the full deck's order, the sampling,
+    appending to the dumps and ``walls.txt``) and runs the remaining chunks. Run from the
+    checkpoint, it gives the same trajectory as the full deck (the chunks are separate
+    ``run`` commands in both, so each starts from the same state).
+
+    ``deck_sha256`` names the deck that ran first (default: this cell's): a run continued for
+    more steps than its deck's is this cell with the larger ``steps``.
+
+    Raises
+    ------
+    InputError
+        The cell has no checkpoints, or ``step`` is not one of its chunk boundaries.
+    """
+    from ..errors import InputError
+
+    run = cell.run
+    if not run.restart_every:
+        raise InputError("the cell's run has no checkpoints (restart_every = 0): cannot resume")
+    if step % run.restart_every or not 0 <= step < run.steps:
+        raise InputError(
+            f"step must be a checkpoint, a multiple of restart_every ({run.restart_every}) "
+            f"below steps ({run.steps}); got {step}"
+        )
+    full = build_deck(cell)
+    layout = full.layout
+    lines = [
+        f"# cosserat.dem deck: resume the {cell.cell} cell from sheared step {step}",
+        f"# parameters: {cell!r}, restart_every={run.restart_every}",
+        f"# deck.lmp sha256 {deck_sha256 or full.sha256}",
+        f"read_restart {restart_name(step)}",
+        "comm_modify vel yes",
+        "newton off",
+        *_pair_coeffs(cell),  # the restart file's pair settings lose the size-based cutoff
+        f"neighbor {0.25 * cell.grains.d_max:.6g} bin",
+        "neigh_modify delay 0 every 1 check yes",
+        "fix twod all enforce2d",
+    ]
+    if isinstance(cell, CouetteDEM):
+        lines += [
+            "fix move free nve/sphere disc",
+            "thermo_style custom step ke press",
+            "thermo 5000",
+            "thermo_modify norm no",
+            _turn(cell),
+        ]
+    else:
+        lines += [
+            *_planar_sheared_fixes(cell, layout),
+            *_planar_thermo(),
+            _planar_walls(cell, resume=step),
+        ]
+    lines += _sampling(run.dump_every, resume=step)
+    lines += [*_sheared(run, first_chunk=step // run.restart_every + 1), ""]
+    return "\n".join(lines)
 
 
 def build_deck(cell: Cell) -> Deck:
@@ -249,4 +378,13 @@ def build_deck(cell: Cell) -> Deck:
     return Deck(cell, text, data, layout, dt)
 
 
-__all__ = ["ATOM_COLUMNS", "CONTACT_COLUMNS", "Deck", "build_deck", "job_script", "timestep"]
+__all__ = [
+    "ATOM_COLUMNS",
+    "CONTACT_COLUMNS",
+    "Deck",
+    "build_deck",
+    "job_script",
+    "restart_name",
+    "resume_deck",
+    "timestep",
+]

