@@ -161,7 +161,7 @@ def text(cal: Calibration, full: bool = False) -> str:
 
 def figure_data(cal: Calibration, points: int = 160) -> list[dict[str, Any]]:
     """Per run: the data, each model's best-fit curves, its residuals and (where sampled) its
-    bands over the posterior, as :func:`cosserat.viz.calibration.run_figure` takes them."""
+    bands over the posterior, as ``cosserat.viz.calibration.run_figure`` takes them."""
     entries: dict[str, dict[str, Any]] = {}
     for run in cal.runs:
         entries[run.name] = {
