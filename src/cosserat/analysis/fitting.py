@@ -119,7 +119,7 @@ def compare(
 
 # --------------------------------------------------------------------------- parameters
 def _moving(problem: Problem) -> Wall:
-    return problem.rheology.wall  # type: ignore[attr-defined, no-any-return]
+    return problem.rheology.wall
 
 
 def natural_value(problem: Problem, name: str) -> float:

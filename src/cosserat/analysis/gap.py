@@ -215,7 +215,7 @@ class GapStudy:
                 lines.append(f"  {s.label}, H/d = {g:g}: {why}")
         return "\n".join(lines) + "\n"
 
-    def plot(self, ax: Any = None):  # type: ignore[no-untyped-def]
+    def plot(self, ax: Any = None):
         """Delta against H/d on log axes, one line per series, with the slopes 0 and 1/3."""
         from ..viz.plotting import new_figure, style
 

@@ -775,7 +775,7 @@ class Ranking:
             lines += [f"    note: {w_}" for w_ in f.warnings]
         return "\n".join(lines) + "\n"
 
-    def plot(self, title: str = ""):  # type: ignore[no-untyped-def]
+    def plot(self, title: str = ""):
         """The data with error bars and every fitted model (linear and log velocity axes)."""
         from ..viz.plotting import new_figure, style
 

@@ -374,7 +374,7 @@ def cmd_cell(args: argparse.Namespace) -> None:
     deliver(args, render, meta, line)
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add this module's command to the ``cosserat`` parser."""
     p = sub.add_parser(
         "cell",

@@ -165,7 +165,7 @@ def _cell_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=positive_int, default=1)
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add ``cosserat dem`` and its subcommands."""
     dem = sub.add_parser(
         "dem",

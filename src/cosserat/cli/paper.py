@@ -15,7 +15,7 @@ from .common import (
 )
 
 
-def _stage_bar():  # type: ignore[no-untyped-def]
+def _stage_bar():
     """``progress(stage, i, n)`` for :func:`cosserat.paper.reproduce`: one tqdm bar per stage
     (None when silent: stderr not a terminal, or --quiet)."""
     bars: dict[str, object] = {}
@@ -63,7 +63,7 @@ def cmd_figures(args: argparse.Namespace) -> None:
     print(f"wrote {len(numbers)} figures to {args.out}")
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add this module's commands to the ``cosserat`` parser."""
     rp = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
     rp.add_argument(

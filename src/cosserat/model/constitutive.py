@@ -176,12 +176,12 @@ def radicand(
     sigma_yx: ArrayLike, sigma_c: ArrayLike, m: ArrayLike, material: Material
 ) -> FloatArray:
     """S of ``eqn-nd_sigxy``: the yield condition has a real ``sigma_xy`` iff ``S >= 0`` [-]."""
-    return v_radicand(sigma_yx, sigma_c, m, material.A, material.sin_phi)  # type: ignore[no-any-return]
+    return v_radicand(sigma_yx, sigma_c, m, material.A, material.sin_phi)
 
 
 def radicand_scale(sigma_c: ArrayLike, material: Material) -> FloatArray:
     """The size of the terms of S, for round-off comparisons [-]."""
-    return 2.0 * (material.A + 1.0) * (np.asarray(sigma_c) * material.sin_phi) ** 2  # type: ignore[no-any-return]
+    return 2.0 * (material.A + 1.0) * (np.asarray(sigma_c) * material.sin_phi) ** 2
 
 
 def check_radicand(

@@ -153,7 +153,7 @@ def require_boundary_conditions(eq: Any, profile: Profile) -> Profile:
     return profile
 
 
-def _profile(eq: Any, form, evaluate, **kw):  # type: ignore[no-untyped-def]
+def _profile(eq: Any, form, evaluate, **kw):
     """make_profile, with a composite that leaves the yield surface reported as the
     expansion's failure, not the model's."""
     try:

@@ -220,7 +220,7 @@ def _finish(
 ) -> Profile:  # fmt: skip
     """make_profile, then the channel's own residuals (mapped upper half) and wall errors."""
     profile = make_profile(
-        problem,  # type: ignore[arg-type]
+        problem,
         problem.equations.mapped_formulation(),
         evaluate,
         method=method,

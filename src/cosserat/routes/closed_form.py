@@ -102,7 +102,7 @@ def _one_minus_exp_ratio(z: FloatArray) -> FloatArray:
     return np.where(small, 1.0 - 0.5 * z, -np.expm1(-safe) / safe)
 
 
-def _layer_at_upper(problem: CosseratPlane):  # type: ignore[no-untyped-def]
+def _layer_at_upper(problem: CosseratPlane):
     """``eqn-soln_aw_vels``: m = m0, omega = omega_1 exp(-k(1-xi)/eps), no slip at xi = 0."""
     eps, K = problem.eps, problem.upper.K
     tan_d = problem.tan_delta_upper
@@ -124,7 +124,7 @@ def _layer_at_upper(problem: CosseratPlane):  # type: ignore[no-untyped-def]
     return evaluate
 
 
-def _symmetric(problem: CosseratPlane):  # type: ignore[no-untyped-def]
+def _symmetric(problem: CosseratPlane):
     """Identical walls without gravity: m(1/2) = 0, both walls slip."""
     eps, mat = problem.eps, problem.material
     A, ea = mat.A, eps * mat.alpha

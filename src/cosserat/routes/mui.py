@@ -141,7 +141,7 @@ def _rounding(eq: MuIFlow, gap: float, a: float, b: float) -> float:
     return 8.0 * np.finfo(float).eps * (b - a) * law.I_0 * (law.mu_2 - law.mu_s) / g * scale
 
 
-def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow, gap: float):  # type: ignore[no-untyped-def]
+def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow, gap: float):
     """The pieces of :func:`_quad_intervals` one by one with QUADPACK (slower, robust), each
     to its own rtol or to the rounding of its integrand (:func:`_rounding`)."""
     out = np.zeros(nodes.size - 1)
@@ -282,7 +282,7 @@ class _Evaluator:
 
 
 # ----------------------------------------------------------------- the stress level
-def _stress_level(eq: MuIFlow, G_of_gap, rtol: float) -> tuple[float, float, int]:  # type: ignore[no-untyped-def]
+def _stress_level(eq: MuIFlow, G_of_gap, rtol: float) -> tuple[float, float, int]:
     """gap = mu_2 - T and I_w; the root-find's iterations (0 if the level is imposed)."""
     if eq.stress_ratio is not None:
         gap = eq.gap_of_stress_ratio()

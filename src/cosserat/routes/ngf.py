@@ -519,7 +519,7 @@ def solve_numerical(
     )
 
 
-def _not_available(method: str, why: str):  # type: ignore[no-untyped-def]
+def _not_available(method: str, why: str):
     def route(
         problem: Problem,
         *,

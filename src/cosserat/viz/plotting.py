@@ -195,7 +195,7 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
     return fig
 
 
-def comparison_plot(comparison, title: str = "", residual_panel: bool = False):  # type: ignore[no-untyped-def]
+def comparison_plot(comparison, title: str = "", residual_panel: bool = False):
     """Data beside the model: linear and log velocity axes (the log axis shows the
     exponential tail), and optionally the residuals."""
     import numpy as np

@@ -102,7 +102,7 @@ class MuIFlow(Equations):
 
     @property
     def rheology(self) -> MuI:
-        return self.law  # type: ignore[no-any-return]
+        return self.law
 
     @property
     def peak_wall(self) -> float:
@@ -116,12 +116,12 @@ class MuIFlow(Equations):
     @property
     def I_w(self) -> float | None:
         """The wall's inertial number that drives the flow; None when the stress is imposed."""
-        return self.cell.wall_inertial_number  # type: ignore[no-any-return]
+        return self.cell.wall_inertial_number
 
     @property
     def stress_ratio(self) -> float | None:
         """The imposed stress level (the largest stress ratio), or None [-]."""
-        return self.cell.imposed_level()  # type: ignore[no-any-return]
+        return self.cell.imposed_level()
 
     @property
     def stress_controlled(self) -> bool:

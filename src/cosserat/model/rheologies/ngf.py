@@ -184,7 +184,7 @@ class NGFFlow(Equations):
     # ----------------------------------------------------------------- the cell
     @property
     def rheology(self) -> NGF:
-        return self.law  # type: ignore[no-any-return]
+        return self.law
 
     @property
     def kind(self) -> int:
@@ -208,12 +208,12 @@ class NGFFlow(Equations):
     def I_w(self) -> float | None:
         """The reference speed's inertial number that drives the flow; None when the stress
         level is imposed."""
-        return self.cell.wall_inertial_number  # type: ignore[no-any-return]
+        return self.cell.wall_inertial_number
 
     @property
     def imposed_level(self) -> float | None:
         """The imposed stress level T (an imposed stress ratio, the channel's B nu/2) [-]."""
-        return self.cell.imposed_level()  # type: ignore[no-any-return]
+        return self.cell.imposed_level()
 
     @property
     def moving_wall(self) -> float:

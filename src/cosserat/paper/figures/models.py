@@ -139,7 +139,7 @@ def compute_models() -> FigureData:
     )
 
 
-def plot_models(data: FigureData):  # type: ignore[no-untyped-def]
+def plot_models(data: FigureData):
     from matplotlib.ticker import NullFormatter, ScalarFormatter
 
     fig = draw(data, ncols=2)

@@ -564,7 +564,7 @@ def compute_slt() -> FigureData:
 
 
 # --------------------------------------------------------------------------- registry
-def plot_default(data: FigureData):  # type: ignore[no-untyped-def]
+def plot_default(data: FigureData):
     fig = draw(data, ncols=2)
     if data.key == "fig-asymp_g0":
         for ax in fig.axes:
