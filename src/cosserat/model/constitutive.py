@@ -47,7 +47,7 @@ RADICAND_ROUNDOFF = 1e-12
 SQRT_S_FLOOR = 1e-150
 
 
-_KERNEL = {"cache": True, "nogil": True}
+_KERNEL: dict[str, Any] = {"cache": True, "nogil": True}
 
 
 @njit(**_KERNEL)
@@ -245,8 +245,10 @@ def velocity_ratio(
     would lose it to round-off.
     """
     A = material.A
-    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
-    return (A + 1.0) * (sigma_xy + sigma_yx) / d  # type: ignore[operator,no-any-return]
+    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]  # ArrayLike
+    # ArrayLike admits str and bytes, which these operators refuse; callers pass floats or float
+    # arrays, and a float in gives a float out (np.asarray would make it a 0-d array)
+    return (A + 1.0) * (sigma_xy + sigma_yx) / d  # type: ignore[operator,return-value]
 
 
 def spin_ratio(
@@ -258,8 +260,9 @@ def spin_ratio(
 ) -> FloatArray:
     """F2 = 2(A+1) m/(sxy + A syx) of ``eqn-nd_fr2``: eps alpha domega/dxi = -F2 omega [-]."""
     A = material.A
-    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
-    return 2.0 * (A + 1.0) * m / d  # type: ignore[operator,no-any-return]
+    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]  # ArrayLike
+    # as in velocity_ratio: ArrayLike admits str and bytes; a float in gives a float out
+    return 2.0 * (A + 1.0) * m / d  # type: ignore[operator,return-value]
 
 
 def asymmetry_source(sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material) -> FloatArray:

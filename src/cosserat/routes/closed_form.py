@@ -22,6 +22,7 @@ import numpy as np
 from ..errors import ConvergenceError, MethodNotAvailableError
 from ..model import PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
+from ..model.rheologies.base import equations_of
 from ..model.rheologies.cosserat import CosseratPlane
 from ..results.profile import Fields, Profile
 from .assemble import make_profile
@@ -35,7 +36,7 @@ def solve_plane(
     check: bool = True,
 ) -> Profile:
     """The closed-form profile of the Cosserat model in plane shear without gravity."""
-    eq = problem.equations
+    eq = equations_of(problem, CosseratPlane)
     if eq.B != 0.0:
         raise MethodNotAvailableError(
             "no closed form for plane shear under gravity (B > 0): use method='numerical' "
@@ -94,7 +95,7 @@ def _uniform_fields(
     )
 
 
-def _one_minus_exp_ratio(z: FloatArray) -> FloatArray:
+def _one_minus_exp_ratio(z: FloatArray | float) -> FloatArray:
     """(1 - exp(-z))/z, with its limit 1 at z = 0."""
     z = np.asarray(z, dtype=float)
     small = z < 1e-8
@@ -136,7 +137,7 @@ def _symmetric(problem: CosseratPlane):
         omega_1 = -1.0 / (2.0 + eps * (K_up + K_low))
         u_c = 0.5 * (1.0 + eps * (K_up - K_low) * omega_1)
 
-        def evaluate(x: FloatArray) -> Fields:
+        def evaluate_rough(x: FloatArray) -> Fields:
             x = np.asarray(x, dtype=float)
             omega = np.full_like(x, omega_1)
             u = u_c - 2.0 * omega_1 * (x - 0.5)
@@ -144,7 +145,7 @@ def _symmetric(problem: CosseratPlane):
                 x, np.zeros_like(x), u, omega, -tan_d, np.full_like(x, -tan_d), -2.0 * omega
             )
 
-        return evaluate, u_c, "vel_g0 / omega1_g0 (fully rough: m = 0, uniform shear)"
+        return evaluate_rough, u_c, "vel_g0 / omega1_g0 (fully rough: m = 0, uniform shear)"
 
     c = np.sqrt((b - a) / (b + a))
     gamma = ((1.0 + A) * b * b + (1.0 - A) * a * a) / (a * (a + b))

@@ -35,6 +35,7 @@ from scipy.optimize import brentq
 from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
 from ..model import Problem
+from ..model.cells.plane import Plane
 from ..model.constitutive import FloatArray
 from ..model.rheologies import ANY_CELL
 from ..model.rheologies.mui import GAP_MIN, REFERENCE, MuIFlow
@@ -515,7 +516,7 @@ def solve_closed_form(
     NoSolutionError
         As :func:`solve_numerical`.
     """
-    if problem.cell_name == "plane" and problem.cell.B_nu != 0.0:
+    if isinstance(problem.cell, Plane) and problem.cell.B_nu != 0.0:
         raise MethodNotAvailableError(
             "no closed form for mu(I) plane shear under gravity (B > 0): use method='numerical'"
         )

@@ -37,6 +37,7 @@ from ..errors import (
 )
 from ..model import Problem
 from ..model.constitutive import FloatArray
+from ..model.rheologies.base import equations_of
 from ..model.rheologies.ngf import KINDS, REFERENCE, NGFFlow
 from ..numerics import ngf as kernel
 from ..results.profile import Diagnostics, Fields, Profile
@@ -509,7 +510,7 @@ def solve_numerical(
         The grid would need more than :data:`MAX_CELLS` cells, or the root-find failed.
     """
     return _profile(
-        problem.equations,
+        equations_of(problem, NGFFlow),
         points=points,
         xi=xi,
         check=check,
