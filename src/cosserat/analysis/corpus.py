@@ -37,7 +37,7 @@ import numpy as np
 from .._atomic import atomic_open, write_text
 from .._text import read_text
 from ..errors import InputError
-from ..model.constitutive import FloatArray
+from ..model.constitutive import BoolArray, FloatArray
 from .measurements import MeasuredProfile
 
 FORMAT = "cosserat-corpus/1"
@@ -74,7 +74,7 @@ OUTSIDE_TOLERANCE_D = 0.5
 position) and taken at the wall; farther out they are an error."""
 
 
-def usable(values: FloatArray, stderr: FloatArray) -> FloatArray:
+def usable(values: FloatArray, stderr: FloatArray) -> BoolArray:
     """True where a measured quantity and its standard error can be used (finite, se > 0)."""
     return np.isfinite(values) & np.isfinite(stderr) & (stderr > 0.0)
 

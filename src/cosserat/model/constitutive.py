@@ -40,6 +40,7 @@ from ..errors import NoSolutionError
 from .parameters import Material
 
 FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
 
 # Relative round-off allowance on the radicand S before "no real solution" is declared.
 RADICAND_ROUNDOFF = 1e-12

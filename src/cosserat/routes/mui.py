@@ -36,7 +36,7 @@ from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
 from ..model import Problem
 from ..model.cells.plane import Plane
-from ..model.constitutive import FloatArray
+from ..model.constitutive import BoolArray, FloatArray
 from ..model.rheologies import ANY_CELL
 from ..model.rheologies.mui import GAP_MIN, REFERENCE, MuIFlow
 from ..results.profile import Diagnostics, Fields, Profile
@@ -142,7 +142,7 @@ def _rounding(eq: MuIFlow, gap: float, a: float, b: float) -> float:
     return 8.0 * np.finfo(float).eps * (b - a) * law.I_0 * (law.mu_2 - law.mu_s) / g * scale
 
 
-def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow, gap: float):
+def _quad_each(f, nodes: FloatArray, live: BoolArray, rtol: float, eq: MuIFlow, gap: float):
     """The pieces of :func:`_quad_intervals` one by one with QUADPACK (slower, robust), each
     to its own rtol or to the rounding of its integrand (:func:`_rounding`)."""
     out = np.zeros(nodes.size - 1)

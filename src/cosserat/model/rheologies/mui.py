@@ -30,7 +30,7 @@ import numpy as np
 
 from ... import config
 from ...errors import NoSolutionError, ParameterError
-from ..constitutive import FloatArray
+from ..constitutive import BoolArray, FloatArray
 from ..declare import Constraint, param, validate
 from .base import ANY_CELL, Equations, Rheology
 
@@ -200,7 +200,7 @@ class MuIFlow(Equations):
         """The sign of r d(u/r)/dxi: opposite to that of sigma_yx [-]."""
         return -np.sign(self.cell.shear_stress(np.asarray(xi, dtype=float), 1.0))
 
-    def plug(self, xi: FloatArray, gap: float) -> FloatArray:
+    def plug(self, xi: FloatArray, gap: float) -> BoolArray:
         """True where |tau|/p <= mu_s: the material does not flow there."""
         x = np.asarray(xi, dtype=float)
         return (self.rheology.mu_2 - self.rheology.mu_s) - self.saturation_gap(x, gap) <= 0.0

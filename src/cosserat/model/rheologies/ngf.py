@@ -44,7 +44,7 @@ from ...errors import NoSolutionError, ParameterError
 from ..cells.channel import shear_stress as channel_shear_stress
 from ..cells.couette import torque_decay
 from ..cells.plane import mean_stress
-from ..constitutive import FloatArray
+from ..constitutive import BoolArray, FloatArray
 from ..declare import Constraint, param, validate
 from .base import Equations, Rheology
 from .mui import MU_MAX, MuI, friction_spread
@@ -252,7 +252,7 @@ class NGFFlow(Equations):
         """F_loc(xi) for the stress level T [-]."""
         return self.rheology.local_fluidity(self.friction_ratio(xi, T), self.pressure(xi))
 
-    def creep(self, xi: FloatArray, T: float) -> FloatArray:
+    def creep(self, xi: FloatArray, T: float) -> BoolArray:
         """True where mu <= mu_s: g_loc = 0 there, and the material only creeps."""
         return self.friction_ratio(xi, T) <= self.rheology.mu_s
 

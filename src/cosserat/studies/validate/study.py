@@ -179,10 +179,13 @@ def analyse_run(
     )
     model_delta: dict[str, float | None] = {}
     if fits is not None:
-        m = run.measured()
+        measured = run.measured()
         for name in fits.models:
             model_delta[name] = thickness_of(
-                m.distance_d, fits.curve(name, m.distance_d), reference_velocity(run), f
+                measured.distance_d,
+                fits.curve(name, measured.distance_d),
+                reference_velocity(run),
+                f,
             )
     result = RunResult(
         run,
