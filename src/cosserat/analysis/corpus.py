@@ -369,9 +369,9 @@ def read_run(csv_path: str | Path) -> Run:
     c = columns[coord]
     step = np.diff(c)
     if not (np.all(step > 0) or np.all(step < 0)):
-        bad = int(np.flatnonzero(step * np.sign(step[0]) <= 0)[0]) + 3
+        line = int(np.flatnonzero(step * np.sign(step[0]) <= 0)[0]) + 3
         raise InputError(
-            f"{path}, line {bad}, column {coord!r}: bins must be ordered across the gap "
+            f"{path}, line {line}, column {coord!r}: bins must be ordered across the gap "
             "(strictly monotone)"
         )
     lo = float(meta.get("Ri_d") or 0.0) if cell == "couette" else 0.0

@@ -255,7 +255,7 @@ class _Evaluator:
             return _numerical_velocity(self.eq, self.gap, self.I_w, x, self.rtol)[0]
         return CLOSED_FORMS[self.eq.cell.name](self.eq, self.gap, self.I_w, x)[0]
 
-    def plug(self, x: FloatArray) -> FloatArray:
+    def plug(self, x: FloatArray) -> BoolArray:
         """True where the material is a plug (|tau|/p <= mu_s)."""
         return self.eq.plug(np.atleast_1d(np.asarray(x, dtype=float)), self.gap)
 
@@ -525,7 +525,7 @@ def solve_closed_form(
     )
 
 
-def plug_mask(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
+def plug_mask(profile: Profile, xi: FloatArray | None = None) -> BoolArray:
     """True where a mu(I) profile is a plug (|tau|/p <= mu_s), on ``profile.xi`` or at ``xi``.
 
     Raises

@@ -10,14 +10,16 @@ from __future__ import annotations
 import logging
 from collections.abc import Iterator
 from contextlib import contextmanager
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
+    from matplotlib.typing import RcKeyType
+    from numpy.typing import ArrayLike
 
     from ..results.profile import Profile
 
-STYLE = {
+STYLE: dict[RcKeyType, Any] = {
     "figure.figsize": (6.4, 4.8),
     "figure.dpi": 100,
     "savefig.dpi": 200,
@@ -125,7 +127,7 @@ def field_scales(profile: Profile) -> dict[str, float]:
     the largest stress for the asymmetry sigma_yx - sigma_xy and the couple stress."""
     import numpy as np
 
-    def biggest(*arrays: object) -> float:
+    def biggest(*arrays: ArrayLike | None) -> float:
         values = [float(np.max(np.abs(a))) for a in arrays if a is not None and np.size(a)]
         return max([*values, 0.0])
 

@@ -63,7 +63,7 @@ class Equations:
     def slip_sign(self, xi_wall: float) -> float:
         return self.cell.slip_sign(xi_wall)
 
-    def sigma_c(self, xi: FloatArray) -> FloatArray:
+    def sigma_c(self, xi: FloatArray | float) -> FloatArray:
         """The normal stress across the gap (the cell's statics) [-]."""
         return self.cell.normal_stress(xi)
 

@@ -180,7 +180,7 @@ class MuIFlow(Equations):
         )
         return rate if cell.straight else rate / cell.radius_at(tt)
 
-    def saturation_gap(self, xi: FloatArray, gap: float) -> FloatArray:
+    def saturation_gap(self, xi: FloatArray | float, gap: float) -> FloatArray:
         """mu_2 - mu(xi) for the wall gap ``gap`` [-]."""
         return self.saturation_gap_at(self.cell.distance(xi), gap)
 

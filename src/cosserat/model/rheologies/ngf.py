@@ -440,7 +440,7 @@ class NGF(Rheology):
         """I_0 = (mu_2 - mu_s)/b of the saturating local law, None for the linear one [-]."""
         return None if self.mu_2 is None else (self.mu_2 - self.mu_s) / self.b
 
-    def _local(self, mu: FloatArray, pressure: FloatArray, fluidity: bool) -> FloatArray:
+    def _local(self, mu: FloatArray, pressure: FloatArray | float, fluidity: bool) -> FloatArray:
         m, p = np.broadcast_arrays(np.asarray(mu, dtype=float), np.asarray(pressure, dtype=float))
         if self.mu_2 is not None and np.any(m >= self.mu_2):
             raise NoSolutionError(
@@ -464,7 +464,7 @@ class NGF(Rheology):
         """
         return self._local(mu, 1.0, False)
 
-    def local_fluidity(self, mu: FloatArray, pressure: FloatArray = 1.0) -> FloatArray:
+    def local_fluidity(self, mu: FloatArray, pressure: FloatArray | float = 1.0) -> FloatArray:
         """F_loc = sqrt(p/N) I_loc(mu)/mu: g_loc in units of sqrt(N/rho_s)/d [-]
         (:func:`local_fluidity`)."""
         return self._local(mu, pressure, True)

@@ -148,7 +148,8 @@ def plot_models(data: FigureData):
             ax.yaxis.set_major_formatter(ScalarFormatter())
             ax.yaxis.set_minor_formatter(NullFormatter())
     for ax in fig.axes:
-        for text in ax.get_legend().get_texts() if ax.get_legend() else []:
+        legend = ax.get_legend()
+        for text in legend.get_texts() if legend else []:
             text.set_fontsize(6)
     return fig
 

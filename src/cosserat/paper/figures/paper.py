@@ -533,7 +533,7 @@ def compute_slt() -> FigureData:
             label = SLT_LABELS.get(name, name)
             panel.add_symbols(label, eps_ok, delta_ok, SLT_MARKERS[name], markersize=6, name=name)
             fine = np.geomspace(EPS_SLT[-1], EPS_SLT[0], 60)
-            asym = [asymptotic_thickness(problem.with_values({"eps": e})) for e in fine]
+            asym = np.array([asymptotic_thickness(problem.with_values({"eps": e})) for e in fine])
             panel.add(
                 label,  # one legend entry: the symbol over its line
                 fine,
