@@ -323,7 +323,7 @@ def cmd_fit(args: argparse.Namespace) -> None:
             )
     finally:
         if bar is not None:
-            bar.close()  # type: ignore[attr-defined]
+            bar.close()
     record = result.to_dict()
     record["model_name"] = args.model
     best = result.problem

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 
 from . import files
 from .common import (
@@ -15,10 +16,10 @@ from .common import (
 )
 
 
-def _stage_bar():
+def _stage_bar() -> Callable[[str, int, int], None] | None:
     """``progress(stage, i, n)`` for :func:`cosserat.paper.reproduce`: one tqdm bar per stage
     (None when silent: stderr not a terminal, or --quiet)."""
-    bars: dict[str, object] = {}
+    bars: dict[str, Callable[[int, int], None] | None] = {}
     if progress_bar("reproduce") is None:
         return None
 
@@ -27,7 +28,7 @@ def _stage_bar():
         if bar is None:
             bar = bars[stage] = progress_bar(f"reproduce: {stage}")
         if bar is not None:
-            bar(i, n)  # type: ignore[operator]
+            bar(i, n)
 
     return progress
 

@@ -38,6 +38,7 @@ from ..model import Problem
 from ..model.cells.plane import Plane
 from ..model.constitutive import BoolArray, FloatArray
 from ..model.rheologies import ANY_CELL
+from ..model.rheologies.base import equations_of
 from ..model.rheologies.mui import GAP_MIN, REFERENCE, MuIFlow
 from ..results.profile import Diagnostics, Fields, Profile
 from .assemble import given_grid
@@ -386,7 +387,7 @@ def _profile(
     check: bool,
     rtol: float,
 ) -> Profile:
-    eq: MuIFlow = problem.equations  # type: ignore[assignment]
+    eq = equations_of(problem, MuIFlow)
     numerical = method == "numerical"
     closed = CLOSED_FORMS.get(eq.cell.name)
 

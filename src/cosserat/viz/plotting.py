@@ -13,6 +13,7 @@ from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from matplotlib.typing import RcKeyType
     from numpy.typing import ArrayLike
@@ -84,12 +85,12 @@ def suptitle(fig: Figure, text: str, fontsize: float = 7) -> None:
     fig.suptitle(textwrap.fill(text, width=max(chars, 20)), fontsize=fontsize)
 
 
-def upright_ylabel(ax: object, label: str) -> None:
+def upright_ylabel(ax: Axes, label: str) -> None:
     """A y label read upright when it is a short symbol (xi), along the axis otherwise."""
     if len(label) <= 10:
-        ax.set_ylabel(label, rotation=0, ha="right", va="center")  # type: ignore[attr-defined]
+        ax.set_ylabel(label, rotation=0, ha="right", va="center")
     else:
-        ax.set_ylabel(label)  # type: ignore[attr-defined]
+        ax.set_ylabel(label)
 
 
 @contextmanager

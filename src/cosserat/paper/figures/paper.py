@@ -220,9 +220,7 @@ def compute_bc() -> FigureData:
         "Couple stress and velocity for four m(0) in 0 < m(0) <= b (solid: m(0) = b); "
         "delta = 10 deg, delta_L > delta, other parameters as figure 2.",
         profile_panels(curves, ["m", "u"]),
-        notes=[
-            f"b = {b:.6g}; m0 = {slip.m0:.6g} (the value eqn-nd_bc4 gives)"
-        ],
+        notes=[f"b = {b:.6g}; m0 = {slip.m0:.6g} (the value eqn-nd_bc4 gives)"],
         extra={"b": b, "fractions": fractions},
     )
 
