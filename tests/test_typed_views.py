@@ -68,3 +68,25 @@ def test_fields_spin_narrows_or_refuses() -> None:
         match=r"^these fields have no grain spin and couple stress \(the law has none\)$",
     ):
         bare.spin()
+
+
+def test_message_bar_ticks_with_the_message_and_closes() -> None:
+    """The CLI's message bar (was a function with a ``close`` attribute set on it)."""
+    from cosserat.cli.common import MessageBar
+
+    calls: list[tuple[object, ...]] = []
+
+    class FakeTqdm:
+        def set_postfix_str(self, text: str, refresh: bool) -> None:
+            calls.append(("postfix", text, refresh))
+
+        def update(self, n: int) -> None:
+            calls.append(("update", n))
+
+        def close(self) -> None:
+            calls.append(("close",))
+
+    bar = MessageBar(FakeTqdm())
+    bar("solving")
+    bar.close()
+    assert calls == [("postfix", "solving", False), ("update", 1), ("close",)]
