@@ -246,9 +246,9 @@ def velocity_ratio(
     would lose it to round-off.
     """
     A = material.A
-    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]  # ArrayLike
-    # ArrayLike admits str and bytes, which these operators refuse; callers pass floats or float
-    # arrays, and a float in gives a float out (np.asarray would make it a 0-d array)
+    # ignores: ArrayLike admits str and bytes, which these operators refuse; callers pass floats
+    # or float arrays, and a float in gives a float out (np.asarray would make it a 0-d array)
+    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
     return (A + 1.0) * (sigma_xy + sigma_yx) / d  # type: ignore[operator,return-value]
 
 
@@ -261,8 +261,8 @@ def spin_ratio(
 ) -> FloatArray:
     """F2 = 2(A+1) m/(sxy + A syx) of ``eqn-nd_fr2``: eps alpha domega/dxi = -F2 omega [-]."""
     A = material.A
-    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]  # ArrayLike
-    # as in velocity_ratio: ArrayLike admits str and bytes; a float in gives a float out
+    # ignores as in velocity_ratio: ArrayLike admits str and bytes; a float in gives a float out
+    d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
     return 2.0 * (A + 1.0) * m / d  # type: ignore[operator,return-value]
 
 
