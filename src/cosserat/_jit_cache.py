@@ -33,13 +33,16 @@ def _writable(folder: Path) -> bool:
 def ensure_cache() -> str | None:
     """The temporary cache folder chosen when no usual one is writable, else None."""
     candidates = [Path(__file__).parent / "numerics" / "__pycache__"]
-    if numba.config.CACHE_DIR:
-        candidates.insert(0, Path(numba.config.CACHE_DIR))
+    # numba.config sets its options (CACHE_DIR among them) at run time from the environment,
+    # so the module has no attribute mypy can see
+    cache_dir = numba.config.CACHE_DIR  # type: ignore[attr-defined]
+    if cache_dir:
+        candidates.insert(0, Path(cache_dir))
     candidates.append(Path(AppDirs(appname="numba", appauthor=False).user_cache_dir))
     if any(_writable(folder) for folder in candidates):
         return None
     folder = tempfile.mkdtemp(prefix="cosserat-numba-")
-    numba.config.CACHE_DIR = folder
+    numba.config.CACHE_DIR = folder  # type: ignore[attr-defined]  # (as above)
     warnings.warn(
         f"no writable folder for numba's cache ({', '.join(map(str, candidates))}): the "
         f"compiled kernels go to {folder} for this process only, and every new process "

@@ -55,6 +55,8 @@ from ..model import Cosserat, Problem
 from ..model.constitutive import FloatArray
 from ..model.parameters import Material, Wall, require_finite
 from ..model.rheologies import Rheology
+from ..model.rheologies.base import equations_of
+from ..model.rheologies.cosserat import CosseratCouette
 from ..results.profile import Profile
 from ..results.wall import shear_layer_thickness, wall_slip
 
@@ -613,7 +615,8 @@ class CouetteCell(LabCell):
         r = self.Ri + profile.xi
         bracket = -(r**2) * profile.sigma_yx
         if profile.m is not None:
-            bracket = bracket + problem.equations.couple_factor * r * profile.m  # type: ignore[attr-defined]
+            couple = equations_of(problem, CosseratCouette).couple_factor  # m: a couple stress law
+            bracket = bracket + couple * r * profile.m
         return 2.0 * math.pi * self.mean_stress(z) * self.gap**2 * bracket
 
     def shear_torque_density(self, profile: Profile, depth: float | None = None) -> float:

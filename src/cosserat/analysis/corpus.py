@@ -37,7 +37,7 @@ import numpy as np
 from .._atomic import atomic_open, write_text
 from .._text import read_text
 from ..errors import InputError
-from ..model.constitutive import FloatArray
+from ..model.constitutive import BoolArray, FloatArray
 from .measurements import MeasuredProfile
 
 FORMAT = "cosserat-corpus/1"
@@ -77,7 +77,7 @@ OUTSIDE_TOLERANCE_D = 0.5
 position) and taken at the wall; farther out they are an error."""
 
 
-def usable(values: FloatArray, stderr: FloatArray) -> FloatArray:
+def usable(values: FloatArray, stderr: FloatArray) -> BoolArray:
     """True where a measured quantity and its standard error can be used (finite, se > 0)."""
     return np.isfinite(values) & np.isfinite(stderr) & (stderr > 0.0)
 
@@ -372,9 +372,9 @@ def read_run(csv_path: str | Path) -> Run:
     c = columns[coord]
     step = np.diff(c)
     if not (np.all(step > 0) or np.all(step < 0)):
-        bad = int(np.flatnonzero(step * np.sign(step[0]) <= 0)[0]) + 3
+        line = int(np.flatnonzero(step * np.sign(step[0]) <= 0)[0]) + 3
         raise InputError(
-            f"{path}, line {bad}, column {coord!r}: bins must be ordered across the gap "
+            f"{path}, line {line}, column {coord!r}: bins must be ordered across the gap "
             "(strictly monotone)"
         )
     lo = float(meta.get("Ri_d") or 0.0) if cell == "couette" else 0.0

@@ -118,14 +118,24 @@ def compare(
 
 
 # --------------------------------------------------------------------------- parameters
+def _cosserat(problem: Problem) -> Cosserat:
+    """The problem's law, checked to be the Cosserat model (the one these fits free)."""
+    law = problem.rheology
+    if not isinstance(law, Cosserat):
+        raise MethodNotAvailableError(
+            f"fitting delta, K, L, phi or A needs the Cosserat model; got the {law.name} rheology"
+        )
+    return law
+
+
 def _moving(problem: Problem) -> Wall:
-    return problem.rheology.wall  # type: ignore[attr-defined, no-any-return]
+    return _cosserat(problem).wall
 
 
 def natural_value(problem: Problem, name: str) -> float:
     """Current value of a fittable parameter of the Cosserat model (delta in degrees, fully
     rough as its angle)."""
-    mat = problem.rheology.material  # type: ignore[attr-defined]
+    mat = _cosserat(problem).material
     if name == "delta":
         wall = _moving(problem)
         return mat.fully_rough_delta if wall.is_fully_rough else float(wall.delta)
@@ -142,7 +152,7 @@ def with_values(problem: Problem, values: dict[str, float]) -> Problem:
     rough by a lower phi is clamped to it. Between identical plane walls both walls change
     together (a plane cell's lower wall follows the moving one unless it was given).
     """
-    law: Cosserat = problem.rheology  # type: ignore[assignment]
+    law = _cosserat(problem)
     mat = law.material
     material = replace(
         mat, phi=values.get("phi", mat.phi), L=values.get("L", mat.L), A=values.get("A", mat.A)

@@ -76,7 +76,9 @@ class SlopeFit:
 
 
 def power_law_slope(
-    gaps: Sequence[float], values: Sequence[float], errors: Sequence[float] | None = None
+    gaps: Sequence[float] | FloatArray,
+    values: Sequence[float] | FloatArray,
+    errors: Sequence[float] | FloatArray | None = None,
 ) -> SlopeFit:
     """Fit ``values = C gaps^slope`` in log-log (weighted by ``errors`` when given).
 
@@ -107,12 +109,12 @@ def power_law_slope(
         return SlopeFit(float(coef[1]), se, float(math.exp(coef[0])), int(x.size), red)
     coef, *_ = np.linalg.lstsq(A, ly, rcond=None)
     dof = x.size - 2
-    se = None
+    stderr: float | None = None
     if dof > 0:
         r = ly - A @ coef
         cov = np.linalg.inv(A.T @ A) * float(r @ r) / dof
-        se = math.sqrt(cov[1, 1])
-    return SlopeFit(float(coef[1]), se, float(math.exp(coef[0])), int(x.size))
+        stderr = math.sqrt(cov[1, 1])
+    return SlopeFit(float(coef[1]), stderr, float(math.exp(coef[0])), int(x.size))
 
 
 @dataclass
@@ -215,7 +217,7 @@ class GapStudy:
                 lines.append(f"  {s.label}, H/d = {g:g}: {why}")
         return "\n".join(lines) + "\n"
 
-    def plot(self, ax: Any = None):  # type: ignore[no-untyped-def]
+    def plot(self, ax: Any = None):
         """Delta against H/d on log axes, one line per series, with the slopes 0 and 1/3."""
         from ..viz.plotting import new_figure, style
 

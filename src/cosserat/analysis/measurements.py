@@ -170,11 +170,9 @@ def read_profile(source: str | Path | Any, **meta: Any) -> MeasuredProfile:
         A file that cannot be read (no such file, a directory, no permission).
     """
     if hasattr(source, "columns") and hasattr(source, "__getitem__"):
-        columns = {
-            str(c).strip().lower(): np.asarray(source[c], dtype=float) for c in source.columns
-        }
+        frame = {str(c).strip().lower(): np.asarray(source[c], dtype=float) for c in source.columns}
         rows_meta: dict[str, Any] = dict(getattr(source, "attrs", {}) or {})
-        return _assemble(columns, {**rows_meta, **meta}, first_data_line=1)
+        return _assemble(frame, {**rows_meta, **meta}, first_data_line=1)
     text = read_text(source) if _is_path(source) else str(source).removeprefix("\ufeff")
     header: dict[str, Any] = {}
     lines = text.splitlines()

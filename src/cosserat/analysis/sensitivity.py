@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from .. import config
 from ..errors import NoSolutionError
@@ -19,7 +20,7 @@ class Bound:
     solves: int
 
 
-def has_solution(problem: Problem, **options: object) -> bool:
+def has_solution(problem: Problem, **options: Any) -> bool:
     """True if the numerical route finds a real solution (no :class:`NoSolutionError`).
 
     Examples
@@ -34,7 +35,7 @@ def has_solution(problem: Problem, **options: object) -> bool:
     from ..routes import solve
 
     try:
-        solve(problem, check=False, points=3, **options)  # type: ignore[arg-type]
+        solve(problem, check=False, points=3, **options)
     except NoSolutionError:
         return False
     return True

@@ -222,10 +222,11 @@ class Setup:
         k = len(self.runs)
         for i in range(len(thetas)):
             chunk = preds[i * k : (i + 1) * k]
-            if any(isinstance(p, Exception) for p in chunk):
+            solved = [p for p in chunk if not isinstance(p, Exception)]
+            if len(solved) < len(chunk):
                 out[i] = -math.inf
                 continue
-            w = self.whitened({run.name: p for run, p in zip(self.runs, chunk, strict=True)})
+            w = self.whitened({run.name: p for run, p in zip(self.runs, solved, strict=True)})
             out[i] = -0.5 * float(w @ w) + norm if np.all(np.isfinite(w)) else -math.inf
         return out
 

@@ -51,7 +51,7 @@ def _estimates(
     for slot in s.slots:
         decl = slot.param.declared
         shared = len(slot.runs) > 1
-        common = dict(
+        common: dict[str, Any] = dict(
             name=slot.name,
             key=slot.key,
             role=slot.param.role,
@@ -130,7 +130,7 @@ def _derived(
                 up = opt.theta.copy()
                 up[j] += h
                 g[j] = (delta(up) - value) / h
-            stderr = float(math.sqrt(max(g @ cov @ g, 0.0)))
+            stderr = math.sqrt(max(float(g @ cov @ g), 0.0))
         fully = est.at_bound == "upper" or (not slot.free and slot.value >= 1.0 - 1e-12)
         out[f"delta[{label}]"] = Estimate(
             derived=True,
@@ -527,14 +527,14 @@ def jackknife(mc: ModelCalibration, seed: int = 0) -> ModelCalibration:
     params = dict(mc.parameters)
     notes = []
     for name, xs in values.items():
-        e = params.get(name)
-        if e is None or len(xs) < 2:
+        full = params.get(name)
+        if full is None or len(xs) < 2:
             continue
         x = np.asarray(xs)
         n = x.size
         se = float(np.sqrt((n - 1) / n * np.sum((x - x.mean()) ** 2)))
-        params[name] = dataclasses.replace(e, jackknife=(float(x.min()), float(x.max()), se))
-        own = e.stderr_scaled
+        params[name] = dataclasses.replace(full, jackknife=(float(x.min()), float(x.max()), se))
+        own = full.stderr_scaled
         if own is None:
             continue
         cut = dg.MISFIT_P / n
@@ -542,12 +542,12 @@ def jackknife(mc: ModelCalibration, seed: int = 0) -> ModelCalibration:
         for left, value, sub_se in moves[name]:
             if not sub_se:
                 continue
-            z = (value - e.value) / sub_se
+            z = (value - full.value) / sub_se
             if 2.0 * stats.norm.sf(abs(z)) < cut:
                 odd.append(f"{left} (moves it to {value:.4g}, {z:+.1f} sigma)")
         if odd:
             notes.append(
-                f"{mc.model}: {name} = {e.value:.4g} +- {own:.2g}: leaving out "
+                f"{mc.model}: {name} = {full.value:.4g} +- {own:.2g}: leaving out "
                 f"{', '.join(odd)} moves it more than the errors allow (p < {cut:.2g} each; "
                 f"range {x.min():.4g}-{x.max():.4g} over the {n} runs): the runs do not agree "
                 "on one value, so it is not one material's constant under this model"

@@ -173,7 +173,7 @@ class Model:
         return tuple(c for c in CELLS if RHEOLOGIES[self.name].supports(c))
 
     # ------------------------------------------------------------------ problems
-    def problem(self, run: RunData, values: Mapping[str, Any]) -> Any:
+    def problem(self, run: RunData, values: Mapping[Any, Any]) -> Any:
         """The model's problem for ``run`` with parameter ``values``.
 
         ``values`` holds the material parameters by key and the wall parameters as

@@ -188,8 +188,8 @@ def figure_data(cal: Calibration, points: int = 160) -> list[dict[str, Any]]:
             }
         if len(m.internal) > 2:
             bands = _bands(s, m.internal[2], points)
-            for run, fields in bands.items():
-                entries[run]["bands"][m.model] = fields
+            for run_name, fields in bands.items():
+                entries[run_name]["bands"][m.model] = fields
     return list(entries.values())
 
 

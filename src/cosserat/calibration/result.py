@@ -182,7 +182,7 @@ class PosteriorSummary:
     """
 
     samples: int
-    parameters: dict[str, dict[str, float]]
+    parameters: dict[str, dict[str, float | None]]
     acceptance: float
     autocorrelation: dict[str, float | None]
     burn_in: int

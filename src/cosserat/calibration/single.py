@@ -49,9 +49,10 @@ from ..errors import (
     NoSolutionError,
     ParameterError,
 )
-from ..model import Problem, make_problem
+from ..model import Cosserat, Problem, make_problem
 from ..model.build import problem_parameters
 from ..model.constitutive import FloatArray
+from ..model.parameters import Wall
 from ..model.rheologies import RHEOLOGIES
 from ..routes import models_for, solve
 from .data import Field, RunData
@@ -276,11 +277,11 @@ def data_problem(problem: Problem, measured: MeasuredProfile) -> tuple[Problem, 
     return problem, notes
 
 
-def _roughness(problem: Problem, wall: Any) -> float:
+def _roughness(law: Cosserat, wall: Wall) -> float:
     """tan(delta)/sin(phi) of a Cosserat wall (1: fully rough) [-]."""
     if wall.is_fully_rough:
         return 1.0
-    s = problem.rheology.material.sin_phi  # type: ignore[attr-defined]
+    s = law.material.sin_phi
     return min(math.tan(math.radians(float(wall.delta))) / s, 1.0)
 
 
@@ -295,14 +296,14 @@ def run_of(
     slots: dict[str, float] = {}
     walls = {"moving": _MOVING, "fixed": _MOVING}
     keys = {p.key for p in model.parameters()}
-    if problem.model == "cosserat":
-        law = problem.rheology
-        slots["roughness[wall]"] = _roughness(problem, law.wall)  # type: ignore[attr-defined]
-        slots["K[wall]"] = float(law.wall.K)  # type: ignore[attr-defined]
-        lower = getattr(law, "lower", None)
-        if problem.cell_name == "plane" and lower is not None and lower != law.wall:  # type: ignore[attr-defined]
+    law = problem.rheology
+    if isinstance(law, Cosserat):  # problem.model == "cosserat"
+        slots["roughness[wall]"] = _roughness(law, law.wall)
+        slots["K[wall]"] = float(law.wall.K)
+        lower = law.lower
+        if problem.cell_name == "plane" and lower is not None and lower != law.wall:
             walls["fixed"] = _LOWER
-            slots["roughness[lower]"] = _roughness(problem, lower)
+            slots["roughness[lower]"] = _roughness(law, lower)
             slots["K[lower]"] = float(lower.K)
         for k in ("delta", "K", "delta_lower", "K_lower"):
             values.pop(k, None)
@@ -703,8 +704,8 @@ class Ranking:
         return r[0] if r and r[0].ok and r[0].aic is not None else None
 
     def by_bic(self) -> list[SingleFit]:
-        ok = [f for f in self.fits if f.ok and f.bic is not None]
-        return sorted(ok, key=lambda f: f.bic)  # type: ignore[arg-type,return-value]
+        ok = [(f.bic, f) for f in self.fits if f.ok and f.bic is not None]
+        return [f for _, f in sorted(ok, key=lambda bf: bf[0])]
 
     @property
     def calibration(self) -> Calibration:
@@ -775,7 +776,7 @@ class Ranking:
             lines += [f"    note: {w_}" for w_ in f.warnings]
         return "\n".join(lines) + "\n"
 
-    def plot(self, title: str = ""):  # type: ignore[no-untyped-def]
+    def plot(self, title: str = ""):
         """The data with error bars and every fitted model (linear and log velocity axes)."""
         from ..viz.plotting import new_figure, style
 

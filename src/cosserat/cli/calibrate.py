@@ -119,7 +119,7 @@ def cmd_calibrate(args: argparse.Namespace) -> None:
             print(f"\nreport: {args.out}/report.md, {args.out}/calibration.json, figures")
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "calibrate",
         help="calibrate the models jointly on several runs of one material, and compare them",

@@ -20,7 +20,7 @@ import warnings
 from typing import Any
 
 from .. import config
-from ..analysis.cell import LAB_CELLS, UNITS, LabCell
+from ..analysis.cell import LAB_CELLS, UNITS, CouetteCell, LabCell
 from ..errors import ParameterError
 from ..routes import solve
 from . import files
@@ -161,8 +161,8 @@ def compute(args: argparse.Namespace) -> tuple[dict[str, Any], Any, LabCell]:
     extra = parse_params(args.param)
     rate_dependent = model in RHEOLOGIES and RHEOLOGIES[model].rate_dependent
     depth = None
-    if kind == "couette":
-        fill = lab.fill_depth  # type: ignore[attr-defined]
+    if isinstance(lab, CouetteCell):  # kind == "couette"
+        fill = lab.fill_depth
         depth = fill if args.depth is None else args.depth
         if not (math.isfinite(depth) and 0.0 < depth <= fill):
             raise ParameterError(
@@ -202,9 +202,9 @@ def compute(args: argparse.Namespace) -> tuple[dict[str, Any], Any, LabCell]:
         **results,
         "units": {k: UNITS[k] for k in results if k in UNITS},
     }
-    if kind == "couette":  # the names of 0.1, kept one release
-        record["inputs"]["rotation_rate"] = lab.rotation_rate  # type: ignore[attr-defined]
-        record["wall_speed"] = lab.wall_speed  # type: ignore[attr-defined]
+    if isinstance(lab, CouetteCell):  # the names of 0.1, kept one release
+        record["inputs"]["rotation_rate"] = lab.rotation_rate
+        record["wall_speed"] = lab.wall_speed
         record["units"]["wall_speed"] = "m/s"
         record["r"], record["v_theta"], record["omega"] = (
             results["position"],
@@ -374,7 +374,7 @@ def cmd_cell(args: argparse.Namespace) -> None:
     deliver(args, render, meta, line)
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add this module's command to the ``cosserat`` parser."""
     p = sub.add_parser(
         "cell",

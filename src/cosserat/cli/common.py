@@ -425,16 +425,23 @@ def progress_bar(label: str) -> Callable[[int, int], None] | None:
     return update
 
 
-def progress_messages(label: str) -> Callable[[str], None] | None:
-    """A tqdm bar of unknown length on stderr as a callable ``step(message)`` (one tick per
-    stage, the message beside it), or None when silent (as :func:`progress_bar`)."""
+class MessageBar:
+    """A tqdm bar of unknown length as a callable ``step(message)`` (one tick per stage, the
+    message beside it), with :meth:`close`."""
+
+    def __init__(self, bar: Any) -> None:
+        self._bar = bar
+
+    def __call__(self, message: str) -> None:
+        self._bar.set_postfix_str(message, refresh=False)
+        self._bar.update(1)
+
+    def close(self) -> None:
+        self._bar.close()
+
+
+def progress_messages(label: str) -> MessageBar | None:
+    """A :class:`MessageBar` on stderr, or None when silent (as :func:`progress_bar`)."""
     if not _terminal():
         return None
-    bar = _tqdm(total=None, desc=label, unit="step")
-
-    def step(message: str) -> None:
-        bar.set_postfix_str(message, refresh=False)
-        bar.update(1)
-
-    step.close = bar.close  # type: ignore[attr-defined]
-    return step
+    return MessageBar(_tqdm(total=None, desc=label, unit="step"))

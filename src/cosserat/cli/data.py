@@ -90,7 +90,7 @@ _HEADER_KEYS = {"geometry": "geometry", "eps": "eps", "Ri": "ri", "B": "b", "nu"
 _CELL_NAMES = ("eps", "Ri", "B", "nu")
 
 
-def data_problem(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+def data_problem(args: argparse.Namespace):
     """The measured profile and the model problem: command line > preset > file header >
     the declared defaults (those of :func:`cosserat.model.make_problem`). The header's Ri is
     used for Couette flow only, its B and nu for plane shear only (as the declarations say).
@@ -323,7 +323,7 @@ def cmd_fit(args: argparse.Namespace) -> None:
             )
     finally:
         if bar is not None:
-            bar.close()  # type: ignore[attr-defined]
+            bar.close()
     record = result.to_dict()
     record["model_name"] = args.model
     best = result.problem
@@ -377,7 +377,7 @@ def cmd_fit(args: argparse.Namespace) -> None:
     deliver(args, render, meta, f"fit ({args.model}): {summary}; rms {rms:.4g}")
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add this module's commands to the ``cosserat`` parser."""
     cp = sub.add_parser("compare", help="the model beside a measured velocity profile")
     _add_data_model(cp)

@@ -187,7 +187,7 @@ def _cell_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add ``cosserat dem`` and its subcommands."""
     dem = sub.add_parser(
         "dem",

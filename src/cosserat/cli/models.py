@@ -132,7 +132,7 @@ def cmd_validate(args: argparse.Namespace) -> None:
         sys.stdout.write(f"wrote {args.out}/index.html and {args.out}/report.md\n")
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add ``models`` and ``validate`` to the ``cosserat`` parser."""
     mp = sub.add_parser(
         "models", help="list every rheology: parameters, defaults, units, reference"

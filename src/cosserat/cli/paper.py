@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 
 from . import files
 from .common import (
@@ -15,10 +16,10 @@ from .common import (
 )
 
 
-def _stage_bar():  # type: ignore[no-untyped-def]
+def _stage_bar() -> Callable[[str, int, int], None] | None:
     """``progress(stage, i, n)`` for :func:`cosserat.paper.reproduce`: one tqdm bar per stage
     (None when silent: stderr not a terminal, or --quiet)."""
-    bars: dict[str, object] = {}
+    bars: dict[str, Callable[[int, int], None] | None] = {}
     if progress_bar("reproduce") is None:
         return None
 
@@ -27,7 +28,7 @@ def _stage_bar():  # type: ignore[no-untyped-def]
         if bar is None:
             bar = bars[stage] = progress_bar(f"reproduce: {stage}")
         if bar is not None:
-            bar(i, n)  # type: ignore[operator]
+            bar(i, n)
 
     return progress
 
@@ -63,7 +64,7 @@ def cmd_figures(args: argparse.Namespace) -> None:
     print(f"wrote {len(numbers)} figures to {args.out}")
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add this module's commands to the ``cosserat`` parser."""
     rp = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
     rp.add_argument(

@@ -420,7 +420,7 @@ def _add_cell_options(p: argparse.ArgumentParser, cell: str) -> None:
     add_model(p, cell)
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add this module's commands to the ``cosserat`` parser."""
     cells = params.cells()
     solve_p = sub.add_parser(

@@ -55,7 +55,7 @@ def cmd_sweep(args: argparse.Namespace) -> None:
     )
 
 
-def add_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def add_parsers(sub: argparse._SubParsersAction) -> None:
     """Add this module's commands to the ``cosserat`` parser."""
     sw = sub.add_parser(
         "sweep",

@@ -53,7 +53,9 @@ def corpus_cells() -> dict[str, Cell]:
             cells[f"plane_{label}_H{gap}"] = PlaneShearDEM(gap=gap, width=30.0, B=1.0,
                                                            wall_speed=speed, wall=wall,
                                                            run=run)  # fmt: skip
-    cells["plane_rough_H20_halfspeed"] = replace(cells["plane_rough_H20"], wall_speed=0.05,
+    rough_20 = cells["plane_rough_H20"]
+    assert isinstance(rough_20, PlaneShearDEM)  # made in the loop above
+    cells["plane_rough_H20_halfspeed"] = replace(rough_20, wall_speed=0.05,
                                                  run=HALFSPEED_RUN)  # fmt: skip
     for gap, run in ((10, SHORT_RUN), (20, COUETTE_RUN)):
         cells[f"couette_Ri20_H{gap}"] = CouetteDEM(gap=gap, inner_radius=20.0, wall=ROUGH,

@@ -101,10 +101,10 @@ def annular_layout(cell: CouetteDEM) -> Layout:
     area = math.pi * (ro**2 - ri**2)
     n_free = round(cell.nu_fill * area / cell.grains.mean_area)
     rows = []
-    for radius, kind in ((ri - dw / 2.0, LOWER_WALL), (ro + dw / 2.0, UPPER_WALL)):
+    for radius, wall_kind in ((ri - dw / 2.0, LOWER_WALL), (ro + dw / 2.0, UPPER_WALL)):
         n_wall, _ = _wall_row(2.0 * math.pi * radius, cell.wall.glued_spacing)
         t = 2.0 * math.pi * (np.arange(n_wall) + rng.uniform()) / n_wall
-        rows.append((radius * np.cos(t), radius * np.sin(t), np.full(n_wall, kind)))
+        rows.append((radius * np.cos(t), radius * np.sin(t), np.full(n_wall, wall_kind)))
     # lattice spacing a0 such that the annulus (less a margin) holds 10% more sites than grains
     usable = math.pi * ((ro - 0.5) ** 2 - (ri + 0.5) ** 2)
     a0 = math.sqrt(usable / (1.1 * n_free * math.sqrt(3) / 2))

@@ -40,6 +40,7 @@ from ..errors import NoSolutionError
 from .parameters import Material
 
 FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
 
 # Relative round-off allowance on the radicand S before "no real solution" is declared.
 RADICAND_ROUNDOFF = 1e-12
@@ -47,7 +48,7 @@ RADICAND_ROUNDOFF = 1e-12
 SQRT_S_FLOOR = 1e-150
 
 
-_KERNEL = {"cache": True, "nogil": True}
+_KERNEL: dict[str, Any] = {"cache": True, "nogil": True}
 
 
 @njit(**_KERNEL)
@@ -176,12 +177,12 @@ def radicand(
     sigma_yx: ArrayLike, sigma_c: ArrayLike, m: ArrayLike, material: Material
 ) -> FloatArray:
     """S of ``eqn-nd_sigxy``: the yield condition has a real ``sigma_xy`` iff ``S >= 0`` [-]."""
-    return v_radicand(sigma_yx, sigma_c, m, material.A, material.sin_phi)  # type: ignore[no-any-return]
+    return v_radicand(sigma_yx, sigma_c, m, material.A, material.sin_phi)
 
 
 def radicand_scale(sigma_c: ArrayLike, material: Material) -> FloatArray:
     """The size of the terms of S, for round-off comparisons [-]."""
-    return 2.0 * (material.A + 1.0) * (np.asarray(sigma_c) * material.sin_phi) ** 2  # type: ignore[no-any-return]
+    return 2.0 * (material.A + 1.0) * (np.asarray(sigma_c) * material.sin_phi) ** 2
 
 
 def check_radicand(
@@ -245,8 +246,10 @@ def velocity_ratio(
     would lose it to round-off.
     """
     A = material.A
+    # ignores: ArrayLike admits str and bytes, which these operators refuse; callers pass floats
+    # or float arrays, and a float in gives a float out (np.asarray would make it a 0-d array)
     d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
-    return (A + 1.0) * (sigma_xy + sigma_yx) / d  # type: ignore[operator,no-any-return]
+    return (A + 1.0) * (sigma_xy + sigma_yx) / d  # type: ignore[operator,return-value]
 
 
 def spin_ratio(
@@ -258,8 +261,9 @@ def spin_ratio(
 ) -> FloatArray:
     """F2 = 2(A+1) m/(sxy + A syx) of ``eqn-nd_fr2``: eps alpha domega/dxi = -F2 omega [-]."""
     A = material.A
+    # ignores as in velocity_ratio: ArrayLike admits str and bytes; a float in gives a float out
     d = sigma_xy + A * sigma_yx if denom is None else denom  # type: ignore[operator]
-    return 2.0 * (A + 1.0) * m / d  # type: ignore[operator,no-any-return]
+    return 2.0 * (A + 1.0) * m / d  # type: ignore[operator,return-value]
 
 
 def asymmetry_source(sigma_xy: ArrayLike, sigma_yx: ArrayLike, material: Material) -> FloatArray:

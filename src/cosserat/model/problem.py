@@ -72,13 +72,15 @@ class Problem:
             )
         cell, law = self.cell, self.rheology
         if not law.rate_dependent:
-            for name, p in _drives(type(cell)):
+            # type[...] ignores below: mypy checks a class object against Hashable with the
+            # instances' __hash__ (a false positive; classes hash by identity)
+            for name, p in _drives(type(cell)):  # type: ignore[arg-type]
                 if getattr(cell, name) is not None:
                     raise ParameterError(
                         f"{p.cli_key} ({p.meaning.split(';')[0]}) does not apply to the "
                         f"{law.name} rheology, which is rate-independent: it has no drive"
                     )
-        elsewhere = _elsewhere(type(law), cell.name)
+        elsewhere = _elsewhere(type(law), cell.name)  # type: ignore[arg-type]
         if elsewhere:
             given = law.values()
             for key, p in elsewhere.items():

@@ -21,6 +21,7 @@ numba function and is inlined into its caller, so that the kernels calling it ar
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -40,8 +41,8 @@ D = np.ascontiguousarray(_coefficients.D, dtype=np.float64)
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
 EXPONENT = -1.0 / 8.0  # error estimator of order 7
 _INITIAL_CAPACITY = 64
-_JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
-_INLINE = {**_JIT, "inline": "always"}
+_JIT: dict[str, Any] = {"cache": True, "nogil": True, "error_model": "numpy"}
+_INLINE: dict[str, Any] = {**_JIT, "inline": "always"}
 
 
 @njit(**_JIT)

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -111,7 +112,7 @@ _EVENT_MAXITER = 200
 # error_model="numpy": a zero pivot or an overflow must give inf/nan (which the Newton and
 # error tests turn into a step reduction), not raise ZeroDivisionError; it also drops the
 # per-division checks from the hot loop.
-_JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
+_JIT: dict[str, Any] = {"cache": True, "nogil": True, "error_model": "numpy"}
 # Every function that receives fun, jac or event is inlined into its caller at numba-IR level.
 # A dispatcher passed as an argument is lowered as the address of a Python object (a "dynamic
 # global"), and numba refuses to cache any function whose final machine code still holds one.
@@ -120,7 +121,7 @@ _JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
 # ``@njit(cache=True) def kernel(...): return radau5(rhs, jac, no_event, ...)`` is cached.
 # Inlined code compiles with the caller's flags (error model, nogil), so these functions avoid
 # divisions by zero instead of relying on error_model="numpy".
-_INLINE = {**_JIT, "inline": "always"}
+_INLINE: dict[str, Any] = {**_JIT, "inline": "always"}
 
 
 @njit(cache=True, nogil=True)

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -55,8 +56,8 @@ from .radau import (
 
 __all__ = ["RADAU_A", "radau5_scalar", "sensitivity"]
 
-_JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
-_INLINE = {**_JIT, "inline": "always"}
+_JIT: dict[str, Any] = {"cache": True, "nogil": True, "error_model": "numpy"}
+_INLINE: dict[str, Any] = {**_JIT, "inline": "always"}
 
 _S6 = 6.0**0.5
 # The Radau IIA matrix (Hairer & Wanner II, Table IV.5.6): the collocation equations are

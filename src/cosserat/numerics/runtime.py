@@ -198,7 +198,7 @@ def map_batches(
     workers = threads or _THREADS[0] or os.cpu_count() or 1
     workers = max(1, min(workers, n // MIN_CASES_PER_THREAD))
     if workers == 1:
-        return kernel.solve_batch(params, rtol, atol, f, max_steps)  # type: ignore[no-any-return]
+        return kernel.solve_batch(params, rtol, atol, f, max_steps)
     chunks = np.array_split(np.arange(n), workers)
     with ThreadPoolExecutor(max_workers=workers) as pool:
         parts = list(

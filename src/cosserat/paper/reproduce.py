@@ -212,7 +212,9 @@ _SOURCE_ORDER = {14: 0, 0: 1, 12: 2, 6: 3}
 
 def _tagged_claims(figures: dict[int, FigureData]) -> list[tuple[int, Claim]]:
     """The claims of :func:`_claims`, each with the figure it comes from (0: none)."""
-    tagged = [(n, c) for n in (14, 12, 6) if n in figures for c in _claims({n: figures[n]}, False)]
+    tagged: list[tuple[int, Claim]] = [
+        (n, c) for n in (14, 12, 6) if n in figures for c in _claims({n: figures[n]}, False)
+    ]
     tagged += [(0, c) for c in _claims({}, True)]
     return sorted(tagged, key=lambda sc: _SOURCE_ORDER[sc[0]])
 

@@ -46,9 +46,10 @@ def residuals(form: Formulation, evaluate: Evaluator, grid: FloatArray) -> dict[
     # one call of the evaluator for the grid and the quadrature nodes
     f = evaluate(np.concatenate([grid, x_in]))
     n = grid.size
-    u, omega, m, kappa = f.u[:n], f.omega[:n], f.m[:n], f.kappa[:n]
-    m_in = f.m[n:]
-    w_in = f.omega[n:] + f.kappa[n:] * f.u[n:]
+    f_omega, f_m = f.spin()
+    u, omega, m, kappa = f.u[:n], f_omega[:n], f_m[:n], f.kappa[:n]
+    m_in = f_m[n:]
+    w_in = f_omega[n:] + f.kappa[n:] * f.u[n:]
 
     def quad(values: FloatArray) -> FloatArray:
         return np.sum(weights * values.reshape(shape), axis=1)

@@ -47,6 +47,20 @@ class Fields(NamedTuple):
     du_dxi: FloatArray
     kappa: FloatArray
 
+    def spin(self) -> tuple[FloatArray, FloatArray]:
+        """(omega, m), the fields of a law with couple stresses.
+
+        Raises
+        ------
+        ParameterError
+            The law has no grain spin and couple stress (the fields are None).
+        """
+        if self.omega is None or self.m is None:
+            raise ParameterError(
+                "these fields have no grain spin and couple stress (the law has none)"
+            )
+        return self.omega, self.m
+
 
 Evaluator = Callable[[FloatArray], Fields]
 

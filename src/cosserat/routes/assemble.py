@@ -12,6 +12,7 @@ from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
 from ..model import Problem
 from ..model.constitutive import FloatArray, check_radicand, radicand
 from ..model.formulation import Formulation
+from ..model.rheologies.cosserat import cosserat_equations
 from ..results.diagnostics import DeferredResiduals
 from ..results.profile import Diagnostics, Evaluator, Fields, Profile
 
@@ -54,14 +55,15 @@ def make_profile(
     grid when they are first read (:class:`~cosserat.results.diagnostics.DeferredResiduals`);
     sweeps that need only wall quantities may skip both.
     """
-    eq = problem.equations
+    eq = cosserat_equations(problem)
     grid = eq.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
     f = evaluate(grid)
     # The returned stresses must be real: a profile never carries a clipped radicand.
+    _, f_m = f.spin()
     check_radicand(
-        radicand(f.sigma_yx, f.sigma_yy, f.m, eq.material),
+        radicand(f.sigma_yx, f.sigma_yy, f_m, eq.material),
         f.sigma_yy,
-        f.m,
+        f_m,
         eq.material,
         grid,
     )

@@ -27,6 +27,7 @@ import numpy as np
 from ..errors import MethodNotAvailableError, NoSolutionError
 from ..model import Problem
 from ..model.constitutive import FloatArray, symmetric_couple_stress
+from ..model.rheologies.base import equations_of
 from ..model.rheologies.cosserat import CosseratCouette, CosseratPlane, PlaneShearCase
 from ..results.profile import Fields, Profile
 from .airy import airy_layer, inner_couple_stress
@@ -153,7 +154,7 @@ def require_boundary_conditions(eq: Any, profile: Profile) -> Profile:
     return profile
 
 
-def _profile(eq: Any, form, evaluate, **kw):  # type: ignore[no-untyped-def]
+def _profile(eq: Any, form, evaluate, **kw):
     """make_profile, with a composite that leaves the yield surface reported as the
     expansion's failure, not the model's."""
     try:
@@ -173,7 +174,7 @@ def solve_plane(
     check: bool = True,
 ) -> Profile:
     """The leading-order small-eps profile of the Cosserat model in plane shear."""
-    return _solve_plane(problem.equations, points=points, xi=xi, check=check)
+    return _solve_plane(equations_of(problem, CosseratPlane), points=points, xi=xi, check=check)
 
 
 def _solve_plane(
@@ -269,7 +270,7 @@ def solve_couette(
     ``eqn-asymp_soln_vels_g0_aw`` near the inner cylinder. Fully rough: the Airy inner layer
     (``eqn-asymp_soln_vels_cyl_fr``).
     """
-    return _solve_couette(problem.equations, points=points, xi=xi, check=check)
+    return _solve_couette(equations_of(problem, CosseratCouette), points=points, xi=xi, check=check)
 
 
 def _solve_couette(
@@ -419,7 +420,7 @@ def solve_couette_fully_rough(
         u, omega = airy_layer(xh, eps=eps, scale=scale, u_wall=-1.0, slip_sign=-1.0)
         return couette_leading_order_fields(eq, x, m, u, omega)
 
-    form = eq.formulation(float(evaluate(np.array([0.0])).m[0]))
+    form = eq.formulation(float(evaluate(np.array([0.0])).spin()[1][0]))
     profile = _profile(
         eq,
         form,

@@ -26,6 +26,8 @@ from ..errors import ConvergenceError, MethodNotAvailableError, NoSolutionError,
 from ..model import Problem
 from ..model.cells.channel import shear_stress
 from ..model.constitutive import FloatArray
+from ..model.rheologies.base import equations_of
+from ..model.rheologies.cosserat import CosseratChannel
 from ..numerics import channel as kernel
 from ..numerics.radau import dense_eval
 from ..results.diagnostics import residuals
@@ -49,19 +51,24 @@ MAX_RETRIES = 2
 centre) before the event is trusted (away from the centre) or the solve gives up [-]."""
 
 
+def _channel(problem: Problem) -> CosseratChannel:
+    """The problem's equations, checked to be the Cosserat model's in the channel."""
+    return equations_of(problem, CosseratChannel)
+
+
 def parameter_vector(problem: Problem, start_offset: float = START_OFFSET) -> FloatArray:
     """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.channel`)."""
-    mat = problem.equations.material
+    mat = _channel(problem).material
     p = np.zeros(kernel.N_PARAMS)
     p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
     p[kernel.P_EPS] = problem.eps
-    p[kernel.P_B_NU] = problem.equations.B_nu
-    p[kernel.P_WALL_GAP] = problem.equations.wall_gap
-    p[kernel.P_C] = problem.equations.c
-    p[kernel.P_MU] = problem.equations.centre_expansion()  # raises NoSolutionError in words
+    p[kernel.P_B_NU] = _channel(problem).B_nu
+    p[kernel.P_WALL_GAP] = _channel(problem).wall_gap
+    p[kernel.P_C] = _channel(problem).c
+    p[kernel.P_MU] = _channel(problem).centre_expansion()  # raises NoSolutionError in words
     p[kernel.P_S0] = start_offset
-    p[kernel.P_EPS_K] = problem.eps * problem.equations.wall.K if problem.equations.slips else 0.0
-    p[kernel.P_Y_SCALE] = problem.equations.deficit_scale
+    p[kernel.P_EPS_K] = problem.eps * _channel(problem).wall.K if _channel(problem).slips else 0.0
+    p[kernel.P_Y_SCALE] = _channel(problem).deficit_scale
     return p
 
 
@@ -110,7 +117,7 @@ def physical_fields(
         omega=-sign * w_hat,
         m=-m_hat,
         sigma_xy=-sign * sigma_xy_hat,
-        sigma_yx=problem.equations.sigma_yx(x),
+        sigma_yx=_channel(problem).sigma_yx(x),
         sigma_yy=np.ones_like(x),
         du_dxi=-sign * du_hat,
         kappa=np.zeros_like(x),
@@ -150,7 +157,7 @@ class ChannelSolution:
         with np.errstate(under="ignore"):
             w_hat = info[kernel.I_W_S] * np.exp(ell)
         u_hat = info[kernel.I_U_S] - info[kernel.I_W_S] * P
-        A = self.problem.equations.material.A
+        A = _channel(self.problem).material.A
         return Fields(
             u=u_hat,
             omega=w_hat,
@@ -166,7 +173,8 @@ class ChannelSolution:
         x = np.asarray(xi, dtype=float)
         h, sign = _mirror(x)
         f = self.mapped(h)
-        return physical_fields(x, f.u, f.omega, f.m, f.sigma_xy, f.du_dxi, self.problem, sign)
+        w_hat, m_hat = f.spin()
+        return physical_fields(x, f.u, w_hat, m_hat, f.sigma_xy, f.du_dxi, self.problem, sign)
 
     def velocity(self, xi: FloatArray) -> FloatArray:
         h, _ = _mirror(np.asarray(xi, dtype=float))
@@ -189,7 +197,7 @@ class ChannelSolution:
 def check_grid(problem: Problem) -> FloatArray:
     """Points of the upper half for the residual check: the layer-resolving grid, and a
     geometric grading towards the centre line, where the spin rate grows like 1/s."""
-    grid = problem.equations.output_grid(config.CHECK_POINTS)
+    grid = _channel(problem).output_grid(config.CHECK_POINTS)
     grid = grid[grid >= 0.5]
     near = 0.5 + np.geomspace(10.0 * START_OFFSET, 0.05, 60)
     return np.unique(np.concatenate([near, grid[grid > near[-1]]]))
@@ -220,8 +228,8 @@ def _finish(
 ) -> Profile:  # fmt: skip
     """make_profile, then the channel's own residuals (mapped upper half) and wall errors."""
     profile = make_profile(
-        problem,  # type: ignore[arg-type]
-        problem.equations.mapped_formulation(),
+        problem,
+        _channel(problem).mapped_formulation(),
         evaluate,
         method=method,
         points=points,
@@ -233,9 +241,9 @@ def _finish(
     if not check:
         return profile
     res = residuals(
-        problem.equations.mapped_formulation(), _mapped_evaluator(evaluate), check_grid(problem)
+        _channel(problem).mapped_formulation(), _mapped_evaluator(evaluate), check_grid(problem)
     )
-    bc = problem.equations.boundary_errors(evaluate)
+    bc = _channel(problem).boundary_errors(evaluate)
     return replace(profile, diagnostics=replace(profile.diagnostics, residuals=res, bc_errors=bc))
 
 
@@ -360,7 +368,7 @@ def wall_quantities(
         info = sol.info
         slip = abs(1.0 - info[kernel.I_U_S])  # u at the wall = 1 - u_hat_w
         omega = -float(info[kernel.I_W_S])
-        stress = pr.equations.wall_stress
+        stress = _channel(pr).wall_stress
         if not info[kernel.I_DELTA_OK]:
             message = f"f = {f:g}: Delta is not defined (the velocity does not fall to f)"
             out.append(WallResult("error", None, slip, omega, stress, message))
@@ -377,10 +385,10 @@ THIN_LAYER = 0.1
 def asymptotic_thickness(problem: Problem, f: float = config.DEFAULT_F) -> float:
     """Leading-order Delta [d_p]: -ln f / k (walls not fully rough: independent of eps), or
     x_f eps^(-1/3) (L^2/4)^(1/3) at fully rough slipping walls (doc sections 5-6)."""
-    k = problem.equations.slip_constants.k
+    k = _channel(problem).slip_constants.k
     if k > 0.0:
         return -math.log(f) / k
-    return xi_hat_at_fraction(f) * problem.eps ** (-1.0 / 3.0) * problem.equations.inner_scale()
+    return xi_hat_at_fraction(f) * problem.eps ** (-1.0 / 3.0) * _channel(problem).inner_scale()
 
 
 class _AsymptoticEvaluator:
@@ -393,19 +401,19 @@ class _AsymptoticEvaluator:
         """Delta of the leading-order profile for the fraction f [d_p]."""
         if not 0.0 < f < 1.0:
             raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
-        if self.problem.equations.is_fully_rough:
+        if _channel(self.problem).is_fully_rough:
             return asymptotic_thickness(self.problem, f)
         # the exponential layer: u_hat = u_hat_w e^(-k d/eps) falls to f u_hat_w at d = eps Delta
         return asymptotic_thickness(self.problem, f)
 
     def mapped(self, h: FloatArray) -> Fields:
         pr = self.problem
-        mat, eps = pr.equations.material, pr.eps
+        mat, eps = _channel(pr).material, pr.eps
         d = 1.0 - h
-        tau = shear_stress(np.asarray(h, dtype=float), pr.equations.B_nu)
-        m_outer = -pr.equations.outer_couple_stress(h)
-        if pr.equations.is_fully_rough:
-            scale = pr.equations.inner_scale()
+        tau = shear_stress(np.asarray(h, dtype=float), _channel(pr).B_nu)
+        m_outer = -_channel(pr).outer_couple_stress(h)
+        if _channel(pr).is_fully_rough:
+            scale = _channel(pr).inner_scale()
             x_hat = d * eps ** (-2.0 / 3.0) / scale
             a = 0.5 * mat.sin_phi
             gamma = 4.0 * mat.c2  # m_outer^2 ~ gamma d at the wall (doc section 6)
@@ -419,8 +427,8 @@ class _AsymptoticEvaluator:
             m_hat = m_outer + np.minimum(correction, room)
             u_hat, w_hat = airy_layer(x_hat, eps=eps, scale=scale, u_wall=1.0, slip_sign=1.0)
         else:
-            k = pr.equations.slip_constants.k
-            K = pr.equations.wall.K if pr.equations.slips else 0.0
+            k = _channel(pr).slip_constants.k
+            K = _channel(pr).wall.K if _channel(pr).slips else 0.0
             with np.errstate(under="ignore"):
                 decay = np.exp(-k * d / eps)
             u_hat = (2.0 / k) / (K + 2.0 / k) * decay
@@ -441,7 +449,8 @@ class _AsymptoticEvaluator:
         x = np.asarray(xi, dtype=float)
         h, sign = _mirror(x)
         f = self.mapped(h)
-        return physical_fields(x, f.u, f.omega, f.m, f.sigma_xy, f.du_dxi, self.problem, sign)
+        w_hat, m_hat = f.spin()
+        return physical_fields(x, f.u, w_hat, m_hat, f.sigma_xy, f.du_dxi, self.problem, sign)
 
 
 def solve_asymptotic(
@@ -469,7 +478,7 @@ def solve_asymptotic(
         )
     order = (
         "Airy inner layer of thickness ~ eps^(2/3) at the fully rough walls"
-        if problem.equations.is_fully_rough
+        if _channel(problem).is_fully_rough
         else "exponential layer of constant thickness eps/k at the walls"
     )
     try:
@@ -487,8 +496,8 @@ def solve_asymptotic(
             f"the leading-order asymptotic profile leaves the yield surface ({exc}): use "
             f"method='numerical'"
         ) from None
-    if problem.equations.is_fully_rough:
-        return require_boundary_conditions(problem.equations, profile)
+    if _channel(problem).is_fully_rough:
+        return require_boundary_conditions(_channel(problem), profile)
     return profile
 
 

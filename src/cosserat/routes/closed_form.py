@@ -22,6 +22,7 @@ import numpy as np
 from ..errors import ConvergenceError, MethodNotAvailableError
 from ..model import PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
+from ..model.rheologies.base import equations_of
 from ..model.rheologies.cosserat import CosseratPlane
 from ..results.profile import Fields, Profile
 from .assemble import make_profile
@@ -35,7 +36,7 @@ def solve_plane(
     check: bool = True,
 ) -> Profile:
     """The closed-form profile of the Cosserat model in plane shear without gravity."""
-    eq = problem.equations
+    eq = equations_of(problem, CosseratPlane)
     if eq.B != 0.0:
         raise MethodNotAvailableError(
             "no closed form for plane shear under gravity (B > 0): use method='numerical' "
@@ -94,7 +95,7 @@ def _uniform_fields(
     )
 
 
-def _one_minus_exp_ratio(z: FloatArray) -> FloatArray:
+def _one_minus_exp_ratio(z: FloatArray | float) -> FloatArray:
     """(1 - exp(-z))/z, with its limit 1 at z = 0."""
     z = np.asarray(z, dtype=float)
     small = z < 1e-8
@@ -102,7 +103,7 @@ def _one_minus_exp_ratio(z: FloatArray) -> FloatArray:
     return np.where(small, 1.0 - 0.5 * z, -np.expm1(-safe) / safe)
 
 
-def _layer_at_upper(problem: CosseratPlane):  # type: ignore[no-untyped-def]
+def _layer_at_upper(problem: CosseratPlane):
     """``eqn-soln_aw_vels``: m = m0, omega = omega_1 exp(-k(1-xi)/eps), no slip at xi = 0."""
     eps, K = problem.eps, problem.upper.K
     tan_d = problem.tan_delta_upper
@@ -124,7 +125,7 @@ def _layer_at_upper(problem: CosseratPlane):  # type: ignore[no-untyped-def]
     return evaluate
 
 
-def _symmetric(problem: CosseratPlane):  # type: ignore[no-untyped-def]
+def _symmetric(problem: CosseratPlane):
     """Identical walls without gravity: m(1/2) = 0, both walls slip."""
     eps, mat = problem.eps, problem.material
     A, ea = mat.A, eps * mat.alpha
@@ -136,7 +137,7 @@ def _symmetric(problem: CosseratPlane):  # type: ignore[no-untyped-def]
         omega_1 = -1.0 / (2.0 + eps * (K_up + K_low))
         u_c = 0.5 * (1.0 + eps * (K_up - K_low) * omega_1)
 
-        def evaluate(x: FloatArray) -> Fields:
+        def evaluate_rough(x: FloatArray) -> Fields:
             x = np.asarray(x, dtype=float)
             omega = np.full_like(x, omega_1)
             u = u_c - 2.0 * omega_1 * (x - 0.5)
@@ -144,7 +145,7 @@ def _symmetric(problem: CosseratPlane):  # type: ignore[no-untyped-def]
                 x, np.zeros_like(x), u, omega, -tan_d, np.full_like(x, -tan_d), -2.0 * omega
             )
 
-        return evaluate, u_c, "vel_g0 / omega1_g0 (fully rough: m = 0, uniform shear)"
+        return evaluate_rough, u_c, "vel_g0 / omega1_g0 (fully rough: m = 0, uniform shear)"
 
     c = np.sqrt((b - a) / (b + a))
     gamma = ((1.0 + A) * b * b + (1.0 - A) * a * a) / (a * (a + b))

@@ -14,6 +14,7 @@ import math
 
 from ..config import DEFAULT_F
 from ..model import PlaneShearCase, Problem
+from ..model.rheologies.cosserat import CosseratCouette, cosserat_equations
 from .airy import xi_hat_at_fraction
 
 
@@ -29,7 +30,7 @@ def thickness_limit(problem: Problem, f: float = DEFAULT_F) -> float | None:
     >>> print(thickness_limit(Problem(Plane(eps=0.01), Cosserat(wall=Wall.fully_rough()))))
     None
     """
-    k = problem.equations.slip_constants.k
+    k = cosserat_equations(problem).slip_constants.k
     return -math.log(f) / k if k > 0.0 else None
 
 
@@ -38,8 +39,8 @@ def asymptotic_thickness(problem: Problem, f: float = DEFAULT_F) -> float:
     limit = thickness_limit(problem, f)
     if limit is not None:
         return limit
-    eps, eq = problem.eps, problem.equations
-    if problem.cell_name == "couette":  # eqn-delta_soln_fr (b)
+    eps, eq = problem.eps, cosserat_equations(problem)
+    if isinstance(eq, CosseratCouette):  # eqn-delta_soln_fr (b)
         return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * eq.inner_scale()
     if eq.B > 0.0:  # eqn-delta_soln_fr (a)
         return xi_hat_at_fraction(f) * eps ** (-1.0 / 3.0) * eq.inner_scale()

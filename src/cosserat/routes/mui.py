@@ -35,8 +35,10 @@ from scipy.optimize import brentq
 from .. import config
 from ..errors import ConvergenceError, MethodNotAvailableError, ParameterError
 from ..model import Problem
-from ..model.constitutive import FloatArray
+from ..model.cells.plane import Plane
+from ..model.constitutive import BoolArray, FloatArray
 from ..model.rheologies import ANY_CELL
+from ..model.rheologies.base import equations_of
 from ..model.rheologies.mui import GAP_MIN, REFERENCE, MuIFlow
 from ..results.profile import Diagnostics, Fields, Profile
 from .assemble import given_grid
@@ -141,7 +143,7 @@ def _rounding(eq: MuIFlow, gap: float, a: float, b: float) -> float:
     return 8.0 * np.finfo(float).eps * (b - a) * law.I_0 * (law.mu_2 - law.mu_s) / g * scale
 
 
-def _quad_each(f, nodes: FloatArray, live: FloatArray, rtol: float, eq: MuIFlow, gap: float):  # type: ignore[no-untyped-def]
+def _quad_each(f, nodes: FloatArray, live: BoolArray, rtol: float, eq: MuIFlow, gap: float):
     """The pieces of :func:`_quad_intervals` one by one with QUADPACK (slower, robust), each
     to its own rtol or to the rounding of its integrand (:func:`_rounding`)."""
     out = np.zeros(nodes.size - 1)
@@ -254,7 +256,7 @@ class _Evaluator:
             return _numerical_velocity(self.eq, self.gap, self.I_w, x, self.rtol)[0]
         return CLOSED_FORMS[self.eq.cell.name](self.eq, self.gap, self.I_w, x)[0]
 
-    def plug(self, x: FloatArray) -> FloatArray:
+    def plug(self, x: FloatArray) -> BoolArray:
         """True where the material is a plug (|tau|/p <= mu_s)."""
         return self.eq.plug(np.atleast_1d(np.asarray(x, dtype=float)), self.gap)
 
@@ -282,7 +284,7 @@ class _Evaluator:
 
 
 # ----------------------------------------------------------------- the stress level
-def _stress_level(eq: MuIFlow, G_of_gap, rtol: float) -> tuple[float, float, int]:  # type: ignore[no-untyped-def]
+def _stress_level(eq: MuIFlow, G_of_gap, rtol: float) -> tuple[float, float, int]:
     """gap = mu_2 - T and I_w; the root-find's iterations (0 if the level is imposed)."""
     if eq.stress_ratio is not None:
         gap = eq.gap_of_stress_ratio()
@@ -385,7 +387,7 @@ def _profile(
     check: bool,
     rtol: float,
 ) -> Profile:
-    eq: MuIFlow = problem.equations  # type: ignore[assignment]
+    eq = equations_of(problem, MuIFlow)
     numerical = method == "numerical"
     closed = CLOSED_FORMS.get(eq.cell.name)
 
@@ -515,7 +517,7 @@ def solve_closed_form(
     NoSolutionError
         As :func:`solve_numerical`.
     """
-    if problem.cell_name == "plane" and problem.cell.B_nu != 0.0:
+    if isinstance(problem.cell, Plane) and problem.cell.B_nu != 0.0:
         raise MethodNotAvailableError(
             "no closed form for mu(I) plane shear under gravity (B > 0): use method='numerical'"
         )
@@ -524,7 +526,7 @@ def solve_closed_form(
     )
 
 
-def plug_mask(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
+def plug_mask(profile: Profile, xi: FloatArray | None = None) -> BoolArray:
     """True where a mu(I) profile is a plug (|tau|/p <= mu_s), on ``profile.xi`` or at ``xi``.
 
     Raises

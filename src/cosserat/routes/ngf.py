@@ -36,7 +36,8 @@ from ..errors import (
     shown,
 )
 from ..model import Problem
-from ..model.constitutive import FloatArray
+from ..model.constitutive import BoolArray, FloatArray
+from ..model.rheologies.base import equations_of
 from ..model.rheologies.ngf import KINDS, REFERENCE, NGFFlow
 from ..numerics import ngf as kernel
 from ..results.profile import Diagnostics, Fields, Profile
@@ -278,7 +279,7 @@ class _Evaluator:
         x = np.atleast_1d(np.asarray(x, dtype=float))
         return np.abs(self._prim(x, 1)) * self.eq.radius(x)
 
-    def creep(self, x: FloatArray) -> FloatArray:
+    def creep(self, x: FloatArray) -> BoolArray:
         return self.eq.creep(np.atleast_1d(np.asarray(x, dtype=float)), self.T)
 
     def __call__(self, x: FloatArray) -> Fields:
@@ -509,7 +510,7 @@ def solve_numerical(
         The grid would need more than :data:`MAX_CELLS` cells, or the root-find failed.
     """
     return _profile(
-        problem.equations,
+        equations_of(problem, NGFFlow),
         points=points,
         xi=xi,
         check=check,
@@ -519,7 +520,7 @@ def solve_numerical(
     )
 
 
-def _not_available(method: str, why: str):  # type: ignore[no-untyped-def]
+def _not_available(method: str, why: str):
     def route(
         problem: Problem,
         *,
@@ -575,7 +576,7 @@ def shear_rate(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
     return _evaluator(profile, "shear_rate").shear_rate(_at(profile, xi))
 
 
-def creep_mask(profile: Profile, xi: FloatArray | None = None) -> FloatArray:
+def creep_mask(profile: Profile, xi: FloatArray | None = None) -> BoolArray:
     """True where an NGF profile creeps: mu <= mu_s, g_loc = 0, yet g > 0 and the material
     moves (the local rheology would have a plug at rest there)."""
     return _evaluator(profile, "creep_mask").creep(_at(profile, xi))

@@ -22,6 +22,12 @@ from ..errors import ConvergenceError, NoSolutionError, ParameterError, shown
 from ..model import PlaneShearCase, Problem
 from ..model.constitutive import FloatArray
 from ..model.formulation import Formulation
+from ..model.rheologies.base import equations_of
+from ..model.rheologies.cosserat import (
+    CosseratCouette,
+    CosseratPlane,
+    cosserat_equations,
+)
 from ..numerics import cosserat as kernel
 from ..numerics.runtime import map_batches
 from ..results.profile import Fields, Profile
@@ -54,7 +60,7 @@ def tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
 def parameter_vector(problem: Problem, mu_guess: float | None = None) -> FloatArray:
     """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.cosserat`)
     for the Cosserat model on the plane or Couette cell."""
-    eq = problem.equations
+    eq = cosserat_equations(problem)
     p = np.zeros(kernel.N_PARAMS)
     mat = eq.material
     p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
@@ -62,21 +68,22 @@ def parameter_vector(problem: Problem, mu_guess: float | None = None) -> FloatAr
     const = eq.slip_constants
     p[kernel.P_M0], p[kernel.P_B_BOUND] = const.m0, const.b
     p[kernel.P_MU_GUESS] = math.nan if mu_guess is None else float(mu_guess)
-    if problem.cell_name == "couette":
+    if isinstance(eq, CosseratCouette):
         p[kernel.P_GEOMETRY] = kernel.COUETTE
         p[kernel.P_TAN_DELTA] = eq.tan_delta
         p[kernel.P_RI] = eq.Ri
         p[kernel.P_COUPLE] = eq.couple_factor
         p[kernel.P_K_SLIP] = eq.wall.K
         return p
-    case = eq.case
+    plane = equations_of(problem, CosseratPlane)
+    case = plane.case
     p[kernel.P_GEOMETRY] = kernel.PLANE
     p[kernel.P_CASE] = _CASES[case]
-    p[kernel.P_SIGMA_YX] = eq.sigma_yx
-    p[kernel.P_B_NU] = eq.B * eq.nu
-    p[kernel.P_M_START] = 0.0 if case is PlaneShearCase.SYMMETRIC else eq.m_at_fixed_wall
-    p[kernel.P_K_SLIP] = eq.slipping.K
-    p[kernel.P_K_OTHER] = eq.lower_wall.K
+    p[kernel.P_SIGMA_YX] = plane.sigma_yx
+    p[kernel.P_B_NU] = plane.B * plane.nu
+    p[kernel.P_M_START] = 0.0 if case is PlaneShearCase.SYMMETRIC else plane.m_at_fixed_wall
+    p[kernel.P_K_SLIP] = plane.slipping.K
+    p[kernel.P_K_OTHER] = plane.lower_wall.K
     return p
 
 
@@ -160,15 +167,16 @@ class NumericalSolution:
         return float(self.info[kernel.I_MU])
 
     def formulation(self) -> Formulation:
-        if self.problem.cell_name == "couette":
-            return self.problem.equations.formulation(self.mu)
-        return self.problem.equations.formulation()
+        eq = cosserat_equations(self.problem)
+        if isinstance(eq, CosseratCouette):
+            return eq.formulation(self.mu)
+        return equations_of(self.problem, CosseratPlane).formulation()
 
     @property
     def symmetric(self) -> bool:
         return (
             self.problem.cell_name == "plane"
-            and self.problem.equations.case is PlaneShearCase.SYMMETRIC
+            and equations_of(self.problem, CosseratPlane).case is PlaneShearCase.SYMMETRIC
         )
 
     def _half(self, x: FloatArray) -> FloatArray:

@@ -11,6 +11,7 @@ default, ``config.PHI``. The measured points are not public: load your own with
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal
 
 from .. import config
 from ..model import Cosserat, Couette, Problem
@@ -54,7 +55,7 @@ class ExperimentPreset:
         """atan(sin phi) - 2 deg: the paper's solid lines, which fit the data better [deg]."""
         return self.material.fully_rough_delta - 2.0
 
-    def problem(self, delta: float | str | None = None) -> Problem:
+    def problem(self, delta: float | Literal["fully-rough"] | None = None) -> Problem:
         """The preset cell with the Cosserat model, wall friction ``delta`` [deg] or
         "fully-rough" (default: :attr:`default_delta`)."""
         wall = Wall(self.default_delta if delta is None else delta, self.K)

@@ -63,7 +63,7 @@ import math
 import os
 import time
 import tomllib
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Hashable, Iterable, Sequence
 from concurrent.futures import as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -444,7 +444,7 @@ def _run_on_dask(
     except (OSError, ValueError, TypeError) as exc:  # includes timeouts and bad addresses
         raise InputError(f"cannot connect to the Dask scheduler at {scheduler!r}: {exc}") from None
     with client:
-        index: dict[str, int] = {}
+        index: dict[Hashable, int] = {}  # a dask key: str, int, float or a tuple of them
         tries = [0] * len(chunks)
 
         def submit(i: int) -> Any:
@@ -570,8 +570,8 @@ def run_sweep_to_table(
         if path.suffix == ".csv" and path.is_file():
             found += _complete_rows(path, header)[0]
         if journal.is_file():
-            rows, length = _complete_rows(journal, header)
-            found += rows
+            journal_rows, length = _complete_rows(journal, header)
+            found += journal_rows
     stored: dict[tuple[str, ...], list[dict[str, Any]]] = {}
     for cells in found:
         row = {c: (None if v == "" else v) for c, v in zip(header, cells, strict=True)}

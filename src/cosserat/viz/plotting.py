@@ -10,14 +10,17 @@ from __future__ import annotations
 import logging
 from collections.abc import Iterator
 from contextlib import contextmanager
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.typing import RcKeyType
+    from numpy.typing import ArrayLike
 
     from ..results.profile import Profile
 
-STYLE = {
+STYLE: dict[RcKeyType, Any] = {
     "figure.figsize": (6.4, 4.8),
     "figure.dpi": 100,
     "savefig.dpi": 200,
@@ -82,12 +85,12 @@ def suptitle(fig: Figure, text: str, fontsize: float = 7) -> None:
     fig.suptitle(textwrap.fill(text, width=max(chars, 20)), fontsize=fontsize)
 
 
-def upright_ylabel(ax: object, label: str) -> None:
+def upright_ylabel(ax: Axes, label: str) -> None:
     """A y label read upright when it is a short symbol (xi), along the axis otherwise."""
     if len(label) <= 10:
-        ax.set_ylabel(label, rotation=0, ha="right", va="center")  # type: ignore[attr-defined]
+        ax.set_ylabel(label, rotation=0, ha="right", va="center")
     else:
-        ax.set_ylabel(label)  # type: ignore[attr-defined]
+        ax.set_ylabel(label)
 
 
 @contextmanager
@@ -125,7 +128,7 @@ def field_scales(profile: Profile) -> dict[str, float]:
     the largest stress for the asymmetry sigma_yx - sigma_xy and the couple stress."""
     import numpy as np
 
-    def biggest(*arrays: object) -> float:
+    def biggest(*arrays: ArrayLike | None) -> float:
         values = [float(np.max(np.abs(a))) for a in arrays if a is not None and np.size(a)]
         return max([*values, 0.0])
 
@@ -195,7 +198,7 @@ def quick_profile_plot(profile: Profile, fig: Figure | None = None) -> Figure:
     return fig
 
 
-def comparison_plot(comparison, title: str = "", residual_panel: bool = False):  # type: ignore[no-untyped-def]
+def comparison_plot(comparison, title: str = "", residual_panel: bool = False):
     """Data beside the model: linear and log velocity axes (the log axis shows the
     exponential tail), and optionally the residuals."""
     import numpy as np

@@ -7,9 +7,9 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
 
-from ...errors import ParameterError
+from ...errors import MethodNotAvailableError, ParameterError
 from ..constitutive import FloatArray
 from ..declare import Param, declarations
 
@@ -63,7 +63,7 @@ class Equations:
     def slip_sign(self, xi_wall: float) -> float:
         return self.cell.slip_sign(xi_wall)
 
-    def sigma_c(self, xi: FloatArray) -> FloatArray:
+    def sigma_c(self, xi: FloatArray | float) -> FloatArray:
         """The normal stress across the gap (the cell's statics) [-]."""
         return self.cell.normal_stress(xi)
 
@@ -193,6 +193,27 @@ class Rheology:
 
 def _text(value: Any) -> str:
     return f"{value:.6g}" if isinstance(value, float) else str(value)
+
+
+_E = TypeVar("_E", bound="Equations")
+
+
+def equations_of(problem: Problem, kind: type[_E]) -> _E:
+    """``problem.equations``, checked to be a ``kind`` (the typed view of them a route that
+    serves one rheology on one cell needs).
+
+    Raises
+    ------
+    MethodNotAvailableError
+        The problem's equations are another pair's (the message names both).
+    """
+    eq = problem.equations
+    if not isinstance(eq, kind):
+        raise MethodNotAvailableError(
+            f"this route needs the {kind.__name__} equations; {problem.describe()} has "
+            f"{type(eq).__name__}"
+        )
+    return eq
 
 
 def rheology_class(name: str) -> type[Rheology]:

@@ -30,7 +30,7 @@ import numpy as np
 
 from ... import config
 from ...errors import NoSolutionError, ParameterError
-from ..constitutive import FloatArray
+from ..constitutive import BoolArray, FloatArray
 from ..declare import Constraint, param, validate
 from .base import ANY_CELL, Equations, Rheology
 
@@ -102,7 +102,7 @@ class MuIFlow(Equations):
 
     @property
     def rheology(self) -> MuI:
-        return self.law  # type: ignore[no-any-return]
+        return self.law
 
     @property
     def peak_wall(self) -> float:
@@ -116,12 +116,12 @@ class MuIFlow(Equations):
     @property
     def I_w(self) -> float | None:
         """The wall's inertial number that drives the flow; None when the stress is imposed."""
-        return self.cell.wall_inertial_number  # type: ignore[no-any-return]
+        return self.cell.wall_inertial_number
 
     @property
     def stress_ratio(self) -> float | None:
         """The imposed stress level (the largest stress ratio), or None [-]."""
-        return self.cell.imposed_level()  # type: ignore[no-any-return]
+        return self.cell.imposed_level()
 
     @property
     def stress_controlled(self) -> bool:
@@ -180,7 +180,7 @@ class MuIFlow(Equations):
         )
         return rate if cell.straight else rate / cell.radius_at(tt)
 
-    def saturation_gap(self, xi: FloatArray, gap: float) -> FloatArray:
+    def saturation_gap(self, xi: FloatArray | float, gap: float) -> FloatArray:
         """mu_2 - mu(xi) for the wall gap ``gap`` [-]."""
         return self.saturation_gap_at(self.cell.distance(xi), gap)
 
@@ -200,7 +200,7 @@ class MuIFlow(Equations):
         """The sign of r d(u/r)/dxi: opposite to that of sigma_yx [-]."""
         return -np.sign(self.cell.shear_stress(np.asarray(xi, dtype=float), 1.0))
 
-    def plug(self, xi: FloatArray, gap: float) -> FloatArray:
+    def plug(self, xi: FloatArray, gap: float) -> BoolArray:
         """True where |tau|/p <= mu_s: the material does not flow there."""
         x = np.asarray(xi, dtype=float)
         return (self.rheology.mu_2 - self.rheology.mu_s) - self.saturation_gap(x, gap) <= 0.0

@@ -44,7 +44,7 @@ from ...errors import NoSolutionError, ParameterError
 from ..cells.channel import shear_stress as channel_shear_stress
 from ..cells.couette import torque_decay
 from ..cells.plane import mean_stress
-from ..constitutive import FloatArray
+from ..constitutive import BoolArray, FloatArray
 from ..declare import Constraint, param, validate
 from .base import Equations, Rheology
 from .mui import MU_MAX, MuI, friction_spread
@@ -184,7 +184,7 @@ class NGFFlow(Equations):
     # ----------------------------------------------------------------- the cell
     @property
     def rheology(self) -> NGF:
-        return self.law  # type: ignore[no-any-return]
+        return self.law
 
     @property
     def kind(self) -> int:
@@ -208,12 +208,12 @@ class NGFFlow(Equations):
     def I_w(self) -> float | None:
         """The reference speed's inertial number that drives the flow; None when the stress
         level is imposed."""
-        return self.cell.wall_inertial_number  # type: ignore[no-any-return]
+        return self.cell.wall_inertial_number
 
     @property
     def imposed_level(self) -> float | None:
         """The imposed stress level T (an imposed stress ratio, the channel's B nu/2) [-]."""
-        return self.cell.imposed_level()  # type: ignore[no-any-return]
+        return self.cell.imposed_level()
 
     @property
     def moving_wall(self) -> float:
@@ -252,7 +252,7 @@ class NGFFlow(Equations):
         """F_loc(xi) for the stress level T [-]."""
         return self.rheology.local_fluidity(self.friction_ratio(xi, T), self.pressure(xi))
 
-    def creep(self, xi: FloatArray, T: float) -> FloatArray:
+    def creep(self, xi: FloatArray, T: float) -> BoolArray:
         """True where mu <= mu_s: g_loc = 0 there, and the material only creeps."""
         return self.friction_ratio(xi, T) <= self.rheology.mu_s
 
@@ -440,7 +440,7 @@ class NGF(Rheology):
         """I_0 = (mu_2 - mu_s)/b of the saturating local law, None for the linear one [-]."""
         return None if self.mu_2 is None else (self.mu_2 - self.mu_s) / self.b
 
-    def _local(self, mu: FloatArray, pressure: FloatArray, fluidity: bool) -> FloatArray:
+    def _local(self, mu: FloatArray, pressure: FloatArray | float, fluidity: bool) -> FloatArray:
         m, p = np.broadcast_arrays(np.asarray(mu, dtype=float), np.asarray(pressure, dtype=float))
         if self.mu_2 is not None and np.any(m >= self.mu_2):
             raise NoSolutionError(
@@ -464,7 +464,7 @@ class NGF(Rheology):
         """
         return self._local(mu, 1.0, False)
 
-    def local_fluidity(self, mu: FloatArray, pressure: FloatArray = 1.0) -> FloatArray:
+    def local_fluidity(self, mu: FloatArray, pressure: FloatArray | float = 1.0) -> FloatArray:
         """F_loc = sqrt(p/N) I_loc(mu)/mu: g_loc in units of sqrt(N/rho_s)/d [-]
         (:func:`local_fluidity`)."""
         return self._local(mu, pressure, True)

@@ -139,7 +139,7 @@ def compute_models() -> FigureData:
     )
 
 
-def plot_models(data: FigureData):  # type: ignore[no-untyped-def]
+def plot_models(data: FigureData):
     from matplotlib.ticker import NullFormatter, ScalarFormatter
 
     fig = draw(data, ncols=2)
@@ -148,7 +148,8 @@ def plot_models(data: FigureData):  # type: ignore[no-untyped-def]
             ax.yaxis.set_major_formatter(ScalarFormatter())
             ax.yaxis.set_minor_formatter(NullFormatter())
     for ax in fig.axes:
-        for text in ax.get_legend().get_texts() if ax.get_legend() else []:
+        legend = ax.get_legend()
+        for text in legend.get_texts() if legend else []:
             text.set_fontsize(6)
     return fig
 

@@ -16,6 +16,7 @@ from ...analysis import asymptotic_thickness, shear_layer_thickness, thickness_c
 from ...model import Cosserat, Couette, Plane, Problem
 from ...model.constitutive import FloatArray
 from ...model.parameters import FULLY_ROUGH, Material, Wall
+from ...model.rheologies.cosserat import cosserat_equations
 from ...results.profile import Profile
 from ...routes import solve
 from .base import LINESTYLES, MARKERS, FigureData, Panel, draw, spaced_along
@@ -201,7 +202,8 @@ def compute_asymp_g0() -> FigureData:
 # --------------------------------------------------------------------------- 5: fig-bc
 def compute_bc() -> FigureData:
     base = plane_shear(material=MATERIAL, upper=Wall(10.0, K), lower=Wall.fully_rough(K), eps=EPS)
-    b = base.equations.slip_constants.b
+    slip = cosserat_equations(base).slip_constants
+    b = slip.b
     fractions = [1.0, 0.7, 0.4, 0.1]
     curves = [
         (
@@ -218,9 +220,7 @@ def compute_bc() -> FigureData:
         "Couple stress and velocity for four m(0) in 0 < m(0) <= b (solid: m(0) = b); "
         "delta = 10 deg, delta_L > delta, other parameters as figure 2.",
         profile_panels(curves, ["m", "u"]),
-        notes=[
-            f"b = {b:.6g}; m0 = {base.equations.slip_constants.m0:.6g} (the value eqn-nd_bc4 gives)"
-        ],
+        notes=[f"b = {b:.6g}; m0 = {slip.m0:.6g} (the value eqn-nd_bc4 gives)"],
         extra={"b": b, "fractions": fractions},
     )
 
@@ -531,7 +531,7 @@ def compute_slt() -> FigureData:
             label = SLT_LABELS.get(name, name)
             panel.add_symbols(label, eps_ok, delta_ok, SLT_MARKERS[name], markersize=6, name=name)
             fine = np.geomspace(EPS_SLT[-1], EPS_SLT[0], 60)
-            asym = [asymptotic_thickness(problem.with_values({"eps": e})) for e in fine]
+            asym = np.array([asymptotic_thickness(problem.with_values({"eps": e})) for e in fine])
             panel.add(
                 label,  # one legend entry: the symbol over its line
                 fine,
@@ -564,7 +564,7 @@ def compute_slt() -> FigureData:
 
 
 # --------------------------------------------------------------------------- registry
-def plot_default(data: FigureData):  # type: ignore[no-untyped-def]
+def plot_default(data: FigureData):
     fig = draw(data, ncols=2)
     if data.key == "fig-asymp_g0":
         for ax in fig.axes:

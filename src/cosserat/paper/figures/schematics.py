@@ -36,7 +36,7 @@ def plot_schem_plane_shear(data: FigureData) -> Figure:
         for x, y in zip(rng.uniform(0.1, 3.9, 120), rng.uniform(0.22, 1.08, 120), strict=True):
             ax.plot(x, y, "o", color="0.7", markersize=4)
 
-        def arrow(a, b, label, pos):  # type: ignore[no-untyped-def]
+        def arrow(a, b, label, pos):
             ax.add_patch(FancyArrowPatch(a, b, arrowstyle="-|>", mutation_scale=12, color="k"))
             ax.annotate(label, pos, fontsize=11)
 

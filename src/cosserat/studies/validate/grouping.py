@@ -116,7 +116,7 @@ def series_key(runs: Sequence[Run]) -> str:
     text = f"{r.cell}, {kind}" + (f" ({details})" if details else "")
     h = held(r)
     if h is not None:
-        values = [held(x)[1] for x in runs]  # type: ignore[index]
+        values = [hx[1] for x in runs if (hx := held(x)) is not None]  # a series shares h[0]
         lo, hi = min(values), max(values)
         text += f", {h[0]} = {lo:.3g}" + (f"-{hi:.3g}" if hi - lo > 1e-3 * max(hi, 1e-9) else "")
     return text

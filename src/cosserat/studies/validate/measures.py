@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.stats import chi2 as chi2_dist
 
 from ...analysis.corpus import Run, usable
@@ -261,7 +262,7 @@ class SpinMeasure:
     stderr: FloatArray | None = None
     half: FloatArray | None = None
     walls: list[WallSpin] = field(default_factory=list)
-    index: dict[str, FloatArray] = field(default_factory=dict)
+    index: dict[str, NDArray[np.intp]] = field(default_factory=dict)
     predicted: dict[str, FloatArray] = field(default_factory=dict)
     bulk: tuple[float | None, int, float | None] = (None, 0, None)
     notes: list[str] = field(default_factory=list)

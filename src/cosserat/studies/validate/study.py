@@ -140,10 +140,10 @@ def _model_slopes(results: Sequence[RunResult]) -> dict[str, SlopeFit | None]:
     out: dict[str, SlopeFit | None] = {}
     for m in sorted({m for r in results for m in r.model_delta}):
         pts = [
-            (r.run.gap_d, r.model_delta[m]) for r in results if (r.model_delta.get(m) or 0.0) > 0.0
+            (r.run.gap_d, d) for r in results if (d := r.model_delta.get(m)) is not None and d > 0.0
         ]
         ok = len({g for g, _ in pts}) >= 2
-        out[m] = power_law_slope([g for g, _ in pts], [d for _, d in pts]) if ok else None  # type: ignore[misc]
+        out[m] = power_law_slope([g for g, _ in pts], [d for _, d in pts]) if ok else None
     return out
 
 
@@ -179,10 +179,13 @@ def analyse_run(
     )
     model_delta: dict[str, float | None] = {}
     if fits is not None:
-        m = run.measured()
+        measured = run.measured()
         for name in fits.models:
             model_delta[name] = thickness_of(
-                m.distance_d, fits.curve(name, m.distance_d), reference_velocity(run), f
+                measured.distance_d,
+                fits.curve(name, measured.distance_d),
+                reference_velocity(run),
+                f,
             )
     result = RunResult(
         run,

@@ -160,6 +160,7 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
     runs = sorted({w.run for w in tested})
     per_run = {r: chi2_p(np.concatenate([w.z for w in tested if w.run == r])) for r in runs}
     chi2, dof, p = chi2_p(np.concatenate([w.z for w in tested]))
+    assert chi2 is not None and p is not None  # every tested wall has bins (dof > 0)
     roles = sorted({w.wall for w in tested})
     by_wall = {
         role: chi2_p(np.concatenate([w.z for w in tested if w.wall == role])) for role in roles
@@ -437,14 +438,17 @@ class DeltaSeries:
     @property
     def slope(self) -> SlopeFit | None:
         """ln Delta against ln(H/d) over the usable points (two distinct gaps at least)."""
-        pts = [p for p in self.points if p.usable]
+        # usable points have a value and an error (DeltaPoint.usable)
+        pts = [
+            (p.gap_d, p.value, p.stderr)
+            for p in self.points
+            if p.usable and p.value is not None and p.stderr is not None
+        ]
         if self.distinct_gaps < 2:
             return None
         try:
             return power_law_slope(
-                [p.gap_d for p in pts],
-                [p.value for p in pts],  # type: ignore[misc]
-                [p.stderr for p in pts],
+                [g for g, _, _ in pts], [v for _, v, _ in pts], [e for _, _, e in pts]
             )
         except ParameterError:
             return None

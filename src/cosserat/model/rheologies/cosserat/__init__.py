@@ -18,15 +18,18 @@ import dataclasses
 import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, TypeAlias
 
-from ....errors import ParameterError
+from ....errors import MethodNotAvailableError, ParameterError
 from ...declare import Param, declarations, param
 from ...parameters import Material, Wall
 from ..base import Equations, Rheology
 from .channel import CosseratChannel
 from .couette import CosseratCouette
 from .plane import CosseratPlane, PlaneShearCase
+
+if TYPE_CHECKING:
+    from ...problem import Problem
 
 REFERENCE = (
     "Mohan, Kesava Rao & Nott, A frictional Cosserat model for the slow shearing of "
@@ -189,11 +192,33 @@ def _declared_cosserat() -> dict[str, Param]:
     return Cosserat._declared_all()
 
 
+CosseratEquations: TypeAlias = CosseratPlane | CosseratCouette | CosseratChannel
+"""The Cosserat model's equations on any of its cells."""
+
+
+def cosserat_equations(problem: Problem) -> CosseratEquations:
+    """``problem.equations``, checked to be the Cosserat model's on one of its cells.
+
+    Raises
+    ------
+    MethodNotAvailableError
+        The problem is another rheology's (the message names it).
+    """
+    eq = problem.equations
+    if not isinstance(eq, CosseratPlane | CosseratCouette | CosseratChannel):
+        raise MethodNotAvailableError(
+            f"this route solves the Cosserat model; {problem.describe()} is another rheology"
+        )
+    return eq
+
+
 __all__ = [
     "REFERENCE",
     "Cosserat",
     "CosseratChannel",
     "CosseratCouette",
+    "CosseratEquations",
     "CosseratPlane",
     "PlaneShearCase",
+    "cosserat_equations",
 ]
