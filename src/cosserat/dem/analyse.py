@@ -332,7 +332,8 @@ def _half_difference(values: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     return a.mean(axis=0), b.mean(axis=0), b.mean(axis=0) - a.mean(axis=0), se
 
 
-def _finite(x: float) -> float | None:
+def _finite(x: float | np.ndarray) -> float | None:
+    """A scalar (a float, or a 0-d mean of per-block values) as a float; None if not finite."""
     return float(x) if np.isfinite(x) else None
 
 
