@@ -21,6 +21,7 @@ from cosserat.studies.validate import (
     validate,
 )
 from cosserat.studies.validate.grouping import couette_note, group_runs
+from cosserat.studies.validate.verdicts import within_regime
 
 DIST = np.array([0.5, 1.5, 2.5])
 
@@ -91,6 +92,26 @@ def test_a_model_departing_with_the_opposite_sign_is_refuted_and_said_so():
     assert "departs with the opposite sign (2 of 2 walls" in v.evidence
     assert "measured -0.09 +- 0.02, cosserat predicts +0.03" in v.evidence
     assert "other models mui +0" in v.evidence
+
+
+def test_a_slow_flow_claim_is_not_decided_by_runs_outside_the_slow_regime():
+    """The same refutation on runs at I = 0.01-0.07 next to the moving wall (above 1e-3):
+    undecided, with what the data say at their rates kept; one quasi-static run, or a run
+    whose regime is unknown, leaves the verdict as it was; the spin claim itself (kinematics,
+    not a slow-flow prediction) is never gated."""
+    walls = [wall(r, [-0.09, -0.02, 0.0], 0.02, predicted={"cosserat": [0.03, 0.01, 0.0]})
+             for r in ("a", "b")]  # fmt: skip
+    v = spin_model_verdict(walls)
+    fast = within_regime(v, [0.012, 0.074], 1e-3)
+    assert (fast.verdict, fast.numbers["at_these_rates"]) == ("undecided", "refuted")
+    assert fast.evidence.startswith("Not tested in the model's regime: every run used has "
+                                    "I = 0.012-0.074")  # fmt: skip
+    assert "At these rates the data would say refuted: Refuted:" in fast.evidence
+    assert "runs with I <= 0.001" in fast.would_change
+    assert within_regime(v, [4e-4, 0.074], 1e-3) == v
+    assert within_regime(v, [None, 0.074], 1e-3) == v
+    departs = spin_verdict(walls)
+    assert within_regime(departs, [0.012, 0.074], 1e-3) == departs
 
 
 def test_a_model_with_the_measured_sign_and_size_is_supported():
@@ -247,6 +268,17 @@ def test_misfit_pinned_and_contradicted_parameters_are_warned_in_every_output(tm
     assert "contradicts the measured stress" in md and "misfit: chi^2" in md
     html = (tmp_path / "out" / "index.html").read_text()
     assert "contradicts the measured stress" in html
+    # two gap series (with and without notes): each a list item of its own line
+    from cosserat.studies.validate.report import context
+    from cosserat.viz.report import render
+
+    ctx = context(report)
+    one = {"key": "a", "points": "H/d = 20: 5", "slope": "no slope", "reason": "",
+           "models": "m 0.1", "notes": []}  # fmt: skip
+    ctx["series"] = [one, {**one, "key": "b", "notes": ["n"]}, {**one, "key": "c"}]
+    gaps = render("validate.md.j2", ctx).split("\n## Delta against the gap\n")[1].split("\n## ")[0]
+    lines = [line for line in gaps.splitlines() if line.strip()]
+    assert [line[:4] for line in lines] == ["* a:", "* b:", "  * ", "* c:"]
 
 
 def test_results_json_has_the_documented_schema(tmp_path):

@@ -206,7 +206,7 @@ def fit_run(
             )
             if text:
                 warnings.append(text)
-        params = {k: (e.value, e.stderr) for k, e in f.parameters.items()}
+        params = {k: (e.value, e.stderr) for k, e in f.parameters.items() if e.free}
         out.summaries.append(
             FitSummary(
                 f.model, True, "", f.chi2, dof, f.reduced_chi2, p, params, pinned, band, warnings

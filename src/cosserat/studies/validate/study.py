@@ -42,6 +42,7 @@ from .verdicts import (
     delta_law_verdict,
     spin_model_verdict,
     spin_verdict,
+    within_regime,
 )
 
 QUASI_STATIC_I = 1e-3
@@ -275,6 +276,12 @@ def judge(results: Sequence[RunResult]) -> tuple[list[DeltaSeries], list[Verdict
         delta_law_verdict(series, "smoother"),
         delta_law_verdict(series, "rough"),
         spin_model_verdict(walls),
+    ]
+    verdicts = [
+        within_regime(
+            v, [by_name[n].inertial_number for n in v.runs if n in by_name], QUASI_STATIC_I
+        )
+        for v in verdicts
     ]
     verdicts = [
         replace(v, evidence=f"{v.evidence} {regime([by_name[n] for n in v.runs])}".rstrip())

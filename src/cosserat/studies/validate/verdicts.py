@@ -39,7 +39,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -71,6 +71,9 @@ CLAIMS = {
 }
 """The claims judged, by key, in the order of the report."""
 VERDICTS = ("supported", "refuted", "mixed", "undecided")
+SLOW_FLOW_CLAIMS = ("smoother", "rough", "spin_model")
+"""Claims about the rate-independent models' predictions, which hold for slow flow only:
+data outside that regime neither support nor refute them (:func:`within_regime`)."""
 
 
 @dataclass(frozen=True)
@@ -643,4 +646,36 @@ def delta_law_verdict(series: Sequence[DeltaSeries], which: str) -> Verdict:
         change + ".",
         runs_t,
         numbers,
+    )
+
+
+def within_regime(v: Verdict, inertial_numbers: Sequence[float | None], bound: float) -> Verdict:
+    """``v``, unless it judges a slow-flow claim (:data:`SLOW_FLOW_CLAIMS`) as "supported",
+    "refuted" or "mixed" on runs that are all outside the slow-flow regime: then "undecided",
+    with what the data say at their rates kept in the evidence and in ``numbers``
+    (``at_these_rates``). A prediction for I -> 0 is not tested by runs at I above ``bound``
+    (the local inertial number next to the moving wall); runs that do not give their inertial
+    number leave the verdict as it is (the evidence says the regime is not shown)."""
+    known = [i for i in inertial_numbers if i is not None]
+    if (
+        v.key not in SLOW_FLOW_CLAIMS
+        or v.verdict == "undecided"
+        or not known
+        or len(known) < len(inertial_numbers)
+        or min(known) <= bound
+    ):
+        return v
+    return replace(
+        v,
+        verdict="undecided",
+        evidence=(
+            f"Not tested in the model's regime: every run used has I = {min(known):.2g}-"
+            f"{max(known):.2g} next to the moving wall, above the slow-flow bound I <= "
+            f"{bound:g}. At these rates the data would say {v.verdict}: {v.evidence}"
+        ),
+        would_change=(
+            f"runs with I <= {bound:g} next to the moving wall; then, as at these rates: "
+            f"{v.would_change}"
+        ),
+        numbers={**dict(v.numbers), "at_these_rates": v.verdict},
     )
