@@ -200,7 +200,16 @@ def parse_spec(data: dict[str, Any]) -> SweepSpec:
         error here: that case gives a row with status "invalid".
     """
     known = {
-        "model", "cell", "geometry", "rtol", "f", "output", "chunk", "max_cases", "fixed", "grid",
+        "model",
+        "cell",
+        "geometry",
+        "rtol",
+        "f",
+        "output",
+        "chunk",
+        "max_cases",
+        "fixed",
+        "grid",
         "cases",
     }
     unknown = set(data) - known

@@ -58,12 +58,12 @@ def shear_stress_dm(xi: float, Ri: float, couple_factor: float) -> float:
     """d s_rt / dm at fixed m(0): ``couple_factor / (Ri + xi)`` (:func:`shear_stress`) [-]."""
     return couple_factor / (Ri + xi)
 
+
 @njit(cache=True)
 def shear_stress_dm_inner(xi: float, Ri: float, couple_factor: float) -> float:
     """d s_rt / d m(0) at fixed m: ``-couple_factor Ri/(Ri + xi)^2`` (:func:`shear_stress`) [-]."""
     r = Ri + xi
     return -couple_factor * Ri / (r * r)
-
 
 
 @njit(cache=True)
@@ -84,6 +84,7 @@ def outer_wall_couple_stress(
     root = math.sqrt(disc) if disc > 0.0 else 0.0
     return (-s0 * beta - root) / qa, disc
 
+
 @njit(cache=True)
 def outer_wall_couple_stress_dm_inner(
     m_inner: float, tan_delta: float, Ri: float, couple_factor: float, A: float, sin_phi: float
@@ -102,7 +103,6 @@ def outer_wall_couple_stress_dm_inner(
     if disc <= 0.0:
         return math.inf
     return -(beta * ds0 - 2.0 * (A + 1.0) * s0 * ds0 / math.sqrt(disc)) / qa
-
 
 
 class CosseratCouette(Equations):
