@@ -46,7 +46,10 @@ from .registry import register_route
 
 RESOLUTION = 16.0
 """Default cells per shortest cooperativity length A d/sqrt(max |mu - mu_s|): second-order
-error about 2e-6 of the wall speed, about 1e-9 after Richardson's extrapolation."""
+error about 2e-6 of the wall speed; after Richardson's extrapolation 1e-9 to 2e-8 (measured
+against resolution 256: plane shear under gravity at eps 0.02 1.3e-9, Couette at eps 0.05
+1.8e-8), and up to 7e-7 next to a moving wall in a case an independent solver checked (issue
+19; 1e-8 at resolution 64): pass ``resolution=64`` where that matters."""
 MIN_CELLS = 256
 """Fewest finite-volume cells across the gap."""
 MAX_CELLS = 2**21
@@ -497,7 +500,8 @@ def solve_numerical(
         Cells per shortest cooperativity length when ``cells`` is not given (default 16).
     extrapolate : bool
         Return Richardson's extrapolation of the solutions on n and n/2 cells (default; its
-        error is O(h^3) or smaller, about 1e-9 at the default resolution), or the second-order
+        error is O(h^3) or smaller, 1e-9 to 2e-8 of the wall speed at the default resolution and
+        up to 7e-7 next to a moving wall: :data:`RESOLUTION`), or the second-order
         solution on n cells (False). The diagnostics give the second-order solution's error
         estimate either way.
 
