@@ -501,7 +501,7 @@ def solve_numerical(
     extrapolate : bool
         Return Richardson's extrapolation of the solutions on n and n/2 cells (default; its
         error is O(h^3) or smaller, 1e-9 to 2e-8 of the wall speed at the default resolution and
-        up to 7e-7 next to a moving wall: :data:`RESOLUTION`), or the second-order
+        up to 7e-7 next to a moving wall: see ``RESOLUTION``), or the second-order
         solution on n cells (False). The diagnostics give the second-order solution's error
         estimate either way.
 
