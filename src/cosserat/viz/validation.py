@@ -72,7 +72,9 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     entry : mapping
         ``name``, ``title``, ``distance_d``, ``u``, ``u_se`` (arrays), ``models`` (model ->
         {"d", "u"}), ``order`` (model names, best first), optional ``spin`` ({"distance_d",
-        "departure", "stderr", "predicted": model -> array, "near_wall_d", "gap_d"}).
+        "departure", "stderr", "predicted": model -> array, "near_wall_d", "gap_d"}), optional
+        ``cell`` (``"channel"``: no wall moves, the distance is from the wall at y = 0 and V is
+        the run's velocity scale sqrt(g d); no creep tail is named).
     """
     import numpy as np
 
@@ -82,6 +84,13 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     ncols = 3 if spin else 2
     fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=3.1)
     order = list(entry.get("order", ()))
+    channel = entry.get("cell") == "channel"
+    x_label = (
+        r"distance from the wall at $y = 0$ [$d$]"
+        if channel
+        else r"distance from the moving wall [$d$]"
+    )
+    u_label = r"$u/V$, $V = \sqrt{g d}$ [-]" if channel else r"$u/V$ [-]"
     with style():
         d = np.asarray(entry["distance_d"], dtype=float)
         u = np.asarray(entry["u"], dtype=float)
@@ -107,17 +116,22 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 cd = np.asarray(curve["d"], dtype=float)
                 keep = cu > 0 if log else np.ones(cu.size, bool)
                 ax.plot(cd[keep], cu[keep], label=name, **model_style(name, order))
-            ax.set_xlabel(r"distance from the moving wall [$d$]")
-            ax.set_ylabel(r"$u/V$ [-]")
+            ax.set_xlabel(x_label)
+            ax.set_ylabel(u_label)
             if log:
                 ax.set_yscale("log")
                 pos = u[u > 0]
                 lo = max(min(float(pos.min()) / 3, U_FLOOR) if pos.size else U_FLOOR, 1e-8)
-                ax.set_ylim(lo, 2.0)
-                ax.set_title("log axis: the creep tail (u <= 0 not shown)", fontsize=8)
+                # above every point and its bar (a channel's u/V exceeds 1)
+                hi = max(2.0, 1.5 * float(np.max((u + se)[u > 0]))) if pos.size else 2.0
+                ax.set_ylim(lo, hi)
+                n_hidden = int(np.sum(u <= 0))
+                hidden = f", {n_hidden} bins with u <= 0 not shown" if n_hidden else ""
+                what = "log axis" if channel else "log axis: the creep tail"
+                ax.set_title(what + hidden, fontsize=8)
                 _plain(ax, "x")
             else:
-                ax.set_title("linear axis: the band", fontsize=8)
+                ax.set_title("linear axis" if channel else "linear axis: the band", fontsize=8)
         if spin:
             ax = axes[0, 2]
             x = np.asarray(spin["distance_d"], dtype=float)
@@ -143,7 +157,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
             near, gap = float(spin["near_wall_d"]), float(spin["gap_d"])
             ax.axvspan(0.0, near, color="0.92", zorder=0)
             ax.axvspan(gap - near, gap, color="0.92", zorder=0)
-            ax.set_xlabel(r"distance from the moving wall [$d$]")
+            ax.set_xlabel(x_label)
             ax.set_ylabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ [-]")
             ax.set_title("spin departure (shaded: near the walls)", fontsize=8)
         fig.suptitle(entry["title"], fontsize=8)

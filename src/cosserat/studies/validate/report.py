@@ -61,11 +61,12 @@ def run_entry(r: RunResult) -> dict[str, Any]:
             "gap_d": r.run.gap_d,
         }
     i_w = r.inertial_number
-    title = f"{r.run.name}: {r.run.cell}, H/d = {r.run.gap_d:g}" + (
+    title = f"{r.run.name}: {r.run.cell}, H/d = {r.run.gap_d:.3g}" + (
         f", I at the moving wall = {i_w:.2g}" if i_w is not None else ""
     )
     return {
         "name": r.run.name,
+        "cell": r.run.cell,
         "title": title,
         "distance_d": m.distance_d,
         "u": m.u_over_uw,
