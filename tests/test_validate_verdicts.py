@@ -173,6 +173,17 @@ def test_delta_laws_decided_by_series_made_for_them():
     assert delta_law_verdict(both, "smoother").verdict == "mixed"
 
 
+def test_a_power_law_that_misfits_its_points_is_said_to():
+    """Gaps at 20, 40, 80, 160 d with Delta = 3.0, 4.5, 3.6, 5.4 (2% errors): the slope's
+    error is scaled up by sqrt(reduced chi^2), and the evidence says one power law does not
+    describe the points (chi^2 in the hundreds on 2 dof), which exact points do not."""
+    bad = delta_law_verdict([series(0.0, rough=True, values=[3.0, 4.5, 3.6, 5.4])], "rough")
+    assert "one power law does not describe these points (chi^2 = " in bad.evidence
+    assert "for 2 degrees of freedom" in bad.evidence
+    good = delta_law_verdict([series(1 / 3, rough=True)], "rough")
+    assert "one power law does not describe" not in good.evidence
+
+
 def test_a_band_filling_its_gap_cannot_refute_a_delta_law():
     """Smoother walls: Delta = 12, 8.5, 6 d at H/d = 20, 40, 80. With the H/d = 20 band (12 d
     > H/2) it would refute exponent 0 (slope -0.5); left out, two gaps remain: undecided."""

@@ -572,6 +572,7 @@ def delta_law_verdict(series: Sequence[DeltaSeries], which: str) -> Verdict:
             for p in s.points
             if p.usable
         )
+        text += _power_law_misfit(slope)
         cos = s.model_slopes.get("cosserat")
         if cos is not None:
             text += f"; the Cosserat fits to these runs give {cos.slope:.3f}"
@@ -678,4 +679,23 @@ def within_regime(v: Verdict, inertial_numbers: Sequence[float | None], bound: f
             f"{v.would_change}"
         ),
         numbers={**dict(v.numbers), "at_these_rates": v.verdict},
+    )
+
+
+def _power_law_misfit(slope: SlopeFit) -> str:
+    """A clause saying that one power law does not describe the points (its chi^2 improbable
+    at p < :data:`P_SIGNIFICANT`), so the scaled-up slope error hides a misfit; empty
+    otherwise."""
+    if slope.reduced_chi2 is None or slope.n <= 2:
+        return ""
+    dof = slope.n - 2
+    c = slope.reduced_chi2 * dof
+    p = float(chi2_dist.sf(c, dof))
+    if p >= P_SIGNIFICANT:
+        return ""
+    return (
+        f"; one power law does not describe these points (chi^2 = {c:.3g} for {dof} degrees "
+        f"of freedom, p = {p:.2g}: replicates or neighbouring gaps disagree beyond their errors), "
+        "so the slope's error is scaled up by sqrt(reduced chi^2) and a verdict on the "
+        "exponent rests on that"
     )
