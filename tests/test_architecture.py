@@ -22,6 +22,7 @@ LAYERS = [
         "cosserat._jit_cache",
         "cosserat._atomic",
         "cosserat._text",
+        "cosserat._moved",
     ],
     ["cosserat.viz"],
     ["cosserat.model"],

@@ -12,15 +12,14 @@ Fitting is a calibration of one run (``docs/calibration.md``):
 
 from __future__ import annotations
 
-import importlib
 import math
-import warnings
 from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from .. import config
+from .._moved import moved_names
 from ..errors import MethodNotAvailableError
 from ..model import Cosserat, Problem
 from ..model.constitutive import FloatArray
@@ -181,18 +180,7 @@ _MOVED = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    """The deprecated fitting names (module docstring), with a :class:`DeprecationWarning`."""
-    if name in _MOVED:
-        module, new = _MOVED[name]
-        warnings.warn(
-            f"cosserat.analysis.fitting.{name} is deprecated and will be removed in the next "
-            f"release: use {module}.{new} (a fit to one profile is a calibration of one run)",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return getattr(importlib.import_module(module), new)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__getattr__ = moved_names(__name__, _MOVED, "a fit to one profile is a calibration of one run")
 
 
 __all__ = [
