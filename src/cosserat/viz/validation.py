@@ -63,6 +63,18 @@ def _legend_below(fig: Figure, axes: Sequence[Axes], ncol: int = 4) -> None:
         )
 
 
+DATA_STYLE: dict[str, Any] = {
+    "fmt": "o",
+    "color": "k",
+    "markerfacecolor": "none",
+    "capsize": 1.5,
+    "elinewidth": 0.6,
+    "markersize": 3,
+    "label": "DEM data (+- 1 se)",
+}
+"""How a run figure draws measured points: open circles with 1-se bars."""
+
+
 def run_figure(entry: Mapping[str, Any]) -> Figure:
     """One run: u/V with error bars (linear, and log for the creep tail) beside each fitted
     model; the spin's departure from half the vorticity with its error bars and each model's.
@@ -103,13 +115,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 d[show],
                 u[show],
                 yerr=[lower[show], se[show]],
-                fmt="o",
-                color="k",
-                markerfacecolor="none",
-                capsize=1.5,
-                elinewidth=0.6,
-                markersize=3,
-                label="DEM data (+- 1 se)",
+                **DATA_STYLE,
             )
             for name, curve in entry["models"].items():
                 cu = np.asarray(curve["u"], dtype=float)
@@ -143,13 +149,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 x,
                 y,
                 yerr=e,
-                fmt="o",
-                color="k",
-                markerfacecolor="none",
-                capsize=1.5,
-                elinewidth=0.6,
-                markersize=3,
-                label="DEM data (+- 1 se)",
+                **DATA_STYLE,
             )
             for name, pred in spin.get("predicted", {}).items():
                 ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **model_style(name, order))
