@@ -219,6 +219,20 @@ def test_compare_names_its_columns_alike_in_text_and_csv(tmp_path):
     assert table_head.split() == ["distance_d", "[d_p]", "u_over_uw", "model", "residual"]
 
 
+def test_compare_says_where_the_command_line_overrides_the_header(tmp_path):
+    data = tmp_path / "d.csv"
+    data.write_text("# geometry: plane\n# eps: 0.05\ndistance_d,u_over_uw\n0,0.9\n2,0.5\n5,0.1\n")
+    agree = cosserat("compare", str(data), "--eps", "0.05", "-q")
+    assert agree.returncode == 0 and agree.stderr == "", agree.stderr
+    differ = cosserat("compare", str(data), "--eps", "0.02", "--format", "json")
+    assert differ.returncode == 0, differ.stderr
+    assert differ.stderr == (
+        "cosserat: warning: --eps 0.02 differs from the file's header (eps: 0.05); "
+        "the model is solved with the command line's eps = 0.02\n"
+    )
+    assert "eps = 0.02" in json.loads(differ.stdout)["description"]
+
+
 def test_solve_models_overlays_every_model(tmp_path):
     fig = tmp_path / "models.png"
     proc = cosserat("solve", "couette", "--eps", "0.05", "--models", "cosserat,mui",

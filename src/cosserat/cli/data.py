@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 from typing import Any
 
 from ..routes import RHEOLOGIES
@@ -35,8 +36,8 @@ def _add_data_model(p: argparse.ArgumentParser) -> None:
         "[-], optional u_err [-], header lines such as '# eps: 0.05' (docs/measurements.md)",
     )
     g = p.add_argument_group(
-        "the cell (command line > --preset > the file's header > defaults; fit: what the "
-        "header states wins, with a warning where the command line disagrees)"
+        "the cell (command line > --preset > the file's header > defaults, with a warning "
+        "where the command line disagrees with the header; fit: what the header states wins)"
     )
     g.add_argument(
         "--preset",
@@ -164,10 +165,33 @@ _COMPARE_COLUMNS = {
 }
 
 
+def header_disagreements(args: argparse.Namespace, header: dict[str, Any]) -> list[str]:
+    """Each cell value the command line gives that the file's header states otherwise, as a
+    sentence: ``compare`` uses the command line's (a what-if comparison), and says so."""
+    given = option_values(args, args.eps)
+    out = []
+    for name, key in _HEADER_KEYS.items():
+        mine, theirs = given.get(name), header.get(key)
+        if mine is None or theirs is None:
+            continue
+        try:
+            same = math.isclose(float(mine), float(theirs), rel_tol=1e-9, abs_tol=0.0)
+        except (TypeError, ValueError):
+            same = str(mine).strip().lower() == str(theirs).strip().lower()
+        if not same:
+            out.append(
+                f"--{name} {mine} differs from the file's header ({key}: {theirs}); "
+                f"the model is solved with the command line's {name} = {mine}"
+            )
+    return out
+
+
 def cmd_compare(args: argparse.Namespace) -> None:
     from ..analysis.fitting import compare
 
     measured, problem = data_problem(args)
+    for text in header_disagreements(args, measured.meta):
+        print(f"cosserat: warning: {text}", file=sys.stderr)
     opts = {} if args.rtol is None else {"rtol": args.rtol}
     if args.model == params.DEFAULT_MODEL:
         comparison = compare(problem, measured, method=args.method, **opts)
