@@ -53,18 +53,7 @@ FULLY_ROUGH_RTOL: Final = 1e-12
 (absorbs the round-off of atan/tan, so that ``Wall(material.fully_rough_delta)`` is fully rough).
 """
 
-# ----------------------------------------------------------------- fitting and bounds
-FIT_XTOL: Final = 1e-8
-"""``xtol`` of the least-squares fit (relative change of the parameters) [-]."""
-FIT_FTOL: Final = 1e-10
-"""``ftol`` of the least-squares fit (relative change of the cost) [-]."""
-FIT_GTOL: Final = 1e-10
-"""``gtol`` of the least-squares fit (norm of the scaled gradient) [-]."""
-FIT_DIFF_STEP: Final = 1e-4
-"""Finite-difference step of the fit's Jacobian, relative to the parameter (least squares) or
-to its range (standard errors) [-]; well above :data:`RTOL`, well below the ranges."""
-FIT_MAX_NFEV: Final = 200
-"""Budget of model solves of one least-squares fit."""
+# ----------------------------------------------------------------- bounds
 EXISTENCE_BOUND_TOL: Final = 1e-4
 """Width to which the bisection for the existence bound in A is carried [-]."""
 
