@@ -90,22 +90,27 @@ def cmd_calibrate(args: argparse.Namespace) -> None:
     }
     free_pairs = {k: "1" for k in (args.free or [])}
     free = {m: list(d) for m, d in _per_model(names, free_pairs, "--free", parameters).items()}
-    result = calibrate(
-        runs,
-        models=names,
-        fields=fields,
-        fix=fix,
-        free=free,
-        bin_correlation=None,
-        local_spin=not args.no_local_spin,
-        evidence=args.evidence,
-        posterior=args.posterior,
-        out=args.out,
-        seed=args.seed,
-        progress=progress_messages("calibrate"),
-        holdout=[h.strip() for h in (args.holdout or "").split(",") if h.strip()],
-        leave_one_out=args.leave_one_out,
-    )
+    bar = progress_messages("calibrate")
+    try:
+        result = calibrate(
+            runs,
+            models=names,
+            fields=fields,
+            fix=fix,
+            free=free,
+            bin_correlation=None,
+            local_spin=not args.no_local_spin,
+            evidence=args.evidence,
+            posterior=args.posterior,
+            out=args.out,
+            seed=args.seed,
+            progress=bar,
+            holdout=[h.strip() for h in (args.holdout or "").split(",") if h.strip()],
+            leave_one_out=args.leave_one_out,
+        )
+    finally:
+        if bar is not None:
+            bar.close()  # the bar's line ends before the report is printed
     result = dataclasses.replace(result, skipped=skipped)
     if args.out:
         write_report(result, args.out)
