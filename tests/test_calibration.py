@@ -438,9 +438,13 @@ def test_a_long_one_sided_stretch_is_said_where_correlation_hides_it():
     assert dg.longest_stretch(s, z)[:1] == (25,)
     runs = make_runs(Model("ngf"), TRUTH["ngf"], rho={"u": 0.9}, seed=4)
     m = calibrate_model(Model("cosserat"), runs)
-    # a long stretch on one side is tested against the error model, both ways
-    for w in [w for w in m.warnings if "neighbouring bins" in w]:
-        assert "rests on that estimate" in w or "improbable even" in w
+    # a long stretch on one side is tested against the error model, both ways, and the
+    # warning says where the correlation came from (given here, not estimated)
+    stretches = [w for w in m.warnings if "neighbouring bins" in w]
+    assert stretches
+    for w in stretches:
+        assert "rests on that correlation" in w or "improbable even" in w
+        assert "correlated as given (rho = " in w and "as estimated" not in w
     # the test itself: 25 of 30 on one side is rare for independent bins, common at rho 0.95
     assert dg.stretch_p_value(30, 0.0, 25) < 1e-3 < dg.stretch_p_value(30, 0.95, 25)
     assert 0.2 < dg.stretch_p_value(20, 0.0, 5) < 0.8

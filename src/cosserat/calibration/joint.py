@@ -184,6 +184,17 @@ def _field_fits(s: Setup, predictions: Mapping[str, Mapping[str, FloatArray]]) -
     return out
 
 
+def _as(source: str) -> str:
+    """How the bins' correlation was obtained (:class:`~.noise.Correlation`'s ``source``), as
+    the warnings say it: the old wording said "as estimated" for a correlation given too."""
+    return {
+        "estimated": "as estimated",
+        "metadata": "as the run's metadata state",
+        "given": "as given",
+        "too few bins": "as assumed (too few bins to estimate it)",
+    }.get(source, f"as set ({source})")
+
+
 def _stress_contradictions(model: Model, fits: Sequence[FieldFit]) -> list[str]:
     """Runs whose fitted stress ratio in the band contradicts the measured one (> 3 se)."""
     friction = {"cosserat": "delta (the wall's friction) and phi", "mui": "mu_s", "ngf": "mu_s"}
@@ -273,14 +284,15 @@ def _warnings(mc: ModelCalibration, fits: Sequence[FieldFit]) -> list[str]:
             if p_rho < dg.MISFIT_P:
                 per_field.append(
                     f"{name}: run {f.run}, {f.field}: {where}, improbable even for bins "
-                    f"correlated as estimated (rho = {f.rho:.2f}, p = {p_rho:.2g}): a misfit"
+                    f"correlated {_as(f.rho_source)} (rho = {f.rho:.2f}, p = {p_rho:.2g}): "
+                    "a misfit"
                 )
             elif p_free < dg.MISFIT_P:
                 per_field.append(
                     f"{name}: run {f.run}, {f.field}: {where}; for independent bins that would "
-                    f"be a misfit (p = {p_free:.2g}), for bins correlated as estimated (rho = "
-                    f"{f.rho:.2f}) it is not (p = {p_rho:.2g}): whether it is one rests on that "
-                    "estimate (errors from the runs' time blocks would decide)"
+                    f"be a misfit (p = {p_free:.2g}), for bins correlated {_as(f.rho_source)} "
+                    f"(rho = {f.rho:.2f}) it is not (p = {p_rho:.2g}): whether it is one rests on "
+                    "that correlation (errors from the runs' time blocks would decide)"
                 )
         if f.runs_p is not None and f.runs_p < dg.MISFIT_P:
             per_field.append(
