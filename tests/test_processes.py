@@ -206,3 +206,61 @@ def test_reproduce_removes_the_temporaries_of_a_killed_run(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert not stale.exists() and running.exists()
     assert (out / "index.html").exists()
+
+
+STUCK = """
+import argparse, sys
+import numba
+from cosserat import cli
+
+@numba.njit(nogil=True, cache=False)
+def spin(n):
+    x = 0.0
+    for i in range(n):
+        x += (i % 7) * 1e-9
+    return x
+
+spin(10)  # compiled now, not after the signal
+
+def make_parser():
+    parser = argparse.ArgumentParser(prog="cosserat")
+    sub = parser.add_subparsers(dest="command")
+    p = sub.add_parser("stuck")
+    p.set_defaults(func=lambda args: (print("inside", flush=True), spin(10**15)))
+    return parser
+
+cli.make_parser = make_parser
+sys.exit(cli.main(["stuck"]))
+"""
+
+
+@pytest.mark.parametrize("sig, status", [("SIGTERM", 143), ("SIGINT", 130)])
+def test_a_signal_ends_a_command_stuck_in_a_compiled_kernel(sig, status):
+    """Python runs signal handlers between bytecodes only, so a long compiled kernel used to
+    hold Ctrl-C and SIGTERM until it ended (``timeout`` could not stop the command); the
+    watchdog (cli/watchdog.py) ends the process after its grace time, in one line."""
+    from cosserat.cli.watchdog import GRACE
+
+    proc = subprocess.Popen(
+        [sys.executable, "-c", STUCK],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert proc.stdout is not None and proc.stdout.readline() == "inside\n"
+    time.sleep(0.2)  # inside the kernel by now
+    sent = time.monotonic()
+    proc.send_signal(getattr(signal, sig))
+    try:
+        _, err = proc.communicate(timeout=GRACE + GONE_WITHIN)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail(f"{sig} did not end a command stuck in a compiled kernel")
+    took = time.monotonic() - sent
+    assert proc.returncode == status, err
+    kind = "terminated" if sig == "SIGTERM" else "interrupted"
+    assert err.strip() == (
+        f"cosserat: {kind}; the process ends inside a compiled computation that did not "
+        f"return within {GRACE:g} s (no output of it written)"
+    )
+    assert took >= GRACE  # the main thread had its chance first

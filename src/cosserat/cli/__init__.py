@@ -5,10 +5,11 @@ one line on stderr, ``cosserat: error: ...``, saying what is wrong (every comman
 of bad input: one prefix); anything else is a bug and shows as one (a traceback,
 exit status 1). Ctrl-C and SIGTERM stop the command as cleanly (worker processes stopped,
 temporary files removed, finished outputs kept) and exit with one line and the shell's status,
-130 (128 + SIGINT) or 143 (128 + SIGTERM). A full disk (or quota, or read-only file system)
-is reported in one line too, exit status 2 (:data:`FULL`). Defaults are the paper's, from
-:mod:`cosserat.config`, filled in by :func:`cosserat.model.build_problem` (the same as for
-sweeps).
+130 (128 + SIGINT) or 143 (128 + SIGTERM), also from inside a long compiled kernel, where
+Python cannot run a signal handler (:mod:`cosserat.cli.watchdog`). A full disk (or quota, or
+read-only file system) is reported in one line too, exit status 2 (:data:`FULL`). Defaults
+are the paper's, from :mod:`cosserat.config`, filled in by
+:func:`cosserat.model.build_problem` (the same as for sweeps).
 
 Each command lives in its own module with an ``add_parsers(sub)`` function; :data:`COMMANDS`
 lists them in the order ``cosserat --help`` shows them.
@@ -17,12 +18,10 @@ lists them in the order ``cosserat --help`` shows them.
 from __future__ import annotations
 
 import argparse
-import contextlib
 import errno
 import signal
 import sys
-import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 
 from .._atomic import destination_of
 from .._version import __version__
@@ -39,6 +38,7 @@ from .common import (
     set_interrupt_hint,
     set_quiet,
 )
+from .watchdog import ending_inside_kernels
 
 COMMANDS = (solve, cell, paper, data, calibrate, sweep, dem, models)
 """The command modules, each with ``add_parsers(sub)``."""
@@ -69,7 +69,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0; 2 for bad input; 130 or 143 when
     interrupted by Ctrl-C or SIGTERM)."""
     parser = make_parser()
-    with _sigterm_as_interruption():
+    # SIGTERM raises Terminated (a KeyboardInterrupt), so that a terminated command cleans up
+    # as after Ctrl-C (Python's default for SIGTERM ends at once, skipping it); both also end
+    # a command stuck inside a compiled kernel (cli/watchdog.py)
+    with ending_inside_kernels(_raise_terminated):
         set_interrupt_hint(None)
         try:
             args = parser.parse_args(argv)
@@ -119,21 +122,6 @@ def _full_message(exc: OSError) -> str:
 
 def _raise_terminated(signum: int, frame: object) -> None:
     raise Terminated
-
-
-@contextlib.contextmanager
-def _sigterm_as_interruption() -> Iterator[None]:
-    """SIGTERM raises :class:`Terminated` (a KeyboardInterrupt), so that a terminated command
-    cleans up as after Ctrl-C (Python's default for SIGTERM ends at once, skipping it). Only
-    in the main thread, where Python runs signal handlers; the old handler comes back after."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.signal(signal.SIGTERM, _raise_terminated)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":  # pragma: no cover
