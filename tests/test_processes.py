@@ -264,3 +264,30 @@ def test_a_signal_ends_a_command_stuck_in_a_compiled_kernel(sig, status):
         f"return within {GRACE:g} s (no output of it written)"
     )
     assert took >= GRACE  # the main thread had its chance first
+
+
+def test_a_forked_child_does_not_signal_through_its_parents_watchdog():
+    """A worker forked (not spawned) while the watchdog runs and then sent SIGTERM must not
+    make the parent end as if it had been terminated."""
+    script = """
+import os, signal, sys, time
+from cosserat.cli.watchdog import ending_inside_kernels
+
+def term(signum, frame):
+    raise SystemExit("parent terminated")
+
+with ending_inside_kernels(term, grace=0.5):
+    pid = os.fork()
+    if pid == 0:
+        signal.signal(signal.SIGTERM, lambda s, f: os._exit(0))  # a Python handler
+        time.sleep(30)
+        os._exit(0)
+    time.sleep(0.3)
+    os.kill(pid, signal.SIGTERM)
+    os.waitpid(pid, 0)
+    time.sleep(1.5)  # three grace times
+print("parent ran to the end")
+"""
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=60, check=False)  # fmt: skip
+    assert proc.returncode == 0 and proc.stdout == "parent ran to the end\n", proc.stderr

@@ -30,6 +30,20 @@ GRACE = 3.0
 without it [s]; the interpreter takes microseconds when it is not inside a compiled kernel."""
 
 _WATCHED = {int(signal.SIGINT): "interrupted", int(signal.SIGTERM): "terminated"}
+_WATCHING: list[int] = []
+"""The write end of the pipe while a watchdog runs (empty otherwise)."""
+
+
+def _forget_in_child() -> None:
+    """A forked child (without exec) must not write its signals into its parent's pipe: the
+    parent's watchdog would take a worker's SIGTERM for its own. (The package's workers are
+    spawned, and LAMMPS runs through exec with its descriptors closed; this guards the rest.)"""
+    if _WATCHING:
+        with contextlib.suppress(ValueError, OSError):
+            signal.set_wakeup_fd(-1)
+
+
+os.register_at_fork(after_in_child=_forget_in_child)
 
 
 @contextlib.contextmanager
@@ -70,6 +84,7 @@ def ending_inside_kernels(
     previous_int = signal.signal(signal.SIGINT, signal.SIG_IGN if ignored else interrupt)
     previous_term = signal.signal(signal.SIGTERM, term)
     previous_fd = signal.set_wakeup_fd(write_end, warn_on_full_buffer=False)
+    _WATCHING.append(write_end)
 
     def watch() -> None:
         while True:
@@ -97,6 +112,7 @@ def ending_inside_kernels(
         yield
     finally:
         stop.set()
+        _WATCHING.remove(write_end)
         signal.set_wakeup_fd(previous_fd)
         signal.signal(signal.SIGINT, previous_int)
         signal.signal(signal.SIGTERM, previous_term)
