@@ -15,17 +15,17 @@
   between neighbouring bins (lag-1 correlation ``rho``, as the corpus's ``bin_correlation``
   records, 0.3-0.5 for the velocity of the DEM runs), drawn from ``seed``.
 
-The truth is the model's profile averaged over each bin (as the coarse-graining averages), in the corpus's units and signs: u over
-the moving wall's speed, omega and half the vorticity in units of V/d (the deck's rotation
-sense: counter-clockwise positive), stresses over the applied normal stress (compressive
-positive, sigma_yx < 0 when the upper wall drags the grains along +x, sigma_rt > 0 when the
-inner cylinder drags them along +t). A rheology without a grain spin of its own (mu(I), NGF)
-turns with the material: its omega is half its vorticity. The local inertial number is the
-bin's mean shear rate, V |u(s + d/2) - u(s - d/2)| / d, over sqrt(p) with p = sigma_yy (the
-coarse-graining averages the shear rate over the bin); the wall speed ``V`` (default
-:data:`WALL_SPEED`) makes every run quasi-static (I <= 1e-3 next to the moving wall) and fixes
-the rate-dependent models' I_w = V d / (H sqrt(p_w / rho_s)) (``wall_inertial_number``), the
-value validation's fits read from the sidecar.
+The truth is the model's profile averaged over each bin (as the coarse-graining averages), in
+the corpus's units and signs: u over the moving wall's speed, omega and half the vorticity in
+units of V/d (the deck's rotation sense: counter-clockwise positive), stresses over the applied
+normal stress (compressive positive, sigma_yx < 0 when the upper wall drags the grains along
++x, sigma_rt > 0 when the inner cylinder drags them along +t). A rheology without a grain spin
+of its own (mu(I), NGF) turns with the material: its omega is half its vorticity. The local
+inertial number is the bin's mean shear rate, V |u(s + d/2) - u(s - d/2)| / d, over sqrt(p)
+with p = sigma_yy (the coarse-graining averages the shear rate over the bin); the wall speed
+``V`` (default :data:`WALL_SPEED`) makes every run quasi-static (I <= 1e-3 next to the moving
+wall) and fixes the rate-dependent models' I_w = V d / (H sqrt(p_w / rho_s))
+(``wall_inertial_number``), the value validation's fits read from the sidecar.
 
 The sidecar has what validation and calibration read: the cell, ``gap_d``, ``Ri_d``, ``B``,
 the walls, the grains and contact law (the same for every run, so that runs of one wall form
@@ -194,7 +194,7 @@ def synthetic_run(
     profile = model_solve(problem, points=401)
     xw, uw = moving_wall(problem)
 
-    n = int(round(gap_d))
+    n = round(gap_d)
     s = (np.arange(n) + 0.5) * gap_d / n  # bin centres from the lower/inner wall [d]
     edges = np.linspace(0.0, gap_d, n + 1)
     xi = s / gap_d
@@ -226,10 +226,8 @@ def synthetic_run(
     shear_se = stress_noise * np.abs(shear)
     i_se = np.maximum(0.1 * inertial, 1e-9)
     coord = s + (Ri_d or 0.0) if cell == "couette" else s
-    shear_name, normal_name = ("sigma_rt", "sigma_rr") if cell == "couette" else (
-        "sigma_yx",
-        "sigma_yy",
-    )
+    polar = cell == "couette"
+    shear_name, normal_name = ("sigma_rt", "sigma_rr") if polar else ("sigma_yx", "sigma_yy")
     columns: dict[str, FloatArray] = {
         COORDINATE[cell]: coord,
         "u": u + ar1_noise(u_se, rho, rng),
@@ -352,20 +350,22 @@ def synthetic_corpus(
     parameters = parameters or {}
     paths = []
     k = seed
-    for wall, gaps in plane.items():
-        for g in gaps:
-            paths.append(
-                synthetic_run(folder, f"{model}_plane_{wall}_H{g:g}", model, "plane", g,
-                              parameters=parameters.get(wall), wall=wall, seed=k,
-                              **options)  # fmt: skip
-            )
-            k += 1
-    couette_options = {key: v for key, v in options.items() if key != "B"}
-    for g in couette:
+    runs = [("plane", wall, g) for wall, gaps in plane.items() for g in gaps]
+    runs += [("couette", "rough", g) for g in couette]
+    for cell, wall, g in runs:
+        opts = {key: v for key, v in options.items() if cell == "plane" or key != "B"}
         paths.append(
-            synthetic_run(folder, f"{model}_couette_rough_H{g:g}", model, "couette", g,
-                          parameters=parameters.get("rough"), wall="rough", seed=k,
-                          **couette_options)  # fmt: skip
+            synthetic_run(
+                folder,
+                f"{model}_{cell}_{wall}_H{g:g}",
+                model,
+                cell,
+                g,
+                parameters=parameters.get(wall),
+                wall=wall,
+                seed=k,
+                **opts,
+            )
         )
         k += 1
     return paths
