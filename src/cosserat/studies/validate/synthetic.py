@@ -49,6 +49,7 @@ from ...analysis.ranking import model_solve
 from ...errors import ParameterError
 from ...model import make_problem
 from ...model.constitutive import FloatArray
+from .measures import correlated_normal
 
 WALL_SPEED = 1e-3
 """Default speed of the moving wall [sqrt(N / rho_s)]: a bin's mean shear rate is at most V/d,
@@ -75,19 +76,6 @@ GRAINS = {
     "density": 1.0,
 }
 CONTACT = {"model": "synthetic", "friction": 0.5}
-
-
-def ar1_noise(se: FloatArray, rho: float, rng: np.random.Generator) -> FloatArray:
-    """Gaussian noise with standard errors ``se`` and lag-1 correlation ``rho`` between
-    neighbouring bins (a stationary AR(1) sequence scaled bin by bin) [same unit as se]."""
-    se = np.asarray(se, dtype=float)
-    e = rng.standard_normal(se.size)
-    x = np.empty(se.size)
-    x[0] = e[0]
-    c = math.sqrt(1.0 - rho * rho)
-    for i in range(1, se.size):
-        x[i] = rho * x[i - 1] + c * e[i]
-    return se * x
 
 
 def _check(name: str, value: float, lo: float, hi: float, closed_hi: bool = True) -> None:
@@ -230,15 +218,15 @@ def synthetic_run(
     shear_name, normal_name = ("sigma_rt", "sigma_rr") if polar else ("sigma_yx", "sigma_yy")
     columns: dict[str, FloatArray] = {
         COORDINATE[cell]: coord,
-        "u": u + ar1_noise(u_se, rho, rng),
+        "u": u + correlated_normal(u_se, rho, rng),
         "u_se": u_se,
-        "omega": omega + ar1_noise(omega_se, rho, rng),
+        "omega": omega + correlated_normal(omega_se, rho, rng),
         "omega_se": omega_se,
-        "half_vorticity": half + ar1_noise(half_se, rho, rng),
+        "half_vorticity": half + correlated_normal(half_se, rho, rng),
         "half_vorticity_se": half_se,
-        normal_name: normal + ar1_noise(normal_se, rho, rng),
+        normal_name: normal + correlated_normal(normal_se, rho, rng),
         f"{normal_name}_se": normal_se,
-        shear_name: shear + ar1_noise(shear_se, rho, rng),
+        shear_name: shear + correlated_normal(shear_se, rho, rng),
         f"{shear_name}_se": shear_se,
         "inertial_number": inertial,
         "inertial_number_se": i_se,
@@ -371,4 +359,4 @@ def synthetic_corpus(
     return paths
 
 
-__all__ = ["WALL_SPEED", "ar1_noise", "synthetic_corpus", "synthetic_run"]
+__all__ = ["WALL_SPEED", "synthetic_corpus", "synthetic_run"]
