@@ -76,6 +76,22 @@ def test_one_run_of_four_departing_is_mixed():
     assert spin_verdict(walls).verdict == "mixed"
 
 
+def test_runs_too_noisy_to_show_the_predicted_departure_do_not_make_it_mixed():
+    """One run departs; three do not, but the departure the model predicts for them (0.01
+    against errors of 0.05: chi^2 shifted by 0.12 on 3 bins, p ~ 0.38) could not have shown:
+    they neither support nor contradict the first, so the verdict is not "mixed"."""
+    walls = [wall("big", [-2.0, -1.0, 0.0], 0.1, predicted={"cosserat": -1.0})]
+    walls += [wall(f"z{i}", 0.0, 0.05, predicted={"cosserat": 0.01}) for i in range(3)]
+    v = spin_verdict(walls)
+    assert v.verdict == "supported", v.text
+    assert v.numbers["runs_too_noisy_to_show_the_model_departure"] == ["z0", "z1", "z2"]
+    assert "3 do not and could not have" in v.evidence
+    # the same three runs with errors that would have shown it: they contradict the first
+    walls = walls[:1] + [wall(f"z{i}", 0.0, 0.002, predicted={"cosserat": 0.01})
+                         for i in range(3)]  # fmt: skip
+    assert spin_verdict(walls).verdict == "mixed"
+
+
 def test_no_spin_near_a_sheared_wall_is_undecided():
     assert spin_verdict([]).verdict == "undecided"
     assert spin_verdict([wall("r", 1.0, 0.01, sheared=False)]).verdict == "undecided"
@@ -136,6 +152,15 @@ def test_signs_that_disagree_between_walls_are_mixed():
     walls = [wall("a", [-0.09, 0, 0], 0.02, predicted={"cosserat": [-0.05, 0, 0]}),
              wall("b", [-0.09, 0, 0], 0.02, predicted={"cosserat": [0.05, 0, 0]})]  # fmt: skip
     assert spin_model_verdict(walls).verdict == "mixed"
+
+
+def test_no_departure_where_the_model_predicts_a_visible_one_refutes_the_model():
+    """No wall departs at 3 se, but the model predicts +0.03 against errors of 0.005 (chi^2
+    of data - model = 3 x 36 over 3 bins): the model's departure is rejected."""
+    v = spin_model_verdict([wall("a", 0.0, 0.005, predicted={"cosserat": 0.03})])
+    assert v.verdict == "refuted", v.text
+    assert v.numbers["size_chi2"] == pytest.approx(108.0)
+    assert "predicts one these errors reject" in v.evidence
 
 
 def test_a_sign_hidden_in_the_noise_cannot_decide_the_model():
