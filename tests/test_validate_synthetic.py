@@ -141,3 +141,38 @@ def test_a_band_thinner_than_a_bin_has_no_delta_and_decides_no_delta_law(tmp_pat
     v = verdicts(report)
     assert (v["smoother"], v["rough"]) == ("undecided", "undecided")
     assert "Delta usable at 0 gap(s)" in report.verdict("rough").evidence
+
+
+def test_cosserat_data_at_large_gaps_support_the_rough_wall_law(tmp_path):
+    """Fully rough walls at H/d = 80, 160, 320, plane shear under gravity and Couette at
+    R_i/H = 1: the model's own slopes there are 0.39 and 0.41, on their way to the limit 1/3.
+    Neither series may refute the law its own model predicts (before the verdict compared the
+    data with the model's slope wherever they missed 1/3, the Couette series of this seed
+    was refuted and the verdict mixed)."""
+    synthetic_corpus(tmp_path, "cosserat", plane={"rough": (80.0, 160.0, 320.0)},
+                     couette=(80.0, 160.0, 320.0), parameters={"rough": ROUGH}, noise=0.04,
+                     seed=0)  # fmt: skip
+    report = validate(tmp_path, models=["cosserat"])
+    v = report.verdict("rough")
+    assert v.verdict == "supported", v.text
+    plane = next(g for g in report.groups if g.cell == "plane")
+    assert abs(plane.slope.slope - 1 / 3) <= 2 * plane.slope.stderr
+    assert plane.slope.slope > 4 * plane.slope.stderr  # 0 is far outside
+
+
+@pytest.mark.xfail(
+    reason="per-run refits let the Cosserat model follow any Delta(H) (delta 21 -> 17 deg "
+    "across the gaps, K at its bound 0), so the data 'agree with the model's own slope' and "
+    "the verdict is undecided; one joint calibration per series (branch series) should "
+    "refute it",
+    strict=False,
+)
+def test_ngf_data_whose_delta_grows_at_smooth_walls_refute_the_smoother_law(tmp_path):
+    """NGF has no wall friction: its Delta grows at smooth walls as at rough
+    ones (5.3, 7.1, 8.9 d at H/d = 20, 40, 80: slope 0.39 +- 0.05), which the smoother-wall
+    law denies."""
+    synthetic_corpus(tmp_path, "ngf", plane={"smooth": (20.0, 40.0, 80.0)}, noise=0.03)
+    report = validate(tmp_path, models=["cosserat"])
+    (series,) = report.groups
+    assert series.slope.slope > 5 * series.slope.stderr
+    assert report.verdict("smoother").verdict == "refuted", report.verdict("smoother").text

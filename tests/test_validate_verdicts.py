@@ -231,6 +231,21 @@ def test_data_that_follow_the_model_short_of_its_limit_leave_the_law_undecided()
     assert v.verdict == "undecided" and "larger gaps are needed" in v.evidence
 
 
+def test_data_that_follow_the_model_near_its_limit_do_not_refute_the_law():
+    """Slope 0.45 +- 0.051 over H/d = 80-320 (5% errors), the model's own 0.41 there: the data
+    miss 1/3 by 2.3 se but agree with the model, whose slope is itself within 2 se of 1/3
+    (a Couette series made by the Cosserat model at these gaps was refuted so in 2 of 4
+    seeds, ``tests/test_validate_synthetic.py``)."""
+    s = series(0.45, rough=True, cosserat=0.41, gaps=(80.0, 160.0, 320.0), rel_err=0.05)
+    assert abs(s.slope.slope - 1 / 3) > 2 * s.slope.stderr
+    assert abs(0.41 - 1 / 3) < 2 * s.slope.stderr
+    v = delta_law_verdict([s], "rough")
+    assert v.verdict == "undecided" and "larger gaps are needed" in v.evidence
+    # the same data where the model's slope is far from them: refuted
+    far = series(0.45, rough=True, cosserat=0.2, gaps=(80.0, 160.0, 320.0), rel_err=0.05)
+    assert delta_law_verdict([far], "rough").verdict == "refuted"
+
+
 def test_too_few_gaps_and_no_series_are_undecided_and_a_bad_claim_is_an_error():
     assert delta_law_verdict([series(0.0, gaps=(20.0, 40.0))], "smoother").verdict == "undecided"
     assert delta_law_verdict([], "rough").verdict == "undecided"
