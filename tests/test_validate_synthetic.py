@@ -16,7 +16,8 @@ claim, the verdict that follows from the claim's definition (``docs/validation.m
   decided from it (a bin's width is not a thickness).
 
 Only the Cosserat model is fitted (the spin claims need its predicted departure, and the
-other fits cost most of the time): all these tests take about 40 s on one core.
+other fits cost most of the time): these tests took 30 s together (pytest's durations, at a
+load average of 2-7 on two cores). The larger version: ``benchmarks/bench_validate_synthetic.py``.
 """
 
 from __future__ import annotations
