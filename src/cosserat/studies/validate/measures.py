@@ -6,7 +6,10 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
 * **Delta** of the data: the distance from the moving wall's surface at which the velocity
   (linear between bins) has fallen to a fraction f of its value in the bin nearest to that
   wall, relative to u_0 (1/2 for plane shear without gravity, else 0); its standard error from
-  :data:`DRAWS` redraws of the velocities within their standard errors. A band with
+  :data:`DRAWS` redraws of the velocities within their standard errors (correlated between
+  neighbouring bins as the sidecar's ``bin_correlation.u`` says, independent without it). A
+  band whose velocity falls to f within one bin of the nearest is not resolved by the bins: it
+  has no Delta (the value would be the bins' width, whatever the band). A band with
   Delta > :data:`FILLS_GAP` H fills its gap: the fixed wall shapes it, so it cannot test a law
   of Delta against the gap.
 * **Spin at a wall**: z = (omega - half vorticity)/se over the bins within ``near_wall_d`` of
@@ -97,6 +100,29 @@ def thickness_of(distance_d: FloatArray, u: FloatArray, u0: float, f: float) -> 
     return float(d0 + (target - u_a) * (d1 - d0) / (u_b - u_a))
 
 
+def velocity_correlation(run: Run) -> float:
+    """The lag-1 correlation of neighbouring bins' velocity errors that the sidecar records
+    (``bin_correlation.u``, ``docs/dem.md``), 0 where it does not give one in [0, 1) [-]."""
+    record = run.meta.get("bin_correlation")
+    rho = record.get("u") if isinstance(record, dict) else None
+    ok = isinstance(rho, int | float) and not isinstance(rho, bool) and 0.0 <= rho < 1.0
+    return float(rho) if ok else 0.0
+
+
+def correlated_normal(se: FloatArray, rho: float, rng: np.random.Generator) -> FloatArray:
+    """Gaussian errors of standard deviations ``se`` with lag-1 correlation ``rho`` between
+    neighbouring bins (a stationary AR(1) sequence scaled bin by bin) [unit of se]."""
+    se = np.asarray(se, dtype=float)
+    e = rng.standard_normal(se.size)
+    x = np.empty(se.size)
+    if se.size:
+        x[0] = e[0]
+    c = math.sqrt(1.0 - rho * rho)
+    for i in range(1, se.size):
+        x[i] = rho * x[i - 1] + c * e[i]
+    return se * x
+
+
 def measured_thickness(run: Run, f: float = DEFAULT_F, seed: int = 0) -> Thickness:
     """Delta of the run's data with its standard error (module docstring)."""
     m = run.measured()
@@ -109,11 +135,22 @@ def measured_thickness(run: Run, f: float = DEFAULT_F, seed: int = 0) -> Thickne
             f"the measured velocity does not fall to {f:g} of its wall value within the gap",
             run.gap_d,
         )
+    if value <= m.distance_d[1]:
+        return Thickness(
+            None,
+            None,
+            f"the band is not resolved: the measured velocity falls to {f:g} of its wall value "
+            f"within one bin of the nearest (Delta < {m.distance_d[1]:.3g} d; bins of "
+            f"{m.distance_d[1] - m.distance_d[0]:.3g} d)",
+            run.gap_d,
+        )
     rng = np.random.default_rng(seed)
     assert m.u_err is not None
+    rho = velocity_correlation(run)
     draws = []
     for _ in range(DRAWS):
-        d = thickness_of(m.distance_d, m.u_over_uw + rng.normal(0.0, m.u_err), u0, f)
+        noise = correlated_normal(m.u_err, rho, rng)
+        d = thickness_of(m.distance_d, m.u_over_uw + noise, u0, f)
         if d is not None:
             draws.append(d)
     if len(draws) < 0.9 * DRAWS:

@@ -10,7 +10,9 @@ p-values, the runs used) and what data would change it. The rules:
   run's test adds its sheared walls, the pooled test adds every run's (degrees of freedom
   added; bins and runs taken as independent). "supported" when the pooled p <
   :data:`P_SIGNIFICANT` and at least half the runs show a departure at p < :data:`P_CONSISTENT`
-  ("mixed" when fewer do: the pooled result rests on a few runs); "refuted" when the pooled p
+  ("mixed" when fewer do: the pooled result rests on a few runs; a run that does not depart
+  and whose errors would not have shown the departure the Cosserat model predicts for it, at
+  p < :data:`P_CONSISTENT`, counts neither way); "refuted" when the pooled p
   >= :data:`P_CONSISTENT` although the departure the Cosserat model predicts (fitted to the
   same velocities) would have given a pooled p < :data:`P_SIGNIFICANT` at these errors;
   "undecided" otherwise.
@@ -22,15 +24,17 @@ p-values, the runs used) and what data would change it. The rules:
   reject (pooled chi^2 of (departure - model)/se, p < :data:`P_SIGNIFICANT`), or predicts none
   (|p_m| <= :data:`NO_DEPARTURE`, a rheology without a spin of its own) where the data depart;
   "supported" when the sign agrees everywhere it is determined and the size is not rejected;
-  "mixed" when the sign agrees at some walls and is opposite at others; "undecided" when no wall
-  has a determined sign.
+  "mixed" when the sign agrees at some walls and is opposite at others. When no wall has a
+  determined sign: "refuted" if the model's departure is rejected all the same (chi^2 of
+  data - model over every sheared wall's near-wall bins, p < :data:`P_SIGNIFICANT`: the model
+  predicts a departure these errors would see and the data have none), else "undecided".
 * **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the slope s
   +- se of ln Delta against ln(H/d) (weighted by the errors of Delta) over at least
   :data:`MIN_GAPS` gaps, runs whose band fills its gap left out (they cannot test a law of the
   gap, either way); a claimed exponent c is "supported" when |s - c| <= 2 se and the other
   claimed exponent c' is excluded (|s - c'| > 2 se), "refuted" when |s - c| > 2 se unless the
-  Cosserat model fitted to the same runs misses c too and the data agree with its slope (the
-  claims are limits H/d -> infinity: "undecided", larger gaps needed), "undecided" otherwise.
+  data agree with the slope of the Cosserat model fitted to the same runs (within 2 se: the
+  claims are limits H/d -> infinity, "undecided", larger gaps needed), "undecided" otherwise.
   Series that disagree make the verdict "mixed".
 """
 
@@ -171,6 +175,16 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
     p_run = {r: 1.0 if v[2] is None else v[2] for r, v in per_run.items()}  # p may be 0.0
     showing = [r for r in runs if p_run[r] < P_CONSISTENT]
     significant = [r for r in runs if p_run[r] < P_SIGNIFICANT]
+    # a run whose errors could not have shown the departure the model predicts for it is
+    # neither for nor against: it does not make the runs disagree
+    blind = []
+    for r in runs:
+        own = [w for w in tested if w.run == r]
+        if r in showing or not any(model in w.predicted for w in own):
+            continue
+        n_r = sum(w.dof for w in own)
+        if float(chi2_dist.sf(n_r + sum(w.shift(model) for w in own), n_r)) >= P_CONSISTENT:
+            blind.append(r)
     pooled = f"pooled over {len(runs)} runs: chi^2 = {chi2:.4g} for {dof} bins (p = {p:.2g})"
     pooled += "".join(
         f"; {role} walls alone: chi^2 = {c:.4g} for {n} bins (p = {pp:.2g})"
@@ -194,12 +208,19 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
     needed = float(chi2_dist.isf(P_SIGNIFICANT, dof)) - dof
     p_seen = float(chi2_dist.sf(dof + shift, dof))
     numbers["p_if_model_departure_were_there"] = p_seen
+    numbers["runs_too_noisy_to_show_the_model_departure"] = blind
+    too_noisy = (
+        f"; {len(blind)} do not and could not have: the departure the {model} model predicts "
+        f"for them would not give p < {P_CONSISTENT:g} at their errors ({', '.join(blind)})"
+        if blind
+        else ""
+    )
     head = (
         f"{pooled}. {len(showing)} of {len(runs)} runs depart at p < {P_CONSISTENT:g} "
-        f"({len(significant)} at p < {P_SIGNIFICANT:g}). {detail}. {SPIN_METHOD}"
+        f"({len(significant)} at p < {P_SIGNIFICANT:g}){too_noisy}. {detail}. {SPIN_METHOD}"
     )
     if p < P_SIGNIFICANT:
-        if 2 * len(showing) >= len(runs):
+        if 2 * len(showing) >= len(runs) - len(blind):
             return Verdict(
                 key,
                 "supported",
@@ -214,8 +235,9 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         return Verdict(
             key,
             "mixed",
-            f"Mixed: the pooled test departs, but only {len(showing)} of {len(runs)} runs "
-            f"do; the pooled result rests on them. {head}",
+            f"Mixed: the pooled test departs, but only {len(showing)} of "
+            f"{len(runs) - len(blind)} runs that could show it do; the pooled result rests on "
+            f"them. {head}",
             "more runs at the conditions of those that do not depart, to tell a real "
             "difference between runs from scatter.",
             tuple(runs),
@@ -307,6 +329,23 @@ def spin_model_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Ve
         "sign_undetermined": [f"{w.run}:{w.wall}" for w in undetermined],
     }
     if not determined:
+        c, n, pp = chi2_p(
+            np.concatenate([(w.departure - w.predicted[model]) / w.stderr for w in tested])
+        )
+        numbers.update({"size_chi2": c, "size_dof": n, "size_p": pp})
+        if pp is not None and pp < P_SIGNIFICANT:
+            return Verdict(
+                key,
+                "refuted",
+                f"Refuted: the data show no departure of determined sign, but the {model} "
+                f"model, fitted to the velocity, predicts one these errors reject: chi^2 of "
+                f"data - model = {c:.4g} for {n} near-wall bins (p = {pp:.2g}). {detail}. "
+                f"{method}",
+                "runs with a departure of the size the model predicts, or model parameters "
+                "(a joint calibration on the spin) whose departure is smaller.",
+                runs,
+                numbers,
+            )
         best = min(tested, key=lambda w: w.first_se or math.inf)
         return Verdict(
             key,
@@ -586,17 +625,16 @@ def delta_law_verdict(series: Sequence[DeltaSeries], which: str) -> Verdict:
                 ("supported", text, f"a slope more than 2 se from {target:.3g} at larger gaps")
             )
         elif abs(slope.slope - target) > 2 * se:
-            if (
-                cos is not None
-                and abs(cos.slope - target) > 2 * se
-                and abs(slope.slope - cos.slope) <= 2 * se
-            ):
+            # the claimed exponent is the model's limit H/d -> infinity; data that agree with
+            # the model's own slope at these gaps do not refute it, even where that slope is
+            # itself within 2 se of the limit (data made by the model were refuted so)
+            if cos is not None and abs(slope.slope - cos.slope) <= 2 * se:
                 calls.append(
                     (
                         "undecided",
-                        text + "; at these gaps the Cosserat model itself does not show the "
-                        f"exponent {target:.3g} of the limit H/d -> infinity, and the data agree "
-                        "with the model's own slope: larger gaps are needed to test the law",
+                        text + f"; the data agree with the Cosserat model's own slope at these "
+                        f"gaps ({cos.slope:.3f}), whose exponent {target:.3g} is a limit H/d -> "
+                        "infinity: larger gaps are needed to test the law",
                         "gaps large enough that the model's own slope reaches the limit",
                     )
                 )

@@ -1,0 +1,179 @@
+"""``validate`` on synthetic corpora whose answers are known (issue 18, "How it is shown").
+
+Each corpus is made by one model (:mod:`cosserat.studies.validate.synthetic`: bins one grain
+wide, errors growing with u as the DEM's block errors do, AR(1) noise correlated at rho = 0.4
+between neighbouring bins, quasi-static wall speed) and ``validate`` must return, for each
+claim, the verdict that follows from the claim's definition (``docs/validation.md``):
+
+* data made by the Cosserat model depart from half the vorticity near the moving wall, with
+  the sign and size the model (fitted to the velocity) predicts: ``spin`` and ``spin_model``
+  supported;
+* data made by mu(I) or NGF turn with the material (spin = half the vorticity), where the
+  Cosserat model fitted to the same velocities predicts a departure these errors would see:
+  both refuted;
+* the same corpora with errors ten times larger: undecided;
+* a mu(I) band thinner than a bin has no measurable Delta, so neither Delta law can be
+  decided from it (a bin's width is not a thickness).
+
+Only the Cosserat model is fitted (the spin claims need its predicted departure, and the
+other fits cost most of the time): these tests took 30 s together (pytest's durations, at a
+load average of 2-7 on two cores). The larger version: ``benchmarks/bench_validate_synthetic.py``.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import read_run
+from cosserat.errors import ParameterError
+from cosserat.studies.validate import measured_thickness, validate
+from cosserat.studies.validate.synthetic import synthetic_corpus, synthetic_run
+
+ROUGH = {"delta": 25.5}  # tan(delta) = sin(phi) at phi = 28.5 deg: fully rough
+SMOOTH = {"delta": 15.0}  # a wall smoother than the material
+
+
+def corpus(folder, model, *, noise, seed=0):
+    """A plane cell under gravity (B = 1) with each wall, and a Couette cell at R_i/H = 1, all
+    at H = 20 d."""
+    params = {"rough": ROUGH, "smooth": SMOOTH} if model == "cosserat" else None
+    synthetic_corpus(folder, model, plane={"rough": (20.0,), "smooth": (20.0,)},
+                     couette=(20.0,), parameters=params, noise=noise, seed=seed)  # fmt: skip
+    return folder
+
+
+def verdicts(report):
+    return {v.key: v.verdict for v in report.verdicts}
+
+
+# --------------------------------------------------------------------------- the generator
+def test_a_synthetic_run_reads_back_in_the_corpus_format_with_its_truth(tmp_path):
+    path = synthetic_run(tmp_path, "r", "cosserat", "couette", 20.0, parameters=ROUGH,
+                         noise=1e-6, rho=0.4, seed=3)  # fmt: skip
+    run = read_run(path)
+    assert run.notes == ()  # every column described, every sidecar key in the format
+    meta = json.loads(path.with_suffix(".json").read_text())
+    assert meta["quasi_static"] is True and meta["bin_correlation"]["u"] == 0.4
+    assert meta["synthetic_model"]["model"] == "cosserat"
+    assert meta["Ri_d"] == 20.0 and run.cell_parameters()["Ri"] == 1.0
+    near = meta["wall_inertial_number"]["inner"]["per_bin"]
+    assert len(near) == 3 and max(near) <= 1e-3
+    u, se = run.quantity("u")
+    assert u[0] > 0.3 and np.all(np.diff(u) < 1e-5)  # the inner wall drives the flow
+    assert se[0] > 10 * se[-1]  # errors grow with the velocity, as block errors do
+    # noise-free: omega - half vorticity is the model's departure, positive at the wall
+    omega, _ = run.quantity("omega")
+    half, _ = run.quantity("half_vorticity")
+    assert half[0] < 0.0 and omega[0] - half[0] > 0.02
+    # the sign convention of the corpus: sigma_rt > 0 when the inner cylinder drags +t
+    assert np.all(run.columns["sigma_rt"] > 0.0)
+
+
+def test_the_noise_is_correlated_between_neighbouring_bins_as_the_sidecar_says(tmp_path):
+    lags = []
+    truth = read_run(synthetic_run(tmp_path, "t", "ngf", "plane", 80.0, noise=1e-6,
+                                   stress_noise=1e-9))  # fmt: skip
+    for seed in range(20):
+        run = read_run(synthetic_run(tmp_path, f"r{seed}", "ngf", "plane", 80.0, noise=0.03,
+                                     rho=0.4, seed=seed))  # fmt: skip
+        z = (run.columns["sigma_yy"] - truth.columns["sigma_yy"]) / run.columns["sigma_yy_se"]
+        lags.append(np.corrcoef(z[:-1], z[1:])[0, 1])
+    assert np.mean(lags) == pytest.approx(0.4, abs=0.06)  # 20 x 79 pairs: se of the mean ~0.02
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"cell": "channel"}, "cell must be 'plane' or 'couette'"),
+        ({"wall": "bumpy"}, "wall must be one of rough, smooth"),
+        ({"rho": 1.0}, "rho must lie in [0, 1); got 1"),
+        ({"noise": -0.1}, "noise must lie in"),
+        ({"model": "kinetic-theory"}, "unknown model 'kinetic-theory'"),
+        ({"parameters": {"I_w": 0.01}}, "I_w is set by wall_speed"),
+    ],
+)
+def test_bad_inputs_are_one_line_errors(tmp_path, kwargs, message):
+    args = {"model": "mui", "cell": "plane"} | kwargs
+    with pytest.raises(ParameterError, match=_escape(message)):
+        synthetic_run(tmp_path, "r", args.pop("model"), args.pop("cell"), 20.0, **args)
+
+
+def _escape(text):
+    import re
+
+    return re.escape(text)
+
+
+# --------------------------------------------------------------------------- the verdicts
+def test_cosserat_data_support_both_spin_claims_and_noisy_ones_cannot_decide(tmp_path):
+    report = validate(corpus(tmp_path / "clean", "cosserat", noise=0.01), models=["cosserat"])
+    v = verdicts(report)
+    assert v["spin"] == "supported", report.verdict("spin").text
+    assert v["spin_model"] == "supported", report.verdict("spin_model").text
+    assert report.verdict("spin_model").numbers["opposite_sign"] == []
+    noisy = validate(corpus(tmp_path / "noisy", "cosserat", noise=0.3), models=["cosserat"])
+    v = verdicts(noisy)
+    assert v["spin"] == "undecided", noisy.verdict("spin").text
+    assert v["spin_model"] == "undecided", noisy.verdict("spin_model").text
+    assert "errors smaller by a factor" in noisy.verdict("spin").would_change
+
+
+@pytest.mark.parametrize("model", ["mui", "ngf"])
+def test_data_that_turn_with_the_material_refute_both_spin_claims(tmp_path, model):
+    report = validate(corpus(tmp_path, model, noise=0.01, seed=7), models=["cosserat"])
+    v = verdicts(report)
+    assert v["spin"] == "refuted", report.verdict("spin").text
+    assert v["spin_model"] == "refuted", report.verdict("spin_model").text
+    assert "predicts one these errors reject" in report.verdict("spin_model").evidence
+
+
+def test_a_band_thinner_than_a_bin_has_no_delta_and_decides_no_delta_law(tmp_path):
+    """mu(I)'s band at I_w = V d / H ~ 1e-4 is a fraction of a grain: the velocity falls from
+    its first bin's value to nothing in the next bin, whatever the gap."""
+    synthetic_corpus(tmp_path, "mui", plane={"rough": (10.0, 14.0, 20.0),
+                                             "smooth": (10.0, 14.0, 20.0)}, noise=0.01)  # fmt: skip
+    for path in sorted(tmp_path.glob("*.csv")):
+        t = measured_thickness(read_run(path))
+        assert t.value is None and "the band is not resolved" in t.reason
+    report = validate(tmp_path, models=["cosserat"])
+    v = verdicts(report)
+    assert (v["smoother"], v["rough"]) == ("undecided", "undecided")
+    assert "Delta usable at 0 gap(s)" in report.verdict("rough").evidence
+
+
+def test_cosserat_data_at_large_gaps_support_the_rough_wall_law(tmp_path):
+    """Fully rough walls at H/d = 80, 160, 320, plane shear under gravity and Couette at
+    R_i/H = 1: the model's own slopes there are 0.39 and 0.41, on their way to the limit 1/3.
+    Neither series may refute the law its own model predicts (before the verdict compared the
+    data with the model's slope wherever they missed 1/3, the Couette series of this seed
+    was refuted and the verdict mixed)."""
+    synthetic_corpus(tmp_path, "cosserat", plane={"rough": (80.0, 160.0, 320.0)},
+                     couette=(80.0, 160.0, 320.0), parameters={"rough": ROUGH}, noise=0.04,
+                     seed=0)  # fmt: skip
+    report = validate(tmp_path, models=["cosserat"])
+    v = report.verdict("rough")
+    assert v.verdict == "supported", v.text
+    plane = next(g for g in report.groups if g.cell == "plane")
+    assert abs(plane.slope.slope - 1 / 3) <= 2 * plane.slope.stderr
+    assert plane.slope.slope > 4 * plane.slope.stderr  # 0 is far outside
+
+
+@pytest.mark.xfail(
+    reason="per-run refits let the Cosserat model follow any Delta(H) (delta 21 -> 17 deg "
+    "across the gaps, K at its bound 0), so the data 'agree with the model's own slope' and "
+    "the verdict is undecided; one joint calibration per series (branch series) should "
+    "refute it",
+    strict=False,
+)
+def test_ngf_data_whose_delta_grows_at_smooth_walls_refute_the_smoother_law(tmp_path):
+    """NGF has no wall friction: its Delta grows at smooth walls as at rough
+    ones (5.3, 7.1, 8.9 d at H/d = 20, 40, 80: slope 0.39 +- 0.05), which the smoother-wall
+    law denies."""
+    synthetic_corpus(tmp_path, "ngf", plane={"smooth": (20.0, 40.0, 80.0)}, noise=0.03)
+    report = validate(tmp_path, models=["cosserat"])
+    (series,) = report.groups
+    assert series.slope.slope > 5 * series.slope.stderr
+    assert report.verdict("smoother").verdict == "refuted", report.verdict("smoother").text
