@@ -125,9 +125,7 @@ def planar_layout_3d(cell: PlaneShearDEM) -> Layout:
     a = cell.grains.d_max * LATTICE_MARGIN
     nx, nz = math.floor(width / a), math.floor(depth / a)
     if min(nx, nz) < 2:
-        raise ParameterError(
-            f"the cell is narrower than two grains ({width:g} d x {depth:g} d)"
-        )
+        raise ParameterError(f"the cell is narrower than two grains ({width:g} d x {depth:g} d)")
     dx, dz = width / nx, depth / nz
     dy = max(math.sqrt(max(a * a - 0.25 * (dx * dx + dz * dz), 0.0)), 0.5 * a)
     layers = math.ceil(n_free / (nx * nz))
