@@ -161,6 +161,7 @@ def _sampling(every: int, resume: int | None = None, dim: int = 2) -> list[str]:
     """Computes and dumps of the sheared stage; resumed from step ``resume``: appended, and
     the first sample after it (the one at ``resume`` is in the dumps already, taken before the
     next chunk's setup re-evaluated the forces)."""
+    columns: tuple[str, ...]
     if dim == 3:
         pair = "compute cf all pair/local fx fy fz p1 p2 p3 p10 p11 p12"
         columns = ATOM_COLUMNS_3D
