@@ -137,10 +137,16 @@ def test_cli_writes_a_3d_deck_and_refuses_half_options(tmp_path):
     text = (tmp_path / "deck.lmp").read_text()
     assert "dimension 3" in text and "periodic depth 6 d" in text
     for args, message in (
-        (("--dim", "3"), "cosserat: error: --dim 3 needs --depth, the periodic depth along z [d]"),
-        (("--depth", "6"), "cosserat: error: --depth is the periodic depth of a 3-D cell"),
-    ):
-        done = _cli("dem", "deck", "plane", "--out", str(tmp_path / "x"), *args)
+        (("plane", "--dim", "3"),
+         "cosserat: error: --dim 3 needs --depth, the periodic depth along z [d]"),
+        (("plane", "--depth", "6"),
+         "cosserat: error: --depth is the periodic depth of a 3-D cell"),
+        (("couette", "--dim", "3", "--depth", "6"),
+         "cosserat: error: --dim 3 and --depth are for the plane cell only; got couette"),
+        (("plane", "--dim", "3", "--depth", "6", "--wall", "smooth-frictional"),
+         "cosserat: error: a 3-D plane cell takes glued-grains walls only"),
+    ):  # fmt: skip
+        done = _cli("dem", "deck", *args, "--out", str(tmp_path / "x"))
         assert done.returncode == 2
         lines = done.stderr.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith(message), done.stderr

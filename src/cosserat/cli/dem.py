@@ -72,6 +72,10 @@ def _cell(args: argparse.Namespace):
         restart_every=args.restart_every,
     )
     common = {"gap": args.gap_d, "wall": wall, "contact": contact, "run": run, "seed": args.seed}
+    if args.cell != "plane" and (args.dim != 2 or args.depth is not None):
+        from .common import UsageError
+
+        raise UsageError(f"--dim 3 and --depth are for the plane cell only; got {args.cell}")
     if args.cell == "plane":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
         three = {"dim": 3, "depth": args.depth} if args.dim == 3 else {}
