@@ -315,3 +315,30 @@ def test_a_resumed_3d_run_is_the_run_made_in_one_go(tmp_path):
     a, b = analyse_cell(cell, whole), analyse_cell(cell, parts)
     for key, col in a.columns.items():
         np.testing.assert_array_equal(b.columns[key], col, err_msg=key)
+
+
+# ---------------------------------------------------------------- the twins side by side
+def test_compare_twins_on_the_2d_twin_and_itself(tmp_path):
+    """tools/compare_twins.py (run as a script): a run against itself agrees in every bin,
+    and its measures are the shipped twin's (Delta 6.6 d, wall stress ratio 0.321)."""
+    import json
+
+    csv = TWIN_2D / "profile.csv"
+    out = tmp_path / "twins.json"
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "tools" / "compare_twins.py"), str(csv), str(csv),
+         "--json", str(out)],
+        capture_output=True, text=True, check=False,
+        env={"PYTHONPATH": str(ROOT / "src"), "PATH": "/usr/bin:/bin"},
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "| Delta [d] | 6.61 +- 0.65 | 6.61 +- 0.65 |" in done.stdout
+    result = json.loads(out.read_text())
+    a, b = result["runs"]
+    assert a == b and a["dim"] == 2 and a["quasi_static"] is True
+    assert a["wall_stress_ratio"] == pytest.approx(0.321, abs=5e-4)
+    assert a["fills_gap"] is True and a["spin_first_bin"] < 0
+    for column in ("u", "omega"):
+        assert result["profiles"][column] == {
+            "within_2se": 1.0, "chi2_per_bin": 0.0, "consistent": True
+        }  # fmt: skip
