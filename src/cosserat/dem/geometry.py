@@ -31,6 +31,8 @@ class Layout:
     kind: np.ndarray
     box: tuple[float, float, float, float]
     info: dict
+    z: np.ndarray | None = None
+    """3-D cells: the coordinate along the periodic depth [d] (``info["depth"]``); None in 2-D."""
 
     @property
     def n_free(self) -> int:
@@ -90,6 +92,75 @@ def planar_layout(cell: PlaneShearDEM | ChannelDEM) -> Layout:
         "initial_gap": y_top - dw,
     }
     return Layout(all_x, all_y, all_d, kind, box, info)
+
+
+def _wall_sheet(width: float, depth: float, spacing: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """Centres (x, z) of a triangular sheet of glued spheres filling a periodic width x depth:
+    rows along x of spacing about ``spacing``, an even number of rows along z (each shifted by
+    half a spacing from the last) about ``spacing`` sqrt(3)/2 apart; returns x, z and the
+    spacing along x."""
+    nx, sx = _wall_row(width, spacing)
+    nz = max(2, 2 * round(depth / (spacing * math.sqrt(3.0))))
+    sz = depth / nz
+    xs = [(np.arange(nx) + 0.5 * (k % 2)) * sx for k in range(nz)]
+    zs = [np.full(nx, k * sz) for k in range(nz)]
+    return np.concatenate(xs), np.concatenate(zs), sx
+
+
+def planar_layout_3d(cell: PlaneShearDEM) -> Layout:
+    """Spheres between two sheets of glued spheres (:func:`_wall_sheet`) at y = 0 (centres of
+    the lower sheet) and above; periodic along x (``width``) and z (``depth``).
+
+    The free grains start on a loose lattice of square layers (spacing at least 1.02 of the
+    largest diameter) stacked with a shift of half a spacing along x and z, as in a face-centred
+    cubic packing; the lower wall's surface (top of its spheres) is at y = dw / 2: the
+    profiles' y = 0.
+    """
+    rng = np.random.default_rng(cell.seed)
+    width, depth = cell.width, cell.depth
+    dw = cell.wall.glued_diameter
+    wx, wz, s = _wall_sheet(width, depth, cell.wall.glued_spacing)
+    n_wall = wx.size
+    n_free = round(cell.nu_nominal * width * depth * cell.gap / cell.grains.mean_volume)
+    a = cell.grains.d_max * LATTICE_MARGIN
+    nx, nz = math.floor(width / a), math.floor(depth / a)
+    if min(nx, nz) < 2:
+        raise ParameterError(f"the cell is narrower than two grains ({width:g} d x {depth:g} d)")
+    dx, dz = width / nx, depth / nz
+    dy = max(math.sqrt(max(a * a - 0.25 * (dx * dx + dz * dz), 0.0)), 0.5 * a)
+    layers = math.ceil(n_free / (nx * nz))
+    y0 = dw / 2.0 + a / 2.0 + 0.02
+    sites_y = y0 + dy * np.arange(layers)
+    ii, kk = np.meshgrid(np.arange(nx), np.arange(nz), indexing="ij")
+    xs, ys, zs = [], [], []
+    for k, yk in enumerate(sites_y):
+        xs.append(((ii + 0.5 * (k % 2)) * dx).ravel())
+        zs.append(((kk + 0.5 * (k % 2)) * dz).ravel())
+        ys.append(np.full(nx * nz, yk))
+    x = np.concatenate(xs)[:n_free]
+    y = np.concatenate(ys)[:n_free]
+    z = np.concatenate(zs)[:n_free]
+    d = _diameters(rng, n_free, cell.grains.polydispersity)
+    y_top = sites_y[-1] + a / 2.0 + dw / 2.0 + 0.02
+    shift_x, shift_z = rng.uniform(0.0, s), rng.uniform(0.0, depth)
+    all_x = np.concatenate([x, wx, (wx + shift_x) % width])
+    all_y = np.concatenate([y, np.zeros(n_wall), np.full(n_wall, y_top)])
+    all_z = np.concatenate([z, wz, (wz + shift_z) % depth])
+    all_d = np.concatenate([d, np.full(2 * n_wall, dw)])
+    kind = np.concatenate(
+        [np.full(n_free, FREE), np.full(n_wall, LOWER_WALL), np.full(n_wall, UPPER_WALL)]
+    )
+    box = (0.0, width, -dw, y_top + dw)
+    info = {
+        "length": width,
+        "depth": depth,
+        "wall_area": width * depth,
+        "wall_count": n_wall,
+        "wall_spacing": s,
+        "surface_offset": dw / 2.0,
+        "initial_gap": y_top - dw,
+    }
+    return Layout(all_x, all_y, all_d, kind, box, info, z=all_z)
 
 
 def annular_layout(cell: CouetteDEM) -> Layout:

@@ -61,6 +61,11 @@ class Grains:
         return 1.0 + self.polydispersity
 
     @property
+    def mean_volume(self) -> float:
+        """Mean sphere volume pi <D^3> / 6 = pi (1 + p^2) / 6 [d^3] (3-D cells)."""
+        return math.pi / 6.0 * (1.0 + self.polydispersity**2)
+
+    @property
     def mean_area(self) -> float:
         """Mean disk area pi <D^2> / 4 [d^2] of the uniform diameter distribution."""
         return math.pi / 4.0 * (1.0 + self.polydispersity**2 / 3.0)
@@ -113,9 +118,13 @@ class Contact:
         _check("restitution", self.restitution, 0.0, 1.0)
         _check("rolling_friction", self.rolling_friction, 0.0, 1.0, open_low=False)
 
-    def collision_time(self, grains: Grains) -> float:
-        """Undamped duration of a contact between two of the smallest grains [time]."""
-        m = grains.density * math.pi / 4.0 * grains.d_min**2
+    def collision_time(self, grains: Grains, dim: int = 2) -> float:
+        """Undamped duration of a contact between two of the smallest grains [time]: disks
+        (``dim`` 2, mass rho_s pi d^2 / 4) or spheres (``dim`` 3, mass rho_s pi d^3 / 6)."""
+        if dim == 3:
+            m = grains.density * math.pi / 6.0 * grains.d_min**3
+        else:
+            m = grains.density * math.pi / 4.0 * grains.d_min**2
         return math.pi * math.sqrt(0.5 * m / self.kn)
 
     def describe(self) -> dict:
@@ -241,6 +250,11 @@ class RunLength:
         return self.steps // self.restart_every if self.restart_every else 1
 
 
+NU_NOMINAL = {2: 0.8, 3: 0.6}
+"""Nominal solids fraction of the plane cell's B by dimension [-]: disks near 0.8, spheres near
+0.6 (random loose to random close packing is 0.55-0.64)."""
+
+
 @dataclass(frozen=True)
 class PlaneShearDEM:
     """Plane shear between two walls, periodic along x; the upper wall is driven at speed
@@ -257,6 +271,16 @@ class PlaneShearDEM:
         Gravity parameter rho_s nu g H / N [-] with nu = ``nu_nominal``; gravity along -y; 0: none.
     wall_speed : float
         Upper-wall speed V [sqrt(N / rho_s)].
+    nu_nominal : float or None
+        Nominal solids fraction in B [-]; None: :data:`NU_NOMINAL` of the dimension (0.8 for
+        disks, 0.6 for spheres).
+    dim : {2, 3}
+        2: disks (the corpus); 3: spheres in a slab periodic along x and z, of depth ``depth``,
+        between walls of glued spheres on a triangular lattice (``docs/dem.md``, "Does it carry
+        to 3-D?"). Not in the deck's parameter line (the 3-D deck says it on its own line), so
+        the 2-D decks stay those of the corpus.
+    depth : float
+        3-D: periodic depth along z [d]; 0 in 2-D.
     """
 
     gap: float = 20.0
@@ -268,11 +292,28 @@ class PlaneShearDEM:
     contact: Contact = field(default_factory=Contact)
     run: RunLength = field(default_factory=RunLength)
     seed: int = 1
-    nu_nominal: float = 0.8
+    nu_nominal: float = None  # type: ignore[assignment]  # set in __post_init__ from dim
+    dim: int = field(default=2, repr=False)
+    depth: float = field(default=0.0, repr=False)
 
     cell = "plane"
 
     def __post_init__(self) -> None:
+        if self.dim not in (2, 3):
+            raise ParameterError(f"dim must be 2 or 3; got {shown(self.dim)}")
+        if self.nu_nominal is None:
+            object.__setattr__(self, "nu_nominal", NU_NOMINAL[self.dim])
+        if self.dim == 3:
+            _check("depth", self.depth, 4.0, 5000.0, open_low=False)
+            if self.wall.kind != "glued-grains":
+                raise ParameterError(
+                    "a 3-D plane cell takes glued-grains walls only (a smooth-frictional wall "
+                    f"of spheres at {SMOOTH_SPACING_D:g} d spacing would hold about "
+                    f"{round(1 / SMOOTH_SPACING_D**2 / 0.866):,} spheres per d^2); got "
+                    f"{self.wall.kind!r}"
+                )
+        elif self.depth != 0.0:
+            raise ParameterError(f"depth is for dim 3 only; got depth {shown(self.depth)} in 2-D")
         _check("gap", self.gap, 2.0, 2000.0)
         _check("width", self.width, 4.0, 5000.0)
         _check("B", self.B, 0.0, 100.0, open_low=False)
