@@ -118,7 +118,7 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
             f"cell: use one of {', '.join(repr(m) for m in available)}"
         )
     accepted = _options(route)
-    unknown = sorted(set(options) - set(accepted))
+    unknown = sorted(set(options) - set(accepted)) if options else []
     if unknown:
         raise ParameterError(
             f"option(s) {', '.join(unknown)} do not apply to method={method!r}; it accepts "
