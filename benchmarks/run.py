@@ -53,7 +53,6 @@ import tempfile
 import time
 import timeit
 from collections.abc import Callable
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -252,7 +251,7 @@ def against_v010(rep: Report, old: V010 | None, rounds: int, min_time: float) ->
     times: dict[tuple[str, float, str], tuple[float, float | None]] = {}
     for name, base in BASE.items():
         for eps in EPS_V010:
-            p = replace(base, eps=eps)
+            p = base.with_values({"eps": eps})
             fns = {
                 "cheap": lambda p=p: solve(p, check=False, points=3, rtol=RTOL),
                 # v0.1.0's solve() computes the residuals; ours when they are first read
@@ -582,7 +581,7 @@ def against_solve_bvp(rep: Report, repeat: int, min_time: float) -> None:
     rows, user_ratio = [], {}
     for name, base in BASE.items():
         for eps in EPS_TARGET:
-            problem = replace(base, eps=eps)
+            problem = base.with_values({"eps": eps})
             ref = solve(problem, rtol=1e-12, points=2001, check=False)
             xi = ref.xi
             ours = []
@@ -686,7 +685,7 @@ def curves(rep: Report, old: V010 | None, repeat: int) -> None:
         "\n## 4. Curve bench: Delta at 50 eps from 1e-1 to 1e-6 for P1, P2, P3, C "
         f"(200 problems; best of {repeat}, after a warm-up call)\n"
     )
-    everything = [replace(p, eps=e) for p in BASE.values() for e in CURVE_EPS]
+    everything = [p.with_values({"eps": e}) for p in BASE.values() for e in CURVE_EPS]
     rows = []
     result: dict[float, dict[str, float]] = {}
     for rtol in (1e-8, 1e-6):

@@ -1031,6 +1031,33 @@ def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
 
 
 @njit(cache=True, nogil=True)
+def fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
+    """:func:`fields_at`, and where a profile's checks must look: (out, first, finite).
+
+    ``first`` is the first point whose yield radicand S (``eqn-nd_sigxy``, of the returned
+    sigma_yx, sigma_yy and m) is below ``-slack`` times its scale 2(A+1)(sigma_c sin phi)^2,
+    or NaN (-1 if none); ``finite`` is False if any field is not finite. A slack a little
+    below the profile check's round-off allowance (``RADICAND_ROUNDOFF``) flags every point
+    that check could reject and a few it accepts: the caller runs that check only on a flag,
+    so its decision and message are the same, and an unflagged profile costs no Python.
+    """
+    out = fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2)
+    A, sp = p[P_A], p[P_SIN_PHI]
+    first = -1
+    finite = True
+    for q in range(xi.shape[0]):
+        sc = out[F_SIGMA_YY, q]
+        sc_sin = sc * sp
+        S = k_radicand(out[F_SIGMA_YX, q], sc, out[F_M, q], A, sp)
+        if first < 0 and not S >= -slack * 2.0 * (A + 1.0) * sc_sin * sc_sin:
+            first = q
+        for r in range(N_FIELDS):
+            if not math.isfinite(out[r, q]):
+                finite = False
+    return out, first, finite
+
+
+@njit(cache=True, nogil=True)
 def predict_batch(params, xi, starts, rows, rtol, atol, f, max_steps):
     """Chosen fields of many problems at their own points, and nothing else.
 

@@ -84,43 +84,29 @@ def residuals(form: Formulation, evaluate: Evaluator, grid: FloatArray) -> dict[
     }
 
 
-class DeferredResiduals(Mapping[str, float]):
-    """:func:`residuals` of a profile, computed when first read (then kept).
+class Deferred(Mapping[str, float]):
+    """A dict of diagnostics computed when first read (then kept).
 
-    The check is the same independent recomputation, on the same grid; only its moment
-    changes: a caller that never reads the residuals (a fit, a sweep, a likelihood) does not
-    pay for ~6,400 quadrature nodes, several times the cost of the solve itself
-    (``docs/performance.md``). It behaves as the dict it stands for (reading, iteration,
-    equality), pickles as that dict, and computes it at most once per profile.
+    It behaves as the dict it stands for (reading, iteration, equality, truth), pickles as
+    that dict, and calls ``compute`` at most once.
 
     Parameters
     ----------
-    form : Formulation
-        The problem's equations (not the solver's).
-    evaluate : Evaluator
-        The profile's dense evaluator.
-    grid : callable () -> ndarray
-        The check grid, made when the residuals are read.
+    compute : callable () -> dict of str to float
+        Makes the values [-].
     """
 
-    __slots__ = ("_args", "_values")
+    __slots__ = ("_compute", "_values")
 
-    def __init__(
-        self, form: Formulation, evaluate: Evaluator, grid: Callable[[], FloatArray]
-    ) -> None:
-        self._args: tuple[Formulation, Evaluator, Callable[[], FloatArray]] | None = (
-            form,
-            evaluate,
-            grid,
-        )
+    def __init__(self, compute: Callable[[], dict[str, float]]) -> None:
+        self._compute: Callable[[], dict[str, float]] | None = compute
         self._values: dict[str, float] | None = None
 
     def _computed(self) -> dict[str, float]:
         if self._values is None:
-            assert self._args is not None
-            form, evaluate, grid = self._args
-            self._values = residuals(form, evaluate, grid())
-            self._args = None
+            assert self._compute is not None
+            self._values = self._compute()
+            self._compute = None
         return self._values
 
     def __getitem__(self, key: str) -> float:
@@ -137,3 +123,37 @@ class DeferredResiduals(Mapping[str, float]):
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (dict, (self._computed(),))
+
+
+class DeferredResiduals(Deferred):
+    """:func:`residuals` of a profile, computed when first read (then kept).
+
+    The check is the same independent recomputation, on the same grid; only its moment
+    changes: a caller that never reads the residuals (a fit, a sweep, a likelihood) does not
+    pay for ~6,400 quadrature nodes, several times the cost of the solve itself
+    (``docs/performance.md``). It behaves as the dict it stands for (:class:`Deferred`).
+
+    Parameters
+    ----------
+    form : Formulation, or callable () -> Formulation
+        The problem's equations (not the solver's), or what makes them when the residuals are
+        read.
+    evaluate : Evaluator
+        The profile's dense evaluator.
+    grid : callable () -> ndarray
+        The check grid, made when the residuals are read.
+    """
+
+    __slots__ = ()
+
+    def __init__(
+        self,
+        form: Formulation | Callable[[], Formulation],
+        evaluate: Evaluator,
+        grid: Callable[[], FloatArray],
+    ) -> None:
+        def compute() -> dict[str, float]:
+            equations = form if isinstance(form, Formulation) else form()
+            return residuals(equations, evaluate, grid())
+
+        super().__init__(compute)

@@ -100,13 +100,13 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
             f"cannot solve a {type(problem).__name__}: give a Problem(cell, rheology), e.g. "
             "Problem(Plane(eps=0.01), Cosserat())"
         )
-    known = methods()
-    if method not in known:
-        raise ParameterError(
-            f"method must be one of {', '.join(repr(m) for m in known)}; got {method!r}"
-        )
     route = find(problem.model, problem.cell_name, method)
     if route is None:
+        known = methods()
+        if method not in known:
+            raise ParameterError(
+                f"method must be one of {', '.join(repr(m) for m in known)}; got {method!r}"
+            )
         available = methods_for(problem.model, problem.cell_name)
         if not available:
             raise ParameterError(
@@ -118,7 +118,7 @@ def solve(problem: Problem, method: str = "numerical", **options: Any) -> Profil
             f"cell: use one of {', '.join(repr(m) for m in available)}"
         )
     accepted = _options(route)
-    unknown = sorted(set(options) - set(accepted))
+    unknown = sorted(set(options) - set(accepted)) if options else []
     if unknown:
         raise ParameterError(
             f"option(s) {', '.join(unknown)} do not apply to method={method!r}; it accepts "

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -13,7 +14,7 @@ from ..model import Problem
 from ..model.constitutive import FloatArray, check_radicand, radicand
 from ..model.formulation import Formulation
 from ..model.rheologies.cosserat import cosserat_equations
-from ..results.diagnostics import DeferredResiduals
+from ..results.diagnostics import Deferred, DeferredResiduals
 from ..results.profile import Diagnostics, Evaluator, Fields, Profile
 
 
@@ -33,9 +34,59 @@ def given_grid(xi: FloatArray) -> FloatArray:
     return grid
 
 
+def profile_grid(eq: Any, points: int | None, xi: FloatArray | None) -> FloatArray:
+    """The output grid of a profile: ``xi`` checked (:func:`given_grid`), or about ``points``
+    points resolving the layers (``eq.output_grid``), made once per problem [-].
+
+    The layered grid costs more than a plane solve's kernel; a problem solved again (a
+    benchmark, a sweep over tolerances) reuses it. The caller gets its own copy.
+    """
+    if xi is not None:
+        return given_grid(xi)
+    n = points or config.OUTPUT_POINTS
+    grids = _GRIDS.get(eq)
+    if grids is None:
+        grids = _GRIDS[eq] = {}
+    grid = grids.get(n)
+    if grid is None:
+        grid = grids[n] = eq.output_grid(n)
+    return grid.copy()
+
+
+_GRIDS: weakref.WeakKeyDictionary[Any, dict[int, FloatArray]] = weakref.WeakKeyDictionary()
+"""Output grids per problem (its equations helper) and size."""
+
+
+def check_fields(problem: Problem, method: str, grid: FloatArray, f: Fields) -> None:
+    """Refuse fields a profile must not carry: a stress from a negative radicand (beyond
+    round-off) or a non-finite value.
+
+    Raises
+    ------
+    NoSolutionError
+        The couple stress exceeds its yield bound somewhere (saying where).
+    ConvergenceError, MethodNotAvailableError
+        A field is not finite (the asymptotic route: its terms overflow).
+    """
+    material = cosserat_equations(problem).material
+    _, f_m = f.spin()
+    check_radicand(radicand(f.sigma_yx, f.sigma_yy, f_m, material), f.sigma_yy, f_m, material, grid)
+    for name, values in f._asdict().items():
+        if not np.isfinite(values).all():
+            if method == "asymptotic":
+                raise MethodNotAvailableError(
+                    f"the leading-order expansion gives non-finite {name} for "
+                    f"{problem.describe()} (its terms leave the range of doubles): use "
+                    f"method='numerical'"
+                )
+            raise ConvergenceError(
+                f"the {method} solution produced non-finite {name} for {problem.describe()}"
+            )
+
+
 def make_profile(
     problem: Problem,
-    form: Formulation,
+    form: Formulation | Callable[[], Formulation],
     evaluate: Evaluator,
     *,
     method: str,
@@ -48,41 +99,33 @@ def make_profile(
     stats: Mapping[str, Any] | None = None,
     check: bool = True,
     velocity: Callable[[FloatArray], FloatArray] | None = None,
+    screened: Callable[[FloatArray], tuple[Fields, bool]] | None = None,
 ) -> Profile:
     """Evaluate on the output grid, verify, and package.
 
-    ``check`` computes the boundary errors, and the ODE residuals on a layer-resolving check
-    grid when they are first read (:class:`~cosserat.results.diagnostics.DeferredResiduals`);
-    sweeps that need only wall quantities may skip both.
+    The returned fields are always checked (:func:`check_fields`). ``check`` adds the
+    boundary errors and the ODE residuals on a layer-resolving check grid, both computed when
+    first read (:class:`~cosserat.results.diagnostics.Deferred`); sweeps that need only wall
+    quantities may skip both. ``form`` may be a callable that makes the formulation when the
+    residuals are read. ``screened(grid)``, if given, evaluates the fields and says whether
+    they passed a compiled screen that flags everything :func:`check_fields` rejects (then
+    that check is not run again in Python).
     """
     eq = cosserat_equations(problem)
-    grid = eq.output_grid(points or config.OUTPUT_POINTS) if xi is None else given_grid(xi)
-    f = evaluate(grid)
-    # The returned stresses must be real: a profile never carries a clipped radicand.
-    _, f_m = f.spin()
-    check_radicand(
-        radicand(f.sigma_yx, f.sigma_yy, f_m, eq.material),
-        f.sigma_yy,
-        f_m,
-        eq.material,
-        grid,
-    )
-    for name, values in f._asdict().items():
-        if not np.isfinite(values).all():
-            if method == "asymptotic":
-                raise MethodNotAvailableError(
-                    f"the leading-order expansion gives non-finite {name} for "
-                    f"{problem.describe()} (its terms leave the range of doubles): use "
-                    f"method='numerical'"
-                )
-            raise ConvergenceError(
-                f"the {method} solution produced non-finite {name} for {problem.describe()}"
-            )
+    grid = profile_grid(eq, points, xi)
+    if screened is None:
+        f, clear = evaluate(grid), False
+    else:
+        f, clear = screened(grid)
+    if not clear:
+        check_fields(problem, method, grid, f)
     res: Mapping[str, float]
+    bc: Mapping[str, float]
     if check:
-        # the ODE residuals are computed when first read (DeferredResiduals)
+        # both computed when first read: the residuals (DeferredResiduals), then the
+        # boundary conditions on the evaluator
         res = DeferredResiduals(form, evaluate, lambda: eq.output_grid(config.CHECK_POINTS))
-        bc = eq.boundary_errors(evaluate)
+        bc = Deferred(lambda: eq.boundary_errors(evaluate))
     else:
         res, bc = {}, {}
     diag = Diagnostics(

@@ -11,6 +11,7 @@ codes into the package's errors and wraps the result as a
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -20,7 +21,7 @@ import numpy as np
 from .. import config
 from ..errors import ConvergenceError, NoSolutionError, ParameterError, shown
 from ..model import PlaneShearCase, Problem
-from ..model.constitutive import FloatArray
+from ..model.constitutive import RADICAND_ROUNDOFF, FloatArray
 from ..model.formulation import Formulation
 from ..model.rheologies.base import equations_of
 from ..model.rheologies.cosserat import (
@@ -34,6 +35,9 @@ from ..results.profile import Fields, Profile
 from .assemble import make_profile
 
 DEFAULT_RTOL = config.RTOL
+SCREEN_SLACK = RADICAND_ROUNDOFF * (1.0 - 1e-6)
+"""The compiled screen of a profile's radicand check flags S < -SCREEN_SLACK * scale: a hair
+stricter than the check itself (``RADICAND_ROUNDOFF``), which then decides in Python."""
 
 _CASES = {
     PlaneShearCase.SYMMETRIC: kernel.SYMMETRIC,
@@ -59,15 +63,31 @@ def tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
 
 def parameter_vector(problem: Problem, mu_guess: float | None = None) -> FloatArray:
     """The kernel's parameter vector (indices ``P_*`` of :mod:`cosserat.numerics.cosserat`)
-    for the Cosserat model on the plane or Couette cell."""
+    for the Cosserat model on the plane or Couette cell (a new array)."""
     eq = cosserat_equations(problem)
+    found = _VECTORS.get(eq)
+    if found is None:
+        found = _VECTORS[eq] = _parameter_vector(problem, eq)
+    p = found.copy()
+    if mu_guess is not None:
+        p[kernel.P_MU_GUESS] = float(mu_guess)
+    return p
+
+
+_VECTORS: weakref.WeakKeyDictionary[Any, FloatArray] = weakref.WeakKeyDictionary()
+"""The parameter vector of each problem (its equations helper), made once: every caller gets
+a copy, so no kernel or caller can change another's."""
+
+
+def _parameter_vector(problem: Problem, eq: Any) -> FloatArray:
+    """:func:`parameter_vector` without a guess of m(0), made from the equations."""
     p = np.zeros(kernel.N_PARAMS)
     mat = eq.material
     p[kernel.P_A], p[kernel.P_SIN_PHI], p[kernel.P_ALPHA] = mat.A, mat.sin_phi, mat.alpha
     p[kernel.P_EPS] = eq.eps
     const = eq.slip_constants
     p[kernel.P_M0], p[kernel.P_B_BOUND] = const.m0, const.b
-    p[kernel.P_MU_GUESS] = math.nan if mu_guess is None else float(mu_guess)
+    p[kernel.P_MU_GUESS] = math.nan
     if isinstance(eq, CosseratCouette):
         p[kernel.P_GEOMETRY] = kernel.COUETTE
         p[kernel.P_TAN_DELTA] = eq.tan_delta
@@ -197,6 +217,20 @@ class NumericalSolution:
             return Fields(*out)
         return Fields(*(row.reshape(x.shape) for row in out))
 
+    def screened(self, xi: FloatArray) -> tuple[Fields, bool]:
+        """The fields at a 1-D grid, and True if they passed the compiled screen of the
+        profile's checks (``kernel.fields_checked``; :func:`~.assemble.make_profile`)."""
+        out, first, finite = kernel.fields_checked(
+            np.ascontiguousarray(xi, dtype=float),
+            self.params,
+            self.info,
+            *self.couple,
+            self.geometry,
+            *self.spin,
+            SCREEN_SLACK,
+        )
+        return Fields(*out), first < 0 and finite
+
     def velocity(self, xi: FloatArray) -> FloatArray:
         """u only (cheaper than the fields) [-]."""
         x = np.asarray(xi, dtype=float)
@@ -315,7 +349,7 @@ def _profile(
     """The checked :class:`Profile` of a kernel solution (``routes/assemble.py``)."""
     return make_profile(
         sol.problem,
-        sol.formulation(),
+        sol.formulation,
         sol,
         method="numerical",
         points=points,
@@ -327,6 +361,7 @@ def _profile(
         stats=stats,
         check=check,
         velocity=sol.velocity,
+        screened=sol.screened,
     )
 
 

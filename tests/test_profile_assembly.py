@@ -1,0 +1,179 @@
+"""How the numerical route turns a kernel solution into a profile: the compiled screen of the
+profile's checks, the boundary errors computed when read, and what is made once per problem
+(the parameter vector, the output grid). Speed itself is measured by benchmarks/bench_speed.py,
+never here; these tests pin that the shortcuts change no number, no decision and no message."""
+
+from __future__ import annotations
+
+import pickle
+
+import numpy as np
+import pytest
+
+from cosserat import (
+    ConvergenceError,
+    Cosserat,
+    Couette,
+    Material,
+    Plane,
+    Problem,
+    Wall,
+    config,
+    solve,
+)
+from cosserat.model.grids import layered_grid
+from cosserat.numerics import cosserat as kernel
+from cosserat.results.diagnostics import Deferred
+from cosserat.routes import assemble, numerical
+from cosserat.routes.numerical import NumericalSolution, parameter_vector, run_kernel
+
+MAT = Material(28.5)
+W20 = Wall(20.0, 0.5)
+PROBLEMS = {
+    "symmetric": Problem(Plane(eps=0.04), Cosserat(material=MAT, wall=W20)),
+    "rough lower wall": Problem(
+        Plane(eps=0.01), Cosserat(material=MAT, wall=W20, lower=Wall.fully_rough(K=0.5))
+    ),
+    "gravity": Problem(Plane(eps=1e-3, B=1.0), Cosserat(material=MAT, wall=W20)),
+    "couette": Problem(Couette(eps=0.04, Ri=1.0), Cosserat(material=MAT, wall=W20)),
+}
+FIELDS = ("u", "omega", "m", "sigma_xy", "sigma_yx", "sigma_yy", "du_dxi", "kappa")
+
+
+def _same_profile(a, b) -> None:  # type: ignore[no-untyped-def]
+    assert np.array_equal(a.xi, b.xi)
+    for name in FIELDS:
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+
+
+@pytest.mark.parametrize("name", list(PROBLEMS))
+def test_screen_is_fields_at_and_clears_a_good_profile(name: str) -> None:
+    problem = PROBLEMS[name]
+    sol = run_kernel(problem, config.RTOL, config.RTOL * config.ATOL_OVER_RTOL)
+    grid = np.linspace(0.0, 1.0, 301)
+    args = (grid, sol.params, sol.info, *sol.couple, sol.geometry, *sol.spin)
+    out, first, finite = kernel.fields_checked(*args, numerical.SCREEN_SLACK)
+    assert np.array_equal(out, kernel.fields_at(*args))
+    assert first == -1 and finite
+    # a slack no radicand satisfies flags the first point
+    _, first, _ = kernel.fields_checked(*args, -1.0)
+    assert first == 0
+
+
+def test_a_flagged_profile_is_checked_in_python_and_unchanged(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    problem = PROBLEMS["gravity"]
+    plain = solve(problem)
+    calls = []
+    check = assemble.check_fields
+
+    def spy(*args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(args[1])
+        return check(*args, **kwargs)
+
+    monkeypatch.setattr(assemble, "check_fields", spy)
+    assert solve(problem).u is not None and calls == []  # cleared by the screen
+    monkeypatch.setattr(numerical, "SCREEN_SLACK", -1.0)  # flag every profile
+    flagged = solve(problem)
+    assert calls == ["numerical"]
+    _same_profile(flagged, plain)
+
+
+def test_a_flagged_non_finite_field_raises_the_python_message(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    problem = PROBLEMS["couette"]
+    screened = NumericalSolution.screened
+
+    def poisoned(self, xi):  # type: ignore[no-untyped-def]
+        f, _ = screened(self, xi)
+        u = f.u.copy()
+        u[3] = np.nan
+        return f._replace(u=u), False
+
+    monkeypatch.setattr(NumericalSolution, "screened", poisoned)
+    with pytest.raises(ConvergenceError) as err:
+        solve(problem)
+    assert str(err.value) == (
+        f"the numerical solution produced non-finite u for {problem.describe()}"
+    )
+
+
+@pytest.mark.parametrize("name", list(PROBLEMS))
+def test_boundary_errors_are_computed_when_read(name: str) -> None:
+    problem = PROBLEMS[name]
+    profile = solve(problem)
+    bc = profile.diagnostics.bc_errors
+    assert isinstance(bc, Deferred)
+    expected = problem.equations.boundary_errors(profile.evaluator)
+    assert dict(bc) == expected and len(expected) >= 4
+    assert max(abs(v) for v in bc.values()) < 1e-8
+    # pickled as the dict it stands for; the diagnostics' JSON form has it
+    again = pickle.loads(pickle.dumps(profile))
+    assert type(again.diagnostics.bc_errors) is dict
+    assert again.diagnostics.bc_errors == expected
+    assert profile.diagnostics.to_dict()["bc_errors"] == expected
+    assert solve(problem, check=False).diagnostics.bc_errors == {}
+
+
+def test_deferred_computes_once() -> None:
+    calls = []
+
+    def compute() -> dict[str, float]:
+        calls.append(1)
+        return {"a": 1.0, "b": -2.0}
+
+    d = Deferred(compute)
+    assert calls == []
+    assert d["a"] == 1.0 and list(d) == ["a", "b"] and len(d) == 2 and d == {"a": 1.0, "b": -2.0}
+    assert calls == [1]
+    assert pickle.loads(pickle.dumps(d)) == {"a": 1.0, "b": -2.0}
+
+
+def test_parameter_vector_is_a_new_array_each_call() -> None:
+    problem = PROBLEMS["couette"]
+    first = parameter_vector(problem)
+    assert np.isnan(first[kernel.P_MU_GUESS])
+    kept = first.copy()
+    first[:] = 0.0  # a caller's change reaches no other caller
+    guessed = parameter_vector(problem, -0.2)
+    assert guessed[kernel.P_MU_GUESS] == -0.2
+    plain = parameter_vector(problem)
+    assert np.array_equal(plain, kept, equal_nan=True)
+    assert np.array_equal(np.delete(guessed, kernel.P_MU_GUESS), np.delete(kept, kernel.P_MU_GUESS))
+
+
+@pytest.mark.parametrize("name", list(PROBLEMS))
+def test_output_grid_is_made_once_and_handed_out_as_a_copy(name: str) -> None:
+    eq = PROBLEMS[name].equations
+    a = assemble.profile_grid(eq, None, None)
+    assert np.array_equal(a, eq.output_grid(config.OUTPUT_POINTS))
+    a[:] = -1.0
+    b = assemble.profile_grid(eq, None, None)
+    assert np.array_equal(b, eq.output_grid(config.OUTPUT_POINTS))
+    assert np.array_equal(assemble.profile_grid(eq, 57, None), eq.output_grid(57))
+    assert np.array_equal(solve(PROBLEMS[name]).xi, eq.output_grid(config.OUTPUT_POINTS))
+
+
+def _numpy_layered_grid(n, zones, lo=0.0, hi=1.0):  # type: ignore[no-untyped-def]
+    """layered_grid as it was written with np.linspace and np.unique."""
+    n = max(int(n), 3)
+    zones = [(c, w) for c, w in zones if 0.0 < w < 0.5 * (hi - lo)]
+    n_zone = n // (2 + 2 * len(zones)) if zones else 0
+    parts = [np.linspace(lo, hi, n - n_zone * len(zones))]
+    for centre, width in zones:
+        a, b = max(lo, centre - width), min(hi, centre + width)
+        parts.append(np.linspace(a, b, n_zone))
+    grid = np.unique(np.concatenate(parts))
+    return grid[(grid >= lo) & (grid <= hi)]
+
+
+def test_layered_grid_has_numpys_numbers() -> None:
+    rng = np.random.default_rng(17)
+    for _ in range(500):
+        n = int(rng.integers(1, 3000))
+        zones = [
+            (float(rng.choice([0.0, 0.5, 1.0, rng.uniform()])), float(10 ** rng.uniform(-7, 0)))
+            for _ in range(int(rng.integers(0, 4)))
+        ]
+        lo, hi = (0.0, 1.0) if rng.uniform() < 0.7 else (rng.uniform(-1, 0), rng.uniform(0.5, 2))
+        expected = _numpy_layered_grid(n, zones, lo, hi)
+        got = layered_grid(n, zones, lo, hi)
+        assert got.shape == expected.shape and np.array_equal(got, expected)
