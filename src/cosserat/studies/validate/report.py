@@ -110,6 +110,17 @@ def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
                 "stderr": s.stderr,
                 "usable": [p.usable for p in s.points],
                 "model": [by_name[p.run].model_delta.get("cosserat") for p in s.points],
+                "curves": {
+                    m: {
+                        "gaps": list(c.curve[0]),
+                        "Delta": list(c.curve[1]),
+                        "points": [
+                            (p.gap_d, *c.predicted.get(p.run, (None, None))) for p in s.points
+                        ],
+                    }
+                    for m, c in s.curves.items()
+                    if c.ok
+                },
             }
         )
     return out
