@@ -281,6 +281,7 @@ def delta_claim_figure(
                     all_g += [g for g, _ in cg]
                     all_d += [d for _, d in cg]
                 cp = [p for p in c.get("points", []) if p[1]]
+                all_d += [p[1] for p in cp]
                 if cp:
                     ax.errorbar([p[0] for p in cp], [p[1] for p in cp],
                                 yerr=[p[2] or 0.0 for p in cp], fmt="x", color=st["color"],

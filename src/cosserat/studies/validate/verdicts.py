@@ -24,14 +24,23 @@ p-values, the runs used) and what data would change it. The rules:
   "supported" when the sign agrees everywhere it is determined and the size is not rejected;
   "mixed" when the sign agrees at some walls and is opposite at others; "undecided" when no wall
   has a determined sign.
-* **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the slope s
-  +- se of ln Delta against ln(H/d) (weighted by the errors of Delta) over at least
-  :data:`MIN_GAPS` gaps, runs whose band fills its gap left out (they cannot test a law of the
-  gap, either way); a claimed exponent c is "supported" when |s - c| <= 2 se and the other
-  claimed exponent c' is excluded (|s - c'| > 2 se), "refuted" when |s - c| > 2 se unless the
-  Cosserat model fitted to the same runs misses c too and the data agree with its slope (the
-  claims are limits H/d -> infinity: "undecided", larger gaps needed), "undecided" otherwise.
-  Series that disagree make the verdict "mixed".
+* **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the measured
+  Delta(H/d) against each model's Delta from one joint calibration of the series
+  (:class:`ModelDelta`; :func:`curve_test`: chi^2 with the two errors in quadrature, as it is
+  and up to a common factor, which tests the dependence on the gap). "supported" when the
+  Cosserat curve's shape has p >= :data:`P_CONSISTENT` and an alternative (another model's
+  curve, or the other claim's power law with a free level, :func:`power_law_test`) has p <
+  :data:`P_SIGNIFICANT`; "refuted" when the Cosserat curve's shape has p < :data:`P_SIGNIFICANT`,
+  "mixed" instead when the claimed law itself (the claimed exponent, free level) has p >=
+  :data:`P_CONSISTENT` (the data follow the limit law, not the model's approach to it);
+  "undecided" otherwise. The slope s +- se of ln Delta against ln(H/d) (weighted by the errors
+  of Delta, at least :data:`MIN_GAPS` gaps) is judged only where the Cosserat curve's own slope
+  over the series' gaps is within :data:`EXPONENT_TOL` of the claimed limit (the range allows
+  it): a claimed exponent c is then "supported" when |s - c| <= 2 se and the other claimed
+  exponent c' is excluded (|s - c'| > 2 se), "refuted" when |s - c| > 2 se. Without a curve, the
+  slope rule alone, as before (refuted unless the Cosserat fits to the same runs miss c too and
+  the data agree with their slope). Runs whose band fills its gap are left out (they cannot
+  test a law of the gap, either way). Series that disagree make the verdict "mixed".
 """
 
 from __future__ import annotations
@@ -829,7 +838,7 @@ def _exponent_text(s: DeltaSeries) -> str:
     )
 
 
-def _parameters_text(c: ModelDelta) -> str:
+def calibration_text(c: ModelDelta) -> str:
     params = c.calibration.get("parameters", {})
     rows = []
     for name, e in params.items():
@@ -859,6 +868,7 @@ def _curve_call(
         if p.usable and p.value is not None and p.stderr is not None
     ]
     rival = power_law_test(other, pts)
+    claimed = power_law_test(target, pts)
     others = [tt for m, tt in tests.items() if m != model] + ([rival] if rival else [])
     rows = []
     for p in s.points:
@@ -875,7 +885,7 @@ def _curve_call(
             f"{_g(p.stderr, '.2g')} d; {preds}"
         )
     calib = "; ".join(
-        f"{m} calibrated on {len(c.predicted)} runs: {_parameters_text(c)}"
+        f"{m} calibrated on {len(c.predicted)} runs: {calibration_text(c)}"
         for m, c in s.curves.items()
         if c.ok
     )
@@ -903,6 +913,20 @@ def _curve_call(
     consistent = [
         tt.label for tt in others if tt.p_shape is not None and tt.p_shape >= P_CONSISTENT
     ]
+    if (
+        t.p_shape < P_SIGNIFICANT
+        and claimed is not None
+        and claimed.p_shape is not None
+        and claimed.p_shape >= P_CONSISTENT
+    ):
+        return (
+            "mixed",
+            text + f"; the data follow the claimed limit law itself already at these gaps "
+            f"({claimed.text()}), but not the {model} model's finite-H approach to it (its "
+            f"curve's shape p = {t.p_shape:.2g} < {P_SIGNIFICANT:g})",
+            f"runs at larger gaps, where the {model} curve nears its limit, or a calibration "
+            "whose curve follows the data",
+        )
     if t.p_shape < P_SIGNIFICANT:
         return (
             "refuted",
@@ -963,7 +987,9 @@ def delta_law_verdict(
         f"apart from the level, which is what the claim is about). Supported when the {model} "
         f"curve's shape is consistent (p >= {P_CONSISTENT:g}) and an alternative (another "
         f"model's curve, or Delta ~ (H/d)^{other:.3g}) is rejected (p < {P_SIGNIFICANT:g}); "
-        f"refuted when the {model} curve's shape is rejected (p < {P_SIGNIFICANT:g}). The "
+        f"refuted when the {model} curve's shape is rejected (p < {P_SIGNIFICANT:g}), mixed "
+        f"when it is but the claimed law Delta ~ (H/d)^{target:.3g} with a free level is not "
+        f"(p >= {P_CONSISTENT:g}: the law without the model's approach to it). The "
         f"exponent (weighted least squares of ln Delta on ln(H/d), error scaled by "
         f"sqrt(reduced chi^2) when above 1, at least {MIN_GAPS} gaps) is judged only where "
         f"the {model} curve's own slope over the series' gaps is within {EXPONENT_TOL:g} of "
@@ -1041,11 +1067,12 @@ def delta_law_verdict(
             runs_t,
             numbers,
         )
-    if len(decided) > 1:
+    if len(decided) > 1 or decided == {"mixed"}:
+        how = "the wall series disagree" if len(decided) > 1 else "the claimed law and the model"
         return Verdict(
             which,
             "mixed",
-            f"Mixed: the wall series disagree ({want}): {detail}. {method}",
+            f"Mixed: {how} ({want}): {detail}. {method}",
             change + ".",
             runs_t,
             numbers,
