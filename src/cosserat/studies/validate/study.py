@@ -405,10 +405,10 @@ def validate(
     progress : callable, optional
         Called as ``progress("runs", done, total)`` after each run.
     workers : int, optional
-        Processes that analyse runs (and draw their figures) in parallel; None: one. On the
-        shipped corpus, on two cores already busy with other work, two workers took 80 s
-        against 63 s for one (each worker pays a few seconds to start); on idle cores they
-        can halve the time of the fits.
+        Processes that analyse runs (and draw their figures) and calibrate the gap series in
+        parallel; None: one. On the shipped corpus one process needs 84 s of CPU, two workers
+        101 s between them (each pays its start): on two idle cores about 51 s; on cores
+        already busy they were slower (``docs/validation.md``, Speed).
 
     Raises
     ------
