@@ -62,14 +62,15 @@ def test_validate_writes_the_report_and_prints_the_verdicts(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["validate", str(corpus), "--out", str(out), "--models", "cosserat"]) == 0
     text = capsys.readouterr().out
-    assert "[supported] Delta is independent of the gap" in text
+    # a constant Delta at H/d = 20-80: the claimed law, not the calibrated model's curve
+    assert "[mixed] Delta is independent of the gap" in text
     assert "[undecided] The grain spin departs" in text
     assert (out / "report.md").exists() and (out / "index.html").exists()
     assert main(["validate", str(corpus), "--out", str(out), "--models", "cosserat",
                  "--format", "json"]) == 0  # fmt: skip
     record = json.loads(capsys.readouterr().out)
     verdicts = {v["key"]: v["verdict"] for v in record["verdicts"]}
-    assert verdicts == {"spin": "undecided", "smoother": "supported", "rough": "undecided",
+    assert verdicts == {"spin": "undecided", "smoother": "mixed", "rough": "undecided",
                         "spin_model": "undecided"}  # fmt: skip
 
 
@@ -82,6 +83,7 @@ def test_validate_writes_the_report_and_prints_the_verdicts(tmp_path, capsys):
         (["validate", "{tmp}/corpus", "--out", "{tmp}/o", "--f", "2"], "--f must satisfy"),
         (["validate", "{tmp}/corpus", "--out", "{tmp}/o", "--near-wall", "-1"],
          "--near-wall must be > 0"),
+        (["validate", "{tmp}/corpus", "--out", "{tmp}/o", "--workers", "0"], "--workers"),
     ],
 )  # fmt: skip
 def test_validate_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, message):

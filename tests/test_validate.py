@@ -72,15 +72,23 @@ def verdicts(report) -> dict[str, str]:
 
 
 # --------------------------------------------------------------------------- verdicts
-def test_scaling_claims_supported_by_data_built_for_them(tmp_path):
+def test_data_on_the_limit_laws_at_finite_gaps_are_mixed_against_the_model_curves(tmp_path):
+    """Exponential profiles whose Delta follows the limit laws exactly (3 (H/20)^0 and
+    3 (H/20)^(1/3), H/d = 20-160): the claimed laws hold, but not as the Cosserat model,
+    calibrated jointly on each series, approaches them at these gaps: mixed, and said so."""
     scaling_corpus(tmp_path, 0.0, 1 / 3, spin_departure=0.1)
     report = validate(tmp_path, models=["cosserat"])
     v = {k: verdicts(report)[k] for k in ("spin", "smoother", "rough")}
-    assert v == {"spin": "supported", "smoother": "supported", "rough": "supported"}, [
+    assert v == {"spin": "supported", "smoother": "mixed", "rough": "mixed"}, [
         x.text for x in report.verdicts
     ]
+    for key in ("smoother", "rough"):
+        text = report.verdict(key).text
+        assert "the data follow the claimed limit law itself already at these gaps" in text
+        assert "one joint calibration of the series" in text
     rough = next(g for g in report.groups if g.roughness == "fully-rough")
     assert rough.slope.slope == pytest.approx(1 / 3, abs=2 * rough.slope.stderr)
+    assert set(rough.curves) == {"cosserat"} and rough.curves["cosserat"].ok
 
 
 def test_scaling_claims_refuted_by_data_built_against_them(tmp_path):
@@ -267,7 +275,7 @@ def test_a_channel_run_has_its_spin_compared_and_says_why_nothing_else(tmp_path)
                                 "rough": "undecided", "spin_model": "undecided"}  # fmt: skip
 
 
-def test_profiles_of_the_cosserat_model_at_small_gaps_cannot_decide_its_limit_laws(tmp_path):
+def test_profiles_of_the_cosserat_model_at_small_gaps_follow_its_curve_not_its_exponent(tmp_path):
     # at H/d = 20-80 the model's own Delta still grows with the gap (the limits are
     # H/d -> infinity): data that follow the model agree with its slope there, not with 0
     for i, g in enumerate((20, 40, 80)):
@@ -275,9 +283,13 @@ def test_profiles_of_the_cosserat_model_at_small_gaps_cannot_decide_its_limit_la
         synthetic_run(tmp_path, f"smooth_{g}", model_solve(p, points=401), noise=0.01, seed=i,
                       wall={"kind": "smooth-frictional"})  # fmt: skip
     report = validate(tmp_path, models=["cosserat"])
-    assert verdicts(report)["smoother"] == "undecided"
-    assert "larger gaps are needed" in report.verdict("smoother").text
+    # judged on the model's finite-H curve from one joint calibration, the data follow it and
+    # reject the rival law (H/d)^(1/3); the exponent is reported, not judged
+    assert verdicts(report)["smoother"] == "supported", report.verdict("smoother").text
+    text = report.verdict("smoother").text
+    assert "the data follow the cosserat curve" in text and "reported, not judged" in text
     (group,) = report.groups
+    assert group.tests()["cosserat"].p_shape >= 0.05
     assert group.slope.slope > 0.3  # clearly not 0 ...
     cos = group.model_slopes["cosserat"].slope  # ... and what the model says at these gaps
     assert abs(group.slope.slope - cos) < 2 * group.slope.stderr
@@ -308,8 +320,9 @@ def test_runs_at_one_gap_and_two_wall_speeds_are_named_as_replicates(tmp_path):
     partner.with_suffix(".json").write_text(json.dumps(meta))
     report = validate(tmp_path, models=["cosserat"])
     rough = next(g for g in report.groups if g.roughness == "fully-rough")
-    (note,) = rough.notes
-    assert "H/d = 20 has 2 runs" in note and "rough_20_halfspeed (wall speed 0.05)" in note
-    assert "replicates" in report.verdict("rough").text
+    (note,) = rough.replicates()
+    assert "H/d = 20 has 2 runs" in note and "rough_20_halfspeed (wall speed 0.05:" in note
+    assert "they differ by" in note and "each run is its own point" in note
+    assert "pools them as replicates" in report.verdict("rough").text
     smooth = next(g for g in report.groups if g.roughness == "smoother")
-    assert smooth.notes == ()
+    assert smooth.replicates() == []

@@ -381,3 +381,123 @@ def test_a_departure_so_large_that_its_p_underflows_to_zero_still_counts():
     v = spin_verdict(walls)
     assert v.numbers["pooled_p"] == 0.0
     assert v.verdict == "supported" and v.numbers["runs_departing_p_significant"] == ["a", "b"]
+
+
+# --------------------------------------------------------------------------- Delta curves
+def test_a_curve_test_has_its_closed_form():
+    """Exact agreement: chi^2 0; data twice the prediction: chi^2 = sum (P/se)^2 as it is, 0
+    times the factor 2; the two errors add in quadrature (3 and 4 give 5)."""
+    from cosserat.studies.validate.verdicts import curve_test
+
+    same = curve_test("m", [(10.0, 1.0), (12.0, 1.0), (14.0, 1.0)],
+                      [(10.0, 0.0), (12.0, 0.0), (14.0, 0.0)])  # fmt: skip
+    assert same.chi2 == pytest.approx(0.0) and same.p == pytest.approx(1.0)
+    assert same.scale == pytest.approx(1.0) and (same.dof, same.dof_shape) == (3, 2)
+    double = curve_test("m", [(2.0, 1.0), (4.0, 1.0)], [(1.0, 0.0), (2.0, 0.0)])
+    assert double.chi2 == pytest.approx(1.0 + 4.0) and double.scale == pytest.approx(2.0)
+    assert double.chi2_shape == pytest.approx(0.0, abs=1e-12)
+    quad = curve_test("m", [(10.0, 3.0)], [(14.0, 4.0)])
+    assert quad.chi2 == pytest.approx(16.0 / 25.0) and quad.p_shape is None
+    assert curve_test("m", [], []) is None
+    with pytest.raises(ParameterError, match="2 measured points but 1 predictions"):
+        curve_test("m", [(1.0, 1.0), (2.0, 1.0)], [(1.0, 0.0)])
+    with pytest.raises(ParameterError, match="a finite value and a positive error"):
+        curve_test("m", [(1.0, 0.0)], [(1.0, 0.0)])
+
+
+def test_a_power_law_test_frees_the_level_only():
+    """Delta = 1 and 2 (se 0.1) at H/d = 1 and 8: exactly (H/d)^(1/3) up to its level; a
+    constant gives the mean 1.5 and chi^2 = 2 (0.5/0.1)^2 = 50 on 1 dof."""
+    from cosserat.studies.validate.verdicts import power_law_test
+
+    pts = [(1.0, 1.0, 0.1), (8.0, 2.0, 0.1)]
+    assert power_law_test(1 / 3, pts).chi2_shape == pytest.approx(0.0, abs=1e-12)
+    flat = power_law_test(0.0, pts)
+    assert flat.scale == pytest.approx(1.5) and flat.chi2_shape == pytest.approx(50.0)
+    assert flat.dof_shape == 1
+
+
+def _curved(values, curves, gaps=(20.0, 40.0, 80.0), rel_err=0.03, rough=True, speeds=None):
+    """A series with Delta ``values`` at ``gaps`` and, per model, a curve function of H/d
+    whose values at the runs are its predictions (no error)."""
+    from cosserat.studies.validate.verdicts import ModelDelta
+
+    base = series(0.0, rough=rough, gaps=gaps, values=list(values), rel_err=rel_err)
+    grid = tuple(float(g) for g in np.geomspace(min(gaps) / 1.25, max(gaps) * 2.0, 9))
+    md = {m: ModelDelta(m, {p.run: (fn(p.gap_d), None) for p in base.points},
+                        (grid, tuple(fn(g) for g in grid)),
+                        {"parameters": {"phi": {"value": 17.0, "stderr": 0.3, "free": True}},
+                         "chi2": 100.0, "dof": 90, "p_value": 0.2})
+          for m, fn in curves.items()}  # fmt: skip
+    import dataclasses
+
+    return dataclasses.replace(base, curves=md, speeds=speeds or {})
+
+
+def test_a_curve_slope_is_read_between_two_gaps():
+    s = _curved([1, 1, 1], {"cosserat": lambda g: 3.0 * (g / 20.0) ** 0.5})
+    assert s.curves["cosserat"].slope_between(20.0, 80.0) == pytest.approx(0.5, abs=1e-9)
+    assert s.curves["cosserat"].slope_between(5.0, 80.0) is None  # beyond the curve
+
+
+def test_delta_follows_the_cosserat_curve_and_rejects_another_model():
+    """Rough walls: Delta = the Cosserat curve 9.2 (H/20)^0.53 exactly (3% errors), mu(I)'s
+    growing as H/d: supported, mu(I) rejected; the exponent is reported, not judged (the
+    curve's own slope 0.53 is not its limit 1/3); swapped, the data refute the claim."""
+    cos = lambda g: 9.2 * (g / 20.0) ** 0.53  # noqa: E731
+    mui = lambda g: 9.2 * (g / 20.0)  # noqa: E731
+    gaps = (20.0, 40.0, 80.0)
+    v = delta_law_verdict([_curved([cos(g) for g in gaps], {"cosserat": cos, "mui": mui})],
+                          "rough")  # fmt: skip
+    assert v.verdict == "supported"
+    assert "reject mui" in v.evidence and "reported, not judged" in v.evidence
+    assert "one joint calibration" in v.evidence
+    bad = delta_law_verdict([_curved([mui(g) for g in gaps], {"cosserat": cos, "mui": mui})],
+                            "rough")  # fmt: skip
+    assert bad.verdict == "refuted" and "does not follow the measured Delta" in bad.evidence
+    entry = bad.numbers[next(iter(bad.numbers))]
+    (c, _) = entry["calibration"]
+    assert c["model"] == "cosserat" and c["test"]["dof"] == 3 and c["test"]["p"] < 1e-3
+    assert c["Delta"]["H20"]["value"] == pytest.approx(9.2)
+
+
+def test_a_level_missed_by_a_common_factor_is_said_and_does_not_refute_the_dependence():
+    cos = lambda g: 3.0 * (g / 20.0) ** 0.1  # noqa: E731
+    gaps = (20.0, 40.0, 80.0)
+    v = delta_law_verdict([_curved([2.4 * cos(g) for g in gaps], {"cosserat": cos},
+                                   rough=False)], "smoother")  # fmt: skip
+    assert "the level is missed: the data are 2.4 times the cosserat curve" in v.evidence
+    # nothing rejected besides: the constant's rival (H/d)^(1/3) is far, so supported
+    assert v.verdict == "supported" and "Delta ~ (H/d)^0.333" in v.evidence
+
+
+def test_noisy_delta_on_the_curve_rejects_nothing_and_is_undecided():
+    cos = lambda g: 9.2 * (g / 20.0) ** 0.4  # noqa: E731
+    gaps = (20.0, 30.0, 40.0)
+    v = delta_law_verdict([_curved([cos(g) for g in gaps], {"cosserat": cos}, gaps=gaps,
+                                   rel_err=0.3)], "rough")  # fmt: skip
+    assert v.verdict == "undecided" and "reject no alternative" in v.evidence
+
+
+def test_the_exponent_is_judged_only_where_the_curve_has_reached_its_limit():
+    """The Cosserat curve (H/d)^(1/3) itself: its own slope is the limit, so the measured
+    exponent is judged (and supported: the data follow it, 1/3 is 6 se from 0)."""
+    cos = lambda g: 5.0 * (g / 20.0) ** (1 / 3)  # noqa: E731
+    gaps = (20.0, 80.0, 320.0)
+    v = delta_law_verdict([_curved([cos(g) for g in gaps], {"cosserat": cos}, gaps=gaps,
+                                   rel_err=0.01)], "rough")  # fmt: skip
+    assert "judged, since the cosserat curve's own slope" in v.evidence
+    assert v.verdict == "supported"
+
+
+def test_replicates_at_two_wall_speeds_are_named_with_their_difference():
+    from cosserat.studies.validate.verdicts import DeltaPoint, DeltaSeries
+
+    pts = (DeltaPoint("a", 20.0, 5.7, 0.63), DeltaPoint("b", 20.5, 8.35, 0.82),
+           DeltaPoint("c", 40.0, 11.5, 0.5))  # fmt: skip
+    s = DeltaSeries("k", "plane", "fully-rough", True, pts, speeds={"a": 0.1, "b": 0.05})
+    (text,) = s.replicates()
+    z = (8.35 - 5.7) / np.hypot(0.63, 0.82)
+    assert f"they differ by {z:.2g} se at different wall speeds (beyond 2 se" in text
+    assert "a (wall speed 0.1: Delta = 5.7 +- 0.63 d)" in text
+    assert s.to_dict()["replicates"] == [text]

@@ -7,12 +7,13 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 from typing import Any
 
 from .. import config
 from . import files
-from .common import UsageError, progress_bar
+from .common import UsageError, positive_int, progress_bar
 
 
 def _plain(value: Any) -> Any:
@@ -122,7 +123,10 @@ def cmd_validate(args: argparse.Namespace) -> None:
             bar(i, n)
 
     near = {} if args.near_wall is None else {"near_wall_d": args.near_wall}
-    report = validate(args.corpus, args.out, models, f=args.f, progress=progress, **near)
+    workers = args.workers if args.workers is not None else min(2, os.cpu_count() or 1)
+    report = validate(
+        args.corpus, args.out, models, f=args.f, progress=progress, workers=workers, **near
+    )
     if args.format == "json":
         sys.stdout.write(
             json.dumps({"verdicts": [v.to_dict() for v in report.verdicts], "out": args.out}) + "\n"
@@ -164,6 +168,13 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         type=float,
         default=None,
         help="bins within this many grain diameters of a wall count as near it (3)",
+    )
+    vp.add_argument(
+        "--workers",
+        type=positive_int,
+        default=None,
+        help="processes that fit the runs and calibrate the gap series (default: 2, or 1 on "
+        "one core)",
     )
     vp.add_argument("--format", choices=("text", "json"), default="text")
     vp.set_defaults(func=cmd_validate)

@@ -227,31 +227,33 @@ def _nice_ticks(lo: float, hi: float, wanted: Sequence[float]) -> list[float]:
 def delta_claim_figure(
     series: Sequence[Mapping[str, Any]], exponents: Mapping[str, float], title: str
 ) -> Figure:
-    """Measured Delta against H/d on log axes with error bars, one series per cell and wall,
-    the fitted Cosserat model's Delta at the same runs, and the claimed exponents.
+    """Measured Delta against H/d on log axes with error bars, one panel per gap series, each
+    model's Delta curve from one joint calibration of the series (its value at each run with
+    the calibration's error), and the claimed exponents through the data.
 
     Parameters
     ----------
     series : sequence of mapping
-        ``label``, ``gaps``, ``Delta``, ``stderr``, ``usable`` (per point), ``model`` (the
-        Cosserat fits' Delta per point, or None).
+        ``label``, ``gaps``, ``Delta``, ``stderr``, ``usable`` (per point), ``curves``
+        (model -> ``gaps``, ``Delta`` of the curve and ``points``: (H/d, Delta, se) at the
+        runs).
     exponents : mapping
         Label -> exponent of the reference lines (drawn through the data's geometric mean).
     """
-    import math
 
     import numpy as np
 
     from .plotting import new_figure, style
 
-    fig, axes = new_figure(1, 1, width=6.4, height=3.4)
-    ax = axes[0, 0]
-    markers = ["o", "s", "D", "^", "v", "*"]
-    all_g: list[float] = []
-    all_d: list[float] = []
+    n = max(1, len(series))
+    fig, axes = new_figure(1, n, width=min(3.2 * n + 0.6, 11.0), height=3.6)
+    axs = [axes[0, k] for k in range(n)]
+    order = sorted({m for s in series for m in s.get("curves", {})})
     with style():
-        for i, s in enumerate(series):
-            color = f"C{i % 10}"
+        if not series:
+            axs[0].text(0.5, 0.5, "no series for this claim", ha="center",
+                        transform=axs[0].transAxes)  # fmt: skip
+        for ax, s in zip(axs, series, strict=False):
             pts = [
                 (g, d, e, u)
                 for g, d, e, u in zip(s["gaps"], s["Delta"], s["stderr"], s["usable"], strict=True)
@@ -259,59 +261,61 @@ def delta_claim_figure(
             ]
             for use in (True, False):
                 sel = [p for p in pts if p[3] == use]
-                if not sel:
-                    continue
-                ax.errorbar(
-                    [p[0] for p in sel],
-                    [p[1] for p in sel],
-                    yerr=[p[2] or 0.0 for p in sel],
-                    fmt=markers[i % 6],
-                    color=color,
-                    markerfacecolor=color if use else "none",
-                    capsize=2,
-                    label=s["label"] + ("" if use else " (fills its gap: left out)"),
-                )
-            all_g += [p[0] for p in pts]
-            all_d += [p[1] for p in pts]
-            model = s.get("model") or []
-            mp = [(g, m) for g, m in zip(s["gaps"], model, strict=False) if m]
-            if mp:
-                ax.plot(
-                    [p[0] for p in mp],
-                    [p[1] for p in mp],
-                    linestyle=":",
-                    marker="x",
-                    color=color,
-                    label=f"{s['label']}: Cosserat fits",
-                )
-        if all_g:
-            g0, g1 = min(all_g) / 1.3, max(all_g) * 1.3
-            gg = np.geomspace(g0, g1, 20)
-            d0 = float(np.exp(np.mean(np.log(all_d))))
-            gm = math.sqrt(g0 * g1)
-            for k, (label, c) in enumerate(exponents.items()):
-                ax.plot(
-                    gg,
-                    d0 * (gg / gm) ** c,
-                    color="0.4",
-                    linestyle=["--", "-."][k % 2],
-                    linewidth=0.8,
-                    label=label,
-                )
+                if sel:
+                    ax.errorbar(
+                        [p[0] for p in sel], [p[1] for p in sel],
+                        yerr=[p[2] or 0.0 for p in sel], fmt="o", color="k",
+                        markerfacecolor="k" if use else "none", capsize=2, markersize=4,
+                        label="DEM data (+- 1 se)" if use else "band fills its gap: left out",
+                        zorder=3,
+                    )  # fmt: skip
+            all_g = [p[0] for p in pts]
+            all_d = [p[1] for p in pts]
+            for model, c in s.get("curves", {}).items():
+                st = model_style(model, order)
+                cg = [(g, d) for g, d in zip(c["gaps"], c["Delta"], strict=True) if d]
+                if cg:
+                    ax.plot([g for g, _ in cg], [d for _, d in cg], color=st["color"],
+                            linestyle=st.get("linestyle", "-"), linewidth=1.2,
+                            label=f"{model}, one joint calibration")  # fmt: skip
+                    all_g += [g for g, _ in cg]
+                    all_d += [d for _, d in cg]
+                cp = [p for p in c.get("points", []) if p[1]]
+                all_d += [p[1] for p in cp]
+                if cp:
+                    ax.errorbar([p[0] for p in cp], [p[1] for p in cp],
+                                yerr=[p[2] or 0.0 for p in cp], fmt="x", color=st["color"],
+                                capsize=2, markersize=5)  # fmt: skip
+            if not all_g:
+                ax.text(0.5, 0.5, "no usable Delta", ha="center", transform=ax.transAxes)
+                ax.set_title(s["label"], fontsize=7)
+                continue
+            g0, g1 = min(all_g) / 1.15, max(all_g) * 1.15
+            data = [p for p in pts if p[3]] or pts
+            if data:
+                gg = np.geomspace(g0, g1, 20)
+                d0 = float(np.exp(np.mean(np.log([p[1] for p in data]))))
+                gm = float(np.exp(np.mean(np.log([p[0] for p in data]))))
+                for k, (label, ex) in enumerate(exponents.items()):
+                    ax.plot(gg, d0 * (gg / gm) ** ex, color="0.55",
+                            linestyle=["--", "-."][k % 2], linewidth=0.8,
+                            label=label)  # fmt: skip
             ax.set_xscale("log")
             ax.set_yscale("log")
+            ax.set_xlim(g0, g1)
             _plain(ax)
             ax.set_xticks(_nice_ticks(g0, g1, (5, 10, 20, 40, 80, 160, 320, 640, 1280)))
-            y0, y1 = ax.get_ylim()
-            ax.set_yticks(_nice_ticks(y0, y1, (0.5, 1, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100)))
-            ax.set_ylim(y0, y1)
-            ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7, frameon=False)
-        else:
-            ax.text(0.5, 0.5, "no series for this claim", ha="center", transform=ax.transAxes)
-        ax.set_xlabel(r"$H/d$ [-]")
-        ax.set_ylabel(r"$\Delta$ [$d$]")
-        ax.set_title(title, fontsize=8)
-        fig.subplots_adjust(left=0.1, right=0.55, bottom=0.15, top=0.9)
+            lo, hi = min(all_d) / 1.3, max(all_d) * 1.3
+            ax.set_ylim(lo, hi)
+            ticks = (0.5, 1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100)
+            ax.set_yticks(_nice_ticks(lo, hi, ticks))
+            ax.set_title(s["label"], fontsize=7)
+            ax.set_xlabel(r"$H/d$ [-]")
+        axs[0].set_ylabel(r"$\Delta$ [$d$]")
+        fig.suptitle(title + "  (x: each model at the runs, +- its calibration's error)",
+                     fontsize=8)  # fmt: skip
+        _legend_below(fig, axs, ncol=3)
+        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.33, top=0.84, wspace=0.3)
     return fig
 
 

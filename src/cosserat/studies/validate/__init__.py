@@ -5,7 +5,8 @@ velocity profile (:mod:`.fits`, the only module that fits); measure the shear-la
 Delta, the spin's departure from half the vorticity at each wall, the band's stress ratio and
 the inertial number at the moving wall (:mod:`.measures`); set each fitted model's predicted
 spin departure beside the measured one. Across the runs of one cell, material and wall at
-several gaps (:mod:`.grouping`, by tolerance on the held cell parameter): Delta against H/d.
+several gaps (:mod:`.grouping`, by tolerance on the held cell parameter): Delta against H/d,
+and each model's Delta there from one joint calibration of the series (:mod:`.fits`).
 Then a verdict on each of the paper's claims (:mod:`.verdicts`, each a small pure function of
 measured quantities), whichever way it goes:
 
@@ -40,10 +41,14 @@ from .study import CHANNEL_NOTE, RunResult, ValidationReport, validate
 from .verdicts import (
     CLAIMS,
     MIN_GAPS,
+    CurveTest,
     DeltaPoint,
     DeltaSeries,
+    ModelDelta,
     Verdict,
+    curve_test,
     delta_law_verdict,
+    power_law_test,
     spin_model_verdict,
     spin_verdict,
 )
@@ -62,8 +67,10 @@ __all__ = [
     "MIN_GAPS",
     "NEAR_WALL_D",
     "P_SIGNIFICANT",
+    "CurveTest",
     "DeltaPoint",
     "DeltaSeries",
+    "ModelDelta",
     "RunResult",
     "SpinMeasure",
     "StressRatio",
@@ -72,9 +79,11 @@ __all__ = [
     "Verdict",
     "WallSpin",
     "band_stress_ratio",
+    "curve_test",
     "delta_law_verdict",
     "measure_spin",
     "measured_thickness",
+    "power_law_test",
     "reference_velocity",
     "spin_model_verdict",
     "spin_verdict",

@@ -261,3 +261,238 @@ def _stress_contradiction(
         f"{stress.value:.3g} +- {stress.stderr:.2g} ({stress.bins} bins), "
         f"{diff / stress.stderr:.1f} errors away"
     )
+
+
+# --------------------------------------------------------------------------- gap series
+SERIES_STARTS: int | None = None
+"""Latin-hypercube starts of a series' joint calibration besides the declared defaults: None,
+the engine's default design (``4 k + 4``), so that it is the calibration ``cosserat calibrate
+RUNS --models MODEL`` gives. One start is not enough: on the shipped smooth-wall series mu(I)
+then ends in a local minimum (chi^2 7851 against 5213)."""
+CURVE_POINTS = 9
+"""Points of each model's Delta curve across the series' gaps (for the figure)."""
+CURVE_SPAN = (1.25, 2.0)
+"""The curve runs from the smallest gap over the first factor to the largest times the
+second [-]."""
+
+
+@dataclass
+class SeriesCalibration:
+    """One model calibrated jointly on a gap series, and its Delta there.
+
+    Attributes
+    ----------
+    model : str
+    status, message : str
+        ``"ok"``, or ``"failed"`` and why.
+    summary : dict
+        Parameters (value, stderr, free, reason), chi2, dof, p_value, warnings, seconds.
+    predicted : dict of run name to (Delta, se)
+        Delta of the calibrated model at each run's gap, bins and rate [d], with its error from
+        the calibration's covariance [d].
+    curve : (gaps, Delta)
+        Delta on a grid of H/d [-], [d] (None where the model has no solution).
+    """
+
+    model: str
+    status: str
+    message: str = ""
+    summary: dict[str, Any] = field(default_factory=dict)
+    predicted: dict[str, tuple[float | None, float | None]] = field(default_factory=dict)
+    curve: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
+
+
+def _series_start(model: str, keys: set[str], fits: Sequence[RunFits | None]) -> dict[str, float]:
+    """The median of the per-run fits' values of the calibration's parameters (by key)."""
+    values: dict[str, list[float]] = {}
+    for rf in fits:
+        s = None if rf is None else rf.summary(model)
+        if s is None or not s.ok:
+            continue
+        for k, (v, _) in s.parameters.items():
+            if k in keys and isinstance(v, int | float) and math.isfinite(v):
+                values.setdefault(k, []).append(float(v))
+    return {k: float(np.median(v)) for k, v in values.items()}
+
+
+def _probe(template: Any, name: str, gap_d: float, s: FloatArray, I_w: float | None) -> Any:
+    """A run of the calibration frame like ``template`` at gap H/d = ``gap_d`` whose one field
+    is ``u`` at the distances ``s`` [d] (values unused)."""
+    import dataclasses
+
+    from ...calibration.data import Field
+
+    cell = dict(template.cell_values)
+    cell["eps"] = 1.0 / gap_d
+    u = Field("u", np.asarray(s, dtype=float), np.zeros(len(s)), np.ones(len(s)))
+    return dataclasses.replace(
+        template, name=name, gap_d=gap_d, cell_values=cell, I_w=I_w, fields={"u": u}
+    )
+
+
+def _delta(model: Any, probe: Any, values: Any, u0: float, f: float) -> float | None:
+    from ...calibration.models import SOLVE_ERRORS
+    from .measures import thickness_of
+
+    try:
+        u = model.predict(probe, values, ["u"])["u"]
+    except SOLVE_ERRORS:
+        return None
+    if not np.all(np.isfinite(u)):
+        return None
+    return thickness_of(probe.fields["u"].s, u, u0, f)
+
+
+def _rate(runs: Sequence[Any]) -> Callable[[float], float | None]:
+    """I_w at a gap: the power law of the runs' I_w against H/d (least squares in log-log; one
+    gap: I_w proportional to d/H), None without I_w."""
+    pts = [(r.gap_d, r.I_w) for r in runs if r.I_w is not None and r.I_w > 0.0]
+    if not pts:
+        return lambda g: None
+    lg = np.log([g for g, _ in pts])
+    li = np.log([i for _, i in pts])
+    if np.ptp(lg) < 1e-6:
+        c0, c1 = float(np.mean(li + lg)), -1.0
+    else:
+        c1, c0 = (float(x) for x in np.polyfit(lg, li, 1))
+    return lambda g: float(math.exp(c0 + c1 * math.log(g)))
+
+
+def calibrate_series(
+    runs: Sequence[Run],
+    models: Sequence[str] | None,
+    f: float,
+    fits: Sequence[RunFits | None] = (),
+    curve: bool = True,
+    use_fits: bool = False,
+) -> list[SeriesCalibration]:
+    """Each model calibrated jointly on the runs of one gap series (``cosserat calibrate``'s
+    engine, :func:`cosserat.calibration.joint.calibrate_model`: material parameters shared,
+    wall parameters shared per wall kind, what the metadata give fixed, every measured field
+    the model predicts; NGF's A free), and its Delta at each run and on a grid of H/d.
+
+    Parameters
+    ----------
+    runs : sequence of Run
+        The series' runs (plane or Couette).
+    models : sequence of str, optional
+        Registered rheologies (default: every one the calibration knows on the runs' cell).
+    f : float
+        Fraction defining Delta [-].
+    fits : sequence of RunFits or None
+        The runs' own fits, whose median values start the calibration with ``use_fits``
+        (default: the declared defaults, as ``cosserat calibrate`` starts).
+    curve : bool
+        Also compute the curve on a grid of H/d (for the figure).
+
+    Raises
+    ------
+    CosseratError
+        A run the calibration cannot take (:func:`cosserat.calibration.data.from_run`).
+    """
+    from ...calibration.data import from_run, with_correlations
+    from ...calibration.engine import FD_STEP
+    from ...calibration.joint import calibrate_model
+    from ...calibration.models import Model
+    from ...calibration.models import models as make_models
+    from .measures import reference_velocity
+
+    data = with_correlations([from_run(r) for r in runs], None)
+    cell = runs[0].cell
+    chosen = [m for m in make_models(None) if cell in m.cells()]
+    if models is not None:
+        chosen = [m for m in chosen if m.name in models]
+    u0 = reference_velocity(runs[0])
+    rate = _rate(data)
+    out = []
+    for m in chosen:
+        keys = {p.key for p in m.parameters()}
+        start = _series_start(m.name, keys, fits) if use_fits else None
+        mc = calibrate_model(Model(m.name), data, None, start=start, starts=SERIES_STARTS)
+        if not mc.ok:
+            out.append(SeriesCalibration(m.name, "failed", " ".join(mc.message.split())))
+            continue
+        s, opt = mc.internal
+        model = s.model
+        theta = opt.theta
+        scale = max((e.scale for e in mc.parameters.values()), default=1.0)
+        cov = (
+            np.asarray(mc.covariance, dtype=float) * scale**2
+            if mc.covariance is not None
+            else np.zeros((theta.size, theta.size))
+        )
+        lo, hi = s.bounds()
+        predicted: dict[str, tuple[float | None, float | None]] = {}
+        for run, rd in zip(runs, data, strict=True):
+            probe = _probe(rd, rd.name, rd.gap_d, run.measured().distance_d, rd.I_w)
+            value = _delta(model, probe, s.run_values(rd, theta), u0, f)
+            se = None
+            if value is not None and theta.size:
+                g = np.zeros(theta.size)
+                ok = True
+                for j in range(theta.size):
+                    h = (
+                        FD_STEP
+                        * (hi[j] - lo[j])
+                        * (1.0 if theta[j] + FD_STEP * (hi[j] - lo[j]) <= hi[j] else -1.0)
+                    )
+                    moved = theta.copy()
+                    moved[j] += h
+                    dj = _delta(model, probe, s.run_values(rd, moved), u0, f)
+                    if dj is None:
+                        ok = False
+                        break
+                    g[j] = (dj - value) / h
+                se = math.sqrt(max(float(g @ cov @ g), 0.0)) if ok else None
+            predicted[rd.name] = (value, se)
+        grid: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
+        if curve:
+            m0 = runs[0].measured().distance_d
+            first = float(np.min(m0))
+            step = float(np.median(np.diff(np.sort(m0)))) if m0.size > 1 else 1.0
+            gaps = np.geomspace(
+                min(r.gap_d for r in runs) / CURVE_SPAN[0],
+                max(r.gap_d for r in runs) * CURVE_SPAN[1],
+                CURVE_POINTS,
+            )
+            values = s.run_values(data[0], theta)
+            ds = []
+            for g in gaps:
+                probe = _probe(data[0], f"{data[0].name}@H{g:.4g}", float(g),
+                               np.arange(first, g, step), rate(float(g)))  # fmt: skip
+                ds.append(_delta(model, probe, values, u0, f))
+            grid = (tuple(float(g) for g in gaps), tuple(ds))
+        summary = {
+            "parameters": {
+                n: {
+                    "value": e.value,
+                    "stderr": e.stderr_scaled,
+                    "free": e.free,
+                    "derived": e.derived,
+                    "shared": e.shared,
+                    "unit": e.unit,
+                    "reason": e.reason,
+                }
+                for n, e in mc.parameters.items()
+            },
+            "fields": list(mc.fields_used),
+            "chi2": mc.chi2,
+            "dof": mc.dof,
+            "p_value": mc.p_value,
+            "log10_p_value": mc.log10_p_value,
+            "unidentified": [d.describe() for d in mc.flat],
+            "warnings": list(mc.warnings),
+        }
+        out.append(SeriesCalibration(m.name, "ok", "", summary, predicted, grid))
+    return out
+
+
+def series_job(runs: Sequence[Run], model: str, f: float) -> SeriesCalibration:
+    """:func:`calibrate_series` of one model, a failure as a result (for worker processes)."""
+    try:
+        out = calibrate_series(runs, [model], f)
+    except CosseratError as exc:
+        return SeriesCalibration(model, "failed", " ".join(str(exc).split()))
+    if not out:
+        return SeriesCalibration(model, "failed", f"model {model!r} has no {runs[0].cell} cell")
+    return out[0]

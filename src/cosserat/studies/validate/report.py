@@ -22,7 +22,7 @@ from .measures import (
     SHEARED_U,
     WALL_EXCLUSION_D,
 )
-from .verdicts import MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, relevant
+from .verdicts import EXPONENT_TOL, MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, calibration_text, relevant
 
 if TYPE_CHECKING:
     from .study import RunResult, ValidationReport
@@ -110,6 +110,17 @@ def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
                 "stderr": s.stderr,
                 "usable": [p.usable for p in s.points],
                 "model": [by_name[p.run].model_delta.get("cosserat") for p in s.points],
+                "curves": {
+                    m: {
+                        "gaps": list(c.curve[0]),
+                        "Delta": list(c.curve[1]),
+                        "points": [
+                            (p.gap_d, *c.predicted.get(p.run, (None, None))) for p in s.points
+                        ],
+                    }
+                    for m, c in s.curves.items()
+                    if c.ok
+                },
             }
         )
     return out
@@ -176,11 +187,17 @@ def rules() -> str:
         f"against the model's there; the sign is determined where |departure| >= "
         f"{SIGN_SIGMAS:g} se. Delta: where the velocity falls to f of its value in the bin "
         f"nearest the moving wall (u_0 = 1/2 for plane shear without gravity, else 0); a band "
-        f"with Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws; the slope "
-        f"of ln Delta on ln(H/d) over at least {MIN_GAPS} gaps supports a claimed exponent "
-        "within 2 standard errors when the other claimed exponent is outside 2, and refutes it "
-        "beyond 2 unless the Cosserat model fitted to the same runs misses it too and the data "
-        "agree with the model's slope (the claims are limits H/d -> infinity). Fits: a fit "
+        f"with Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws. Each gap "
+        "series is calibrated jointly, one calibration per model; the measured Delta is held "
+        "against each model's Delta at the runs (chi^2 with the two errors in quadrature, dof "
+        "= points; and up to a common factor, dof = points - 1, which tests the dependence on "
+        f"the gap): supported when the Cosserat curve's shape has p >= {P_CONSISTENT:g} and "
+        f"an alternative (another model, or the other claim's power law) p < "
+        f"{P_SIGNIFICANT:g}, refuted when the Cosserat curve's shape has p < "
+        f"{P_SIGNIFICANT:g}. The slope of ln Delta on ln(H/d) (at least {MIN_GAPS} gaps) is "
+        "judged only where the Cosserat curve's own slope over the gaps is within "
+        f"{EXPONENT_TOL:g} of the claimed limit (then: the claimed exponent within 2 standard "
+        "errors and the other outside 2). Fits: a fit "
         f"with p(chi^2) < {P_SIGNIFICANT:g} is a misfit; parameters held at their defaults "
         "are named; a model's band stress ratio (sin phi, mu_s) that contradicts the run's "
         f"measured |shear|/normal stress (where u >= {BAND_U:g}, bins farther than "
@@ -263,6 +280,22 @@ def context(report: ValidationReport) -> dict[str, Any]:
         )
         slope = "no slope" if g.slope is None else f"slope {g.slope.text()}"
         models = ", ".join(f"{m} {s.slope:.3f}" for m, s in g.model_slopes.items() if s)
+        tests = g.tests()
+        calibrated = []
+        for m, c in g.curves.items():
+            if not c.ok:
+                calibrated.append(f"joint calibration of {m} on the series failed: {c.message}")
+                continue
+            t = tests.get(m)
+            calibrated.append(
+                f"{m}, one joint calibration of the series ({calibration_text(c)}): Delta = "
+                + ", ".join(
+                    f"{_g(v, '.3g')}" + ("" if e is None else f" +- {e:.2g}")
+                    for v, e in c.predicted.values()
+                )
+                + " d at the runs"
+                + ("" if t is None else f"; against the measured Delta, {t.text()}")
+            )
         series.append(
             {
                 "key": g.key,
@@ -270,7 +303,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "slope": slope,
                 "reason": g.reason,
                 "models": models,
-                "notes": list(g.notes),
+                "notes": calibrated + list(g.notes) + g.replicates(),
             }
         )
     return {

@@ -9,7 +9,7 @@ series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import as_completed
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -19,7 +19,7 @@ from ...analysis.corpus import Corpus, Run, read_corpus
 from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
-from .fits import RunFits, try_fit_run
+from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
 from .grouping import couette_note, group_runs
 from .measures import (
     NEAR_WALL_D,
@@ -36,8 +36,10 @@ from .measures import (
 )
 from .verdicts import (
     MIN_GAPS,
+    SAME_GAP,
     DeltaPoint,
     DeltaSeries,
+    ModelDelta,
     Verdict,
     delta_law_verdict,
     spin_model_verdict,
@@ -215,22 +217,30 @@ def _analyse_all(
     progress: Callable[[str, int, int], None] | None,
     workers: int | None,
     figures_to: Path | None = None,
-) -> list[RunResult]:
-    """:func:`analyse_run` of every run, in worker processes when worth it (``validate``)."""
-    workers = 1 if workers is None else min(workers, len(runs))
+    jobs: Sequence[tuple[str, tuple[Run, ...], str]] = (),
+) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]]]:
+    """:func:`analyse_run` of every run and :func:`.fits.series_job` of every job, in worker
+    processes when worth it (``validate``): (the runs' results, series key -> calibrations)."""
+    workers = 1 if workers is None else min(workers, len(runs) + len(jobs))
+    cals: dict[str, list[SeriesCalibration]] = {}
     if workers <= 1:
         out = []
         for i, run in enumerate(runs):
             out.append(analyse_run(run, models, f, near_wall_d, grid, figures_to))
             if progress:
                 progress("runs", i + 1, len(runs))
-        return out
+        for key, members, model in jobs:
+            cals.setdefault(key, []).append(series_job(members, model, f))
+        return out, cals
     from ...numerics.runtime import worker_processes
 
     done: dict[int, RunResult] = {}
-    # the longest runs (most bins) first, so that the workers end together
+    # the longest first, so that the workers end together: mu(I)'s series calibrations (a
+    # quadrature per solve), then the runs with the most bins
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
+    ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k][2] != "mui", -len(jobs[k][1])))
     with worker_processes(workers) as pool:
+        series_futures = {pool.submit(series_job, jobs[k][1], jobs[k][2], f): k for k in ranked}
         futures = {
             pool.submit(analyse_run, runs[i], models, f, near_wall_d, grid, figures_to): i
             for i in order
@@ -239,15 +249,61 @@ def _analyse_all(
             done[futures[fut]] = fut.result()
             if progress:
                 progress("runs", k + 1, len(runs))
-    return [done[i] for i in range(len(runs))]
+        got = {series_futures[fut]: fut.result() for fut in as_completed(series_futures)}
+    for k in range(len(jobs)):  # in the jobs' order, whichever ended first
+        cals.setdefault(jobs[k][0], []).append(got[k])
+    return [done[i] for i in range(len(runs))], cals
 
 
-def judge(results: Sequence[RunResult]) -> tuple[list[DeltaSeries], list[Verdict], list[str]]:
-    """The gap series and the verdicts on every claim, from the runs' results."""
+def series_jobs(
+    runs: Sequence[Run], models: Sequence[str] | None
+) -> list[tuple[str, tuple[Run, ...], str]]:
+    """(series key, its runs, model) of every joint calibration of a gap series that validate
+    makes: series of plane or Couette runs at two or more distinct gaps, each model the
+    calibration has on their cell (``models`` only, if given)."""
+    from ...calibration.models import models as make_models
+
+    out = []
+    for s in group_runs(runs):
+        gaps: list[float] = []
+        for r in s.runs:
+            if not any(abs(r.gap_d - g) <= SAME_GAP * g for g in gaps):
+                gaps.append(r.gap_d)
+        if len(gaps) < 2 or s.cell not in ("plane", "couette"):
+            continue
+        for m in make_models(None):
+            if s.cell in m.cells() and (models is None or m.name in models):
+                out.append((s.key, s.runs, m.name))
+    return out
+
+
+def _curves(cals: Sequence[SeriesCalibration]) -> dict[str, ModelDelta]:
+    return {
+        c.model: ModelDelta(c.model, c.predicted, c.curve, c.summary, c.status, c.message)  # type: ignore[arg-type]
+        for c in cals
+    }
+
+
+def judge(
+    results: Sequence[RunResult],
+    models: Sequence[str] | None = None,
+    f: float = DEFAULT_F,
+    calibrate: bool = True,
+    calibrations: Mapping[str, Sequence[SeriesCalibration]] | None = None,
+) -> tuple[list[DeltaSeries], list[Verdict], list[str]]:
+    """The gap series and the verdicts on every claim, from the runs' results. Each series'
+    joint calibrations (:func:`series_jobs`) are ``calibrations`` (series key -> one per
+    model), or else made here unless ``calibrate`` is False."""
     by_name = {r.run.name: r for r in results}
+    if calibrations is None:
+        calibrations = {}
+        if calibrate:
+            for key, runs, model in series_jobs([r.run for r in results], models):
+                calibrations.setdefault(key, []).append(series_job(runs, model, f))
     series = []
     for s in group_runs([r.run for r in results]):
         members = [by_name[r.name] for r in s.runs]
+        curves = _curves(calibrations.get(s.key, []))
         points = tuple(
             DeltaPoint(
                 r.run.name,
@@ -267,7 +323,9 @@ def judge(results: Sequence[RunResult]) -> tuple[list[DeltaSeries], list[Verdict
                 s.gravity,
                 points,
                 _model_slopes(members),
-                s.replicate_notes(),
+                (),
+                curves,
+                {r.run.name: r.run.meta.get("wall_speed") for r in members},
             )
         )
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
@@ -347,10 +405,10 @@ def validate(
     progress : callable, optional
         Called as ``progress("runs", done, total)`` after each run.
     workers : int, optional
-        Processes that analyse runs (and draw their figures) in parallel; None: one. On the
-        shipped corpus, on two cores already busy with other work, two workers took 80 s
-        against 63 s for one (each worker pays a few seconds to start); on idle cores they
-        can halve the time of the fits.
+        Processes that analyse runs (and draw their figures) and calibrate the gap series in
+        parallel; None: one. On the shipped corpus one process needs 84 s of CPU, two workers
+        101 s between them (each pays its start): on two idle cores about 51 s; on cores
+        already busy they were slower (``docs/validation.md``, Speed).
 
     Raises
     ------
@@ -375,8 +433,11 @@ def validate(
     folder = None if out is None else Path(out)
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
-    results = _analyse_all(data.runs, models, f, near_wall_d, grid, progress, workers, folder)
-    series, verdicts, notes = judge(results)
+    jobs = series_jobs(data.runs, models)
+    results, cals = _analyse_all(
+        data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs
+    )
+    series, verdicts, notes = judge(results, models, f, calibrations=cals)
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
     if out is not None:
