@@ -241,8 +241,46 @@ class RunLength:
         return self.steps // self.restart_every if self.restart_every else 1
 
 
+def _own_walls(cell) -> None:
+    """Resolve a cell's per-wall kinds: both equal (or unset) leave the one ``wall`` and no
+    override (the deck is then that of a cell with one wall kind); otherwise ``wall`` is the
+    moving wall's (upper, inner) and the fixed one keeps its own."""
+    lower = cell.lower_wall or cell.wall
+    upper = cell.upper_wall or cell.wall
+    for name, w in (("lower_wall", lower), ("upper_wall", upper)):
+        if not isinstance(w, WallRoughness):
+            raise ParameterError(f"{name} must be a WallRoughness; got {type(w).__name__}")
+    if lower == upper:
+        object.__setattr__(cell, "wall", lower)
+        object.__setattr__(cell, "lower_wall", None)
+        object.__setattr__(cell, "upper_wall", None)
+    else:
+        object.__setattr__(cell, "wall", upper)
+        object.__setattr__(cell, "lower_wall", lower)
+        object.__setattr__(cell, "upper_wall", upper)
+
+
+class _TwoWalls:
+    """Per-wall kinds of a cell whose walls are types 2 (lower or inner) and 3 (upper or
+    outer)."""
+
+    wall: WallRoughness
+    lower_wall: WallRoughness | None
+    upper_wall: WallRoughness | None
+
+    @property
+    def walls(self) -> tuple[WallRoughness, WallRoughness]:
+        """The (lower or inner, upper or outer) walls."""
+        return (self.lower_wall or self.wall, self.upper_wall or self.wall)
+
+    @property
+    def walls_differ(self) -> bool:
+        """True when the two walls are of different kinds."""
+        return self.lower_wall is not None
+
+
 @dataclass(frozen=True)
-class PlaneShearDEM:
+class PlaneShearDEM(_TwoWalls):
     """Plane shear between two walls, periodic along x; the upper wall is driven at speed
     ``wall_speed`` along +x under the normal stress N = 1, the lower one is fixed.
 
@@ -257,6 +295,12 @@ class PlaneShearDEM:
         Gravity parameter rho_s nu g H / N [-] with nu = ``nu_nominal``; gravity along -y; 0: none.
     wall_speed : float
         Upper-wall speed V [sqrt(N / rho_s)].
+    wall : WallRoughness
+        Both walls, or (with ``lower_wall`` or ``upper_wall`` of another kind) the moving
+        upper one.
+    lower_wall, upper_wall : WallRoughness or None
+        A wall of its own kind (None: ``wall``). Walls that differ add a comment line
+        ``# walls: lower ..., upper ...`` to the deck; equal ones leave it that of one kind.
     """
 
     gap: float = 20.0
@@ -269,6 +313,8 @@ class PlaneShearDEM:
     run: RunLength = field(default_factory=RunLength)
     seed: int = 1
     nu_nominal: float = 0.8
+    lower_wall: WallRoughness | None = field(default=None, repr=False)
+    upper_wall: WallRoughness | None = field(default=None, repr=False)
 
     cell = "plane"
 
@@ -280,6 +326,7 @@ class PlaneShearDEM:
         _check("nu_nominal", self.nu_nominal, 0.3, 0.91)
         if not isinstance(self.seed, int) or self.seed < 1:
             raise ParameterError(f"seed must be a whole number >= 1; got {shown(self.seed)}")
+        _own_walls(self)
 
     @property
     def gravity(self) -> float:
@@ -288,7 +335,7 @@ class PlaneShearDEM:
 
 
 @dataclass(frozen=True)
-class CouetteDEM:
+class CouetteDEM(_TwoWalls):
     """Annular Couette flow: a rough inner ring of radius R_i turning at tangential speed V
     (counter-clockwise), a fixed rough outer ring at R_i + H; no gravity; the grains fill the
     annulus at the solids fraction ``nu_fill`` (volume control: the stress is measured).
@@ -303,6 +350,12 @@ class CouetteDEM:
         Area of the grains over the area of the annulus between the ring surfaces [-].
     wall_speed : float
         Tangential speed of the inner ring's surface V = Omega_i R_i [sqrt(N / rho_s)].
+    wall : WallRoughness
+        Both rings, or (with ``lower_wall`` or ``upper_wall`` of another kind) the moving
+        inner one.
+    lower_wall, upper_wall : WallRoughness or None
+        The inner (``lower_wall``) or outer (``upper_wall``) ring of its own kind (None:
+        ``wall``), as in :class:`PlaneShearDEM`.
     """
 
     gap: float = 20.0
@@ -314,6 +367,8 @@ class CouetteDEM:
     contact: Contact = field(default_factory=Contact)
     run: RunLength = field(default_factory=RunLength)
     seed: int = 1
+    lower_wall: WallRoughness | None = field(default=None, repr=False)
+    upper_wall: WallRoughness | None = field(default=None, repr=False)
 
     cell = "couette"
 
@@ -324,6 +379,7 @@ class CouetteDEM:
         _check("wall_speed", self.wall_speed, 0.0, 10.0)
         if not isinstance(self.seed, int) or self.seed < 1:
             raise ParameterError(f"seed must be a whole number >= 1; got {shown(self.seed)}")
+        _own_walls(self)
 
 
 @dataclass(frozen=True)
