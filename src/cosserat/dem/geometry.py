@@ -96,8 +96,9 @@ def planar_layout(cell: PlaneShearDEM | ChannelDEM) -> Layout:
         "surface_offset": dw / 2.0,
         "initial_gap": y_top - dwu / 2.0 - dw / 2.0,
     }
-    if getattr(cell, "walls_differ", False):  # walls of two kinds: the lower wall's own row, and the upper
-        # wall's surface below its centres (the one offset of a single wall kind otherwise)
+    if getattr(cell, "walls_differ", False):
+        # walls of two kinds: the lower wall's own row, and the upper wall's surface below its
+        # centres (a single wall kind has one offset)
         info.update(lower_wall_count=n_wall, lower_wall_spacing=s, upper_offset=dwu / 2.0)
     return Layout(all_x, all_y, all_d, kind, box, info)
 
