@@ -142,9 +142,7 @@ def annular_layout(cell: CouetteDEM) -> Layout:
     d = _diameters(rng, n_free, cell.grains.polydispersity)
     x = np.concatenate([px[pick], rows[0][0], rows[1][0]])
     y = np.concatenate([py[pick], rows[0][1], rows[1][1]])
-    diam = np.concatenate(
-        [d * shrink, np.full(rows[0][0].size, dw), np.full(rows[1][0].size, dwo)]
-    )
+    diam = np.concatenate([d * shrink, np.full(rows[0][0].size, dw), np.full(rows[1][0].size, dwo)])
     kind = np.concatenate([np.full(n_free, FREE), rows[0][2], rows[1][2]])
     edge = ro + dwo + 1.0
     box = (-edge, edge, -edge, edge)
