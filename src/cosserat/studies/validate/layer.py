@@ -300,7 +300,10 @@ def layer_position_verdict(positions: Sequence[LayerPosition]) -> LayerVerdict:
         f"|a| >= {SIGMAS:g} se. mu(I) and NGF (uniform stress, no wall friction) predict a = 0."
     )
     pred_text = (
-        " Fitted models' a: " + ", ".join(f"{m} {v:+.3f}" for m, v in predicted.items()) + "."
+        " Fitted models' a (validate's single-run fits, which give the fixed wall the moving "
+        "wall's kind and so cannot put a band at it alone): "
+        + ", ".join(f"{m} {v:+.3f}" for m, v in predicted.items())
+        + "."
         if predicted
         else ""
     )
