@@ -201,7 +201,7 @@ def jump_fractions(
 
 
 def smoother_wall(meta: Mapping[str, Any]) -> str | None:
-    """ "fixed" or "moving": which wall of a run is the smoother, from its sidecar's ``wall``
+    """Which wall of a run is the smoother, "fixed" or "moving", from its sidecar's ``wall``
     (the moving wall) and ``wall_fixed``; None when they are not of two ranked kinds
     (:data:`ROUGHNESS_RANK`)."""
     moving, fixed = meta.get("wall"), meta.get("wall_fixed")
