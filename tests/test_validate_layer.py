@@ -219,3 +219,42 @@ def test_the_cosserat_model_puts_the_band_at_the_smoother_wall():
     assert (lower2, upper2) == pytest.approx((upper, lower), abs=1e-3)  # the mirror image
     _, lower3, upper3 = fractions({"delta": "fully-rough"})
     assert lower3 == pytest.approx(upper3, abs=1e-3)
+
+
+def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
+    """End to end through the CLI: a synthetic Cosserat run with a smooth fixed lower wall and
+    a rough moving upper one, no gravity; validate adds the layer verdict (supported, a > 0)
+    with the run's figure, and results.json carries its numbers."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from cosserat import make_problem, solve
+    from cosserat.analysis.corpus import synthetic_run
+
+    values = {"phi": 19.0, "delta": "fully-rough", "delta_lower": 13.9, "eps": 0.1, "B": 0.0}
+    profile = solve(make_problem("cosserat", "plane", {**values, "L": 5.0}))
+    corpus = tmp_path / "corpus"
+    csv_path = synthetic_run(corpus, "layer", profile, noise=0.01, wall=ROUGH)
+    sidecar = csv_path.with_suffix(".json")
+    meta = json.loads(sidecar.read_text())
+    sidecar.write_text(json.dumps({**meta, "wall_fixed": SMOOTH}))
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    proc = subprocess.run(
+        [sys.executable, "-m", "cosserat", "validate", str(corpus), "--out",
+         str(tmp_path / "out"), "--models", "mui"],
+        capture_output=True, text=True, check=False, timeout=600,
+        env={**os.environ, "PYTHONPATH": src},
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    results = json.loads((tmp_path / "out" / "results.json").read_text())
+    (layer,) = [v for v in results["verdicts"] if v["key"] == "layer"]
+    assert layer["verdict"] == "supported" and layer["claim"] == LAYER_CLAIM
+    assert layer["runs"] == ["layer"]
+    # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)
+    assert layer["numbers"]["asymmetry"] == pytest.approx(0.635, abs=0.03)
+    assert layer["numbers"]["predicted"]["mui"] == pytest.approx(0.0, abs=0.05)
+    assert results["runs"][0]["figure"].endswith(".png")
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert f"![layer]({results['runs'][0]['figure']})" in report
