@@ -94,7 +94,8 @@ def planar_layout(cell: PlaneShearDEM | ChannelDEM) -> Layout:
         "wall_count": n_up,
         "wall_spacing": s_up,
         "surface_offset": dw / 2.0,
-        "initial_gap": y_top - dwu / 2.0 - dw / 2.0,
+        # (one wall diameter: the expression of one wall kind, to the last bit)
+        "initial_gap": y_top - dw if dw == dwu else y_top - dwu / 2.0 - dw / 2.0,
     }
     if getattr(cell, "walls_differ", False):
         # walls of two kinds: the lower wall's own row, and the upper wall's surface below its
