@@ -153,7 +153,8 @@ def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
             gap.append(info["outer_radius"] - info["inner_radius"])
         else:
             upper = kind == UPPER_WALL
-            gap.append(y[upper].mean() - off - info.get("upper_offset", off))
+            top = off + info["upper_offset"] if "upper_offset" in info else 2.0 * off
+            gap.append(y[upper].mean() - top)
             wn.append(force[upper, 1].sum() / length)
             ws.append(force[upper, 0].sum() / length)
             wv.append(vx[upper].mean())
