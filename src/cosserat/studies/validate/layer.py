@@ -59,7 +59,9 @@ LAYER_CLAIM = (
     "Without gravity, between a wall smoother than the material and a rougher one, the shear "
     "band forms at the smoother wall and the bulk moves with the rougher wall (whichever moves)."
 )
+"""The claim judged (the paper's; issue 18's "rougher wall" is the opposite, docs/dem.md)."""
 LAYER_KEY = "layer"
+"""The claim's key in ``validate``'s verdicts."""
 
 
 @dataclass(frozen=True)
@@ -370,6 +372,12 @@ def layer_verdicts(
 
 __all__ = [
     "LAYER_CLAIM",
+    "LAYER_KEY",
+    "NO_GRAVITY_B",
+    "QUASI_STATIC_I",
+    "ROUGHNESS_RANK",
+    "SIGMAS",
+    "WITHIN_D",
     "LayerPosition",
     "LayerVerdict",
     "jump_fractions",
