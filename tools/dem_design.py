@@ -5,10 +5,11 @@ what they cost.
     PYTHONPATH=src python tools/dem_design.py [--bench] [--json OUT]
 
 1. Predictions: Delta(H/d) [d] (``cosserat.shear_layer_thickness``, f = 0.05) of each model
-   with the measured material, phi = 17 deg (sin(phi) = 0.29, the corpus's stress ratio at
-   the moving wall 0.27-0.30): plane shear under gravity at fixed B = 1 (nu = 0.8, the
-   corpus's B nu) for a fully rough wall and for the smooth wall's measured delta = 12.8 deg
-   (tan(delta) = 0.227, the corpus's 0.21-0.23); Couette at the fixed R_i/H = 1. mu(I) and
+   with the material measured at quasi-static rates (corpus v2, H = 10 d, V = 0.0025):
+   phi = 19 deg (sin(phi) = 0.33; the rough moving wall's stress ratio 0.321-0.328) for
+   plane shear under gravity at fixed B = 1 (nu = 0.8, the corpus's B nu) for a fully rough
+   wall and for the smooth wall's delta = 13.9 deg (tan(delta) = 0.248 +- 0.011 measured);
+   Couette at the fixed R_i/H = 1. (v1's faster runs gave phi = 17, delta = 12.8 deg.) mu(I) and
    NGF take mu_s = sin(phi) and the wall inertial number of the design's wall speed,
    I_w = V d / (H sqrt(p_w / rho_s)) with V = 0.0025 sqrt(N/rho_s) and p_w = N; their other
    parameters are the package's defaults (NGF's A = 0.48 is the 3-D glass-bead value: the
@@ -47,8 +48,12 @@ import numpy as np
 from cosserat import make_problem, shear_layer_thickness, solve
 from cosserat.config import DEFAULT_F
 
-PHI, B, NU = 17.0, 1.0, 0.8
-DELTA_SMOOTH = 12.8
+PHI, B, NU = 19.0, 1.0, 0.8
+"""phi [deg]: sin(phi) = 0.33, the stress ratio 0.321-0.328 at the rough moving wall of the
+quasi-static plane run at H = 10 d (data/dem_v2); B and nu as in the design."""
+DELTA_SMOOTH = 13.9
+"""The smooth wall's delta [deg]: tan(delta) = 0.248 +- 0.011 at the moving wall of the
+quasi-static smooth plane run at H = 10 d (data/dem_v2)."""
 V = 0.0025
 DT = 0.996e-3
 PLANE_GAPS = (10, 20, 40, 80, 160)

@@ -60,14 +60,16 @@ EXTRA_KEYS = (
     "moving_wall", "synthetic_model",
     "B_note", "settle_steps", "dump_every", "wall_stress", "moving_wall_speed", "steady_drift",
     "wall_time_s", "wall_inertial_number", "quasi_static", "steadiness", "bin_correlation",
-    "bin_correlation_note", "segments", "extended_from_steps",
+    "bin_correlation_note", "segments", "extended_from_steps", "wall_fixed", "walls",
 )  # fmt: skip
 """Keys this reader also understands: which wall moves; the model a synthetic run came from;
 and what ``cosserat.dem`` records of a run (how B was set, the settling and dump intervals,
 the moving wall's measured stresses and speed, the drift of the flow over the steady window,
-the run's wall time; the local inertial number next to the walls and whether the run is
-quasi-static, the steadiness test, the bins' error correlation, the segments of a resumed
-run and the steps of its deck if it was continued for longer; ``docs/dem.md``)."""
+the run's wall time; the fixed wall where it differs from the moving one (``wall_fixed``)
+and each wall by position (``walls``); the local inertial number next to the walls and
+whether the run is quasi-static, the steadiness test, the bins' error correlation, the
+segments of a resumed run and the steps of its deck if it was continued for longer;
+``docs/dem.md``)."""
 WALL_KINDS = ("glued-grains", "smooth-frictional")
 ROUGHNESS = ("fully-rough", "smoother")
 

@@ -51,12 +51,17 @@ def _require_lammps() -> None:
 def _cell(args: argparse.Namespace):
     from ..dem import ChannelDEM, Contact, CouetteDEM, PlaneShearDEM, RunLength, WallRoughness
 
-    wall = WallRoughness(
-        args.wall,
-        glued_diameter=args.glued_diameter,
-        glued_spacing=args.glued_spacing,
-        friction=args.wall_friction,
-    )
+    def wall_of(kind: str) -> WallRoughness:
+        return WallRoughness(
+            kind,
+            glued_diameter=args.glued_diameter,
+            glued_spacing=args.glued_spacing,
+            friction=args.wall_friction,
+        )
+
+    wall = wall_of(args.wall)
+    own = _own_walls(args)
+    own_walls = {k: wall_of(v) for k, v in own.items()}
     contact = Contact(
         model=args.contact,
         kn=args.kn,
@@ -87,11 +92,41 @@ def _cell(args: argparse.Namespace):
             from .common import UsageError
 
             raise UsageError("--dim 3 needs --depth, the periodic depth along z [d] (e.g. 8)")
-        return PlaneShearDEM(width=args.width, B=args.B, **speed, **three, **common)
+        return PlaneShearDEM(width=args.width, B=args.B, **speed, **three, **common, **own_walls)
     if args.cell == "couette":
         speed = {} if args.speed is None else {"wall_speed": args.speed}
-        return CouetteDEM(inner_radius=args.Ri_d, nu_fill=args.nu_fill, **speed, **common)
+        return CouetteDEM(
+            inner_radius=args.Ri_d, nu_fill=args.nu_fill, **speed, **common, **own_walls
+        )
     return ChannelDEM(length=args.width, shear_ratio=args.shear_ratio, **common)
+
+
+OWN_WALLS = {
+    "plane": (("wall_lower", "lower_wall"), ("wall_upper", "upper_wall")),
+    "couette": (("wall_inner", "lower_wall"), ("wall_outer", "upper_wall")),
+}
+"""Per-wall flags of each cell (argparse name, the cell's field)."""
+
+
+def _own_walls(args: argparse.Namespace) -> dict[str, str]:
+    """The per-wall kinds given (``--wall-lower/--wall-upper`` for plane,
+    ``--wall-inner/--wall-outer`` for couette), by the cell's field; the others' flags refused."""
+    from .common import UsageError
+
+    given = {}
+    for cell, flags in OWN_WALLS.items():
+        for flag, field_name in flags:
+            kind = getattr(args, flag, None)
+            if kind is None:
+                continue
+            if cell != args.cell:
+                name = "--" + flag.replace("_", "-")
+                raise UsageError(
+                    f"{name} is for the {cell} cell; the {args.cell} cell's walls are set by "
+                    + ("--wall" if args.cell == "channel" else "--wall and its own flags")
+                )
+            given[field_name] = kind
+    return given
 
 
 def cmd_dem(args: argparse.Namespace) -> None:
@@ -188,7 +223,15 @@ def _cell_options(p: argparse.ArgumentParser) -> None:
         help="channel: the drive rho_s nu g H/(2N) [-] (default: 0.40; 0.39 jams, docs/dem.md)",
     )
     p.add_argument("--speed", type=float, default=None, help="wall speed [sqrt(N/rho_s)]")
-    p.add_argument("--wall", choices=("glued-grains", "smooth-frictional"), default="glued-grains")
+    kinds = ("glued-grains", "smooth-frictional")
+    p.add_argument("--wall", choices=kinds, default="glued-grains", help="both walls' kind")
+    for flag, which in (
+        ("--wall-lower", "plane: the fixed lower wall's kind (default --wall)"),
+        ("--wall-upper", "plane: the moving upper wall's kind (default --wall)"),
+        ("--wall-inner", "couette: the turning inner ring's kind (default --wall)"),
+        ("--wall-outer", "couette: the fixed outer ring's kind (default --wall)"),
+    ):
+        p.add_argument(flag, choices=kinds, default=None, help=which)
     p.add_argument("--glued-diameter", type=float, default=1.0, help="[d]")
     p.add_argument("--glued-spacing", type=float, default=1.0, help="centre spacing [d]")
     p.add_argument("--wall-friction", type=float, default=None)

@@ -163,7 +163,8 @@ def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
             gap.append(info["outer_radius"] - info["inner_radius"])
         else:
             upper = kind == UPPER_WALL
-            gap.append(y[upper].mean() - 2.0 * off)
+            top = off + info["upper_offset"] if "upper_offset" in info else 2.0 * off
+            gap.append(y[upper].mean() - top)
             wn.append(force[upper, 1].sum() / length)
             ws.append(force[upper, 0].sum() / length)
             wv.append(vx[upper].mean())
@@ -596,7 +597,7 @@ def _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, version, steps,
         f"set g from the nominal B = {cell.B:g} (nu = {nu_bulk:g}, H = {cell.gap:g} d)"
         if plane
         else "no gravity across the gap",
-        "wall": cell.wall.describe(cell.contact),
+        **_walls_meta(cell),
         "grains": cell.grains.describe(run.n_free),
         "contact": cell.contact.describe(),
         "seed": cell.seed,
@@ -633,6 +634,24 @@ def _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, version, steps,
         "columns": desc,
         "source": "DEM",
     }
+
+
+def _walls_meta(cell) -> dict:
+    """``wall``: the moving wall (plane: upper; Couette: inner) or both; walls of two kinds add
+    ``wall_fixed`` (the calibration's and validate's key for the fixed wall) and ``walls``
+    (each wall by its position)."""
+    out = {"wall": cell.wall.describe(cell.contact)}
+    if getattr(cell, "walls_differ", False):
+        lower, upper = cell.walls
+        names = ("lower", "upper") if isinstance(cell, PlaneShearDEM) else ("inner", "outer")
+        moving, fixed = (upper, lower) if isinstance(cell, PlaneShearDEM) else (lower, upper)
+        out["wall"] = moving.describe(cell.contact)
+        out["wall_fixed"] = fixed.describe(cell.contact)
+        out["walls"] = {
+            names[0]: lower.describe(cell.contact),
+            names[1]: upper.describe(cell.contact),
+        }
+    return out
 
 
 __all__ = ["FORMAT", "SUMS", "DEMProfile", "read_samples", "steady_profile"]

@@ -27,7 +27,7 @@ from .geometry import (
     planar_layout,
     planar_layout_3d,
 )
-from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength
+from .params import Cell, ChannelDEM, CouetteDEM, PlaneShearDEM, RunLength, WallRoughness
 
 ATOM_COLUMNS = ("id", "type", "radius", "x", "y", "vx", "vy", "omegaz")
 CONTACT_COLUMNS = ("i", "j", "fnx", "fny", "ftx", "fty", "dx", "dy")
@@ -145,12 +145,12 @@ def _pair_coeffs(cell: Cell) -> list[str]:
             text += f" rolling sds {kt:.10g} 0.0 {c.rolling_friction:.10g}"
         return text
 
-    mu_w = cell.wall.wall_friction(c)
+    lower, upper = _walls(cell)
     return [
         "pair_style granular",
         f"pair_coeff * * {coeff(c.friction)}",
-        f"pair_coeff {FREE} {LOWER_WALL} {coeff(mu_w)}",
-        f"pair_coeff {FREE} {UPPER_WALL} {coeff(mu_w)}",
+        f"pair_coeff {FREE} {LOWER_WALL} {coeff(lower.wall_friction(c))}",
+        f"pair_coeff {FREE} {UPPER_WALL} {coeff(upper.wall_friction(c))}",
         f"neigh_modify exclude type {LOWER_WALL} {LOWER_WALL}",
         f"neigh_modify exclude type {LOWER_WALL} {UPPER_WALL}",
         f"neigh_modify exclude type {UPPER_WALL} {UPPER_WALL}",
@@ -216,16 +216,38 @@ def _wall_density(cell: Cell) -> list[str]:
     """Glued disks get the density that gives a wall the mass per length of one row of touching
     unit disks, rho_s pi d / 4, whatever their size and spacing (a smooth wall of many
     overlapping disks would otherwise be heavy and bounce on the grains)."""
-    w = cell.wall
+    lower, upper = _walls(cell)
     if dimension(cell) == 3:  # spheres: a triangular sheet of touching unit spheres' mass/area
-        density = cell.grains.density * w.glued_spacing**2 / w.glued_diameter**3
+        # (3-D cells take one wall kind, glued grains: PlaneShearDEM refuses others)
+        density = cell.grains.density * upper.glued_spacing**2 / upper.glued_diameter**3
         if density == cell.grains.density:
             return []
         return [f"set type {LOWER_WALL}*{UPPER_WALL} density {density:.10g}"]
-    density = cell.grains.density * w.glued_spacing / w.glued_diameter**2
-    if density == cell.grains.density:
+    rho = [cell.grains.density * w.glued_spacing / w.glued_diameter**2 for w in (lower, upper)]
+    if rho[0] == rho[1]:
+        if rho[0] == cell.grains.density:
+            return []
+        return [f"set type {LOWER_WALL}*{UPPER_WALL} density/disc {rho[0]:.10g}"]
+    return [
+        f"set type {kind} density/disc {value:.10g}"
+        for kind, value in zip((LOWER_WALL, UPPER_WALL), rho, strict=True)
+        if value != cell.grains.density
+    ]
+
+
+def _walls(cell: Cell) -> tuple[WallRoughness, WallRoughness]:
+    """The (lower or inner, upper or outer) walls (the channel's are of one kind)."""
+    return cell.walls if hasattr(cell, "walls") else (cell.wall, cell.wall)
+
+
+def _walls_line(cell: Cell) -> list[str]:
+    """A comment naming both walls when they differ (the parameter line shows ``wall``, the
+    moving one, only); none otherwise, so a deck of one wall kind is unchanged."""
+    if not getattr(cell, "walls_differ", False):
         return []
-    return [f"set type {LOWER_WALL}*{UPPER_WALL} density/disc {density:.10g}"]
+    names = ("lower", "upper") if isinstance(cell, PlaneShearDEM) else ("inner", "outer")
+    text = ", ".join(f"{n} {w!r}" for n, w in zip(names, _walls(cell), strict=True))
+    return [f"# walls: {text}"]
 
 
 def _header(cell: Cell, data_sha: str, layout: Layout, dt: float, boundary: str) -> list[str]:
@@ -233,6 +255,7 @@ def _header(cell: Cell, data_sha: str, layout: Layout, dt: float, boundary: str)
     lines = [
         f"# cosserat.dem deck: {cell.cell} cell",
         f"# parameters: {cell!r}",
+        *_walls_line(cell),
     ]
     if three:
         lines.append(
@@ -422,6 +445,7 @@ def resume_deck(cell: Cell, step: int, deck_sha256: str | None = None) -> str:
     lines = [
         f"# cosserat.dem deck: resume the {cell.cell} cell from sheared step {step}",
         f"# parameters: {cell!r}, restart_every={run.restart_every}",
+        *_walls_line(cell),
         f"# deck.lmp sha256 {deck_sha256 or full.sha256}",
         f"read_restart {restart_name(step)}",
         *_no_sort(cell),

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
-from .params import ChannelDEM, CouetteDEM, PlaneShearDEM
+from .params import ChannelDEM, CouetteDEM, PlaneShearDEM, WallRoughness
 
 FREE, LOWER_WALL, UPPER_WALL = 1, 2, 3
 LATTICE_MARGIN = 1.02
@@ -43,6 +43,11 @@ def _diameters(rng: np.random.Generator, n: int, polydispersity: float) -> np.nd
     return rng.uniform(1.0 - polydispersity, 1.0 + polydispersity, n)
 
 
+def _walls(cell: PlaneShearDEM | ChannelDEM | CouetteDEM) -> tuple[WallRoughness, WallRoughness]:
+    """The (lower or inner, upper or outer) walls of a cell (the channel has one kind)."""
+    return cell.walls if hasattr(cell, "walls") else (cell.wall, cell.wall)
+
+
 def _wall_row(length: float, spacing: float) -> tuple[int, float]:
     n = max(3, round(length / spacing))
     return n, length / n
@@ -55,8 +60,10 @@ def planar_layout(cell: PlaneShearDEM | ChannelDEM) -> Layout:
     """
     rng = np.random.default_rng(cell.seed)
     length = cell.width if isinstance(cell, PlaneShearDEM) else cell.length
-    dw = cell.wall.glued_diameter
-    n_wall, s = _wall_row(length, cell.wall.glued_spacing)
+    low, up = _walls(cell)
+    dw, dwu = low.glued_diameter, up.glued_diameter
+    n_wall, s = _wall_row(length, low.glued_spacing)
+    n_up, s_up = _wall_row(length, up.glued_spacing)
     n_free = round(cell.nu_nominal * length * cell.gap / cell.grains.mean_area)
     a = cell.grains.d_max * LATTICE_MARGIN
     per_row = math.floor(length / a)
@@ -74,23 +81,28 @@ def planar_layout(cell: PlaneShearDEM | ChannelDEM) -> Layout:
     x = np.concatenate(xs)[:n_free]
     y = np.concatenate(ys)[:n_free]
     d = _diameters(rng, n_free, cell.grains.polydispersity)
-    y_top = sites_y[-1] + a / 2.0 + dw / 2.0 + 0.02
-    shift = rng.uniform(0.0, s)
+    y_top = sites_y[-1] + a / 2.0 + dwu / 2.0 + 0.02
+    shift = rng.uniform(0.0, s_up)
     wx = np.arange(n_wall) * s
-    all_x = np.concatenate([x, wx, (wx + shift) % length])
-    all_y = np.concatenate([y, np.zeros(n_wall), np.full(n_wall, y_top)])
-    all_d = np.concatenate([d, np.full(2 * n_wall, dw)])
+    all_x = np.concatenate([x, wx, (np.arange(n_up) * s_up + shift) % length])
+    all_y = np.concatenate([y, np.zeros(n_wall), np.full(n_up, y_top)])
+    all_d = np.concatenate([d, np.full(n_wall, dw), np.full(n_up, dwu)])
     kind = np.concatenate(
-        [np.full(n_free, FREE), np.full(n_wall, LOWER_WALL), np.full(n_wall, UPPER_WALL)]
+        [np.full(n_free, FREE), np.full(n_wall, LOWER_WALL), np.full(n_up, UPPER_WALL)]
     )
-    box = (0.0, length, -dw, y_top + dw)
+    box = (0.0, length, -dw, y_top + dwu)
     info = {
         "length": length,
-        "wall_count": n_wall,
-        "wall_spacing": s,
+        "wall_count": n_up,
+        "wall_spacing": s_up,
         "surface_offset": dw / 2.0,
-        "initial_gap": y_top - dw,
+        # (one wall diameter: the expression of one wall kind, to the last bit)
+        "initial_gap": y_top - dw if dw == dwu else y_top - dwu / 2.0 - dw / 2.0,
     }
+    if getattr(cell, "walls_differ", False):
+        # walls of two kinds: the lower wall's own row, and the upper wall's surface below its
+        # centres (a single wall kind has one offset)
+        info.update(lower_wall_count=n_wall, lower_wall_spacing=s, upper_offset=dwu / 2.0)
     return Layout(all_x, all_y, all_d, kind, box, info)
 
 
@@ -167,13 +179,17 @@ def annular_layout(cell: CouetteDEM) -> Layout:
     """Rings centred on the origin; free grains on a lattice inside the annulus, shrunk by the
     factor ``info["shrink"]`` (the deck grows them back to their diameters)."""
     rng = np.random.default_rng(cell.seed)
-    dw = cell.wall.glued_diameter
+    walls = _walls(cell)
+    dw, dwo = walls[0].glued_diameter, walls[1].glued_diameter
     ri, ro = cell.inner_radius, cell.inner_radius + cell.gap
     area = math.pi * (ro**2 - ri**2)
     n_free = round(cell.nu_fill * area / cell.grains.mean_area)
     rows = []
-    for radius, wall_kind in ((ri - dw / 2.0, LOWER_WALL), (ro + dw / 2.0, UPPER_WALL)):
-        n_wall, _ = _wall_row(2.0 * math.pi * radius, cell.wall.glued_spacing)
+    for radius, wall_kind, wall in (
+        (ri - dw / 2.0, LOWER_WALL, walls[0]),
+        (ro + dwo / 2.0, UPPER_WALL, walls[1]),
+    ):
+        n_wall, _ = _wall_row(2.0 * math.pi * radius, wall.glued_spacing)
         t = 2.0 * math.pi * (np.arange(n_wall) + rng.uniform()) / n_wall
         rows.append((radius * np.cos(t), radius * np.sin(t), np.full(n_wall, wall_kind)))
     # lattice spacing a0 such that the annulus (less a margin) holds 10% more sites than grains
@@ -198,9 +214,10 @@ def annular_layout(cell: CouetteDEM) -> Layout:
     d = _diameters(rng, n_free, cell.grains.polydispersity)
     x = np.concatenate([px[pick], rows[0][0], rows[1][0]])
     y = np.concatenate([py[pick], rows[0][1], rows[1][1]])
-    diam = np.concatenate([d * shrink, np.full(rows[0][0].size + rows[1][0].size, dw)])
+    diam = np.concatenate([d * shrink, np.full(rows[0][0].size, dw), np.full(rows[1][0].size, dwo)])
     kind = np.concatenate([np.full(n_free, FREE), rows[0][2], rows[1][2]])
-    box = (-(ro + dw + 1.0), ro + dw + 1.0, -(ro + dw + 1.0), ro + dw + 1.0)
+    edge = ro + dwo + 1.0
+    box = (-edge, edge, -edge, edge)
     info = {
         "shrink": shrink,
         "inner_radius": ri,

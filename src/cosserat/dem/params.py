@@ -255,8 +255,46 @@ NU_NOMINAL = {2: 0.8, 3: 0.6}
 0.6 (random loose to random close packing is 0.55-0.64)."""
 
 
+def _own_walls(cell) -> None:
+    """Resolve a cell's per-wall kinds: both equal (or unset) leave the one ``wall`` and no
+    override (the deck is then that of a cell with one wall kind); otherwise ``wall`` is the
+    moving wall's (upper, inner) and the fixed one keeps its own."""
+    lower = cell.lower_wall or cell.wall
+    upper = cell.upper_wall or cell.wall
+    for name, w in (("lower_wall", lower), ("upper_wall", upper)):
+        if not isinstance(w, WallRoughness):
+            raise ParameterError(f"{name} must be a WallRoughness; got {type(w).__name__}")
+    if lower == upper:
+        object.__setattr__(cell, "wall", lower)
+        object.__setattr__(cell, "lower_wall", None)
+        object.__setattr__(cell, "upper_wall", None)
+    else:
+        object.__setattr__(cell, "wall", upper)
+        object.__setattr__(cell, "lower_wall", lower)
+        object.__setattr__(cell, "upper_wall", upper)
+
+
+class _TwoWalls:
+    """Per-wall kinds of a cell whose walls are types 2 (lower or inner) and 3 (upper or
+    outer)."""
+
+    wall: WallRoughness
+    lower_wall: WallRoughness | None
+    upper_wall: WallRoughness | None
+
+    @property
+    def walls(self) -> tuple[WallRoughness, WallRoughness]:
+        """The (lower or inner, upper or outer) walls."""
+        return (self.lower_wall or self.wall, self.upper_wall or self.wall)
+
+    @property
+    def walls_differ(self) -> bool:
+        """True when the two walls are of different kinds."""
+        return self.lower_wall is not None
+
+
 @dataclass(frozen=True)
-class PlaneShearDEM:
+class PlaneShearDEM(_TwoWalls):
     """Plane shear between two walls, periodic along x; the upper wall is driven at speed
     ``wall_speed`` along +x under the normal stress N = 1, the lower one is fixed.
 
@@ -281,6 +319,12 @@ class PlaneShearDEM:
         the 2-D decks stay those of the corpus.
     depth : float
         3-D: periodic depth along z [d]; 0 in 2-D.
+    wall : WallRoughness
+        Both walls, or (with ``lower_wall`` or ``upper_wall`` of another kind) the moving
+        upper one.
+    lower_wall, upper_wall : WallRoughness or None
+        A wall of its own kind (None: ``wall``). Walls that differ add a comment line
+        ``# walls: lower ..., upper ...`` to the deck; equal ones leave it that of one kind.
     """
 
     gap: float = 20.0
@@ -295,6 +339,8 @@ class PlaneShearDEM:
     nu_nominal: float = None  # type: ignore[assignment]  # set in __post_init__ from dim
     dim: int = field(default=2, repr=False)
     depth: float = field(default=0.0, repr=False)
+    lower_wall: WallRoughness | None = field(default=None, repr=False)
+    upper_wall: WallRoughness | None = field(default=None, repr=False)
 
     cell = "plane"
 
@@ -305,12 +351,13 @@ class PlaneShearDEM:
             object.__setattr__(self, "nu_nominal", NU_NOMINAL[self.dim])
         if self.dim == 3:
             _check("depth", self.depth, 4.0, 5000.0, open_low=False)
-            if self.wall.kind != "glued-grains":
+            kinds = {(w or self.wall).kind for w in (self.lower_wall, self.upper_wall)}
+            if kinds != {"glued-grains"}:
                 raise ParameterError(
                     "a 3-D plane cell takes glued-grains walls only (a smooth-frictional wall "
                     f"of spheres at {SMOOTH_SPACING_D:g} d spacing would hold about "
                     f"{round(1 / SMOOTH_SPACING_D**2 / 0.866):,} spheres per d^2); got "
-                    f"{self.wall.kind!r}"
+                    f"{sorted(kinds)}"
                 )
         elif self.depth != 0.0:
             raise ParameterError(f"depth is for dim 3 only; got depth {shown(self.depth)} in 2-D")
@@ -321,6 +368,7 @@ class PlaneShearDEM:
         _check("nu_nominal", self.nu_nominal, 0.3, 0.91)
         if not isinstance(self.seed, int) or self.seed < 1:
             raise ParameterError(f"seed must be a whole number >= 1; got {shown(self.seed)}")
+        _own_walls(self)
 
     @property
     def gravity(self) -> float:
@@ -329,7 +377,7 @@ class PlaneShearDEM:
 
 
 @dataclass(frozen=True)
-class CouetteDEM:
+class CouetteDEM(_TwoWalls):
     """Annular Couette flow: a rough inner ring of radius R_i turning at tangential speed V
     (counter-clockwise), a fixed rough outer ring at R_i + H; no gravity; the grains fill the
     annulus at the solids fraction ``nu_fill`` (volume control: the stress is measured).
@@ -344,6 +392,12 @@ class CouetteDEM:
         Area of the grains over the area of the annulus between the ring surfaces [-].
     wall_speed : float
         Tangential speed of the inner ring's surface V = Omega_i R_i [sqrt(N / rho_s)].
+    wall : WallRoughness
+        Both rings, or (with ``lower_wall`` or ``upper_wall`` of another kind) the moving
+        inner one.
+    lower_wall, upper_wall : WallRoughness or None
+        The inner (``lower_wall``) or outer (``upper_wall``) ring of its own kind (None:
+        ``wall``), as in :class:`PlaneShearDEM`.
     """
 
     gap: float = 20.0
@@ -355,6 +409,8 @@ class CouetteDEM:
     contact: Contact = field(default_factory=Contact)
     run: RunLength = field(default_factory=RunLength)
     seed: int = 1
+    lower_wall: WallRoughness | None = field(default=None, repr=False)
+    upper_wall: WallRoughness | None = field(default=None, repr=False)
 
     cell = "couette"
 
@@ -365,6 +421,7 @@ class CouetteDEM:
         _check("wall_speed", self.wall_speed, 0.0, 10.0)
         if not isinstance(self.seed, int) or self.seed < 1:
             raise ParameterError(f"seed must be a whole number >= 1; got {shown(self.seed)}")
+        _own_walls(self)
 
 
 @dataclass(frozen=True)

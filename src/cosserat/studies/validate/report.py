@@ -211,6 +211,7 @@ def _g(x: float | None, spec: str = ".3g") -> str:
 
 def context(report: ValidationReport) -> dict[str, Any]:
     """The templates' context: plain strings and numbers."""
+    figures = {r.run.name: r.figure for r in report.results}
     runs = []
     for r in report.results:
         fits = []
@@ -320,7 +321,9 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "verdict": v.verdict,
                 "evidence": v.evidence,
                 "would_change": v.would_change,
-                "figure": CLAIM_FIGURES[v.key],
+                # a claim without a figure of its own (the layer's) shows its first run's
+                "figure": CLAIM_FIGURES.get(v.key)
+                or next(iter(figures.get(n, "") for n in v.runs), ""),
             }
             for v in report.verdicts
         ],

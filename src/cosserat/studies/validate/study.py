@@ -21,6 +21,7 @@ from ...config import DEFAULT_F
 from ...errors import ParameterError
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
 from .grouping import couette_note, group_runs
+from .layer import layer_verdicts
 from .measures import (
     NEAR_WALL_D,
     P_SIGNIFICANT,
@@ -334,6 +335,8 @@ def judge(
         delta_law_verdict(series, "smoother"),
         delta_law_verdict(series, "rough"),
         spin_model_verdict(walls),
+        # the layer's position, judged only on runs whose walls differ (.layer)
+        *layer_verdicts([r.run for r in results], {r.run.name: r.fits for r in results}),
     ]
     verdicts = [
         within_regime(

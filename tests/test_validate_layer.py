@@ -1,0 +1,260 @@
+"""The layer position (issue 18 item 4): the velocity jump next to each wall on closed-form
+profiles, the verdict on made-up numbers (every branch), which runs are measured, and the
+model's own prediction (the Cosserat model puts the band at the smoother wall whichever
+wall moves; mu(I) and NGF shear the gap uniformly)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import Run
+from cosserat.errors import ParameterError
+from cosserat.studies.validate.layer import (
+    LAYER_CLAIM,
+    LayerPosition,
+    jump_fractions,
+    layer_position_verdict,
+    layer_verdicts,
+    measure_layer,
+    smoother_wall,
+)
+
+ROUGH = {"kind": "glued-grains", "glued_diameter_d": 1.0, "glued_spacing_d": 1.0}
+SMOOTH = {"kind": "smooth-frictional", "glued_diameter_d": 1.0, "glued_spacing_d": 0.1}
+
+
+def test_a_linear_profile_takes_within_over_H_at_each_wall():
+    H = 10.0
+    s = np.arange(0.5, H, 1.0)  # distance from the moving wall
+    u = 1.0 - s / H
+    se = np.full(s.size, 0.01)
+    fixed, fixed_se, moving, moving_se = jump_fractions(s, u, se, H, 3.0)
+    assert fixed == pytest.approx(0.3) and moving == pytest.approx(0.3)
+    assert fixed_se == pytest.approx(0.01) and moving_se == pytest.approx(0.01)
+
+
+def test_an_exponential_band_at_the_fixed_wall():
+    # u - 1 = -exp(-(H - s)/w): the bulk moves with the moving wall, the band at the fixed one
+    H, w = 20.0, 1.5
+    s = np.linspace(0.25, H - 0.25, 80)
+    u = 1.0 - np.exp(-(H - s) / w)
+    se = 0.02 + 0.01 * s / H
+    fixed, fixed_se, moving, moving_se = jump_fractions(s, u, se, H, 3.0)
+    assert fixed == pytest.approx(1.0 - math.exp(-3.0 / w), abs=1e-3)
+    assert moving == pytest.approx(math.exp(-(H - 3.0) / w), abs=1e-4)
+    assert fixed_se == pytest.approx(0.02 + 0.01 * (H - 3.0) / H, abs=1e-4)
+    assert moving_se == pytest.approx(0.02 + 0.01 * 3.0 / H, abs=1e-4)
+
+
+def test_the_bins_may_come_in_any_order():
+    s = np.array([9.5, 0.5, 4.5, 2.5, 7.5])
+    u = 1.0 - s / 10.0
+    a = jump_fractions(s, u, np.full(5, 0.01), 10.0)
+    order = np.argsort(s)
+    assert a == jump_fractions(s[order], u[order], np.full(5, 0.01), 10.0)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"within_d": 5.0}, "within_d must be > 0 and < half the gap (5 d); got 5"),
+        ({"within_d": 0.0}, "within_d must be > 0 and < half the gap (5 d); got 0"),
+        ({"u": [0.1, math.nan, 0.5]}, "distance_d, u and u_se must be finite"),
+        ({"u": [0.1, 0.5]}, "1-D arrays of one length >= 2; got shapes (3,), (2,), (3,)"),
+    ],
+)
+def test_bad_inputs_to_the_measure(kwargs, message):
+    args = {"distance_d": [0.5, 5.0, 9.5], "u": [0.9, 0.5, 0.1], "u_se": [0.01] * 3}
+    args.update({k: v for k, v in kwargs.items() if k != "within_d"})
+    with pytest.raises(ParameterError, match=re_escape(message)):
+        jump_fractions(
+            args["distance_d"], args["u"], args["u_se"], 10.0, kwargs.get("within_d", 3.0)
+        )
+
+
+def re_escape(text: str) -> str:
+    import re
+
+    return re.escape(text)
+
+
+def pos(name="r", fixed=0.8, moving=0.05, se=0.03, smoother="fixed", inertial=5e-4, predicted=None):
+    return LayerPosition(name, fixed, se, moving, se, smoother, 3.0, inertial, predicted or {})
+
+
+def test_supported_when_the_band_is_at_the_smoother_wall():
+    v = layer_position_verdict([pos()])
+    assert v.verdict == "supported" and v.key == "layer" and v.claim == LAYER_CLAIM
+    a, se = 0.75, math.hypot(0.03, 0.03)
+    assert v.numbers["asymmetry"] == pytest.approx(a)
+    assert v.numbers["asymmetry_se"] == pytest.approx(se)
+    assert f"a = +0.750 +- {se:.2g}" in v.evidence
+    assert "mu(I) and NGF (uniform stress, no wall friction) predict a = 0" in v.evidence
+    assert v.to_dict()["claim"] == LAYER_CLAIM
+    # the same with the smoother wall moving: the band at the moving wall
+    assert layer_position_verdict([pos(fixed=0.05, moving=0.8, smoother="moving")]).verdict == (
+        "supported"
+    )
+
+
+def test_refuted_when_the_band_is_at_the_rougher_wall():
+    v = layer_position_verdict([pos(fixed=0.05, moving=0.8)])
+    assert v.verdict == "refuted" and v.numbers["z"] < -3.0
+
+
+def test_a_symmetric_profile_refutes_only_against_a_prediction():
+    sym = pos(fixed=0.31, moving=0.30, se=0.02)
+    assert layer_position_verdict([sym]).verdict == "undecided"
+    v = layer_position_verdict(
+        [pos(fixed=0.31, moving=0.30, se=0.02, predicted={"cosserat": 0.37})]
+    )
+    assert v.verdict == "refuted"
+    assert "the Cosserat model fitted to the same runs predicts a = +0.370" in v.would_change
+    small = pos(fixed=0.31, moving=0.30, se=0.05, predicted={"cosserat": 0.2})  # 0.19 < 3 se
+    assert layer_position_verdict([small]).verdict == "undecided"
+
+
+def test_noisy_data_are_undecided_and_runs_disagreeing_are_mixed():
+    assert layer_position_verdict([pos(fixed=0.4, moving=0.2, se=0.1)]).verdict == "undecided"
+    runs = [pos("a"), pos("b", fixed=0.05, moving=0.8)]
+    assert layer_position_verdict(runs).verdict == "mixed"
+
+
+def test_pooling_is_inverse_variance():
+    runs = [pos("a", fixed=0.6, moving=0.1, se=0.03), pos("b", fixed=0.5, moving=0.2, se=0.06)]
+    v = layer_position_verdict(runs)
+    wa, wb = 1 / (2 * 0.03**2), 1 / (2 * 0.06**2)
+    assert v.numbers["asymmetry"] == pytest.approx((0.5 * wa + 0.3 * wb) / (wa + wb))
+    assert v.numbers["asymmetry_se"] == pytest.approx(1 / math.sqrt(wa + wb))
+    assert v.runs == ("a", "b")
+
+
+def test_fast_runs_leave_the_claim_undecided():
+    v = layer_position_verdict([pos(inertial=5e-3)])
+    assert v.verdict == "undecided" and v.numbers["at_these_rates"] == "supported"
+    assert v.evidence.startswith("Not tested in the model's regime")
+    assert layer_position_verdict([pos(inertial=None)]).verdict == "supported"  # regime not shown
+
+
+def test_no_run_no_verdict():
+    assert layer_position_verdict([]).verdict == "undecided"
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"smoother": "upper"}, "smoother must be 'fixed' or 'moving'; got 'upper'"),
+        ({"se": 0.0}, "fixed_se of run r must be > 0 (a standard error); got 0.0"),
+        ({"fixed": math.nan}, "fixed of run r must be finite; got nan"),
+    ],
+)
+def test_bad_positions(kwargs, message):
+    with pytest.raises(ParameterError, match=re_escape(message)):
+        pos(**kwargs)
+
+
+def test_which_wall_is_smoother():
+    assert smoother_wall({"wall": ROUGH, "wall_fixed": SMOOTH}) == "fixed"
+    assert smoother_wall({"wall": SMOOTH, "wall_fixed": ROUGH}) == "moving"
+    assert smoother_wall({"wall": ROUGH, "wall_fixed": ROUGH}) is None
+    assert smoother_wall({"wall": ROUGH}) is None
+
+
+def _run(name="layer", B=0.0, fixed=SMOOTH, w=1.0, inertial=4e-4) -> Run:
+    H = 10.0
+    y = np.arange(0.5, H, 1.0)  # from the lower (fixed) wall
+    u = 1.0 - np.exp(-y / w)  # the band at the lower wall, the bulk with the upper
+    meta = {
+        "cell": "plane",
+        "gap_d": H,
+        "B": B,
+        "wall": ROUGH,
+        "wall_fixed": fixed,
+        "wall_inertial_number": {
+            "moving": "upper",
+            "lower": {"per_bin": [inertial, inertial / 2, inertial / 4]},
+            "upper": {"per_bin": [1e-6, 1e-6, 1e-6]},
+        },
+    }
+    columns = {"y": y, "u": u, "u_se": np.full(y.size, 0.02)}
+    return Run(name, Path(f"{name}.csv"), meta, columns)
+
+
+def test_measured_on_plane_runs_without_gravity_whose_walls_differ():
+    p = measure_layer(_run())
+    assert p is not None and p.smoother == "fixed"
+    assert p.fixed == pytest.approx(1.0 - math.exp(-3.0), abs=0.02)
+    assert p.moving == pytest.approx(math.exp(-7.0), abs=1e-3)
+    assert p.wall_inertial_number == pytest.approx(4e-4)
+    assert measure_layer(_run(B=1.0)) is None  # gravity: another claim
+    assert measure_layer(_run(fixed=ROUGH)) is None  # one wall kind
+    assert layer_verdicts([_run(fixed=ROUGH)]) == []
+    (v,) = layer_verdicts([_run()])
+    assert v.verdict == "supported"
+
+
+def test_the_cosserat_model_puts_the_band_at_the_smoother_wall():
+    """The model itself (phi = 19 deg, the smooth wall's delta = 13.9 deg, B = 0): the layer
+    is at the smooth wall whichever wall moves (the problem is symmetric under swapping the
+    walls), and a two-rough-wall gap is symmetric."""
+    from cosserat import make_problem, solve
+
+    def fractions(values):
+        sol = solve(
+            make_problem("cosserat", "plane", {"phi": 19.0, "eps": 0.1, "B": 0.0, **values})
+        )
+        xi, u = np.asarray(sol.xi), np.asarray(sol.u)
+        lower = float(np.interp(0.3, xi, u))
+        upper = float(1.0 - np.interp(0.7, xi, u))
+        return sol.problem.equations.case, lower, upper
+
+    case, lower, upper = fractions({"delta": "fully-rough", "delta_lower": 13.9})
+    assert case == "layer-at-lower-wall" and lower - upper > 0.3
+    case, lower2, upper2 = fractions({"delta": 13.9, "delta_lower": "fully-rough"})
+    assert case == "layer-at-upper-wall"
+    assert (lower2, upper2) == pytest.approx((upper, lower), abs=1e-3)  # the mirror image
+    _, lower3, upper3 = fractions({"delta": "fully-rough"})
+    assert lower3 == pytest.approx(upper3, abs=1e-3)
+
+
+def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
+    """End to end through the CLI: a synthetic Cosserat run with a smooth fixed lower wall and
+    a rough moving upper one, no gravity; validate adds the layer verdict (supported, a > 0)
+    with the run's figure, and results.json carries its numbers."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from cosserat import make_problem, solve
+    from cosserat.analysis.corpus import synthetic_run
+
+    values = {"phi": 19.0, "delta": "fully-rough", "delta_lower": 13.9, "eps": 0.1, "B": 0.0}
+    profile = solve(make_problem("cosserat", "plane", {**values, "L": 5.0}))
+    corpus = tmp_path / "corpus"
+    csv_path = synthetic_run(corpus, "layer", profile, noise=0.01, wall=ROUGH)
+    sidecar = csv_path.with_suffix(".json")
+    meta = json.loads(sidecar.read_text())
+    sidecar.write_text(json.dumps({**meta, "wall_fixed": SMOOTH}))
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    proc = subprocess.run(
+        [sys.executable, "-m", "cosserat", "validate", str(corpus), "--out",
+         str(tmp_path / "out"), "--models", "mui"],
+        capture_output=True, text=True, check=False, timeout=600,
+        env={**os.environ, "PYTHONPATH": src},
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    results = json.loads((tmp_path / "out" / "results.json").read_text())
+    (layer,) = [v for v in results["verdicts"] if v["key"] == "layer"]
+    assert layer["verdict"] == "supported" and layer["claim"] == LAYER_CLAIM
+    assert layer["runs"] == ["layer"]
+    # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)
+    assert layer["numbers"]["asymmetry"] == pytest.approx(0.635, abs=0.03)
+    assert layer["numbers"]["predicted"]["mui"] == pytest.approx(0.0, abs=0.05)
+    assert results["runs"][0]["figure"].endswith(".png")
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert f"![layer]({results['runs'][0]['figure']})" in report
