@@ -229,3 +229,33 @@ def test_resume_with_nothing_to_resume_is_one_line(tmp_path):
     assert proc.stderr.strip() == (
         f"cosserat: error: nothing to resume: {tmp_path / 'deck.lmp'} does not exist"
     )
+
+
+def test_corpus_v2_regenerates_the_kept_runs_decks():
+    """``cosserat dem corpus --version 2`` makes the decks the kept v2 runs were made with,
+    byte for byte (the rough run at H = 10 d was made as 16M steps and continued to 20M)."""
+    from pathlib import Path
+
+    from cosserat.dem.corpus import CORPORA, corpus_v2_cells, deck_cell
+
+    kept = Path(__file__).resolve().parents[1] / "data" / "dem_v2"
+    cells = corpus_v2_cells()
+    assert CORPORA[2] is corpus_v2_cells and len(cells) == 6
+    checked = []
+    for name, cell in cells.items():
+        deck = kept / name / "deck.lmp"
+        if not deck.is_file():
+            continue  # still running (docs/dem.md)
+        assert cell.run.restart_every == 200_000 and cell.wall_speed == 0.0025
+        made = deck_cell(cell, kept / name)  # the cell, or it with the deck's own steps
+        assert made.run.steps <= cell.run.steps
+        assert build_deck(made).text == deck.read_text(), name
+        checked.append(name)
+    assert {"plane_rough_H10_qs", "plane_smooth_H10_qs", "plane_layer_H10_qs"} <= set(checked)
+
+
+def test_corpus_version_is_checked(tmp_path):
+    from cosserat.dem.corpus import generate_corpus
+
+    with pytest.raises(InputError, match=r"corpus version must be one of \[1, 2\]; got 3"):
+        generate_corpus(tmp_path, tmp_path / "work", version=3)

@@ -186,7 +186,10 @@ def cmd_corpus(args: argparse.Namespace) -> None:
 
     start = time.perf_counter()
     work = args.work or str(Path(args.out) / "work")
-    times = generate_corpus(args.out, work, names=args.only, np=args.np, reanalyse=args.reanalyse)
+    times = generate_corpus(
+        args.out, work, names=args.only, np=args.np, reanalyse=args.reanalyse,
+        version=args.version,
+    )  # fmt: skip
     print(json.dumps({"runs_s": times, "total_s": round(time.perf_counter() - start, 1)}))
 
 
@@ -287,6 +290,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     corpus.add_argument("--out", required=True, help="folder for the CSV + JSON files")
     corpus.add_argument("--work", default=None, help="folder for decks and logs (OUT/work)")
     corpus.add_argument("--only", nargs="+", default=None, help="only these runs")
+    corpus.add_argument(
+        "--version",
+        type=int,
+        choices=(1, 2),
+        default=1,
+        help="1: the shipped corpus (about an hour); 2: corpus v2, quasi-static (docs/dem.md: "
+        "tens of CPU-hours; checkpointed, so running the command again continues each run)",
+    )
     corpus.add_argument("--np", type=positive_int, default=1, help="MPI processes per run")
     corpus.add_argument(
         "--reanalyse", action="store_true", help="coarse-grain the runs in --work again, no LAMMPS"

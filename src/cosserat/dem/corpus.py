@@ -67,6 +67,53 @@ def corpus_cells() -> dict[str, Cell]:
     return cells
 
 
+QS_SPEED = 0.0025
+"""Wall speed of corpus v2 [sqrt(N / rho_s)]: the local inertial number next to the moving wall
+stays at or below 5e-4 in the plane runs at H = 10 d (quasi-static, docs/dem.md)."""
+
+
+def _qs_run(steps: int) -> RunLength:
+    """Corpus v2's run length: checkpoints every 200k steps (restartable), a sample every 10k."""
+    return RunLength(settle_steps=30_000, steps=steps, dump_every=10_000, restart_every=200_000)
+
+
+def corpus_v2_cells() -> dict[str, Cell]:
+    """Corpus v2's runs by name, as they were run (docs/dem.md, "Corpus v2"): quasi-static
+    plane shear under gravity (B = 1) at H = 10 and 20 d for a rough and a smooth wall, the
+    layer-position cell (no gravity, a smooth fixed lower wall, a rough moving upper one) and
+    the 3-D twin of the rough run at H = 10 d. A sitting rarely finishes one: every run writes
+    checkpoints, and ``cosserat dem corpus --version 2`` continues each from its last one.
+
+    The rough run at H = 10 d was made as 16M steps and then continued to 20M (the same
+    trajectory as 20M in one go: checkpointed runs resume byte for byte)."""
+    cells: dict[str, Cell] = {}
+    for label, wall, steps in (
+        ("rough", ROUGH, {10: 20_000_000, 20: 24_000_000}),
+        ("smooth", SMOOTH, {10: 16_000_000, 20: 24_000_000}),
+    ):
+        for gap in (10, 20):
+            # gap a float, as the command line made these runs: the deck's parameter line
+            # prints the cell's repr, in which 10 and 10.0 differ
+            cells[f"plane_{label}_H{gap}_qs"] = PlaneShearDEM(
+                gap=float(gap), width=30.0, B=1.0, wall_speed=QS_SPEED, wall=wall,
+                run=_qs_run(steps[gap]),
+            )  # fmt: skip
+    cells["plane_layer_H10_qs"] = PlaneShearDEM(
+        gap=10.0, width=30.0, B=0.0, wall_speed=QS_SPEED, wall=ROUGH, lower_wall=SMOOTH,
+        upper_wall=ROUGH, run=_qs_run(20_000_000),
+    )  # fmt: skip
+    # the 3-D twin: the 2-D wall travel (49.9 d) at the 3-D time step (0.727e-3, 2-D 0.996e-3)
+    cells["plane3d_rough_H10_qs"] = PlaneShearDEM(
+        gap=10.0, width=15.0, B=1.0, wall_speed=QS_SPEED, wall=ROUGH, dim=3, depth=8.0,
+        run=_qs_run(27_400_000),
+    )  # fmt: skip
+    return cells
+
+
+CORPORA: dict[int, Callable[[], dict[str, Cell]]] = {1: corpus_cells, 2: corpus_v2_cells}
+"""The corpora by version: 1, the shipped one (fast, not quasi-static); 2, the quasi-static one."""
+
+
 def run_cell(
     cell: Cell, folder: str | Path, *, np: int = 1, keep_dumps: bool = False,
     engine: str = "subprocess", resume: bool = False,
@@ -302,12 +349,17 @@ def _run_record(folder: Path) -> dict:
 
 def generate_corpus(
     out: str | Path, work: str | Path, *, names: list[str] | None = None, np: int = 1,
-    log: Callable[[str], None] = print, reanalyse: bool = False,
+    log: Callable[[str], None] = print, reanalyse: bool = False, version: int = 1,
 ) -> dict[str, float]:  # fmt: skip
     """Run the corpus's cells (or ``names`` of them) and write ``<name>.csv/.json`` into
     ``out``; the decks, LAMMPS logs and dumps stay in ``work/<name>``. With ``reanalyse``,
-    only coarse-grain the runs already in ``work`` again. Returns the LAMMPS wall times [s]."""
-    cells = corpus_cells()
+    only coarse-grain the runs already in ``work`` again. ``version`` 2 is corpus v2
+    (:func:`corpus_v2_cells`): a run whose deck is in ``work/<name>`` already continues from
+    its last checkpoint, so a stopped regeneration is taken up by running it again. Returns
+    the LAMMPS wall times [s]."""
+    if version not in CORPORA:
+        raise InputError(f"corpus version must be one of {sorted(CORPORA)}; got {version!r}")
+    cells = CORPORA[version]()
     chosen = list(cells) if names is None else names
     unknown = [n for n in chosen if n not in cells]
     if unknown:
@@ -321,8 +373,11 @@ def generate_corpus(
             profile = analyse_cell(cells[name], work / name)
             seconds = profile.sidecar["wall_time_s"]
         else:
-            log(f"{name}: running in {work / name}")
-            profile, seconds = run_cell(cells[name], work / name, np=np, keep_dumps=True)
+            resume = version == 2 and (work / name / "deck.lmp").is_file()
+            log(f"{name}: {'continuing' if resume else 'running'} in {work / name}")
+            profile, seconds = run_cell(
+                cells[name], work / name, np=np, keep_dumps=True, resume=resume
+            )
         profile.write(out, name)
         times[name] = seconds
         log(f"{name}: {seconds:.0f} s of LAMMPS, {time.perf_counter() - start:.0f} s so far")
@@ -334,9 +389,12 @@ def generate_corpus(
 
 __all__ = [
     "CHANNEL_RUN",
+    "CORPORA",
     "CORPUS_RUN",
     "HALFSPEED_RUN",
+    "QS_SPEED",
     "corpus_cells",
+    "corpus_v2_cells",
     "deck_cell",
     "generate_corpus",
     "latest_checkpoint",
