@@ -134,6 +134,11 @@ def test_parameters_are_validated():
         PlaneShearDEM(gap=-1.0)
     with pytest.raises(ParameterError, match="steps"):
         RunLength(steps=100, dump_every=50)
+    # the analysis needs two samples a block (10 blocks): a run it would refuse after LAMMPS
+    # has run is refused before
+    with pytest.raises(ParameterError, match=r"at least 20 samples .*10 blocks of at least two"):
+        RunLength(steps=19_000, dump_every=1_000)
+    assert RunLength(steps=20_000, dump_every=1_000).steps == 20_000
 
 
 SMOOTH_NO_GRAVITY = PlaneShearDEM(wall=WallRoughness("smooth-frictional"), B=0.0)

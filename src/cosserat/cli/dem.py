@@ -13,10 +13,6 @@ from .common import positive_int
 CELLS = ("plane", "couette", "channel")
 
 
-MIN_SAMPLES = 20
-"""Fewest samples (``--steps / --dump-every``) a run's analysis takes: it averages 10 blocks
-over the steady window (:data:`cosserat.dem.analyse.BLOCKS`, two samples a block at least)."""
-
 DEPRECATED = {"Ri": "Ri_d", "gap": "gap_d"}
 """The flags of 0.1 whose names meant something else elsewhere (``--Ri`` is R_i/H in
 ``solve``, ``--gap`` metres in ``cell``): kept one release, with a warning."""
@@ -146,13 +142,15 @@ def cmd_deck(args: argparse.Namespace) -> None:
 
 
 def cmd_run(args: argparse.Namespace) -> None:
+    from ..dem.params import BLOCKS, MIN_SAMPLES  # one place for the number (RunLength's too)
+
     samples = args.steps // args.dump_every
     if samples < MIN_SAMPLES:
         from .common import UsageError
 
         raise UsageError(
             f"--steps / --dump-every must give at least {MIN_SAMPLES} samples (the analysis "
-            f"averages 10 blocks over the steady window); got {args.steps} / "
+            f"averages {BLOCKS} blocks over the steady window); got {args.steps} / "
             f"{args.dump_every} = {samples}, checked before running LAMMPS"
         )
     _require_lammps()

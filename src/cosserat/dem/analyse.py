@@ -31,15 +31,13 @@ from .coarse import (
 from .decks import Deck, dimension
 from .dumps import iter_frames
 from .geometry import FREE, LOWER_WALL, UPPER_WALL
-from .params import ChannelDEM, CouetteDEM, PlaneShearDEM
+from .params import BLOCKS, MIN_SAMPLES, ChannelDEM, CouetteDEM, PlaneShearDEM
 
 FORMAT = "cosserat-corpus/1"
 FINE_BIN = 0.25
 """Width of the fine bins the samples are summed in [d]."""
 BIN_WIDTH = 1.0
 """Width of the profile bins [d] (the last bin before the far wall may be narrower)."""
-BLOCKS = 10
-"""Number of averaging blocks over the steady window."""
 QUASI_STATIC_I = 1e-3
 """Largest local inertial number of a quasi-static run in each of the :data:`WALL_BINS` bins
 next to the moving wall [-] (the calibration's ``cosserat.calibration.data.QUASI_STATIC_I``)."""
@@ -168,8 +166,8 @@ def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
             wn.append(force[upper, 1].sum() / length)
             ws.append(force[upper, 0].sum() / length)
             wv.append(vx[upper].mean())
-    if len(steps) < 2 * BLOCKS:
-        raise InputError(f"{folder}: {len(steps)} samples; at least {2 * BLOCKS} are needed")
+    if len(steps) < MIN_SAMPLES:
+        raise InputError(f"{folder}: {len(steps)} samples; at least {MIN_SAMPLES} are needed")
     area_fine = math.pi * (fine[1:] ** 2 - fine[:-1] ** 2) if polar else np.diff(fine) * length
     samples = Samples(np.array(steps), np.array(sums), fine, area_fine)
     return RunSamples(samples, np.array(flow), np.array(gap), np.array(wn), np.array(ws),
@@ -220,8 +218,8 @@ def _read_samples_3d(folder: str | Path, deck: Deck) -> RunSamples:
         kin = [np.sum(m * (v[free] - np.sum(m * v[free]) / m.sum()) ** 2) for v in (vx, vy, vz)]
         s_xx, s_yy, s_zz = (kin[k] - lf[free, c].sum() for k, c in ((0, 0), (1, 1), (2, 4)))
         zz.append(s_zz / (0.5 * (s_xx + s_yy)) if s_xx + s_yy > 0 else math.nan)
-    if len(steps) < 2 * BLOCKS:
-        raise InputError(f"{folder}: {len(steps)} samples; at least {2 * BLOCKS} are needed")
+    if len(steps) < MIN_SAMPLES:
+        raise InputError(f"{folder}: {len(steps)} samples; at least {MIN_SAMPLES} are needed")
     samples = Samples(np.array(steps), np.array(sums), fine, np.diff(fine) * extent)
     return RunSamples(samples, np.array(flow), np.array(gap), np.array(wn), np.array(ws),
                       np.array(wv), n_free, extra={"sigma_zz_ratio": np.array(zz)})  # fmt: skip

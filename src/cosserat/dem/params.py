@@ -195,6 +195,13 @@ class WallRoughness:
         }
 
 
+BLOCKS = 10
+"""Number of averaging blocks over a run's steady window (:mod:`cosserat.dem.analyse`)."""
+MIN_SAMPLES = 2 * BLOCKS
+"""Fewest samples a run may hold: the analysis needs two per block; a run with fewer would be
+refused only after LAMMPS has run, so :class:`RunLength` refuses it before."""
+
+
 @dataclass(frozen=True)
 class RunLength:
     """How long a cell runs and how often it is sampled.
@@ -229,10 +236,10 @@ class RunLength:
             value = getattr(self, name)
             if not isinstance(value, int) or value < (0 if name == "settle_steps" else 1):
                 raise ParameterError(f"{name} must be a whole number >= 1; got {shown(value)}")
-        if self.steps < 10 * self.dump_every:
+        if self.steps < MIN_SAMPLES * self.dump_every:
             raise ParameterError(
-                f"steps ({self.steps}) must hold at least 10 samples of dump_every "
-                f"({self.dump_every})"
+                f"steps ({self.steps}) must hold at least {MIN_SAMPLES} samples of dump_every "
+                f"({self.dump_every}): the analysis averages {BLOCKS} blocks of at least two"
             )
         _check("dt_fraction", self.dt_fraction, 0.0, 0.1)
         every = self.restart_every
