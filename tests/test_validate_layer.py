@@ -270,6 +270,12 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     (layer,) = [v for v in results["verdicts"] if v["key"] == "layer"]
     assert layer["verdict"] == "supported" and layer["claim"] == LAYER_CLAIM
     assert layer["runs"] == ["layer"]
+    # the regime line is the layer's own (both walls; this synthetic run gives neither), not
+    # validate's moving-wall one
+    assert layer["evidence"].count("Regime:") == 1
+    assert layer["evidence"].endswith(
+        "Regime: not every run gives its inertial number next to both walls."
+    )
     # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)
     assert layer["numbers"]["asymmetry"] == pytest.approx(0.635, abs=0.03)
     assert layer["numbers"]["predicted"]["mui"] == pytest.approx(0.0, abs=0.05)

@@ -516,9 +516,11 @@ __all__ = [
     "WITHIN_D",
     "LayerPosition",
     "LayerVerdict",
+    "jump_covariance",
     "jump_fractions",
     "layer_position_verdict",
     "layer_verdicts",
     "measure_layer",
+    "shear_rates",
     "smoother_wall",
 ]
