@@ -160,7 +160,7 @@ class LayerPosition:
     @property
     def asymmetry_se(self) -> float:
         """Its standard error [-]: ``sqrt(s_f^2 + s_m^2 + 2 r s_f s_m)`` with ``r`` the
-        errors' correlation :attr:`u_correlation` (0: the two walls independent)."""
+        errors' correlation ``u_correlation`` (0: the two walls independent)."""
         var = (
             self.fixed_se**2
             + self.moving_se**2
