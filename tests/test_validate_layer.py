@@ -16,6 +16,7 @@ from cosserat.errors import ParameterError
 from cosserat.studies.validate.layer import (
     LAYER_CLAIM,
     LayerPosition,
+    jump_covariance,
     jump_fractions,
     layer_position_verdict,
     layer_verdicts,
@@ -82,8 +83,17 @@ def re_escape(text: str) -> str:
     return re.escape(text)
 
 
-def pos(name="r", fixed=0.8, moving=0.05, se=0.03, smoother="fixed", inertial=5e-4, predicted=None):
-    return LayerPosition(name, fixed, se, moving, se, smoother, 3.0, inertial, predicted or {})
+def pos(
+    name="r",
+    fixed=0.8,
+    moving=0.05,
+    se=0.03,
+    smoother="fixed",
+    inertial=5e-4,
+    predicted=None,
+    r=0.0,
+):
+    return LayerPosition(name, fixed, se, moving, se, smoother, 3.0, inertial, predicted or {}, r)
 
 
 def test_supported_when_the_band_is_at_the_smoother_wall():
@@ -93,7 +103,14 @@ def test_supported_when_the_band_is_at_the_smoother_wall():
     assert v.numbers["asymmetry"] == pytest.approx(a)
     assert v.numbers["asymmetry_se"] == pytest.approx(se)
     assert f"a = +0.750 +- {se:.2g}" in v.evidence
-    assert "mu(I) and NGF (uniform stress, no wall friction) predict a = 0" in v.evidence
+    assert (
+        "a = 0 is uniform shear (a local rheology, mu(I) or NGF, with no-slip walls), 17.7 se "
+        "away; rigid sliding on the smoother wall (a = 1), which a local rheology with a Coulomb "
+        "wall at that wall's measured friction also gives, is 5.9 se away. The side of the band "
+        "alone does not tell the Cosserat model from wall friction" in v.evidence
+    )
+    assert "refutes" not in v.evidence + v.would_change
+    assert "Coulomb wall and NGF with a wall-fluidity condition" in v.would_change
     assert v.to_dict()["claim"] == LAYER_CLAIM
     # the same with the smoother wall moving: the band at the moving wall
     assert layer_position_verdict([pos(fixed=0.05, moving=0.8, smoother="moving")]).verdict == (
@@ -150,6 +167,7 @@ def test_no_run_no_verdict():
         ({"smoother": "upper"}, "smoother must be 'fixed' or 'moving'; got 'upper'"),
         ({"se": 0.0}, "fixed_se of run r must be > 0 (a standard error); got 0.0"),
         ({"fixed": math.nan}, "fixed of run r must be finite; got nan"),
+        ({"r": 1.5}, "u_correlation of run r must be in [-1, 1] (a correlation); got 1.5"),
     ],
 )
 def test_bad_positions(kwargs, message):
@@ -252,9 +270,81 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     (layer,) = [v for v in results["verdicts"] if v["key"] == "layer"]
     assert layer["verdict"] == "supported" and layer["claim"] == LAYER_CLAIM
     assert layer["runs"] == ["layer"]
+    # the regime line is the layer's own (both walls; this synthetic run gives neither), not
+    # validate's moving-wall one
+    assert layer["evidence"].count("Regime:") == 1
+    assert layer["evidence"].endswith(
+        "Regime: not every run gives its inertial number next to both walls."
+    )
     # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)
     assert layer["numbers"]["asymmetry"] == pytest.approx(0.635, abs=0.03)
     assert layer["numbers"]["predicted"]["mui"] == pytest.approx(0.0, abs=0.05)
     assert results["runs"][0]["figure"].endswith(".png")
     report = (tmp_path / "out" / "report.md").read_text()
     assert f"![layer]({results['runs'][0]['figure']})" in report
+
+
+@pytest.mark.parametrize("rho", [0.0, 0.5, 0.93, 1.0])
+def test_the_correlated_errors_in_closed_form(rho):
+    """Four bins of one error sigma, each wall's point half-way between two bins: with
+    corr(i, j) = rho^|i - j|, var(u_m) = var(u_f) = sigma^2 (1 + rho)/2 and
+    cov(u_f, u_m) = sigma^2 rho (1 + rho)^2 / 4, so var(a) = sigma^2 [(1 + rho)
+    + rho (1 + rho)^2 / 2] (a = u_f + u_m - 1 adds the two walls' errors)."""
+    sigma, s = 0.02, np.array([0.5, 1.5, 2.5, 3.5])
+    fixed_se, moving_se, r = jump_covariance(s, np.full(4, sigma), 4.0, rho, within_d=1.0)
+    assert fixed_se == pytest.approx(sigma * math.sqrt((1 + rho) / 2))
+    assert moving_se == pytest.approx(sigma * math.sqrt((1 + rho) / 2))
+    assert r == pytest.approx(rho * (1 + rho) / 2)
+    p = LayerPosition("r", 0.8, fixed_se, 0.05, moving_se, "fixed", 1.0, None, {}, r, rho)
+    expected = sigma * math.sqrt((1 + rho) + rho * (1 + rho) ** 2 / 2)
+    assert p.asymmetry_se == pytest.approx(expected)
+    if rho == 1.0:  # fully correlated: jump_fractions' interpolated errors, added
+        _, f_se, _, m_se = jump_fractions(s, 1.0 - s / 4.0, np.full(4, sigma), 4.0, 1.0)
+        assert (fixed_se, moving_se) == pytest.approx((f_se, m_se))
+        assert p.asymmetry_se == pytest.approx(2 * sigma)
+
+
+def test_a_bad_bin_correlation():
+    with pytest.raises(
+        ParameterError, match=re_escape("rho must be in [0, 1] (a bin correlation); got 1.2")
+    ):
+        jump_covariance([0.5, 1.5, 2.5], [0.01] * 3, 3.0, 1.2, within_d=1.0)
+
+
+def test_the_run_uses_its_sidecars_bin_correlation_and_reports_the_shear_rate():
+    run = _run()
+    run = Run(run.name, run.path, {**run.meta, "bin_correlation": {"u": 0.9}}, run.columns)
+    p = measure_layer(run)
+    assert p is not None and p.bin_correlation == 0.9
+    d = np.sort(run.distance_d)
+    fixed_se, moving_se, r = jump_covariance(d, np.full(d.size, 0.02), 10.0, 0.9)
+    assert (p.fixed_se, p.moving_se, p.u_correlation) == pytest.approx((fixed_se, moving_se, r))
+    assert p.asymmetry_se > math.hypot(p.fixed_se, p.moving_se)  # correlation widens it
+    # du/dy from the smoother (fixed, lower) wall: u = 1 - exp(-y), bins 1 d apart
+    y = np.arange(0.5, 10.0, 1.0)
+    assert p.shear_rate == pytest.approx(tuple(np.diff(1.0 - np.exp(-y))))
+    uncorrelated = measure_layer(_run())
+    assert uncorrelated is not None and uncorrelated.bin_correlation == 0.0
+    (v,) = layer_verdicts([run])
+    assert "du/dy [V/d] bin to bin from the smoother wall: 0.383, 0.141," in v.evidence
+    assert "bin correlation 0.9" in v.evidence
+    assert "Error model: the bins' u errors an AR(1) sequence, corr = rho^|i - j|" in v.evidence
+
+
+def test_the_regime_line_quotes_the_bands_side():
+    """The band at the fixed wall with I = 4e-4 there and 1e-6 at the moving wall: the
+    regime line quotes the larger, next to the band."""
+    (v,) = layer_verdicts([_run(inertial=4e-4)])
+    assert (
+        "Regime: the local inertial number next to either wall (the band's side included) is "
+        "at most 0.0004 (quasi-static bound I <= 0.001)." in v.evidence
+    )
+
+
+def test_the_fits_are_not_called_predictions_of_the_layer():
+    v = layer_position_verdict([pos(predicted={"mui": 0.0})])
+    assert (
+        "validate's single-run fits (not predictions of the layer: they give the fixed wall the "
+        "moving wall's kind): mui a = +0.000." in v.evidence
+    )
+    assert "whichever moves" not in LAYER_CLAIM

@@ -6,7 +6,8 @@ stress ratio is uniform, friction is mobilised at the wall that can carry the le
 ``tan(delta) sigma_yy``, and the shear localises there: ``u - u_0 ~ exp(-k (1 - xi)/eps)``
 decays away from the **smoother** wall, ``u_0`` being the velocity of the rougher wall, so the
 bulk moves with the rougher wall. The problem is symmetric under swapping the walls, so this
-holds whichever wall moves; the decisive cell is the one where the rougher wall moves and the
+holds whichever wall moves (a Galilean change of frame without gravity; not tested by a run
+with the other wall moving); the decisive cell is the one where the rougher wall moves and the
 smoother one is fixed (the band then sits away from the moving wall). mu(I) and NGF as the
 package states them (no wall friction, uniform stress) shear such a gap uniformly: no side is
 preferred.
@@ -17,7 +18,19 @@ within ``within_d`` grain diameters of each wall, slip at the wall included,
 wall)`` with ``u`` over the moving wall's speed; their standard errors from ``u_se``
 interpolated with the same weights (exact for fully correlated neighbouring bins, larger than
 the truth otherwise). The asymmetry ``a = f_smoother - f_rougher`` is 0 for a uniformly
-sheared gap and near 1 for a block sliding with the rougher wall.
+sheared gap (a local rheology with no-slip walls) and near 1 for a block sliding with the
+rougher wall. Its standard error (:func:`jump_covariance`) takes the bins' errors as a
+stationary AR(1) sequence, ``corr(i, j) = rho^|i - j|`` over bin index, with the lag-1
+correlation ``rho`` the sidecar records (``bin_correlation.u``, read by
+:func:`~cosserat.studies.validate.measures.velocity_correlation`; 0 when it gives none), the
+model ``validate``'s error draws use: ``a = u_f + u_m - 1`` adds the two walls' errors, so
+the correlation widens it.
+
+What the side alone does not tell: a local rheology with a Coulomb wall at the smoother wall's
+measured friction also puts the band there (the block slides on that wall, a -> 1). What would
+tell the Cosserat model from wall friction is the shear rate decaying away from the smoother
+wall under uniform stress, so the verdict's numbers carry the measured du/dy per bin
+(``shear_rate``, from the smoother wall).
 
 The verdict (:func:`layer_position_verdict`): the inverse-variance mean of the runs'
 asymmetries, ``a +- se``; "supported" (the band at the smoother wall) when ``a >=``
@@ -38,6 +51,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ...errors import ParameterError
+from .measures import velocity_correlation
 from .verdicts import Verdict
 
 if TYPE_CHECKING:
@@ -57,7 +71,7 @@ ROUGHNESS_RANK = {"smooth-frictional": 0, "glued-grains": 1}
 is 13.9 deg against the material's phi of 19 deg, docs/dem.md)."""
 LAYER_CLAIM = (
     "Without gravity, between a wall smoother than the material and a rougher one, the shear "
-    "band forms at the smoother wall and the bulk moves with the rougher wall (whichever moves)."
+    "band forms at the smoother wall and the bulk moves with the rougher wall."
 )
 """The claim judged (the paper's; issue 18's "rougher wall" is the opposite, docs/dem.md)."""
 LAYER_KEY = "layer"
@@ -95,6 +109,14 @@ class LayerPosition:
         The largest local inertial number in the bins next to either wall [-] (None: unknown).
     predicted : mapping
         Each fitted model's asymmetry ``f_smoother - f_rougher`` on this run [-].
+    u_correlation : float
+        Correlation of the errors of ``u`` at the two walls' points (:func:`jump_covariance`)
+        [-]; ``a = u_f + u_m - 1`` so it adds to the asymmetry's variance.
+    bin_correlation : float
+        The lag-1 correlation of neighbouring bins' errors used [-].
+    shear_rate : tuple of float
+        ``du/dy`` between neighbouring bins from the smoother wall to the rougher one, in the
+        sense of the shear [V/d].
     """
 
     run: str
@@ -106,8 +128,17 @@ class LayerPosition:
     within_d: float = WITHIN_D
     wall_inertial_number: float | None = None
     predicted: Mapping[str, float] = field(default_factory=dict)
+    u_correlation: float = 0.0
+    bin_correlation: float = 0.0
+    shear_rate: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
+        for name in ("u_correlation", "bin_correlation"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and -1.0 <= value <= 1.0):
+                raise ParameterError(
+                    f"{name} of run {self.run} must be in [-1, 1] (a correlation); got {value}"
+                )
         if self.smoother not in ("fixed", "moving"):
             raise ParameterError(f"smoother must be 'fixed' or 'moving'; got {self.smoother!r}")
         for name in ("fixed", "fixed_se", "moving", "moving_se", "within_d"):
@@ -128,8 +159,14 @@ class LayerPosition:
 
     @property
     def asymmetry_se(self) -> float:
-        """Its standard error, the two walls' errors independent [-]."""
-        return math.hypot(self.fixed_se, self.moving_se)
+        """Its standard error [-]: ``sqrt(s_f^2 + s_m^2 + 2 r s_f s_m)`` with ``r`` the
+        errors' correlation ``u_correlation`` (0: the two walls independent)."""
+        var = (
+            self.fixed_se**2
+            + self.moving_se**2
+            + 2.0 * self.u_correlation * self.fixed_se * self.moving_se
+        )
+        return math.sqrt(max(var, 0.0))
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -144,6 +181,9 @@ class LayerPosition:
             "asymmetry_se": self.asymmetry_se,
             "wall_inertial_number": self.wall_inertial_number,
             "predicted": dict(self.predicted),
+            "u_correlation": self.u_correlation,
+            "bin_correlation": self.bin_correlation,
+            "shear_rate": list(self.shear_rate),
         }
 
 
@@ -202,6 +242,71 @@ def jump_fractions(
     return float(u_f), float(se_f), float(1.0 - u_m), float(se_m)
 
 
+def _interpolation_weights(s: np.ndarray, x: float) -> np.ndarray:
+    """The weights over the (sorted) bins of linear interpolation at ``x`` (clamped)."""
+    k = int(np.clip(np.searchsorted(s, x), 1, s.size - 1))
+    w = float(np.clip((x - s[k - 1]) / (s[k] - s[k - 1]), 0.0, 1.0))
+    c = np.zeros(s.size)
+    c[k - 1], c[k] = 1.0 - w, w
+    return c
+
+
+def jump_covariance(
+    distance_d: np.ndarray,
+    u_se: np.ndarray,
+    gap_d: float,
+    rho: float,
+    within_d: float = WITHIN_D,
+) -> tuple[float, float, float]:
+    """The standard errors of ``u`` interpolated ``within_d`` from the fixed and from the
+    moving wall, and the correlation of the two, with the bins' errors a stationary AR(1)
+    sequence: ``cov(i, j) = se_i se_j rho^|i - j|`` over bin index (ordered by distance):
+    ``(fixed_se, moving_se, correlation)``.
+
+    Parameters
+    ----------
+    distance_d : array
+        Bin centres' distances from the moving wall [d].
+    u_se : array
+        Standard errors of u over the moving wall's speed [-].
+    gap_d : float
+        The gap H/d [-].
+    rho : float
+        Lag-1 correlation of neighbouring bins' errors, in [0, 1] [-].
+    within_d : float
+        Distance from each wall [d]; less than half the gap.
+
+    Raises
+    ------
+    ParameterError
+        ``rho`` is not in [0, 1], or as :func:`jump_fractions`.
+    """
+    if not (math.isfinite(rho) and 0.0 <= rho <= 1.0):
+        raise ParameterError(f"rho must be in [0, 1] (a bin correlation); got {rho}")
+    s = np.asarray(distance_d, dtype=float)
+    se = np.asarray(u_se, dtype=float)
+    jump_fractions(s, np.zeros(s.shape), se, gap_d, within_d)  # the same checks
+    order = np.argsort(s)
+    s, se = s[order], se[order]
+    idx = np.arange(s.size)
+    cov = np.outer(se, se) * rho ** np.abs(idx[:, None] - idx[None, :])
+    c_f = _interpolation_weights(s, gap_d - within_d)
+    c_m = _interpolation_weights(s, within_d)
+    var_f, var_m = float(c_f @ cov @ c_f), float(c_m @ cov @ c_m)
+    sf, sm = math.sqrt(var_f), math.sqrt(var_m)
+    return sf, sm, float(np.clip(float(c_f @ cov @ c_m) / (sf * sm), -1.0, 1.0))
+
+
+def shear_rates(distance_d: np.ndarray, u: np.ndarray, smoother: str) -> tuple[float, ...]:
+    """``-du/ds`` between neighbouring bins (``s`` from the moving wall; positive in the sense
+    of the shear), ordered from the ``smoother`` wall ("fixed" or "moving") [V/d]."""
+    s = np.asarray(distance_d, dtype=float)
+    order = np.argsort(s)
+    s, u = s[order], np.asarray(u, dtype=float)[order]
+    rate = -np.diff(u) / np.diff(s)
+    return tuple(float(r) for r in (rate[::-1] if smoother == "fixed" else rate))
+
+
 def smoother_wall(meta: Mapping[str, Any]) -> str | None:
     """Which wall of a run is the smoother, "fixed" or "moving", from its sidecar's ``wall``
     (the moving wall) and ``wall_fixed``; None when they are not of two ranked kinds
@@ -239,7 +344,9 @@ def measure_layer(run: Run, fits: RunFits | None = None) -> LayerPosition | None
     u, se = run.quantity("u")
     ok = np.isfinite(u) & np.isfinite(se) & (se > 0.0)
     d = run.distance_d[ok]
-    fixed, fixed_se, moving, moving_se = jump_fractions(d, u[ok], se[ok], run.gap_d)
+    fixed, _, moving, _ = jump_fractions(d, u[ok], se[ok], run.gap_d)
+    rho = velocity_correlation(run)
+    fixed_se, moving_se, r = jump_covariance(d, se[ok], run.gap_d, rho)
     predicted: dict[str, float] = {}
     if fits is not None:
         for m in fits.models:
@@ -260,6 +367,9 @@ def measure_layer(run: Run, fits: RunFits | None = None) -> LayerPosition | None
         WITHIN_D,
         _walls_inertial_number(run.meta),
         predicted,
+        r,
+        rho,
+        shear_rates(d, u[ok], smoother),
     )
 
 
@@ -267,8 +377,14 @@ def _run_text(p: LayerPosition) -> str:
     return (
         f"{p.run} ({p.smoother} wall smoother): f_fixed = {p.fixed:.3f} +- {p.fixed_se:.2g}, "
         f"f_moving = {p.moving:.3f} +- {p.moving_se:.2g}, a = {p.asymmetry:+.3f} +- "
-        f"{p.asymmetry_se:.2g}"
-        + ("" if p.wall_inertial_number is None else f", wall I <= {p.wall_inertial_number:.2g}")
+        f"{p.asymmetry_se:.2g} (bin correlation {p.bin_correlation:.2g}, the walls' errors "
+        f"correlated at {p.u_correlation:.2f})"
+        + (
+            ""
+            if not p.shear_rate
+            else "; du/dy [V/d] bin to bin from the smoother wall: "
+            + ", ".join(f"{g:.3f}" for g in p.shear_rate)
+        )
     )
 
 
@@ -297,25 +413,44 @@ def layer_position_verdict(positions: Sequence[LayerPosition]) -> LayerVerdict:
     }
     method = (
         f"Method: the fraction of the walls' velocity difference within {positions[0].within_d:g} "
-        "d of each wall (slip included; errors from u_se at the same weights), a = f_smoother - "
-        f"f_rougher per run, the inverse-variance mean over runs; the band is placed at "
-        f"|a| >= {SIGMAS:g} se. mu(I) and NGF (uniform stress, no wall friction) predict a = 0."
+        "d of each wall (slip included), a = f_smoother - f_rougher per run, the inverse-variance "
+        f"mean over runs; the band is placed at |a| >= {SIGMAS:g} se. Error model: the bins' u "
+        "errors an AR(1) sequence, corr = rho^|i - j| over bin index, rho the sidecar's "
+        "bin_correlation.u (0 where none), propagated through the interpolation weights; "
+        "runs independent."
     )
     pred_text = (
-        " Fitted models' a (validate's single-run fits, which give the fixed wall the moving "
-        "wall's kind and so cannot put a band at it alone): "
-        + ", ".join(f"{m} {v:+.3f}" for m, v in predicted.items())
-        + "."
+        " validate's single-run fits (not predictions of the layer: they give the fixed wall the "
+        "moving wall's kind): " + ", ".join(f"{m} a = {v:+.3f}" for m, v in predicted.items()) + "."
         if predicted
         else ""
+    )
+    sliding = (1.0 - abs(a)) / se
+    reading = (
+        " a = 0 is uniform shear (a local rheology, mu(I) or NGF, with no-slip walls), "
+        f"{abs(z):.1f} se away; rigid sliding on the smoother wall (a = 1), which a local "
+        "rheology with a Coulomb wall at that wall's measured friction also gives, is "
+        f"{sliding:.1f} se away. "
+        "The side of the band alone does not tell the Cosserat model from wall friction; the "
+        "shear rate decaying away from the smoother wall under uniform stress (du/dy above, "
+        "numbers.runs[].shear_rate) is what would."
+    )
+    walls_i = [p.wall_inertial_number for p in positions if p.wall_inertial_number is not None]
+    regime_text = (
+        f" Regime: the local inertial number next to either wall (the band's side included) is "
+        f"at most {max(walls_i):.2g} (quasi-static bound I <= {QUASI_STATIC_I:g})."
+        if len(walls_i) == len(positions)
+        else " Regime: not every run gives its inertial number next to both walls."
     )
     evidence = (
         f"a = {a:+.3f} +- {se:.2g} ({z:+.1f} se) over {len(positions)} run(s): "
         + "; ".join(_run_text(p) for p in positions)
         + "."
+        + reading
         + pred_text
         + " "
         + method
+        + regime_text
     )
     cosserat = predicted.get("cosserat")
     if len(signs) > 1:
@@ -323,8 +458,9 @@ def layer_position_verdict(positions: Sequence[LayerPosition]) -> LayerVerdict:
     elif z >= SIGMAS:
         verdict = "supported"
         change = (
-            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se; it refutes the "
-            f"symmetric mu(I) and NGF at {z:.1f} se."
+            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se. Telling the Cosserat "
+            "model from wall friction needs the shear-rate decay compared with mu(I) with a "
+            "Coulomb wall and NGF with a wall-fluidity condition."
         )
     elif z <= -SIGMAS:
         verdict, change = "refuted", "runs placing the band at the smoother wall."
@@ -380,9 +516,11 @@ __all__ = [
     "WITHIN_D",
     "LayerPosition",
     "LayerVerdict",
+    "jump_covariance",
     "jump_fractions",
     "layer_position_verdict",
     "layer_verdicts",
     "measure_layer",
+    "shear_rates",
     "smoother_wall",
 ]

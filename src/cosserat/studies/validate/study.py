@@ -347,6 +347,8 @@ def judge(
     ]
     verdicts = [
         replace(v, evidence=f"{v.evidence} {regime([by_name[n] for n in v.runs])}".rstrip())
+        if v.key != "layer"  # the layer's evidence quotes I next to both walls itself
+        else v
         for v in verdicts
     ]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))
