@@ -41,6 +41,15 @@ STRESS_SIGMAS = 3.0
 STRESS_RELATIVE = 0.1
 """... and beyond this fraction of the measured ratio [-]."""
 
+ADMISSIBLE_EDGES = {
+    ("cosserat", "roughness", "upper"): "a fully rough wall",
+    ("cosserat", "delta", "upper"): "a fully rough wall",
+    ("cosserat", "K", "lower"): "K -> 0, a wall without slip",
+}
+"""Ends of a wall parameter's search range that are the edge of the model's admissible set
+(a limit the model reaches, not a search cut the data push past): a fit there still
+predicts, so it is not flagged by :attr:`FitSummary.unfit_reason`."""
+
 BAND_RATIO: dict[str, tuple[str, str, Callable[[float], float]]] = {
     "cosserat": ("phi", "sin phi", lambda phi: math.sin(math.radians(phi))),
     "mui": ("mu_s", "mu_s", lambda mu: mu),
@@ -67,8 +76,8 @@ class FitSummary:
     contradiction: str = ""
     """The stress contradiction's warning ("" when the fit agrees with the measured ratio)."""
     at_bound: dict[str, str] = field(default_factory=dict)
-    """Free wall parameters (not the roughness) that ended at an end of their search range,
-    name -> "lower" or "upper"."""
+    """Free wall parameters that ended at an end of their search range that is not an edge of
+    the admissible set (:data:`ADMISSIBLE_EDGES`), name -> "lower" or "upper"."""
 
     @property
     def unfit_reason(self) -> str:
@@ -223,7 +232,11 @@ def fit_run(
         at_bound = {
             k: str(e.at_bound)
             for k, e in f.parameters.items()
-            if e.free and e.role == "wall" and e.at_bound and k != "roughness" and not e.derived
+            if e.free
+            and e.role == "wall"
+            and e.at_bound
+            and not e.derived
+            and (f.model, k, e.at_bound) not in ADMISSIBLE_EDGES
         }
         if f.model in BAND_RATIO and BAND_RATIO[f.model][0] in values:
             key, what, ratio = BAND_RATIO[f.model]
