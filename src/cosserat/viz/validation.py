@@ -293,9 +293,9 @@ def delta_claim_figure(
                 continue
             g0, g1 = min(all_g) / 1.15, max(all_g) * 1.15
             data = [p for p in pts if p[3]]  # never the claimed laws through a left-out point
-            if not data:
-                ax.text(0.5, 0.5, "no run with a band thinner than its gap" if pts
-                        else "no usable Delta", ha="center", va="center", fontsize=7,
+            if not data:  # the words above the left-out points
+                ax.text(0.5, 0.94, "no run with a band thinner than its gap" if pts
+                        else "no usable Delta", ha="center", va="top", fontsize=7,
                         transform=ax.transAxes)  # fmt: skip
             else:
                 gg = np.geomspace(g0, g1, 20)
