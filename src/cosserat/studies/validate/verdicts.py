@@ -28,6 +28,9 @@ p-values, the runs used) and what data would change it. The rules:
   determined sign: "refuted" if the model's departure is rejected all the same (chi^2 of
   data - model over every sheared wall's near-wall bins, p < :data:`P_SIGNIFICANT`: the model
   predicts a departure these errors would see and the data have none), else "undecided".
+  Only usable fits predict: walls of runs whose fit contradicts the measured stress ratio or
+  holds a wall parameter at a search cut (``unfit``) decide nothing; with no other wall the
+  verdict is "undecided", and what they would say is kept (``with_contradicting_fits``).
 * **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the measured
   Delta(H/d) against each model's Delta from one joint calibration of the series
   (:class:`ModelDelta`; :func:`curve_test`: chi^2 with the two errors in quadrature, as it is
