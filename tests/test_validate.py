@@ -326,3 +326,26 @@ def test_runs_at_one_gap_and_two_wall_speeds_are_named_as_replicates(tmp_path):
     assert "pools them as replicates" in report.verdict("rough").text
     smooth = next(g for g in report.groups if g.roughness == "smoother")
     assert smooth.replicates() == []
+
+
+def test_a_delta_panel_without_usable_points_draws_no_law_and_says_why():
+    """The layer-like case: the one run's band fills its gap, so the claimed laws are not
+    drawn through it (they would seem to agree with it) and the panel says why; without model
+    markers the title does not promise them. With a usable point both laws are drawn."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import delta_claim_figure
+
+    laws = {"slope 0": 0.0, "slope 1/3": 1.0 / 3.0}
+    point = {"label": "plane", "gaps": [10.0], "Delta": [9.3], "stderr": [0.1], "curves": {}}
+    fig = delta_claim_figure([point | {"usable": [False]}], laws, "Delta")
+    ax = fig.axes[0]
+    assert [t.get_text() for t in ax.texts] == ["no run with a band thinner than its gap"]
+    assert not [ln for ln in ax.get_lines() if ln.get_label() in laws]
+    assert fig._suptitle.get_text() == "Delta"
+    plt.close(fig)
+    fig = delta_claim_figure([point | {"usable": [True]}], laws, "Delta")
+    assert sorted(ln.get_label() for ln in fig.axes[0].get_lines() if ln.get_label() in laws) \
+        == sorted(laws)  # fmt: skip
+    assert len(fig.axes[0].texts) == 0
+    plt.close(fig)

@@ -20,8 +20,8 @@ from cosserat.studies.validate import (
     spin_verdict,
     validate,
 )
-from cosserat.studies.validate.grouping import couette_note, group_runs
-from cosserat.studies.validate.verdicts import within_regime
+from cosserat.studies.validate.grouping import couette_note, group_runs, wall_label, walls_differ
+from cosserat.studies.validate.verdicts import relevant, within_regime
 
 DIST = np.array([0.5, 1.5, 2.5])
 
@@ -108,6 +108,35 @@ def test_a_model_departing_with_the_opposite_sign_is_refuted_and_said_so():
     assert "departs with the opposite sign (2 of 2 walls" in v.evidence
     assert "measured -0.09 +- 0.02, cosserat predicts +0.03" in v.evidence
     assert "other models mui +0" in v.evidence
+
+
+def test_predictions_from_fits_that_contradict_the_measured_stress_decide_nothing():
+    """The same opposite-sign walls, but the fits that supply the +0.03 hold sin phi = 0.477
+    against a measured band ratio of 0.2 (made-up numbers): undecided, with why, what would
+    decide it, and what the data say on those fits kept as numbers."""
+    walls = [wall(r, [-0.09, -0.02, 0.0], 0.02, predicted={"cosserat": [0.03, 0.01, 0.0]})
+             for r in ("a", "b")]  # fmt: skip
+    why = "the cosserat fit: its sin phi = 0.477 contradicts the measured band stress ratio"
+    v = spin_model_verdict(walls, unfit={"a": why, "b": why})
+    assert v.verdict == "undecided", v.text
+    assert v.evidence.startswith("Undecided: the cosserat fits that supply the predicted "
+                                 f"departure cannot be used (a: {why}; b: {why})")  # fmt: skip
+    assert "On these fits the data would read 'refuted'" in v.evidence
+    assert "joint calibration of the cosserat model on u and omega together, with phi tied to " \
+        "the measured band stress ratio" in v.would_change  # fmt: skip
+    said = v.numbers["with_contradicting_fits"]
+    assert said["verdict"] == "refuted" and said["opposite_sign"] == ["a:moving", "b:moving"]
+    assert v.runs == ("a", "b")
+    # one run's fit agrees with its stress ratio: the verdict rests on it alone, the other named
+    one = spin_model_verdict(walls, unfit={"b": why})
+    assert one.verdict == "refuted" and "(1 of 1 walls" in one.evidence
+    assert f"Not used (b: {why}): on those fits the data would read 'refuted'." in one.evidence
+    assert one.numbers["with_contradicting_fits"]["opposite_sign"] == ["b:moving"]
+    # a wall the caller leaves out is named; without unfit runs the verdict is as before
+    out = spin_model_verdict(walls, left_out=["c (fixed wall: its kind differs)"])
+    assert out.verdict == "refuted"
+    assert out.evidence.endswith(" Left out: c (fixed wall: its kind differs).")
+    assert spin_model_verdict(walls).verdict == "refuted"
 
 
 def test_a_slow_flow_claim_is_not_decided_by_runs_outside_the_slow_regime():
@@ -271,6 +300,22 @@ def test_runs_pair_by_tolerance_on_the_held_parameter_not_by_rounding(tmp_path):
     groups = group_runs(read_corpus(tmp_path).runs)
     names = sorted(tuple(r.name for r in g.runs) for g in groups)
     assert names == [("a", "b"), ("c",), ("d",)]
+
+
+def test_a_run_whose_walls_differ_is_in_no_smooth_or_rough_series_and_names_both(tmp_path):
+    """A plane run without gravity, rough moving wall and smooth fixed wall (the layer run):
+    its series has no roughness, so neither Delta claim takes it; its label names both walls."""
+    smooth = {"kind": "smooth-frictional"}
+    _run(tmp_path, "layer", gap_d=10.0, B=0.0, wall_fixed=smooth)
+    _run(tmp_path, "rough", gap_d=10.0, B=0.0)
+    runs = {r.name: r for r in read_corpus(tmp_path).runs}
+    assert walls_differ(runs["layer"]) and not walls_differ(runs["rough"])
+    assert wall_label(runs["layer"]) == "moving fully-rough, fixed smoother"
+    assert wall_label(runs["rough"]) == "fully-rough"
+    rough = {s.runs[0].name: s.roughness for s in group_runs(list(runs.values()))}
+    assert rough == {"layer": None, "rough": "fully-rough"}
+    series = [DeltaSeries("k", "plane", None, False, (DeltaPoint("layer", 10.0, 9.3, 0.1),))]
+    assert relevant(series, "smoother") == relevant(series, "rough") == []
 
 
 def test_couette_runs_at_one_inner_radius_are_not_a_series_and_the_report_says_why(tmp_path):

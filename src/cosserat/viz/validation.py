@@ -238,7 +238,8 @@ def delta_claim_figure(
         (model -> ``gaps``, ``Delta`` of the curve and ``points``: (H/d, Delta, se) at the
         runs).
     exponents : mapping
-        Label -> exponent of the reference lines (drawn through the data's geometric mean).
+        Label -> exponent of the reference lines (drawn through the geometric mean of the
+        usable points; not drawn, and the panel says so, when every band fills its gap).
     """
 
     import numpy as np
@@ -291,8 +292,12 @@ def delta_claim_figure(
                 ax.set_title(s["label"], fontsize=7)
                 continue
             g0, g1 = min(all_g) / 1.15, max(all_g) * 1.15
-            data = [p for p in pts if p[3]] or pts
-            if data:
+            data = [p for p in pts if p[3]]  # never the claimed laws through a left-out point
+            if not data:  # the words above the left-out points
+                ax.text(0.5, 0.94, "no run with a band thinner than its gap" if pts
+                        else "no usable Delta", ha="center", va="top", fontsize=7,
+                        transform=ax.transAxes)  # fmt: skip
+            else:
                 gg = np.geomspace(g0, g1, 20)
                 d0 = float(np.exp(np.mean(np.log([p[1] for p in data]))))
                 gm = float(np.exp(np.mean(np.log([p[0] for p in data]))))
@@ -312,8 +317,10 @@ def delta_claim_figure(
             ax.set_title(s["label"], fontsize=7)
             ax.set_xlabel(r"$H/d$ [-]")
         axs[0].set_ylabel(r"$\Delta$ [$d$]")
-        fig.suptitle(title + "  (x: each model at the runs, +- its calibration's error)",
-                     fontsize=8)  # fmt: skip
+        markers = any(p[1] for s in series for c in s.get("curves", {}).values()
+                      for p in c.get("points", []))  # fmt: skip
+        fig.suptitle(title + ("  (x: each model at the runs, +- its calibration's error)"
+                              if markers else ""), fontsize=8)  # fmt: skip
         _legend_below(fig, axs, ncol=3)
         fig.subplots_adjust(left=0.09, right=0.98, bottom=0.33, top=0.84, wspace=0.3)
     return fig

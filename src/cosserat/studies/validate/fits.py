@@ -41,6 +41,15 @@ STRESS_SIGMAS = 3.0
 STRESS_RELATIVE = 0.1
 """... and beyond this fraction of the measured ratio [-]."""
 
+ADMISSIBLE_EDGES = {
+    ("cosserat", "roughness", "upper"): "a fully rough wall",
+    ("cosserat", "delta", "upper"): "a fully rough wall",
+    ("cosserat", "K", "lower"): "K -> 0, a wall without slip",
+}
+"""Ends of a wall parameter's search range that are the edge of the model's admissible set
+(a limit the model reaches, not a search cut the data push past): a fit there still
+predicts, so it is not flagged by :attr:`FitSummary.unfit_reason`."""
+
 BAND_RATIO: dict[str, tuple[str, str, Callable[[float], float]]] = {
     "cosserat": ("phi", "sin phi", lambda phi: math.sin(math.radians(phi))),
     "mui": ("mu_s", "mu_s", lambda mu: mu),
@@ -64,6 +73,28 @@ class FitSummary:
     pinned: dict[str, float]
     band_ratio: tuple[str, float, bool] | None
     warnings: list[str]
+    contradiction: str = ""
+    """The stress contradiction's warning ("" when the fit agrees with the measured ratio)."""
+    at_bound: dict[str, str] = field(default_factory=dict)
+    """Free wall parameters that ended at an end of their search range that is not an edge of
+    the admissible set (:data:`ADMISSIBLE_EDGES`), name -> "lower" or "upper"."""
+
+    @property
+    def unfit_reason(self) -> str:
+        """Why this fit cannot supply a prediction to test the model ("" when it can): it
+        contradicts the measured stress ratio, or a wall parameter sits at a bound."""
+        why = []
+        if self.contradiction:
+            what = self.band_ratio[0] if self.band_ratio else "its stress ratio"
+            ratio = f" = {self.band_ratio[1]:.3g}" if self.band_ratio else ""
+            why.append(f"its {what}{ratio} contradicts the measured band stress ratio")
+        if self.at_bound:
+            why.append(
+                "wall parameter at a bound ("
+                + ", ".join(f"{k} at its {b} end" for k, b in sorted(self.at_bound.items()))
+                + ")"
+            )
+        return f"the {self.model} fit: " + " and ".join(why) if why else ""
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -197,7 +228,16 @@ def fit_run(
                 "pinned (held at the declared default, not fitted): "
                 + ", ".join(f"{k} = {v:.4g}" for k, v in pinned.items())
             )
-        band = None
+        band, contradiction = None, ""
+        at_bound = {
+            k: str(e.at_bound)
+            for k, e in f.parameters.items()
+            if e.free
+            and e.role == "wall"
+            and e.at_bound
+            and not e.derived
+            and (f.model, k, e.at_bound) not in ADMISSIBLE_EDGES
+        }
         if f.model in BAND_RATIO and BAND_RATIO[f.model][0] in values:
             key, what, ratio = BAND_RATIO[f.model]
             band = (what, float(ratio(float(values[key]))), key in pinned)
@@ -206,10 +246,23 @@ def fit_run(
             )
             if text:
                 warnings.append(text)
+                contradiction = text
         params = {k: (e.value, e.stderr) for k, e in f.parameters.items() if e.free}
         out.summaries.append(
             FitSummary(
-                f.model, True, "", f.chi2, dof, f.reduced_chi2, p, params, pinned, band, warnings
+                f.model,
+                True,
+                "",
+                f.chi2,
+                dof,
+                f.reduced_chi2,
+                p,
+                params,
+                pinned,
+                band,
+                warnings,
+                contradiction,
+                at_bound,
             )
         )
     return out

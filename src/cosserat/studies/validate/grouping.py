@@ -7,7 +7,9 @@ tolerance: plane shear's B (relative :data:`REL_TOL`, or both below :data:`ZERO_
 gravity), Couette's R_i/H (relative :data:`REL_TOL`; the paper's Couette law holds R_i/H
 fixed, so runs at one inner radius R_i/d and several gaps are separate series). The gap
 itself is what varies. Several runs at one gap (a rate-check partner at another wall speed)
-are replicates, named as such.
+are replicates, named as such. A plane run whose two walls differ (the sidecar's ``wall_fixed``
+or ``walls``, :func:`walls_differ`) is in no smooth-wall or rough-wall series: its
+:attr:`Series.roughness` is None, and its walls are named both (:func:`wall_label`).
 """
 
 from __future__ import annotations
@@ -23,6 +25,44 @@ REL_TOL = 0.1
 """Relative tolerance on the held cell parameter (B, R_i/H) within one series [-]."""
 ZERO_B = 0.05
 """B below this is 'no gravity' [-]."""
+
+
+ROUGHNESS_OF_KIND = {"glued-grains": "fully-rough", "smooth-frictional": "smoother"}
+"""The roughness class of a wall kind."""
+
+
+def _kind(wall: Any) -> str | None:
+    return str(wall.get("kind")) if isinstance(wall, dict) and wall.get("kind") else None
+
+
+def walls_differ(run: Run) -> bool:
+    """Whether the run's two walls are of different kinds (the sidecar's ``wall_fixed``
+    against ``wall``, or its ``walls`` by position)."""
+    fixed = _kind(run.meta.get("wall_fixed"))
+    if fixed is not None and fixed != _kind(run.wall):
+        return True
+    walls = run.meta.get("walls")
+    if isinstance(walls, dict):
+        kinds = {_kind(w) for w in walls.values()} - {None}
+        return len(kinds) > 1
+    return False
+
+
+def wall_label(run: Run) -> str:
+    """The run's wall roughness, both walls named where they differ ("-" if unknown)."""
+    if not walls_differ(run):
+        return run.roughness or "-"
+    moving = run.roughness or _kind(run.wall) or "?"
+    fixed_kind = _kind(run.meta.get("wall_fixed"))
+    if fixed_kind is None:  # only ``walls`` by position says they differ
+        walls = run.meta.get("walls")
+        assert isinstance(walls, dict)
+        return ", ".join(
+            f"{pos} {ROUGHNESS_OF_KIND.get(k, k)}"
+            for pos, w in sorted(walls.items())
+            if (k := _kind(w)) is not None
+        )
+    return f"moving {moving}, fixed {ROUGHNESS_OF_KIND.get(fixed_kind, fixed_kind)}"
 
 
 def held(run: Run) -> tuple[str, float] | None:
@@ -78,7 +118,8 @@ class Series:
 
     @property
     def roughness(self) -> str | None:
-        return self.runs[0].roughness
+        """The walls' roughness; None where the two walls differ (no smooth or rough series)."""
+        return None if walls_differ(self.runs[0]) else self.runs[0].roughness
 
     @property
     def gravity(self) -> bool:

@@ -15,6 +15,7 @@ import numpy as np
 from ..._atomic import save_figure, write_text
 from ...analysis.gap import PAPER_SLOPES
 from ...viz.report import write_report as write_templates
+from .grouping import wall_label
 from .measures import (
     BAND_U,
     FILLS_GAP,
@@ -256,7 +257,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "name": r.run.name,
                 "cell": r.run.cell,
                 "gap": f"{r.run.gap_d:g}",
-                "wall": r.run.roughness or "-",
+                "wall": wall_label(r.run),
                 "best": (r.fits.best if r.fits else None) or "-",
                 "I_w": _g(r.inertial_number, ".2g"),
                 "stress": "-"

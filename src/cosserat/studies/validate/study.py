@@ -20,7 +20,7 @@ from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
-from .grouping import couette_note, group_runs
+from .grouping import couette_note, group_runs, walls_differ
 from .layer import layer_verdicts
 from .measures import (
     NEAR_WALL_D,
@@ -28,6 +28,7 @@ from .measures import (
     SpinMeasure,
     StressRatio,
     Thickness,
+    WallSpin,
     band_stress_ratio,
     measure_spin,
     measured_thickness,
@@ -149,6 +150,33 @@ def _model_slopes(results: Sequence[RunResult]) -> dict[str, SlopeFit | None]:
         ok = len({g for g, _ in pts}) >= 2
         out[m] = power_law_slope([g for g, _ in pts], [d for _, d in pts]) if ok else None
     return out
+
+
+def _spin_model_inputs(
+    results: Sequence[RunResult], model: str = "cosserat"
+) -> tuple[list[WallSpin], str, dict[str, str], list[str]]:
+    """The walls ``spin_model`` judges, the model, the runs whose fit of it cannot predict
+    (:attr:`~.fits.FitSummary.unfit_reason`) and the walls left out: the fixed wall of a run
+    whose walls differ (the fits give it the moving wall's kind, so they predict nothing there)."""
+    walls, left_out = [], []
+    unfit: dict[str, str] = {}
+    for r in results:
+        if not r.spin.available:
+            continue
+        differ = walls_differ(r.run)
+        for w in r.spin.walls:
+            if differ and w.wall == "fixed":
+                if w.sheared:
+                    left_out.append(
+                        f"{w.run} (fixed wall: its kind differs from the moving wall's, which "
+                        "the fits give it, so they predict nothing there)"
+                    )
+                continue
+            walls.append(w)
+        s = r.fits.summary(model) if r.fits else None
+        if s is not None and s.ok and s.unfit_reason:
+            unfit[r.run.name] = s.unfit_reason
+    return walls, model, unfit, left_out
 
 
 def analyse_run(
@@ -335,7 +363,7 @@ def judge(
         spin_verdict(walls),
         delta_law_verdict(series, "smoother"),
         delta_law_verdict(series, "rough"),
-        spin_model_verdict(walls),
+        spin_model_verdict(*_spin_model_inputs(results)),
         # the layer's position, judged only on runs whose walls differ (.layer)
         *layer_verdicts([r.run for r in results], {r.run.name: r.fits for r in results}),
     ]

@@ -28,6 +28,9 @@ p-values, the runs used) and what data would change it. The rules:
   determined sign: "refuted" if the model's departure is rejected all the same (chi^2 of
   data - model over every sheared wall's near-wall bins, p < :data:`P_SIGNIFICANT`: the model
   predicts a departure these errors would see and the data have none), else "undecided".
+  Only usable fits predict: walls of runs whose fit contradicts the measured stress ratio or
+  holds a wall parameter at a search cut (``unfit``) decide nothing; with no other wall the
+  verdict is "undecided", and what they would say is kept (``with_contradicting_fits``).
 * **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the measured
   Delta(H/d) against each model's Delta from one joint calibration of the series
   (:class:`ModelDelta`; :func:`curve_test`: chi^2 with the two errors in quadrature, as it is
@@ -291,10 +294,73 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
     )
 
 
-def spin_model_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
-    """Has the measured departure the sign and size ``model`` predicts (module docstring)?"""
+def spin_model_verdict(
+    walls: Sequence[WallSpin],
+    model: str = "cosserat",
+    unfit: Mapping[str, str] | None = None,
+    left_out: Sequence[str] = (),
+) -> Verdict:
+    """Has the measured departure the sign and size ``model`` predicts (module docstring)?
+
+    Parameters
+    ----------
+    walls : sequence of WallSpin
+        Every run's walls, with each fitted model's departure.
+    model : str
+        The model whose departure is judged.
+    unfit : mapping of run name to str, optional
+        Runs whose ``model`` fit cannot supply a prediction (it contradicts the measured
+        stress ratio, or a wall parameter sits at a bound), with why: their walls decide
+        nothing; what they say is kept in ``numbers["with_contradicting_fits"]``.
+    left_out : sequence of str
+        Walls left out by the caller, each with why (the fit cannot predict there), named in
+        the evidence.
+    """
     key = "spin_model"
+    unfit = dict(unfit or {})
     tested = [w for w in walls if w.sheared and w.dof > 0 and model in w.predicted]
+    flagged = [w for w in tested if w.run in unfit]
+    kept = [w for w in tested if w.run not in unfit]
+    out = _spin_model_on(kept, model) if kept or not flagged else None
+    note = f" Left out: {'; '.join(left_out)}." if left_out else ""
+    if not flagged:
+        assert out is not None
+        return replace(out, evidence=out.evidence + note)
+    on_flagged = _spin_model_on(flagged, model)
+    why = "; ".join(f"{r}: {unfit[r]}" for r in sorted({w.run for w in flagged}))
+    said = {**on_flagged.numbers, "verdict": on_flagged.verdict}
+    decide = (
+        f"a joint calibration of the {model} model on u and omega together, with phi tied to "
+        "the measured band stress ratio (sin phi = |sigma_yx|/sigma_yy) and the wall "
+        "parameters inside their ranges, whose first-layer departure is then compared with "
+        "the data's."
+    )
+    if out is None:
+        return Verdict(
+            key,
+            "undecided",
+            f"Undecided: the {model} fits that supply the predicted departure cannot be used "
+            f"({why}); a prediction from a calibration that contradicts what the same runs "
+            f"measure directly tests the calibration, not the model. On these fits the data "
+            f"would read '{on_flagged.verdict}' ({on_flagged.evidence}){note}",
+            decide,
+            tuple(sorted({w.run for w in flagged})),
+            {"with_contradicting_fits": said},
+        )
+    return replace(
+        out,
+        evidence=(
+            f"{out.evidence} Not used ({why}): on those fits the data would read "
+            f"'{on_flagged.verdict}'.{note}"
+        ),
+        would_change=f"{out.would_change} For the runs not used: {decide}",
+        numbers={**out.numbers, "with_contradicting_fits": said},
+    )
+
+
+def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
+    """:func:`spin_model_verdict` on the walls ``tested`` (sheared, with spin and a fit)."""
+    key = "spin_model"
     if not tested:
         return Verdict(
             key,
