@@ -83,18 +83,19 @@ def dimension(cell: Cell) -> int:
 
 
 def _data_file(layout: Layout, density: float) -> str:
+    """LAMMPS's data file of the initial positions: disks in a slab of unit thickness, or
+    spheres (``layout.z`` given) in a box periodic along z over the layout's depth."""
     xlo, xhi, ylo, yhi = layout.box
-    if layout.z is not None:
-        return _data_file_3d(layout, density)
+    z = layout.z
     lines = [
-        "cosserat.dem initial positions",
+        "cosserat.dem initial positions" + ("" if z is None else " (3-D)"),
         "",
         f"{layout.x.size} atoms",
         "3 atom types",
         "",
         f"{xlo:.10g} {xhi:.10g} xlo xhi",
         f"{ylo:.10g} {yhi:.10g} ylo yhi",
-        "-0.5 0.5 zlo zhi",
+        "-0.5 0.5 zlo zhi" if z is None else f"0 {layout.info['depth']:.10g} zlo zhi",
         "",
         "Atoms # sphere",
         "",
@@ -102,31 +103,7 @@ def _data_file(layout: Layout, density: float) -> str:
     for k in range(layout.x.size):
         lines.append(
             f"{k + 1} {int(layout.kind[k])} {layout.diameter[k]:.10g} {density:.10g} "
-            f"{layout.x[k]:.10g} {layout.y[k]:.10g} 0"
-        )
-    return "\n".join(lines) + "\n"
-
-
-def _data_file_3d(layout: Layout, density: float) -> str:
-    xlo, xhi, ylo, yhi = layout.box
-    assert layout.z is not None
-    lines = [
-        "cosserat.dem initial positions (3-D)",
-        "",
-        f"{layout.x.size} atoms",
-        "3 atom types",
-        "",
-        f"{xlo:.10g} {xhi:.10g} xlo xhi",
-        f"{ylo:.10g} {yhi:.10g} ylo yhi",
-        f"0 {layout.info['depth']:.10g} zlo zhi",
-        "",
-        "Atoms # sphere",
-        "",
-    ]
-    for k in range(layout.x.size):
-        lines.append(
-            f"{k + 1} {int(layout.kind[k])} {layout.diameter[k]:.10g} {density:.10g} "
-            f"{layout.x[k]:.10g} {layout.y[k]:.10g} {layout.z[k]:.10g}"
+            f"{layout.x[k]:.10g} {layout.y[k]:.10g} {'0' if z is None else f'{z[k]:.10g}'}"
         )
     return "\n".join(lines) + "\n"
 
