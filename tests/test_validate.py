@@ -331,7 +331,8 @@ def test_runs_at_one_gap_and_two_wall_speeds_are_named_as_replicates(tmp_path):
 def test_a_delta_panel_without_usable_points_draws_no_law_and_says_why():
     """The layer-like case: the one run's band fills its gap, so the claimed laws are not
     drawn through it (they would seem to agree with it) and the panel says why; without model
-    markers the title does not promise them. With a usable point both laws are drawn."""
+    markers the title does not promise them. With usable points at two gaps both laws are
+    drawn; at one gap neither."""
     import matplotlib.pyplot as plt
 
     from cosserat.viz.validation import delta_claim_figure
@@ -344,8 +345,17 @@ def test_a_delta_panel_without_usable_points_draws_no_law_and_says_why():
     assert not [ln for ln in ax.get_lines() if ln.get_label() in laws]
     assert fig._suptitle.get_text() == "Delta"
     plt.close(fig)
+    plt.close(fig)
+    # one usable gap: two lines through one point would show nothing either (a referee)
     fig = delta_claim_figure([point | {"usable": [True]}], laws, "Delta")
+    assert [t.get_text() for t in fig.axes[0].texts] == ["one gap: no dependence on H/d to show"]
+    assert not [ln for ln in fig.axes[0].get_lines() if ln.get_label() in laws]
+    plt.close(fig)
+    two = {"label": "plane", "gaps": [10.0, 20.0], "Delta": [5.0, 6.0], "stderr": [0.1, 0.1],
+           "curves": {}, "usable": [True, True]}  # fmt: skip
+    fig = delta_claim_figure([two], laws, "Delta")
     assert sorted(ln.get_label() for ln in fig.axes[0].get_lines() if ln.get_label() in laws) \
         == sorted(laws)  # fmt: skip
     assert len(fig.axes[0].texts) == 0
+    plt.close(fig)
     plt.close(fig)

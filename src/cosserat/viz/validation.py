@@ -239,7 +239,8 @@ def delta_claim_figure(
         runs).
     exponents : mapping
         Label -> exponent of the reference lines (drawn through the geometric mean of the
-        usable points; not drawn, and the panel says so, when every band fills its gap).
+        usable points; not drawn, and the panel says so, when every band fills its gap or
+        the usable points are at one gap).
     """
 
     import numpy as np
@@ -297,6 +298,9 @@ def delta_claim_figure(
                 ax.text(0.5, 0.94, "no run with a band thinner than its gap" if pts
                         else "no usable Delta", ha="center", va="top", fontsize=7,
                         transform=ax.transAxes)  # fmt: skip
+            elif len({p[0] for p in data}) < 2:  # two lines through one point show nothing
+                ax.text(0.5, 0.94, "one gap: no dependence on H/d to show", ha="center",
+                        va="top", fontsize=7, transform=ax.transAxes)  # fmt: skip
             else:
                 gg = np.geomspace(g0, g1, 20)
                 d0 = float(np.exp(np.mean(np.log([p[1] for p in data]))))
