@@ -172,19 +172,19 @@ def test_cosserat_data_at_large_gaps_support_the_rough_wall_law(tmp_path):
     assert plane.slope.slope > 4 * plane.slope.stderr  # 0 is far outside
 
 
-@pytest.mark.xfail(
-    reason="per-run refits let the Cosserat model follow any Delta(H) (delta 21 -> 17 deg "
-    "across the gaps, K at its bound 0), so the data 'agree with the model's own slope' and "
-    "the verdict is undecided; one joint calibration per series (branch series) should "
-    "refute it",
-    strict=False,
-)
-def test_ngf_data_whose_delta_grows_at_smooth_walls_refute_the_smoother_law(tmp_path):
-    """NGF has no wall friction: its Delta grows at smooth walls as at rough
-    ones (5.3, 7.1, 8.9 d at H/d = 20, 40, 80: slope 0.39 +- 0.05), which the smoother-wall
-    law denies."""
+def test_ngf_data_labelled_smooth_are_not_data_of_a_smoother_wall(tmp_path):
+    """NGF has no wall friction: its Delta grows at walls labelled smooth as at rough ones
+    (5.3, 7.1, 8.9 d at H/d = 20, 40, 80: slope 0.39 +- 0.05). The smoother-wall law is about
+    walls smoother than the material, and these walls are not: the series' joint calibration
+    finds them fully rough within its error (tan delta / sin phi = 0.98 +- 0.02) and its curve
+    follows the data, so the claim is untested here: undecided, not refuted. (With per-run
+    refits this case came out undecided for a wrong reason, and the test expected refuted.)"""
     synthetic_corpus(tmp_path, "ngf", plane={"smooth": (20.0, 40.0, 80.0)}, noise=0.03)
     report = validate(tmp_path, models=["cosserat"])
     (series,) = report.groups
     assert series.slope.slope > 5 * series.slope.stderr
-    assert report.verdict("smoother").verdict == "refuted", report.verdict("smoother").text
+    verdict = report.verdict("smoother")
+    assert verdict.verdict == "undecided", verdict.text
+    fit = series.curves["cosserat"].calibration["parameters"]
+    (roughness,) = [v for k, v in fit.items() if k.startswith("roughness[")]
+    assert abs(roughness["value"] - 1.0) < 3 * roughness["stderr"]
