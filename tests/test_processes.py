@@ -246,6 +246,9 @@ def test_a_signal_ends_a_command_stuck_in_a_compiled_kernel(sig, status):
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        # a shell starts a background job with Ctrl-C ignored, and the child would inherit it
+        # (the watchdog rightly keeps ignoring it then): the test needs an interactive SIGINT
+        preexec_fn=_default_sigint,
     )
     assert proc.stdout is not None and proc.stdout.readline() == "inside\n"
     time.sleep(0.2)  # inside the kernel by now
@@ -255,6 +258,7 @@ def test_a_signal_ends_a_command_stuck_in_a_compiled_kernel(sig, status):
         _, err = proc.communicate(timeout=GRACE + GONE_WITHIN)
     except subprocess.TimeoutExpired:
         proc.kill()
+        proc.communicate()  # reaped, so no other test sees its unclosed pipes
         pytest.fail(f"{sig} did not end a command stuck in a compiled kernel")
     took = time.monotonic() - sent
     assert proc.returncode == status, err
