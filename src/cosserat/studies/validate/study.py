@@ -21,7 +21,7 @@ from ...config import DEFAULT_F
 from ...errors import ParameterError
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
 from .grouping import couette_note, group_runs, walls_differ
-from .layer import layer_verdicts
+from .layer import LayerPosition, band_inertial_number, layer_verdicts, measure_layer
 from .measures import (
     NEAR_WALL_D,
     P_SIGNIFICANT,
@@ -52,6 +52,12 @@ from .verdicts import (
 QUASI_STATIC_I = 1e-3
 """Largest local inertial number of the slow flow the models are for [-]."""
 
+LAYER_NOTE = (
+    "walls of two kinds without gravity: the band sits at the smoother wall (the layer claim), "
+    "and Delta, measured from the moving wall, is not defined for it; this run is in no Delta "
+    "series"
+)
+
 CHANNEL_NOTE = (
     "the vertical channel has no moving wall: the models are compared with velocities over a "
     "wall speed, and Delta is measured from a moving wall, so neither is done for this run "
@@ -73,6 +79,7 @@ class RunResult:
     stress: StressRatio | None = None
     inertial_number: float | None = None
     figure: str = ""
+    layer: LayerPosition | None = None
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -88,7 +95,9 @@ class RunResult:
             "Delta": self.thickness.to_dict(),
             "model_delta": self.model_delta,
             "band_stress_ratio": None if self.stress is None else self.stress.to_dict(),
-            "moving_wall_inertial_number": self.inertial_number,
+            "moving_wall_inertial_number": self.inertial_number if self.layer is None else None,
+            "band_inertial_number": self.inertial_number if self.layer is not None else None,
+            "layer": None if self.layer is None else self.layer.to_dict(),
             "skipped": self.skipped,
             "notes": list(self.run.notes),
             "figure": self.figure,
@@ -206,11 +215,16 @@ def analyse_run(
             w.with_predictions({m: p[spin.index[w.wall]] for m, p in spin.predicted.items()})
             for w in spin.walls
         ]
+    layer = measure_layer(run, fits)
     thickness = (
-        Thickness(None, None, CHANNEL_NOTE) if run.cell == "channel" else measured_thickness(run, f)
+        Thickness(None, None, CHANNEL_NOTE)
+        if run.cell == "channel"
+        else Thickness(None, None, LAYER_NOTE, run.gap_d)
+        if layer is not None
+        else measured_thickness(run, f)
     )
     model_delta: dict[str, float | None] = {}
-    if fits is not None:
+    if fits is not None and layer is None:
         measured = run.measured()
         for name in fits.models:
             model_delta[name] = thickness_of(
@@ -228,7 +242,10 @@ def analyse_run(
         model_delta,
         skipped,
         stress,
-        moving_wall_inertial_number(run),
+        moving_wall_inertial_number(run)
+        if layer is None
+        else band_inertial_number(run.meta, layer.smoother),
+        layer=layer,
     )
     if figures_to is not None:
         from .report import write_run_figure
@@ -293,7 +310,7 @@ def series_jobs(
     from ...calibration.models import models as make_models
 
     out = []
-    for s in group_runs(runs):
+    for s in group_runs([r for r in runs if not walls_differ(r)]):
         gaps: list[float] = []
         for r in s.runs:
             if not any(abs(r.gap_d - g) <= SAME_GAP * g for g in gaps):
@@ -331,7 +348,9 @@ def judge(
                 made.setdefault(key, []).append(series_job(runs, model, f))
         calibrations = made
     series = []
-    for s in group_runs([r.run for r in results]):
+    # a run whose walls differ is in no gap series (no smooth- or rough-wall Delta law is
+    # about it; the layer run's band is at its fixed wall)
+    for s in group_runs([r.run for r in results if not walls_differ(r.run)]):
         members = [by_name[r.name] for r in s.runs]
         curves = _curves(calibrations.get(s.key, []))
         points = tuple(
@@ -365,7 +384,11 @@ def judge(
         delta_law_verdict(series, "rough"),
         spin_model_verdict(*_spin_model_inputs(results)),
         # the layer's position, judged only on runs whose walls differ (.layer)
-        *layer_verdicts([r.run for r in results], {r.run.name: r.fits for r in results}),
+        *layer_verdicts(
+            [r.run for r in results],
+            {r.run.name: r.fits for r in results},
+            {r.run.name: r.layer for r in results if r.layer is not None},
+        ),
     ]
     verdicts = [
         within_regime(
