@@ -288,9 +288,14 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 )
         t = r.thickness
         delta = "-" if t.value is None else f"{t.value:.4g}"
+        if r.layer is not None:
+            delta += " (walls of two kinds: its band is at the smoother wall; in no series)"
         delta += "" if t.stderr is None else f" +- {t.stderr:.2g}"
         if t.fills_gap:
             delta += " (fills the gap)"
+        if r.sensitivity is not None and r.sensitivity.ill:
+            delta += " (ill-conditioned at f = " + ", ".join(f"{x:g}" for x in r.sensitivity.ill)
+            delta += ")"
         walls = []
         for w in r.spin.walls if r.spin.available else []:
             walls.append(
@@ -324,7 +329,10 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "figure": r.figure,
                 "ranking_text": r.fits.to_text().rstrip() if r.fits else "",
                 "error": r.error,
-                "notes": r.skipped + list(r.run.notes) + (r.spin.notes if r.spin.available else []),
+                "notes": r.skipped
+                + list(r.run.notes)
+                + (r.spin.notes if r.spin.available else [])
+                + ([] if r.sensitivity is None else [r.sensitivity.text()]),
             }
         )
     series = []
