@@ -365,3 +365,52 @@ def test_the_fits_are_not_called_predictions_of_the_layer():
         "moving wall's kind): mui a = +0.000." in v.evidence
     )
     assert "whichever moves" not in LAYER_CLAIM
+
+
+def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_path):
+    """The layer run's figure (referee 5, Figures): the title names the walls and quotes I in
+    the band; the lines are the alternatives with the right walls (not the single-run fits);
+    the 3 d windows, the walls' names and the shear rate on the log panel are drawn."""
+    import json
+
+    from cosserat import make_problem, solve
+    from cosserat.analysis.corpus import read_run, synthetic_run
+    from cosserat.studies.validate.report import run_entry
+    from cosserat.studies.validate.study import analyse_run
+    from cosserat.viz.validation import run_figure
+
+    values = {"phi": 19.0, "delta": "fully-rough", "delta_lower": 13.9, "eps": 0.1, "B": 0.0}
+    profile = solve(make_problem("cosserat", "plane", {**values, "L": 5.0}))
+    csv_path = synthetic_run(tmp_path, "layer", profile, noise=0.01, wall=ROUGH)
+    sidecar = csv_path.with_suffix(".json")
+    walls_i = {
+        "moving": "upper",
+        "upper": {"per_bin": [5e-5, 4e-5, 5e-5]},
+        "lower": {"per_bin": [7e-4, 3.7e-4, 1.6e-4]},
+    }
+    ratio = {"shear": -math.tan(math.radians(13.9)), "normal": 1.0}
+    meta = json.loads(sidecar.read_text())
+    sidecar.write_text(
+        json.dumps(
+            {**meta, "wall_fixed": SMOOTH, "wall_stress": ratio, "wall_inertial_number": walls_i}
+        )
+    )
+    r = analyse_run(read_run(csv_path), ["mui"], 0.05, 3.0, 3)
+    assert r.inertial_number == pytest.approx(7e-4)  # the band's, next to the smooth fixed wall
+    entry = run_entry(r)
+    assert (
+        "smooth fixed wall, rough moving wall; I in the band (next to the fixed wall) = 0.0007"
+        in (entry["title"])
+    )
+    layer = entry["layer"]
+    assert layer["walls"] == {"fixed": "smooth, fixed", "moving": "rough, moving"}
+    assert layer["within_d"] == 3.0 and layer["gap_d"] == pytest.approx(10.0)
+    assert [name[:3] for name in entry["models"]] == ["(a)", "(a)", "(b)", "(c)", "(c)", "(c)"]
+    assert "mui" not in entry["models"] and entry["spin"]["predicted"] == {}
+    assert len(layer["rate"]["rate"]) == len(entry["u"]) - 1
+    fig = run_figure(entry)
+    lin, rate = fig.axes[0], fig.axes[1]
+    assert rate.get_yscale() == "log" and lin.get_yscale() == "linear"
+    assert {t.get_text() for t in lin.texts} == {"smooth, fixed", "rough, moving"}
+    assert len(lin.patches) >= 2  # the two 3 d windows
+    assert len(rate.lines) >= 5  # the decaying alternatives' rates, and the local one's
