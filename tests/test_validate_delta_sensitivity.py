@@ -81,3 +81,21 @@ def test_bad_fractions(tmp_path):
     run = _write(tmp_path, "x", 0.0)
     with pytest.raises(ParameterError, match=re.escape("fs must be increasing fractions")):
         thickness_sensitivity(run, (0.1, 0.05))
+
+
+def test_validate_uses_the_series_f_for_its_delta_and_says_so(tmp_path):
+    """End to end: the series of a floored run and a clean one takes its Delta at f = 0.2
+    (the points and the note), while each run's own Delta stays at validate's f."""
+    from cosserat.studies.validate import validate
+
+    a = _write(tmp_path, "a", 0.03, gap=20.0)
+    _write(tmp_path, "b", 0.0, gap=40.0)
+    report = validate(tmp_path, models=["cosserat"])
+    (series,) = report.groups
+    assert series.notes[0].endswith("use f = 0.2")
+    point = next(p for p in series.points if p.run == "a")
+    assert point.value == pytest.approx(measured_thickness(a, 0.2).value)
+    result = next(r for r in report.results if r.run.name == "a")
+    assert result.thickness.value == pytest.approx(measured_thickness(a, 0.05).value)
+    assert result.sensitivity is not None and result.sensitivity.ill == (0.05, 0.1)
+    assert "f = 0.2" in report.verdict("rough").evidence
