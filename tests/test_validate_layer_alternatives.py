@@ -160,3 +160,16 @@ def test_the_verdict_names_the_decay_as_the_discriminating_observation():
         "ngf-wall",
         "ngf-wall-noslip",
     }
+
+
+def test_a_wall_rougher_than_the_cosserat_material_leaves_its_profile_out_and_says_why():
+    """A stress ratio above sin(phi) (0.326 at phi = 19 deg): the smoother wall is not smoother
+    than the material, so the Cosserat layer profile does not exist; the others are fitted."""
+    from cosserat.studies.validate.layer_alternatives import layer_alternatives
+
+    alts, note = layer_alternatives(_data(local_coulomb_velocity(Y, H, 0.2), ratio=0.4))
+    assert [a.key for a in alts] == ["mui-coulomb", "mui-rigid", "ngf-wall", "ngf-wall-noslip"]
+    assert note.startswith("the Cosserat layer profile is not computed: delta_lower must satisfy")
+    p = LayerPosition("r", 0.8, 0.03, 0.05, 0.03, "fixed", 3.0, 5e-4, {}, 0.0, 0.9, (),
+                      alts, 0.4, note)  # fmt: skip
+    assert "; the Cosserat layer profile is not computed" in layer_position_verdict([p]).evidence

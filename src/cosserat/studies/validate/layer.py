@@ -125,6 +125,8 @@ class LayerPosition:
         run's velocities, with their chi^2 (empty without a stress ratio).
     stress_ratio : float or None
         The run's |shear|/normal stress ratio used by the alternatives [-].
+    alternatives_note : str
+        Which alternatives were left out and why ("" when none was).
     """
 
     run: str
@@ -141,6 +143,7 @@ class LayerPosition:
     shear_rate: tuple[float, ...] = ()
     alternatives: tuple[LayerAlternative, ...] = ()
     stress_ratio: float | None = None
+    alternatives_note: str = ""
 
     def __post_init__(self) -> None:
         for name in ("u_correlation", "bin_correlation"):
@@ -196,6 +199,7 @@ class LayerPosition:
             "shear_rate": list(self.shear_rate),
             "stress_ratio": self.stress_ratio,
             "alternatives": [x.to_dict() for x in self.alternatives],
+            "alternatives_note": self.alternatives_note,
         }
 
 
@@ -412,9 +416,12 @@ def measure_layer(
                 predicted[m] = f_fixed - f_moving if smoother == "fixed" else f_moving - f_fixed
     ratio = layer_stress_ratio(run)
     alts: tuple[LayerAlternative, ...] = ()
+    note = ""
     if alternatives and ratio is not None and rho < 1.0:
         data = LayerData.from_run(d, u[ok], se[ok], run.gap_d, smoother, rho, ratio)
-        alts = layer_alternatives(data)
+        alts, note = layer_alternatives(data)
+    elif alternatives:
+        note = "no alternatives: the run gives no stress ratio (wall_stress or sigma columns)"
     return LayerPosition(
         run.name,
         fixed,
@@ -430,6 +437,7 @@ def measure_layer(
         shear_rates(d, u[ok], smoother),
         alts,
         ratio,
+        note,
     )
 
 
@@ -465,7 +473,7 @@ def _best(alts: Sequence[LayerAlternative], family: str) -> LayerAlternative | N
 def _alternatives_text(p: LayerPosition) -> str:
     """One run's alternatives and what the shear rate's decay tells (module docstring)."""
     if not p.alternatives:
-        return ""
+        return f" {p.run}: {p.alternatives_note}." if p.alternatives_note else ""
     n = p.alternatives[0].dof + len(p.alternatives[0].fitted)
     rows = "; ".join(x.text for x in p.alternatives)
     best = {f: b for f in FAMILIES if (b := _best(p.alternatives, f)) is not None}
@@ -500,6 +508,7 @@ def _alternatives_text(p: LayerPosition) -> str:
             if within
             else f"none within the errors (each p < {P_SIGNIFICANT:g})"
         )
+        + (f"; {p.alternatives_note}" if p.alternatives_note else "")
         + ". References: "
         + "; ".join(f"{k}: {v}" for k, v in REFERENCES.items())
         + "."

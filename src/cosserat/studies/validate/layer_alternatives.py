@@ -67,7 +67,7 @@ import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
 from ...calibration.noise import whiten
-from ...errors import ParameterError
+from ...errors import CosseratError, ParameterError
 
 COSSERAT_PHI = 19.0
 """The Cosserat model's friction angle for the layer profile [deg] (the design's, docs/dem.md;
@@ -434,9 +434,16 @@ def fit_cosserat(data: LayerData) -> list[LayerAlternative]:
     return out
 
 
-def layer_alternatives(data: LayerData) -> tuple[LayerAlternative, ...]:
-    """Every alternative of the module docstring on one run's data."""
-    return (*fit_local(data), *fit_ngf(data), *fit_cosserat(data))
+def layer_alternatives(data: LayerData) -> tuple[tuple[LayerAlternative, ...], str]:
+    """Every alternative of the module docstring on one run's data, and a note naming any left
+    out and why ("" when none is): the Cosserat profile needs the smoother wall smoother than
+    the material, ``tan(delta) < sin(phi)``, which a stress ratio above ``sin(phi)`` (0.326 at
+    :data:`COSSERAT_PHI`) is not."""
+    out = (*fit_local(data), *fit_ngf(data))
+    try:
+        return (*out, *fit_cosserat(data)), ""
+    except CosseratError as exc:
+        return out, f"the Cosserat layer profile is not computed: {exc}"
 
 
 __all__ = [
