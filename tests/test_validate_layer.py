@@ -104,13 +104,14 @@ def test_supported_when_the_band_is_at_the_smoother_wall():
     assert v.numbers["asymmetry_se"] == pytest.approx(se)
     assert f"a = +0.750 +- {se:.2g}" in v.evidence
     assert (
-        "a = 0 is uniform shear (a local rheology, mu(I) or NGF, with no-slip walls), 17.7 se "
+        "a = 0 is uniform shear (mu(I) or NGF with no-slip walls and no wall fluidity), 17.7 se "
         "away; rigid sliding on the smoother wall (a = 1), which a local rheology with a Coulomb "
-        "wall at that wall's measured friction also gives, is 5.9 se away. The side of the band "
-        "alone does not tell the Cosserat model from wall friction" in v.evidence
+        "wall at that wall's measured friction gives when it is below mu_s, is 5.9 se away. The "
+        "side of the band alone does not tell the Cosserat model from wall friction." in v.evidence
     )
     assert "refutes" not in v.evidence + v.would_change
-    assert "Coulomb wall and NGF with a wall-fluidity condition" in v.would_change
+    assert "whichever" not in v.evidence + v.would_change + v.claim
+    assert "does not tell the Cosserat model from NGF with a wall fluidity" in v.would_change
     assert v.to_dict()["claim"] == LAYER_CLAIM
     # the same with the smoother wall moving: the band at the moving wall
     assert layer_position_verdict([pos(fixed=0.05, moving=0.8, smoother="moving")]).verdict == (
@@ -257,7 +258,9 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     csv_path = synthetic_run(corpus, "layer", profile, noise=0.01, wall=ROUGH)
     sidecar = csv_path.with_suffix(".json")
     meta = json.loads(sidecar.read_text())
-    sidecar.write_text(json.dumps({**meta, "wall_fixed": SMOOTH}))
+    # the smooth wall's friction as the moving wall's stress ratio (uniform without gravity)
+    ratio = {"shear": -math.tan(math.radians(13.9)), "normal": 1.0}
+    sidecar.write_text(json.dumps({**meta, "wall_fixed": SMOOTH, "wall_stress": ratio}))
     src = str(Path(__file__).resolve().parents[1] / "src")
     proc = subprocess.run(
         [sys.executable, "-m", "cosserat", "validate", str(corpus), "--out",
@@ -282,6 +285,20 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     assert results["runs"][0]["figure"].endswith(".png")
     report = (tmp_path / "out" / "report.md").read_text()
     assert f"![layer]({results['runs'][0]['figure']})" in report
+    # the layer run is in no Delta series and has no Delta (its band is at the fixed wall)
+    run = results["runs"][0]
+    assert results["gap_series"] == []
+    assert run["Delta"]["value"] is None and run["model_delta"] == {}
+    assert run["Delta"]["reason"].startswith("walls of two kinds without gravity")
+    assert run["layer"]["smoother"] == "fixed" and run["moving_wall_inertial_number"] is None
+    # the alternatives against the run, each with its chi^2 over all bins
+    keys = [a["key"] for a in run["layer"]["alternatives"]]
+    assert keys == ["mui-coulomb", "mui-rigid", "ngf-wall", "ngf-wall-noslip", "cosserat-L4",
+                    "cosserat-L5", "cosserat-Lfit"]  # fmt: skip
+    fit = run["layer"]["alternatives"][-1]
+    assert fit["dof"] == len(fit["u"]) - 1 and fit["parameters"]["L_d"] == pytest.approx(
+        5.0, rel=0.1
+    )  # the synthetic run is the Cosserat model's at L = 5 d
 
 
 @pytest.mark.parametrize("rho", [0.0, 0.5, 0.93, 1.0])
@@ -348,3 +365,52 @@ def test_the_fits_are_not_called_predictions_of_the_layer():
         "moving wall's kind): mui a = +0.000." in v.evidence
     )
     assert "whichever moves" not in LAYER_CLAIM
+
+
+def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_path):
+    """The layer run's figure (referee 5, Figures): the title names the walls and quotes I in
+    the band; the lines are the alternatives with the right walls (not the single-run fits);
+    the 3 d windows, the walls' names and the shear rate on the log panel are drawn."""
+    import json
+
+    from cosserat import make_problem, solve
+    from cosserat.analysis.corpus import read_run, synthetic_run
+    from cosserat.studies.validate.report import run_entry
+    from cosserat.studies.validate.study import analyse_run
+    from cosserat.viz.validation import run_figure
+
+    values = {"phi": 19.0, "delta": "fully-rough", "delta_lower": 13.9, "eps": 0.1, "B": 0.0}
+    profile = solve(make_problem("cosserat", "plane", {**values, "L": 5.0}))
+    csv_path = synthetic_run(tmp_path, "layer", profile, noise=0.01, wall=ROUGH)
+    sidecar = csv_path.with_suffix(".json")
+    walls_i = {
+        "moving": "upper",
+        "upper": {"per_bin": [5e-5, 4e-5, 5e-5]},
+        "lower": {"per_bin": [7e-4, 3.7e-4, 1.6e-4]},
+    }
+    ratio = {"shear": -math.tan(math.radians(13.9)), "normal": 1.0}
+    meta = json.loads(sidecar.read_text())
+    sidecar.write_text(
+        json.dumps(
+            {**meta, "wall_fixed": SMOOTH, "wall_stress": ratio, "wall_inertial_number": walls_i}
+        )
+    )
+    r = analyse_run(read_run(csv_path), ["mui"], 0.05, 3.0, 3)
+    assert r.inertial_number == pytest.approx(7e-4)  # the band's, next to the smooth fixed wall
+    entry = run_entry(r)
+    assert (
+        "smooth fixed wall, rough moving wall; I in the band (next to the fixed wall) = 0.0007"
+        in (entry["title"])
+    )
+    layer = entry["layer"]
+    assert layer["walls"] == {"fixed": "smooth, fixed", "moving": "rough, moving"}
+    assert layer["within_d"] == 3.0 and layer["gap_d"] == pytest.approx(10.0)
+    assert [name[:3] for name in entry["models"]] == ["(a)", "(a)", "(b)", "(c)", "(c)", "(c)"]
+    assert "mui" not in entry["models"] and entry["spin"]["predicted"] == {}
+    assert len(layer["rate"]["rate"]) == len(entry["u"]) - 1
+    fig = run_figure(entry)
+    lin, rate = fig.axes[0], fig.axes[1]
+    assert rate.get_yscale() == "log" and lin.get_yscale() == "linear"
+    assert {t.get_text() for t in lin.texts} == {"smooth, fixed", "rough, moving"}
+    assert len(lin.patches) >= 2  # the two 3 d windows
+    assert len(rate.lines) >= 5  # the decaying alternatives' rates, and the local one's

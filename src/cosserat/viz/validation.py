@@ -93,6 +93,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     from .plotting import new_figure, style
 
     spin = entry.get("spin")
+    layer = entry.get("layer")
     ncols = 3 if spin else 2
     fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=3.1)
     order = list(entry.get("order", ()))
@@ -109,6 +110,9 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
         se = np.asarray(entry["u_se"], dtype=float)
         for j, ax in enumerate(axes[0, :2]):
             log = j == 1
+            if layer:
+                _layer_panel(ax, layer, d, u, se, entry["models"], order, rate=log)
+                continue
             show = u > 0 if log else np.ones(u.size, bool)
             lower = np.minimum(se, u * (1 - 1e-9)) if log else se  # bars stay on a log axis
             ax.errorbar(
@@ -160,11 +164,57 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
             ax.set_xlabel(x_label)
             ax.set_ylabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ [-]")
             ax.set_title("spin departure (shaded: near the walls)", fontsize=8)
-        fig.suptitle(entry["title"], fontsize=8)
-        _legend_below(fig, list(axes[0]))
+        fig.suptitle(entry["title"] + (f"\n{layer['note']}" if layer else ""), fontsize=8)
+        _legend_below(fig, list(axes[0]), ncol=3 if layer else 4)
         # fixed margins: tight_layout costs more than the drawing (saved with a tight box)
         fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
     return fig
+
+
+def _layer_panel(
+    ax: Axes, layer: Mapping[str, Any], d: Any, u: Any, se: Any,
+    models: Mapping[str, Any], order: Sequence[str], rate: bool,
+) -> None:  # fmt: skip
+    """A layer run's panel: u/V (``rate`` False) or the shear rate between bins on a log axis
+    (True), each with the alternatives' lines, the walls named and the 3 d windows of ``a``
+    shaded."""
+    import numpy as np
+
+    gap, w = float(layer["gap_d"]), float(layer["within_d"])
+    ax.axvspan(0.0, w, color="0.92", zorder=0, label=f"{w:g} d windows of a")
+    ax.axvspan(gap - w, gap, color="0.92", zorder=0)
+    if rate:
+        g = layer["rate"]
+        x, y, e = (np.asarray(g[k], dtype=float) for k in ("d", "rate", "se"))
+        ok = y > 0
+        lower = np.minimum(e, y * (1 - 1e-9))
+        ax.errorbar(x[ok], y[ok], yerr=[lower[ok], e[ok]], **{**DATA_STYLE, "label": None})
+        for name, c in layer["model_rates"].items():
+            cx, cy = np.asarray(c["d"], dtype=float), np.asarray(c["rate"], dtype=float)
+            keep = cy > 1e-6
+            if np.any(keep):
+                ax.plot(cx[keep], cy[keep], label=name, **model_style(name, order))
+        ax.set_yscale("log")
+        ax.set_ylabel(r"shear rate $|\mathrm{d}u/\mathrm{d}y|\,d/V$ [-]")
+        ax.set_title("shear rate (log axis): uniform stress", fontsize=8)
+        pos = y[ok]
+        if pos.size:
+            ax.set_ylim(max(float(pos.min()) / 5, 1e-4), 3 * float(pos.max()))
+    else:
+        ax.errorbar(d, u, yerr=se, **DATA_STYLE)
+        for name, c in models.items():
+            ax.plot(c["d"], c["u"], label=name, **model_style(name, order))
+        ax.set_ylabel(r"$u/V$ [-]")
+        ax.set_title("linear axis: the band", fontsize=8)
+    ax.set_xlabel(r"distance from the moving wall [$d$]")
+    ax.set_xlim(-0.3, gap + 0.3)
+    walls = layer["walls"]
+    for x, text, ha in ((0.0, walls["moving"], "left"), (gap, walls["fixed"], "right")):
+        ax.annotate(
+            text, (x, 0.0), xycoords=("data", "axes fraction"),
+            xytext=(2 if ha == "left" else -2, 3),
+            textcoords="offset points", ha=ha, va="bottom", fontsize=6.5, color="0.25",
+        )  # fmt: skip
 
 
 def spin_claim_figure(

@@ -49,9 +49,11 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from scipy.stats import chi2 as chi2_dist
 
 from ...errors import ParameterError
-from .measures import velocity_correlation
+from .layer_alternatives import REFERENCES, LayerAlternative, LayerData, layer_alternatives
+from .measures import P_SIGNIFICANT, band_stress_ratio, velocity_correlation
 from .verdicts import Verdict
 
 if TYPE_CHECKING:
@@ -117,6 +119,14 @@ class LayerPosition:
     shear_rate : tuple of float
         ``du/dy`` between neighbouring bins from the smoother wall to the rougher one, in the
         sense of the shear [V/d].
+    alternatives : tuple of LayerAlternative
+        The alternatives of :mod:`~cosserat.studies.validate.layer_alternatives` (local mu(I)
+        with a Coulomb wall, NGF with a wall fluidity, the Cosserat layer profile) against the
+        run's velocities, with their chi^2 (empty without a stress ratio).
+    stress_ratio : float or None
+        The run's |shear|/normal stress ratio used by the alternatives [-].
+    alternatives_note : str
+        Which alternatives were left out and why ("" when none was).
     """
 
     run: str
@@ -131,6 +141,9 @@ class LayerPosition:
     u_correlation: float = 0.0
     bin_correlation: float = 0.0
     shear_rate: tuple[float, ...] = ()
+    alternatives: tuple[LayerAlternative, ...] = ()
+    stress_ratio: float | None = None
+    alternatives_note: str = ""
 
     def __post_init__(self) -> None:
         for name in ("u_correlation", "bin_correlation"):
@@ -184,6 +197,9 @@ class LayerPosition:
             "u_correlation": self.u_correlation,
             "bin_correlation": self.bin_correlation,
             "shear_rate": list(self.shear_rate),
+            "stress_ratio": self.stress_ratio,
+            "alternatives": [x.to_dict() for x in self.alternatives],
+            "alternatives_note": self.alternatives_note,
         }
 
 
@@ -335,9 +351,50 @@ def _walls_inertial_number(meta: Mapping[str, Any]) -> float | None:
     return max(values) if values else None
 
 
-def measure_layer(run: Run, fits: RunFits | None = None) -> LayerPosition | None:
+def layer_stress_ratio(run: Run) -> float | None:
+    """The run's |shear|/normal stress ratio: the moving wall's (the sidecar's ``wall_stress``,
+    from its contacts), else the band's (:func:`~.measures.band_stress_ratio`); None when
+    neither is given [-]. Without gravity it is the same across the gap."""
+    ws = run.meta.get("wall_stress")
+    if isinstance(ws, Mapping):
+        shear, normal = ws.get("shear"), ws.get("normal")
+        if (
+            isinstance(shear, int | float)
+            and isinstance(normal, int | float)
+            and math.isfinite(shear)
+            and math.isfinite(normal)
+            and normal > 0.0
+            and shear != 0.0
+        ):
+            return abs(float(shear)) / float(normal)
+    band = band_stress_ratio(run)
+    return None if band is None else band.value
+
+
+def band_inertial_number(meta: Mapping[str, Any], smoother: str) -> float | None:
+    """The largest local inertial number in the sidecar's bins next to the ``smoother`` wall
+    ("fixed" or "moving"), where the band is (None when the sidecar does not give it) [-]."""
+    walls = meta.get("wall_inertial_number")
+    if not isinstance(walls, Mapping) or walls.get("moving") not in ("upper", "lower"):
+        return None
+    moving = str(walls["moving"])
+    side = moving if smoother == "moving" else ("lower" if moving == "upper" else "upper")
+    record = walls.get(side)
+    values = [
+        float(v)
+        for v in (record.get("per_bin", []) if isinstance(record, Mapping) else [])
+        if isinstance(v, int | float) and math.isfinite(v)
+    ]
+    return max(values) if values else None
+
+
+def measure_layer(
+    run: Run, fits: RunFits | None = None, alternatives: bool = True
+) -> LayerPosition | None:
     """The :class:`LayerPosition` of a plane run without gravity whose walls differ (None for
-    any other run), with each fitted model's predicted asymmetry when ``fits`` are given."""
+    any other run), with each fitted model's predicted asymmetry when ``fits`` are given and
+    the alternatives' fits (:func:`~.layer_alternatives.layer_alternatives`) unless
+    ``alternatives`` is False or the run gives no stress ratio."""
     smoother = smoother_wall(run.meta)
     if run.cell != "plane" or smoother is None or run.B > NO_GRAVITY_B:
         return None
@@ -357,6 +414,14 @@ def measure_layer(run: Run, fits: RunFits | None = None) -> LayerPosition | None
             f_moving, f_fixed = 1.0 - float(c[0]), float(c[1])
             if math.isfinite(f_moving) and math.isfinite(f_fixed):
                 predicted[m] = f_fixed - f_moving if smoother == "fixed" else f_moving - f_fixed
+    ratio = layer_stress_ratio(run)
+    alts: tuple[LayerAlternative, ...] = ()
+    note = ""
+    if alternatives and ratio is not None and rho < 1.0:
+        data = LayerData.from_run(d, u[ok], se[ok], run.gap_d, smoother, rho, ratio)
+        alts, note = layer_alternatives(data)
+    elif alternatives:
+        note = "no alternatives: the run gives no stress ratio (wall_stress or sigma columns)"
     return LayerPosition(
         run.name,
         fixed,
@@ -370,6 +435,9 @@ def measure_layer(run: Run, fits: RunFits | None = None) -> LayerPosition | None
         r,
         rho,
         shear_rates(d, u[ok], smoother),
+        alts,
+        ratio,
+        note,
     )
 
 
@@ -385,6 +453,65 @@ def _run_text(p: LayerPosition) -> str:
             else "; du/dy [V/d] bin to bin from the smoother wall: "
             + ", ".join(f"{g:.3f}" for g in p.shear_rate)
         )
+    )
+
+
+FAMILIES = {
+    "mui": "local mu(I) with a Coulomb wall",
+    "ngf": "NGF with a wall fluidity",
+    "cosserat": "the Cosserat layer profile",
+}
+"""The alternatives' families, by the prefix of their keys."""
+
+
+def _best(alts: Sequence[LayerAlternative], family: str) -> LayerAlternative | None:
+    """The family's alternative with the smallest chi^2 per dof."""
+    own = [x for x in alts if x.key.split("-")[0] == family]
+    return min(own, key=lambda x: x.chi2 / max(x.dof, 1)) if own else None
+
+
+def _alternatives_text(p: LayerPosition) -> str:
+    """One run's alternatives and what the shear rate's decay tells (module docstring)."""
+    if not p.alternatives:
+        return f" {p.run}: {p.alternatives_note}." if p.alternatives_note else ""
+    n = p.alternatives[0].dof + len(p.alternatives[0].fitted)
+    rows = "; ".join(x.text for x in p.alternatives)
+    best = {f: b for f in FAMILIES if (b := _best(p.alternatives, f)) is not None}
+    fits = [
+        f"{FAMILIES[f]} chi^2 = {b.chi2:.1f}/{b.dof}" + ("" if b.decays else " (no decay)")
+        for f, b in best.items()
+    ]
+    within = [b for b in best.values() if chi2_dist.sf(b.chi2, b.dof) >= P_SIGNIFICANT]
+    decay = [FAMILIES[f] for f, b in best.items() if b.decays]
+    local = [b for f, b in best.items() if not b.decays]
+    return (
+        f" {p.run}, the alternatives against all {n} bins (chi^2 with the bins' AR(1) "
+        f"covariance, rho = {p.bin_correlation:.2g}; dof = bins - fitted parameters; the stress "
+        f"ratio {p.stress_ratio:.3g} uniform): {rows}. The discriminating observation is the "
+        "shear rate decaying away from the smoother wall under the uniform stress (du/dy "
+        "above): a local rheology shears uniformly under uniform stress whatever its mu_s "
+        "(unmeasured here), so it gives a linear profile or a rigid block"
+        + (
+            f" and misses the decay (best chi^2 = {min(b.chi2 for b in local):.1f})"
+            if local
+            else ""
+        )
+        + "; "
+        + (" and ".join(decay) + " reproduce it" if decay else "no alternative here reproduces it")
+        + ", so it tells a nonlocal model from a local one, not the Cosserat model from NGF. "
+        + "Best of each: "
+        + ", ".join(fits)
+        + "; "
+        + (
+            "consistent with the errors (p >= "
+            f"{P_SIGNIFICANT:g}): " + ", ".join(f"{x.label}" for x in within)
+            if within
+            else f"none within the errors (each p < {P_SIGNIFICANT:g})"
+        )
+        + (f"; {p.alternatives_note}" if p.alternatives_note else "")
+        + ". References: "
+        + "; ".join(f"{k}: {v}" for k, v in REFERENCES.items())
+        + "."
     )
 
 
@@ -427,13 +554,11 @@ def layer_position_verdict(positions: Sequence[LayerPosition]) -> LayerVerdict:
     )
     sliding = (1.0 - abs(a)) / se
     reading = (
-        " a = 0 is uniform shear (a local rheology, mu(I) or NGF, with no-slip walls), "
+        " a = 0 is uniform shear (mu(I) or NGF with no-slip walls and no wall fluidity), "
         f"{abs(z):.1f} se away; rigid sliding on the smoother wall (a = 1), which a local "
-        "rheology with a Coulomb wall at that wall's measured friction also gives, is "
-        f"{sliding:.1f} se away. "
-        "The side of the band alone does not tell the Cosserat model from wall friction; the "
-        "shear rate decaying away from the smoother wall under uniform stress (du/dy above, "
-        "numbers.runs[].shear_rate) is what would."
+        "rheology with a Coulomb wall at that wall's measured friction gives when it is below "
+        f"mu_s, is {sliding:.1f} se away. The side of the band alone does not tell the "
+        "Cosserat model from wall friction." + "".join(_alternatives_text(p) for p in positions)
     )
     walls_i = [p.wall_inertial_number for p in positions if p.wall_inertial_number is not None]
     regime_text = (
@@ -458,9 +583,9 @@ def layer_position_verdict(positions: Sequence[LayerPosition]) -> LayerVerdict:
     elif z >= SIGMAS:
         verdict = "supported"
         change = (
-            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se. Telling the Cosserat "
-            "model from wall friction needs the shear-rate decay compared with mu(I) with a "
-            "Coulomb wall and NGF with a wall-fluidity condition."
+            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se (one seed at one gap "
+            "here). The band's side is the claim; its shape (the alternatives above) does not "
+            "tell the Cosserat model from NGF with a wall fluidity."
         )
     elif z <= -SIGMAS:
         verdict, change = "refuted", "runs placing the band at the smoother wall."
@@ -497,12 +622,19 @@ def layer_position_verdict(positions: Sequence[LayerPosition]) -> LayerVerdict:
 
 
 def layer_verdicts(
-    runs: Sequence[Run], fits: Mapping[str, RunFits | None] | None = None
+    runs: Sequence[Run],
+    fits: Mapping[str, RunFits | None] | None = None,
+    measured: Mapping[str, LayerPosition] | None = None,
 ) -> list[Verdict]:
-    """``[layer_position_verdict(...)]`` on the runs :func:`measure_layer` measures, or ``[]``
-    when a corpus has none (the claim is then not judged)."""
-    fits = fits or {}
-    positions = [p for r in runs if (p := measure_layer(r, fits.get(r.name))) is not None]
+    """``[layer_position_verdict(...)]`` on the runs :func:`measure_layer` measures (or the
+    positions ``measured`` already, by run name), or ``[]`` when a corpus has none (the
+    claim is then not judged)."""
+    fits, measured = fits or {}, measured or {}
+    positions = [
+        p
+        for r in runs
+        if (p := measured.get(r.name) or measure_layer(r, fits.get(r.name))) is not None
+    ]
     return [layer_position_verdict(positions)] if positions else []
 
 
@@ -516,9 +648,11 @@ __all__ = [
     "WITHIN_D",
     "LayerPosition",
     "LayerVerdict",
+    "band_inertial_number",
     "jump_covariance",
     "jump_fractions",
     "layer_position_verdict",
+    "layer_stress_ratio",
     "layer_verdicts",
     "measure_layer",
     "shear_rates",

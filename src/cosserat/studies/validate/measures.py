@@ -12,6 +12,20 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
   has no Delta (the value would be the bins' width, whatever the band). A band with
   Delta > :data:`FILLS_GAP` H fills its gap: the fixed wall shapes it, so it cannot test a law
   of Delta against the gap.
+* **Delta's sensitivity to f** (:func:`thickness_sensitivity`, referee 5, request 7): Delta at
+  each f of :data:`SENSITIVITY_F` from one set of redraws, and the decay length it implies,
+  ``w_f = (Delta_f - s_1) / ln(1/f)`` with ``s_1`` the distance of the bin nearest the moving
+  wall, where u(0) is taken (the same at every f for an exponential band, ``u ~ exp(-s/w)``,
+  up to the linear interpolation between bins). A creep floor (a tail that stops falling, as
+  slip at the fixed wall gives) holds u near ``f u(0)`` over several bins at small f, so
+  Delta there moves away from the scaling: f is **ill-conditioned** when ``w_f`` differs from
+  ``w`` at the next larger f by more than :data:`CONDITION_SIGMAS` standard errors of the
+  difference (from the shared redraws; an f where Delta is undefined, in the data or in over
+  10% of the redraws, has no Delta to condition and keeps the reason
+  :func:`measured_thickness` gives). A decay length rather than Delta itself: Delta falls
+  with f by construction (by ``ln(1/f)`` for an exponential band), so Delta's own change
+  between f values says nothing about the conditioning; ``w_f`` does not change unless the
+  profile leaves an exponential there.
 * **Spin at a wall**: z = (omega - half vorticity)/se over the bins within ``near_wall_d`` of
   that wall, se = sqrt(se_omega^2 + se_half^2) (the two taken as independent, and the bins
   too); chi^2 = sum z^2 with one degree of freedom per bin, and
@@ -27,6 +41,7 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -37,6 +52,7 @@ from scipy.stats import chi2 as chi2_dist
 
 from ...analysis.corpus import Run, usable
 from ...config import DEFAULT_F
+from ...errors import ParameterError
 from ...model.constitutive import FloatArray
 
 P_SIGNIFICANT = 1e-3
@@ -165,6 +181,121 @@ def measured_thickness(run: Run, f: float = DEFAULT_F, seed: int = 0) -> Thickne
             f"{FILLS_GAP * run.gap_d:.3g} d)"
         )
     return t
+
+
+SENSITIVITY_F = (0.05, 0.1, 0.2)
+"""The fractions f at which Delta's sensitivity is measured [-]."""
+CONDITION_SIGMAS = 2.0
+"""Standard errors by which the decay length at f may differ from the next f's [-]."""
+
+
+@dataclass(frozen=True)
+class DeltaSensitivity:
+    """Delta of a run's data at several f (module docstring): each f's Delta and its error
+    [d], the decay length ``(Delta - s_1) / ln(1/f)`` and its error [d], the shift of the
+    decay length to the next f in standard errors of the difference [-], and the f that are
+    ill-conditioned."""
+
+    f: tuple[float, ...]
+    value: tuple[float | None, ...]
+    stderr: tuple[float | None, ...]
+    decay: tuple[float | None, ...]
+    decay_se: tuple[float | None, ...]
+    shift: tuple[float | None, ...]
+    ill: tuple[float, ...]
+
+    def conditioned_f(self, f: float) -> float | None:
+        """The smallest f of this sensitivity at or above ``f`` that is well conditioned and
+        gives a Delta (None if none)."""
+        for fi, v in zip(self.f, self.value, strict=True):
+            if fi >= f - 1e-12 and v is not None and fi not in self.ill:
+                return fi
+        return None
+
+    def text(self) -> str:
+        parts = [
+            f"f = {fi:g}: {'-' if v is None else f'{v:.3g}'}"
+            + ("" if e is None else f" +- {e:.2g}")
+            + (f" (w = {w:.3g} +- {_fmt_se(we)})" if w is not None else "")
+            for fi, v, e, w, we in zip(
+                self.f, self.value, self.stderr, self.decay, self.decay_se, strict=True
+            )
+        ]
+        ill = (
+            "; ill-conditioned at f = " + ", ".join(f"{x:g}" for x in self.ill)
+            if self.ill
+            else "; well conditioned at every f"
+        )
+        return (
+            "Delta's sensitivity to f, Delta [d] and decay length w [d]: " + "; ".join(parts) + ill
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "f": list(self.f),
+            "Delta": list(self.value),
+            "stderr": list(self.stderr),
+            "decay_length": list(self.decay),
+            "decay_length_se": list(self.decay_se),
+            "shift_to_next_f_se": list(self.shift),
+            "ill_conditioned_f": list(self.ill),
+            "rule": f"w_f = (Delta_f - s_1) / ln(1/f), s_1 the nearest bin's distance from the "
+            f"moving wall; f is ill-conditioned when w_f differs from w at "
+            f"the next f by more than {CONDITION_SIGMAS:g} se of the difference (shared redraws)",
+        }
+
+
+def _fmt_se(x: float | None) -> str:
+    return "-" if x is None else f"{x:.2g}"
+
+
+def thickness_sensitivity(
+    run: Run, fs: tuple[float, ...] = SENSITIVITY_F, seed: int = 0
+) -> DeltaSensitivity:
+    """Delta's sensitivity to f (module docstring): one set of :data:`DRAWS` redraws for
+    every f in ``fs`` (increasing, in (0, 1))."""
+    if not (len(fs) >= 2 and all(0.0 < a < b < 1.0 for a, b in itertools.pairwise(fs))):
+        raise ParameterError(f"fs must be increasing fractions in (0, 1), two at least; got {fs}")
+    m = run.measured()
+    u0 = reference_velocity(run)
+    base = [thickness_of(m.distance_d, m.u_over_uw, u0, f) for f in fs]
+    assert m.u_err is not None
+    rho = velocity_correlation(run)
+    rng = np.random.default_rng(seed)
+    draws = np.full((DRAWS, len(fs)), np.nan)
+    for k in range(DRAWS):
+        noisy = m.u_over_uw + correlated_normal(m.u_err, rho, rng)
+        for j, f in enumerate(fs):
+            d = thickness_of(m.distance_d, noisy, u0, f)
+            if d is not None:
+                draws[k, j] = d
+    scale = np.log(1.0 / np.asarray(fs))
+    s1 = float(np.min(m.distance_d))
+    w = (draws - s1) / scale
+    defined = np.mean(np.isfinite(draws), axis=0) >= 0.9
+    value = tuple(None if b is None else float(b) for b in base)
+    se = tuple(
+        float(np.nanstd(draws[:, j], ddof=1)) if defined[j] and value[j] is not None else None
+        for j in range(len(fs))
+    )
+    decay = tuple(None if v is None else (v - s1) / float(scale[j]) for j, v in enumerate(value))
+    decay_se = tuple(None if e is None else e / float(scale[j]) for j, e in enumerate(se))
+    shift: list[float | None] = []
+    ill: list[float] = []
+    for j, f in enumerate(fs):
+        if value[j] is None or se[j] is None:
+            shift.append(None)  # undefined at f: no Delta to condition (its reason says why)
+            continue
+        if j + 1 == len(fs) or decay[j + 1] is None or se[j + 1] is None:
+            shift.append(None)
+            continue
+        both = np.isfinite(w[:, j]) & np.isfinite(w[:, j + 1])
+        sd = float(np.std(w[both, j] - w[both, j + 1], ddof=1))
+        z = (decay[j] - decay[j + 1]) / sd if sd > 0 else 0.0  # type: ignore[operator]
+        shift.append(float(z))
+        if abs(z) > CONDITION_SIGMAS:
+            ill.append(f)
+    return DeltaSensitivity(tuple(fs), value, se, decay, decay_se, tuple(shift), tuple(ill))
 
 
 # --------------------------------------------------------------------------- spin

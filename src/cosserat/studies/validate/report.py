@@ -65,6 +65,11 @@ def run_entry(r: RunResult) -> dict[str, Any]:
     title = f"{r.run.name}: {r.run.cell}, H/d = {r.run.gap_d:.3g}" + (
         f", I at the moving wall = {i_w:.2g}" if i_w is not None else ""
     )
+    layer = None
+    if r.layer is not None:
+        models, order, layer, title = _layer_entry(r, m.distance_d, m.u_over_uw, m.u_err)
+        if spin is not None:  # the single-run fits' spin has the wrong walls too
+            spin = {**spin, "predicted": {}}
     return {
         "name": r.run.name,
         "cell": r.run.cell,
@@ -75,7 +80,55 @@ def run_entry(r: RunResult) -> dict[str, Any]:
         "models": models,
         "order": order,
         "spin": spin,
+        "layer": layer,
     }
+
+
+def _layer_entry(
+    r: RunResult, s: np.ndarray, u: np.ndarray, se: np.ndarray
+) -> tuple[dict[str, Any], list[str], dict[str, Any], str]:
+    """A layer run's figure data: the alternatives' curves (the right walls) in place of
+    validate's single-run fits (which give the fixed wall the moving wall's kind), the walls'
+    names, the windows of ``a``, the shear rate between bins (data and alternatives) and a
+    title quoting I in the band."""
+    p = r.layer
+    assert p is not None
+    kinds = {"fixed": "smooth", "moving": "rough"}
+    if p.smoother == "moving":
+        kinds = {"fixed": "rough", "moving": "smooth"}
+    models: dict[str, Any] = {}
+    rates: dict[str, Any] = {}
+    for alt in p.alternatives:
+        if alt.key == "ngf-wall-noslip":
+            continue  # in the verdict's numbers; the figure keeps one NGF line
+        name = f"{alt.label} (chi2 {alt.chi2:.0f}/{alt.dof})"
+        d, cu = np.asarray(alt.curve[0]), np.asarray(alt.curve[1])
+        o = np.argsort(d)
+        models[name] = {"d": d[o], "u": cu[o]}
+        rates[name] = {"d": d[o], "rate": -np.gradient(cu[o], d[o])}
+    o = np.argsort(s)
+    so, uo, seo = s[o], u[o], se[o]
+    rho = p.bin_correlation
+    gap_rate = -np.diff(uo) / np.diff(so)
+    rate_se = np.sqrt(
+        np.maximum(seo[1:] ** 2 + seo[:-1] ** 2 - 2.0 * rho * seo[1:] * seo[:-1], 0.0)
+    ) / np.diff(so)
+    i_band = r.inertial_number
+    title = (
+        f"{r.run.name}: plane, H/d = {r.run.gap_d:.3g}, B = 0; {kinds['fixed']} fixed wall, "
+        f"{kinds['moving']} moving wall"
+        + (f"; I in the band (next to the {p.smoother} wall) = {i_band:.2g}" if i_band else "")
+    )
+    layer = {
+        "walls": {w: f"{kinds[w]}, {w}" for w in ("fixed", "moving")},
+        "within_d": p.within_d,
+        "gap_d": r.run.gap_d,
+        "rate": {"d": 0.5 * (so[1:] + so[:-1]), "rate": gap_rate, "se": rate_se},
+        "model_rates": rates,
+        "note": "lines: the alternatives with the right walls (validate's single-run fits give "
+        "the fixed wall the moving wall's kind, fit a uniform shear and coincide: not drawn)",
+    }
+    return models, list(models), layer, title
 
 
 def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
@@ -235,9 +288,14 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 )
         t = r.thickness
         delta = "-" if t.value is None else f"{t.value:.4g}"
+        if r.layer is not None:
+            delta += " (walls of two kinds: its band is at the smoother wall; in no series)"
         delta += "" if t.stderr is None else f" +- {t.stderr:.2g}"
         if t.fills_gap:
             delta += " (fills the gap)"
+        if r.sensitivity is not None and r.sensitivity.ill:
+            delta += " (ill-conditioned at f = " + ", ".join(f"{x:g}" for x in r.sensitivity.ill)
+            delta += ")"
         walls = []
         for w in r.spin.walls if r.spin.available else []:
             walls.append(
@@ -259,7 +317,8 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "gap": f"{r.run.gap_d:g}",
                 "wall": wall_label(r.run),
                 "best": (r.fits.best if r.fits else None) or "-",
-                "I_w": _g(r.inertial_number, ".2g"),
+                "I_w": _g(r.inertial_number, ".2g")
+                + ("" if r.layer is None else f" (in the band, at the {r.layer.smoother} wall)"),
                 "stress": "-"
                 if r.stress is None
                 else f"{r.stress.value:.3g} +- {r.stress.stderr:.2g}",
@@ -270,7 +329,10 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "figure": r.figure,
                 "ranking_text": r.fits.to_text().rstrip() if r.fits else "",
                 "error": r.error,
-                "notes": r.skipped + list(r.run.notes) + (r.spin.notes if r.spin.available else []),
+                "notes": r.skipped
+                + list(r.run.notes)
+                + (r.spin.notes if r.spin.available else [])
+                + ([] if r.sensitivity is None else [r.sensitivity.text()]),
             }
         )
     series = []

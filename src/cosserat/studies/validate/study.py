@@ -21,10 +21,12 @@ from ...config import DEFAULT_F
 from ...errors import ParameterError
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
 from .grouping import couette_note, group_runs, walls_differ
-from .layer import layer_verdicts
+from .layer import LayerPosition, band_inertial_number, layer_verdicts, measure_layer
 from .measures import (
     NEAR_WALL_D,
     P_SIGNIFICANT,
+    SENSITIVITY_F,
+    DeltaSensitivity,
     SpinMeasure,
     StressRatio,
     Thickness,
@@ -35,6 +37,7 @@ from .measures import (
     moving_wall_inertial_number,
     reference_velocity,
     thickness_of,
+    thickness_sensitivity,
 )
 from .verdicts import (
     MIN_GAPS,
@@ -51,6 +54,12 @@ from .verdicts import (
 
 QUASI_STATIC_I = 1e-3
 """Largest local inertial number of the slow flow the models are for [-]."""
+
+LAYER_NOTE = (
+    "walls of two kinds without gravity: the band sits at the smoother wall (the layer claim), "
+    "and Delta, measured from the moving wall, is not defined for it; this run is in no Delta "
+    "series"
+)
 
 CHANNEL_NOTE = (
     "the vertical channel has no moving wall: the models are compared with velocities over a "
@@ -73,6 +82,8 @@ class RunResult:
     stress: StressRatio | None = None
     inertial_number: float | None = None
     figure: str = ""
+    layer: LayerPosition | None = None
+    sensitivity: DeltaSensitivity | None = None
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -86,9 +97,12 @@ class RunResult:
             "ranking": None if self.fits is None else self.fits.to_dict(),
             "spin": self.spin.to_dict(),
             "Delta": self.thickness.to_dict(),
+            "Delta_sensitivity": None if self.sensitivity is None else self.sensitivity.to_dict(),
             "model_delta": self.model_delta,
             "band_stress_ratio": None if self.stress is None else self.stress.to_dict(),
-            "moving_wall_inertial_number": self.inertial_number,
+            "moving_wall_inertial_number": self.inertial_number if self.layer is None else None,
+            "band_inertial_number": self.inertial_number if self.layer is not None else None,
+            "layer": None if self.layer is None else self.layer.to_dict(),
             "skipped": self.skipped,
             "notes": list(self.run.notes),
             "figure": self.figure,
@@ -206,11 +220,16 @@ def analyse_run(
             w.with_predictions({m: p[spin.index[w.wall]] for m, p in spin.predicted.items()})
             for w in spin.walls
         ]
+    layer = measure_layer(run, fits)
     thickness = (
-        Thickness(None, None, CHANNEL_NOTE) if run.cell == "channel" else measured_thickness(run, f)
+        Thickness(None, None, CHANNEL_NOTE)
+        if run.cell == "channel"
+        else Thickness(None, None, LAYER_NOTE, run.gap_d)
+        if layer is not None
+        else measured_thickness(run, f)
     )
     model_delta: dict[str, float | None] = {}
-    if fits is not None:
+    if fits is not None and layer is None:
         measured = run.measured()
         for name in fits.models:
             model_delta[name] = thickness_of(
@@ -228,7 +247,13 @@ def analyse_run(
         model_delta,
         skipped,
         stress,
-        moving_wall_inertial_number(run),
+        moving_wall_inertial_number(run)
+        if layer is None
+        else band_inertial_number(run.meta, layer.smoother),
+        layer=layer,
+        sensitivity=None
+        if run.cell == "channel" or layer is not None
+        else thickness_sensitivity(run, sensitivity_fs(f)),
     )
     if figures_to is not None:
         from .report import write_run_figure
@@ -246,7 +271,7 @@ def _analyse_all(
     progress: Callable[[str, int, int], None] | None,
     workers: int | None,
     figures_to: Path | None = None,
-    jobs: Sequence[tuple[str, tuple[Run, ...], str]] = (),
+    jobs: Sequence[tuple[str, tuple[Run, ...], str, float]] = (),
 ) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]]]:
     """:func:`analyse_run` of every run and :func:`.fits.series_job` of every job, in worker
     processes when worth it (``validate``): (the runs' results, series key -> calibrations)."""
@@ -258,8 +283,8 @@ def _analyse_all(
             out.append(analyse_run(run, models, f, near_wall_d, grid, figures_to))
             if progress:
                 progress("runs", i + 1, len(runs))
-        for key, members, model in jobs:
-            cals.setdefault(key, []).append(series_job(members, model, f))
+        for key, members, model, f_s in jobs:
+            cals.setdefault(key, []).append(series_job(members, model, f_s))
         return out, cals
     from ...numerics.runtime import worker_processes
 
@@ -269,7 +294,9 @@ def _analyse_all(
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k][2] != "mui", -len(jobs[k][1])))
     with worker_processes(workers) as pool:
-        series_futures = {pool.submit(series_job, jobs[k][1], jobs[k][2], f): k for k in ranked}
+        series_futures = {
+            pool.submit(series_job, jobs[k][1], jobs[k][2], jobs[k][3]): k for k in ranked
+        }
         futures = {
             pool.submit(analyse_run, runs[i], models, f, near_wall_d, grid, figures_to): i
             for i in order
@@ -284,16 +311,61 @@ def _analyse_all(
     return [done[i] for i in range(len(runs))], cals
 
 
+def sensitivity_fs(f: float) -> tuple[float, ...]:
+    """The f at which Delta's sensitivity is measured: :data:`~.measures.SENSITIVITY_F` and
+    validate's own ``f``."""
+    return tuple(sorted({round(x, 12) for x in (f, *SENSITIVITY_F)}))
+
+
+def series_f(runs: Sequence[Run], f: float) -> dict[str, tuple[float, str]]:
+    """Each gap series' f and why (:func:`~.measures.thickness_sensitivity`): validate's ``f``
+    unless a run of the series is ill-conditioned there; then the smallest f of
+    :func:`sensitivity_fs` above it at which every such run is well conditioned (the series'
+    measured Delta and its joint calibrations both use it)."""
+    out: dict[str, tuple[float, str]] = {}
+    for s in group_runs([r for r in runs if not walls_differ(r)]):
+        if s.cell == "channel":
+            continue
+        chosen, why = f, []
+        for r in s.runs:
+            sens = thickness_sensitivity(r, sensitivity_fs(f))
+            if f not in sens.ill:
+                continue
+            good = sens.conditioned_f(f)
+            j = sens.f.index(f)
+            z = sens.shift[j]
+            text = (
+                f"{r.name} is ill-conditioned at f = {f:g} (its decay length (Delta - s_1)/ln(1/f) "
+                f"moves by {z:+.2g} se to the next f"
+            )
+            if good is None:
+                why.append(text + "; no f is well conditioned)")
+                continue
+            why.append(text + f"; well conditioned at f = {good:g})")
+            chosen = max(chosen, good)
+        note = ""
+        if why:
+            note = "; ".join(why) + (
+                f": the series' Delta and its calibrations use f = {chosen:g}"
+                if chosen != f
+                else f": the series keeps f = {f:g}"
+            )
+        out[s.key] = (chosen, note)
+    return out
+
+
 def series_jobs(
-    runs: Sequence[Run], models: Sequence[str] | None
-) -> list[tuple[str, tuple[Run, ...], str]]:
-    """(series key, its runs, model) of every joint calibration of a gap series that validate
-    makes: series of plane or Couette runs at two or more distinct gaps, each model the
-    calibration has on their cell (``models`` only, if given)."""
+    runs: Sequence[Run], models: Sequence[str] | None, f: float = DEFAULT_F
+) -> list[tuple[str, tuple[Run, ...], str, float]]:
+    """(series key, its runs, model, f) of every joint calibration of a gap series that
+    validate makes: series of plane or Couette runs at two or more distinct gaps, each model
+    the calibration has on their cell (``models`` only, if given), at the series' f
+    (:func:`series_f`)."""
     from ...calibration.models import models as make_models
 
+    chosen = series_f(runs, f)
     out = []
-    for s in group_runs(runs):
+    for s in group_runs([r for r in runs if not walls_differ(r)]):
         gaps: list[float] = []
         for r in s.runs:
             if not any(abs(r.gap_d - g) <= SAME_GAP * g for g in gaps):
@@ -302,7 +374,7 @@ def series_jobs(
             continue
         for m in make_models(None):
             if s.cell in m.cells() and (models is None or m.name in models):
-                out.append((s.key, s.runs, m.name))
+                out.append((s.key, s.runs, m.name, chosen.get(s.key, (f, ""))[0]))
     return out
 
 
@@ -327,21 +399,29 @@ def judge(
     if calibrations is None:
         made: dict[str, list[SeriesCalibration]] = {}
         if calibrate:
-            for key, runs, model in series_jobs([r.run for r in results], models):
-                made.setdefault(key, []).append(series_job(runs, model, f))
+            for key, runs, model, f_s in series_jobs([r.run for r in results], models, f):
+                made.setdefault(key, []).append(series_job(runs, model, f_s))
         calibrations = made
+    chosen = series_f([r.run for r in results], f)
     series = []
-    for s in group_runs([r.run for r in results]):
+    # a run whose walls differ is in no gap series (no smooth- or rough-wall Delta law is
+    # about it; the layer run's band is at its fixed wall)
+    for s in group_runs([r.run for r in results if not walls_differ(r.run)]):
         members = [by_name[r.name] for r in s.runs]
         curves = _curves(calibrations.get(s.key, []))
+        f_s, f_note = chosen.get(s.key, (f, ""))
+        # Delta at the series' f (validate's unless a run is ill-conditioned there)
+        thick = {
+            r.run.name: r.thickness if f_s == f else measured_thickness(r.run, f_s) for r in members
+        }
         points = tuple(
             DeltaPoint(
                 r.run.name,
                 r.run.gap_d,
-                r.thickness.value,
-                r.thickness.stderr,
-                r.thickness.fills_gap,
-                r.thickness.reason,
+                thick[r.run.name].value,
+                thick[r.run.name].stderr,
+                thick[r.run.name].fills_gap,
+                thick[r.run.name].reason,
             )
             for r in members
         )
@@ -353,7 +433,7 @@ def judge(
                 s.gravity,
                 points,
                 _model_slopes(members),
-                (),
+                (f_note,) if f_note else (),
                 curves,
                 {r.run.name: r.run.meta.get("wall_speed") for r in members},
             )
@@ -365,7 +445,11 @@ def judge(
         delta_law_verdict(series, "rough"),
         spin_model_verdict(*_spin_model_inputs(results)),
         # the layer's position, judged only on runs whose walls differ (.layer)
-        *layer_verdicts([r.run for r in results], {r.run.name: r.fits for r in results}),
+        *layer_verdicts(
+            [r.run for r in results],
+            {r.run.name: r.fits for r in results},
+            {r.run.name: r.layer for r in results if r.layer is not None},
+        ),
     ]
     verdicts = [
         within_regime(
@@ -395,8 +479,13 @@ def regime(results: Sequence[RunResult]) -> str:
         )
     values = [i for _, i in known]
     above = [n for n, i in known if i > QUASI_STATIC_I]
+    where = "next to the moving wall" + (
+        " (in the band, next to the smoother wall, for a layer run)"
+        if any(r.layer is not None for r in results)
+        else ""
+    )
     text = (
-        f"Regime: the local inertial number next to the moving wall is "
+        f"Regime: the local inertial number {where} is "
         f"{min(values):.2g}-{max(values):.2g} in the {len(known)} runs that give it"
     )
     if above:
@@ -467,7 +556,7 @@ def validate(
     folder = None if out is None else Path(out)
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
-    jobs = series_jobs(data.runs, models)
+    jobs = series_jobs(data.runs, models, f)
     results, cals = _analyse_all(
         data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs
     )
