@@ -209,9 +209,9 @@ def _layer_panel(
     ax.set_xlabel(r"distance from the moving wall [$d$]")
     ax.set_xlim(-0.3, gap + 0.3)
     walls = layer["walls"]
-    for x, text, ha in ((0.0, walls["moving"], "left"), (gap, walls["fixed"], "right")):
+    for x_wall, text, ha in ((0.0, walls["moving"], "left"), (gap, walls["fixed"], "right")):
         ax.annotate(
-            text, (x, 0.0), xycoords=("data", "axes fraction"),
+            text, (x_wall, 0.0), xycoords=("data", "axes fraction"),
             xytext=(2 if ha == "left" else -2, 3),
             textcoords="offset points", ha=ha, va="bottom", fontsize=6.5, color="0.25",
         )  # fmt: skip

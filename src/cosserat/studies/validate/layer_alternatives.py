@@ -61,6 +61,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -368,7 +369,7 @@ def fit_ngf(data: LayerData) -> list[LayerAlternative]:
                 data, "ngf-wall" if with_slip else "ngf-wall-noslip",
                 "(b) NGF, wall fluidity at the smoother wall, "
                 + ("xi and slip fitted" if with_slip else "no slip, xi fitted"),
-                lambda y, xi=xi, slip=slip: ngf_wall_velocity(y, data.gap_d, xi, slip), pars,
+                partial(ngf_wall_velocity, gap_d=data.gap_d, xi_d=xi, slip=slip), pars,
                 fitted,
                 f"shear rate mu g_w exp(-y/xi) from the smoother wall (mu g_w = "
                 f"{data.ratio * g_w:.3g} V/d, xi = {xi:.3g} d)",
@@ -409,7 +410,7 @@ def fit_cosserat(data: LayerData) -> list[LayerAlternative]:
         out.append(
             _alternative(
                 data, f"cosserat-L{L:g}", f"(c) Cosserat, delta = {delta:.1f} deg, L = {L:g} d",
-                lambda y, L=L: cosserat_velocity(data, L, y), {"L_d": L, "delta_deg": delta}, (),
+                partial(cosserat_velocity, data, L), {"L_d": L, "delta_deg": delta}, (),
                 shape, True,
             )
         )  # fmt: skip

@@ -67,6 +67,7 @@ def run_entry(r: RunResult) -> dict[str, Any]:
     )
     layer = None
     if r.layer is not None:
+        assert m.u_err is not None  # the layer measure needs u's errors (layer.jump_fractions)
         models, order, layer, title = _layer_entry(r, m.distance_d, m.u_over_uw, m.u_err)
         if spin is not None:  # the single-run fits' spin has the wrong walls too
             spin = {**spin, "predicted": {}}
