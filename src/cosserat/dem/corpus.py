@@ -81,8 +81,10 @@ def corpus_v2_cells() -> dict[str, Cell]:
     """Corpus v2's runs by name, as they were run (docs/dem.md, "Corpus v2"): quasi-static
     plane shear under gravity (B = 1) at H = 10 and 20 d for a rough and a smooth wall, the
     layer-position cell (no gravity, a smooth fixed lower wall, a rough moving upper one) and
-    the 3-D twin of the rough run at H = 10 d. A sitting rarely finishes one: every run writes
-    checkpoints, and ``cosserat dem corpus --version 2`` continues each from its last one.
+    the 3-D twin of the rough run at H = 10 d; the half-speed partner of the rough run at
+    H = 10 d, and the layer cell with a second seed and at a quarter of the speed. A sitting
+    rarely finishes one: every run writes checkpoints, and ``cosserat dem corpus --version 2``
+    continues each from its last one.
 
     The rough run at H = 10 d was made as 16M steps and then continued to 20M (the same
     trajectory as 20M in one go: checkpointed runs resume byte for byte)."""
@@ -102,6 +104,16 @@ def corpus_v2_cells() -> dict[str, Cell]:
         gap=10.0, width=30.0, B=0.0, wall_speed=QS_SPEED, wall=ROUGH, lower_wall=SMOOTH,
         upper_wall=ROUGH, run=_qs_run(20_000_000),
     )  # fmt: skip
+    # issue 18's follow-ups (referee 5): the rate-independence partner of the rough run, at
+    # half the wall speed over the same 50 d of wall travel (twice the steps); the layer cell
+    # again with another seed, and at a quarter of the wall speed (the same travel)
+    cells["plane_rough_H10_qs_half"] = replace(
+        cells["plane_rough_H10_qs"], wall_speed=QS_SPEED / 2, run=_qs_run(40_000_000)
+    )
+    cells["plane_layer_H10_qs_s2"] = replace(cells["plane_layer_H10_qs"], seed=2)
+    cells["plane_layer_H10_qs_quarter"] = replace(
+        cells["plane_layer_H10_qs"], wall_speed=QS_SPEED / 4, run=_qs_run(80_000_000)
+    )
     # the 3-D twin: the 2-D wall travel (49.9 d) at the 3-D time step (0.727e-3, 2-D 0.996e-3)
     cells["plane3d_rough_H10_qs"] = PlaneShearDEM(
         gap=10.0, width=15.0, B=1.0, wall_speed=QS_SPEED, wall=ROUGH, dim=3, depth=8.0,
