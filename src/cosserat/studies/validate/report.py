@@ -93,6 +93,12 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
                     "se": w.first_se,
                     "sheared": w.sheared,
                     "predicted": {m: w.predicted_first(m) for m in w.predicted},
+                    "stencil_range": (
+                        min(v[0] for v in w.stencils.values()),
+                        max(v[0] for v in w.stencils.values()),
+                    )
+                    if w.stencils
+                    else None,
                 }
             )
     return rows
@@ -180,15 +186,18 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
 def rules() -> str:
     """The decision rules, in one paragraph (the report states them)."""
     return (
-        f"Spin: z = (omega - half vorticity)/se in the bins near each wall, chi^2 against no "
-        f"departure; each sheared wall on its own (a fixed wall is sheared when its nearest "
-        f"bin moves at u >= {SHEARED_U:g}), per run and pooled over runs; 'supported' when "
-        f"the pooled p < {P_SIGNIFICANT:g} and at least half the runs depart at p < "
-        f"{P_CONSISTENT:g}. Sign and size: the departure in the first layer at each wall "
-        f"against the model's there; the sign is determined where |departure| >= "
-        f"{SIGN_SIGMAS:g} se. Delta: where the velocity falls to f of its value in the bin "
-        f"nearest the moving wall (u_0 = 1/2 for plane shear without gravity, else 0); a band "
-        f"with Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws. Each gap "
+        f"Spin: z = (omega - half vorticity)/se in the bins near each wall (whitened with "
+        f"the bins' AR(1) correlation), chi^2 against no departure; each sheared wall on its "
+        f"own (a wall is sheared when the material in its nearest bin moves relative to it, "
+        f"|u - u_wall| >= {SHEARED_U:g}), per run and pooled over runs; the first layer left "
+        f"out where its sign depends on the difference stencil; 'supported' when the pooled "
+        f"p < {P_SIGNIFICANT:g} and at least half the runs depart at p < {P_CONSISTENT:g}. "
+        f"Sign and size: the departure in the first layer at each wall against the model's "
+        f"there, measured as the data are (bin averages, the same stencil); the sign is "
+        f"determined where |departure| >= {SIGN_SIGMAS:g} se and neither its sign nor the "
+        f"model's depends on the stencil. Delta: where the velocity falls to f of its value "
+        f"in the bin nearest the moving wall (u_0 = 1/2 for plane shear without gravity, "
+        f"else 0); a band with Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws. Each gap "
         "series is calibrated jointly, one calibration per model; the measured Delta is held "
         "against each model's Delta at the runs (chi^2 with the two errors in quadrature, dof "
         "= points; and up to a common factor, dof = points - 1, which tests the dependence on "

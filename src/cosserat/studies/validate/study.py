@@ -20,6 +20,7 @@ from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
+from .forward import STENCILS
 from .grouping import couette_note, group_runs, walls_differ
 from .layer import layer_verdicts
 from .measures import (
@@ -199,11 +200,21 @@ def analyse_run(
     if not spin.available:
         skipped.append(f"spin comparison skipped: {spin.reason}")
     elif fits is not None:
-        assert spin.distance_d is not None and spin.half is not None
+        assert spin.rows is not None
+        by_stencil = {m: {st: fits.spin_departure(m, run, st) for st in STENCILS}
+                      for m in fits.models}  # fmt: skip
+        point = {m: fits.spin_point(m, run) for m in fits.models}
         for m in fits.models:
-            spin.predicted[m] = fits.spin_departure(m, spin.distance_d, spin.half)
+            spin.predicted[m] = by_stencil[m]["analysis"][spin.rows]
         spin.walls = [
-            w.with_predictions({m: p[spin.index[w.wall]] for m, p in spin.predicted.items()})
+            w.with_predictions(
+                {m: p[spin.index[w.wall]] for m, p in spin.predicted.items()},
+                {
+                    m: {st: float(v[spin.wall_rows[w.wall]]) for st, v in by_stencil[m].items()}
+                    for m in fits.models
+                },
+                {m: float(point[m][spin.wall_rows[w.wall]]) for m in fits.models},
+            )
             for w in spin.walls
         ]
     thickness = (
