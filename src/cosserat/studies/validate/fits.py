@@ -146,6 +146,14 @@ class RunFits:
 
         return forward_departure(self._fit(model).profile, run, stencil)
 
+    def spin_null(self, model: str, run: Run, stencil: str = "analysis") -> FloatArray:
+        """What the run's analysis would report for the fitted model's velocity if the grains
+        turned with the material (omega = half the vorticity at every point), per row
+        (:func:`~cosserat.studies.validate.forward.null_departure`) [-]."""
+        from .forward import null_departure
+
+        return null_departure(self._fit(model).profile, run, stencil)
+
     def spin_point(self, model: str, run: Run) -> FloatArray:
         """The fitted model's point omega - half vorticity (analytic derivatives) at the run's
         bin centres, per row, in its units and sign [-]."""

@@ -16,7 +16,9 @@ a model's departure is compared with the data's only after the same measurement:
    bin), weighted by r in Couette flow (the bins are annuli);
 3. **stencil**: half the vorticity from the binned u at the bin centres by the analysis'
    stencil (``"analysis"``) or, at the first bin next to each wall, by one of the alternative
-   stencils of :data:`STENCILS`.
+   stencils of :data:`STENCILS`. A run whose sidecar says ``half_vorticity_method:
+   bin-average`` (the synthetic runs) has the bin's mean of the point value instead, and the
+   model is measured so (the alternative stencils still replace the first layers).
 
 Every stencil is a linear combination of the wall's velocity and the binned u of the first
 three bins (:func:`first_layer_weights`), so the same weights give the data's half vorticity
@@ -115,6 +117,19 @@ def bin_edges(run: Run) -> Bins:
     lo[-1], hi[-1] = min(2.0 * s[-1] - upper, upper - 1e-9 * w), upper
     lo, hi = np.clip(lo, lower, upper), np.clip(hi, lower, upper)
     return Bins(s, lo, hi, order, (lower, upper), run.cell == "couette")
+
+
+def half_vorticity_method(run: Run) -> str:
+    """How the run's ``half_vorticity`` column was made: ``"np.gradient"`` (the DEM analysis'
+    stencil over the binned u, the default) or ``"bin-average"`` (the bin's mean of the point
+    value, the sidecar's ``half_vorticity_method``: synthetic runs)."""
+    method = run.meta.get("half_vorticity_method", "np.gradient")
+    if method not in ("np.gradient", "bin-average"):
+        raise ParameterError(
+            f"run {run.name}: half_vorticity_method must be 'np.gradient' or 'bin-average'; "
+            f"got {method!r}"
+        )
+    return str(method)
 
 
 def bin_average(bins: Bins, f: Callable[[FloatArray], FloatArray]) -> FloatArray:
@@ -277,6 +292,20 @@ def model_fields(profile: Any, run: Run) -> ModelFields:
     return ModelFields(u, spin, point)
 
 
+def turning_with_the_material(fields: ModelFields) -> ModelFields:
+    """The same velocity with grains that turn with the material: omega = the point half
+    vorticity of u everywhere (no departure at any point). Measured like the data
+    (:func:`forward_fields`), it shows the departure that the binning and the stencil alone
+    make: the null of the spin claim."""
+
+    def spin(x: FloatArray) -> FloatArray:
+        return np.asarray(fields.omega(x), dtype=float) - np.asarray(
+            fields.point_departure(x), dtype=float
+        )
+
+    return ModelFields(fields.u, spin, lambda x: np.zeros_like(np.asarray(x, dtype=float)))
+
+
 def forward_fields(
     fields: ModelFields, run: Run, stencil: str = "analysis"
 ) -> dict[str, FloatArray]:
@@ -287,6 +316,18 @@ def forward_fields(
     u = bin_average(bins, fields.u)
     omega = bin_average(bins, fields.omega)
     half = stencil_half(bins, u, wall_velocities(run), stencil)
+    if half_vorticity_method(run) == "bin-average":
+        # the run's half vorticity is the bin's mean of the point value (synthetic runs);
+        # the alternative stencils still replace the first layers
+        exact = bin_average(
+            bins,
+            lambda x: np.asarray(fields.omega(x), dtype=float)
+            - np.asarray(fields.point_departure(x), dtype=float),
+        )
+        keep = np.ones(half.size, dtype=bool)
+        if stencil != "analysis":
+            keep[[0, -1]] = False
+        half = np.where(keep, exact, half)
     out: dict[str, FloatArray] = {}
     for name, v in (
         ("u", u),
@@ -322,6 +363,15 @@ def forward_departure(profile: Any, run: Run, stencil: str = "analysis") -> Floa
     """
     _check_stencil(stencil)
     return forward_fields(model_fields(profile, run), run, stencil)["departure"]
+
+
+def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatArray:
+    """:func:`forward_departure` of the model's velocity with grains that turn with the
+    material (:func:`turning_with_the_material`): what the run's analysis reports for a spin
+    equal to half the vorticity everywhere, per row [-]."""
+    _check_stencil(stencil)
+    fields = turning_with_the_material(model_fields(profile, run))
+    return forward_fields(fields, run, stencil)["departure"]
 
 
 def first_layer_half_se(

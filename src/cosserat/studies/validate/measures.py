@@ -246,6 +246,16 @@ class WallSpin:
         Each model's forward-modelled first-layer departure under each stencil [-].
     point : mapping of model to float
         Each model's point departure (analytic derivatives) at the first bin's centre [-].
+    null : array or None
+        The departure the run's analysis reports, at the same bins, for grains that turn with
+        the material (omega = half the vorticity at every point) in the velocity of the
+        ``null_model`` fit (:func:`~cosserat.studies.validate.forward.null_departure`): what
+        the binning and the stencil make alone [-]. The spin's test is against it (None:
+        against 0).
+    null_model : str
+        The fit whose velocity made :attr:`null` ("" without one).
+    null_stencils : mapping of stencil to float
+        The null's first layer under each stencil [-].
     """
 
     run: str
@@ -260,6 +270,15 @@ class WallSpin:
     stencils: dict[str, tuple[float, float, float]] = field(default_factory=dict)
     predicted_stencils: dict[str, dict[str, float]] = field(default_factory=dict)
     point: dict[str, float] = field(default_factory=dict)
+    null: FloatArray | None = None
+    null_model: str = ""
+    null_stencils: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def beyond(self) -> FloatArray:
+        """The departure beyond :attr:`null` (the measured departure where there is none) [-]."""
+        d = np.asarray(self.departure, dtype=float)
+        return d if self.null is None else d - np.asarray(self.null, dtype=float)
 
     def white(self, residual: FloatArray, se: FloatArray | None = None) -> FloatArray:
         """``residual`` over ``se`` (default :attr:`stderr`) whitened with :attr:`rho`, the
@@ -276,18 +295,23 @@ class WallSpin:
 
     @property
     def z(self) -> FloatArray:
-        """The whitened departure (bins by distance from the wall) [-]."""
-        return self.white(self.departure)
+        """The whitened departure beyond the null (bins by distance from the wall) [-]."""
+        return self.white(self.beyond)
 
     @property
     def z_rest(self) -> FloatArray:
-        """The whitened departure without the first layer [-]."""
-        return self.white_rest(self.departure)
+        """:attr:`z` without the first layer [-]."""
+        return self.white_rest(self.beyond)
+
+    @property
+    def z_zero(self) -> FloatArray:
+        """The whitened departure against 0 (no null) [-]."""
+        return self.white(self.departure)
 
     @property
     def z_bound(self) -> FloatArray:
-        """The whitened departure over se_omega + se_half (the largest error) [-]."""
-        return self.white(self.departure, self.bound if self.bound is not None else None)
+        """:attr:`z` over se_omega + se_half (the largest error) [-]."""
+        return self.white(self.beyond, self.bound if self.bound is not None else None)
 
     @property
     def dof(self) -> int:
@@ -346,18 +370,22 @@ class WallSpin:
         return chi2_p(self.white_rest(r) if rest else self.white(r))
 
     def shift(self, model: str, rest: bool = False) -> float:
-        """The chi^2 the model's departure adds to pure noise (whitened; ``rest``: without
-        the first layer) [-]."""
+        """The chi^2 the model's departure beyond the null adds to pure noise (whitened;
+        ``rest``: without the first layer) [-]."""
         pred = self.predicted.get(model)
         if pred is None:
             return 0.0
-        return float(np.sum((self.white_rest(pred) if rest else self.white(pred)) ** 2))
+        r = np.asarray(pred, dtype=float) - (0.0 if self.null is None else self.null)
+        return float(np.sum((self.white_rest(r) if rest else self.white(r)) ** 2))
 
     def with_predictions(
         self,
         predicted: dict[str, FloatArray],
         stencils: dict[str, dict[str, float]] | None = None,
         point: dict[str, float] | None = None,
+        null: FloatArray | None = None,
+        null_model: str = "",
+        null_stencils: dict[str, float] | None = None,
     ) -> WallSpin:
         return WallSpin(
             self.run,
@@ -372,6 +400,9 @@ class WallSpin:
             self.stencils,
             dict(stencils or {}),
             dict(point or {}),
+            null,
+            null_model,
+            dict(null_stencils or {}),
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -390,6 +421,12 @@ class WallSpin:
             "p_without_first_layer": rest[2],
             "chi2_bound": bound[0],
             "p_bound": bound[2],
+            "chi2_against_zero": chi2_p(self.z_zero)[0],
+            "p_against_zero": chi2_p(self.z_zero)[2],
+            "null_model": self.null_model,
+            "null_first_layer": None
+            if self.null is None or self.dof == 0
+            else float(np.asarray(self.null)[self.nearest]),
             "rho": self.rho,
             "first_layer_distance_d": None
             if self.dof == 0
@@ -408,6 +445,7 @@ class WallSpin:
                     "predicted": {
                         m: v[name] for m, v in self.predicted_stencils.items() if name in v
                     },
+                    "null": self.null_stencils.get(name),
                 }
                 for name, (dep, se_h, se_o) in self.stencils.items()
             },

@@ -15,10 +15,13 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ...analysis.corpus import Corpus, Run, read_corpus
 from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
+from ...model.constitutive import FloatArray
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
 from .forward import STENCILS
 from .grouping import couette_note, group_runs, walls_differ
@@ -180,6 +183,18 @@ def _spin_model_inputs(
     return walls, model, unfit, left_out
 
 
+def _null_misfit(spin: SpinMeasure, null: FloatArray) -> float:
+    """chi^2 of the measured departure against a null (per row of the run) over the
+    near-wall bins of the sheared walls, whitened (the walls' own correlation)."""
+    assert spin.rows is not None and spin.departure is not None and spin.stderr is not None
+    total = 0.0
+    for w in spin.walls:
+        if w.sheared and w.dof:
+            at = null[spin.rows][spin.index[w.wall]]
+            total += float(np.sum(w.white(np.asarray(w.departure) - at) ** 2))
+    return total
+
+
 def analyse_run(
     run: Run,
     models: Sequence[str] | None,
@@ -199,11 +214,29 @@ def analyse_run(
     spin = measure_spin(run, near_wall_d)
     if not spin.available:
         skipped.append(f"spin comparison skipped: {spin.reason}")
-    elif fits is not None:
+    elif fits is not None and fits.models:
         assert spin.rows is not None
         by_stencil = {m: {st: fits.spin_departure(m, run, st) for st in STENCILS}
                       for m in fits.models}  # fmt: skip
         point = {m: fits.spin_point(m, run) for m in fits.models}
+        # the null: grains turning with the material in a fitted velocity, measured so; of
+        # the fits, the one that explains the measured departure best (the null most in
+        # favour of no departure)
+        nulls = {m: {st: fits.spin_null(m, run, st) for st in STENCILS} for m in fits.models}
+        chosen = min(fits.models, key=lambda m: _null_misfit(spin, nulls[m]["analysis"]))
+        null = nulls[chosen]
+        spin.notes.append(
+            "the spin's test is against the departure the analysis reports for grains that "
+            f"turn with the material in the {chosen} fit's velocity (bin averages of u and of "
+            "omega = half the vorticity, the analysis' stencil): what the binning and the "
+            "stencil make alone; of the fits' velocities, the one whose null is nearest to the "
+            "measured departure near the sheared walls ("
+            + ", ".join(
+                f"{m}: chi^2 = {_null_misfit(spin, nulls[m]['analysis']):.4g}"
+                for m in fits.models
+            )
+            + ")"
+        )
         for m in fits.models:
             spin.predicted[m] = by_stencil[m]["analysis"][spin.rows]
         spin.walls = [
@@ -214,6 +247,9 @@ def analyse_run(
                     for m in fits.models
                 },
                 {m: float(point[m][spin.wall_rows[w.wall]]) for m in fits.models},
+                null["analysis"][spin.rows][spin.index[w.wall]],
+                chosen,
+                {st: float(v[spin.wall_rows[w.wall]]) for st, v in null.items()},
             )
             for w in spin.walls
         ]

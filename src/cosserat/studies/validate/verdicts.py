@@ -142,16 +142,33 @@ P_AS_Z = 1e-6
 1e-41 means nothing beyond "far out": the error model is not that exact)."""
 
 
+def log_chi2_sf(chi2: float, dof: int) -> float:
+    """ln of chi^2's p-value with ``dof`` degrees of freedom, without underflow: scipy's where
+    p is representable, else the asymptotic series of the upper incomplete gamma function
+    Q(a, x) ~ x^(a-1) e^(-x) / Gamma(a) (1 + (a-1)/x + (a-1)(a-2)/x^2 + ...) [-]."""
+    p = float(chi2_dist.sf(chi2, dof))
+    if p > 1e-280:
+        return math.log(p)
+    a, x = 0.5 * dof, 0.5 * chi2
+    term, total = 1.0, 1.0
+    for k in range(1, 30):
+        term *= (a - k) / x
+        if abs(term) < 1e-16:
+            break
+        total += term
+    return (a - 1.0) * math.log(x) - x - math.lgamma(a) + math.log(total)
+
+
 def equivalent_z(chi2: float, dof: int) -> float:
     """The one-sided standard-normal z of chi^2's p-value with ``dof`` degrees of freedom,
     from the log of p (no underflow) [-]."""
-    logp = float(chi2_dist.logsf(chi2, dof))
+    logp = log_chi2_sf(chi2, dof)
     if logp >= math.log(0.5):
         return float(norm.isf(math.exp(logp)))
     lo, hi = 0.0, 1.0
     while float(norm.logsf(hi)) > logp:
         lo, hi = hi, 2.0 * hi
-    for _ in range(80):  # norm.logsf falls with z: bisect
+    for _ in range(100):  # norm.logsf falls with z: bisect
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if float(norm.logsf(mid)) > logp else (lo, mid)
     return 0.5 * (lo + hi)
@@ -205,17 +222,29 @@ def _shift(w: WallSpin, model: str) -> float:
 def _walls_text(walls: Sequence[WallSpin], models: Sequence[str] = ()) -> str:
     rows = []
     for w in walls:
+        null = (
+            f", of which the binning and the stencil make {float(w.null[w.nearest]):+.3g} (grains "
+            f"turning with the material in the {w.null_model} fit's velocity)"
+            if w.null is not None
+            else ""
+        )
         rows.append(
             f"{w.run} ({w.wall} wall, {w.dof} bins within {float(np.max(w.distance_d)):.2g} d, "
-            f"rho = {w.rho:.2g}): first layer {_g(w.first, '+.3g')} +- {_g(w.first_se, '.2g')}, "
-            f"{_test_text(chi2_p(w.z))}; without the first layer {_test_text(chi2_p(w.z_rest))}"
+            f"rho = {w.rho:.2g}): first layer {_g(w.first, '+.3g')} +- {_g(w.first_se, '.2g')}"
+            f"{null}; beyond that {_test_text(chi2_p(w.z))}, without the first layer "
+            f"{_test_text(chi2_p(w.z_rest))}"
+            + (f"; against 0: {_test_text(chi2_p(w.z_zero))}" if w.null is not None else "")
             + _stencil_text(w, models)
         )
     return "; ".join(rows)
 
 
 SPIN_METHOD = (
-    "Method: z = (omega - half vorticity)/se in the bins near each wall, se = sqrt(se_omega^2 "
+    "Method: z = (omega - half vorticity - null)/se in the bins near each wall, the null "
+    "being what the analysis reports where the grains turn with the material (omega = half "
+    "the vorticity at every point) in the velocity of the run's best fit, measured as the data "
+    "are (bin averages of u and omega, the analysis' difference stencil; 0 without a fit), "
+    "se = sqrt(se_omega^2 "
     "+ se_half^2) (omega and half the vorticity come from the same particles and blocks, but "
     "the correlation of their errors is not recorded: taken as independent, and the largest "
     "error any correlation allows, se_omega + se_half, reported as a bound); neighbouring "
@@ -288,11 +317,16 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         if dependent
         else f"every near-wall bin: {dof} bins"
     )
-    pooled = f"pooled over {len(runs)} runs, {on}, {_test_text((chi2, dof, p))}"
+    pooled = (
+        f"pooled over {len(runs)} runs, {on}, the departure beyond the null "
+        f"{_test_text((chi2, dof, p))}"
+    )
     pooled += "".join(f"; {role} walls alone: {_test_text(t)}" for role, t in by_wall.items())
+    zero = chi2_p(np.concatenate([w.z_zero for w in tested]))
     pooled += (
         f". With every first layer: {_test_text(every)}; without any first layer: "
-        f"{_test_text(rest)}; with se_omega + se_half (the largest error): {_test_text(bound)}"
+        f"{_test_text(rest)}; with se_omega + se_half (the largest error): {_test_text(bound)}; "
+        f"against 0 (no null), every bin: {_test_text(zero)}"
     )
     models = sorted({m for w in tested for m in w.predicted_stencils})
     detail = _walls_text(tested, models)
@@ -313,6 +347,9 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         "pooled_p_without_first_layer": rest[2],
         "pooled_chi2_bound": bound[0],
         "pooled_p_bound": bound[2],
+        "pooled_chi2_against_zero": zero[0],
+        "pooled_p_against_zero": zero[2],
+        "null_models": {f"{w.run}:{w.wall}": w.null_model for w in tested if w.null is not None},
         "stencil_dependent_walls": [f"{w.run}:{w.wall}" for w in dependent],
         "model_first_layer_stencil_dependent": {
             m: [f"{w.run}:{w.wall}" for w in tested if w.stencil_dependent(m)] for m in models
@@ -349,7 +386,8 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
                 key,
                 "supported",
                 f"Supported: the measured spin departs from half the measured vorticity near "
-                f"the sheared walls; {head}",
+                f"the sheared walls, beyond what the binning and the stencil make of a spin "
+                f"equal to half the vorticity; {head}",
                 "runs at the same conditions whose near-wall spins agree with half the "
                 "vorticity, or a bin-to-bin correlation of the errors large enough to bring "
                 f"the pooled chi^2 below {float(chi2_dist.isf(P_SIGNIFICANT, dof)):.4g}.",
@@ -467,6 +505,19 @@ def spin_model_verdict(
     )
 
 
+def _sign_determined(w: WallSpin) -> bool:
+    """The first layer's measured sign is determined: |departure| >= :data:`SIGN_SIGMAS` se
+    (without stencils: under the analysis' stencil; with them: the same sign under every
+    stencil, and that far from 0 under at least one, with its own error)."""
+    m, s = w.first, w.first_se
+    assert m is not None and s is not None
+    if not w.stencils:
+        return abs(m) >= SIGN_SIGMAS * s
+    if w.stencil_dependent():
+        return False
+    return any(abs(d) >= SIGN_SIGMAS * math.hypot(sh, so) for d, sh, so in w.stencils.values())
+
+
 def _model_residual(w: WallSpin, model: str) -> FloatArray:
     """Whitened (departure - the model's)/se of a wall, without the first layer where its sign
     (the data's or the model's) depends on the stencil [-]."""
@@ -514,7 +565,7 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
         )
         if shaky:
             dependent.append(w)
-        elif abs(m) < SIGN_SIGMAS * s:
+        elif not _sign_determined(w):
             undetermined.append(w)
         elif abs(pm) <= NO_DEPARTURE:
             none.append(w)
@@ -528,9 +579,9 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
         "Method: omega - half vorticity in the first layer of each sheared wall (the bin "
         "nearest to it) against the model's there, the model's measured as the data are (bin "
         "averages of its u and omega, the analysis' difference stencil); the measured sign is "
-        f"determined where |departure| >= {SIGN_SIGMAS:g} se and its sign (and the model's) "
-        f"is the same under all {len(STENCILS)} stencils; the size is tested by chi^2 of the "
-        "whitened (departure - model)/se over the bins of the walls with a determined sign "
+        f"determined where its sign (and the model's) is the same under all {len(STENCILS)} "
+        f"stencils and |departure| >= {SIGN_SIGMAS:g} se under at least one; the size is "
+        "tested by chi^2 of the whitened (departure - model)/se over the bins of the walls with a determined sign "
         "(where the first layer is stencil-dependent: over the other bins)."
     )
     determined = same + opposite + none
