@@ -581,8 +581,9 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
         "averages of its u and omega, the analysis' difference stencil); the measured sign is "
         f"determined where its sign (and the model's) is the same under all {len(STENCILS)} "
         f"stencils and |departure| >= {SIGN_SIGMAS:g} se under at least one; the size is "
-        "tested by chi^2 of the whitened (departure - model)/se over the bins of the walls with a determined sign "
-        "(where the first layer is stencil-dependent: over the other bins)."
+        "tested by chi^2 of the whitened (departure - model)/se over the bins of the walls "
+        "with a determined sign (where the first layer is stencil-dependent: over the other "
+        "bins)."
     )
     determined = same + opposite + none
     runs = tuple(sorted({w.run for w in tested}))
