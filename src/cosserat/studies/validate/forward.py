@@ -321,8 +321,10 @@ def forward_fields(
         # the alternative stencils still replace the first layers
         exact = bin_average(
             bins,
-            lambda x: np.asarray(fields.omega(x), dtype=float)
-            - np.asarray(fields.point_departure(x), dtype=float),
+            lambda x: (
+                np.asarray(fields.omega(x), dtype=float)
+                - np.asarray(fields.point_departure(x), dtype=float)
+            ),
         )
         keep = np.ones(half.size, dtype=bool)
         if stencil != "analysis":

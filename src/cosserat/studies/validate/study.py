@@ -232,8 +232,7 @@ def analyse_run(
             "stencil make alone; of the fits' velocities, the one whose null is nearest to the "
             "measured departure near the sheared walls ("
             + ", ".join(
-                f"{m}: chi^2 = {_null_misfit(spin, nulls[m]['analysis']):.4g}"
-                for m in fits.models
+                f"{m}: chi^2 = {_null_misfit(spin, nulls[m]['analysis']):.4g}" for m in fits.models
             )
             + ")"
         )
