@@ -183,13 +183,13 @@ def _spin_model_inputs(
     return walls, model, unfit, left_out
 
 
-def _null_misfit(spin: SpinMeasure, null: FloatArray) -> float:
+def _null_misfit(spin: SpinMeasure, null: FloatArray, skip_fixed: bool = False) -> float:
     """chi^2 of the measured departure against a null (per row of the run) over the
-    near-wall bins of the sheared walls, whitened (the walls' own correlation)."""
+    near-wall bins of the sheared walls (``skip_fixed``: not the fixed wall), whitened."""
     assert spin.rows is not None and spin.departure is not None and spin.stderr is not None
     total = 0.0
     for w in spin.walls:
-        if w.sheared and w.dof:
+        if w.sheared and w.dof and not (w.wall == "fixed" and skip_fixed):
             at = null[spin.rows][spin.index[w.wall]]
             total += float(np.sum(w.white(np.asarray(w.departure) - at) ** 2))
     return total
@@ -223,7 +223,15 @@ def analyse_run(
         # the fits, the one that explains the measured departure best (the null most in
         # favour of no departure)
         nulls = {m: {st: fits.spin_null(m, run, st) for st in STENCILS} for m in fits.models}
-        chosen = min(fits.models, key=lambda m: _null_misfit(spin, nulls[m]["analysis"]))
+        # the fits give a fixed wall of another kind the moving wall's: no null there
+        no_null = {"fixed"} if walls_differ(run) else set()
+        if no_null:
+            spin.notes.append(
+                "fixed wall: tested against 0, not against a null: its kind differs from the "
+                "moving wall's, which the fits give it, so their velocity there is not the run's"
+            )
+        differ = walls_differ(run)
+        chosen = min(fits.models, key=lambda m: _null_misfit(spin, nulls[m]["analysis"], differ))
         null = nulls[chosen]
         spin.notes.append(
             "the spin's test is against the departure the analysis reports for grains that "
@@ -232,7 +240,8 @@ def analyse_run(
             "stencil make alone; of the fits' velocities, the one whose null is nearest to the "
             "measured departure near the sheared walls ("
             + ", ".join(
-                f"{m}: chi^2 = {_null_misfit(spin, nulls[m]['analysis']):.4g}" for m in fits.models
+                f"{m}: chi^2 = {_null_misfit(spin, nulls[m]['analysis'], differ):.4g}"
+                for m in fits.models
             )
             + ")"
         )
@@ -246,9 +255,11 @@ def analyse_run(
                     for m in fits.models
                 },
                 {m: float(point[m][spin.wall_rows[w.wall]]) for m in fits.models},
-                null["analysis"][spin.rows][spin.index[w.wall]],
-                chosen,
-                {st: float(v[spin.wall_rows[w.wall]]) for st, v in null.items()},
+                None if w.wall in no_null else null["analysis"][spin.rows][spin.index[w.wall]],
+                "" if w.wall in no_null else chosen,
+                {}
+                if w.wall in no_null
+                else {st: float(v[spin.wall_rows[w.wall]]) for st, v in null.items()},
             )
             for w in spin.walls
         ]
