@@ -178,7 +178,8 @@ def spin_claim_figure(
     rows : sequence of mapping
         ``label``, ``first``, ``se``, ``sheared`` (bool), ``predicted`` (model -> value),
         optional ``stencil_range`` ((low, high): the measured first-layer departure's range
-        over the difference stencils, drawn as a grey bar).
+        over the difference stencils, drawn as a grey bar) and ``null`` (what the measurement
+        reports for grains turning with the material, drawn as a grey cross).
     models : sequence of str
         The models to draw, in order.
     title : str
@@ -198,6 +199,9 @@ def spin_claim_figure(
             if span is not None:
                 ax.plot(list(span), [yi, yi], color="0.75", linewidth=5, solid_capstyle="butt",
                         zorder=0, label="measured, range over the stencils")  # fmt: skip
+            if r.get("null") is not None:
+                ax.plot([r["null"]], [yi], marker="x", color="0.35", linestyle="none",
+                        label="grains turning with the material, measured so")  # fmt: skip
             label = "measured (+- 2 se)" if r["sheared"] else "measured, wall not sheared"
             ax.errorbar([r["first"]], [yi], xerr=[2 * r["se"]], fmt="o", color="k", capsize=2,
                         markerfacecolor="k" if r["sheared"] else "none", elinewidth=0.8,

@@ -16,9 +16,11 @@ a model's departure is compared with the data's only after the same measurement:
    bin), weighted by r in Couette flow (the bins are annuli);
 3. **stencil**: half the vorticity from the binned u at the bin centres by the analysis'
    stencil (``"analysis"``) or, at the first bin next to each wall, by one of the alternative
-   stencils of :data:`STENCILS`. A run whose sidecar says ``half_vorticity_method:
-   bin-average`` (the synthetic runs) has the bin's mean of the point value instead, and the
-   model is measured so (the alternative stencils still replace the first layers).
+   stencils of :data:`STENCILS`. That is how :mod:`cosserat.dem` measures a run; a run made
+   otherwise says so in its sidecar (:func:`half_vorticity_method`: ``bin-average``, the
+   synthetic runs, or ``point``, values at the bin centres, the default for a run that is not
+   from :mod:`cosserat.dem`) and the model is measured the same way (the alternative stencils
+   still replace the first layers).
 
 Every stencil is a linear combination of the wall's velocity and the binned u of the first
 three bins (:func:`first_layer_weights`), so the same weights give the data's half vorticity
@@ -119,15 +121,29 @@ def bin_edges(run: Run) -> Bins:
     return Bins(s, lo, hi, order, (lower, upper), run.cell == "couette")
 
 
+HALF_VORTICITY_METHODS = ("np.gradient", "bin-average", "point")
+"""How a run's ``half_vorticity`` column can have been made (:func:`half_vorticity_method`)."""
+
+
 def half_vorticity_method(run: Run) -> str:
-    """How the run's ``half_vorticity`` column was made: ``"np.gradient"`` (the DEM analysis'
-    stencil over the binned u, the default) or ``"bin-average"`` (the bin's mean of the point
-    value, the sidecar's ``half_vorticity_method``: synthetic runs)."""
-    method = run.meta.get("half_vorticity_method", "np.gradient")
-    if method not in ("np.gradient", "bin-average"):
+    """How the run's ``half_vorticity`` column was made: the sidecar's
+    ``half_vorticity_method``, else ``"np.gradient"`` for a run of :mod:`cosserat.dem` (its
+    sidecar names the LAMMPS version: the analysis' stencil over the binned u) and ``"point"``
+    for any other (u, omega and half the vorticity are values at the bin centres);
+    ``"bin-average"``: the bins' means of u, omega and the point half vorticity (synthetic
+    runs).
+
+    Raises
+    ------
+    ParameterError
+        A method not in :data:`HALF_VORTICITY_METHODS`.
+    """
+    default = "np.gradient" if "lammps_version" in run.meta else "point"
+    method = run.meta.get("half_vorticity_method", default)
+    if method not in HALF_VORTICITY_METHODS:
         raise ParameterError(
-            f"run {run.name}: half_vorticity_method must be 'np.gradient' or 'bin-average'; "
-            f"got {method!r}"
+            f"run {run.name}: half_vorticity_method must be one of "
+            f"{', '.join(HALF_VORTICITY_METHODS)}; got {method!r}"
         )
     return str(method)
 
@@ -313,18 +329,27 @@ def forward_fields(
     ``half_vorticity`` and ``departure`` (omega - half vorticity) per bin, in the run's row
     order [-]; and ``point`` (the model's point departure at the bin centres) [-]."""
     bins = bin_edges(run)
-    u = bin_average(bins, fields.u)
-    omega = bin_average(bins, fields.omega)
+    method = half_vorticity_method(run)
+
+    def point_half(x: FloatArray) -> FloatArray:
+        return np.asarray(fields.omega(x), dtype=float) - np.asarray(
+            fields.point_departure(x), dtype=float
+        )
+
+    if method == "point":
+        u = np.asarray(fields.u(bins.centre), dtype=float)
+        omega = np.asarray(fields.omega(bins.centre), dtype=float)
+    else:
+        u = bin_average(bins, fields.u)
+        omega = bin_average(bins, fields.omega)
     half = stencil_half(bins, u, wall_velocities(run), stencil)
-    if half_vorticity_method(run) == "bin-average":
-        # the run's half vorticity is the bin's mean of the point value (synthetic runs);
-        # the alternative stencils still replace the first layers
-        exact = bin_average(
-            bins,
-            lambda x: (
-                np.asarray(fields.omega(x), dtype=float)
-                - np.asarray(fields.point_departure(x), dtype=float)
-            ),
+    if method != "np.gradient":
+        # the run's half vorticity is the bin's mean of the point value, or the point value
+        # at its centre; the alternative stencils still replace the first layers
+        exact = (
+            bin_average(bins, point_half)
+            if method == "bin-average"
+            else np.asarray(point_half(bins.centre), dtype=float)
         )
         keep = np.ones(half.size, dtype=bool)
         if stencil != "analysis":

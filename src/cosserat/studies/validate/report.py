@@ -93,6 +93,7 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
                     "se": w.first_se,
                     "sheared": w.sheared,
                     "predicted": {m: w.predicted_first(m) for m in w.predicted},
+                    "null": None if w.null is None else float(np.asarray(w.null)[w.nearest]),
                     "stencil_range": (
                         min(v[0] for v in w.stencils.values()),
                         max(v[0] for v in w.stencils.values()),
