@@ -6,9 +6,13 @@ and wall, :class:`DeltaSeries` per gap series) and returns a :class:`Verdict`: t
 p-values, the runs used) and what data would change it. The rules:
 
 * **spin departs** (:func:`spin_verdict`): each sheared wall of each run is tested on its own:
-  chi^2 of z = (omega - half vorticity)/se over its near-wall bins against no departure; a
+  chi^2 of z = (omega - half vorticity - null)/se over its near-wall bins, whitened with the
+  bins' AR(1) correlation, the null being what the measurement reports for grains that turn
+  with the material (:attr:`~cosserat.studies.validate.measures.WallSpin.null`); a wall
+  whose first-layer departure changes sign between the difference stencils
+  (:data:`~cosserat.studies.validate.forward.STENCILS`) is tested without its first layer; a
   run's test adds its sheared walls, the pooled test adds every run's (degrees of freedom
-  added; bins and runs taken as independent). "supported" when the pooled p <
+  added; runs taken as independent). "supported" when the pooled p <
   :data:`P_SIGNIFICANT` and at least half the runs show a departure at p < :data:`P_CONSISTENT`
   ("mixed" when fewer do: the pooled result rests on a few runs; a run that does not depart
   and whose errors would not have shown the departure the Cosserat model predicts for it, at
@@ -18,8 +22,10 @@ p-values, the runs used) and what data would change it. The rules:
   "undecided" otherwise.
 * **the model's departure** (:func:`spin_model_verdict`): at each sheared wall, the measured
   departure in the first layer (the bin nearest to the wall, where the departure is largest) m
-  +- s against the model's there, p_m. The measured sign is determined where |m| >=
-  :data:`SIGN_SIGMAS` s. "refuted" where the model departs with the opposite sign at every wall
+  +- s against the model's there, p_m, forward-modelled as the data are measured
+  (:mod:`~cosserat.studies.validate.forward`). The measured sign is determined where it is the
+  same under every stencil (and the model's too) and |m| >= :data:`SIGN_SIGMAS` s under at
+  least one. "refuted" where the model departs with the opposite sign at every wall
   of determined sign (however small its departure), or with the right sign but a size the data
   reject (pooled chi^2 of (departure - model)/se, p < :data:`P_SIGNIFICANT`), or predicts none
   (|p_m| <= :data:`NO_DEPARTURE`, a rheology without a spin of its own) where the data depart;
