@@ -8,7 +8,7 @@ p-values, the runs used) and what data would change it. The rules:
 * **spin departs** (:func:`spin_verdict`): each sheared wall of each run is tested on its own:
   chi^2 of z = (omega - half vorticity - null)/se over its near-wall bins, whitened with the
   bins' AR(1) correlation, the null being what the measurement reports for grains that turn
-  with the material (:attr:`~cosserat.studies.validate.measures.WallSpin.null`); a wall
+  with the material (``WallSpin.null``); a wall
   whose first-layer departure changes sign between the difference stencils
   (:data:`~cosserat.studies.validate.forward.STENCILS`) is tested without its first layer; a
   run's test adds its sheared walls, the pooled test adds every run's (degrees of freedom
