@@ -4,8 +4,8 @@ Every call to the fitting machinery (:func:`cosserat.calibration.single.rank_mod
 :class:`~cosserat.calibration.single.Ranking`) is here, so that moving validation onto another
 fitting engine changes this module only. The rest of validation sees :class:`RunFits` and
 :class:`FitSummary`: plain numbers, the fitted velocity, the fitted spin as the run's analysis
-would measure it (:mod:`.forward`, which reads the fitted profile), and the warnings a referee
-asks for:
+would measure it (:mod:`~cosserat.studies.validate.forward`, which reads the fitted
+profile), and the warnings a referee asks for:
 
 * **misfit**: with the data's standard errors, a fit with p(chi^2, n - k) < :data:`P_SIGNIFICANT`
   misses the data; the warning says by how much and where it misses most (in the creep tail

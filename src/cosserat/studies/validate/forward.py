@@ -2,7 +2,7 @@
 
 A DEM run reports, per bin, the mean velocity u and the mean grain spin omega over the grains
 in that bin, and half the vorticity by a difference stencil over the binned u
-(:mod:`cosserat._stencil`, the code :mod:`cosserat.dem.analyse` writes the run's
+(``cosserat._stencil``, the code ``cosserat.dem.analyse`` writes the run's
 ``half_vorticity`` column with). A model's point value of omega - half vorticity, with analytic
 derivatives, is not that: near a wall, where u bends within one bin, the binned spin and the
 stencil's half vorticity differ from the point values by as much as the departure itself. So
@@ -16,10 +16,10 @@ a model's departure is compared with the data's only after the same measurement:
    bin), weighted by r in Couette flow (the bins are annuli);
 3. **stencil**: half the vorticity from the binned u at the bin centres by the analysis'
    stencil (``"analysis"``) or, at the first bin next to each wall, by one of the alternative
-   stencils of :data:`STENCILS`. That is how :mod:`cosserat.dem` measures a run; a run made
+   stencils of :data:`STENCILS`. That is how ``cosserat.dem`` measures a run; a run made
    otherwise says so in its sidecar (:func:`half_vorticity_method`: ``bin-average``, the
    synthetic runs, or ``point``, values at the bin centres, the default for a run that is not
-   from :mod:`cosserat.dem`) and the model is measured the same way (the alternative stencils
+   from ``cosserat.dem``) and the model is measured the same way (the alternative stencils
    still replace the first layers).
 
 Every stencil is a linear combination of the wall's velocity and the binned u of the first
@@ -127,7 +127,7 @@ HALF_VORTICITY_METHODS = ("np.gradient", "bin-average", "point")
 
 def half_vorticity_method(run: Run) -> str:
     """How the run's ``half_vorticity`` column was made: the sidecar's
-    ``half_vorticity_method``, else ``"np.gradient"`` for a run of :mod:`cosserat.dem` (its
+    ``half_vorticity_method``, else ``"np.gradient"`` for a run of ``cosserat.dem`` (its
     sidecar names the LAMMPS version: the analysis' stencil over the binned u) and ``"point"``
     for any other (u, omega and half the vorticity are values at the bin centres);
     ``"bin-average"``: the bins' means of u, omega and the point half vorticity (synthetic
