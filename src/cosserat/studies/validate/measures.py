@@ -253,7 +253,7 @@ class WallSpin:
         the binning and the stencil make alone [-]. The spin's test is against it (None:
         against 0).
     null_model : str
-        The fit whose velocity made :attr:`null` ("" without one).
+        The fit whose velocity made ``null`` ("" without one).
     null_stencils : mapping of stencil to float
         The null's first layer under each stencil [-].
     """
@@ -276,12 +276,12 @@ class WallSpin:
 
     @property
     def beyond(self) -> FloatArray:
-        """The departure beyond :attr:`null` (the measured departure where there is none) [-]."""
+        """The departure beyond ``null`` (the measured departure where there is none) [-]."""
         d = np.asarray(self.departure, dtype=float)
         return d if self.null is None else d - np.asarray(self.null, dtype=float)
 
     def white(self, residual: FloatArray, se: FloatArray | None = None) -> FloatArray:
-        """``residual`` over ``se`` (default :attr:`stderr`) whitened with :attr:`rho`, the
+        """``residual`` over ``se`` (default ``stderr``) whitened with ``rho``, the
         bins ordered by distance from the wall [-]."""
         order = np.argsort(self.distance_d)
         s = np.asarray(self.stderr if se is None else se, dtype=float)[order]
@@ -475,7 +475,7 @@ class SpinMeasure:
     bulk: tuple[float | None, int, float | None] = (None, 0, None)
     notes: list[str] = field(default_factory=list)
     rows: NDArray[np.intp] | None = None
-    """The run's rows of the usable bins (the order of :attr:`distance_d`)."""
+    """The run's rows of the usable bins (the order of ``distance_d``)."""
     wall_rows: dict[str, int] = field(default_factory=dict)
     """Each wall's nearest row of the run (its first layer in the forward model)."""
     rho: float = 0.0
