@@ -100,19 +100,22 @@ def corpus_v2_cells() -> dict[str, Cell]:
                 gap=float(gap), width=30.0, B=1.0, wall_speed=QS_SPEED, wall=wall,
                 run=_qs_run(steps[gap]),
             )  # fmt: skip
-    cells["plane_layer_H10_qs"] = PlaneShearDEM(
+    layer = PlaneShearDEM(
         gap=10.0, width=30.0, B=0.0, wall_speed=QS_SPEED, wall=ROUGH, lower_wall=SMOOTH,
         upper_wall=ROUGH, run=_qs_run(20_000_000),
     )  # fmt: skip
+    cells["plane_layer_H10_qs"] = layer
     # issue 18's follow-ups (referee 5): the rate-independence partner of the rough run, at
     # half the wall speed over the same 50 d of wall travel (twice the steps); the layer cell
     # again with another seed, and at a quarter of the wall speed (the same travel)
+    rough = cells["plane_rough_H10_qs"]
+    assert isinstance(rough, PlaneShearDEM)
     cells["plane_rough_H10_qs_half"] = replace(
-        cells["plane_rough_H10_qs"], wall_speed=QS_SPEED / 2, run=_qs_run(40_000_000)
+        rough, wall_speed=QS_SPEED / 2, run=_qs_run(40_000_000)
     )
-    cells["plane_layer_H10_qs_s2"] = replace(cells["plane_layer_H10_qs"], seed=2)
+    cells["plane_layer_H10_qs_s2"] = replace(layer, seed=2)
     cells["plane_layer_H10_qs_quarter"] = replace(
-        cells["plane_layer_H10_qs"], wall_speed=QS_SPEED / 4, run=_qs_run(80_000_000)
+        layer, wall_speed=QS_SPEED / 4, run=_qs_run(80_000_000)
     )
     # the 3-D twin: the 2-D wall travel (49.9 d) at the 3-D time step (0.727e-3, 2-D 0.996e-3)
     cells["plane3d_rough_H10_qs"] = PlaneShearDEM(
