@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..._atomic import save_figure, write_text
+from ..._text import significance
 from ...analysis.gap import PAPER_SLOPES
 from ...viz.report import write_report as write_templates
 from .grouping import wall_label
@@ -210,6 +211,23 @@ def _g(x: float | None, spec: str = ".3g") -> str:
     return "-" if x is None else format(x, spec)
 
 
+def parameters_text(s: Any) -> str:
+    """A fit's free parameters, ``k = v +- se``, or ``(not identified)`` where the data do not
+    determine one (:attr:`~.fits.FitSummary.unidentified`: no error is given)."""
+    return "; ".join(
+        f"{k} = {v:.4g}"
+        + (f" +- {e:.2g}" if e is not None else " (not identified)" if k in s.unidentified else "")
+        for k, (v, e) in s.parameters.items()
+    )
+
+
+def _spin_p(w: Any) -> str:
+    """A wall's spin test: its p-value, or z and chi^2/dof below 1e-6 (:func:`significance`)."""
+    if w.chi2 is None or not w.dof or not math.isfinite(w.chi2):
+        return _g(w.p, ".2g")
+    return significance(float(w.chi2), int(w.dof))
+
+
 def context(report: ValidationReport) -> dict[str, Any]:
     """The templates' context: plain strings and numbers."""
     figures = {r.run.name: r.figure for r in report.results}
@@ -224,11 +242,12 @@ def context(report: ValidationReport) -> dict[str, Any]:
                         "ok": s.ok,
                         "message": s.message,
                         "reduced_chi2": _g(s.reduced_chi2),
-                        "p": _g(s.p_value, ".2g"),
-                        "parameters": "; ".join(
-                            f"{k} = {v:.4g}" + ("" if e is None else f" +- {e:.2g}")
-                            for k, (v, e) in s.parameters.items()
+                        "p": s.significance or "-",
+                        "bins": (
+                            f"rho = {s.rho:.2f}, {s.effective_bins:.1f} effective bins of "
+                            f"{s.n_bins}"
                         ),
+                        "parameters": parameters_text(s),
                         "pinned": ", ".join(f"{k} = {v:.4g}" for k, v in s.pinned.items()),
                         "warnings": s.warnings,
                     }
@@ -248,7 +267,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                     "first": _g(w.first, "+.3g"),
                     "se": _g(w.first_se, ".2g"),
                     "chi2": _g(w.chi2),
-                    "p": _g(w.p, ".2g"),
+                    "p": _spin_p(w),
                     "predicted": ", ".join(f"{m} {w.predicted_first(m):+.3g}" for m in w.predicted),
                 }
             )
@@ -270,7 +289,10 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "figure": r.figure,
                 "ranking_text": r.fits.to_text().rstrip() if r.fits else "",
                 "error": r.error,
-                "notes": r.skipped + list(r.run.notes) + (r.spin.notes if r.spin.available else []),
+                "notes": r.skipped
+                + (r.fits.weight_notes() if r.fits else [])
+                + list(r.run.notes)
+                + (r.spin.notes if r.spin.available else []),
             }
         )
     series = []
