@@ -15,6 +15,7 @@ import pytest
 from cosserat.analysis.corpus import read_run, write_run
 from cosserat.calibration.engine import NO_SOLUTION_RESIDUAL, jacobian, jacobian_with_edges
 from cosserat.calibration.noise import covariance, effective_bins
+from cosserat.errors import InputError
 from cosserat.studies.validate.fits import bin_correlation, fit_run
 from cosserat.studies.validate.report import parameters_text
 from cosserat.studies.validate.verdicts import CurveTest
@@ -170,3 +171,98 @@ def test_a_delta_test_far_in_the_tail_prints_z_and_chi2_per_dof():
     )
     assert "e-" not in t.text()
     assert math.isclose(t.p_shape, 0.046)
+
+
+# --------------------------------------------------------------------------- blocks
+def _ar1(phi: float, n: int, seed: int = 0) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    e = rng.normal(size=n)
+    x = np.empty(n)
+    x[0] = e[0] / math.sqrt(1.0 - phi * phi)
+    for i in range(1, n):
+        x[i] = phi * x[i - 1] + e[i]
+    return x
+
+
+def test_the_autocorrelation_time_of_ar1_series_is_its_closed_form():
+    """tau = (1 + phi)/(1 - phi) for AR(1): 1 for white noise, 9 for phi = 0.8."""
+    from cosserat.dem.checks import autocorrelation_time
+
+    tau, reliable = autocorrelation_time(_ar1(0.0, 40000))
+    assert reliable and tau == pytest.approx(1.0, abs=0.05)
+    tau, reliable = autocorrelation_time(_ar1(0.8, 40000, seed=1))
+    assert reliable and tau == pytest.approx(9.0, rel=0.1)
+    assert autocorrelation_time(np.ones(100)) is None
+    assert autocorrelation_time(np.arange(10.0)) is None
+
+
+def test_blocks_shorter_than_two_autocorrelation_times_are_flagged():
+    from cosserat.dem.checks import block_autocorrelation, block_length_text
+
+    x = _ar1(0.8, 40000, seed=2)  # tau about 9 samples
+    long = block_autocorrelation({"mean_velocity": x}, 0, 10, 1000)
+    v = long["observables"]["mean_velocity"]
+    assert long["block_samples"] == 4000 and long["block_steps"] == 4_000_000
+    assert v["tau_steps"] == round(v["tau_samples"] * 1000)
+    assert v["blocks_per_tau"] == pytest.approx(4000 / v["tau_samples"], rel=1e-3)
+    assert not v["short"] and not long["short"]
+    # 4000 blocks of 10 samples: shorter than 2 tau
+    short = block_autocorrelation({"mean_velocity": x}, 0, 4000, 1000)
+    assert short["short"] and short["observables"]["mean_velocity"]["short"]
+    text = block_length_text(short)
+    assert text.startswith("blocks of 10,000 steps against the integrated autocorrelation time")
+    assert " SHORT" in text and text.endswith("their standard errors are too small")
+    assert block_length_text(long).endswith("at least 2 autocorrelation times long")
+    with pytest.raises(InputError, match=r"^blocks and steps between samples must be >= 1"):
+        block_autocorrelation({"x": x}, 0, 0, 1000)
+
+
+def test_a_stored_run_without_the_record_says_what_it_lacks(v2_rough):
+    from cosserat.studies.validate.report import block_notes
+
+    (note,) = block_notes(v2_rough)
+    assert note == (
+        "block length against the autocorrelation time: not recorded (blocks of 1,100,000 "
+        "steps); the run was analysed before cosserat.dem recorded it, and its per-sample "
+        "series are not kept with the profile, so it needs the run's dumps analysed again"
+    )
+    assert "block_autocorrelation" not in v2_rough.meta
+    assert not any("block_autocorrelation" in n for n in v2_rough.notes)  # a key it knows
+
+
+# --------------------------------------------------------------------------- the figure
+def test_the_spin_model_figure_keeps_markers_in_their_rows_and_shows_the_status():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from cosserat.viz.validation import spin_model_figure
+
+    rows = [
+        {"label": "a: moving", "first": -0.15, "se": 0.02,
+         "predicted": {"cosserat": 0.19, "mui": 0.0, "ngf": 0.0},
+         "status": {"cosserat": "ps", "mui": "pbs", "ngf": ""},
+         "usable": {"cosserat": False, "mui": False, "ngf": True}},
+        {"label": "b: moving", "first": -0.18, "se": 0.02,
+         "predicted": {"cosserat": 0.13, "mui": 0.0, "ngf": 0.0},
+         "status": {}, "usable": {}},
+    ]  # fmt: skip
+    fig = spin_model_figure(rows, ["cosserat", "mui", "ngf"], ["mui", "ngf"], "t")
+    ax = fig.axes[0]
+    centres = {"a: moving": 1.0, "b: moving": 0.0}
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["a: moving", "b: moving"]
+    markers = [ln for ln in ax.get_lines() if ln.get_marker() not in ("None", None, "")]
+    assert markers
+    for ln in markers:
+        for y in np.atleast_1d(ln.get_ydata()):
+            assert min(abs(y - c) for c in centres.values()) <= 0.36 + 1e-9
+    crosses = [ln for ln in markers if ln.get_marker() == "x"]
+    assert len(crosses) == 4 and all(float(ln.get_xdata()[0]) == 0.0 for ln in crosses)
+    diamonds = [ln for ln in markers if ln.get_marker() == "d"]
+    assert diamonds[0].get_markerfacecolor() in ("white", (1.0, 1.0, 1.0, 1.0))
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "mui: no grain spin of its own, predicts 0" in texts
+    assert "ngf: no grain spin of its own, predicts 0" in texts
+    assert "open: that fit cannot predict" in texts
+    assert {"p: parameters pinned at their defaults",
+            "s: its stress ratio contradicts the measured one"} <= set(texts)  # fmt: skip
+    assert sorted(a.get_text() for a in ax.texts) == ["pbs", "ps"]

@@ -98,6 +98,22 @@ class FitSummary:
     bound), name -> why: they have no error."""
 
     @property
+    def bounded(self) -> list[str]:
+        """Free parameters at an end of their search range that is not an edge of the
+        admissible set (:data:`ADMISSIBLE_EDGES`), or on the edge of the region where the
+        model has a solution."""
+        out = set(self.at_bound)
+        for k, why in self.unidentified.items():
+            side = (
+                "lower" if "at the lower end" in why else "upper" if "at the upper" in why else ""
+            )
+            if (
+                side and (self.model, k, side) not in ADMISSIBLE_EDGES
+            ) or "edge of the region" in why:
+                out.add(k)
+        return sorted(out)
+
+    @property
     def effective_bins(self) -> float:
         """Bins' worth of independent information, ``n (1 - rho)/(1 + rho)`` [-]."""
         return effective_bins(self.n_bins, self.rho)

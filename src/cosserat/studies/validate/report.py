@@ -15,6 +15,7 @@ import numpy as np
 from ..._atomic import save_figure, write_text
 from ..._text import significance
 from ...analysis.gap import PAPER_SLOPES
+from ...calibration.models import Model
 from ...viz.report import write_report as write_templates
 from .grouping import wall_label
 from .measures import (
@@ -27,6 +28,7 @@ from .measures import (
 from .verdicts import EXPONENT_TOL, MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, calibration_text, relevant
 
 if TYPE_CHECKING:
+    from .fits import FitSummary
     from .study import RunResult, ValidationReport
 
 RUN_FIGURE_DPI = 150
@@ -99,6 +101,34 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
     return rows
 
 
+def fit_status(s: FitSummary | None) -> tuple[str, bool]:
+    """How a model was calibrated on a run, as the letters of
+    :data:`cosserat.viz.validation.STATUS_CODES` (``p`` parameters pinned at their defaults,
+    ``b`` a parameter at a bound or at the edge of solvability, ``s`` a band stress ratio
+    that contradicts the measured one), and whether the fit can supply a prediction."""
+    if s is None or not s.ok:
+        return "", False
+    flags = (
+        ("p" if s.pinned else "") + ("b" if s.bounded else "") + ("s" if s.contradiction else "")
+    )
+    return flags, not s.unfit_reason
+
+
+def spin_model_rows(report: ValidationReport, rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """``rows`` (:func:`spin_rows`) with each model's calibration status on the row's run
+    (``status``, ``usable``: :func:`fit_status`), for the spin_model figure."""
+    by_name = {r.run.name: r for r in report.results}
+    out = []
+    for row in rows:
+        r = by_name.get(str(row["label"]).rsplit(": ", 1)[0])
+        status, usable = {}, {}
+        for m in row["predicted"]:
+            flags, ok = fit_status(r.fits.summary(m) if r is not None and r.fits else None)
+            status[m], usable[m] = flags, ok
+        out.append({**row, "status": status, "usable": usable})
+    return out
+
+
 def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
     by_name = {r.run.name: r for r in report.results}
     out = []
@@ -157,9 +187,10 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
             out / CLAIM_FIGURES["spin"],
         )
         save_figure(
-            fig.spin_claim_figure(
-                [r for r in rows if r["sheared"]],
+            fig.spin_model_figure(
+                spin_model_rows(report, [r for r in rows if r["sheared"]]),
                 report.models,
+                [m for m in report.models if not Model(m).has_spin],
                 "the measured departure against each model's (sheared walls)",
             ),
             out / CLAIM_FIGURES["spin_model"],
@@ -209,6 +240,22 @@ def rules() -> str:
 
 def _g(x: float | None, spec: str = ".3g") -> str:
     return "-" if x is None else format(x, spec)
+
+
+def block_notes(run: Any) -> list[str]:
+    """A DEM run's block length against the autocorrelation times of its series
+    (:func:`cosserat.dem.checks.block_length_text`), or what its sidecar lacks for it; nothing
+    for a run without time blocks."""
+    from ...dem.checks import block_length_text
+
+    meta = run.meta
+    if not meta.get("blocks"):
+        return []
+    window = meta.get("steady_window")
+    steps = None
+    if isinstance(window, list | tuple) and len(window) == 2:
+        steps = int(window[1]) - int(window[0])
+    return [block_length_text(meta.get("block_autocorrelation"), int(meta["blocks"]), steps)]
 
 
 def parameters_text(s: Any) -> str:
@@ -290,6 +337,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "ranking_text": r.fits.to_text().rstrip() if r.fits else "",
                 "error": r.error,
                 "notes": r.skipped
+                + block_notes(r.run)
                 + (r.fits.weight_notes() if r.fits else [])
                 + list(r.run.notes)
                 + (r.spin.notes if r.spin.available else []),

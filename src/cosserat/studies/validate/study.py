@@ -89,6 +89,7 @@ class RunResult:
             "model_delta": self.model_delta,
             "band_stress_ratio": None if self.stress is None else self.stress.to_dict(),
             "moving_wall_inertial_number": self.inertial_number,
+            "block_autocorrelation": self.run.meta.get("block_autocorrelation"),
             "skipped": self.skipped,
             "notes": list(self.run.notes),
             "figure": self.figure,
