@@ -309,7 +309,7 @@ def spin_model_figure(
         lo, hi = ax.get_xlim()
         ax.set_xlim(lo, hi + 0.08 * (hi - lo))  # room for the status letters
         ax.set_yticks(y, [r["label"] for r in rows], fontsize=7)
-        ax.set_ylim(-0.5, len(rows) - 0.5)
+        ax.set_ylim(-0.5, max(len(rows), 1) - 0.5)
         ax.tick_params(axis="y", length=0)
         ax.set_xlabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ in the first layer [-]")
         if title:
