@@ -193,6 +193,7 @@ def test_the_autocorrelation_time_of_ar1_series_is_its_closed_form():
     tau, reliable = autocorrelation_time(_ar1(0.8, 40000, seed=1))
     assert reliable and tau == pytest.approx(9.0, rel=0.1)
     assert autocorrelation_time(np.ones(100)) is None
+    assert autocorrelation_time(np.full(100, 0.1) * (1.0 + 1e-16 * _ar1(0.0, 100))) is None
     assert autocorrelation_time(np.arange(10.0)) is None
 
 

@@ -103,8 +103,8 @@ def autocorrelation_time(series: np.ndarray) -> tuple[float, bool] | None:
     Returns
     -------
     (tau, reliable) or None
-        None with fewer than :data:`MIN_AUTOCORRELATION_SAMPLES` finite samples, or a constant
-        series.
+        None with fewer than :data:`MIN_AUTOCORRELATION_SAMPLES` finite samples, or a series
+        constant up to round-off (its spread below 1e-12 of its largest magnitude).
     """
     x = np.asarray(series, dtype=float)
     x = x[np.isfinite(x)]
@@ -113,7 +113,7 @@ def autocorrelation_time(series: np.ndarray) -> tuple[float, bool] | None:
         return None
     d = x - x.mean()
     var = float(d @ d) / n
-    if not var > 0.0:
+    if not var > (1e-12 * float(np.max(np.abs(x)))) ** 2:  # constant up to round-off
         return None
     size = 1 << (2 * n - 1).bit_length()
     f = np.fft.rfft(d, size)
