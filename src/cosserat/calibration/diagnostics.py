@@ -49,15 +49,15 @@ def chi2_p_value(chi2: float, dof: int) -> float | None:
 
 def chi2_log10_p(chi2: float, dof: int) -> float:
     """log10 P(X >= chi2) for X ~ chi^2(dof), finite where the p-value itself underflows
-    (:func:`cosserat._text.chi2_ln_p`); 0 without degrees of freedom."""
+    (``cosserat._text.chi2_ln_p``); 0 without degrees of freedom."""
     if dof <= 0:
         return 0.0
     return chi2_ln_p(chi2, dof) / math.log(10.0)
 
 
 def p_text(log10_p: float) -> str:
-    """``p = 0.0012`` or, below :data:`cosserat._text.SIGNIFICANCE_P`, ``z = 7.3``
-    (:func:`cosserat._text.p_or_z`; never ``p = 10^-123``)."""
+    """``p = 0.0012`` or, below ``cosserat._text.SIGNIFICANCE_P``, ``z = 7.3``
+    (``cosserat._text.p_or_z``; never ``p = 10^-123``)."""
     return p_or_z(log10_p * math.log(10.0))
 
 

@@ -81,7 +81,7 @@ def comparison_rows(cal: Calibration) -> list[list[str]]:
 
 
 def _p_cell(text: str) -> str:
-    """The p column: ``0.034``, or ``z = 12.3`` below :data:`cosserat._text.SIGNIFICANCE_P`."""
+    """The p column: ``0.034``, or ``z = 12.3`` below ``cosserat._text.SIGNIFICANCE_P``."""
     return text[4:] if text.startswith("p = ") else text
 
 

@@ -120,7 +120,7 @@ class FitSummary:
 
     @property
     def significance(self) -> str:
-        """The chi^2's p-value, or z and chi^2/dof below 1e-6 (:func:`cosserat._text.significance`);
+        """The chi^2's p-value, or z and chi^2/dof below 1e-6 (``cosserat._text.significance``);
         "" without absolute errors."""
         if self.chi2 is None or self.p_value is None or self.dof < 1:
             return ""

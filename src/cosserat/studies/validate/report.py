@@ -103,7 +103,7 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
 
 def fit_status(s: FitSummary | None) -> tuple[str, bool]:
     """How a model was calibrated on a run, as the letters of
-    :data:`cosserat.viz.validation.STATUS_CODES` (``p`` parameters pinned at their defaults,
+    ``cosserat.viz.validation.STATUS_CODES`` (``p`` parameters pinned at their defaults,
     ``b`` a parameter at a bound or at the edge of solvability, ``s`` a band stress ratio
     that contradicts the measured one), and whether the fit can supply a prediction."""
     if s is None or not s.ok:
@@ -244,7 +244,7 @@ def _g(x: float | None, spec: str = ".3g") -> str:
 
 def block_notes(run: Any) -> list[str]:
     """A DEM run's block length against the autocorrelation times of its series
-    (:func:`cosserat.dem.checks.block_length_text`), or what its sidecar lacks for it; nothing
+    (``cosserat.dem.checks.block_length_text``), or what its sidecar lacks for it; nothing
     for a run without time blocks."""
     from ...dem.checks import block_length_text
 
@@ -269,7 +269,8 @@ def parameters_text(s: Any) -> str:
 
 
 def _spin_p(w: Any) -> str:
-    """A wall's spin test: its p-value, or z and chi^2/dof below 1e-6 (:func:`significance`)."""
+    """A wall's spin test: its p-value, or z and chi^2/dof below 1e-6
+    (``cosserat._text.significance``)."""
     if w.chi2 is None or not w.dof or not math.isfinite(w.chi2):
         return _g(w.p, ".2g")
     return significance(float(w.chi2), int(w.dof))

@@ -590,7 +590,8 @@ class CurveTest:
 
     @property
     def sig(self) -> str:
-        """The prediction as it is: p, or z and chi^2/dof below 1e-6 (:func:`significance`)."""
+        """The prediction as it is: p, or z and chi^2/dof below 1e-6
+        (``cosserat._text.significance``)."""
         return significance(self.chi2, self.dof)
 
     @property
