@@ -372,6 +372,10 @@ def test_dumps_to_profile_exact_on_a_rigidly_turning_annulus(tmp_path):
     # the ring is pushed inwards by G over its circumference
     np.testing.assert_allclose(run.wall_normal, G / (2 * np.pi * 10.0), rtol=1e-12)
     profile = steady_profile(run, deck, lammps_version="synthetic", first=0)
+    # constant series have no autocorrelation time; the block length is still recorded
+    record = profile.sidecar["block_autocorrelation"]
+    assert record["observables"] == {} and record["short"] is False
+    assert record["block_samples"] == 2.1 and record["block_steps"] == 2100
     c = profile.columns
     r = c["r"]
     for radius in radii:  # one grain per bin: its azimuthal speed and spin, exactly

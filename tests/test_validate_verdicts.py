@@ -352,7 +352,7 @@ def test_misfit_pinned_and_contradicted_parameters_are_warned_in_every_output(tm
     (fit,) = result.fits.summaries
     assert fit.p_value < 1e-3
     text = " | ".join(fit.warnings)
-    assert "misfit: chi^2 = " in text and "p = " in text
+    assert "misfit: chi^2 = " in text and "(z = " in text and ", chi^2/dof = " in text
     assert "pinned (held at the declared default, not fitted): phi = 28.5" in text
     assert "contradicts the measured stress: phi = 28.5 (pinned) gives sin phi = 0.477" in text
     record = json.loads((tmp_path / "out" / "results.json").read_text())

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
+from .._text import chi2_ln_p, p_or_z
 from ..model.constitutive import FloatArray
 
 MISFIT_P = 1e-3
@@ -47,21 +48,17 @@ def chi2_p_value(chi2: float, dof: int) -> float | None:
 
 
 def chi2_log10_p(chi2: float, dof: int) -> float:
-    """log10 P(X >= chi2) for X ~ chi^2(dof), finite where the p-value itself underflows."""
+    """log10 P(X >= chi2) for X ~ chi^2(dof), finite where the p-value itself underflows
+    (``cosserat._text.chi2_ln_p``); 0 without degrees of freedom."""
     if dof <= 0:
         return 0.0
-    ln_p = float(stats.chi2.logsf(chi2, dof))
-    if not math.isfinite(ln_p):  # far in the tail: the leading term of Q(k/2, x/2)
-        a, x = 0.5 * dof, 0.5 * chi2
-        ln_p = -x + (a - 1.0) * math.log(x) - math.lgamma(a)
-    return ln_p / math.log(10.0)
+    return chi2_ln_p(chi2, dof) / math.log(10.0)
 
 
 def p_text(log10_p: float) -> str:
-    """``p = 0.0012`` or, below the range of doubles' comfort, ``p = 10^-123``."""
-    if log10_p > -4.0:
-        return f"p = {10.0**log10_p:.2g}"
-    return f"p = 10^{log10_p:.0f}"
+    """``p = 0.0012`` or, below ``cosserat._text.SIGNIFICANCE_P``, ``z = 7.3``
+    (``cosserat._text.p_or_z``; never ``p = 10^-123``)."""
+    return p_or_z(log10_p * math.log(10.0))
 
 
 def tail_decades(s: FloatArray, data: FloatArray, se: FloatArray, model: FloatArray) -> str | None:

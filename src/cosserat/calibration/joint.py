@@ -32,6 +32,9 @@ log = logging.getLogger(__name__)
 
 DERIVED_STEP = 1e-6
 """Relative finite-difference step of a derived parameter's gradient (in the fit's coordinates)."""
+NO_SOLUTION_EDGE = "at the edge of the region where the model has a solution"
+"""The reason of a fitted value the data push onto the edge of the region where the model has
+a solution (:attr:`~cosserat.calibration.engine.Optimum.no_solution`): no error is given."""
 
 
 # --------------------------------------------------------------------------- estimates
@@ -46,6 +49,9 @@ def _estimates(
     unidentified = {n for d in flat for n in d.components}
     cov = dg.identified_covariance(J, widths) if J.size else np.zeros((0, 0))
     natural = s.natural(opt.theta)
+    edges: dict[int, list[str]] = {}
+    for j, side in opt.no_solution:
+        edges.setdefault(j, []).append(side)
     out: dict[str, Estimate] = {}
     i = 0
     for slot in s.slots:
@@ -83,6 +89,12 @@ def _estimates(
         reason = ""
         if at is not None:
             reason = f"at the {at} end of its search range {decl.fit_range}"
+        elif i in edges:
+            where = " and ".join("below" if e == "lower" else "above" for e in edges[i])
+            reason = (
+                f"{NO_SOLUTION_EDGE} (none {where} it, one finite-difference step away): "
+                "not identified by the data"
+            )
         elif slot.name in unidentified:
             reason = "not identified by the data (a flat direction of the fit)"
         else:
@@ -308,6 +320,13 @@ def _warnings(mc: ModelCalibration, fits: Sequence[FieldFit]) -> list[str]:
                 f" is at the {e.at_bound} end of its search range {e.fit_range}"
                 + (f" ({direction})" if direction else "")
                 + ": the data push it further; no error is given"
+            )
+    for e in mc.parameters.values():
+        if e.free and e.reason.startswith(NO_SOLUTION_EDGE):
+            out.append(
+                f"{name}: {e.name} = {e.value:.4g}{'' if e.unit in ('', '-') else ' ' + e.unit} "
+                f"is {e.reason}; "
+                "the data push it there, so no error is given"
             )
     for d in mc.flat:
         out.append(f"{name}: the data do not determine {d.describe()}")

@@ -60,7 +60,7 @@ from .engine import Optimum, Setup, setup
 from .engine import fit as engine_fit
 from .joint import COMPARISON, assemble
 from .models import Model
-from .noise import Correlation
+from .noise import Correlation, effective_bins
 from .result import Calibration, Estimate, ModelCalibration
 
 SINGLE_RUN_FREE: dict[str, tuple[str, ...]] = {"cosserat": ("delta", "K"), "ngf": ("A", "b")}
@@ -714,6 +714,14 @@ class Ranking:
         runs = [f.internal[0].runs[0] for f in self.fits if f.ok and f.internal is not None]
         return Calibration(runs[:1], list(self.fits), list(COMPARISON))
 
+    @property
+    def bin_correlation(self) -> Correlation:
+        """The lag-1 correlation of the bins' errors the fits used (rho = 0: independent)."""
+        for f in self.fits:
+            if f.ok and f.internal is not None:
+                return f.internal[0].runs[0].fields["u"].correlation
+        return Correlation(0.0, "given")
+
     def weights(self) -> dict[str, float]:
         """Akaike weights exp(-dAIC/2), normalised over the fitted models."""
         return self.calibration.weights("aic")
@@ -738,11 +746,18 @@ class Ranking:
         a0 = min((f.aic for f in self.fits if f.ok and f.aic is not None), default=0.0)
         absolute = self.measured.u_err is not None
         what = "chi2" if absolute else "RSS"
+        rho = self.bin_correlation
+        whitened = (
+            f"uncertainties given, neighbouring bins' errors AR(1)-correlated with rho = "
+            f"{rho.rho:.2f} ({rho.source}; {effective_bins(self.measured.n, rho.rho):.1f} "
+            "effective bins): chi2 = sum of the squared whitened residuals, "
+            if rho.rho > 0.0
+            else "uncertainties given: chi2 = sum((model - data)/u_err)^2, "
+        )
         lines = [
             f"{self.measured.n} points on the {self.cell} cell; "
             + (
-                "uncertainties given: chi2 = sum((model - data)/u_err)^2, AIC = chi2 + 2k + c, "
-                "BIC = chi2 + k ln n + c"
+                whitened + "AIC = chi2 + 2k + c, BIC = chi2 + k ln n + c"
                 if absolute
                 else "no uncertainties: RSS = sum((model - data)^2), AIC = n ln(RSS/n) + 2k + c, "
                 "BIC = n ln(RSS/n) + k ln n + c"
@@ -828,6 +843,7 @@ def rank_models(
     cell: str | None = None,
     model_parameters: Mapping[str, Mapping[str, Any]] | None = None,
     grid: int = 3,
+    bin_correlation: float = 0.0,
 ) -> Ranking:
     """Fit every model to ``measured`` (:func:`fit_model`) and rank them by AIC and BIC.
 
@@ -849,6 +865,9 @@ def rank_models(
         {"delta": "fully-rough"}}``).
     grid : int
         0: start each fit from the model's defaults only.
+    bin_correlation : float
+        Lag-1 correlation of neighbouring points' errors, ``0 <= rho < 1``, for every model
+        (:func:`fit`; 0: independent).
 
     Returns
     -------
@@ -883,7 +902,13 @@ def rank_models(
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", CellMismatchWarning)  # said in its warnings
                 fits.append(
-                    fit_model(measured, problem, None if free is None else free.get(m), grid=grid)
+                    fit_model(
+                        measured,
+                        problem,
+                        None if free is None else free.get(m),
+                        grid=grid,
+                        bin_correlation=bin_correlation,
+                    )
                 )
         except (MethodNotAvailableError, NoSolutionError, ConvergenceError) as exc:
             fits.append(SingleFit(model=m, cell=cell, status="failed", message=str(exc)))

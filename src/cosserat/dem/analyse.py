@@ -20,6 +20,7 @@ from .._atomic import write_text
 from .._stencil import gradient as _gradient
 from .._stencil import half_vorticity
 from ..errors import InputError
+from .checks import block_autocorrelation
 from .coarse import (
     SUMS,
     Grains2D,
@@ -372,6 +373,16 @@ def steady_profile(
     ws = extra.pop("wall_stress_se")
     sidecar["wall_stress"].update(ws)
     sidecar.update(extra)
+    sidecar["block_autocorrelation"] = block_autocorrelation(
+        {
+            "mean_velocity": run.flow,
+            "wall_shear": run.wall_shear,
+            "wall_normal" if polar else "gap": run.wall_normal if polar else run.gap,
+        },
+        first,
+        blocks,
+        every,
+    )
     if three:
         sidecar.update(_three_d(cell, info, run, first, blocks))
     return DEMProfile(columns, sidecar)

@@ -1,4 +1,5 @@
-"""Checks on DEM profiles: is the flow rate-independent (quasi-static)?"""
+"""Checks on DEM profiles: is the flow rate-independent (quasi-static)? Are the time blocks
+long enough for their means to be independent (:func:`block_autocorrelation`)?"""
 
 from __future__ import annotations
 
@@ -75,4 +76,145 @@ def rate_independence(
         float(np.mean(z**2)),
         z_limit,
         within >= _NORMAL_INSIDE[z_limit] - 0.10,
+    )
+
+
+# --------------------------------------------------------------------------- blocks
+WINDOW_C = 5.0
+"""Sokal's automatic window: the autocorrelation sum stops at the first lag M >= WINDOW_C tau(M)."""
+MIN_BLOCK_TAUS = 2.0
+"""A block shorter than this many integrated autocorrelation times is flagged: its mean is
+correlated with its neighbours', and the block standard errors are too small."""
+MIN_AUTOCORRELATION_SAMPLES = 20
+"""Fewest samples from which an autocorrelation time is estimated."""
+
+
+def autocorrelation_time(series: np.ndarray) -> tuple[float, bool] | None:
+    """The integrated autocorrelation time of a sampled series [samples], and whether its
+    estimate is reliable.
+
+    ``tau = 1 + 2 sum_{t=1}^{M} rho(t)`` (``rho`` the normalised autocovariance, by FFT), with
+    Sokal's automatic window: ``M`` the first lag with ``M >= WINDOW_C tau(M)``; unreliable
+    when no such lag exists below half the series (then ``tau`` at half the series, a lower
+    bound). Independent samples give tau = 1; an AR(1) series with lag-1 correlation ``phi``
+    gives ``(1 + phi)/(1 - phi)``. A block of ``b`` samples has a mean independent of its
+    neighbours' when ``b`` is several tau.
+
+    Returns
+    -------
+    (tau, reliable) or None
+        None with fewer than :data:`MIN_AUTOCORRELATION_SAMPLES` finite samples, or a series
+        constant up to round-off (its spread below 1e-12 of its largest magnitude).
+    """
+    x = np.asarray(series, dtype=float)
+    x = x[np.isfinite(x)]
+    n = x.size
+    if n < MIN_AUTOCORRELATION_SAMPLES:
+        return None
+    d = x - x.mean()
+    var = float(d @ d) / n
+    if not var > (1e-12 * float(np.max(np.abs(x)))) ** 2:  # constant up to round-off
+        return None
+    size = 1 << (2 * n - 1).bit_length()
+    f = np.fft.rfft(d, size)
+    acov = np.fft.irfft(f * np.conj(f), size)[:n] / n
+    rho = acov / acov[0]
+    tau = 1.0
+    for m in range(1, n // 2):
+        tau += 2.0 * float(rho[m])
+        if m >= WINDOW_C * tau:
+            return max(tau, 1e-12), True
+    return max(tau, 1.0), False
+
+
+def block_autocorrelation(
+    series: dict[str, np.ndarray], first: int, blocks: int, every: int
+) -> dict:
+    """The block length of a run's steady window against the integrated autocorrelation time
+    of each per-sample series (the sidecar's ``block_autocorrelation``).
+
+    Parameters
+    ----------
+    series : dict
+        Name -> the whole per-sample series (the bulk velocity of the free grains, the wall's
+        shear stress, the gap, ...).
+    first : int
+        Index of the first steady sample.
+    blocks : int
+        Blocks of the steady window.
+    every : int
+        Steps between samples.
+
+    Returns
+    -------
+    dict
+        ``block_samples``, ``block_steps``; per observable ``tau_samples``, ``tau_steps``,
+        ``blocks_per_tau`` (the block length in autocorrelation times), ``reliable`` and
+        ``short`` (the block shorter than :data:`MIN_BLOCK_TAUS` tau); ``short``: any
+        observable's; ``note``: the rule.
+    """
+    if blocks < 1 or every < 1:
+        raise InputError(f"blocks and steps between samples must be >= 1; got {blocks}, {every}")
+    out: dict = {}
+    n = None
+    for name, values in series.items():
+        x = np.asarray(values, dtype=float)[first:]
+        n = x.size
+        est = autocorrelation_time(x)
+        if est is None:
+            continue
+        tau, reliable = est
+        b = x.size / blocks
+        out[name] = {
+            "tau_samples": round(tau, 3),
+            "tau_steps": round(tau * every),
+            "blocks_per_tau": round(b / tau, 3),
+            "reliable": reliable,
+            "short": bool(b < MIN_BLOCK_TAUS * tau),
+        }
+    b = (n or 0) / blocks
+    return {
+        "block_samples": round(b, 3),
+        "block_steps": round(b * every),
+        "observables": out,
+        "short": any(v["short"] for v in out.values()),
+        "note": (
+            "integrated autocorrelation time tau of each per-sample series over the steady "
+            f"window (Sokal's window, c = {WINDOW_C:g}; 'reliable' false: the window did not "
+            f"close within half the series, tau a lower bound); a block shorter than "
+            f"{MIN_BLOCK_TAUS:g} tau is 'short': neighbouring block means are then correlated "
+            "and the block standard errors too small"
+        ),
+    }
+
+
+def block_length_text(
+    record: dict | None, blocks: int | None = None, steps: int | None = None
+) -> str:
+    """One sentence on a run's block length against its autocorrelation times (the sidecar's
+    ``block_autocorrelation``), or on what a sidecar without it lacks."""
+    if not record:
+        length = f" (blocks of {steps / blocks:,.0f} steps)" if blocks and steps else ""
+        return (
+            f"block length against the autocorrelation time: not recorded{length}; the run was "
+            "analysed before cosserat.dem recorded it, and its per-sample series are not kept "
+            "with the profile, so it needs the run's dumps analysed again"
+        )
+    parts = []
+    for name, v in record.get("observables", {}).items():
+        flag = " SHORT" if v.get("short") else ""
+        bound = "" if v.get("reliable", True) else " (tau a lower bound)"
+        parts.append(
+            f"{name.replace('_', ' ')}: tau = {v['tau_steps']:,.0f} steps{bound}, block = "
+            f"{v['blocks_per_tau']:.3g} tau{flag}"
+        )
+    head = f"blocks of {record.get('block_steps', 0):,.0f} steps"
+    verdict = (
+        f"; blocks shorter than {MIN_BLOCK_TAUS:g} autocorrelation times: their standard errors "
+        "are too small"
+        if record.get("short")
+        else f"; every block is at least {MIN_BLOCK_TAUS:g} autocorrelation times long"
+    )
+    return (
+        head + " against the integrated autocorrelation time (" + "; ".join(parts) + ")" + verdict
     )

@@ -280,6 +280,115 @@ def spin_claim_figure(
     return fig
 
 
+STATUS_CODES = {
+    "p": "parameters pinned at their defaults",
+    "b": "a parameter at a bound (or the edge of solvability)",
+    "s": "its stress ratio contradicts the measured one",
+}
+"""The letters beside a model's marker in :func:`spin_model_figure`: how it was calibrated."""
+
+
+def spin_model_figure(
+    rows: Sequence[Mapping[str, Any]],
+    models: Sequence[str],
+    no_spin: Sequence[str] = (),
+    title: str = "",
+) -> Figure:
+    """The measured first-layer departure of the spin at each sheared wall against each model's
+    prediction there, every marker of a wall inside its own row (dodged, never between rows),
+    with how each model was calibrated.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        ``label``, ``first``, ``se``, ``predicted`` (model -> value) and ``status`` (model ->
+        letters of :data:`STATUS_CODES`, and ``usable``: model -> bool, False where the fit
+        cannot supply a prediction: a stress ratio it contradicts, a wall parameter at a
+        bound).
+    models : sequence of str
+        The models to draw, in order.
+    no_spin : sequence of str
+        Models without a grain spin of their own (mu(I), NGF): they predict no departure and
+        are drawn as crosses on the zero line, said so in the legend.
+    title : str
+        Above the axes.
+    """
+    import numpy as np
+    from matplotlib.lines import Line2D
+
+    from .plotting import new_figure, style
+
+    n = max(len(rows), 1)
+    slots = 1 + len(models)
+    fig, axes = new_figure(1, 1, width=9.0, height=1.5 + 0.13 * slots * n)
+    ax = axes[0, 0]
+    half = 0.36  # the markers of a row lie within +-half of its centre
+    offsets = np.linspace(half, -half, slots) if slots > 1 else np.zeros(1)
+    handles: dict[str, Any] = {}
+    with style():
+        y = np.arange(len(rows))[::-1].astype(float)
+        for yi, r in zip(y, rows, strict=True):
+            ax.axhspan(yi - 0.5, yi + 0.5, color="0.94" if int(yi) % 2 else "white", zorder=0)
+            handles["measured"] = ax.errorbar(
+                [r["first"]], [yi + offsets[0]], xerr=[2 * r["se"]], fmt="o", color="k",
+                capsize=2, elinewidth=0.8, zorder=3,
+            )  # fmt: skip
+            status = r.get("status", {})
+            usable = r.get("usable", {})
+            for j, m in enumerate(models):
+                p = r["predicted"].get(m)
+                if p is None:
+                    continue
+                yj = yi + offsets[j + 1]
+                colour = model_style(m, models)["color"]
+                if m in no_spin:
+                    ax.plot([0.0], [yj], marker="x", markersize=6, mew=1.6, linestyle="none",
+                            color=colour, zorder=4)  # fmt: skip
+                    key = f"{m}: no grain spin of its own, predicts 0"
+                    handles[key] = Line2D([], [], marker="x", mew=1.6, linestyle="none",
+                                          color=colour)  # fmt: skip
+                else:
+                    ok = usable.get(m, True)
+                    ax.plot([p], [yj], marker="dsv^"[j % 4], markersize=6, linestyle="none",
+                            color=colour, markerfacecolor=colour if ok else "white",
+                            mew=1.2, zorder=4)  # fmt: skip
+                    key = f"{m} (fitted to u)"
+                    handles[key] = Line2D([], [], marker="dsv^"[j % 4], linestyle="none",
+                                          color=colour)  # fmt: skip
+                    if not ok:
+                        handles["open: that fit cannot predict"] = Line2D(
+                            [], [], marker="dsv^"[j % 4], linestyle="none", color="0.3",
+                            markerfacecolor="white",
+                        )  # fmt: skip
+                flags = status.get(m, "")
+                if flags:
+                    x = 0.0 if m in no_spin else p
+                    ax.annotate(flags, (x, yj), xytext=(5, 0), textcoords="offset points",
+                                fontsize=6, va="center", color=colour)  # fmt: skip
+        ax.axvline(0.0, color="0.5", linewidth=0.6, zorder=1)
+        lo, hi = ax.get_xlim()
+        ax.set_xlim(lo, hi + 0.08 * (hi - lo))  # room for the status letters
+        ax.set_yticks(y, [r["label"] for r in rows], fontsize=7)
+        ax.set_ylim(-0.5, max(len(rows), 1) - 0.5)
+        ax.tick_params(axis="y", length=0)
+        ax.set_xlabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ in the first layer [-]")
+        if title:
+            ax.set_title(title, fontsize=8)
+        if not rows:
+            ax.text(0.5, 0.5, "no sheared wall with spin", ha="center", transform=ax.transAxes)
+        used = sorted({c for r in rows for f in r.get("status", {}).values() for c in f})
+        for c in used:
+            handles[f"{c}: {STATUS_CODES[c]}"] = Line2D([], [], linestyle="none")
+        if rows:
+            labels = ["measured (+- 2 se)" if k == "measured" else k for k in handles]
+            ax.legend(list(handles.values()), labels, loc="upper left",
+                      bbox_to_anchor=(1.02, 1.0), fontsize=6.5, frameon=False,
+                      handlelength=1.2)  # fmt: skip
+        fig.subplots_adjust(left=0.23, right=0.62, bottom=0.6 / fig.get_figheight() + 0.02,
+                            top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
+    return fig
+
+
 def _nice_ticks(lo: float, hi: float, wanted: Sequence[float]) -> list[float]:
     return [t for t in wanted if lo <= t <= hi]
 
@@ -390,4 +499,11 @@ def delta_claim_figure(
     return fig
 
 
-__all__ = ["delta_claim_figure", "model_style", "run_figure", "spin_claim_figure"]
+__all__ = [
+    "STATUS_CODES",
+    "delta_claim_figure",
+    "model_style",
+    "run_figure",
+    "spin_claim_figure",
+    "spin_model_figure",
+]

@@ -1,11 +1,21 @@
 """The models fitted to one run's velocity: the only module of validation that fits.
 
 Every call to the fitting machinery (:func:`cosserat.calibration.single.rank_models`,
-:class:`~cosserat.calibration.single.Ranking`) is here, so that moving validation onto another
-fitting engine changes this module only. The rest of validation sees :class:`RunFits` and
-:class:`FitSummary`: plain numbers, the fitted velocity, the fitted spin as the run's analysis
-would measure it (:mod:`~cosserat.studies.validate.forward`, which reads the fitted
-profile), and the warnings a referee asks for:
+:class:`~cosserat.calibration.single.Ranking`, :func:`~cosserat.analysis.fitting.moving_wall`)
+is here, so that moving validation onto another fitting engine changes this module only. The
+rest of validation sees :class:`RunFits` and :class:`FitSummary`: plain numbers, the fitted
+velocity, the fitted spin as the run's analysis would measure it
+(:mod:`~cosserat.studies.validate.forward`, which reads the fitted profile), and the warnings
+a referee asks for.
+
+**Correlated bins.** A run's velocity bins are not independent: the fits, their chi^2, AIC,
+BIC and Akaike weights use the calibration engine's error model (``calibration.noise``: AR(1)
+correlation between neighbouring bins) with the run's lag-1 correlation of u
+(:func:`bin_correlation`: the sidecar's ``bin_correlation.u``, else estimated from the profile
+as ``cosserat calibrate`` does). Each fit reports rho and the effective number of bins
+``n (1 - rho)/(1 + rho)`` beside its chi^2, and :meth:`RunFits.weight_notes` the Akaike
+weights with the correlation and with independent bins (each model fitted again with rho = 0,
+as validate fitted before it took the correlation into account). The warnings:
 
 * **misfit**: with the data's standard errors, a fit with p(chi^2, n - k) < :data:`P_SIGNIFICANT`
   misses the data; the warning says by how much and where it misses most (in the creep tail
@@ -30,7 +40,9 @@ from typing import Any
 import numpy as np
 from scipy.stats import chi2 as chi2_dist
 
+from ..._text import significance
 from ...analysis.corpus import Run
+from ...calibration.noise import RHO_MAX, Correlation, effective_bins, estimate_rho
 from ...calibration.single import Ranking, rank_models
 from ...errors import CosseratError
 from ...model.constitutive import FloatArray
@@ -78,6 +90,42 @@ class FitSummary:
     at_bound: dict[str, str] = field(default_factory=dict)
     """Free wall parameters that ended at an end of their search range that is not an edge of
     the admissible set (:data:`ADMISSIBLE_EDGES`), name -> "lower" or "upper"."""
+    rho: float = 0.0
+    """Lag-1 correlation of the bins' errors the fit used [-] (0: independent)."""
+    n_bins: int = 0
+    """Bins fitted."""
+    unidentified: dict[str, str] = field(default_factory=dict)
+    """Free parameters the data do not determine (the engine's identifiability rule, or at a
+    bound), name -> why: they have no error."""
+
+    @property
+    def bounded(self) -> list[str]:
+        """Free parameters at an end of their search range that is not an edge of the
+        admissible set (:data:`ADMISSIBLE_EDGES`), or on the edge of the region where the
+        model has a solution."""
+        out = set(self.at_bound)
+        for k, why in self.unidentified.items():
+            side = (
+                "lower" if "at the lower end" in why else "upper" if "at the upper" in why else ""
+            )
+            if (
+                side and (self.model, k, side) not in ADMISSIBLE_EDGES
+            ) or "edge of the region" in why:
+                out.add(k)
+        return sorted(out)
+
+    @property
+    def effective_bins(self) -> float:
+        """Bins' worth of independent information, ``n (1 - rho)/(1 + rho)`` [-]."""
+        return effective_bins(self.n_bins, self.rho)
+
+    @property
+    def significance(self) -> str:
+        """The chi^2's p-value, or z and chi^2/dof below 1e-6 (``cosserat._text.significance``);
+        "" without absolute errors."""
+        if self.chi2 is None or self.p_value is None or self.dof < 1:
+            return ""
+        return significance(self.chi2, self.dof)
 
     @property
     def unfit_reason(self) -> str:
@@ -100,6 +148,10 @@ class FitSummary:
         return {
             "model": self.model,
             "p_value": self.p_value,
+            "significance": self.significance,
+            "bin_correlation": self.rho,
+            "effective_bins": self.effective_bins,
+            "unidentified": self.unidentified,
             "pinned": self.pinned,
             "band_stress_ratio": None
             if self.band_ratio is None
@@ -117,6 +169,10 @@ class RunFits:
 
     ranking: Ranking
     summaries: list[FitSummary] = field(default_factory=list)
+    correlation: Correlation = field(default_factory=lambda: Correlation(0.0, "given"))
+    """The lag-1 correlation of the bins' errors the fits used (:func:`bin_correlation`)."""
+    independent_weights: dict[str, float] = field(default_factory=dict)
+    """Akaike weights of the same models fitted with independent bins (empty when rho = 0)."""
 
     @property
     def models(self) -> list[str]:
@@ -164,10 +220,34 @@ class RunFits:
         out[bins.order] = model_fields(self._fit(model).profile, run).point_departure(bins.centre)
         return out
 
+    def weight_notes(self) -> list[str]:
+        """The Akaike weights with the bins' correlation and with independent bins (one line;
+        none when the bins are taken as independent)."""
+        if self.correlation.rho <= 0.0 or not self.independent_weights:
+            return []
+        n = self.ranking.measured.n
+
+        def text(w: dict[str, float]) -> str:
+            return ", ".join(f"{m} {w.get(m, 0.0):.3f}" for m in self.models)
+
+        return [
+            f"Akaike weights with the bins' correlation (rho = {self.correlation.rho:.2f}, "
+            f"{self.correlation.source}; {effective_bins(n, self.correlation.rho):.1f} "
+            f"effective bins of {n}): {text(self.ranking.weights())}; with independent bins "
+            f"(rho = 0, each model fitted again): {text(self.independent_weights)}"
+        ]
+
     def to_dict(self) -> dict[str, Any]:
         """The fitting engine's record, each fit with its p-value, pinned parameters, band
-        stress ratio and every warning of :func:`fit_run`."""
+        stress ratio and every warning of :func:`fit_run`; the bins' correlation and the
+        Akaike weights with independent bins."""
         out = self.ranking.to_dict()
+        out["bin_correlation"] = {
+            "rho": self.correlation.rho,
+            "source": self.correlation.source,
+            "effective_bins": effective_bins(self.ranking.measured.n, self.correlation.rho),
+        }
+        out["akaike_weights_independent_bins"] = dict(self.independent_weights)
         for entry in out["fits"]:
             s = self.summary(entry["model"])
             if s is not None:
@@ -201,8 +281,13 @@ def fit_run(
 
         names = [m for m in names if run.cell in cells_for(m)]
     measured = run.measured()
-    ranking = rank_models(measured, run.cell_parameters(), names, grid=grid)
-    out = RunFits(ranking)
+    corr = bin_correlation(run)
+    ranking = rank_models(
+        measured, run.cell_parameters(), names, grid=grid, bin_correlation=corr.rho
+    )
+    out = RunFits(ranking, correlation=corr)
+    if corr.rho > 0.0:
+        out.independent_weights = _independent_weights(run, names, grid, measured)
     for f in ranking.fits:
         if not f.ok:
             out.summaries.append(
@@ -219,7 +304,7 @@ def fit_run(
         )
         warnings = list(f.warnings)
         if p is not None and p < P_SIGNIFICANT:
-            warnings.append(_misfit_text(f, measured, p, dof))
+            warnings.append(_misfit_text(f, measured, dof, corr.rho))
         values = f.problem.values()
         free = {k for k, e in f.parameters.items() if e.free}
         declared = f.problem.declared()
@@ -273,9 +358,41 @@ def fit_run(
                 warnings,
                 contradiction,
                 at_bound,
+                corr.rho,
+                f.n,
+                {k: e.reason for k, e in f.parameters.items() if e.free and e.stderr is None},
             )
         )
     return out
+
+
+def bin_correlation(run: Run) -> Correlation:
+    """The lag-1 correlation of a run's velocity bins' errors, as ``cosserat calibrate``
+    takes it (``calibration.noise``): the sidecar's ``bin_correlation.u`` (measured from the
+    run's time blocks), clipped to ``[0, RHO_MAX]``; without it, estimated from the profile's
+    second differences (:func:`~cosserat.calibration.noise.estimate_rho`; rho = 0 without the
+    bins' errors)."""
+    given = run.meta.get("bin_correlation")
+    value = given.get("u") if isinstance(given, dict) else None
+    if isinstance(value, int | float) and math.isfinite(value):
+        rho = min(max(float(value), 0.0), RHO_MAX)
+        source = "metadata" if rho == value else f"metadata {float(value):.3g}, clipped"
+        return Correlation(rho, source)
+    m = run.measured()
+    if m.u_err is None:
+        return Correlation(0.0, "no errors given")
+    order = np.argsort(m.distance_d, kind="stable")
+    return estimate_rho(np.asarray(m.u_over_uw)[order], np.asarray(m.u_err)[order])
+
+
+def _independent_weights(
+    run: Run, names: Sequence[str] | None, grid: int, measured: Any
+) -> dict[str, float]:
+    """Akaike weights of the same models fitted with independent bins (rho = 0; the same
+    fits, starts and design as the correlated ones): what the weights are if the bins'
+    correlation is ignored."""
+    ranking = rank_models(measured, run.cell_parameters(), names, grid=grid)
+    return {m: float(w) for m, w in ranking.weights().items()}
 
 
 def try_fit_run(
@@ -288,7 +405,7 @@ def try_fit_run(
         return None, " ".join(str(exc).split())
 
 
-def _misfit_text(fit: Any, measured: Any, p: float, dof: int) -> str:
+def _misfit_text(fit: Any, measured: Any, dof: int, rho: float) -> str:
     # the comparison's residuals are data - model; the text says model - data
     model_minus_data = -np.asarray(fit.comparison.residuals, dtype=float)
     z = model_minus_data / np.asarray(measured.u_err, dtype=float)
@@ -300,12 +417,22 @@ def _misfit_text(fit: Any, measured: Any, p: float, dof: int) -> str:
     if np.any(tail):
         share = (
             f"; the creep tail (u < {BAND_U:g}, {int(tail.sum())} bins) holds "
-            f"{float(np.sum(z[tail] ** 2)) / max(float(np.sum(z**2)), 1e-300):.0%} of chi^2"
+            f"{float(np.sum(z[tail] ** 2)) / max(float(np.sum(z**2)), 1e-300):.0%} of the "
+            "independent-bin chi^2"
         )
+    sig = significance(fit.chi2, dof)
+    bins = (
+        f", bins correlated with rho = {rho:.2f}, {effective_bins(measured.n, rho):.1f} "
+        f"effective bins of {measured.n}"
+        if rho > 0.0
+        else ""
+    )
     return (
-        f"misfit: chi^2 = {fit.chi2:.4g} for {dof} degrees of freedom, p = {p:.2g} < "
-        f"{P_SIGNIFICANT:g}; it misses most {where}, {measured.distance_d[worst]:.3g} d from "
-        f"the moving wall (model - data = {z[worst]:+.3g} se){share}"
+        f"misfit: chi^2 = {fit.chi2:.4g} for {dof} degrees of freedom{bins} "
+        f"({sig}{' <' if sig.startswith('p = ') else '; p <'} {P_SIGNIFICANT:g}); it misses "
+        f"most {where}, "
+        f"{measured.distance_d[worst]:.3g} d from the moving wall (model - data = "
+        f"{z[worst]:+.3g} se){share}"
     )
 
 

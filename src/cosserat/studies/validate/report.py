@@ -13,7 +13,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..._atomic import save_figure, write_text
+from ..._text import significance
 from ...analysis.gap import PAPER_SLOPES
+from ...calibration.models import Model
 from ...viz.report import write_report as write_templates
 from .grouping import wall_label
 from .measures import (
@@ -26,6 +28,7 @@ from .measures import (
 from .verdicts import EXPONENT_TOL, MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, calibration_text, relevant
 
 if TYPE_CHECKING:
+    from .fits import FitSummary
     from .study import RunResult, ValidationReport
 
 RUN_FIGURE_DPI = 150
@@ -159,6 +162,34 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
     return rows
 
 
+def fit_status(s: FitSummary | None) -> tuple[str, bool]:
+    """How a model was calibrated on a run, as the letters of
+    ``cosserat.viz.validation.STATUS_CODES`` (``p`` parameters pinned at their defaults,
+    ``b`` a parameter at a bound or at the edge of solvability, ``s`` a band stress ratio
+    that contradicts the measured one), and whether the fit can supply a prediction."""
+    if s is None or not s.ok:
+        return "", False
+    flags = (
+        ("p" if s.pinned else "") + ("b" if s.bounded else "") + ("s" if s.contradiction else "")
+    )
+    return flags, not s.unfit_reason
+
+
+def spin_model_rows(report: ValidationReport, rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """``rows`` (:func:`spin_rows`) with each model's calibration status on the row's run
+    (``status``, ``usable``: :func:`fit_status`), for the spin_model figure."""
+    by_name = {r.run.name: r for r in report.results}
+    out = []
+    for row in rows:
+        r = by_name.get(str(row["label"]).rsplit(": ", 1)[0])
+        status, usable = {}, {}
+        for m in row["predicted"]:
+            flags, ok = fit_status(r.fits.summary(m) if r is not None and r.fits else None)
+            status[m], usable[m] = flags, ok
+        out.append({**row, "status": status, "usable": usable})
+    return out
+
+
 def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
     by_name = {r.run.name: r for r in report.results}
     out = []
@@ -217,9 +248,10 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
             out / CLAIM_FIGURES["spin"],
         )
         save_figure(
-            fig.spin_claim_figure(
-                [r for r in rows if r["sheared"]],
+            fig.spin_model_figure(
+                spin_model_rows(report, [r for r in rows if r["sheared"]]),
                 report.models,
+                [m for m in report.models if not Model(m).has_spin],
                 "the measured departure against each model's (sheared walls)",
             ),
             out / CLAIM_FIGURES["spin_model"],
@@ -273,6 +305,40 @@ def _g(x: float | None, spec: str = ".3g") -> str:
     return "-" if x is None else format(x, spec)
 
 
+def block_notes(run: Any) -> list[str]:
+    """A DEM run's block length against the autocorrelation times of its series
+    (``cosserat.dem.checks.block_length_text``), or what its sidecar lacks for it; nothing
+    for a run without time blocks."""
+    from ...dem.checks import block_length_text
+
+    meta = run.meta
+    if not meta.get("blocks"):
+        return []
+    window = meta.get("steady_window")
+    steps = None
+    if isinstance(window, list | tuple) and len(window) == 2:
+        steps = int(window[1]) - int(window[0])
+    return [block_length_text(meta.get("block_autocorrelation"), int(meta["blocks"]), steps)]
+
+
+def parameters_text(s: Any) -> str:
+    """A fit's free parameters, ``k = v +- se``, or ``(not identified)`` where the data do not
+    determine one (:attr:`~.fits.FitSummary.unidentified`: no error is given)."""
+    return "; ".join(
+        f"{k} = {v:.4g}"
+        + (f" +- {e:.2g}" if e is not None else " (not identified)" if k in s.unidentified else "")
+        for k, (v, e) in s.parameters.items()
+    )
+
+
+def _spin_p(w: Any) -> str:
+    """A wall's spin test: its p-value, or z and chi^2/dof below 1e-6
+    (``cosserat._text.significance``)."""
+    if w.chi2 is None or not w.dof or not math.isfinite(w.chi2):
+        return _g(w.p, ".2g")
+    return significance(float(w.chi2), int(w.dof))
+
+
 def context(report: ValidationReport) -> dict[str, Any]:
     """The templates' context: plain strings and numbers."""
     figures = {r.run.name: r.figure for r in report.results}
@@ -287,11 +353,12 @@ def context(report: ValidationReport) -> dict[str, Any]:
                         "ok": s.ok,
                         "message": s.message,
                         "reduced_chi2": _g(s.reduced_chi2),
-                        "p": _g(s.p_value, ".2g"),
-                        "parameters": "; ".join(
-                            f"{k} = {v:.4g}" + ("" if e is None else f" +- {e:.2g}")
-                            for k, (v, e) in s.parameters.items()
+                        "p": s.significance or "-",
+                        "bins": (
+                            f"rho = {s.rho:.2f}, {s.effective_bins:.1f} effective bins of "
+                            f"{s.n_bins}"
                         ),
+                        "parameters": parameters_text(s),
                         "pinned": ", ".join(f"{k} = {v:.4g}" for k, v in s.pinned.items()),
                         "warnings": s.warnings,
                     }
@@ -316,7 +383,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                     "first": _g(w.first, "+.3g"),
                     "se": _g(w.first_se, ".2g"),
                     "chi2": _g(w.chi2),
-                    "p": _g(w.p, ".2g"),
+                    "p": _spin_p(w),
                     "predicted": ", ".join(f"{m} {w.predicted_first(m):+.3g}" for m in w.predicted),
                 }
             )
@@ -340,6 +407,8 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "ranking_text": r.fits.to_text().rstrip() if r.fits else "",
                 "error": r.error,
                 "notes": r.skipped
+                + block_notes(r.run)
+                + (r.fits.weight_notes() if r.fits else [])
                 + list(r.run.notes)
                 + (r.spin.notes if r.spin.available else [])
                 + ([] if r.sensitivity is None else [r.sensitivity.text()]),

@@ -107,6 +107,7 @@ class RunResult:
             "moving_wall_inertial_number": self.inertial_number if self.layer is None else None,
             "band_inertial_number": self.inertial_number if self.layer is not None else None,
             "layer": None if self.layer is None else self.layer.to_dict(),
+            "block_autocorrelation": self.run.meta.get("block_autocorrelation"),
             "skipped": self.skipped,
             "notes": list(self.run.notes),
             "figure": self.figure,

@@ -68,6 +68,7 @@ import numpy as np
 from scipy.stats import chi2 as chi2_dist
 from scipy.stats import norm
 
+from ..._text import significance
 from ...analysis.gap import PAPER_SLOPES, SlopeFit, power_law_slope
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
@@ -779,16 +780,25 @@ class CurveTest:
     def dof_shape(self) -> int:
         return self.n - 1
 
+    @property
+    def sig(self) -> str:
+        """The prediction as it is: p, or z and chi^2/dof below 1e-6
+        (``cosserat._text.significance``)."""
+        return significance(self.chi2, self.dof)
+
+    @property
+    def sig_shape(self) -> str:
+        """The shape test's p, or z and chi^2/dof below 1e-6 ("-" without one)."""
+        return "-" if self.p_shape is None else significance(self.chi2_shape, self.dof_shape)
+
     def text(self) -> str:
         shape = (
             f"times {self.scale:.3g}: chi^2 = {self.chi2_shape:.3g} for {self.dof_shape} dof "
-            f"(p = {_g(self.p_shape, '.2g')})"
+            f"({self.sig_shape})"
             if self.p_shape is not None
             else "no shape test (one point)"
         )
-        return (
-            f"{self.label}: chi^2 = {self.chi2:.3g} for {self.dof} dof (p = {self.p:.2g}); " + shape
-        )
+        return f"{self.label}: chi^2 = {self.chi2:.3g} for {self.dof} dof ({self.sig}); " + shape
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -1146,7 +1156,8 @@ def calibration_text(c: ModelDelta) -> str:
             text += f" ({e['reason']})"
         rows.append(text)
     chi2, dof, p = (c.calibration.get(k) for k in ("chi2", "dof", "p_value"))
-    fit = f"chi^2 = {_g(chi2, '.4g')} for {dof} dof, p = {_g(p, '.2g')}" if chi2 is not None else ""
+    sig = significance(chi2, dof) if chi2 is not None and dof and dof > 0 else f"p = {_g(p)}"
+    fit = f"chi^2 = {_g(chi2, '.4g')} for {dof} dof, {sig}" if chi2 is not None else ""
     return "; ".join(x for x in (fit, ", ".join(rows)) if x)
 
 
@@ -1195,8 +1206,8 @@ def _curve_call(
     )
     if t.p < P_SIGNIFICANT:
         text += (
-            f"; the level is missed: the data are {t.scale:.3g} times the {model} curve (p = "
-            f"{t.p:.2g} as it is), so the calibration predicts at most the dependence on the "
+            f"; the level is missed: the data are {t.scale:.3g} times the {model} curve "
+            f"({t.sig} as it is), so the calibration predicts at most the dependence on the "
             "gap, not Delta itself"
         )
     if t.p_shape is None:
@@ -1219,7 +1230,7 @@ def _curve_call(
             "mixed",
             text + f"; the data follow the claimed limit law itself already at these gaps "
             f"({claimed.text()}), but not the {model} model's finite-H approach to it (its "
-            f"curve's shape p = {t.p_shape:.2g} < {P_SIGNIFICANT:g})",
+            f"curve's shape: {t.sig_shape}, p < {P_SIGNIFICANT:g})",
             f"runs at larger gaps, where the {model} curve nears its limit, or a calibration "
             "whose curve follows the data",
         )
@@ -1227,7 +1238,7 @@ def _curve_call(
         return (
             "refuted",
             text + f"; the {model} curve does not follow the measured Delta(H/d) even up to a "
-            f"common factor (p = {t.p_shape:.2g} < {P_SIGNIFICANT:g})",
+            f"common factor ({t.sig_shape}, p < {P_SIGNIFICANT:g})",
             f"a calibration of the {model} model whose curve follows Delta(H/d), or errors of "
             "Delta that are larger than stated (run-to-run scatter from replicas)",
         )
@@ -1430,7 +1441,8 @@ def _power_law_misfit(slope: SlopeFit) -> str:
         return ""
     return (
         f"; one power law does not describe these points (chi^2 = {c:.3g} for {dof} degrees "
-        f"of freedom, p = {p:.2g}: replicates or neighbouring gaps disagree beyond their errors), "
+        f"of freedom, {significance(c, dof)}: replicates or neighbouring gaps disagree beyond "
+        "their errors), "
         "so the slope's error is scaled up by sqrt(reduced chi^2) and a verdict on the "
         "exponent rests on that"
     )
