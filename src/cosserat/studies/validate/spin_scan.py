@@ -196,8 +196,9 @@ def material_phi(runs: Sequence[Run], material: str) -> tuple[float, float, str]
         raise InputError(f"material {material}: sin phi = {sin_phi:.3g} from the stresses")
     phi = math.degrees(math.asin(sin_phi))
     phi_se = math.degrees(se / math.sqrt(1.0 - sin_phi**2))
-    what = ", ".join(f"{n}: T = {v.value:.3g} +- {v.stderr:.2g}" for n, v in zip(names, vals,
-                                                                                   strict=True))
+    what = ", ".join(
+        f"{n}: T = {v.value:.3g} +- {v.stderr:.2g}" for n, v in zip(names, vals, strict=True)
+    )
     return phi, phi_se, f"sin phi = {sin_phi:.3g} from the fully rough run(s) {what}"
 
 
@@ -614,27 +615,38 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, predictor: str = "")
             key, "undecided", "The data cannot decide: no run could be scanned.", "", (), numbers
         )
     if refuted and supported:
-        verdict, head = "mixed", (
-            f"Mixed: refuted at {', '.join(refuted)}, supported at {', '.join(supported)}."
+        verdict, head = (
+            "mixed",
+            (f"Mixed: refuted at {', '.join(refuted)}, supported at {', '.join(supported)}."),
         )
     elif refuted and len(refuted) == len([c for c in calls.values() if c != "undecided"]):
-        verdict, head = "refuted", (
-            f"Refuted: at {', '.join(refuted)} no admissible (K, L) of the joint calibration "
-            "gives the measured sign of the first-layer departure."
+        verdict, head = (
+            "refuted",
+            (
+                f"Refuted: at {', '.join(refuted)} no admissible (K, L) of the joint calibration "
+                "gives the measured sign of the first-layer departure."
+            ),
         )
     elif supported:
-        verdict, head = "supported", (
-            f"Supported: at {', '.join(supported)} the joint calibration gives the measured "
-            "sign and size of the first-layer departure."
+        verdict, head = (
+            "supported",
+            (
+                f"Supported: at {', '.join(supported)} the joint calibration gives the measured "
+                "sign and size of the first-layer departure."
+            ),
         )
     else:
-        verdict, head = "undecided", (
-            "Undecided: no run's first layer is both significant and out of reach of the "
-            "admissible set, nor matched by the best fit."
+        verdict, head = (
+            "undecided",
+            (
+                "Undecided: no run's first layer is both significant and out of reach of the "
+                "admissible set, nor matched by the best fit."
+            ),
         )
     outside = [
-        sc.run for sc in scans if calls[sc.run] == "refuted" and _sign_given(sc.whole_span,
-                                                                             sc.measured)
+        sc.run
+        for sc in scans
+        if calls[sc.run] == "refuted" and _sign_given(sc.whole_span, sc.measured)
     ]
     note = (
         f" At {', '.join(outside)} some (K, L) of the declared ranges outside the 95% region "

@@ -20,7 +20,6 @@ from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
-from .spin_scan import COARSE, scan_verdict, spin_scans
 from .grouping import couette_note, group_runs, walls_differ
 from .layer import layer_verdicts
 from .measures import (
@@ -37,6 +36,7 @@ from .measures import (
     reference_velocity,
     thickness_of,
 )
+from .spin_scan import COARSE, scan_verdict, spin_scans
 from .verdicts import (
     MIN_GAPS,
     SAME_GAP,
@@ -502,9 +502,7 @@ def validate(
     results, cals = _analyse_all(
         data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs
     )
-    series, verdicts, notes = judge(
-        results, models, f, calibrations=cals, spin_scan=spin_scan
-    )
+    series, verdicts, notes = judge(results, models, f, calibrations=cals, spin_scan=spin_scan)
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
     if out is not None:
