@@ -23,6 +23,7 @@ LAYERS = [
         "cosserat._atomic",
         "cosserat._text",
         "cosserat._moved",
+        "cosserat._stencil",
     ],
     ["cosserat.viz"],
     ["cosserat.model"],

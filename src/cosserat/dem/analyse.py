@@ -17,6 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from .._atomic import write_text
+from .._stencil import gradient as _gradient
+from .._stencil import half_vorticity
 from ..errors import InputError
 from .coarse import (
     SUMS,
@@ -287,10 +289,6 @@ def _fmt(v: float) -> str:
     return "" if not np.isfinite(v) else f"{v:.6g}"
 
 
-def _gradient(s: np.ndarray, f: np.ndarray) -> np.ndarray:
-    return np.gradient(f, s) if s.size > 2 else np.full_like(f, np.nan)
-
-
 def steady_profile(
     run: RunSamples, deck: Deck, *, lammps_version: str, first: int | None = None,
     blocks: int = BLOCKS,
@@ -326,10 +324,10 @@ def steady_profile(
     for f in per_block:
         u = f["u"]
         if polar:
-            f["half_vorticity"] = 0.5 * _gradient(s, s * u) / s
+            f["half_vorticity"] = half_vorticity(s, u, polar=True)
             f["gamma_dot"] = s * _gradient(s, u / s)
         else:
-            f["half_vorticity"] = -0.5 * _gradient(s, u)
+            f["half_vorticity"] = half_vorticity(s, u)
             f["gamma_dot"] = _gradient(s, u)
         p = 0.5 * (f["sigma_tt"] + f["sigma_nn"])
         f["inertial_number"] = inertial_number(f["gamma_dot"], p, density)

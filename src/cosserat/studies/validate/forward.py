@@ -1,0 +1,365 @@
+"""The forward model of the spin measurement: what a run's analysis would report for a model.
+
+A DEM run reports, per bin, the mean velocity u and the mean grain spin omega over the grains
+in that bin, and half the vorticity by a difference stencil over the binned u
+(:mod:`cosserat._stencil`, the code :mod:`cosserat.dem.analyse` writes the run's
+``half_vorticity`` column with). A model's point value of omega - half vorticity, with analytic
+derivatives, is not that: near a wall, where u bends within one bin, the binned spin and the
+stencil's half vorticity differ from the point values by as much as the departure itself. So
+a model's departure is compared with the data's only after the same measurement:
+
+1. **bins**: the run's own, from its coordinate column: an interior bin spans its centre
+   +- w/2 (w the median spacing of the centres); a bin next to a wall spans from the wall's
+   surface to twice its centre's distance from it (the analysis puts the end bins' centres
+   midway between the wall and the inner edge, :func:`bin_edges`);
+2. **averages**: u and omega averaged over each bin (Gauss-Legendre, :data:`NODES` points per
+   bin), weighted by r in Couette flow (the bins are annuli);
+3. **stencil**: half the vorticity from the binned u at the bin centres by the analysis'
+   stencil (``"analysis"``) or, at the first bin next to each wall, by one of the alternative
+   stencils of :data:`STENCILS`.
+
+Every stencil is a linear combination of the wall's velocity and the binned u of the first
+three bins (:func:`first_layer_weights`), so the same weights give the data's half vorticity
+under that stencil and its standard error from u's (:func:`measured_first_layer`).
+
+All quantities are in the run's units and sign (omega d / V, the moving wall's velocity
+positive: :attr:`cosserat.analysis.corpus.Run.sign`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..._stencil import half_vorticity
+from ...analysis.corpus import COORDINATE, Run
+from ...analysis.fitting import moving_wall
+from ...errors import ParameterError
+from ...model.constitutive import FloatArray
+
+NODES = 24
+"""Gauss-Legendre points per bin of the bin averages."""
+WALL_SHIFT_D = 0.5
+"""The wall's position in the wall stencils is varied by +- this from its surface [d]."""
+
+STENCILS: dict[str, str] = {
+    "analysis": "np.gradient over the bin centres, as the DEM analysis (one-sided between the "
+    "first two bins)",
+    "wall": "central difference across the first bin, from the wall's velocity at its surface "
+    "to the second bin",
+    "wall-0.5": "as 'wall', the wall's velocity placed 0.5 d behind its surface",
+    "wall+0.5": "as 'wall', the wall's velocity placed 0.5 d inside the gap",
+    "wall-first": "one-sided, from the wall's velocity at its surface to the first bin",
+    "second-order": "one-sided second order through the first three bins (np.gradient with "
+    "edge_order=2)",
+}
+"""The first layer's half-vorticity stencils, by name: how each differences u at the bin
+nearest to a wall (every other bin keeps the analysis' stencil)."""
+
+
+def _check_stencil(stencil: str) -> None:
+    if stencil not in STENCILS:
+        raise ParameterError(f"stencil must be one of {', '.join(STENCILS)}; got {stencil!r}")
+
+
+@dataclass(frozen=True)
+class Bins:
+    """A run's bins in its own coordinate (y or r) [d], ordered across the gap.
+
+    Attributes
+    ----------
+    centre, lo, hi : ndarray
+        Bin centres and edges [d].
+    order : ndarray of int
+        ``order[k]`` is the run's row of the k-th bin across the gap.
+    walls : (float, float)
+        The coordinates of the two walls' surfaces [d] (lower/inner first).
+    polar : bool
+        Couette bins (annuli).
+    """
+
+    centre: FloatArray
+    lo: FloatArray
+    hi: FloatArray
+    order: NDArray[np.intp]
+    walls: tuple[float, float]
+    polar: bool
+
+
+def bin_edges(run: Run) -> Bins:
+    """The run's bins (module docstring, step 1).
+
+    Raises
+    ------
+    ParameterError
+        Fewer than 3 bins, or two bins at one position.
+    """
+    c = np.asarray(run.columns[COORDINATE[run.cell]], dtype=float)
+    order = np.argsort(c)
+    s = c[order]
+    if s.size < 3 or np.any(np.diff(s) <= 0.0):
+        raise ParameterError(
+            f"run {run.name}: the forward model needs at least 3 bins at distinct positions; "
+            f"got {s.size}"
+        )
+    lower = float(run.Ri_d or 0.0) if run.cell == "couette" else 0.0
+    upper = lower + run.gap_d
+    w = float(np.median(np.diff(s)))
+    lo, hi = s - 0.5 * w, s + 0.5 * w
+    lo[0], hi[0] = lower, max(2.0 * s[0] - lower, lower + 1e-9 * w)
+    lo[-1], hi[-1] = min(2.0 * s[-1] - upper, upper - 1e-9 * w), upper
+    lo, hi = np.clip(lo, lower, upper), np.clip(hi, lower, upper)
+    return Bins(s, lo, hi, order, (lower, upper), run.cell == "couette")
+
+
+def bin_average(bins: Bins, f: Callable[[FloatArray], FloatArray]) -> FloatArray:
+    """The average of ``f`` (a function of the coordinate [d]) over each bin, weighted by r
+    in Couette flow [unit of f]."""
+    x, wq = np.polynomial.legendre.leggauss(NODES)
+    half = 0.5 * (bins.hi - bins.lo)
+    pts = 0.5 * (bins.hi + bins.lo)[:, None] + half[:, None] * x[None, :]
+    weight = wq[None, :] * (pts if bins.polar else np.ones_like(pts))
+    values = np.asarray(f(pts.ravel()), dtype=float).reshape(pts.shape)
+    return np.sum(weight * values, axis=1) / np.sum(weight, axis=1)
+
+
+def first_layer_weights(
+    bins: Bins, wall: int, stencil: str
+) -> tuple[float, FloatArray, NDArray[np.intp]]:
+    """The stencil at the bin nearest to wall ``wall`` (0 lower/inner, 1 upper/outer) as a
+    linear combination: d g/dx at that bin = ``w_wall g_wall + sum w_k g[bins_k]``, g = u
+    (plane) or r u (Couette), x the coordinate [1/d].
+
+    Returns
+    -------
+    (w_wall, w, bins_k)
+        The wall velocity's weight, the bins' weights and the bins' indices (across-gap order).
+    """
+    _check_stencil(stencil)
+    n = bins.centre.size
+    idx = np.array([0, 1, 2]) if wall == 0 else np.array([n - 1, n - 2, n - 3])
+    x = bins.centre[idx]
+    inward = 1.0 if wall == 0 else -1.0
+    zero = np.zeros(3)
+    if stencil == "analysis":
+        w = zero.copy()
+        w[0], w[1] = -1.0 / (x[1] - x[0]), 1.0 / (x[1] - x[0])
+        return 0.0, w, idx
+    if stencil == "second-order":
+        h1, h2 = x[1] - x[0], x[2] - x[1]
+        # np.gradient's edge_order=2 at the first point (non-uniform spacing)
+        a = -(2.0 * h1 + h2) / (h1 * (h1 + h2))
+        b = (h1 + h2) / (h1 * h2)
+        c = -h1 / (h2 * (h1 + h2))
+        return 0.0, np.array([a, b, c]), idx
+    xp = _wall_position(bins, wall, stencil)
+    k = 0 if stencil == "wall-first" else 1
+    if (x[k] - xp) * inward <= 0.0:
+        raise ParameterError(
+            f"stencil {stencil!r}: the wall position {xp:.4g} d is not between the wall and "
+            f"the bin at {x[k]:.4g} d"
+        )
+    w = zero.copy()
+    w[k] = 1.0 / (x[k] - xp)
+    return -1.0 / (x[k] - xp), w, idx
+
+
+def _wall_position(bins: Bins, wall: int, stencil: str) -> float:
+    """Where a wall stencil puts the wall's velocity [d]."""
+    shift = {"wall-0.5": -WALL_SHIFT_D, "wall+0.5": WALL_SHIFT_D}.get(stencil, 0.0)
+    return bins.walls[wall] + (1.0 if wall == 0 else -1.0) * shift
+
+
+def _wall_g(bins: Bins, u_wall: float, wall: int, stencil: str) -> float:
+    """g = u (plane) or r u (Couette) of the wall at a wall stencil's position: the wall
+    moves rigidly (a translation; a rotation, u = u_wall r / r_wall) [-]."""
+    if not bins.polar:
+        return float(u_wall)
+    xp = _wall_position(bins, wall, stencil)
+    return float(u_wall * xp * xp / bins.walls[wall])
+
+
+def _half_from(bins: Bins, g_slope: FloatArray | float, at: FloatArray | float) -> Any:
+    """Half the vorticity from d g/dx (g = u or r u) at positions ``at`` [d]."""
+    return 0.5 * np.asarray(g_slope) / np.asarray(at) if bins.polar else -0.5 * np.asarray(g_slope)
+
+
+def stencil_half(
+    bins: Bins, u: FloatArray, u_walls: tuple[float, float], stencil: str
+) -> FloatArray:
+    """Half the vorticity of the binned ``u`` (across-gap order) by the analysis' stencil,
+    the first bin at each wall by ``stencil`` [unit of u / d]."""
+    _check_stencil(stencil)
+    half = half_vorticity(bins.centre, u, bins.polar)
+    if stencil == "analysis":
+        return half
+    g = bins.centre * u if bins.polar else np.asarray(u, dtype=float)
+    for wall in (0, 1):
+        ww, w, idx = first_layer_weights(bins, wall, stencil)
+        gw = _wall_g(bins, u_walls[wall], wall, stencil)
+        slope = ww * gw + float(np.dot(w, g[idx]))
+        half[idx[0]] = _half_from(bins, slope, bins.centre[idx[0]])
+    return half
+
+
+def wall_velocities(run: Run) -> tuple[float, float]:
+    """The two walls' velocities in the run's units and sign (lower/inner first): 1 at the
+    moving wall, 0 at a fixed one (both 0 in the channel) [-]."""
+    if run.cell == "channel":
+        return 0.0, 0.0
+    if run.cell == "couette":
+        return (1.0, 0.0) if run.moving_wall == "inner" else (0.0, 1.0)
+    return (0.0, 1.0) if run.moving_wall == "upper" else (1.0, 0.0)
+
+
+def _distance_from_moving(run: Run, x: FloatArray) -> FloatArray:
+    """Distance from the moving wall's surface of coordinates ``x`` [d]."""
+    if run.cell == "couette":
+        inner = float(run.Ri_d or 0.0)
+        return x - inner if run.moving_wall == "inner" else inner + run.gap_d - x
+    return run.gap_d - x if run.moving_wall == "upper" else np.asarray(x, dtype=float)
+
+
+@dataclass(frozen=True)
+class ModelFields:
+    """A model's u and omega as functions of a run's coordinate [d], in the run's units and
+    sign (u / V with the moving wall's velocity +1, omega d / V); omega None for a rheology
+    whose grains turn with the material (its point omega is half the vorticity)."""
+
+    u: Callable[[FloatArray], FloatArray]
+    omega: Callable[[FloatArray], FloatArray]
+    point_departure: Callable[[FloatArray], FloatArray]
+
+
+def model_fields(profile: Any, run: Run) -> ModelFields:
+    """A cosserat :class:`~cosserat.results.profile.Profile` (fitted to ``run``) in the run's
+    coordinate, units and sign.
+
+    The rotation sense: the model's half vorticity ``-(du/dxi + kappa u)/2`` and the analysis'
+    half vorticity of the model's u in the run's coordinate agree up to a sign fixed by the
+    two frames (which wall is at xi = 0, the sign of the wall's velocity); that sign turns the
+    model's omega into the run's frame (a spin turns with the vorticity under a reflection).
+    """
+    eps = float(profile.problem.eps)
+    xw, uw = moving_wall(profile.problem)
+
+    def xi_of(x: FloatArray) -> FloatArray:
+        d = np.clip(_distance_from_moving(run, np.asarray(x, dtype=float)) * eps, 0.0, 1.0)
+        return d if xw == 0.0 else 1.0 - d
+
+    polar = run.cell == "couette"
+    lower = float(run.Ri_d or 0.0) if polar else 0.0
+    probe = np.linspace(lower, lower + run.gap_d, 401)
+    f = profile.evaluate(xi_of(probe))
+    u_run = np.asarray(f.u, dtype=float) / uw
+    model_half = -0.5 * (f.du_dxi + f.kappa * f.u) * eps
+    sense = float(np.sum(half_vorticity(probe, u_run, polar) * model_half))
+    k = -1.0 if sense < 0.0 else 1.0
+
+    def u(x: FloatArray) -> FloatArray:
+        return np.asarray(profile.evaluate(xi_of(x)).u, dtype=float) / uw
+
+    def spin(x: FloatArray) -> FloatArray:
+        g = profile.evaluate(xi_of(x))
+        half = -0.5 * (g.du_dxi + g.kappa * g.u) * eps
+        return k * (half if g.omega is None else np.asarray(g.omega) * eps)
+
+    def point(x: FloatArray) -> FloatArray:
+        g = profile.evaluate(xi_of(x))
+        half = -0.5 * (g.du_dxi + g.kappa * g.u) * eps
+        return k * ((half if g.omega is None else np.asarray(g.omega) * eps) - half)
+
+    return ModelFields(u, spin, point)
+
+
+def forward_fields(
+    fields: ModelFields, run: Run, stencil: str = "analysis"
+) -> dict[str, FloatArray]:
+    """What the run's analysis would report for the model ``fields``: ``u``, ``omega``,
+    ``half_vorticity`` and ``departure`` (omega - half vorticity) per bin, in the run's row
+    order [-]; and ``point`` (the model's point departure at the bin centres) [-]."""
+    bins = bin_edges(run)
+    u = bin_average(bins, fields.u)
+    omega = bin_average(bins, fields.omega)
+    half = stencil_half(bins, u, wall_velocities(run), stencil)
+    out: dict[str, FloatArray] = {}
+    for name, v in (
+        ("u", u),
+        ("omega", omega),
+        ("half_vorticity", half),
+        ("departure", omega - half),
+        ("point", np.asarray(fields.point_departure(bins.centre), dtype=float)),
+    ):
+        row = np.empty_like(v)
+        row[bins.order] = v
+        out[name] = row
+    return out
+
+
+def forward_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatArray:
+    """A model's omega - half vorticity as the run's analysis would report it, per bin in the
+    run's row order (the run's units and sign) [-].
+
+    Parameters
+    ----------
+    profile : Profile
+        The model's solution (a fit to ``run``; :mod:`cosserat.results.profile`).
+    run : Run
+        The run whose bins, stencil and frame the model is measured with.
+    stencil : str
+        The first layer's stencil at each wall (:data:`STENCILS`); every other bin keeps the
+        analysis' np.gradient.
+
+    Raises
+    ------
+    ParameterError
+        An unknown stencil, or a run with fewer than 3 bins.
+    """
+    _check_stencil(stencil)
+    return forward_fields(model_fields(profile, run), run, stencil)["departure"]
+
+
+def first_layer_half_se(
+    bins: Bins, u_se: FloatArray, rho_u: float, wall: int, stencil: str
+) -> float:
+    """Standard error of a stencil's first-layer half vorticity from u's standard errors
+    (across-gap order) with lag-1 correlation ``rho_u`` between neighbouring bins (AR(1),
+    :func:`cosserat.calibration.noise.covariance`); the wall's velocity is exact [-]."""
+    from ...calibration.noise import covariance
+
+    _, w, idx = first_layer_weights(bins, wall, stencil)
+    scale = bins.centre[idx] if bins.polar else np.ones(3)
+    cov = covariance(np.asarray(u_se, dtype=float)[idx] * scale, rho_u)
+    var = float(w @ cov @ w)
+    factor = 0.5 / bins.centre[idx[0]] if bins.polar else 0.5
+    return factor * math.sqrt(max(var, 0.0))
+
+
+def measured_first_layer(
+    run: Run, wall: int, stencil: str, rho_u: float
+) -> tuple[float, float, float]:
+    """The data's first-layer omega - half vorticity at wall ``wall`` (0 lower/inner, 1
+    upper/outer) under ``stencil``, with the standard error of its half vorticity and of
+    omega, in the run's units and sign: ``(departure, se_half, se_omega)`` [-].
+
+    The analysis' stencil takes the run's ``half_vorticity`` column as reported; the others
+    difference the run's u, with u's standard errors correlated between neighbouring bins by
+    ``rho_u`` (:func:`first_layer_half_se`).
+    """
+    bins = bin_edges(run)
+    u, u_se = (np.asarray(a, dtype=float)[bins.order] for a in run.quantity("u"))
+    omega, omega_se = (np.asarray(a, dtype=float)[bins.order] for a in run.quantity("omega"))
+    k = 0 if wall == 0 else bins.centre.size - 1
+    if stencil == "analysis":
+        half, half_se = (
+            np.asarray(a, dtype=float)[bins.order] for a in run.quantity("half_vorticity")
+        )
+        return float(omega[k] - half[k]), float(half_se[k]), float(omega_se[k])
+    half = stencil_half(bins, u, wall_velocities(run), stencil)
+    se = first_layer_half_se(bins, u_se, rho_u, wall, stencil)
+    return float(omega[k] - half[k]), se, float(omega_se[k])
