@@ -26,13 +26,20 @@ first-layer spin: a scan"):
    predicts at each (K, L) of a grid over their declared fit ranges (K linear, L logarithmic),
    and the chi^2 of the joint calibration's fields there (the other free parameters held at
    the optimum). A point is *admissible* when chi^2 - chi^2_min <= chi2.ppf(0.95, k), k the
-   calibration's free parameters. The departure at a point comes from a ``predictor``
-   (:data:`Predictor`): by default the point value at the bin centre with analytic derivatives
-   (:func:`point_departure`); a forward model of the measurement can be passed instead.
-4. **The verdict** (:func:`scan_verdict`, used by ``spin_model``): "refuted" only where the
-   measured departure is significant (|m| >= :data:`~.verdicts.SIGN_SIGMAS` se) and no
-   admissible (K, L) gives its sign; "supported" where the best joint fit gives the sign and
-   the size within :data:`SIZE_SIGMAS` se; "undecided" otherwise.
+   calibration's free parameters; a second grid of the same size around the optimum
+   (:data:`LOCAL_SPAN` standard errors each way) resolves that region. The departure at a
+   point comes from a ``predictor`` (:data:`PREDICTORS`): by default the model measured like
+   the data, bin averages and the analysis' np.gradient stencil
+   (:func:`~.forward.forward_departure`); ``"point"``, the point value at the bin centre with
+   analytic derivatives (:func:`point_departure`), which is not what the data measure.
+4. **The verdict** (:func:`wall_call` per run, :func:`scan_verdict`, used by ``spin_model``):
+   a run is "refuted" only where the measured departure is significant (|m| >=
+   :data:`~.verdicts.SIGN_SIGMAS` se under the analysis' stencil) and no admissible (K, L)
+   gives its sign; "supported" where the best joint fit gives the sign and the size within
+   :data:`SIZE_SIGMAS` se; "undecided" otherwise. Over the runs: "refuted" when some run is
+   refuted and none supported; "supported" when every run of significant departure is
+   supported; "mixed" when some are supported and others refuted or missed in size;
+   "undecided" otherwise.
 """
 
 from __future__ import annotations
@@ -53,10 +60,13 @@ Predictor = Callable[[Any, Run], FloatArray]
 """``predictor(profile, run)``: a solved model profile's omega - half vorticity at every bin of
 ``run`` (its ``distance_d`` order), in the run's units (omega d / V) and rotation sense."""
 
-COARSE = 5
-"""Points per parameter of the scan ``cosserat validate`` runs by default."""
+COARSE = 11
+"""Points per parameter of the scan ``cosserat validate`` runs by default (each grid: the
+declared ranges' and the local one; about 1-3 s a run)."""
 LEVEL = 0.95
 """Confidence level of the admissible region [-]."""
+LOCAL_SPAN = 4.0
+"""The local grid spans this many of the calibration's standard errors each way [-]."""
 SIZE_SIGMAS = 2.0
 """"supported" needs the best fit's first-layer departure within this many se of the data's."""
 K_LABEL = "K"
@@ -289,6 +299,37 @@ def point_departure(profile: Any, run: Run) -> FloatArray:
     return sign * (model_omega - model_half)
 
 
+def _forward(profile: Any, run: Run) -> FloatArray:
+    from .forward import forward_departure
+
+    return forward_departure(profile, run, "analysis")
+
+
+PREDICTORS: dict[str, tuple[Predictor, str]] = {
+    "forward": (
+        _forward,
+        "measured like the data: u and omega averaged over the run's bins, half the vorticity "
+        "by the analysis' np.gradient stencil (forward.forward_departure)",
+    ),
+    "point": (
+        point_departure,
+        "the point value at the bin centre with analytic derivatives",
+    ),
+}
+"""The ways a scan measures the model's departure, by name: (predictor, description)."""
+DEFAULT_PREDICTOR = "forward"
+
+
+def _predictor(predictor: Predictor | str) -> tuple[Predictor, str]:
+    if isinstance(predictor, str):
+        if predictor not in PREDICTORS:
+            raise ParameterError(
+                f"unknown spin predictor {predictor!r}: known are {', '.join(PREDICTORS)}"
+            )
+        return PREDICTORS[predictor]
+    return predictor, getattr(predictor, "__name__", "a given predictor")
+
+
 def first_bin(run: Run) -> int:
     """Index of the bin nearest to the moving wall with a usable omega and half vorticity (the
     first layer of :func:`~.measures.measure_spin`).
@@ -396,6 +437,9 @@ class Scan:
         Its free parameters (the admissible region's degrees of freedom).
     best : float
         The departure at the joint fit's optimum [-].
+    K_near, L_near, departure_near, chi2_near : arrays
+        The same on a grid around the optimum (:data:`LOCAL_SPAN` standard errors each way),
+        which resolves the 95% region.
     measured, measured_se : float
         The data's first-layer departure and its se [-].
     """
@@ -412,6 +456,12 @@ class Scan:
     measured: float
     measured_se: float
     distance_d: float
+    K_near: FloatArray = field(default_factory=lambda: np.zeros(0))
+    L_near: FloatArray = field(default_factory=lambda: np.zeros(0))
+    departure_near: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
+    chi2_near: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
+    how: str = ""
+    """How the model's departure is measured (:data:`PREDICTORS`)."""
     notes: list[str] = field(default_factory=list)
 
     @property
@@ -421,25 +471,38 @@ class Scan:
 
     @property
     def admissible(self) -> FloatArray:
-        """Grid points inside the joint fit's 95% region (boolean, shape of the grid)."""
+        """Points of the range grid inside the joint fit's 95% region (boolean, its shape)."""
         return np.isfinite(self.departure) & (self.chi2 - self.chi2_min <= self.threshold)
 
-    def span(self, where: FloatArray | None = None) -> tuple[float, float] | None:
-        """(min, max) of the predicted departure over ``where`` (default: every solved point),
-        with the best fit's own value included when ``where`` is the admissible region."""
-        mask = np.isfinite(self.departure) if where is None else where
-        vals = list(self.departure[mask])
-        if where is not None:
-            vals.append(self.best)
-        return (float(min(vals)), float(max(vals))) if vals else None
+    @property
+    def admissible_near(self) -> FloatArray:
+        """Points of the local grid inside the 95% region (boolean, its shape)."""
+        return np.isfinite(self.departure_near) & (self.chi2_near - self.chi2_min <= self.threshold)
 
     @property
-    def admissible_span(self) -> tuple[float, float] | None:
-        return self.span(self.admissible)
+    def admissible_count(self) -> int:
+        return int(np.count_nonzero(self.admissible) + np.count_nonzero(self.admissible_near))
+
+    @property
+    def admissible_span(self) -> tuple[float, float]:
+        """(min, max) of the predicted departure over the 95% region: both grids' admissible
+        points and the optimum [-]."""
+        vals = [
+            self.best,
+            *self.departure[self.admissible],
+            *self.departure_near[self.admissible_near],
+        ]
+        return float(min(vals)), float(max(vals))
 
     @property
     def whole_span(self) -> tuple[float, float] | None:
-        return self.span(None)
+        """(min, max) of the predicted departure over every solved point of both grids [-]."""
+        vals = [
+            self.best,
+            *self.departure[np.isfinite(self.departure)],
+            *self.departure_near[np.isfinite(self.departure_near)],
+        ]
+        return float(min(vals)), float(max(vals))
 
     def to_dict(self) -> dict[str, Any]:
         a, w = self.admissible_span, self.whole_span
@@ -461,7 +524,14 @@ class Scan:
             "measured_se": self.measured_se,
             "admissible_range": None if a is None else list(a),
             "whole_range": None if w is None else list(w),
-            "admissible_points": int(np.count_nonzero(self.admissible)),
+            "admissible_points": self.admissible_count,
+            "local_K_range": [float(self.K_near[0]), float(self.K_near[-1])]
+            if self.K_near.size
+            else None,
+            "local_L_range": [float(self.L_near[0]), float(self.L_near[-1])]
+            if self.L_near.size
+            else None,
+            "predictor": self.how,
             "notes": list(self.notes),
         }
 
@@ -476,7 +546,7 @@ def scan(
     run: Run,
     fit: JointFit,
     points: int = COARSE,
-    predictor: Predictor = point_departure,
+    predictor: Predictor | str = DEFAULT_PREDICTOR,
 ) -> Scan:
     """The scan of ``run`` over a ``points`` x ``points`` grid of the moving wall's K and L on
     their declared fit ranges (module docstring, item 3).
@@ -493,6 +563,7 @@ def scan(
 
     if points < 2:
         raise ParameterError(f"the spin scan needs at least 2 points per parameter; got {points}")
+    predictor, how = _predictor(predictor)
     i0 = first_bin(run)
     w, sw = run.quantity("omega")
     h, sh = run.quantity("half_vorticity")
@@ -509,25 +580,43 @@ def scan(
     K = np.linspace(k_slot.natural(klo), k_slot.natural(khi), points)
     L = np.geomspace(l_slot.natural(llo), l_slot.natural(lhi), points)
     theta0 = fit.theta
-    dep = np.full((points, points), np.nan)
-    chi2 = np.full((points, points), np.inf)
-    thetas = []
-    for kv in K:
-        for lv in L:
-            th = theta0.copy()
-            th[ik], th[il] = k_slot.internal(kv), l_slot.internal(lv)
-            thetas.append(th)
-    lnl = s.log_likelihood_many(np.array(thetas))
-    for n, th in enumerate(thetas):
-        a, b = divmod(n, points)
-        if not math.isfinite(lnl[n]):
-            continue
-        chi2[a, b] = -2.0 * (float(lnl[n]) - s.log_norm)
-        try:
-            prof = _profile(s.model, rd, s.run_values(rd, th))
-        except SOLVE_ERRORS:
-            continue
-        dep[a, b] = float(predictor(prof, run)[i0])
+
+    def grid(kk: FloatArray, ll: FloatArray) -> tuple[FloatArray, FloatArray]:
+        dep = np.full((kk.size, ll.size), np.nan)
+        chi2 = np.full((kk.size, ll.size), np.inf)
+        thetas = []
+        for kv in kk:
+            for lv in ll:
+                th = theta0.copy()
+                th[ik], th[il] = k_slot.internal(kv), l_slot.internal(lv)
+                thetas.append(th)
+        lnl = s.log_likelihood_many(np.array(thetas))
+        for n, th in enumerate(thetas):
+            a, b = divmod(n, ll.size)
+            if not math.isfinite(lnl[n]):
+                continue
+            chi2[a, b] = -2.0 * (float(lnl[n]) - s.log_norm)
+            try:
+                prof = _profile(s.model, rd, s.run_values(rd, th))
+            except SOLVE_ERRORS:
+                continue
+            dep[a, b] = float(predictor(prof, run)[i0])
+        return dep, chi2
+
+    dep, chi2 = grid(K, L)
+    # the 95% region is small against the declared ranges: a grid of the same size around the
+    # optimum, LOCAL_SPAN standard errors (the calibration's, in the fit's coordinates) each way
+    half = _local_half_widths(fit, (ik, il), ((klo, khi), (llo, lhi)))
+    kc, lc = theta0[ik], theta0[il]
+    K_near = np.array(
+        [k_slot.natural(x) for x in np.linspace(max(klo, kc - half[0]), min(khi, kc + half[0]),
+                                                points)]
+    )  # fmt: skip
+    L_near = np.array(
+        [l_slot.natural(x) for x in np.linspace(max(llo, lc - half[1]), min(lhi, lc + half[1]),
+                                                points)]
+    )  # fmt: skip
+    dep_near, chi2_near = grid(K_near, L_near)
     best = float(predictor(_profile(s.model, rd, s.run_values(rd, theta0)), run)[i0])
     return Scan(
         run.name,
@@ -542,7 +631,29 @@ def scan(
         measured,
         measured_se,
         float(np.asarray(run.distance_d)[i0]),
+        K_near,
+        L_near,
+        dep_near,
+        chi2_near,
+        how,
     )
+
+
+def _local_half_widths(
+    fit: JointFit, index: tuple[int, int], ranges: tuple[tuple[float, float], ...]
+) -> tuple[float, float]:
+    """Half-widths of the local grid in the fit's coordinates: :data:`LOCAL_SPAN` times the
+    calibration's standard error of each (its identified covariance, not scaled by the misfit:
+    the region is Delta chi^2 of the unscaled chi^2), or a tenth of the range where it has
+    none."""
+    cov = fit.calibration.covariance
+    out = []
+    for i, (lo, hi) in zip(index, ranges, strict=True):
+        se = math.nan
+        if cov is not None and np.asarray(cov).shape[0] > i:
+            se = math.sqrt(max(float(np.asarray(cov)[i, i]), 0.0))
+        out.append(LOCAL_SPAN * se if math.isfinite(se) and se > 0.0 else 0.1 * (hi - lo))
+    return out[0], out[1]
 
 
 # --------------------------------------------------------------------------- the verdict
@@ -578,28 +689,32 @@ def _describe(sc: Scan) -> str:
         f"(chi^2 = {sc.chi2_min:.4g} for {sc.fit.calibration.dof} dof; K = "
         f"{sc.fit.value('K'):.3g}, L = {sc.fit.value('L'):.3g} d; {sc.fit.angles.text()}) "
         f"predicts {sc.best:+.3g}; over its 95% region (Delta chi^2 <= {sc.threshold:.3g}, "
-        f"{int(np.count_nonzero(sc.admissible))} of {sc.K.size * sc.L.size} grid points) "
+        f"{sc.admissible_count} grid points; K {sc.K_near[0]:.3g}-{sc.K_near[-1]:.3g}, L "
+        f"{sc.L_near[0]:.3g}-{sc.L_near[-1]:.3g} d around the optimum) "
         f"{adm}; over K in [{sc.K[0]:g}, {sc.K[-1]:g}] and L in [{sc.L[0]:.3g}, "
         f"{sc.L[-1]:.3g}] d ({sc.K.size} x {sc.L.size} grid) {rng}: {wall_call(sc)}"
     )
 
 
-def scan_verdict(scans: Sequence[Scan], u_only: Any = None, predictor: str = "") -> Any:
+def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
     """The ``spin_model`` verdict from the runs' scans (module docstring, item 4): "refuted"
     where every run of determined sign is refuted, "supported" where every one is supported,
     "mixed" where some are refuted and some supported, "undecided" otherwise. ``u_only``: the
     verdict on the u-only fits (:func:`~.verdicts.spin_model_verdict`), kept in its numbers.
-    ``predictor``: how the model's departure is measured (named in the evidence)."""
+    """
     from .verdicts import SIGN_SIGMAS, Verdict
 
     key = "spin_model"
     calls = {sc.run: wall_call(sc) for sc in scans}
     refuted = [r for r, c in calls.items() if c == "refuted"]
     supported = [r for r, c in calls.items() if c == "supported"]
+    significant = [sc.run for sc in scans if abs(sc.measured) >= SIGN_SIGMAS * sc.measured_se]
+    missed = [r for r in significant if calls[r] == "undecided"]
     numbers: dict[str, Any] = {"scans": [sc.to_dict() for sc in scans], "calls": calls}
+    numbers["significant"] = significant
     if u_only is not None:
         numbers["u_only_fits"] = {"verdict": u_only.verdict, **dict(u_only.numbers)}
-    how = predictor or "the point value at the bin centre with analytic derivatives"
+    how = "; ".join(sorted({sc.how for sc in scans})) or "-"
     method = (
         f"Method: per run, phi from the stresses and the walls' delta fixed, K and L "
         f"calibrated on u, omega and the stress ratio together, then the model's first-layer "
@@ -614,12 +729,20 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, predictor: str = "")
         return Verdict(
             key, "undecided", "The data cannot decide: no run could be scanned.", "", (), numbers
         )
-    if refuted and supported:
-        verdict, head = (
-            "mixed",
-            (f"Mixed: refuted at {', '.join(refuted)}, supported at {', '.join(supported)}."),
+    if supported and (refuted or missed):
+        verdict = "mixed"
+        head = (
+            f"Mixed: supported at {', '.join(supported)}"
+            + (f"; refuted at {', '.join(refuted)}" if refuted else "")
+            + (
+                f"; at {', '.join(missed)} the admissible set gives the measured sign but the best "
+                "fit misses its size"
+                if missed
+                else ""
+            )
+            + "."
         )
-    elif refuted and len(refuted) == len([c for c in calls.values() if c != "undecided"]):
+    elif refuted and not supported:
         verdict, head = (
             "refuted",
             (
@@ -639,8 +762,8 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, predictor: str = "")
         verdict, head = (
             "undecided",
             (
-                "Undecided: no run's first layer is both significant and out of reach of the "
-                "admissible set, nor matched by the best fit."
+                "Undecided: no run's first-layer departure is both significant and out of the "
+                "admissible set's reach, nor matched in sign and size by the best fit."
             ),
         )
     outside = [
@@ -655,9 +778,9 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, predictor: str = "")
         else ""
     )
     change = (
-        "a forward model of the measurement (the analysis' bin averages and stencil) whose "
-        "first-layer departure has the measured sign inside the 95% region, or a wall spin "
-        "condition other than eqn-nd_bc3u."
+        "a first-layer departure of the measured sign inside the 95% region when the model is "
+        "measured another way (another stencil, finer bins), or a wall spin condition other "
+        "than eqn-nd_bc3u."
         if verdict == "refuted"
         else "smaller errors of the first layer, or a stencil-independent first-layer measure."
     )
@@ -668,7 +791,7 @@ def scan_run(
     run: Run,
     runs: Sequence[Run],
     points: int = COARSE,
-    predictor: Predictor = point_departure,
+    predictor: Predictor | str = DEFAULT_PREDICTOR,
     starts: int | None = None,
 ) -> Scan:
     """:func:`angles`, :func:`joint_fit` and :func:`scan` of one run."""
@@ -681,7 +804,7 @@ def spin_scans(
     runs: Sequence[Run],
     corpus: Sequence[Run],
     points: int = COARSE,
-    predictor: Predictor = point_departure,
+    predictor: Predictor | str = DEFAULT_PREDICTOR,
 ) -> tuple[list[Scan], list[str]]:
     """:func:`scan_run` of every plane run of ``runs`` with a measured spin whose two walls are
     of one kind (``corpus``: every run, for phi); the others left out, each with why."""
