@@ -28,15 +28,19 @@ first-layer spin: a scan"):
    the optimum). A point is *admissible* when chi^2 - chi^2_min <= chi2.ppf(0.95, k), k the
    calibration's free parameters; a second grid of the same size around the optimum
    (:data:`LOCAL_SPAN` standard errors each way) resolves that region. The departure at a
-   point comes from a ``predictor`` (:data:`PREDICTORS`): by default the model measured like
-   the data, bin averages and the analysis' np.gradient stencil
-   (:func:`~.forward.forward_departure`); ``"point"``, the point value at the bin centre with
-   analytic derivatives (:func:`point_departure`), which is not what the data measure.
+   point comes from a ``predictor`` (:data:`PREDICTORS`): by default the model measured as the
+   run was, for a DEM run bin averages and the analysis' np.gradient stencil
+   (:func:`~.forward.forward_departure`), for a synthetic run the bin means of the exact
+   fields (:func:`binned_departure`); ``"point"``, the point value at the bin centre with
+   analytic derivatives (:func:`point_departure`), which is what neither measures.
 4. **The verdict** (:func:`wall_call` per run, :func:`scan_verdict`, used by ``spin_model``):
    a run is "refuted" only where the measured departure is significant (|m| >=
    :data:`~.verdicts.SIGN_SIGMAS` se under the analysis' stencil) and no admissible (K, L)
-   gives its sign; "supported" where the best joint fit gives the sign and the size within
-   :data:`SIZE_SIGMAS` se; "undecided" otherwise. Over the runs: "refuted" when some run is
+   gives its sign, or where it is not significant and every admissible departure is more than
+   :data:`~.verdicts.SIGN_SIGMAS` se from it (the model departs where the data do not);
+   "supported" where the best joint fit gives the sign and the size within :data:`SIZE_SIGMAS`
+   se (the data's and the prediction's, :attr:`Scan.prediction_se`, in quadrature);
+   "undecided" otherwise. Over the runs: "refuted" when some run is
    refuted and none supported; "supported" when every run of significant departure is
    supported; "mixed" when some are supported and others refuted or missed in size;
    "undecided" otherwise.
@@ -305,11 +309,29 @@ def _forward(profile: Any, run: Run) -> FloatArray:
     return forward_departure(profile, run, "analysis")
 
 
+def binned_departure(profile: Any, run: Run) -> FloatArray:
+    """The profile's omega - half vorticity averaged over each bin of ``run``, no difference
+    stencil (how :mod:`.synthetic` measures its corpora: the exact fields' bin means), per row
+    of the run, in its units and sign [-]."""
+    from .forward import bin_average, bin_edges, model_fields
+
+    bins = bin_edges(run)
+    mean = bin_average(bins, model_fields(profile, run).point_departure)
+    out = np.empty(bins.centre.size)
+    out[bins.order] = mean
+    return out
+
+
 PREDICTORS: dict[str, tuple[Predictor, str]] = {
     "forward": (
         _forward,
         "measured like the data: u and omega averaged over the run's bins, half the vorticity "
         "by the analysis' np.gradient stencil (forward.forward_departure)",
+    ),
+    "binned": (
+        binned_departure,
+        "measured like a synthetic run: omega - half vorticity averaged over the run's bins, "
+        "no stencil (synthetic.synthetic_run)",
     ),
     "point": (
         point_departure,
@@ -317,14 +339,19 @@ PREDICTORS: dict[str, tuple[Predictor, str]] = {
     ),
 }
 """The ways a scan measures the model's departure, by name: (predictor, description)."""
-DEFAULT_PREDICTOR = "forward"
+DEFAULT_PREDICTOR = "auto"
+""""auto": as the run measured its half vorticity: ``binned`` for a synthetic run (its
+sidecar's ``synthetic_model``), else ``forward`` (the DEM analysis' stencil)."""
 
 
-def _predictor(predictor: Predictor | str) -> tuple[Predictor, str]:
+def _predictor(predictor: Predictor | str, run: Run | None = None) -> tuple[Predictor, str]:
+    if predictor == "auto":
+        synthetic = run is not None and "synthetic_model" in run.meta
+        predictor = "binned" if synthetic else "forward"
     if isinstance(predictor, str):
         if predictor not in PREDICTORS:
             raise ParameterError(
-                f"unknown spin predictor {predictor!r}: known are {', '.join(PREDICTORS)}"
+                f"unknown spin predictor {predictor!r}: known are auto, {', '.join(PREDICTORS)}"
             )
         return PREDICTORS[predictor]
     return predictor, getattr(predictor, "__name__", "a given predictor")
@@ -495,6 +522,13 @@ class Scan:
         return float(min(vals)), float(max(vals))
 
     @property
+    def prediction_se(self) -> float:
+        """The best fit's departure's standard error from the spread over the 95% region: its
+        span over 2 sqrt(threshold) (the region's projection is +- sqrt(threshold) se) [-]."""
+        lo, hi = self.admissible_span
+        return (hi - lo) / (2.0 * math.sqrt(self.threshold))
+
+    @property
     def whole_span(self) -> tuple[float, float] | None:
         """(min, max) of the predicted departure over every solved point of both grids [-]."""
         vals = [
@@ -520,6 +554,7 @@ class Scan:
             "dof": self.fit.calibration.dof,
             "threshold": self.threshold,
             "best_departure": self.best,
+            "best_departure_se": self.prediction_se,
             "measured": self.measured,
             "measured_se": self.measured_se,
             "admissible_range": None if a is None else list(a),
@@ -563,7 +598,7 @@ def scan(
 
     if points < 2:
         raise ParameterError(f"the spin scan needs at least 2 points per parameter; got {points}")
-    predictor, how = _predictor(predictor)
+    predictor, how = _predictor(predictor, run)
     i0 = first_bin(run)
     w, sw = run.quantity("omega")
     h, sh = run.quantity("half_vorticity")
@@ -670,11 +705,13 @@ def wall_call(sc: Scan) -> str:
     from .verdicts import SIGN_SIGMAS
 
     m, se = sc.measured, sc.measured_se
-    if abs(m) < SIGN_SIGMAS * se:
-        return "undecided"
-    if not _sign_given(sc.admissible_span, m):
+    lo, hi = sc.admissible_span
+    if abs(m) < SIGN_SIGMAS * se:  # no sign: refuted only if the data reject every admissible
+        rejected = lo - m > SIGN_SIGMAS * se or m - hi > SIGN_SIGMAS * se
+        return "refuted" if rejected else "undecided"
+    if not _sign_given((lo, hi), m):
         return "refuted"
-    if sc.best * m > 0.0 and abs(sc.best - m) <= SIZE_SIGMAS * se:
+    if sc.best * m > 0.0 and abs(sc.best - m) <= SIZE_SIGMAS * math.hypot(se, sc.prediction_se):
         return "supported"
     return "undecided"
 
@@ -688,7 +725,8 @@ def _describe(sc: Scan) -> str:
         f"{sc.measured:+.3g} +- {sc.measured_se:.2g}; joint u + omega + stress-ratio fit "
         f"(chi^2 = {sc.chi2_min:.4g} for {sc.fit.calibration.dof} dof; K = "
         f"{sc.fit.value('K'):.3g}, L = {sc.fit.value('L'):.3g} d; {sc.fit.angles.text()}) "
-        f"predicts {sc.best:+.3g}; over its 95% region (Delta chi^2 <= {sc.threshold:.3g}, "
+        f"predicts {sc.best:+.3g} +- {sc.prediction_se:.2g}; over its 95% region (Delta "
+        f"chi^2 <= {sc.threshold:.3g}, "
         f"{sc.admissible_count} grid points; K {sc.K_near[0]:.3g}-{sc.K_near[-1]:.3g}, L "
         f"{sc.L_near[0]:.3g}-{sc.L_near[-1]:.3g} d around the optimum) "
         f"{adm}; over K in [{sc.K[0]:g}, {sc.K[-1]:g}] and L in [{sc.L[0]:.3g}, "
@@ -720,8 +758,10 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         f"calibrated on u, omega and the stress ratio together, then the model's first-layer "
         f"departure ({how}) over a grid of K and L on their declared ranges; 'refuted' only "
         f"where the measured departure is significant (>= {SIGN_SIGMAS:g} se under the "
-        f"analysis' stencil) and no point of the 95% region gives its sign, 'supported' where "
-        f"the best fit gives the sign and the size within {SIZE_SIGMAS:g} se."
+        f"analysis' stencil) and no point of the 95% region gives its sign (or, where it is "
+        f"not significant, every point departs from it by more than {SIGN_SIGMAS:g} se), "
+        f"'supported' where the best fit gives the sign and the size within {SIZE_SIGMAS:g} se "
+        "(the data's and the prediction's spread over the region, in quadrature)."
     )
     detail = "; ".join(_describe(sc) for sc in scans)
     runs = tuple(sorted(calls))
@@ -747,7 +787,8 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
             "refuted",
             (
                 f"Refuted: at {', '.join(refuted)} no admissible (K, L) of the joint calibration "
-                "gives the measured sign of the first-layer departure."
+                "gives the measured first-layer departure (its sign, or, where the data show "
+                "none, a departure these errors would not reject)."
             ),
         )
     elif supported:
@@ -835,6 +876,7 @@ __all__ = [
     "Scan",
     "ShearStress",
     "angles",
+    "binned_departure",
     "first_bin",
     "joint_fit",
     "material_phi",
