@@ -147,3 +147,19 @@ def test_validate_rejects_a_one_point_scan_in_one_line(tmp_path):
     assert "--spin-scan: must be 0 (no scan) or at least 2 points per parameter; got 1" in (
         proc.stderr
     )
+
+
+def test_the_scan_figure_draws_each_scanned_run(pair, tmp_path):
+    import json
+
+    from cosserat.viz.validation import spin_scan_figure
+
+    rough, smooth = pair
+    record = ss.scan_run(rough, [rough, smooth], points=3).to_dict()
+    record = json.loads(json.dumps(record))  # as results.json holds it (None, no NaN)
+    assert set(record["grids"]) == {"range", "near"}
+    fig = spin_scan_figure([record])
+    panel, bar = fig.axes
+    assert panel.get_xscale() == "log" and panel.get_xlabel() == "L [d]"
+    assert "rough" in panel.get_title() and "first-layer" in bar.get_ylabel()
+    fig.savefig(tmp_path / "scan.png")

@@ -567,8 +567,29 @@ class Scan:
             if self.L_near.size
             else None,
             "predictor": self.how,
+            "grids": {
+                "range": _grid(self.K, self.L, self.departure, self.chi2 - self.chi2_min),
+                "near": _grid(
+                    self.K_near, self.L_near, self.departure_near, self.chi2_near - self.chi2_min
+                ),
+            },
             "notes": list(self.notes),
         }
+
+
+def _finite(a: FloatArray) -> list[Any]:
+    """Nested lists of ``a`` with None where not finite (JSON has no NaN)."""
+    return [[float(x) if math.isfinite(x) else None for x in row] for row in np.asarray(a)]
+
+
+def _grid(K: FloatArray, L: FloatArray, dep: FloatArray, dchi2: FloatArray) -> dict[str, Any]:
+    """A grid as plain data: K [-], L [d], the departure and Delta chi^2 over (K, L)."""
+    return {
+        "K": [float(x) for x in K],
+        "L": [float(x) for x in L],
+        "departure": _finite(dep),
+        "delta_chi2": _finite(dchi2),
+    }
 
 
 def _profile(model: Any, rd: Any, values: Mapping[Any, float]) -> Any:
