@@ -332,7 +332,7 @@ def delta_claim_figure(
 
 def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
     """The Cosserat model's first-layer spin departure over (K, L), one panel per scanned run
-    (:func:`cosserat.studies.validate.spin_scan.Scan.to_dict`): the departure in colour (blue
+    (``cosserat.studies.validate.spin_scan.Scan.to_dict``): the departure in colour (blue
     negative, red positive, white 0), the declared ranges' grid with the finer grid around the
     joint fit drawn over it, the measured value's +- 2 se band (where the model gives it,
     hatched), the 95% region of the joint u + omega calibration (black contour) and its optimum

@@ -30,7 +30,7 @@ first-layer spin: a scan"):
    (:data:`LOCAL_SPAN` standard errors each way) resolves that region. The departure at a
    point comes from a ``predictor`` (:data:`PREDICTORS`): by default the model measured as the
    run was, for a DEM run bin averages and the analysis' np.gradient stencil
-   (:func:`~.forward.forward_departure`), for a synthetic run the bin means of the exact
+   (``forward.forward_departure``), for a synthetic run the bin means of the exact
    fields (:func:`binned_departure`); ``"point"``, the point value at the bin centre with
    analytic derivatives (:func:`point_departure`), which is what neither measures.
 4. **The verdict** (:func:`wall_call` per run, :func:`scan_verdict`, used by ``spin_model``):
@@ -39,7 +39,7 @@ first-layer spin: a scan"):
    gives its sign, or where it is not significant and every admissible departure is more than
    :data:`~.verdicts.SIGN_SIGMAS` se from it (the model departs where the data do not);
    "supported" where the best joint fit gives the sign and the size within :data:`SIZE_SIGMAS`
-   se (the data's and the prediction's, :attr:`Scan.prediction_se`, in quadrature);
+   se (the data's and the prediction's, ``Scan.prediction_se``, in quadrature);
    "undecided" otherwise. Over the runs: "refuted" when some run is
    refuted and none supported; "supported" when every run of significant departure is
    supported; "mixed" when some are supported and others refuted or missed in size;
@@ -73,8 +73,6 @@ LOCAL_SPAN = 4.0
 """The local grid spans this many of the calibration's standard errors each way [-]."""
 SIZE_SIGMAS = 2.0
 """"supported" needs the best fit's first-layer departure within this many se of the data's."""
-K_LABEL = "K"
-L_LABEL = "L"
 
 
 # --------------------------------------------------------------------------- the angles
@@ -279,7 +277,7 @@ def angles(run: Run, runs: Sequence[Run]) -> Angles:
 def point_departure(profile: Any, run: Run) -> FloatArray:
     """The profile's omega - half vorticity at the centre of every bin of ``run`` [-]
     (omega d / V, the run's rotation sense, fixed by the run's half_vorticity column as in
-    :meth:`.fits.RunFits.spin_departure`), with analytic derivatives.
+    ``fits.RunFits.spin_departure``), with analytic derivatives.
 
     Raises
     ------
@@ -891,6 +889,12 @@ def spin_scans(
 
 
 __all__ = [
+    "COARSE",
+    "DEFAULT_PREDICTOR",
+    "LEVEL",
+    "LOCAL_SPAN",
+    "PREDICTORS",
+    "SIZE_SIGMAS",
     "Angles",
     "JointFit",
     "Predictor",
