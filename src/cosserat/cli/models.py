@@ -197,7 +197,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         default=None,
         metavar="N",
         help="points per parameter (K, L) of the joint-calibration scan behind the spin_model "
-        "verdict (default 5; 0: the u-only fits alone; docs/validation.md)",
+        "verdict (default 11; 0: the u-only fits alone; docs/validation.md)",
     )
     vp.add_argument("--format", choices=("text", "json"), default="text")
     vp.set_defaults(func=cmd_validate)

@@ -823,7 +823,13 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
             "undecided",
             (
                 "Undecided: no run's first-layer departure is both significant and out of the "
-                "admissible set's reach, nor matched in sign and size by the best fit."
+                "admissible set's reach, nor matched in sign and size by the best fit"
+                + (
+                    f"; at {', '.join(missed)} the admissible set gives the measured sign but "
+                    "the best fit misses its size."
+                    if missed
+                    else "."
+                )
             ),
         )
     outside = [
@@ -837,13 +843,20 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         if outside
         else ""
     )
-    change = (
-        "a first-layer departure of the measured sign inside the 95% region when the model is "
-        "measured another way (another stencil, finer bins), or a wall spin condition other "
-        "than eqn-nd_bc3u."
-        if verdict == "refuted"
-        else "smaller errors of the first layer, or a stencil-independent first-layer measure."
-    )
+    if verdict == "refuted":
+        change = (
+            "a first-layer departure of the measured sign inside the 95% region when the model "
+            "is measured another way (another stencil, finer bins), or a wall spin condition "
+            "other than eqn-nd_bc3u."
+        )
+    elif missed:
+        change = (
+            f"at {', '.join(missed)}: a best fit whose first-layer departure has the measured "
+            "size (another wall spin condition than eqn-nd_bc3u, or the first layer measured "
+            "with another stencil), or smaller errors there."
+        )
+    else:
+        change = "smaller errors of the first layer, or a stencil-independent first-layer measure."
     return Verdict(key, verdict, f"{head}{note} {detail}. {method}", change, runs, numbers)
 
 
