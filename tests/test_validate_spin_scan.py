@@ -163,3 +163,25 @@ def test_the_scan_figure_draws_each_scanned_run(pair, tmp_path):
     assert panel.get_xscale() == "log" and panel.get_xlabel() == "L [d]"
     assert "rough" in panel.get_title() and "first-layer" in bar.get_ylabel()
     fig.savefig(tmp_path / "scan.png")
+
+
+def test_one_run_supported_and_one_missed_in_size_is_mixed(pair):
+    import dataclasses
+
+    rough, smooth = pair
+    good = ss.scan_run(rough, [rough, smooth], points=3)
+    assert ss.wall_call(good) == "supported"
+    # the same sign, three times the size: the admissible set gives the sign, the best fit
+    # misses the size
+    far = dataclasses.replace(good, run="far", measured=3.0 * good.measured)
+    assert abs(far.best - far.measured) > 2.0 * math.hypot(far.measured_se, far.prediction_se)
+    assert ss.wall_call(far) == "undecided"
+    v = ss.scan_verdict([good, far])
+    assert v.verdict == "mixed", v.evidence
+    assert v.evidence.startswith("Mixed: supported at rough; at far the admissible set gives")
+    assert v.would_change.startswith("at far: a best fit whose first-layer departure")
+    alone = ss.scan_verdict([far])
+    assert alone.verdict == "undecided"
+    assert "at far the admissible set gives the measured sign but the best fit misses" in (
+        alone.evidence
+    )
