@@ -144,7 +144,9 @@ def test_data_that_turn_with_the_material_refute_both_spin_claims(tmp_path, mode
     sm = report.verdict("spin_model")
     assert v["spin_model"] == "refuted", sm.text
     if model == "mui":
-        assert "Not scanned: mui_plane_rough_H20 (material" in sm.evidence
+        assert "Not scanned: " in sm.evidence
+        assert "mui_plane_rough_H20 (material" in sm.evidence
+        assert "mui_couette_rough_H20 (a couette cell: the scan takes plane shear" in sm.evidence
         assert "predicts one these errors reject" in sm.evidence
         assert "with_contradicting_fits" not in sm.numbers
     else:

@@ -886,7 +886,13 @@ def spin_scans(
 
     scans, skipped = [], []
     for run in runs:
-        if run.cell != "plane" or not (run.has("omega") and run.has("half_vorticity")):
+        if not (run.has("omega") and run.has("half_vorticity")):
+            continue
+        if run.cell != "plane":
+            skipped.append(
+                f"{run.name} (a {run.cell} cell: the scan takes plane shear, where the stress "
+                "ratio is T / sigma_yy)"
+            )
             continue
         if walls_differ(run):
             skipped.append(
