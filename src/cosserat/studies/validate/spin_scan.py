@@ -309,8 +309,8 @@ def _forward(profile: Any, run: Run) -> FloatArray:
 
 def binned_departure(profile: Any, run: Run) -> FloatArray:
     """The profile's omega - half vorticity averaged over each bin of ``run``, no difference
-    stencil (how :mod:`.synthetic` measures its corpora: the exact fields' bin means), per row
-    of the run, in its units and sign [-]."""
+    stencil (how :mod:`cosserat.studies.validate.synthetic` measures its corpora: the exact
+    fields' bin means), per row of the run, in its units and sign [-]."""
     from .forward import bin_average, bin_edges, model_fields
 
     bins = bin_edges(run)
