@@ -16,7 +16,7 @@ from cosserat.studies.validate import forward as fw
 H = 10.0
 
 
-def plane_run(tmp_path, u, omega=None, half=None, name="r"):
+def plane_run(tmp_path, u, omega=None, half=None, name="r", method="np.gradient"):
     """A plane run (upper wall moving) with 1 d bins and the given columns."""
     y = np.arange(10) + 0.5
     u = np.asarray(u(y), dtype=float)
@@ -29,7 +29,8 @@ def plane_run(tmp_path, u, omega=None, half=None, name="r"):
         "half_vorticity": half_vorticity(y, u) if half is None else half,
         "half_vorticity_se": np.full(10, 0.01),
     }
-    meta = {"cell": "plane", "gap_d": H, "B": 0.0, "wall": {"kind": "glued-grains"}}
+    meta = {"cell": "plane", "gap_d": H, "B": 0.0, "wall": {"kind": "glued-grains"},
+            "half_vorticity_method": method}  # fmt: skip
     return read_run(write_run(tmp_path, name, meta, cols))
 
 
@@ -109,3 +110,24 @@ def test_bad_stencil_and_too_few_bins_are_clean_errors(tmp_path):
     run = plane_run(tmp_path, lambda y: y / H)
     with pytest.raises(ParameterError, match="stencil must be one of analysis, wall"):
         fw.forward_fields(fields(lambda x: x, lambda x: x), run, "upwind")
+
+
+def test_runs_made_otherwise_are_measured_their_way(tmp_path):
+    """A run of point values at the bin centres (the default without cosserat.dem's sidecar)
+    has the model's point departure; one of bin means has the bin mean of it (for u = exp(-s),
+    omega = c u: c (1 - e^-1) + (1 - e^-1)/2 in the first bin)."""
+    c = -0.3
+    f = fields(
+        lambda x: np.exp(-(H - x)),
+        lambda x: c * np.exp(-(H - x)),
+        lambda x: (c + 0.5) * np.exp(-(H - x)),
+    )
+    run = plane_run(tmp_path, lambda y: np.exp(-(H - y)), name="p", method="point")
+    out = fw.forward_fields(f, run)
+    assert np.allclose(out["departure"], out["point"], rtol=0, atol=1e-14)
+    run = plane_run(tmp_path, lambda y: np.exp(-(H - y)), name="b", method="bin-average")
+    q = 1.0 - math.exp(-1.0)
+    assert fw.forward_fields(f, run)["departure"][-1] == pytest.approx((c + 0.5) * q, rel=1e-12)
+    run = plane_run(tmp_path, lambda y: y, name="x", method="guess")
+    with pytest.raises(ParameterError, match=r"half_vorticity_method must be one of np\.gradient"):
+        fw.forward_fields(f, run)

@@ -61,6 +61,7 @@ EXTRA_KEYS = (
     "B_note", "settle_steps", "dump_every", "wall_stress", "moving_wall_speed", "steady_drift",
     "wall_time_s", "wall_inertial_number", "quasi_static", "steadiness", "bin_correlation",
     "bin_correlation_note", "segments", "extended_from_steps", "wall_fixed", "walls",
+    "half_vorticity_method",
 )  # fmt: skip
 """Keys this reader also understands: which wall moves; the model a synthetic run came from;
 and what ``cosserat.dem`` records of a run (how B was set, the settling and dump intervals,
@@ -68,8 +69,9 @@ the moving wall's measured stresses and speed, the drift of the flow over the st
 the run's wall time; the fixed wall where it differs from the moving one (``wall_fixed``)
 and each wall by position (``walls``); the local inertial number next to the walls and
 whether the run is quasi-static, the steadiness test, the bins' error correlation, the
-segments of a resumed run and the steps of its deck if it was continued for longer;
-``docs/dem.md``)."""
+segments of a resumed run and the steps of its deck if it was continued for longer; how the
+half_vorticity column was made, ``np.gradient`` over the binned u by default or
+``bin-average``, the bin's mean of the point value (synthetic runs); ``docs/dem.md``)."""
 WALL_KINDS = ("glued-grains", "smooth-frictional")
 ROUGHNESS = ("fully-rough", "smoother")
 

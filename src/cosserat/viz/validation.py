@@ -176,7 +176,10 @@ def spin_claim_figure(
     Parameters
     ----------
     rows : sequence of mapping
-        ``label``, ``first``, ``se``, ``sheared`` (bool), ``predicted`` (model -> value).
+        ``label``, ``first``, ``se``, ``sheared`` (bool), ``predicted`` (model -> value),
+        optional ``stencil_range`` ((low, high): the measured first-layer departure's range
+        over the difference stencils, drawn as a grey bar) and ``null`` (what the measurement
+        reports for grains turning with the material, drawn as a grey cross).
     models : sequence of str
         The models to draw, in order.
     title : str
@@ -192,6 +195,13 @@ def spin_claim_figure(
     with style():
         y = np.arange(len(rows))[::-1]
         for yi, r in zip(y, rows, strict=True):
+            span = r.get("stencil_range")
+            if span is not None:
+                ax.plot(list(span), [yi, yi], color="0.75", linewidth=5, solid_capstyle="butt",
+                        zorder=0, label="measured, range over the stencils")  # fmt: skip
+            if r.get("null") is not None:
+                ax.plot([r["null"]], [yi], marker="x", color="0.35", linestyle="none",
+                        label="grains turning with the material, measured so")  # fmt: skip
             label = "measured (+- 2 se)" if r["sheared"] else "measured, wall not sheared"
             ax.errorbar([r["first"]], [yi], xerr=[2 * r["se"]], fmt="o", color="k", capsize=2,
                         markerfacecolor="k" if r["sheared"] else "none", elinewidth=0.8,
@@ -201,7 +211,7 @@ def spin_claim_figure(
                 if p is not None:
                     ax.plot([p], [yi - 0.18 * (j + 1) + 0.02], marker="dsv^"[j % 4],
                             linestyle="none", color=model_style(m, models)["color"],
-                            label=f"{m} (fitted to u)")  # fmt: skip
+                            label=f"{m} (fitted to u, measured as the data)")  # fmt: skip
         ax.axvline(0.0, color="0.5", linewidth=0.6)
         ax.set_yticks(y, [r["label"] for r in rows], fontsize=7)
         ax.set_ylim(-0.8, len(rows) - 0.2)

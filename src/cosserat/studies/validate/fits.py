@@ -1,10 +1,11 @@
 """The models fitted to one run's velocity: the only module of validation that fits.
 
 Every call to the fitting machinery (:func:`cosserat.calibration.single.rank_models`,
-:class:`~cosserat.calibration.single.Ranking`, :func:`~cosserat.analysis.fitting.moving_wall`)
-is here, so that moving validation onto another fitting engine changes this module only. The
-rest of validation sees :class:`RunFits` and :class:`FitSummary`: plain numbers, the fitted
-velocity and spin at given bins, and the warnings a referee asks for:
+:class:`~cosserat.calibration.single.Ranking`) is here, so that moving validation onto another
+fitting engine changes this module only. The rest of validation sees :class:`RunFits` and
+:class:`FitSummary`: plain numbers, the fitted velocity, the fitted spin as the run's analysis
+would measure it (:mod:`~cosserat.studies.validate.forward`, which reads the fitted
+profile), and the warnings a referee asks for:
 
 * **misfit**: with the data's standard errors, a fit with p(chi^2, n - k) < :data:`P_SIGNIFICANT`
   misses the data; the warning says by how much and where it misses most (in the creep tail
@@ -30,7 +31,6 @@ import numpy as np
 from scipy.stats import chi2 as chi2_dist
 
 from ...analysis.corpus import Run
-from ...analysis.fitting import moving_wall
 from ...calibration.single import Ranking, rank_models
 from ...errors import CosseratError
 from ...model.constitutive import FloatArray
@@ -135,24 +135,34 @@ class RunFits:
         """The fitted u/u_wall at distances from the moving wall [d]."""
         return self._fit(model).curve(np.asarray(distance_d, dtype=float))
 
-    def spin_departure(
-        self, model: str, distance_d: FloatArray, half_measured: FloatArray
-    ) -> FloatArray:
-        """The fitted model's omega - half vorticity at distances from the moving wall [d], in
-        the run's units (omega d / V) and its rotation sense (the data's half vorticity
-        ``half_measured`` at the same bins fixes it). A rheology without a grain spin of its
-        own turns with the material: no departure."""
-        fit = self._fit(model)
-        prof = fit.profile
-        eps = prof.problem.eps
-        xw, _ = moving_wall(prof.problem)
-        d = np.clip(np.asarray(distance_d, dtype=float) * eps, 0.0, 1.0)
-        xi = d if xw == 0.0 else 1.0 - d
-        fields = prof.evaluate(xi)
-        model_half = -0.5 * (fields.du_dxi + fields.kappa * fields.u) * eps
-        model_omega = model_half if fields.omega is None else fields.omega * eps
-        sign = -1.0 if float(np.sum(model_half * half_measured)) < 0.0 else 1.0
-        return sign * (model_omega - model_half)
+    def spin_departure(self, model: str, run: Run, stencil: str = "analysis") -> FloatArray:
+        """The fitted model's omega - half vorticity as the run's analysis would report it
+        (:func:`~cosserat.studies.validate.forward.forward_departure`: bin averages and the
+        analysis' stencil, the first layer at each wall by ``stencil``), per row of the run,
+        in its units (omega d / V) and sign. A rheology without a grain spin of its own turns
+        with the material: its point departure is 0, its measured one is not (the binning
+        and the stencil)."""
+        from .forward import forward_departure
+
+        return forward_departure(self._fit(model).profile, run, stencil)
+
+    def spin_null(self, model: str, run: Run, stencil: str = "analysis") -> FloatArray:
+        """What the run's analysis would report for the fitted model's velocity if the grains
+        turned with the material (omega = half the vorticity at every point), per row
+        (:func:`~cosserat.studies.validate.forward.null_departure`) [-]."""
+        from .forward import null_departure
+
+        return null_departure(self._fit(model).profile, run, stencil)
+
+    def spin_point(self, model: str, run: Run) -> FloatArray:
+        """The fitted model's point omega - half vorticity (analytic derivatives) at the run's
+        bin centres, per row, in its units and sign [-]."""
+        from .forward import bin_edges, model_fields
+
+        bins = bin_edges(run)
+        out = np.empty(bins.centre.size)
+        out[bins.order] = model_fields(self._fit(model).profile, run).point_departure(bins.centre)
+        return out
 
     def to_dict(self) -> dict[str, Any]:
         """The fitting engine's record, each fit with its p-value, pinned parameters, band

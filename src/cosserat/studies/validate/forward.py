@@ -2,7 +2,7 @@
 
 A DEM run reports, per bin, the mean velocity u and the mean grain spin omega over the grains
 in that bin, and half the vorticity by a difference stencil over the binned u
-(:mod:`cosserat._stencil`, the code :mod:`cosserat.dem.analyse` writes the run's
+(``cosserat._stencil``, the code ``cosserat.dem.analyse`` writes the run's
 ``half_vorticity`` column with). A model's point value of omega - half vorticity, with analytic
 derivatives, is not that: near a wall, where u bends within one bin, the binned spin and the
 stencil's half vorticity differ from the point values by as much as the departure itself. So
@@ -16,7 +16,11 @@ a model's departure is compared with the data's only after the same measurement:
    bin), weighted by r in Couette flow (the bins are annuli);
 3. **stencil**: half the vorticity from the binned u at the bin centres by the analysis'
    stencil (``"analysis"``) or, at the first bin next to each wall, by one of the alternative
-   stencils of :data:`STENCILS`.
+   stencils of :data:`STENCILS`. That is how ``cosserat.dem`` measures a run; a run made
+   otherwise says so in its sidecar (:func:`half_vorticity_method`: ``bin-average``, the
+   synthetic runs, or ``point``, values at the bin centres, the default for a run that is not
+   from ``cosserat.dem``) and the model is measured the same way (the alternative stencils
+   still replace the first layers).
 
 Every stencil is a linear combination of the wall's velocity and the binned u of the first
 three bins (:func:`first_layer_weights`), so the same weights give the data's half vorticity
@@ -115,6 +119,33 @@ def bin_edges(run: Run) -> Bins:
     lo[-1], hi[-1] = min(2.0 * s[-1] - upper, upper - 1e-9 * w), upper
     lo, hi = np.clip(lo, lower, upper), np.clip(hi, lower, upper)
     return Bins(s, lo, hi, order, (lower, upper), run.cell == "couette")
+
+
+HALF_VORTICITY_METHODS = ("np.gradient", "bin-average", "point")
+"""How a run's ``half_vorticity`` column can have been made (:func:`half_vorticity_method`)."""
+
+
+def half_vorticity_method(run: Run) -> str:
+    """How the run's ``half_vorticity`` column was made: the sidecar's
+    ``half_vorticity_method``, else ``"np.gradient"`` for a run of ``cosserat.dem`` (its
+    sidecar names the LAMMPS version: the analysis' stencil over the binned u) and ``"point"``
+    for any other (u, omega and half the vorticity are values at the bin centres);
+    ``"bin-average"``: the bins' means of u, omega and the point half vorticity (synthetic
+    runs).
+
+    Raises
+    ------
+    ParameterError
+        A method not in :data:`HALF_VORTICITY_METHODS`.
+    """
+    default = "np.gradient" if "lammps_version" in run.meta else "point"
+    method = run.meta.get("half_vorticity_method", default)
+    if method not in HALF_VORTICITY_METHODS:
+        raise ParameterError(
+            f"run {run.name}: half_vorticity_method must be one of "
+            f"{', '.join(HALF_VORTICITY_METHODS)}; got {method!r}"
+        )
+    return str(method)
 
 
 def bin_average(bins: Bins, f: Callable[[FloatArray], FloatArray]) -> FloatArray:
@@ -277,6 +308,20 @@ def model_fields(profile: Any, run: Run) -> ModelFields:
     return ModelFields(u, spin, point)
 
 
+def turning_with_the_material(fields: ModelFields) -> ModelFields:
+    """The same velocity with grains that turn with the material: omega = the point half
+    vorticity of u everywhere (no departure at any point). Measured like the data
+    (:func:`forward_fields`), it shows the departure that the binning and the stencil alone
+    make: the null of the spin claim."""
+
+    def spin(x: FloatArray) -> FloatArray:
+        return np.asarray(fields.omega(x), dtype=float) - np.asarray(
+            fields.point_departure(x), dtype=float
+        )
+
+    return ModelFields(fields.u, spin, lambda x: np.zeros_like(np.asarray(x, dtype=float)))
+
+
 def forward_fields(
     fields: ModelFields, run: Run, stencil: str = "analysis"
 ) -> dict[str, FloatArray]:
@@ -284,9 +329,32 @@ def forward_fields(
     ``half_vorticity`` and ``departure`` (omega - half vorticity) per bin, in the run's row
     order [-]; and ``point`` (the model's point departure at the bin centres) [-]."""
     bins = bin_edges(run)
-    u = bin_average(bins, fields.u)
-    omega = bin_average(bins, fields.omega)
+    method = half_vorticity_method(run)
+
+    def point_half(x: FloatArray) -> FloatArray:
+        return np.asarray(fields.omega(x), dtype=float) - np.asarray(
+            fields.point_departure(x), dtype=float
+        )
+
+    if method == "point":
+        u = np.asarray(fields.u(bins.centre), dtype=float)
+        omega = np.asarray(fields.omega(bins.centre), dtype=float)
+    else:
+        u = bin_average(bins, fields.u)
+        omega = bin_average(bins, fields.omega)
     half = stencil_half(bins, u, wall_velocities(run), stencil)
+    if method != "np.gradient":
+        # the run's half vorticity is the bin's mean of the point value, or the point value
+        # at its centre; the alternative stencils still replace the first layers
+        exact = (
+            bin_average(bins, point_half)
+            if method == "bin-average"
+            else np.asarray(point_half(bins.centre), dtype=float)
+        )
+        keep = np.ones(half.size, dtype=bool)
+        if stencil != "analysis":
+            keep[[0, -1]] = False
+        half = np.where(keep, exact, half)
     out: dict[str, FloatArray] = {}
     for name, v in (
         ("u", u),
@@ -322,6 +390,15 @@ def forward_departure(profile: Any, run: Run, stencil: str = "analysis") -> Floa
     """
     _check_stencil(stencil)
     return forward_fields(model_fields(profile, run), run, stencil)["departure"]
+
+
+def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatArray:
+    """:func:`forward_departure` of the model's velocity with grains that turn with the
+    material (:func:`turning_with_the_material`): what the run's analysis reports for a spin
+    equal to half the vorticity everywhere, per row [-]."""
+    _check_stencil(stencil)
+    fields = turning_with_the_material(model_fields(profile, run))
+    return forward_fields(fields, run, stencil)["departure"]
 
 
 def first_layer_half_se(

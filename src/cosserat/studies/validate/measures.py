@@ -12,12 +12,25 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
   has no Delta (the value would be the bins' width, whatever the band). A band with
   Delta > :data:`FILLS_GAP` H fills its gap: the fixed wall shapes it, so it cannot test a law
   of Delta against the gap.
-* **Spin at a wall**: z = (omega - half vorticity)/se over the bins within ``near_wall_d`` of
-  that wall, se = sqrt(se_omega^2 + se_half^2) (the two taken as independent, and the bins
-  too); chi^2 = sum z^2 with one degree of freedom per bin, and
-  the departure with its standard error. The moving wall and the fixed wall are tested
-  separately: the band is at the moving wall; at the fixed wall the material may not shear at
-  all (then no model predicts a departure there).
+* **Spin at a wall**: the departure omega - half vorticity over the bins within
+  ``near_wall_d`` of that wall, se = sqrt(se_omega^2 + se_half^2): omega and half the
+  vorticity come from the same particles and time blocks, but their errors' correlation is not
+  recorded, so the quadrature (independent) is the central choice and the largest error any
+  correlation allows, se_omega + se_half, is reported beside it (``chi2_bound``). Neighbouring
+  bins are correlated: the residuals are whitened with the AR(1) error model of
+  :mod:`cosserat.calibration.noise`, whose lag-1 correlation is the sidecar's
+  ``bin_correlation.omega`` (omega's error dominates the departure's near the walls), else
+  ``bin_correlation.u`` (said so), else 0 (:func:`spin_correlation`); chi^2 = sum of the
+  whitened z^2, one degree of freedom per bin, with and without the first layer (the bin
+  nearest to the wall, whose half vorticity depends on the difference stencil). The first
+  layer's departure is also given under every stencil of
+  :data:`~cosserat.studies.validate.forward.STENCILS`, with its error (the half vorticity's
+  from u's standard errors, correlated by ``bin_correlation.u``). The moving wall and the
+  fixed wall are tested separately: the band is at the moving wall; at the fixed wall the
+  material may not shear at all (then no model predicts a departure there). A wall is
+  **sheared** when the material next to it moves relative to it: |u(first bin) - u_wall| >=
+  :data:`SHEARED_U` (u_wall = 1 at the moving wall, 0 at a fixed one, in units of V; the
+  channel's walls are fixed).
 * **Band stress ratio**: |sigma_yx|/sigma_yy (Couette |sigma_rt|/sigma_rr) over the bins where
   the measured u >= :data:`BAND_U` and farther than :data:`WALL_EXCLUSION_D` from either wall;
   its inverse-variance mean, with an error that is the larger of the mean's and the bins'
@@ -36,8 +49,11 @@ from numpy.typing import NDArray
 from scipy.stats import chi2 as chi2_dist
 
 from ...analysis.corpus import Run, usable
+from ...calibration.noise import RHO_MAX, whiten
 from ...config import DEFAULT_F
+from ...errors import ParameterError
 from ...model.constitutive import FloatArray
+from . import forward
 
 P_SIGNIFICANT = 1e-3
 """p-value below which a departure (or a misfit) is significant [-]."""
@@ -52,7 +68,8 @@ BAND_U = 0.05
 WALL_EXCLUSION_D = 1.0
 """Stress bins closer than this to a wall are left out of the band's stress ratio [d]."""
 SHEARED_U = 0.05
-"""A fixed wall is sheared when the measured u in its nearest bin is at least this [-]."""
+"""A wall is sheared when the measured u in its nearest bin differs from the wall's velocity
+by at least this, in units of the velocity scale [-]."""
 
 
 # --------------------------------------------------------------------------- Delta
@@ -177,6 +194,26 @@ def chi2_p(z: FloatArray) -> tuple[float | None, int, float | None]:
     return c, int(z.size), float(chi2_dist.sf(c, z.size))
 
 
+def spin_correlation(run: Run) -> tuple[float, str]:
+    """The lag-1 correlation of neighbouring bins' errors of omega - half vorticity and where
+    it comes from: the sidecar's ``bin_correlation.omega``, else its ``bin_correlation.u``,
+    else 0; within [-RHO_MAX, RHO_MAX] [-]."""
+    record = run.meta.get("bin_correlation")
+    record = record if isinstance(record, dict) else {}
+    for key, source in (
+        ("omega", "the sidecar's bin_correlation.omega"),
+        ("u", "the sidecar's bin_correlation.u (it records none for omega)"),
+    ):
+        rho = record.get(key)
+        if isinstance(rho, int | float) and not isinstance(rho, bool) and math.isfinite(rho):
+            return float(np.clip(rho, -RHO_MAX, RHO_MAX)), source
+    return 0.0, "none recorded (bins taken as independent)"
+
+
+def _sign(x: float) -> int:
+    return 0 if abs(x) <= 1e-9 else (1 if x > 0 else -1)
+
+
 @dataclass(frozen=True)
 class WallSpin:
     """The spin's departure from half the vorticity in one run's bins near one wall.
@@ -188,14 +225,37 @@ class WallSpin:
     wall : str
         "moving" or "fixed" (the channel: "lower" or "upper").
     sheared : bool
-        The material shears at this wall (the moving wall always; a fixed wall where the
-        measured u of its nearest bin is at least :data:`SHEARED_U`; both channel walls).
+        The material next to the wall moves relative to it (module docstring).
     distance_d : array
         Distance of each bin from this wall [d].
     departure, stderr : array
-        omega - half vorticity and its standard error, in the run's units (omega d / V) [-].
+        omega - half vorticity and its standard error (quadrature), in the run's units
+        (omega d / V) [-].
     predicted : mapping of model name to array
-        Each fitted model's departure at the same bins [-] (empty until a model is fitted).
+        Each fitted model's departure at the same bins as the run's analysis would report it
+        (:func:`~cosserat.studies.validate.forward.forward_departure`) [-] (empty until a
+        model is fitted).
+    rho : float
+        Lag-1 correlation of neighbouring bins' errors (:func:`spin_correlation`) [-].
+    bound : array or None
+        se_omega + se_half, the largest standard error any correlation between the two
+        allows [-].
+    stencils : mapping of stencil to (departure, se_half, se_omega)
+        The first layer's measured departure under each stencil [-].
+    predicted_stencils : mapping of model to (mapping of stencil to departure)
+        Each model's forward-modelled first-layer departure under each stencil [-].
+    point : mapping of model to float
+        Each model's point departure (analytic derivatives) at the first bin's centre [-].
+    null : array or None
+        The departure the run's analysis reports, at the same bins, for grains that turn with
+        the material (omega = half the vorticity at every point) in the velocity of the
+        ``null_model`` fit (:func:`~cosserat.studies.validate.forward.null_departure`): what
+        the binning and the stencil make alone [-]. The spin's test is against it (None:
+        against 0).
+    null_model : str
+        The fit whose velocity made ``null`` ("" without one).
+    null_stencils : mapping of stencil to float
+        The null's first layer under each stencil [-].
     """
 
     run: str
@@ -205,10 +265,53 @@ class WallSpin:
     departure: FloatArray
     stderr: FloatArray
     predicted: dict[str, FloatArray] = field(default_factory=dict)
+    rho: float = 0.0
+    bound: FloatArray | None = None
+    stencils: dict[str, tuple[float, float, float]] = field(default_factory=dict)
+    predicted_stencils: dict[str, dict[str, float]] = field(default_factory=dict)
+    point: dict[str, float] = field(default_factory=dict)
+    null: FloatArray | None = None
+    null_model: str = ""
+    null_stencils: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def beyond(self) -> FloatArray:
+        """The departure beyond ``null`` (the measured departure where there is none) [-]."""
+        d = np.asarray(self.departure, dtype=float)
+        return d if self.null is None else d - np.asarray(self.null, dtype=float)
+
+    def white(self, residual: FloatArray, se: FloatArray | None = None) -> FloatArray:
+        """``residual`` over ``se`` (default ``stderr``) whitened with ``rho``, the
+        bins ordered by distance from the wall [-]."""
+        order = np.argsort(self.distance_d)
+        s = np.asarray(self.stderr if se is None else se, dtype=float)[order]
+        return whiten(np.asarray(residual, dtype=float)[order], s, self.rho)
+
+    def white_rest(self, residual: FloatArray) -> FloatArray:
+        """:meth:`white` without the first layer [-]."""
+        order = np.argsort(self.distance_d)[1:]
+        s = np.asarray(self.stderr, dtype=float)[order]
+        return whiten(np.asarray(residual, dtype=float)[order], s, self.rho)
 
     @property
     def z(self) -> FloatArray:
-        return np.asarray(self.departure) / np.asarray(self.stderr)
+        """The whitened departure beyond the null (bins by distance from the wall) [-]."""
+        return self.white(self.beyond)
+
+    @property
+    def z_rest(self) -> FloatArray:
+        """:attr:`z` without the first layer [-]."""
+        return self.white_rest(self.beyond)
+
+    @property
+    def z_zero(self) -> FloatArray:
+        """The whitened departure against 0 (no null) [-]."""
+        return self.white(self.departure)
+
+    @property
+    def z_bound(self) -> FloatArray:
+        """:attr:`z` over se_omega + se_half (the largest error) [-]."""
+        return self.white(self.beyond, self.bound if self.bound is not None else None)
 
     @property
     def dof(self) -> int:
@@ -246,19 +349,44 @@ class WallSpin:
         pred = self.predicted.get(model)
         return None if pred is None or self.dof == 0 else float(pred[self.nearest])
 
-    def misfit(self, model: str) -> tuple[float | None, int, float | None]:
-        """chi^2 of (departure - the model's)/se, its bins and p."""
+    def first_layer_signs(self, who: str = "data") -> set[int]:
+        """The signs (-1, 0, +1) of the first layer's departure over the stencils, of the
+        data (``"data"``) or of a model's forward model; empty without stencils."""
+        if who == "data":
+            return {_sign(v[0]) for v in self.stencils.values()}
+        return {_sign(v) for v in self.predicted_stencils.get(who, {}).values()}
+
+    def stencil_dependent(self, who: str = "data") -> bool:
+        """The first layer's departure changes sign between stencils."""
+        return len(self.first_layer_signs(who)) > 1
+
+    def misfit(self, model: str, rest: bool = False) -> tuple[float | None, int, float | None]:
+        """chi^2 of the whitened (departure - the model's)/se, its bins and p; ``rest``:
+        without the first layer."""
         pred = self.predicted.get(model)
         if pred is None:
             return None, 0, None
-        return chi2_p((np.asarray(self.departure) - pred) / np.asarray(self.stderr))
+        r = np.asarray(self.departure) - pred
+        return chi2_p(self.white_rest(r) if rest else self.white(r))
 
-    def shift(self, model: str) -> float:
-        """sum (predicted/se)^2: the chi^2 the model's departure adds to pure noise."""
+    def shift(self, model: str, rest: bool = False) -> float:
+        """The chi^2 the model's departure beyond the null adds to pure noise (whitened;
+        ``rest``: without the first layer) [-]."""
         pred = self.predicted.get(model)
-        return 0.0 if pred is None else float(np.sum((pred / np.asarray(self.stderr)) ** 2))
+        if pred is None:
+            return 0.0
+        r = np.asarray(pred, dtype=float) - (0.0 if self.null is None else self.null)
+        return float(np.sum((self.white_rest(r) if rest else self.white(r)) ** 2))
 
-    def with_predictions(self, predicted: dict[str, FloatArray]) -> WallSpin:
+    def with_predictions(
+        self,
+        predicted: dict[str, FloatArray],
+        stencils: dict[str, dict[str, float]] | None = None,
+        point: dict[str, float] | None = None,
+        null: FloatArray | None = None,
+        null_model: str = "",
+        null_stencils: dict[str, float] | None = None,
+    ) -> WallSpin:
         return WallSpin(
             self.run,
             self.wall,
@@ -267,10 +395,20 @@ class WallSpin:
             self.departure,
             self.stderr,
             dict(predicted),
+            self.rho,
+            self.bound,
+            self.stencils,
+            dict(stencils or {}),
+            dict(point or {}),
+            null,
+            null_model,
+            dict(null_stencils or {}),
         )
 
     def to_dict(self) -> dict[str, Any]:
         chi2, dof, p = chi2_p(self.z)
+        rest = chi2_p(self.z_rest)
+        bound = chi2_p(self.z_bound)
         out: dict[str, Any] = {
             "wall": self.wall,
             "sheared": self.sheared,
@@ -278,13 +416,45 @@ class WallSpin:
             "chi2": chi2,
             "p": p,
             "departs": self.departs,
+            "chi2_without_first_layer": rest[0],
+            "bins_without_first_layer": rest[1],
+            "p_without_first_layer": rest[2],
+            "chi2_bound": bound[0],
+            "p_bound": bound[2],
+            "chi2_against_zero": chi2_p(self.z_zero)[0],
+            "p_against_zero": chi2_p(self.z_zero)[2],
+            "null_model": self.null_model,
+            "null_first_layer": None
+            if self.null is None or self.dof == 0
+            else float(np.asarray(self.null)[self.nearest]),
+            "rho": self.rho,
             "first_layer_distance_d": None
             if self.dof == 0
             else float(self.distance_d[self.nearest]),
             "first_layer_departure": self.first,
             "first_layer_se": self.first_se,
             "predicted_first_layer": {m: self.predicted_first(m) for m in self.predicted},
+            "predicted_first_layer_point": dict(self.point),
             "model_misfit_p": {m: self.misfit(m)[2] for m in self.predicted},
+            "stencils": {
+                name: {
+                    "departure": dep,
+                    "se": math.hypot(se_h, se_o),
+                    "se_half": se_h,
+                    "se_omega": se_o,
+                    "predicted": {
+                        m: v[name] for m, v in self.predicted_stencils.items() if name in v
+                    },
+                    "null": self.null_stencils.get(name),
+                }
+                for name, (dep, se_h, se_o) in self.stencils.items()
+            },
+            "first_layer_sign_stable": {
+                who: not self.stencil_dependent(who)
+                for who in ["data", *sorted(self.predicted_stencils)]
+            }
+            if self.stencils
+            else {},
         }
         return out
 
@@ -304,6 +474,12 @@ class SpinMeasure:
     predicted: dict[str, FloatArray] = field(default_factory=dict)
     bulk: tuple[float | None, int, float | None] = (None, 0, None)
     notes: list[str] = field(default_factory=list)
+    rows: NDArray[np.intp] | None = None
+    """The run's rows of the usable bins (the order of ``distance_d``)."""
+    wall_rows: dict[str, int] = field(default_factory=dict)
+    """Each wall's nearest row of the run (its first layer in the forward model)."""
+    rho: float = 0.0
+    rho_source: str = ""
 
     @property
     def sheared_walls(self) -> list[WallSpin]:
@@ -316,6 +492,12 @@ class SpinMeasure:
         return chi2_p(np.concatenate(z) if z else np.zeros(0))
 
     @property
+    def near_rest(self) -> tuple[float | None, int, float | None]:
+        """:attr:`near` without each wall's first layer."""
+        z = [w.z_rest for w in self.sheared_walls]
+        return chi2_p(np.concatenate(z) if z else np.zeros(0))
+
+    @property
     def departs(self) -> bool:
         p = self.near[2]
         return p is not None and p < P_SIGNIFICANT
@@ -324,18 +506,32 @@ class SpinMeasure:
         if not self.available:
             return {"available": False, "reason": self.reason}
         chi2, dof, p = self.near
+        rest = self.near_rest
         return {
             "available": True,
             "chi2_near_wall": chi2,
             "dof_near_wall": dof,
             "p_near_wall": p,
             "departs_near_wall": self.departs,
+            "chi2_near_wall_without_first_layer": rest[0],
+            "dof_near_wall_without_first_layer": rest[1],
+            "p_near_wall_without_first_layer": rest[2],
+            "rho": self.rho,
+            "rho_source": self.rho_source,
             "chi2_bulk": self.bulk[0],
             "dof_bulk": self.bulk[1],
             "p_bulk": self.bulk[2],
             "walls": [w.to_dict() for w in self.walls],
             "notes": self.notes,
         }
+
+
+def wall_index(run: Run, wall: str) -> int:
+    """0 (lower, inner) or 1 (upper, outer): where the wall named ``wall`` is."""
+    if wall in ("lower", "upper"):
+        return 0 if wall == "lower" else 1
+    moving = 0 if run.moving_wall in ("lower", "inner") else 1
+    return moving if wall == "moving" else 1 - moving
 
 
 def measure_spin(run: Run, near_wall_d: float = NEAR_WALL_D) -> SpinMeasure:
@@ -354,27 +550,65 @@ def measure_spin(run: Run, near_wall_d: float = NEAR_WALL_D) -> SpinMeasure:
         return SpinMeasure(False, "fewer than 3 bins with a finite spin and its error")
     dep = omega[ok] - half[ok]
     se = np.sqrt(s_o[ok] ** 2 + s_h[ok] ** 2)
+    bound = s_o[ok] + s_h[ok]
     dist = run.distance_d[ok]
     other = run.gap_d - dist
-    out = SpinMeasure(True, distance_d=dist, departure=dep, stderr=se, half=half[ok])
-    out.notes.append(
-        "the standard error of omega - half vorticity is sqrt(se_omega^2 + se_half^2): the "
-        "two taken as independent, and the bins too"
+    rho, source = spin_correlation(run)
+    out = SpinMeasure(
+        True,
+        distance_d=dist,
+        departure=dep,
+        stderr=se,
+        half=half[ok],
+        rows=np.flatnonzero(ok),
+        rho=rho,
+        rho_source=source,
     )
-    # the channel's two walls are both fixed and both sheared (its distance is from y = 0)
+    out.notes.append(
+        "the standard error of omega - half vorticity is sqrt(se_omega^2 + se_half^2): omega "
+        "and half the vorticity come from the same particles and blocks, but the correlation "
+        "of their errors is not recorded, so they are taken as independent (chi2_bound: with "
+        "se_omega + se_half, the largest error any correlation allows); neighbouring bins "
+        f"correlated with rho = {rho:.3g} (AR(1); from {source})"
+    )
     names = ("lower", "upper") if run.cell == "channel" else ("moving", "fixed")
-    sheared = (True, True)
-    if run.cell != "channel":
-        u, _ = run.quantity("u")
-        sheared = (True, bool(abs(u[int(np.argmax(run.distance_d))]) >= SHEARED_U))
+    u, _ = run.quantity("u")
+    u_walls = forward.wall_velocities(run)
+    rho_u = velocity_correlation(run)
     near_a, near_b = dist <= near_wall_d, other <= near_wall_d
     near_b &= ~near_a
-    da, db = dist, other
-    for name, near, d, sh in zip(names, (near_a, near_b), (da, db), sheared, strict=True):
-        out.walls.append(WallSpin(run.name, name, sh, d[near], dep[near], se[near]))
+    all_dist = run.distance_d
+    for name, near, d in zip(names, (near_a, near_b), (dist, other), strict=True):
+        k = wall_index(run, name)
+        # the row nearest to this wall, among all of the run's bins
+        row = int(np.argmin(all_dist) if name in ("moving", "lower") else np.argmax(all_dist))
+        sheared = bool(abs(u[row] - u_walls[k]) >= SHEARED_U)
+        stencils: dict[str, tuple[float, float, float]] = {}
+        try:
+            for st in forward.STENCILS:
+                stencils[st] = forward.measured_first_layer(run, k, st, rho_u)
+        except ParameterError as exc:
+            out.notes.append(f"{name} wall: no first-layer stencils ({exc})")
+            stencils = {}
+        out.walls.append(
+            WallSpin(
+                run.name,
+                name,
+                sheared,
+                d[near],
+                dep[near],
+                se[near],
+                {},
+                rho,
+                bound[near],
+                stencils,
+            )
+        )
         out.index[name] = np.flatnonzero(near)
+        out.wall_rows[name] = row
     bulk = ~(near_a | near_b)
-    out.bulk = chi2_p((dep / se)[bulk])
+    order = np.argsort(dist[bulk])
+    out.bulk = chi2_p(whiten(dep[bulk][order], se[bulk][order], rho))
     return out
 
 

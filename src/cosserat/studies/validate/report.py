@@ -95,6 +95,13 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
                     "se": w.first_se,
                     "sheared": w.sheared,
                     "predicted": {m: w.predicted_first(m) for m in w.predicted},
+                    "null": None if w.null is None else float(np.asarray(w.null)[w.nearest]),
+                    "stencil_range": (
+                        min(v[0] for v in w.stencils.values()),
+                        max(v[0] for v in w.stencils.values()),
+                    )
+                    if w.stencils
+                    else None,
                 }
             )
     return rows
@@ -189,27 +196,29 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
 def rules() -> str:
     """The decision rules, in one paragraph (the report states them)."""
     return (
-        f"Spin: z = (omega - half vorticity)/se in the bins near each wall, chi^2 against no "
-        f"departure; each sheared wall on its own (a fixed wall is sheared when its nearest "
-        f"bin moves at u >= {SHEARED_U:g}), per run and pooled over runs; 'supported' when "
-        f"the pooled p < {P_SIGNIFICANT:g} and at least half the runs depart at p < "
-        f"{P_CONSISTENT:g}. Sign and size: the departure in the first layer at each wall "
-        f"against the model's there; the sign is determined where |departure| >= "
-        f"{SIGN_SIGMAS:g} se. Delta: where the velocity falls to f of its value in the bin "
-        f"nearest the moving wall (u_0 = 1/2 for plane shear without gravity, else 0); a band "
-        f"with Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws. Each gap "
+        "Spin: z = (omega - half vorticity)/se in the bins near each wall (whitened with the "
+        "bins' AR(1) correlation), chi^2 against no departure; each sheared wall on its own (a "
+        "wall is sheared when the material in its nearest bin moves relative to it, |u - "
+        f"u_wall| >= {SHEARED_U:g}), per run and pooled over runs; the first layer left out "
+        "where its sign depends on the difference stencil; 'supported' when the pooled p < "
+        f"{P_SIGNIFICANT:g} and at least half the runs depart at p < {P_CONSISTENT:g}. Sign and "
+        "size: the departure in the first layer at each wall against the model's there, "
+        "measured as the data are (bin averages, the same stencil); the sign is determined "
+        f"where |departure| >= {SIGN_SIGMAS:g} se and neither its sign nor the model's depends "
+        "on the stencil. Delta: where the velocity falls to f of its value in the bin nearest "
+        "the moving wall (u_0 = 1/2 for plane shear without gravity, else 0); a band with "
+        f"Delta > {FILLS_GAP:g} H fills its gap and is left out of the gap laws. Each gap "
         "series is calibrated jointly, one calibration per model; the measured Delta is held "
         "against each model's Delta at the runs (chi^2 with the two errors in quadrature, dof "
         "= points; and up to a common factor, dof = points - 1, which tests the dependence on "
-        f"the gap): supported when the Cosserat curve's shape has p >= {P_CONSISTENT:g} and "
-        f"an alternative (another model, or the other claim's power law) p < "
-        f"{P_SIGNIFICANT:g}, refuted when the Cosserat curve's shape has p < "
-        f"{P_SIGNIFICANT:g}. The slope of ln Delta on ln(H/d) (at least {MIN_GAPS} gaps) is "
-        "judged only where the Cosserat curve's own slope over the gaps is within "
-        f"{EXPONENT_TOL:g} of the claimed limit (then: the claimed exponent within 2 standard "
-        "errors and the other outside 2). Fits: a fit "
-        f"with p(chi^2) < {P_SIGNIFICANT:g} is a misfit; parameters held at their defaults "
-        "are named; a model's band stress ratio (sin phi, mu_s) that contradicts the run's "
+        f"the gap): supported when the Cosserat curve's shape has p >= {P_CONSISTENT:g} and an "
+        f"alternative (another model, or the other claim's power law) p < {P_SIGNIFICANT:g}, "
+        f"refuted when the Cosserat curve's shape has p < {P_SIGNIFICANT:g}. The slope of ln "
+        f"Delta on ln(H/d) (at least {MIN_GAPS} gaps) is judged only where the Cosserat curve's "
+        f"own slope over the gaps is within {EXPONENT_TOL:g} of the claimed limit (then: the "
+        "claimed exponent within 2 standard errors and the other outside 2). Fits: a fit with "
+        f"p(chi^2) < {P_SIGNIFICANT:g} is a misfit; parameters held at their defaults are "
+        "named; a model's band stress ratio (sin phi, mu_s) that contradicts the run's "
         f"measured |shear|/normal stress (where u >= {BAND_U:g}, bins farther than "
         f"{WALL_EXCLUSION_D:g} d from the walls) is flagged."
     )

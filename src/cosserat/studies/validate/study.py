@@ -15,11 +15,15 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ...analysis.corpus import Corpus, Run, read_corpus
 from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
+from ...model.constitutive import FloatArray
 from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
+from .forward import STENCILS
 from .grouping import couette_note, group_runs, walls_differ
 from .layer import layer_verdicts
 from .measures import (
@@ -199,6 +203,18 @@ def _spin_model(results: Sequence[RunResult], points: int) -> Verdict:
     return v
 
 
+def _null_misfit(spin: SpinMeasure, null: FloatArray, skip_fixed: bool = False) -> float:
+    """chi^2 of the measured departure against a null (per row of the run) over the
+    near-wall bins of the sheared walls (``skip_fixed``: not the fixed wall), whitened."""
+    assert spin.rows is not None and spin.departure is not None and spin.stderr is not None
+    total = 0.0
+    for w in spin.walls:
+        if w.sheared and w.dof and not (w.wall == "fixed" and skip_fixed):
+            at = null[spin.rows][spin.index[w.wall]]
+            total += float(np.sum(w.white(np.asarray(w.departure) - at) ** 2))
+    return total
+
+
 def analyse_run(
     run: Run,
     models: Sequence[str] | None,
@@ -218,12 +234,53 @@ def analyse_run(
     spin = measure_spin(run, near_wall_d)
     if not spin.available:
         skipped.append(f"spin comparison skipped: {spin.reason}")
-    elif fits is not None:
-        assert spin.distance_d is not None and spin.half is not None
+    elif fits is not None and fits.models:
+        assert spin.rows is not None
+        by_stencil = {m: {st: fits.spin_departure(m, run, st) for st in STENCILS}
+                      for m in fits.models}  # fmt: skip
+        point = {m: fits.spin_point(m, run) for m in fits.models}
+        # the null: grains turning with the material in a fitted velocity, measured so; of
+        # the fits, the one that explains the measured departure best (the null most in
+        # favour of no departure)
+        nulls = {m: {st: fits.spin_null(m, run, st) for st in STENCILS} for m in fits.models}
+        # the fits give a fixed wall of another kind the moving wall's: no null there
+        no_null = {"fixed"} if walls_differ(run) else set()
+        if no_null:
+            spin.notes.append(
+                "fixed wall: tested against 0, not against a null: its kind differs from the "
+                "moving wall's, which the fits give it, so their velocity there is not the run's"
+            )
+        differ = walls_differ(run)
+        chosen = min(fits.models, key=lambda m: _null_misfit(spin, nulls[m]["analysis"], differ))
+        null = nulls[chosen]
+        spin.notes.append(
+            "the spin's test is against the departure the analysis reports for grains that "
+            f"turn with the material in the {chosen} fit's velocity (bin averages of u and of "
+            "omega = half the vorticity, the analysis' stencil): what the binning and the "
+            "stencil make alone; of the fits' velocities, the one whose null is nearest to the "
+            "measured departure near the sheared walls ("
+            + ", ".join(
+                f"{m}: chi^2 = {_null_misfit(spin, nulls[m]['analysis'], differ):.4g}"
+                for m in fits.models
+            )
+            + ")"
+        )
         for m in fits.models:
-            spin.predicted[m] = fits.spin_departure(m, spin.distance_d, spin.half)
+            spin.predicted[m] = by_stencil[m]["analysis"][spin.rows]
         spin.walls = [
-            w.with_predictions({m: p[spin.index[w.wall]] for m, p in spin.predicted.items()})
+            w.with_predictions(
+                {m: p[spin.index[w.wall]] for m, p in spin.predicted.items()},
+                {
+                    m: {st: float(v[spin.wall_rows[w.wall]]) for st, v in by_stencil[m].items()}
+                    for m in fits.models
+                },
+                {m: float(point[m][spin.wall_rows[w.wall]]) for m in fits.models},
+                None if w.wall in no_null else null["analysis"][spin.rows][spin.index[w.wall]],
+                "" if w.wall in no_null else chosen,
+                {}
+                if w.wall in no_null
+                else {st: float(v[spin.wall_rows[w.wall]]) for st, v in null.items()},
+            )
             for w in spin.walls
         ]
     thickness = (

@@ -15,7 +15,10 @@
   between neighbouring bins (lag-1 correlation ``rho``, as the corpus's ``bin_correlation``
   records, 0.3-0.5 for the velocity of the DEM runs), drawn from ``seed``.
 
-The truth is the model's profile averaged over each bin (as the coarse-graining averages), in
+The truth is the model's profile averaged over each bin (as the coarse-graining averages;
+half the vorticity too, the bin's exact mean rather than a difference stencil over the binned
+u: the sidecar says so with ``half_vorticity_method: bin-average``, and validation's forward
+model measures a model the same way, :mod:`cosserat.studies.validate.forward`), in
 the corpus's units and signs: u over the moving wall's speed, omega and half the vorticity in
 units of V/d (the deck's rotation sense: counter-clockwise positive), stresses over the applied
 normal stress (compressive positive, sigma_yx < 0 when the upper wall drags the grains along
@@ -283,6 +286,7 @@ def synthetic_run(
         "bin_correlation": {k: rho for k in ("u", "omega", "nu", "stress_ratio")}
         | {normal_name: rho, shear_name: rho},
         "bin_correlation_note": "the lag-1 correlation the synthetic noise was drawn with",
+        "half_vorticity_method": "bin-average",
         "source": "synthetic",
         "synthetic_model": {
             "model": model,

@@ -6,9 +6,13 @@ and wall, :class:`DeltaSeries` per gap series) and returns a :class:`Verdict`: t
 p-values, the runs used) and what data would change it. The rules:
 
 * **spin departs** (:func:`spin_verdict`): each sheared wall of each run is tested on its own:
-  chi^2 of z = (omega - half vorticity)/se over its near-wall bins against no departure; a
+  chi^2 of z = (omega - half vorticity - null)/se over its near-wall bins, whitened with the
+  bins' AR(1) correlation, the null being what the measurement reports for grains that turn
+  with the material (``WallSpin.null``); a wall
+  whose first-layer departure changes sign between the difference stencils
+  (:data:`~cosserat.studies.validate.forward.STENCILS`) is tested without its first layer; a
   run's test adds its sheared walls, the pooled test adds every run's (degrees of freedom
-  added; bins and runs taken as independent). "supported" when the pooled p <
+  added; runs taken as independent). "supported" when the pooled p <
   :data:`P_SIGNIFICANT` and at least half the runs show a departure at p < :data:`P_CONSISTENT`
   ("mixed" when fewer do: the pooled result rests on a few runs; a run that does not depart
   and whose errors would not have shown the departure the Cosserat model predicts for it, at
@@ -18,8 +22,10 @@ p-values, the runs used) and what data would change it. The rules:
   "undecided" otherwise.
 * **the model's departure** (:func:`spin_model_verdict`): at each sheared wall, the measured
   departure in the first layer (the bin nearest to the wall, where the departure is largest) m
-  +- s against the model's there, p_m. The measured sign is determined where |m| >=
-  :data:`SIGN_SIGMAS` s. "refuted" where the model departs with the opposite sign at every wall
+  +- s against the model's there, p_m, forward-modelled as the data are measured
+  (:mod:`~cosserat.studies.validate.forward`). The measured sign is determined where it is the
+  same under every stencil (and the model's too) and |m| >= :data:`SIGN_SIGMAS` s under at
+  least one. "refuted" where the model departs with the opposite sign at every wall
   of determined sign (however small its departure), or with the right sign but a size the data
   reject (pooled chi^2 of (departure - model)/se, p < :data:`P_SIGNIFICANT`), or predicts none
   (|p_m| <= :data:`NO_DEPARTURE`, a rheology without a spin of its own) where the data depart;
@@ -60,9 +66,12 @@ from typing import Any
 
 import numpy as np
 from scipy.stats import chi2 as chi2_dist
+from scipy.stats import norm
 
 from ...analysis.gap import PAPER_SLOPES, SlopeFit, power_law_slope
 from ...errors import ParameterError
+from ...model.constitutive import FloatArray
+from .forward import STENCILS
 from .measures import P_SIGNIFICANT, WallSpin, chi2_p
 
 P_CONSISTENT = 0.05
@@ -134,25 +143,126 @@ def _g(x: float | None, spec: str = ".3g") -> str:
     return "-" if x is None else format(x, spec)
 
 
-def _walls_text(walls: Sequence[WallSpin]) -> str:
+P_AS_Z = 1e-6
+"""A chi^2 p-value below this is reported as the equivalent normal z and chi^2/dof (a p of
+1e-41 means nothing beyond "far out": the error model is not that exact)."""
+
+
+def log_chi2_sf(chi2: float, dof: int) -> float:
+    """ln of chi^2's p-value with ``dof`` degrees of freedom, without underflow: scipy's where
+    p is representable, else the asymptotic series of the upper incomplete gamma function
+    Q(a, x) ~ x^(a-1) e^(-x) / Gamma(a) (1 + (a-1)/x + (a-1)(a-2)/x^2 + ...) [-]."""
+    p = float(chi2_dist.sf(chi2, dof))
+    if p > 1e-280:
+        return math.log(p)
+    a, x = 0.5 * dof, 0.5 * chi2
+    term, total = 1.0, 1.0
+    for k in range(1, 30):
+        term *= (a - k) / x
+        if abs(term) < 1e-16:
+            break
+        total += term
+    return (a - 1.0) * math.log(x) - x - math.lgamma(a) + math.log(total)
+
+
+def equivalent_z(chi2: float, dof: int) -> float:
+    """The one-sided standard-normal z of chi^2's p-value with ``dof`` degrees of freedom,
+    from the log of p (no underflow) [-]."""
+    logp = log_chi2_sf(chi2, dof)
+    if logp >= math.log(0.5):
+        return float(norm.isf(math.exp(logp)))
+    lo, hi = 0.0, 1.0
+    while float(norm.logsf(hi)) > logp:
+        lo, hi = hi, 2.0 * hi
+    for _ in range(100):  # norm.logsf falls with z: bisect
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if float(norm.logsf(mid)) > logp else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def p_text(chi2: float | None, dof: int, p: float | None) -> str:
+    """ "p = ..." or, below :data:`P_AS_Z`, "z = ..., chi^2/dof = .../..."."""
+    if chi2 is None or p is None or dof <= 0:
+        return "p = -"
+    if p >= P_AS_Z:
+        return f"p = {p:.2g}"
+    return f"z = {equivalent_z(chi2, dof):.3g}, chi^2/dof = {chi2:.4g}/{dof}"
+
+
+def _test_text(t: tuple[float | None, int, float | None]) -> str:
+    c, n, p = t
+    return f"chi^2 = {_g(c, '.4g')} for {n} bins ({p_text(c, n, p)})"
+
+
+def _stencil_text(w: WallSpin, models: Sequence[str]) -> str:
+    """The first layer's departure under each stencil, of the data and each model."""
+    if not w.stencils:
+        return ""
+    values = ", ".join(f"{k} {v[0]:+.3g}" for k, v in w.stencils.items())
+    out = (
+        f"; first layer by stencil: {values} (sign "
+        + ("stencil-dependent" if w.stencil_dependent() else "the same under all")
+        + ")"
+    )
+    for m in models:
+        v = w.predicted_stencils.get(m)
+        if not v:
+            continue
+        lo, hi = min(v.values()), max(v.values())
+        state = "stencil-dependent" if w.stencil_dependent(m) else "same sign"
+        out += f"; {m} as measured {lo:+.3g} to {hi:+.3g} ({state})"
+    return out
+
+
+def _decisive(w: WallSpin) -> FloatArray:
+    """The whitened departures a wall's test rests on: every near-wall bin, or without the
+    first layer where its sign depends on the stencil."""
+    return w.z_rest if w.stencil_dependent() else w.z
+
+
+def _shift(w: WallSpin, model: str) -> float:
+    """The chi^2 the model's departure adds to noise over the bins of :func:`_decisive`."""
+    return w.shift(model, rest=w.stencil_dependent())
+
+
+def _walls_text(walls: Sequence[WallSpin], models: Sequence[str] = ()) -> str:
     rows = []
     for w in walls:
-        chi2, n, p = chi2_p(w.z)
+        null = (
+            f", of which the binning and the stencil make {float(w.null[w.nearest]):+.3g} (grains "
+            f"turning with the material in the {w.null_model} fit's velocity)"
+            if w.null is not None
+            else ""
+        )
         rows.append(
-            f"{w.run} ({w.wall} wall, {n} bins within {float(np.max(w.distance_d)):.2g} d): "
-            f"first layer {_g(w.first, '+.3g')} +- {_g(w.first_se, '.2g')}, chi^2 = "
-            f"{_g(chi2)} (p = {_g(p, '.2g')})"
+            f"{w.run} ({w.wall} wall, {w.dof} bins within {float(np.max(w.distance_d)):.2g} d, "
+            f"rho = {w.rho:.2g}): first layer {_g(w.first, '+.3g')} +- {_g(w.first_se, '.2g')}"
+            f"{null}; beyond that {_test_text(chi2_p(w.z))}, without the first layer "
+            f"{_test_text(chi2_p(w.z_rest))}"
+            + (f"; against 0: {_test_text(chi2_p(w.z_zero))}" if w.null is not None else "")
+            + _stencil_text(w, models)
         )
     return "; ".join(rows)
 
 
 SPIN_METHOD = (
-    "Method: z = (omega - half vorticity)/se in the bins near each wall, se = sqrt(se_omega^2 "
-    "+ se_half^2); chi^2 = sum z^2 against no departure, one degree of freedom per bin; each "
-    "sheared wall tested on its own (the moving wall; a fixed wall only where its nearest bin "
-    "moves), a run's test adds its sheared walls, the pooled test adds the runs; bins and runs "
-    "taken as independent (a correlation rho between neighbouring bins would inflate chi^2 by "
-    "about (1 + rho)/(1 - rho))."
+    "Method: z = (omega - half vorticity - null)/se in the bins near each wall, the null "
+    "being what the analysis reports where the grains turn with the material (omega = half "
+    "the vorticity at every point) in the velocity of the run's best fit, measured as the data "
+    "are (bin averages of u and omega, the analysis' difference stencil; 0 without a fit), "
+    "se = sqrt(se_omega^2 "
+    "+ se_half^2) (omega and half the vorticity come from the same particles and blocks, but "
+    "the correlation of their errors is not recorded: taken as independent, and the largest "
+    "error any correlation allows, se_omega + se_half, reported as a bound); neighbouring "
+    "bins' errors correlated as an AR(1) sequence with the sidecar's bin_correlation of "
+    "omega (else u's), z whitened; chi^2 = sum z^2 against no departure, one degree of "
+    "freedom per bin; each sheared wall (the material next to it moves relative to it: "
+    "|u(first bin) - u_wall| >= 0.05) tested on its own, a run's test adds its sheared walls, "
+    "the pooled test adds the runs. The first layer's half vorticity depends on the "
+    f"difference stencil: its departure is given under {len(STENCILS)} stencils "
+    f"({', '.join(STENCILS)}), the models' forward-modelled as the data; where its sign is "
+    "not the same under all of them the first layer is stencil-dependent and that wall's test "
+    "rests on its other bins."
 )
 
 
@@ -180,12 +290,19 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
             "the moving wall.",
         )
     runs = sorted({w.run for w in tested})
-    per_run = {r: chi2_p(np.concatenate([w.z for w in tested if w.run == r])) for r in runs}
-    chi2, dof, p = chi2_p(np.concatenate([w.z for w in tested]))
+    dependent = [w for w in tested if w.stencil_dependent()]
+    per_run = {
+        r: chi2_p(np.concatenate([_decisive(w) for w in tested if w.run == r])) for r in runs
+    }
+    chi2, dof, p = chi2_p(np.concatenate([_decisive(w) for w in tested]))
     assert chi2 is not None and p is not None  # every tested wall has bins (dof > 0)
+    every = chi2_p(np.concatenate([w.z for w in tested]))
+    rest = chi2_p(np.concatenate([w.z_rest for w in tested]))
+    bound = chi2_p(np.concatenate([w.z_bound for w in tested]))
     roles = sorted({w.wall for w in tested})
     by_wall = {
-        role: chi2_p(np.concatenate([w.z for w in tested if w.wall == role])) for role in roles
+        role: chi2_p(np.concatenate([_decisive(w) for w in tested if w.wall == role]))
+        for role in roles
     }
     p_run = {r: 1.0 if v[2] is None else v[2] for r, v in per_run.items()}  # p may be 0.0
     showing = [r for r in runs if p_run[r] < P_CONSISTENT]
@@ -197,29 +314,57 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         own = [w for w in tested if w.run == r]
         if r in showing or not any(model in w.predicted for w in own):
             continue
-        n_r = sum(w.dof for w in own)
-        if float(chi2_dist.sf(n_r + sum(w.shift(model) for w in own), n_r)) >= P_CONSISTENT:
+        n_r = sum(_decisive(w).size for w in own)
+        if float(chi2_dist.sf(n_r + sum(_shift(w, model) for w in own), n_r)) >= P_CONSISTENT:
             blind.append(r)
-    pooled = f"pooled over {len(runs)} runs: chi^2 = {chi2:.4g} for {dof} bins (p = {p:.2g})"
-    pooled += "".join(
-        f"; {role} walls alone: chi^2 = {c:.4g} for {n} bins (p = {pp:.2g})"
-        for role, (c, n, pp) in by_wall.items()
+    on = (
+        f"without the first layer at the {len(dependent)} walls where its sign depends on the "
+        f"stencil ({', '.join(f'{w.run}:{w.wall}' for w in dependent)}): {dof} bins"
+        if dependent
+        else f"every near-wall bin: {dof} bins"
     )
-    detail = _walls_text(tested)
+    pooled = (
+        f"pooled over {len(runs)} runs, {on}, the departure beyond the null "
+        f"{_test_text((chi2, dof, p))}"
+    )
+    pooled += "".join(f"; {role} walls alone: {_test_text(t)}" for role, t in by_wall.items())
+    zero = chi2_p(np.concatenate([w.z_zero for w in tested]))
+    pooled += (
+        f". With every first layer: {_test_text(every)}; without any first layer: "
+        f"{_test_text(rest)}; with se_omega + se_half (the largest error): {_test_text(bound)}; "
+        f"against 0 (no null), every bin: {_test_text(zero)}"
+    )
+    models = sorted({m for w in tested for m in w.predicted_stencils})
+    detail = _walls_text(tested, models)
     if untested:
         detail += (
-            "; not judged (the material does not shear there, no model predicts a departure): "
-            + _walls_text(untested)
+            "; not judged (the material does not shear there: it moves with the wall, and no "
+            "model predicts a departure): " + _walls_text(untested)
         )
     numbers: dict[str, Any] = {
         "pooled_chi2": chi2,
         "pooled_dof": dof,
         "pooled_p": p,
+        "pooled_chi2_every_bin": every[0],
+        "pooled_dof_every_bin": every[1],
+        "pooled_p_every_bin": every[2],
+        "pooled_chi2_without_first_layer": rest[0],
+        "pooled_dof_without_first_layer": rest[1],
+        "pooled_p_without_first_layer": rest[2],
+        "pooled_chi2_bound": bound[0],
+        "pooled_p_bound": bound[2],
+        "pooled_chi2_against_zero": zero[0],
+        "pooled_p_against_zero": zero[2],
+        "null_models": {f"{w.run}:{w.wall}": w.null_model for w in tested if w.null is not None},
+        "stencil_dependent_walls": [f"{w.run}:{w.wall}" for w in dependent],
+        "model_first_layer_stencil_dependent": {
+            m: [f"{w.run}:{w.wall}" for w in tested if w.stencil_dependent(m)] for m in models
+        },
         "by_wall": {k: {"chi2": v[0], "dof": v[1], "p": v[2]} for k, v in by_wall.items()},
         "runs_departing_p_0.05": showing,
         "runs_departing_p_significant": significant,
     }
-    shift = sum(w.shift(model) for w in tested)
+    shift = sum(_shift(w, model) for w in tested)
     needed = float(chi2_dist.isf(P_SIGNIFICANT, dof)) - dof
     p_seen = float(chi2_dist.sf(dof + shift, dof))
     numbers["p_if_model_departure_were_there"] = p_seen
@@ -230,9 +375,16 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         if blind
         else ""
     )
+    rests = (
+        f" The first layer's sign depends on the stencil at {len(dependent)} of {len(tested)} "
+        "sheared walls: the verdict rests on the other near-wall bins there."
+        if dependent
+        else ""
+    )
     head = (
         f"{pooled}. {len(showing)} of {len(runs)} runs depart at p < {P_CONSISTENT:g} "
-        f"({len(significant)} at p < {P_SIGNIFICANT:g}){too_noisy}. {detail}. {SPIN_METHOD}"
+        f"({len(significant)} at p < {P_SIGNIFICANT:g}){too_noisy}.{rests} {detail}. "
+        f"{SPIN_METHOD}"
     )
     if p < P_SIGNIFICANT:
         if 2 * len(showing) >= len(runs) - len(blind):
@@ -240,7 +392,8 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
                 key,
                 "supported",
                 f"Supported: the measured spin departs from half the measured vorticity near "
-                f"the sheared walls; {head}",
+                f"the sheared walls, beyond what the binning and the stencil make of a spin "
+                f"equal to half the vorticity; {head}",
                 "runs at the same conditions whose near-wall spins agree with half the "
                 "vorticity, or a bin-to-bin correlation of the errors large enough to bring "
                 f"the pooled chi^2 below {float(chi2_dist.isf(P_SIGNIFICANT, dof)):.4g}.",
@@ -263,8 +416,8 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
             key,
             "refuted",
             f"Refuted: no departure near the sheared walls, although the departure the "
-            f"{model} model predicts for these runs (fitted to their velocities) would have "
-            f"given p = {p_seen:.2g}; {head}",
+            f"{model} model predicts for these runs (fitted to their velocities, measured as "
+            f"the data) would have given p = {p_seen:.2g}; {head}",
             "a departure in runs with smaller errors, or a model whose predicted departure "
             "these errors could not see.",
             tuple(runs),
@@ -285,9 +438,9 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
     return Verdict(
         key,
         "undecided",
-        f"The data cannot decide: no significant departure (p = {p:.2g}), and the errors are "
-        f"too large to have seen the departure the {model} model predicts (it would give "
-        f"p = {p_seen:.2g}); {head}",
+        f"The data cannot decide: no significant departure ({p_text(chi2, dof, p)}), and the "
+        f"errors are too large to have seen the departure the {model} model predicts (it "
+        f"would give p = {p_seen:.2g}); {head}",
         change,
         tuple(runs),
         numbers,
@@ -358,6 +511,26 @@ def spin_model_verdict(
     )
 
 
+def _sign_determined(w: WallSpin) -> bool:
+    """The first layer's measured sign is determined: |departure| >= :data:`SIGN_SIGMAS` se
+    (without stencils: under the analysis' stencil; with them: the same sign under every
+    stencil, and that far from 0 under at least one, with its own error)."""
+    m, s = w.first, w.first_se
+    assert m is not None and s is not None
+    if not w.stencils:
+        return abs(m) >= SIGN_SIGMAS * s
+    if w.stencil_dependent():
+        return False
+    return any(abs(d) >= SIGN_SIGMAS * math.hypot(sh, so) for d, sh, so in w.stencils.values())
+
+
+def _model_residual(w: WallSpin, model: str) -> FloatArray:
+    """Whitened (departure - the model's)/se of a wall, without the first layer where its sign
+    (the data's or the model's) depends on the stencil [-]."""
+    r = np.asarray(w.departure) - w.predicted[model]
+    return w.white_rest(r) if w.stencil_dependent() or w.stencil_dependent(model) else w.white(r)
+
+
 def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
     """:func:`spin_model_verdict` on the walls ``tested`` (sheared, with spin and a fit)."""
     key = "spin_model"
@@ -370,20 +543,35 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
             f"a run with omega and half_vorticity near the moving wall that the {model} model "
             "can be fitted to.",
         )
-    rows, same, opposite, none, undetermined = [], [], [], [], []
+    rows, same, opposite, none, undetermined, dependent = [], [], [], [], [], []
     for w in tested:
         m, s, pm = w.first, w.first_se, w.predicted_first(model)
         assert m is not None and s is not None and pm is not None
         others = ", ".join(
             f"{k} {w.predicted_first(k):+.3g}" for k in sorted(w.predicted) if k != model
         )
+        point = w.point.get(model)
+        at_point = "" if point is None else f", {point:+.3g} as a point value"
         c, n, pp = w.misfit(model)
+        cr, nr, pr = w.misfit(model, rest=True)
+        shaky = [who for who in ("data", model) if w.stencil_dependent(who)]
         rows.append(
             f"{w.run} ({w.wall} wall, first layer): measured {m:+.3g} +- {s:.2g}, {model} "
-            f"predicts {pm:+.3g} (chi^2 of data - model over {n} near-wall bins = {_g(c)}, p = "
-            f"{_g(pp, '.2g')})" + (f"; other models {others}" if others else "")
+            f"predicts {pm:+.3g} as measured{at_point} (chi^2 of data - model over {n} "
+            f"near-wall bins = {_g(c, '.4g')}, {p_text(c, n, pp)}; without the first layer "
+            f"{_g(cr, '.4g')} for {nr}, {p_text(cr, nr, pr)})"
+            + (f"; other models {others}" if others else "")
+            + _stencil_text(w, [model])
+            + (
+                f"; the first layer's sign is stencil-dependent ({' and '.join(shaky)}): not "
+                "counted"
+                if shaky
+                else ""
+            )
         )
-        if abs(m) < SIGN_SIGMAS * s:
+        if shaky:
+            dependent.append(w)
+        elif not _sign_determined(w):
             undetermined.append(w)
         elif abs(pm) <= NO_DEPARTURE:
             none.append(w)
@@ -391,25 +579,29 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
             same.append(w)
         else:
             opposite.append(w)
+    undetermined += dependent
     detail = "; ".join(rows)
     method = (
         "Method: omega - half vorticity in the first layer of each sheared wall (the bin "
-        "nearest to it) against the model's there; the measured sign is "
-        f"determined where |departure| >= {SIGN_SIGMAS:g} se; the size is tested by chi^2 of "
-        "(departure - model)/se over the bins of the walls with a determined sign."
+        "nearest to it) against the model's there, the model's measured as the data are (bin "
+        "averages of its u and omega, the analysis' difference stencil); the measured sign is "
+        f"determined where its sign (and the model's) is the same under all {len(STENCILS)} "
+        f"stencils and |departure| >= {SIGN_SIGMAS:g} se under at least one; the size is "
+        "tested by chi^2 of the whitened (departure - model)/se over the bins of the walls "
+        "with a determined sign (where the first layer is stencil-dependent: over the other "
+        "bins)."
     )
     determined = same + opposite + none
     runs = tuple(sorted({w.run for w in tested}))
     numbers: dict[str, Any] = {
+        "stencil_dependent": [f"{w.run}:{w.wall}" for w in dependent],
         "same_sign": [f"{w.run}:{w.wall}" for w in same],
         "opposite_sign": [f"{w.run}:{w.wall}" for w in opposite],
         "model_predicts_none": [f"{w.run}:{w.wall}" for w in none],
         "sign_undetermined": [f"{w.run}:{w.wall}" for w in undetermined],
     }
     if not determined:
-        c, n, pp = chi2_p(
-            np.concatenate([(w.departure - w.predicted[model]) / w.stderr for w in tested])
-        )
+        c, n, pp = chi2_p(np.concatenate([_model_residual(w, model) for w in tested]))
         numbers.update({"size_chi2": c, "size_dof": n, "size_p": pp})
         if pp is not None and pp < P_SIGNIFICANT:
             return Verdict(
@@ -417,7 +609,7 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
                 "refuted",
                 f"Refuted: the data show no departure of determined sign, but the {model} "
                 f"model, fitted to the velocity, predicts one these errors reject: chi^2 of "
-                f"data - model = {c:.4g} for {n} near-wall bins (p = {pp:.2g}). {detail}. "
+                f"data - model = {c:.4g} for {n} near-wall bins ({p_text(c, n, pp)}). {detail}. "
                 f"{method}",
                 "runs with a departure of the size the model predicts, or model parameters "
                 "(a joint calibration on the spin) whose departure is smaller.",
@@ -429,7 +621,9 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
             key,
             "undecided",
             f"The data cannot decide: the measured departure's sign is not determined at any "
-            f"wall (|departure| < {SIGN_SIGMAS:g} se in every first layer). {detail}. {method}",
+            f"wall (in every first layer |departure| < {SIGN_SIGMAS:g} se, or its sign or the "
+            f"model's depends on the stencil), and the model's departure is not rejected over "
+            f"the other bins ({_test_text((c, n, pp))}). {detail}. {method}",
             f"errors of the first layer's departure below |departure|/{SIGN_SIGMAS:g} (now "
             f"{_g(best.first_se, '.2g')} at best).",
             runs,
@@ -460,9 +654,7 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
             runs,
             numbers,
         )
-    c, n, pp = chi2_p(
-        np.concatenate([(w.departure - w.predicted[model]) / w.stderr for w in determined])
-    )
+    c, n, pp = chi2_p(np.concatenate([_model_residual(w, model) for w in determined]))
     numbers.update({"size_chi2": c, "size_dof": n, "size_p": pp})
     if none:
         return Verdict(
@@ -479,7 +671,7 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
             key,
             "refuted",
             f"Refuted: the sign agrees but the size does not: chi^2 of data - model = {c:.4g} "
-            f"for {n} bins (p = {pp:.2g}). {detail}. {method}",
+            f"for {n} bins ({p_text(c, n, pp)}). {detail}. {method}",
             "a fit that matches the spin's size as well as the velocity.",
             runs,
             numbers,
@@ -489,7 +681,7 @@ def _spin_model_on(tested: Sequence[WallSpin], model: str) -> Verdict:
         "supported",
         f"Supported: the measured departure has the sign the {model} model predicts at every "
         f"wall where it is determined, and its size is not rejected (chi^2 = {_g(c)} for {n} "
-        f"bins, p = {_g(pp, '.2g')}). {detail}. {method}",
+        f"bins, {p_text(c, n, pp)}). {detail}. {method}",
         "a run with smaller errors whose departure differs from the model's in size or sign.",
         runs,
         numbers,

@@ -1,0 +1,160 @@
+"""The spin statistics of ``validate`` (referee 5, V2 and requests 1, 4, 8): the first layer
+under several stencils, whitened chi^2 with and without it, the null the measurement makes,
+one 'sheared' rule for every wall, and p-values too small to mean anything printed as z."""
+
+from __future__ import annotations
+
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.stats import chi2 as chi2_dist
+from scipy.stats import norm
+
+from cosserat.analysis.corpus import read_run, write_run
+from cosserat.calibration.noise import covariance
+from cosserat.studies.validate import WallSpin, spin_model_verdict, spin_verdict
+from cosserat.studies.validate.measures import measure_spin, spin_correlation
+from cosserat.studies.validate.verdicts import equivalent_z, log_chi2_sf, p_text
+
+DIST = np.array([0.5, 1.5, 2.5])
+DATA = Path(__file__).resolve().parents[1] / "data" / "dem_v2"
+
+
+def stencils(*values, se=0.01):
+    names = ("analysis", "wall", "wall-0.5", "wall+0.5", "wall-first", "second-order")
+    return {n: (v, se, 0.0) for n, v in zip(names, values, strict=True)}
+
+
+def wall(run, dep, se, *, rho=0.0, st=None, predicted=None, pst=None, null=None):
+    dep = np.asarray(dep, dtype=float)
+    err = np.full(3, se)
+    return WallSpin(run, "moving", True, DIST, dep, err, dict(predicted or {}), rho,
+                    err * 1.4, st or {}, dict(pst or {}), {},
+                    None if null is None else np.asarray(null, float), "mui" if null is not None
+                    else "")  # fmt: skip
+
+
+def test_the_chi2_is_whitened_with_the_bins_correlation():
+    """chi^2 of the whitened departure is z^T R^-1 z, R the AR(1) correlation matrix."""
+    dep, se, rho = np.array([-0.3, 0.1, 0.05]), 0.05, 0.6
+    w = wall("a", dep, se, rho=rho)
+    c = covariance(np.full(3, se), rho)
+    assert w.chi2 == pytest.approx(float(dep @ np.linalg.solve(c, dep)), rel=1e-12)
+    # without the first layer: the last two bins' own AR(1) form
+    c2 = covariance(np.full(2, se), rho)
+    assert float(np.sum(w.z_rest**2)) == pytest.approx(
+        float(dep[1:] @ np.linalg.solve(c2, dep[1:]))
+    )
+    d = w.to_dict()
+    assert d["bins_without_first_layer"] == 2 and d["rho"] == rho
+
+
+def test_a_stencil_dependent_first_layer_is_left_out_and_the_evidence_says_so():
+    """The first layer departs at -6 se under the analysis' stencil but is positive under
+    another: the verdict rests on the two other bins (3.5 and 3 se: chi^2 = 21.25)."""
+    flip = stencils(-0.06, 0.01, -0.03, 0.02, 0.05, -0.05)
+    walls = [wall(r, [-0.06, 0.035, 0.03], 0.01, st=flip) for r in ("a", "b")]
+    v = spin_verdict(walls)
+    assert v.numbers["pooled_dof"] == 4
+    assert v.numbers["pooled_chi2"] == pytest.approx(2 * (3.5**2 + 3.0**2))
+    assert v.numbers["pooled_chi2_every_bin"] == pytest.approx(2 * (36 + 3.5**2 + 9))
+    assert v.numbers["stencil_dependent_walls"] == ["a:moving", "b:moving"]
+    assert "rests on the other near-wall bins there" in v.evidence
+    assert "first layer by stencil: analysis -0.06, wall +0.01" in v.evidence
+    assert "(sign stencil-dependent)" in v.evidence
+    # the same first layer with one sign under every stencil counts
+    same = stencils(-0.06, -0.01, -0.03, -0.02, -0.05, -0.05)
+    v = spin_verdict([wall(r, [-0.06, 0.035, 0.03], 0.01, st=same) for r in ("a", "b")])
+    assert v.numbers["pooled_dof"] == 6 and v.numbers["stencil_dependent_walls"] == []
+
+
+def test_the_departure_the_measurement_makes_is_the_null():
+    """A departure equal to the null (grains turning with the material, measured so) is no
+    departure; against 0 it would be one."""
+    dep = [-0.2, 0.05, 0.01]
+    w = wall("a", dep, 0.01, null=dep)
+    assert w.chi2 == pytest.approx(0.0, abs=1e-20)
+    assert float(np.sum(w.z_zero**2)) == pytest.approx(400 + 25 + 1)
+    assert w.to_dict()["null_first_layer"] == -0.2
+
+
+def test_the_model_first_layer_sign_must_hold_under_every_stencil():
+    """The data's first layer is -6 se under every stencil; the model's forward-modelled one
+    is +0.03 under the analysis' stencil but negative under another: not counted."""
+    st = stencils(-0.06, -0.05, -0.07, -0.04, -0.05, -0.06)
+    pred = {"cosserat": np.array([0.03, 0.0, 0.0])}
+    w = wall("a", [-0.06, 0.0, 0.0], 0.01, st=st, predicted=pred,
+             pst={"cosserat": {"analysis": 0.03, "wall": -0.01}})  # fmt: skip
+    v = spin_model_verdict([w])
+    assert v.numbers["stencil_dependent"] == ["a:moving"]
+    assert v.numbers["opposite_sign"] == []
+    assert "the first layer's sign is stencil-dependent (cosserat): not counted" in v.evidence
+    # with one sign for the model too, the opposite sign refutes
+    w = wall("a", [-0.06, 0.0, 0.0], 0.01, st=st, predicted=pred,
+             pst={"cosserat": {"analysis": 0.03, "wall": 0.01}})  # fmt: skip
+    assert spin_model_verdict([w]).verdict == "refuted"
+
+
+def test_tiny_p_values_are_printed_as_z_and_chi2_per_dof():
+    # two degrees of freedom: p = exp(-chi^2/2) exactly, far below the smallest double
+    assert log_chi2_sf(3000.0, 2) == pytest.approx(-1500.0, rel=1e-12)
+    assert log_chi2_sf(20.0, 3) == pytest.approx(math.log(chi2_dist.sf(20.0, 3)), rel=1e-12)
+    assert equivalent_z(61.8, 6) == pytest.approx(norm.isf(chi2_dist.sf(61.8, 6)), rel=1e-9)
+    # z with log sf(z) = -1500: the tail's asymptotics, sqrt(2 * 1500) to leading order
+    z = equivalent_z(3000.0, 2)
+    assert norm.logsf(z) == pytest.approx(-1500.0, rel=1e-9)
+    assert p_text(202.6, 9, float(chi2_dist.sf(202.6, 9))) == "z = 13, chi^2/dof = 202.6/9"
+    assert p_text(10.9, 3, 0.0123) == "p = 0.012"
+
+
+def plane(tmp_path, u, name="r", meta=None):
+    y = np.arange(10) + 0.5
+    cols = {"y": y, "u": np.asarray(u, float), "u_se": np.full(10, 0.01),
+            "omega": np.zeros(10), "omega_se": np.full(10, 0.01),
+            "half_vorticity": np.zeros(10), "half_vorticity_se": np.full(10, 0.01)}  # fmt: skip
+    m = {"cell": "plane", "gap_d": 10.0, "B": 0.0, "wall": {"kind": "glued-grains"}}
+    return read_run(write_run(tmp_path, name, m | (meta or {}), cols))
+
+
+def test_one_sheared_rule_for_every_wall(tmp_path):
+    """A wall is sheared when the material next to it moves relative to it by >= 0.05 V: the
+    moving wall whose first bin moves at 0.995 V is not; a fixed wall whose first bin moves
+    at 0.3 V is."""
+    u = np.linspace(0.3, 0.995, 10)
+    s = measure_spin(plane(tmp_path, u))
+    assert {w.wall: w.sheared for w in s.walls} == {"moving": False, "fixed": True}
+    u = np.linspace(0.0, 0.9, 10)
+    s = measure_spin(plane(tmp_path, u, "b"))
+    assert {w.wall: w.sheared for w in s.walls} == {"moving": True, "fixed": False}
+
+
+def test_the_bins_correlation_comes_from_omega_then_u(tmp_path):
+    run = plane(
+        tmp_path, np.linspace(0, 1, 10), "c", {"bin_correlation": {"u": 0.9, "omega": -0.2}}
+    )
+    assert spin_correlation(run) == (-0.2, "the sidecar's bin_correlation.omega")
+    run = plane(tmp_path, np.linspace(0, 1, 10), "d", {"bin_correlation": {"u": 0.9}})
+    rho, source = spin_correlation(run)
+    assert rho == 0.9 and "it records none for omega" in source
+    assert spin_correlation(plane(tmp_path, np.linspace(0, 1, 10), "e"))[0] == 0.0
+
+
+def test_the_layer_runs_fixed_wall_under_the_referees_stencils(tmp_path):
+    """Referee 5, V2(b): the layer run's first bin at the smooth fixed wall departs by -0.206
+    with the analysis' one-sided stencil, -0.086 with the wall's velocity and the second bin,
+    +0.154 with the wall's velocity and the first bin: its sign depends on the stencil."""
+    src = DATA / "plane_layer_H10_qs"
+    for ext in ("csv", "json"):
+        shutil.copy(src / f"profile.{ext}", tmp_path / f"layer.{ext}")
+    s = measure_spin(read_run(tmp_path / "layer.csv"))
+    fixed = next(w for w in s.walls if w.wall == "fixed")
+    moving = next(w for w in s.walls if w.wall == "moving")
+    assert fixed.sheared and not moving.sheared  # the moving wall's material at 0.995 V
+    assert fixed.stencils["analysis"][0] == pytest.approx(-0.206, abs=5e-4)
+    assert fixed.stencils["wall"][0] == pytest.approx(-0.086, abs=5e-4)
+    assert fixed.stencils["wall-first"][0] == pytest.approx(0.154, abs=5e-4)
+    assert fixed.stencil_dependent()
+    assert not moving.stencil_dependent()
