@@ -185,3 +185,18 @@ def test_one_run_supported_and_one_missed_in_size_is_mixed(pair):
     assert "at far the admissible set gives the measured sign but the best fit misses" in (
         alone.evidence
     )
+
+
+def test_the_forward_scan_reports_the_first_layer_under_every_stencil(pair):
+    from cosserat.studies.validate.forward import STENCILS
+
+    rough, smooth = pair
+    fit = ss.joint_fit(rough, ss.angles(rough, [rough, smooth]))
+    sc = ss.scan(rough, fit, points=2, predictor="forward")
+    assert sc.how.startswith("measured like the data")
+    assert set(sc.stencils) == set(STENCILS)
+    # the analysis' stencil is the run's own half_vorticity column: the scan's measured value
+    assert sc.stencils["analysis"]["data"] == pytest.approx(sc.measured, abs=1e-12)
+    assert sc.stencils["analysis"]["model"] == pytest.approx(sc.best, abs=1e-12)
+    assert "best fit - data under each stencil: analysis" in ss._describe(sc)
+    assert ss.scan(rough, fit, points=2, predictor="point").stencils == {}

@@ -487,6 +487,9 @@ class Scan:
     chi2_near: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
     how: str = ""
     """How the model's departure is measured (:data:`PREDICTORS`)."""
+    stencils: dict[str, dict[str, float]] = field(default_factory=dict)
+    """A DEM run's first layer under every stencil of ``forward.STENCILS``: ``data``, ``se``
+    and the best fit's ``model``, measured the same way."""
     notes: list[str] = field(default_factory=list)
 
     @property
@@ -565,6 +568,7 @@ class Scan:
             if self.L_near.size
             else None,
             "predictor": self.how,
+            "stencils": {k: dict(v) for k, v in self.stencils.items()},
             "grids": {
                 "range": _grid(self.K, self.L, self.departure, self.chi2 - self.chi2_min),
                 "near": _grid(
@@ -671,7 +675,9 @@ def scan(
                                                 points)]
     )  # fmt: skip
     dep_near, chi2_near = grid(K_near, L_near)
-    best = float(predictor(_profile(s.model, rd, s.run_values(rd, theta0)), run)[i0])
+    best_profile = _profile(s.model, rd, s.run_values(rd, theta0))
+    best = float(predictor(best_profile, run)[i0])
+    stencils = _stencils(best_profile, run, i0) if how == PREDICTORS["forward"][1] else {}
     return Scan(
         run.name,
         fit,
@@ -690,7 +696,25 @@ def scan(
         dep_near,
         chi2_near,
         how,
+        stencils,
     )
+
+
+def _stencils(profile: Any, run: Run, i0: int) -> dict[str, dict[str, float]]:
+    """The first layer under every stencil of ``forward.STENCILS``: the data's departure and
+    its se, and the best fit's, measured the same way (the sign of either may turn with the
+    stencil; their difference is what a stencil cannot explain)."""
+    from .forward import STENCILS, forward_departure, measured_first_layer
+    from .measures import velocity_correlation
+
+    wall = 1 if run.moving_wall == "upper" else 0
+    rho = velocity_correlation(run)
+    out: dict[str, dict[str, float]] = {}
+    for name in STENCILS:
+        m, se_half, se_omega = measured_first_layer(run, wall, name, rho)
+        model = float(forward_departure(profile, run, name)[i0])
+        out[name] = {"data": m, "se": math.hypot(se_half, se_omega), "model": model}
+    return out
 
 
 def _local_half_widths(
@@ -750,7 +774,20 @@ def _describe(sc: Scan) -> str:
         f"{sc.L_near[0]:.3g}-{sc.L_near[-1]:.3g} d around the optimum) "
         f"{adm}; over K in [{sc.K[0]:g}, {sc.K[-1]:g}] and L in [{sc.L[0]:.3g}, "
         f"{sc.L[-1]:.3g}] d ({sc.K.size} x {sc.L.size} grid) {rng}: {wall_call(sc)}"
+        + _stencil_text(sc)
     )
+
+
+def _stencil_text(sc: Scan) -> str:
+    """The best fit - data under every stencil, in se ("" without stencils)."""
+    if not sc.stencils:
+        return ""
+    parts = [
+        f"{k} {v['model'] - v['data']:+.3g} ({(v['model'] - v['data']) / v['se']:+.1f} se)"
+        for k, v in sc.stencils.items()
+        if v["se"] > 0.0
+    ]
+    return " (best fit - data under each stencil: " + ", ".join(parts) + ")"
 
 
 def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
