@@ -103,6 +103,19 @@ def cmd_models(args: argparse.Namespace) -> None:
         sys.stdout.write(models_text(models))
 
 
+def _scan_points(text: str) -> int:
+    """--spin-scan: 0 (no scan) or at least 2 points per parameter."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number; got {text!r}") from None
+    if value < 0 or value == 1:
+        raise argparse.ArgumentTypeError(
+            f"must be 0 (no scan) or at least 2 points per parameter; got {value}"
+        )
+    return value
+
+
 def cmd_validate(args: argparse.Namespace) -> None:
     from ..studies.validate import validate
 
@@ -123,6 +136,8 @@ def cmd_validate(args: argparse.Namespace) -> None:
             bar(i, n)
 
     near = {} if args.near_wall is None else {"near_wall_d": args.near_wall}
+    if args.spin_scan is not None:
+        near["spin_scan"] = args.spin_scan
     workers = args.workers if args.workers is not None else min(2, os.cpu_count() or 1)
     report = validate(
         args.corpus, args.out, models, f=args.f, progress=progress, workers=workers, **near
@@ -175,6 +190,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="processes that fit the runs and calibrate the gap series (default: 2, or 1 on "
         "one core)",
+    )
+    vp.add_argument(
+        "--spin-scan",
+        type=_scan_points,
+        default=None,
+        metavar="N",
+        help="points per parameter (K, L) of the joint-calibration scan behind the spin_model "
+        "verdict (default 11; 0: the u-only fits alone; docs/validation.md)",
     )
     vp.add_argument("--format", choices=("text", "json"), default="text")
     vp.set_defaults(func=cmd_validate)

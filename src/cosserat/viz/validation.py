@@ -499,6 +499,88 @@ def delta_claim_figure(
     return fig
 
 
+def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
+    """The Cosserat model's first-layer spin departure over (K, L), one panel per scanned run
+    (``cosserat.studies.validate.spin_scan.Scan.to_dict``): the departure in colour (blue
+    negative, red positive, white 0), the declared ranges' grid with the finer grid around the
+    joint fit drawn over it, the measured value's +- 2 se band (where the model gives it,
+    hatched), the 95% region of the joint u + omega calibration (black contour) and its optimum
+    (star).
+
+    Parameters
+    ----------
+    scans : sequence of mapping
+        ``run``, ``measured``, ``measured_se``, ``best_K``, ``best_L``, ``best_departure``,
+        ``threshold``, ``phi``, ``delta`` (wall -> deg) and ``grids`` (``range`` and ``near``:
+        ``K``, ``L``, ``departure``, ``delta_chi2``, None where the model has no solution).
+    """
+    import numpy as np
+    from matplotlib.colors import TwoSlopeNorm
+
+    from .plotting import new_figure, style
+
+    n = max(len(scans), 1)
+    fig, axes = new_figure(1, n, width=3.6 * n + 0.6, height=3.4)
+    with style():
+        if not scans:
+            axes[0, 0].text(0.5, 0.5, "no run scanned", ha="center",
+                            transform=axes[0, 0].transAxes)  # fmt: skip
+            return fig
+
+        def arr(g: Mapping[str, Any], key: str) -> Any:
+            return np.array([[np.nan if x is None else x for x in row] for row in g[key]])
+
+        lim = max(
+            max(abs(sc["measured"]) + 2 * sc["measured_se"], abs(sc["best_departure"]))
+            for sc in scans
+        )
+        for sc in scans:
+            for g in sc["grids"].values():
+                d = arr(g, "departure")
+                if np.isfinite(d).any():
+                    lim = max(lim, float(np.nanmax(np.abs(d))))
+        norm = TwoSlopeNorm(vcenter=0.0, vmin=-lim, vmax=lim)
+        mesh = None
+        for ax, sc in zip(axes[0], scans, strict=False):
+            m, se = sc["measured"], sc["measured_se"]
+            for name in ("range", "near"):
+                g = sc["grids"][name]
+                K, L = np.array(g["K"]), np.array(g["L"])
+                d, dc = arr(g, "departure"), arr(g, "delta_chi2")
+                mesh = ax.pcolormesh(L, K, d, cmap="RdBu_r", norm=norm, shading="nearest")
+                band = np.where(np.abs(d - m) <= 2 * se, 1.0, np.nan)
+                if np.isfinite(band).any():
+                    ax.contourf(L, K, band, levels=[0.5, 1.5], colors="none", hatches=["////"])
+                if name == "near" and np.isfinite(dc).any() and len(K) > 1 and len(L) > 1:
+                    ax.contour(L, K, np.where(np.isfinite(dc), dc, 1e9),
+                               levels=[sc["threshold"]], colors="k", linewidths=1.0)  # fmt: skip
+                if name == "near":
+                    ax.plot([L[0], L[-1], L[-1], L[0], L[0]], [K[0], K[0], K[-1], K[-1], K[0]],
+                            color="0.3", linewidth=0.5, linestyle=":")  # fmt: skip
+            ax.plot([sc["best_L"]], [sc["best_K"]], marker="*", color="k", markersize=9,
+                    linestyle="none")  # fmt: skip
+            ax.set_facecolor("0.85")
+            ax.set_xscale("log")
+            ax.set_xlabel("L [d]")
+            ax.set_ylabel("K (moving wall) [-]")
+            deltas = ", ".join(f"delta {w} {v:.3g} deg" for w, v in sc["delta"].items())
+            ax.set_title(
+                f"{sc['run']}\nphi {sc['phi']:.3g} deg, {deltas}\nmeasured {m:+.3g} +- {se:.2g};"
+                f" best fit {sc['best_departure']:+.3g}",
+                fontsize=7,
+            )
+        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.22, top=0.78, wspace=0.35)
+        if mesh is not None:
+            cax = fig.add_axes((0.87, 0.22, 0.015, 0.56))
+            bar = fig.colorbar(mesh, cax=cax)
+            bar.set_label("model's first-layer (omega - vorticity/2) d/V [-]", fontsize=7)
+        fig.text(0.01, 0.01, "hatched: within 2 se of the measured value; black contour: the "
+                 "95% region of the joint u + omega + stress-ratio fit (star: its optimum);\n"
+                 "dotted box: the finer grid around it; grey: the model has no solution (the "
+                 "couple stress reaches its yield bound inside the gap)", fontsize=6)  # fmt: skip
+    return fig
+
+
 __all__ = [
     "STATUS_CODES",
     "delta_claim_figure",
@@ -506,4 +588,5 @@ __all__ = [
     "run_figure",
     "spin_claim_figure",
     "spin_model_figure",
+    "spin_scan_figure",
 ]

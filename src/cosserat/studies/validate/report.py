@@ -41,6 +41,8 @@ CLAIM_FIGURES = {
     "spin_model": "claim_spin_model.png",
 }
 """The figure of each claim."""
+SPIN_SCAN_FIGURE = "claim_spin_scan.png"
+"""The spin scan's figure (``spin_model``, :mod:`.spin_scan`), where a run was scanned."""
 
 
 def run_entry(r: RunResult) -> dict[str, Any]:
@@ -256,6 +258,13 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
             ),
             out / CLAIM_FIGURES["spin_model"],
         )
+    scans = next(
+        (list(v.numbers.get("scans", [])) for v in report.verdicts if v.key == "spin_model"), []
+    )
+    if scans:
+        with style():
+            save_figure(fig.spin_scan_figure(scans), out / SPIN_SCAN_FIGURE)
+        files["claim_spin_scan"] = SPIN_SCAN_FIGURE
     slopes = {f"slope {v:.3g} ({k})": v for k, v in PAPER_SLOPES.items()}
     for which, title in (
         ("smoother", "walls smoother than the material"),

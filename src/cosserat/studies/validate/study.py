@@ -43,6 +43,7 @@ from .measures import (
     thickness_of,
     thickness_sensitivity,
 )
+from .spin_scan import COARSE, scan_verdict, spin_scans
 from .verdicts import (
     MIN_GAPS,
     SAME_GAP,
@@ -196,6 +197,25 @@ def _spin_model_inputs(
         if s is not None and s.ok and s.unfit_reason:
             unfit[r.run.name] = s.unfit_reason
     return walls, model, unfit, left_out
+
+
+def _spin_model(results: Sequence[RunResult], points: int) -> Verdict:
+    """``spin_model``: from the joint calibration and scan of :mod:`.spin_scan` where a run can
+    be scanned, the u-only fits' verdict kept in its numbers; the u-only verdict alone when
+    ``points`` is 0 or no run can be scanned."""
+    u_only = spin_model_verdict(*_spin_model_inputs(results))
+    if points <= 0:
+        return u_only
+    corpus = [r.run for r in results]
+    scans, skipped = spin_scans([r.run for r in results if r.spin.available], corpus, points)
+    if not scans:
+        if not skipped:
+            return u_only
+        return replace(u_only, evidence=f"{u_only.evidence} Not scanned: {'; '.join(skipped)}.")
+    v = scan_verdict(scans, u_only)
+    if skipped:
+        v = replace(v, evidence=f"{v.evidence} Not scanned: {'; '.join(skipped)}.")
+    return v
 
 
 def _null_misfit(spin: SpinMeasure, null: FloatArray, skip_fixed: bool = False) -> float:
@@ -449,10 +469,13 @@ def judge(
     f: float = DEFAULT_F,
     calibrate: bool = True,
     calibrations: Mapping[str, Sequence[SeriesCalibration]] | None = None,
+    spin_scan: int = COARSE,
 ) -> tuple[list[DeltaSeries], list[Verdict], list[str]]:
     """The gap series and the verdicts on every claim, from the runs' results. Each series'
     joint calibrations (:func:`series_jobs`) are ``calibrations`` (series key -> one per
-    model), or else made here unless ``calibrate`` is False."""
+    model), or else made here unless ``calibrate`` is False. ``spin_scan``: points per
+    parameter of the spin scan behind ``spin_model`` (:mod:`.spin_scan`; 0: the u-only fits
+    alone)."""
     by_name = {r.run.name: r for r in results}
     if calibrations is None:
         made: dict[str, list[SeriesCalibration]] = {}
@@ -501,7 +524,7 @@ def judge(
         spin_verdict(walls),
         delta_law_verdict(series, "smoother"),
         delta_law_verdict(series, "rough"),
-        spin_model_verdict(*_spin_model_inputs(results)),
+        _spin_model(results, spin_scan),
         # the layer's position, judged only on runs whose walls differ (.layer)
         *layer_verdicts(
             [r.run for r in results],
@@ -565,6 +588,7 @@ def validate(
     grid: int = 3,
     progress: Callable[[str, int, int], None] | None = None,
     workers: int | None = None,
+    spin_scan: int = COARSE,
 ) -> ValidationReport:
     """Fit, compare and judge every run of ``corpus``; write the report into ``out``.
 
@@ -590,6 +614,9 @@ def validate(
         parallel; None: one. On the shipped corpus one process needs 84 s of CPU, two workers
         101 s between them (each pays its start): on two idle cores about 51 s; on cores
         already busy they were slower (``docs/validation.md``, Speed).
+    spin_scan : int
+        Points per parameter (K, L) of the spin scan behind ``spin_model``
+        (:mod:`.spin_scan`; 0: the u-only fits' verdict alone).
 
     Raises
     ------
@@ -602,6 +629,10 @@ def validate(
         raise ParameterError(f"f must satisfy 0 < f < 1; got {f:g}")
     if not near_wall_d > 0.0:
         raise ParameterError(f"near_wall_d must be > 0 grain diameters; got {near_wall_d:g}")
+    if spin_scan == 1 or spin_scan < 0:
+        raise ParameterError(
+            f"spin_scan must be 0 (no scan) or at least 2 points per parameter; got {spin_scan}"
+        )
     from ...routes import RHEOLOGIES
 
     if models is not None:
@@ -618,7 +649,7 @@ def validate(
     results, cals = _analyse_all(
         data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs
     )
-    series, verdicts, notes = judge(results, models, f, calibrations=cals)
+    series, verdicts, notes = judge(results, models, f, calibrations=cals, spin_scan=spin_scan)
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
     if out is not None:

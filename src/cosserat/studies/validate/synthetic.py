@@ -246,8 +246,11 @@ def synthetic_run(
             "distance_d": [float(abs(xi[i] - x_wall) * gap_d) for i in idx],
         }
 
-    wall_normal = float(normal[int(np.argmin(np.abs(xi - xw)))])
-    wall_shear = float(shear[int(np.argmin(np.abs(xi - xw)))])
+    # the stresses on the moving wall itself, as its contacts measure them (not the first bin's:
+    # under gravity sigma_yy there is 1 + B nu eps / 2 times the wall's)
+    fw = profile.evaluate(np.array([float(xw)]))
+    wall_normal = float(np.asarray(fw.sigma_yy, dtype=float)[0])
+    wall_shear = float(np.asarray(fw.sigma_yx, dtype=float)[0]) * math.copysign(1.0, uw)
     true_params = {k: v for k, v in problem.values().items() if isinstance(v, int | float | str)}
     meta: dict[str, Any] = {
         "cell": cell,

@@ -1,0 +1,202 @@
+"""The spin scan behind ``spin_model`` (:mod:`cosserat.studies.validate.spin_scan`).
+
+The relation phi comes from (a fully rough wall's T = |sigma_yx| / N = sin phi, the stress ratio
+T / sigma_yy(s) across the band) is checked against a solved profile; the scan on data the
+Cosserat model made gives the sign it was made with; data whose first-layer departure is
+reversed are refuted; runs without a spin are clean one-line errors.
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import read_run, write_run
+from cosserat.analysis.ranking import model_solve
+from cosserat.errors import InputError, ParameterError
+from cosserat.model import make_problem
+from cosserat.studies.validate import spin_scan as ss
+from cosserat.studies.validate.synthetic import synthetic_run
+
+PHI = 20.0
+ROUGH = math.degrees(math.atan(math.sin(math.radians(PHI))))  # tan delta = sin phi
+SMOOTH = 15.0
+COMMON = {"phi": PHI, "L": 3.0, "K": 0.5}
+
+
+def _run(folder, name, wall, delta, *, seed=0, **options):
+    params = {**COMMON, "delta": delta}
+    path = synthetic_run(
+        folder, name, "cosserat", "plane", 10.0, parameters=params, wall=wall, B=1.0,
+        noise=0.005, stress_noise=0.005, seed=seed, **options,
+    )  # fmt: skip
+    return read_run(path)
+
+
+@pytest.fixture(scope="module")
+def pair(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("pair")
+    return _run(folder, "rough", "rough", ROUGH), _run(folder, "smooth", "smooth", SMOOTH, seed=1)
+
+
+def test_the_band_ratio_is_T_over_sigma_yy_on_a_solved_profile(pair):
+    """eqn-nd_xmom, eqn-nd_ymom, eqn-nd_bc1, eqn-nd_bc2, eqn-bc_fullyrough: sigma_yx / N is
+    uniform, tan delta at the slipping wall (sin phi when it is fully rough), and
+    sigma_yy / N = 1 + B nu eps s at s grain diameters from the moving upper plate."""
+    rough, _ = pair
+    p = rough.cell_parameters()
+    problem = make_problem("cosserat", "plane", {**COMMON, "delta": "fully-rough",
+                                                 "eps": p["eps"], "B": p["B"]})  # fmt: skip
+    s = np.linspace(0.0, rough.gap_d, 23)
+    f = model_solve(problem, points=201).evaluate(1.0 - s * p["eps"])
+    ratio = np.abs(f.sigma_yx) / f.sigma_yy
+    expected = math.sin(math.radians(PHI)) / ss.normal_stress(rough, s)
+    np.testing.assert_allclose(ratio, expected, rtol=1e-8)
+
+
+def test_phi_and_delta_come_back_from_the_runs_stresses(pair):
+    rough, smooth = pair
+    t = ss.shear_stress(rough)
+    assert abs(t.value - math.sin(math.radians(PHI))) <= 3.0 * t.stderr
+    assert t.stderr < 0.01
+    # the smooth wall slips: its stresses give delta (here from the wall's contacts: the band
+    # is too thin for two stress bins), phi comes from the rough run of the same material
+    with pytest.raises(InputError, match="run smooth: fewer than two band bins"):
+        ss.shear_stress(smooth)
+    ang = ss.angles(smooth, [rough, smooth])
+    assert abs(ang.phi - PHI) <= 3.0 * ang.phi_se
+    assert "from the fully rough run(s) rough" in ang.phi_source
+    assert "the moving wall's measured ratio" in ang.delta_source["moving"]
+    assert abs(ang.delta("moving") - SMOOTH) < 0.3
+    assert ss.angles(rough, [rough, smooth]).roughness == {"moving": 1.0}
+
+
+def test_a_smooth_run_alone_has_no_phi(pair):
+    _, smooth = pair
+    with pytest.raises(InputError, match="no plane run with both walls fully rough"):
+        ss.angles(smooth, [smooth])
+
+
+def test_the_scan_of_cosserat_data_gives_the_sign_they_were_made_with(pair):
+    rough, smooth = pair
+    for run in (rough, smooth):
+        sc = ss.scan_run(run, [rough, smooth], points=5)
+        assert sc.how.startswith("measured like a synthetic run")
+        assert abs(sc.measured) >= 3.0 * sc.measured_se  # a departure of determined sign
+        assert sc.best * sc.measured > 0.0
+        lo, hi = sc.admissible_span
+        assert lo <= sc.best <= hi
+        assert ss.wall_call(sc) == "supported", ss._describe(sc)
+        assert sc.admissible_count >= 1
+        assert sc.departure.shape == (5, 5) and sc.departure_near.shape == (5, 5)
+        # the joint fit finds the K and L the data were made with
+        assert abs(sc.fit.value("L") - COMMON["L"]) < 1.0
+    v = ss.scan_verdict([ss.scan_run(r, [rough, smooth], points=3) for r in (rough, smooth)])
+    assert v.verdict == "supported", v.evidence
+
+
+def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
+    """The rough run with its spin mirrored about half the vorticity (omega' = 2 half - omega):
+    the first-layer departure changes sign, which no (K, L) of the 95% region gives."""
+    rough, smooth = pair
+    cols = {k: np.asarray(v) for k, v in rough.columns.items()}
+    cols["omega"] = 2.0 * cols["half_vorticity"] - cols["omega"]
+    write_run(tmp_path, "reversed", dict(rough.meta), cols)
+    rev = read_run(tmp_path / "reversed.csv")
+    sc = ss.scan_run(rev, [rough, smooth], points=5)
+    assert sc.measured < -3.0 * sc.measured_se
+    assert sc.admissible_span[0] > 0.0
+    assert ss.wall_call(sc) == "refuted"
+    v = ss.scan_verdict([sc])
+    assert v.verdict == "refuted"
+    assert v.evidence.startswith("Refuted: at reversed no admissible (K, L)")
+
+
+def test_runs_without_a_spin_are_one_line_errors(tmp_path, pair):
+    rough, smooth = pair
+    cols = {k: v for k, v in rough.columns.items() if k not in ("omega", "omega_se")}
+    meta = {**rough.meta, "columns": {k: v for k, v in rough.meta.get("columns", {}).items()
+                                      if k not in ("omega", "omega_se")}}  # fmt: skip
+    write_run(tmp_path, "nospin", meta, cols)
+    run = read_run(tmp_path / "nospin.csv")
+    message = "run nospin: no omega and omega_se columns: the spin scan needs the measured spin"
+    with pytest.raises(InputError, match=message):
+        ss.scan_run(run, [rough, smooth])
+    with pytest.raises(InputError, match="run nospin: no usable omega bins"):
+        ss.joint_fit(run, ss.angles(rough, [rough]))
+    scans, skipped = ss.spin_scans([run], [rough, smooth])
+    assert scans == [] and skipped == []  # no spin: nothing to scan, nothing to say
+    sc_fit = ss.joint_fit(rough, ss.angles(rough, [rough]))
+    with pytest.raises(ParameterError, match="at least 2 points per parameter; got 1"):
+        ss.scan(rough, sc_fit, points=1)
+    with pytest.raises(ParameterError, match="unknown spin predictor 'exact'"):
+        ss.scan(rough, sc_fit, points=2, predictor="exact")
+
+
+def test_validate_rejects_a_one_point_scan_in_one_line(tmp_path):
+    proc = subprocess.run(
+        [sys.executable, "-m", "cosserat", "validate", str(tmp_path), "--out",
+         str(tmp_path / "o"), "--spin-scan", "1"],
+        capture_output=True, text=True,
+    )  # fmt: skip
+    assert proc.returncode == 2
+    assert "--spin-scan: must be 0 (no scan) or at least 2 points per parameter; got 1" in (
+        proc.stderr
+    )
+
+
+def test_the_scan_figure_draws_each_scanned_run(pair, tmp_path):
+    import json
+
+    from cosserat.viz.validation import spin_scan_figure
+
+    rough, smooth = pair
+    record = ss.scan_run(rough, [rough, smooth], points=3).to_dict()
+    record = json.loads(json.dumps(record))  # as results.json holds it (None, no NaN)
+    assert set(record["grids"]) == {"range", "near"}
+    fig = spin_scan_figure([record])
+    panel, bar = fig.axes
+    assert panel.get_xscale() == "log" and panel.get_xlabel() == "L [d]"
+    assert "rough" in panel.get_title() and "first-layer" in bar.get_ylabel()
+    fig.savefig(tmp_path / "scan.png")
+
+
+def test_one_run_supported_and_one_missed_in_size_is_mixed(pair):
+    import dataclasses
+
+    rough, smooth = pair
+    good = ss.scan_run(rough, [rough, smooth], points=3)
+    assert ss.wall_call(good) == "supported"
+    # the same sign, three times the size: the admissible set gives the sign, the best fit
+    # misses the size
+    far = dataclasses.replace(good, run="far", measured=3.0 * good.measured)
+    assert abs(far.best - far.measured) > 2.0 * math.hypot(far.measured_se, far.prediction_se)
+    assert ss.wall_call(far) == "undecided"
+    v = ss.scan_verdict([good, far])
+    assert v.verdict == "mixed", v.evidence
+    assert v.evidence.startswith("Mixed: supported at rough; at far the admissible set gives")
+    assert v.would_change.startswith("at far: a best fit whose first-layer departure")
+    alone = ss.scan_verdict([far])
+    assert alone.verdict == "undecided"
+    assert "at far the admissible set gives the measured sign but the best fit misses" in (
+        alone.evidence
+    )
+
+
+def test_the_forward_scan_reports_the_first_layer_under_every_stencil(pair):
+    from cosserat.studies.validate.forward import STENCILS
+
+    rough, smooth = pair
+    fit = ss.joint_fit(rough, ss.angles(rough, [rough, smooth]))
+    sc = ss.scan(rough, fit, points=2, predictor="forward")
+    assert sc.how.startswith("measured like the data")
+    assert set(sc.stencils) == set(STENCILS)
+    # the analysis' stencil is the run's own half_vorticity column: the scan's measured value
+    assert sc.stencils["analysis"]["data"] == pytest.approx(sc.measured, abs=1e-12)
+    assert sc.stencils["analysis"]["model"] == pytest.approx(sc.best, abs=1e-12)
+    assert "best fit - data under each stencil: analysis" in ss._describe(sc)
+    assert ss.scan(rough, fit, points=2, predictor="point").stencils == {}
