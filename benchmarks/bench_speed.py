@@ -418,8 +418,10 @@ def compilation(rep: Report, before: Path | None) -> None:
         "`runtime.warm_up()` (every batch entry point)": [
             py, "-c", "from cosserat.numerics.runtime import warm_up; warm_up()"
         ],
-        "the test suite's first kernel test": [py, "-m", "pytest", "-q", "-x", "-p",
-                                               "no:cacheprovider", FIRST_KERNEL_TEST],
+        # -n 0: one process (pyproject's addopts run -n auto: on a cold cache every
+        # xdist worker compiles the same kernels)
+        "the test suite's first kernel test": [py, "-m", "pytest", "-q", "-x", "-n", "0",
+                                               "-p", "no:cacheprovider", FIRST_KERNEL_TEST],
     }  # fmt: skip
     trees = {"this tree": ROOT / "src"}
     if before is not None:
