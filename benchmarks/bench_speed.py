@@ -350,29 +350,35 @@ def predictions(rep: Report, rounds: int, min_time: float, walkers: int) -> None
         rounds,
         min_time,
     )
+    cpu = dict(CPU)
     n = len(problems)
+
+    def per(key: str, count: int) -> str:
+        return f"{times[key] / count * 1e6:.0f} ({cpu[key] / count * 1e6:.0f})"
+
     rows = [
-        ["predict_many, all runs", f"{times['batched'] / n * 1e6:.0f}"],
-        ["predict_many, plane eps 0.05", f"{times['plane eps 0.05'] / walkers * 1e6:.0f}"],
-        ["predict_many, plane eps 0.025", f"{times['plane eps 0.025'] / walkers * 1e6:.0f}"],
-        ["predict_many, Couette", f"{times['couette'] / walkers * 1e6:.0f}"],
-        ["predict, one problem per call", f"{times['one by one'] / n * 1e6:.0f}"],
-        ["solve(p, xi=x, check=False)", f"{times['solve'] / n * 1e6:.0f}"],
+        ["predict_many, all runs", per("batched", n)],
+        ["predict_many, plane eps 0.05", per("plane eps 0.05", walkers)],
+        ["predict_many, plane eps 0.025", per("plane eps 0.025", walkers)],
+        ["predict_many, Couette", per("couette", walkers)],
+        ["predict, one problem per call", per("one by one", n)],
+        ["solve(p, xi=x, check=False)", per("solve", n)],
     ]
-    rep.table(rows, ["call", "per problem [us]"])
-    per_sample = times["batched"] / walkers
-    projected = 1e4 * per_sample
+    rep.table(rows, ["call", "per problem [us]: wall (CPU)"])
+    per_sample, per_sample_cpu = times["batched"] / walkers, cpu["batched"] / walkers
+    projected, projected_cpu = 1e4 * per_sample, 1e4 * per_sample_cpu
     rep.out(
         f"\n{n_ok} of {n} predictions ok; largest difference from `solve(p).evaluate(x)` over "
-        f"the first 30: {worst:.1e}. Per sample of the three runs: {per_sample * 1e3:.2f} ms, so "
-        f"a 10^4-sample posterior needs {projected:.1f} s of predictions on one core.\n"
+        f"the first 30: {worst:.1e}. Per sample of the three runs: {per_sample * 1e3:.2f} ms "
+        f"of wall time ({per_sample_cpu * 1e3:.2f} ms of CPU), so a 10^4-sample posterior needs "
+        f"{projected:.1f} s of predictions on one core ({projected_cpu:.1f} s of CPU).\n"
     )
     rep.target(
         "1e4-sample posterior of three runs (two plane, one Couette) < 60 s on one core "
         "(the predictions)",
-        f"{per_sample * 1e3:.2f} ms per sample of three runs -> {projected:.1f} s "
-        f"(predict_many, 30 points per run)",
-        projected < 60.0,
+        f"{per_sample * 1e3:.2f} ms per sample of three runs -> {projected:.1f} s wall, "
+        f"{projected_cpu:.1f} s CPU (predict_many, 30 points per run)",
+        *_verdict(projected < 60.0, projected_cpu < 60.0),
     )
     # the other rheologies: what a prediction costs through solve()
     rows = []
@@ -418,8 +424,10 @@ def compilation(rep: Report, before: Path | None) -> None:
         "`runtime.warm_up()` (every batch entry point)": [
             py, "-c", "from cosserat.numerics.runtime import warm_up; warm_up()"
         ],
-        "the test suite's first kernel test": [py, "-m", "pytest", "-q", "-x", "-p",
-                                               "no:cacheprovider", FIRST_KERNEL_TEST],
+        # -n 0: one process (pyproject's addopts run -n auto: on a cold cache every
+        # xdist worker compiles the same kernels)
+        "the test suite's first kernel test": [py, "-m", "pytest", "-q", "-x", "-n", "0",
+                                               "-p", "no:cacheprovider", FIRST_KERNEL_TEST],
     }  # fmt: skip
     trees = {"this tree": ROOT / "src"}
     if before is not None:

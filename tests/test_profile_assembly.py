@@ -5,6 +5,7 @@ never here; these tests pin that the shortcuts change no number, no decision and
 
 from __future__ import annotations
 
+import dataclasses
 import pickle
 
 import numpy as np
@@ -15,15 +16,18 @@ from cosserat import (
     Cosserat,
     Couette,
     Material,
+    ParameterError,
     Plane,
     Problem,
     Wall,
     config,
     solve,
 )
+from cosserat.model._cached import cached
 from cosserat.model.grids import layered_grid
 from cosserat.numerics import cosserat as kernel
 from cosserat.results.diagnostics import Deferred
+from cosserat.results.profile import Diagnostics, Profile
 from cosserat.routes import assemble, numerical
 from cosserat.routes.numerical import NumericalSolution, parameter_vector, run_kernel
 
@@ -177,3 +181,61 @@ def test_layered_grid_has_numpys_numbers() -> None:
         expected = _numpy_layered_grid(n, zones, lo, hi)
         got = layered_grid(n, zones, lo, hi)
         assert got.shape == expected.shape and np.array_equal(got, expected)
+
+
+@pytest.mark.parametrize("name", list(PROBLEMS))
+def test_assembled_profile_is_the_constructors(name: str) -> None:
+    """make_profile fills the frozen dataclasses' __dict__ (results.profile.assembled): every
+    field is there, and the constructor makes the same object from the same values."""
+    profile = solve(PROBLEMS[name])
+    fields = {f.name for f in dataclasses.fields(Profile)}
+    assert set(vars(profile)) == fields
+    assert set(vars(profile.diagnostics)) == {f.name for f in dataclasses.fields(Diagnostics)}
+    again = Profile(**{k: getattr(profile, k) for k in fields})
+    assert vars(again) == vars(profile)
+    diag = profile.diagnostics
+    assert vars(Diagnostics(**vars(diag))) == vars(diag)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        profile.u = profile.u  # type: ignore[misc]
+    sol = profile.evaluator
+    assert isinstance(sol, NumericalSolution)
+    assert set(vars(sol)) == {f.name for f in dataclasses.fields(NumericalSolution)}
+
+
+def test_plane_normal_stress_of_a_number_has_the_arrays_bits() -> None:
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        cell = Plane(eps=0.01, B=float(10 ** rng.uniform(-6, 6)), nu=float(rng.uniform(0.3, 1)))
+        xs = [0.0, 1.0, 0.5, float(rng.uniform()), 0, 1]
+        numbers = [cell.normal_stress(x) for x in xs]
+        assert all(isinstance(v, float) for v in numbers)
+        assert np.array_equal(numbers, cell.normal_stress(np.array(xs, dtype=float)))
+
+
+def test_a_given_grid_with_nan_is_refused() -> None:
+    with pytest.raises(ParameterError, match="strictly increasing"):
+        assemble.given_grid(np.array([0.0, np.nan, 1.0]))
+    with pytest.raises(ParameterError, match="strictly increasing"):
+        assemble.given_grid(np.array([0.0, 0.5, 0.5, 1.0]))
+    grid = np.linspace(0.0, 1.0, 11)
+    assert np.array_equal(assemble.given_grid(grid), grid)
+
+
+def test_cached_property_computes_once_per_instance() -> None:
+    calls = []
+
+    class Thing:
+        def __init__(self, x: float) -> None:
+            self.x = x
+
+        @cached
+        def double(self) -> float:
+            """Twice x."""
+            calls.append(self.x)
+            return 2.0 * self.x
+
+    a, b = Thing(1.0), Thing(3.0)
+    assert (a.double, a.double, b.double) == (2.0, 2.0, 6.0) and calls == [1.0, 3.0]
+    assert isinstance(Thing.double, cached) and Thing.double.__doc__ == "Twice x."
+    eq = PROBLEMS["rough lower wall"].equations
+    assert eq.case is eq.case and eq.slip_constants is eq.slip_constants

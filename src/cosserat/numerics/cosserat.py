@@ -944,15 +944,22 @@ def _dop853_step(ts: np.ndarray, t: float, hint: int) -> int:
 
 
 @njit(cache=True, nogil=True)
-def _dop853_at(ts: np.ndarray, ys: np.ndarray, F: np.ndarray, t: float, i: int, c: int) -> float:
-    """:func:`~cosserat.numerics.dop853.dop853_eval1` in step i (the same operations)."""
+def _dop853_at(
+    ts: np.ndarray, ys: np.ndarray, F: np.ndarray, t: float, i: int
+) -> tuple[float, float]:
+    """:func:`~cosserat.numerics.dop853.dop853_eval1` of both components (l, P) in step i:
+    the same operations, the step's position and 1 - x computed once for both."""
     h = ts[i + 1] - ts[i]
     x = (t - ts[i]) / h if h != 0.0 else 0.0
     x = min(max(x, 0.0), 1.0)
-    out = 0.0
+    y = 1.0 - x
+    out0 = 0.0
+    out1 = 0.0
     for j in range(6, -1, -1):
-        out = (out + F[i, j, c]) * (x if (6 - j) % 2 == 0 else 1.0 - x)
-    return out + ys[i, c]
+        w = x if (6 - j) % 2 == 0 else y
+        out0 = (out0 + F[i, j, 0]) * w
+        out1 = (out1 + F[i, j, 1]) * w
+    return out0 + ys[i, 0], out1 + ys[i, 1]
 
 
 @njit(cache=True, nogil=True)
@@ -981,8 +988,10 @@ def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
     tau_end = ts2[k2]
     reach = abs(_map(tau_end, g)[0] - g[0])
     cut = reach < abs(g[1])
-    i1 = 0
-    i2 = 0
+    # int64, not the literal 0: numba would compile the step searches twice (Literal[int](0)
+    # and int64), for nothing
+    i1 = np.int64(0)
+    i2 = np.int64(0)
     for q in range(n):
         x = xi[q]
         low = symmetric and x < 0.5
@@ -1011,8 +1020,7 @@ def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
                 P = ys2[0, 1]
             else:
                 i2 = _dop853_step(ts2, tau, i2)
-                ell = _dop853_at(ts2, ys2, F2, tau, i2, 0)
-                P = _dop853_at(ts2, ys2, F2, tau, i2, 1)
+                ell, P = _dop853_at(ts2, ys2, F2, tau, i2)
             w = w_s * math.exp(ell)
         u = velocity(h, P, p, info)
         syx = _shear_stress(h, m, p, mu)

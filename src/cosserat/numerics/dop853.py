@@ -157,7 +157,8 @@ def dop853(fun, event, t0, t_end, y0, rtol, atol, args, max_steps):
                 for r in range(N_STAGES):
                     acc += B[r] * K[r, j]
                 ytmp[j] = y[j] + h * acc
-            _store(K, N_STAGES, fun(t_new, ytmp, args))
+            # np.int64: the literal would compile _store a second time
+            _store(K, np.int64(N_STAGES), fun(t_new, ytmp, args))
             nfev += N_STAGES
             err5 = err3 = 0.0
             finite = True

@@ -16,7 +16,7 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -107,6 +107,25 @@ class Diagnostics:
             "message": self.message,
             "stats": dict(self.stats),
         }
+
+
+_Frozen = TypeVar("_Frozen", "Profile", Diagnostics)
+
+
+def assembled(cls: type[_Frozen], values: dict[str, Any]) -> _Frozen:
+    """``cls(**values)`` for :class:`Profile` or :class:`Diagnostics`, without the generated
+    ``__init__``.
+
+    A frozen dataclass's ``__init__`` sets each field through ``object.__setattr__``: 3 us for
+    a Profile's 16 fields, a tenth of a plane-shear kernel (``docs/performance.md``). Neither
+    class has a ``__post_init__``, so filling the instance's ``__dict__`` makes the same
+    object. ``values`` must name every field, those with defaults included (the solve path's
+    :func:`~cosserat.routes.assemble.make_profile` does; ``tests/test_profile_assembly.py``
+    checks it against the constructor).
+    """
+    obj = object.__new__(cls)
+    obj.__dict__.update(values)
+    return obj
 
 
 FIELD_MEANINGS = {

@@ -270,8 +270,16 @@ def run_kernel(
         kernel.solve_couette_case if problem.cell_name == "couette" else kernel.solve_plane_case
     )
     status, info, couple, spin, geometry = solve_case(p, rtol, atol, f, config.MAX_STEPS)
-    raise_for_status(problem, int(status), info)
-    return NumericalSolution(problem, p, info, couple, spin, geometry, float(f))
+    if status != kernel.OK:
+        raise_for_status(problem, int(status), info)
+    # the frozen dataclass's __init__ without its object.__setattr__ per field (no
+    # __post_init__; every field given)
+    sol = object.__new__(NumericalSolution)
+    sol.__dict__.update(
+        problem=problem, params=p, info=info, couple=couple, spin=spin, geometry=geometry,
+        info_f=float(f),
+    )  # fmt: skip
+    return sol
 
 
 def _stats(info: FloatArray) -> dict[str, Any]:

@@ -133,7 +133,14 @@ class Plane(Cell):
         return self.B * self.nu
 
     def normal_stress(self, xi: FloatArray) -> FloatArray:
-        """sigma_yy = 1 + B nu (1 - xi) (:func:`mean_stress`) [-]."""
+        """sigma_yy = 1 + B nu (1 - xi) (:func:`mean_stress`) [-].
+
+        A number gives a float, computed in Python with :func:`mean_stress`'s operations (the
+        same bits): the compiled function's dispatch on a 0-d array cost more than the rest
+        of making a new problem's constants (``docs/performance.md``).
+        """
+        if isinstance(xi, float | int):
+            return 1.0 + self.B_nu * (1.0 - xi)
         return mean_stress(np.asarray(xi, dtype=float), self.B_nu)
 
     def normal_stress_at(self, t: FloatArray) -> FloatArray:

@@ -21,7 +21,6 @@ kappa = 1/(Ri + xi):
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Callable
 from typing import Any
@@ -30,6 +29,7 @@ import numpy as np
 from numba import njit
 
 from ....errors import NoSolutionError
+from ..._cached import cached
 from ...cells.couette import torque_decay
 from ...constitutive import FloatArray
 from ...formulation import Formulation
@@ -128,7 +128,7 @@ class CosseratCouette(Equations):
         return float(self.cell.Ri)
 
     # ----------------------------------------------------------------- equations
-    @functools.cached_property
+    @cached
     def tan_delta(self) -> float:
         return self.wall.tan_delta(self.material, "delta")
 
@@ -141,7 +141,7 @@ class CosseratCouette(Equations):
         x, mm = np.broadcast_arrays(np.asarray(xi, dtype=float), np.asarray(m, dtype=float))
         return shear_stress(x, mm, float(m_inner), self.tan_delta, self.Ri, self.couple_factor)
 
-    @functools.cached_property
+    @cached
     def couple_factor(self) -> float:
         """2(A+1) eps alpha: the weight of the couple stress in eqn-nd_shsts_cyl [-]."""
         return 2.0 * (self.material.A + 1.0) * self.eps * self.material.alpha

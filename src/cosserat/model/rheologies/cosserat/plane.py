@@ -22,7 +22,6 @@ Couple stress scaled as ``m = M_yz / (L sqrt(2(A+1)) N d_p)`` (``dimlessvar``).
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 from collections.abc import Callable
 from enum import StrEnum
@@ -31,6 +30,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ....errors import ParameterError
+from ..._cached import cached
 from ...constitutive import FloatArray, radicand, symmetric_couple_stress
 from ...formulation import Formulation
 from ...grids import layered_grid
@@ -119,15 +119,15 @@ class CosseratPlane(Equations):
         return float(self.cell.nu)
 
     # ----------------------------------------------------------------- walls and friction
-    @functools.cached_property
+    @cached
     def tan_delta_upper(self) -> float:
         return self.upper.tan_delta(self.material, "delta")
 
-    @functools.cached_property
+    @cached
     def tan_delta_lower(self) -> float:
         return self.lower_wall.tan_delta(self.material, "delta_lower")
 
-    @functools.cached_property
+    @cached
     def case(self) -> PlaneShearCase:
         """Which wall slips, from the friction angles and the normal stress (module
         docstring)."""
@@ -158,7 +158,7 @@ class CosseratPlane(Equations):
         """The wall at which friction is mobilised."""
         return self.lower_wall if self.case is PlaneShearCase.LOWER else self.upper
 
-    @functools.cached_property
+    @cached
     def sigma_yx(self) -> float:
         """The uniform shear stress: -tan(delta) times sigma_yy at the slipping wall [-]."""
         if self.case is PlaneShearCase.LOWER:
@@ -176,7 +176,7 @@ class CosseratPlane(Equations):
         )
 
     # ----------------------------------------------------------------- wall constants
-    @functools.cached_property
+    @cached
     def slip_constants(self) -> WallConstants:
         """a, b, m0, k at the slipping wall (``eqn-a_b_def``, ``eqn-k_def``)."""
         return wall_constants(-self.sigma_yx, float(self.sigma_c(self.slip_wall)), self.material)
