@@ -19,7 +19,7 @@ import numpy as np
 from .._atomic import write_text
 from .._stencil import gradient as _gradient
 from .._stencil import half_vorticity
-from ..errors import InputError
+from ..errors import InputError, ParameterError
 from .coarse import (
     SUMS,
     Grains2D,
@@ -289,11 +289,95 @@ def _fmt(v: float) -> str:
     return "" if not np.isfinite(v) else f"{v:.6g}"
 
 
+def check_bin_width(bin_width: float) -> float:
+    """``bin_width`` [d] if it is a whole multiple of :data:`FINE_BIN` (the bins are made of
+    fine bins); else ParameterError."""
+    per = bin_width / FINE_BIN if isinstance(bin_width, int | float) else math.nan
+    if not (math.isfinite(per) and per >= 1.0 - 1e-9 and abs(per - round(per)) < 1e-9):
+        raise ParameterError(
+            f"bin_width must be a whole multiple of the fine bins' {FINE_BIN:g} d (0.25, 0.5, "
+            f"1, ...); got {bin_width!r}"
+        )
+    return float(bin_width)
+
+
+def merge_empty_end_bins(samples: Samples, first: int, blocks: int) -> Samples:
+    """Merge each end bin that has no grain centre in some block of the steady window into its
+    neighbour, until it has one in every block (a bin of 0.25 d next to a wall can hold no
+    centre: the grains' radius is about 0.5 d); the merged bin spans both.
+
+    Raises
+    ------
+    InputError
+        An interior bin with no grain in a block, or fewer than 3 bins left.
+    """
+    n = samples.sums.shape[0] - first
+    bounds = first + (np.arange(blocks + 1) * n) // blocks
+    mass = SUMS.index("mass")
+    per_block = np.stack([samples.sums[a:b, :, mass].sum(axis=0)
+                          for a, b in itertools.pairwise(bounds)])  # fmt: skip
+    empty = np.any(per_block <= 0.0, axis=0)
+    full = np.flatnonzero(~empty)
+    if full.size == 0:
+        raise InputError("no bin holds a grain in every block of the steady window")
+    a, z = int(full[0]), int(full[-1])
+    holes = np.flatnonzero(empty[a : z + 1])
+    edges = samples.edges
+    if holes.size:
+        k = a + int(holes[0])
+        raise InputError(
+            f"the bin [{edges[k]:.4g}, {edges[k + 1]:.4g}] d inside the gap has no grain in a "
+            "block of the steady window: the bins are too fine"
+        )
+    if z - a + 1 < 3:
+        raise InputError(f"{z - a + 1} bins hold grains in every block; a profile needs 3")
+    if a == 0 and z == samples.sums.shape[1] - 1:
+        return samples
+    sums = samples.sums[:, a : z + 1].copy()
+    sums[:, 0] += samples.sums[:, :a].sum(axis=1)
+    sums[:, -1] += samples.sums[:, z + 1 :].sum(axis=1)
+    area = samples.bin_area[a : z + 1].copy()
+    area[0] += samples.bin_area[:a].sum()
+    area[-1] += samples.bin_area[z + 1 :].sum()
+    cut = np.concatenate([edges[:1], edges[a + 1 : z + 1], edges[-1:]])
+    return Samples(samples.steps, sums, cut, area)
+
+
 def steady_profile(
     run: RunSamples, deck: Deck, *, lammps_version: str, first: int | None = None,
-    blocks: int = BLOCKS,
+    blocks: int = BLOCKS, bin_width: float = BIN_WIDTH,
 ) -> DEMProfile:  # fmt: skip
-    """Drop the transient, block-average the steady samples and scale them (corpus format)."""
+    """Drop the transient, block-average the steady samples and scale them (corpus format).
+
+    Parameters
+    ----------
+    run : RunSamples
+        The run's fine-bin sums and series (:func:`read_samples`).
+    deck : Deck
+        The run's deck.
+    lammps_version : str
+        The LAMMPS version the sidecar names.
+    first : int, optional
+        Index of the first steady sample (default: :func:`steady_start`).
+    blocks : int
+        Blocks of the averages' standard errors [-].
+    bin_width : float
+        Width of the profile's bins [d], a whole multiple of :data:`FINE_BIN` (default
+        :data:`BIN_WIDTH`): the fine bins are merged (:func:`merge_bins`), an end bin with no
+        grain centre in a block into its neighbour (:func:`merge_empty_end_bins`). The end
+        bins' centres are midway between the wall and their inner edge, the stencil that of
+        :mod:`cosserat._stencil` at every width; a width other than the default is recorded in
+        the sidecar's ``bin_width_d``.
+
+    Raises
+    ------
+    ParameterError
+        A bin width that is not a whole multiple of :data:`FINE_BIN`.
+    InputError
+        Too few steady samples for the blocks, or a bin inside the gap with no grain in a
+        block.
+    """
+    bin_width = check_bin_width(bin_width)
     cell, info = deck.cell, deck.layout.info
     polar = isinstance(cell, CouetteDEM)
     three = dimension(cell) == 3
@@ -303,7 +387,7 @@ def steady_profile(
         lo, hi = info["inner_radius"], info["outer_radius"]
     else:
         lo, hi = 0.0, gap_mean
-    samples = merge_bins(run.samples, lo, hi)
+    samples = merge_empty_end_bins(merge_bins(run.samples, lo, hi, bin_width), first, blocks)
     s = samples.centres
     s[0] = 0.5 * (lo + samples.edges[1])
     s[-1] = 0.5 * (samples.edges[-2] + hi)
@@ -374,6 +458,8 @@ def steady_profile(
     sidecar.update(extra)
     if three:
         sidecar.update(_three_d(cell, info, run, first, blocks))
+    if bin_width != BIN_WIDTH:
+        sidecar["bin_width_d"] = bin_width
     return DEMProfile(columns, sidecar)
 
 
@@ -650,4 +736,6 @@ def _walls_meta(cell) -> dict:
     return out
 
 
-__all__ = ["FORMAT", "SUMS", "DEMProfile", "read_samples", "steady_profile"]
+__all__ = ["FORMAT", "SUMS", "DEMProfile", "check_bin_width", "merge_empty_end_bins",
+           "read_samples",
+           "steady_profile"]  # fmt: skip
