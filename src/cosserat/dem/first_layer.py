@@ -123,9 +123,7 @@ def read_layers(folder: str | Path, deck: Deck, layers: int = LAYERS) -> LayerSa
     return LayerSamples(np.array(steps), np.array(sums), np.array(u_wall))
 
 
-def layer_blocks(
-    layers: LayerSamples, first: int, blocks: int
-) -> list[dict[str, np.ndarray]]:
+def layer_blocks(layers: LayerSamples, first: int, blocks: int) -> list[dict[str, np.ndarray]]:
     """Per block (contiguous samples from index ``first``): each wall's layer means ``u``,
     ``omega``, ``d`` (distance), ``r`` (mean radius), each of shape (2 walls, layers), and
     ``u_wall`` (2,) [simulation units].
