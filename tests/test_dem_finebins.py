@@ -15,7 +15,7 @@ from cosserat.dem.analyse import (
     RunSamples,
     check_bin_width,
     merge_bins,
-    merge_empty_end_bins,
+    merge_empty_bins,
     steady_profile,
 )
 from cosserat.dem.coarse import SUMS, Grains2D, Samples, bin_sums
@@ -84,7 +84,7 @@ def test_merged_bins_keep_the_mass_at_every_width(width):
 def test_an_empty_bin_at_the_wall_joins_its_neighbour():
     run = _run(empty_below=0.25)  # no centre in [0, 0.25): as next to a real wall
     fine = merge_bins(run.samples, 0.0, GAP, 0.25)
-    merged = merge_empty_end_bins(fine, 0, 4)
+    merged = merge_empty_bins(fine, 0, 4)
     assert merged.edges[0] == 0.0 and merged.edges[1] == 0.5
     assert merged.sums.shape[1] == fine.sums.shape[1] - 1
     np.testing.assert_allclose(merged.sums.sum(axis=1), fine.sums.sum(axis=1), rtol=1e-13)
@@ -94,13 +94,21 @@ def test_an_empty_bin_at_the_wall_joins_its_neighbour():
     assert np.all(np.isfinite(p.columns["u"])) and np.all(np.isfinite(p.columns["omega"]))
 
 
-def test_a_hole_inside_the_gap_is_an_error():
+def test_an_empty_bin_inside_the_gap_joins_its_neighbour_toward_the_middle():
     run = _run()
     fine = merge_bins(run.samples, 0.0, GAP, 0.25)
     sums = fine.sums.copy()
-    sums[:, 5] = 0.0
-    with pytest.raises(InputError, match=r"the bin \[1\.25, 1\.5\] d inside the gap has no grain"):
-        merge_empty_end_bins(Samples(fine.steps, sums, fine.edges, fine.bin_area), 0, 4)
+    sums[:, 5] = 0.0  # [1.25, 1.5] d: in the lower half, so it joins [1.5, 1.75] d
+    sums[2:4, 20] = 0.0  # [5, 5.25] d, empty in the second block only: joins [4.75, 5] d
+    merged = merge_empty_bins(Samples(fine.steps, sums, fine.edges, fine.bin_area), 0, 4)
+    np.testing.assert_allclose(merged.edges[5:7], [1.25, 1.75])
+    np.testing.assert_allclose(merged.edges[18:20], [4.75, 5.25])
+    assert merged.sums.shape[1] == fine.sums.shape[1] - 2
+    np.testing.assert_allclose(merged.sums.sum(axis=1), sums.sum(axis=1), rtol=1e-13)
+    np.testing.assert_allclose(merged.bin_area.sum(), fine.bin_area.sum(), rtol=1e-13)
+    sums[:, 2:] = 0.0
+    with pytest.raises(InputError, match=r"^3 bins left after merging those with no grain"):
+        merge_empty_bins(Samples(fine.steps, sums, fine.edges, fine.bin_area), 0, 4)
 
 
 @pytest.mark.parametrize("width", [0.3, 0.1, 0.0, -0.5, math.nan])

@@ -301,46 +301,43 @@ def check_bin_width(bin_width: float) -> float:
     return float(bin_width)
 
 
-def merge_empty_end_bins(samples: Samples, first: int, blocks: int) -> Samples:
-    """Merge each end bin that has no grain centre in some block of the steady window into its
-    neighbour, until it has one in every block (a bin of 0.25 d next to a wall can hold no
-    centre: the grains' radius is about 0.5 d); the merged bin spans both.
+def merge_empty_bins(samples: Samples, first: int, blocks: int) -> Samples:
+    """Merge each bin that has no grain centre in some block of the steady window into its
+    neighbour toward the middle of the gap, until every bin has one in every block (a bin of
+    0.25 d next to a wall can hold no centre, the grains' radius being about 0.5 d, nor can
+    one between two layers of grains crystallised on a rough wall); the merged bin spans both.
 
     Raises
     ------
     InputError
-        An interior bin with no grain in a block, or fewer than 3 bins left.
+        Fewer than 3 bins left.
     """
     n = samples.sums.shape[0] - first
     bounds = first + (np.arange(blocks + 1) * n) // blocks
     mass = SUMS.index("mass")
-    per_block = np.stack([samples.sums[a:b, :, mass].sum(axis=0)
-                          for a, b in itertools.pairwise(bounds)])  # fmt: skip
-    empty = np.any(per_block <= 0.0, axis=0)
-    full = np.flatnonzero(~empty)
-    if full.size == 0:
-        raise InputError("no bin holds a grain in every block of the steady window")
-    a, z = int(full[0]), int(full[-1])
-    holes = np.flatnonzero(empty[a : z + 1])
-    edges = samples.edges
-    if holes.size:
-        k = a + int(holes[0])
-        raise InputError(
-            f"the bin [{edges[k]:.4g}, {edges[k + 1]:.4g}] d inside the gap has no grain in a "
-            "block of the steady window: the bins are too fine"
-        )
-    if z - a + 1 < 3:
-        raise InputError(f"{z - a + 1} bins hold grains in every block; a profile needs 3")
-    if a == 0 and z == samples.sums.shape[1] - 1:
+    sums = [samples.sums[:, k] for k in range(samples.sums.shape[1])]
+    area = list(samples.bin_area)
+    edges = list(samples.edges)
+    while True:
+        per_block = np.stack([[x[a:b, mass].sum() for a, b in itertools.pairwise(bounds)]
+                              for x in sums])  # fmt: skip
+        empty = np.flatnonzero(np.any(per_block <= 0.0, axis=1))
+        if empty.size == 0:
+            break
+        if len(sums) <= 3:
+            raise InputError(
+                f"{len(sums)} bins left after merging those with no grain in a block of the "
+                "steady window; a profile needs 3 that hold grains"
+            )
+        k = int(empty[0])
+        j = k + 1 if k < (len(sums) - 1) / 2 else k - 1
+        lo, hi = min(k, j), max(k, j)
+        sums[lo] = sums[lo] + sums[hi]
+        area[lo] += area[hi]
+        del sums[hi], area[hi], edges[hi]
+    if len(sums) == samples.sums.shape[1]:
         return samples
-    sums = samples.sums[:, a : z + 1].copy()
-    sums[:, 0] += samples.sums[:, :a].sum(axis=1)
-    sums[:, -1] += samples.sums[:, z + 1 :].sum(axis=1)
-    area = samples.bin_area[a : z + 1].copy()
-    area[0] += samples.bin_area[:a].sum()
-    area[-1] += samples.bin_area[z + 1 :].sum()
-    cut = np.concatenate([edges[:1], edges[a + 1 : z + 1], edges[-1:]])
-    return Samples(samples.steps, sums, cut, area)
+    return Samples(samples.steps, np.stack(sums, axis=1), np.array(edges), np.array(area))
 
 
 def steady_profile(
@@ -363,10 +360,11 @@ def steady_profile(
         Blocks of the averages' standard errors [-].
     bin_width : float
         Width of the profile's bins [d], a whole multiple of :data:`FINE_BIN` (default
-        :data:`BIN_WIDTH`): the fine bins are merged (:func:`merge_bins`), an end bin with no
-        grain centre in a block into its neighbour (:func:`merge_empty_end_bins`). The end
-        bins' centres are midway between the wall and their inner edge, the stencil that of
-        :mod:`cosserat._stencil` at every width; a width other than the default is recorded in
+        :data:`BIN_WIDTH`): the fine bins are merged (:func:`merge_bins`), a bin with no
+        grain centre in a block of the window into its neighbour toward the middle of the gap
+        (:func:`merge_empty_bins`; such bins are wider). The end bins' centres are midway
+        between the wall and their inner edge, the stencil that of :mod:`cosserat._stencil`
+        at every width; a width other than the default is recorded in
         the sidecar's ``bin_width_d``.
 
     Raises
@@ -374,8 +372,8 @@ def steady_profile(
     ParameterError
         A bin width that is not a whole multiple of :data:`FINE_BIN`.
     InputError
-        Too few steady samples for the blocks, or a bin inside the gap with no grain in a
-        block.
+        Too few steady samples for the blocks, or fewer than 3 bins that hold grains in
+        every block.
     """
     bin_width = check_bin_width(bin_width)
     cell, info = deck.cell, deck.layout.info
@@ -387,7 +385,7 @@ def steady_profile(
         lo, hi = info["inner_radius"], info["outer_radius"]
     else:
         lo, hi = 0.0, gap_mean
-    samples = merge_empty_end_bins(merge_bins(run.samples, lo, hi, bin_width), first, blocks)
+    samples = merge_empty_bins(merge_bins(run.samples, lo, hi, bin_width), first, blocks)
     s = samples.centres
     s[0] = 0.5 * (lo + samples.edges[1])
     s[-1] = 0.5 * (samples.edges[-2] + hi)
@@ -736,6 +734,5 @@ def _walls_meta(cell) -> dict:
     return out
 
 
-__all__ = ["FORMAT", "SUMS", "DEMProfile", "check_bin_width", "merge_empty_end_bins",
-           "read_samples",
-           "steady_profile"]  # fmt: skip
+__all__ = ["FORMAT", "SUMS", "DEMProfile", "check_bin_width", "merge_empty_bins",
+           "read_samples", "steady_profile"]  # fmt: skip
