@@ -81,6 +81,21 @@ def test_merged_bins_keep_the_mass_at_every_width(width):
     np.testing.assert_allclose(np.diff(merged.edges), width, rtol=1e-12)
 
 
+def test_bins_counted_from_the_upper_wall():
+    run = _run()
+    merged = merge_bins(run.samples, 0.0, 5.5, 1.0, anchor="upper")
+    np.testing.assert_allclose(merged.edges, [0.0, 0.5, 1.5, 2.5, 3.5, 4.5, 5.5])
+    np.testing.assert_allclose(merged.sums.sum(axis=1), run.samples.sums.sum(axis=1), rtol=1e-13)
+    np.testing.assert_allclose(merge_bins(run.samples, 0.0, 5.25, 1.0, "upper").edges,
+                               [0.0, 1.25, 2.25, 3.25, 4.25, 5.25])  # fmt: skip
+    p = steady_profile(run, DECK, lammps_version="synthetic", first=0, blocks=4, bin_width=0.5,
+                       anchor="upper")  # fmt: skip
+    np.testing.assert_allclose(p.columns["half_vorticity"], -0.5 * SLOPE / V, rtol=1e-12)
+    assert p.sidecar["bins_from"] == "upper"
+    with pytest.raises(ParameterError, match=r"^anchor must be 'lower' or 'upper'; got 'top'"):
+        merge_bins(run.samples, 0.0, GAP, 1.0, anchor="top")
+
+
 def test_an_empty_bin_at_the_wall_joins_its_neighbour():
     run = _run(empty_below=0.25)  # no centre in [0, 0.25): as next to a real wall
     fine = merge_bins(run.samples, 0.0, GAP, 0.25)

@@ -19,7 +19,8 @@ layer run's smooth fixed wall too) and written to ``--out`` as ``first_layer_spi
 * the particle-level measures (:func:`cosserat.dem.first_layer.first_layer`) with the model's
   and the null's, the model's layers being the uniform averages over [0, 1) and [1, 2) d;
 * the figure ``first_layer_spin.png`` (the rough run: omega and half the vorticity against
-  the distance from the moving wall at 0.25 d bins, first 3 d).
+  the distance from the moving wall at 0.25 d bins, first 3 d; ``docs/first_layer_spin.png``
+  is a copy).
 
 The Cosserat model is not fitted: phi = 19 deg, L = 5 d, A = 1/3, K = 1/2, the glued-grain
 walls fully rough, the smooth walls at their measured delta (:data:`DELTA`), the run's B and
@@ -166,6 +167,7 @@ def bins_block_departure(
     blocks: int,
     gap: float,
     width: float,
+    anchor: str,
     run: Any,
     wall: int,
     stencil: str,
@@ -175,7 +177,9 @@ def bins_block_departure(
     u's correlation is in the error): (mean, se) [V/d]."""
     from cosserat.studies.validate.forward import bin_edges, stencil_half, wall_velocities
 
-    merged = merge_empty_bins(merge_bins(run_samples.samples, 0.0, gap, width), first, blocks)
+    merged = merge_empty_bins(
+        merge_bins(run_samples.samples, 0.0, gap, width, anchor), first, blocks
+    )
     bins = bin_edges(run)
     k = 0 if wall == 0 else bins.centre.size - 1
     vals = []
@@ -217,8 +221,9 @@ def analyse(folder: Path, cache: Path, out: Path) -> dict[str, Any]:
         "walls": {},
     }
     runs = {}
+    keys = {(1.0, "lower")} | {(w, WALL_NAMES[k]) for k, _ in sheared_walls(name) for w in WIDTHS}
     with tempfile.TemporaryDirectory() as tmp:
-        for w in WIDTHS:
+        for w, anchor in sorted(keys):
             prof = steady_profile(
                 run_samples,
                 deck,
@@ -226,10 +231,11 @@ def analyse(folder: Path, cache: Path, out: Path) -> dict[str, Any]:
                 first=first,
                 blocks=blocks,
                 bin_width=w,
+                anchor=anchor,
             )
-            csv, _ = prof.write(tmp, f"{name}_w{w:g}")
-            runs[w] = read_run(csv)
-            if w == WIDTHS[0]:
+            csv, _ = prof.write(tmp, f"{name}_w{w:g}_{anchor}")
+            runs[w, anchor] = read_run(csv)
+            if (w, anchor) == (WIDTHS[0], "upper"):
                 rec["profile_fine"] = {
                     k: [float(x) for x in prof.columns[k]]
                     for k in (
@@ -242,22 +248,25 @@ def analyse(folder: Path, cache: Path, out: Path) -> dict[str, Any]:
                         "half_vorticity_se",
                     )
                 }
-    fields = model_fields(model, runs[1.0])
+    reference = runs[1.0, "lower"]  # the run's own profile's bins
+    fields = model_fields(model, reference)
     null_fields = turning_with_the_material(fields)
     for wall, label in sheared_walls(name):
         rows = []
-        for w, run in runs.items():
+        mine = [(w, WALL_NAMES[wall]) for w in WIDTHS]
+        for w, anchor in mine + ([(1.0, "lower")] if wall == 1 else []):
+            run = runs[w, anchor]
             bins = bin_edges(run)
             row_k = int(bins.order[0] if wall == 0 else bins.order[-1])
             rho = float((run.meta.get("bin_correlation") or {}).get("u") or 0.0)
             for st in STENCILS:
                 dep, se_half, se_om = measured_first_layer(run, wall, st, rho)
                 bdep, bse = bins_block_departure(
-                    run_samples, first, blocks, gap, w, run, wall, st, V
+                    run_samples, first, blocks, gap, w, anchor, run, wall, st, V
                 )
                 rows.append(
                     {
-                        "measure": f"{w:g} d bins, {st}",
+                        "measure": f"{w:g} d bins from the {anchor} wall, {st}",
                         "distance_d": float(abs(bins.walls[wall] - bins.centre[-wall])),
                         "departure": dep,
                         "se_quadrature": math.hypot(se_half, se_om),
@@ -272,8 +281,8 @@ def analyse(folder: Path, cache: Path, out: Path) -> dict[str, Any]:
         r_1 = float(
             kept[:, LAYER_SUMS.index("radius")].sum() / kept[:, LAYER_SUMS.index("count")].sum()
         )
-        mod = model_layers(fields, runs[1.0], wall, r_1)
-        nul = model_layers(null_fields, runs[1.0], wall, r_1)
+        mod = model_layers(fields, reference, wall, r_1)
+        nul = model_layers(null_fields, reference, wall, r_1)
         for wname in HALF_VORTICITIES:
             m, se = data[f"departure_{wname}"]
             rows.append(

@@ -227,16 +227,27 @@ def _read_samples_3d(folder: str | Path, deck: Deck) -> RunSamples:
                       np.array(wv), n_free, extra={"sigma_zz_ratio": np.array(zz)})  # fmt: skip
 
 
-def merge_bins(samples: Samples, lo: float, hi: float, width: float = BIN_WIDTH) -> Samples:
+def merge_bins(
+    samples: Samples, lo: float, hi: float, width: float = BIN_WIDTH, anchor: str = "lower"
+) -> Samples:
     """Merge fine bins into bins of ``width`` spanning [lo, hi] (fine-bin sums outside go to the
-    end bins; the bins' areas are those of [lo, hi] only)."""
+    end bins; the bins' areas are those of [lo, hi] only). The bins are counted from the
+    ``anchor`` end ("lower": from lo, "upper": from hi); the remainder at the other end is a
+    narrower bin, or joins its neighbour if under half a bin."""
+    if anchor not in ("lower", "upper"):
+        raise ParameterError(f"anchor must be 'lower' or 'upper'; got {anchor!r}")
     fine = samples.edges
     k_lo = int(np.argmin(np.abs(fine - lo)))
     k_hi = int(np.argmin(np.abs(fine - hi)))
     per = max(1, round(width / (fine[1] - fine[0])))
-    cuts = [*range(k_lo, k_hi, per), k_hi]
-    if cuts[-1] - cuts[-2] < per / 2 and len(cuts) > 2:
-        cuts.pop(-2)
+    if anchor == "lower":
+        cuts = [*range(k_lo, k_hi, per), k_hi]
+        if cuts[-1] - cuts[-2] < per / 2 and len(cuts) > 2:
+            cuts.pop(-2)
+    else:
+        cuts = sorted({k_lo, *range(k_hi, k_lo, -per)})
+        if cuts[1] - cuts[0] < per / 2 and len(cuts) > 2:
+            cuts.pop(1)
     nb = len(cuts) - 1
     out = np.zeros((samples.sums.shape[0], nb, samples.sums.shape[2]))
     area = np.zeros(nb)
@@ -342,7 +353,7 @@ def merge_empty_bins(samples: Samples, first: int, blocks: int) -> Samples:
 
 def steady_profile(
     run: RunSamples, deck: Deck, *, lammps_version: str, first: int | None = None,
-    blocks: int = BLOCKS, bin_width: float = BIN_WIDTH,
+    blocks: int = BLOCKS, bin_width: float = BIN_WIDTH, anchor: str = "lower",
 ) -> DEMProfile:  # fmt: skip
     """Drop the transient, block-average the steady samples and scale them (corpus format).
 
@@ -366,6 +377,11 @@ def steady_profile(
         between the wall and their inner edge, the stencil that of :mod:`cosserat._stencil`
         at every width; a width other than the default is recorded in
         the sidecar's ``bin_width_d``.
+    anchor : {"lower", "upper"}
+        The wall the bins are counted from (:func:`merge_bins`; plane and channel: lower or
+        upper; Couette: inner or outer): the bins next to it are whole, the remainder of the
+        gap is at the other wall. A non-default anchor is recorded in the sidecar's
+        ``bins_from``.
 
     Raises
     ------
@@ -385,7 +401,7 @@ def steady_profile(
         lo, hi = info["inner_radius"], info["outer_radius"]
     else:
         lo, hi = 0.0, gap_mean
-    samples = merge_empty_bins(merge_bins(run.samples, lo, hi, bin_width), first, blocks)
+    samples = merge_empty_bins(merge_bins(run.samples, lo, hi, bin_width, anchor), first, blocks)
     s = samples.centres
     s[0] = 0.5 * (lo + samples.edges[1])
     s[-1] = 0.5 * (samples.edges[-2] + hi)
@@ -458,6 +474,8 @@ def steady_profile(
         sidecar.update(_three_d(cell, info, run, first, blocks))
     if bin_width != BIN_WIDTH:
         sidecar["bin_width_d"] = bin_width
+    if anchor != "lower":
+        sidecar["bins_from"] = anchor
     return DEMProfile(columns, sidecar)
 
 
