@@ -206,3 +206,45 @@ def test_first_layer_block_means_and_errors():
     assert out["u_wall"] == pytest.approx((1.0, 0.0), abs=1e-12)
     with pytest.raises(ParameterError, match=r"^scale \(the velocity scale\) must be > 0"):
         first_layer(_layer_samples(), 0, 3, "upper", 0.0)
+
+
+def test_read_layers_from_a_made_up_dump(tmp_path):
+    """Two wall disks each side and four grains at known distances from the walls' surfaces:
+    the layers, the gap and the walls' velocities are read back exactly."""
+    from cosserat.dem.decks import ATOM_COLUMNS
+    from cosserat.dem.first_layer import read_layers
+    from cosserat.dem.geometry import FREE, LOWER_WALL, UPPER_WALL
+
+    info = DECK.layout.info
+    off = info["surface_offset"]
+    top = off + info["upper_offset"] if "upper_offset" in info else 2.0 * off
+    gap = 5.7
+    y_up = gap + top
+    R = 0.5
+    # (distance from the lower surface, vx, omega): layer 1 and 2 of the lower wall, layer 1
+    # and 2 of the upper one (distances 0.4 and 1.3 from it)
+    grains = [(0.6, 0.1 * V, 0.02 * V), (1.5, 0.2 * V, 0.0), (gap - 0.4, 0.7 * V, -0.3 * V),
+              (gap - 1.3, 0.5 * V, -0.1 * V)]  # fmt: skip
+    rows = [[k + 1, FREE, R, 1.0 + k, off + s, vx, 0.0, om] for k, (s, vx, om) in enumerate(grains)]
+    rows += [[5 + k, LOWER_WALL, R, float(k), 0.0, 0.0, 0.0, 0.0] for k in range(2)]
+    rows += [[7 + k, UPPER_WALL, R, float(k), y_up, V, 0.0, 0.0] for k in range(2)]
+    with (tmp_path / "atoms.dump").open("w") as fh:
+        for step in range(0, 21_000, 1_000):
+            fh.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ATOMS\n{len(rows)}\n")
+            fh.write("ITEM: BOX BOUNDS pp fm pp\n0 30\n-1 16\n-0.5 0.5\n")
+            fh.write(f"ITEM: ATOMS {' '.join(ATOM_COLUMNS)}\n")
+            fh.writelines(" ".join(repr(float(v)) for v in r) + "\n" for r in rows)
+    layers = read_layers(tmp_path, DECK)
+    assert layers.sums.shape == (21, 2, 2, len(LAYER_SUMS))
+    np.testing.assert_allclose(layers.u_wall, np.tile([0.0, V], (21, 1)), rtol=1e-12)
+    k = LAYER_SUMS.index
+    np.testing.assert_array_equal(layers.sums[0, :, :, k("count")], [[1, 1], [1, 1]])
+    out = first_layer(layers, 0, 10, "upper", V)
+    assert out["d_1"][0] == pytest.approx(0.4, abs=1e-9)
+    assert out["d_2"][0] == pytest.approx(1.3, abs=1e-9)
+    assert out["u_1"][0] == pytest.approx(0.7, rel=1e-9)
+    assert out["omega_1"][0] == pytest.approx(-0.3, rel=1e-9)
+    assert out["W_wall_first"][0] == pytest.approx(0.5 * (0.7 - 1.0) / 0.4, rel=1e-9)
+    low = first_layer(layers, 0, 10, "lower", V)
+    assert low["d_1"][0] == pytest.approx(0.6, abs=1e-9)
+    assert low["W_layers"][0] == pytest.approx(-0.5 * 0.1 / 0.9, rel=1e-9)
