@@ -251,6 +251,14 @@ def analyse(folder: Path, cache: Path, out: Path) -> dict[str, Any]:
     reference = runs[1.0, "lower"]  # the run's own profile's bins
     fields = model_fields(model, reference)
     null_fields = turning_with_the_material(fields)
+    dist = np.linspace(0.0, 3.0, 121)
+    y = reference.gap_d - dist
+    omega_m = np.asarray(fields.omega(y), dtype=float)
+    rec["model_curve"] = {
+        "distance_d": dist.tolist(),
+        "omega": omega_m.tolist(),
+        "half_vorticity": (omega_m - np.asarray(fields.point_departure(y), dtype=float)).tolist(),
+    }
     for wall, label in sheared_walls(name):
         rows = []
         mine = [(w, WALL_NAMES[wall]) for w in WIDTHS]
@@ -395,6 +403,25 @@ def figure(rec: dict[str, Any], path: Path) -> None:
             mec="k",
             label=f"half vorticity, {text} (grains)",
         )
+    m = {k: np.asarray(v) for k, v in rec["model_curve"].items()}
+    ax.plot(
+        m["distance_d"],
+        m["omega"],
+        "-",
+        color="C0",
+        lw=0.8,
+        alpha=0.6,
+        label="Cosserat (phi 19 deg, L 5 d), point omega",
+    )
+    ax.plot(
+        m["distance_d"],
+        m["half_vorticity"],
+        "--",
+        color="C1",
+        lw=0.8,
+        alpha=0.6,
+        label="Cosserat, point half vorticity",
+    )
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlim(0.0, 3.0)
     ax.set_xlabel("distance of the grain centres / bin centre from the moving wall [d]")
