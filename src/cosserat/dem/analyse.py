@@ -19,7 +19,7 @@ import numpy as np
 from .._atomic import write_text
 from .._stencil import gradient as _gradient
 from .._stencil import half_vorticity
-from ..errors import InputError
+from ..errors import InputError, ParameterError
 from .checks import block_autocorrelation
 from .coarse import (
     SUMS,
@@ -228,16 +228,27 @@ def _read_samples_3d(folder: str | Path, deck: Deck) -> RunSamples:
                       np.array(wv), n_free, extra={"sigma_zz_ratio": np.array(zz)})  # fmt: skip
 
 
-def merge_bins(samples: Samples, lo: float, hi: float, width: float = BIN_WIDTH) -> Samples:
+def merge_bins(
+    samples: Samples, lo: float, hi: float, width: float = BIN_WIDTH, anchor: str = "lower"
+) -> Samples:
     """Merge fine bins into bins of ``width`` spanning [lo, hi] (fine-bin sums outside go to the
-    end bins; the bins' areas are those of [lo, hi] only)."""
+    end bins; the bins' areas are those of [lo, hi] only). The bins are counted from the
+    ``anchor`` end ("lower": from lo, "upper": from hi); the remainder at the other end is a
+    narrower bin, or joins its neighbour if under half a bin."""
+    if anchor not in ("lower", "upper"):
+        raise ParameterError(f"anchor must be 'lower' or 'upper'; got {anchor!r}")
     fine = samples.edges
     k_lo = int(np.argmin(np.abs(fine - lo)))
     k_hi = int(np.argmin(np.abs(fine - hi)))
     per = max(1, round(width / (fine[1] - fine[0])))
-    cuts = [*range(k_lo, k_hi, per), k_hi]
-    if cuts[-1] - cuts[-2] < per / 2 and len(cuts) > 2:
-        cuts.pop(-2)
+    if anchor == "lower":
+        cuts = [*range(k_lo, k_hi, per), k_hi]
+        if cuts[-1] - cuts[-2] < per / 2 and len(cuts) > 2:
+            cuts.pop(-2)
+    else:
+        cuts = sorted({k_lo, *range(k_hi, k_lo, -per)})
+        if cuts[1] - cuts[0] < per / 2 and len(cuts) > 2:
+            cuts.pop(1)
     nb = len(cuts) - 1
     out = np.zeros((samples.sums.shape[0], nb, samples.sums.shape[2]))
     area = np.zeros(nb)
@@ -290,11 +301,98 @@ def _fmt(v: float) -> str:
     return "" if not np.isfinite(v) else f"{v:.6g}"
 
 
+def check_bin_width(bin_width: float) -> float:
+    """``bin_width`` [d] if it is a whole multiple of :data:`FINE_BIN` (the bins are made of
+    fine bins); else ParameterError."""
+    per = bin_width / FINE_BIN if isinstance(bin_width, int | float) else math.nan
+    if not (math.isfinite(per) and per >= 1.0 - 1e-9 and abs(per - round(per)) < 1e-9):
+        raise ParameterError(
+            f"bin_width must be a whole multiple of the fine bins' {FINE_BIN:g} d (0.25, 0.5, "
+            f"1, ...); got {bin_width!r}"
+        )
+    return float(bin_width)
+
+
+def merge_empty_bins(samples: Samples, first: int, blocks: int) -> Samples:
+    """Merge each bin that has no grain centre in some block of the steady window into its
+    neighbour toward the middle of the gap, until every bin has one in every block (a bin of
+    0.25 d next to a wall can hold no centre, the grains' radius being about 0.5 d, nor can
+    one between two layers of grains crystallised on a rough wall); the merged bin spans both.
+
+    Raises
+    ------
+    InputError
+        Fewer than 3 bins left.
+    """
+    n = samples.sums.shape[0] - first
+    bounds = first + (np.arange(blocks + 1) * n) // blocks
+    mass = SUMS.index("mass")
+    sums = [samples.sums[:, k] for k in range(samples.sums.shape[1])]
+    area = list(samples.bin_area)
+    edges = list(samples.edges)
+    while True:
+        per_block = np.stack([[x[a:b, mass].sum() for a, b in itertools.pairwise(bounds)]
+                              for x in sums])  # fmt: skip
+        empty = np.flatnonzero(np.any(per_block <= 0.0, axis=1))
+        if empty.size == 0:
+            break
+        if len(sums) <= 3:
+            raise InputError(
+                f"{len(sums)} bins left after merging those with no grain in a block of the "
+                "steady window; a profile needs 3 that hold grains"
+            )
+        k = int(empty[0])
+        j = k + 1 if k < (len(sums) - 1) / 2 else k - 1
+        lo, hi = min(k, j), max(k, j)
+        sums[lo] = sums[lo] + sums[hi]
+        area[lo] += area[hi]
+        del sums[hi], area[hi], edges[hi]
+    if len(sums) == samples.sums.shape[1]:
+        return samples
+    return Samples(samples.steps, np.stack(sums, axis=1), np.array(edges), np.array(area))
+
+
 def steady_profile(
     run: RunSamples, deck: Deck, *, lammps_version: str, first: int | None = None,
-    blocks: int = BLOCKS,
+    blocks: int = BLOCKS, bin_width: float = BIN_WIDTH, anchor: str = "lower",
 ) -> DEMProfile:  # fmt: skip
-    """Drop the transient, block-average the steady samples and scale them (corpus format)."""
+    """Drop the transient, block-average the steady samples and scale them (corpus format).
+
+    Parameters
+    ----------
+    run : RunSamples
+        The run's fine-bin sums and series (:func:`read_samples`).
+    deck : Deck
+        The run's deck.
+    lammps_version : str
+        The LAMMPS version the sidecar names.
+    first : int, optional
+        Index of the first steady sample (default: :func:`steady_start`).
+    blocks : int
+        Blocks of the averages' standard errors [-].
+    bin_width : float
+        Width of the profile's bins [d], a whole multiple of :data:`FINE_BIN` (default
+        :data:`BIN_WIDTH`): the fine bins are merged (:func:`merge_bins`), a bin with no
+        grain centre in a block of the window into its neighbour toward the middle of the gap
+        (:func:`merge_empty_bins`; such bins are wider). The end bins' centres are midway
+        between the wall and their inner edge, the stencil that of :mod:`cosserat._stencil`
+        at every width; a width other than the default is recorded in
+        the sidecar's ``bin_width_d``.
+    anchor : {"lower", "upper"}
+        The wall the bins are counted from (:func:`merge_bins`; plane and channel: lower or
+        upper; Couette: inner or outer): the bins next to it are whole, the remainder of the
+        gap is at the other wall. A non-default anchor is recorded in the sidecar's
+        ``bins_from``.
+
+    Raises
+    ------
+    ParameterError
+        A bin width that is not a whole multiple of :data:`FINE_BIN`.
+    InputError
+        Too few steady samples for the blocks, or fewer than 3 bins that hold grains in
+        every block.
+    """
+    bin_width = check_bin_width(bin_width)
     cell, info = deck.cell, deck.layout.info
     polar = isinstance(cell, CouetteDEM)
     three = dimension(cell) == 3
@@ -304,7 +402,7 @@ def steady_profile(
         lo, hi = info["inner_radius"], info["outer_radius"]
     else:
         lo, hi = 0.0, gap_mean
-    samples = merge_bins(run.samples, lo, hi)
+    samples = merge_empty_bins(merge_bins(run.samples, lo, hi, bin_width, anchor), first, blocks)
     s = samples.centres
     s[0] = 0.5 * (lo + samples.edges[1])
     s[-1] = 0.5 * (samples.edges[-2] + hi)
@@ -385,6 +483,10 @@ def steady_profile(
     )
     if three:
         sidecar.update(_three_d(cell, info, run, first, blocks))
+    if bin_width != BIN_WIDTH:
+        sidecar["bin_width_d"] = bin_width
+    if anchor != "lower":
+        sidecar["bins_from"] = anchor
     return DEMProfile(columns, sidecar)
 
 
@@ -661,4 +763,5 @@ def _walls_meta(cell) -> dict:
     return out
 
 
-__all__ = ["FORMAT", "SUMS", "DEMProfile", "read_samples", "steady_profile"]
+__all__ = ["FORMAT", "SUMS", "DEMProfile", "check_bin_width", "merge_empty_bins",
+           "read_samples", "steady_profile"]  # fmt: skip

@@ -1,0 +1,233 @@
+"""The first layers of grains at a plane cell's wall, grain by grain (no bins).
+
+A layer is the free grains whose centres lie within one diameter band of a wall's surface:
+layer 1 at a distance in [0, 1) d, layer 2 in [1, 2) d. Per sample :func:`layer_sums` keeps,
+per wall and layer, the sums of :data:`LAYER_SUMS`; :func:`read_layers` reads them from a
+run's ``atoms.dump`` with the walls' velocities; :func:`layer_blocks` makes block means
+(ratio estimators over the block's samples, as :func:`cosserat.dem.coarse.block_fields`) and
+:func:`layer_measures` turns one set of layer means into the measures of the first layer's
+spin against half the vorticity:
+
+* ``omega_1``, ``u_1``, ``u_2``, ``d_1``, ``d_2``: the layers' mass-weighted mean spin, velocity
+  along the flow and distance of the centres from the wall's surface; ``u_wall`` the wall's
+  mean velocity;
+* three layer-scale half vorticities W = -(1/2) du/dy, each a difference across one layer:
+  ``W_layers`` between the layers' means, -(s/2) (u_2 - u_1) / (d_2 - d_1) (the grains only,
+  the analysis' one-sided stencil at grain scale); ``W_wall_second`` from the wall to layer 2,
+  -(s/2) (u_2 - u_wall) / d_2 (centred near layer 1, the 'wall' stencil); ``W_wall_first``
+  from the wall to layer 1, -(s/2) (u_1 - u_wall) / d_1 (the 'wall-first' stencil); s = +1 at
+  the lower wall (the distance is y), -1 at the upper (the distance is H - y);
+* ``omega_roll``: the spin of a layer-1 grain of the layer's mean radius rolling on the wall
+  without sliding, s (u_wall - u_1) / r_1, and ``rolling`` = omega_1 / omega_roll;
+* ``departure_<W>`` = omega_1 - W for each W.
+
+Spins are counter-clockwise positive in the deck's (x, y) plane, as the run's profiles.
+Block errors of a departure come from its per-block values, so the correlation of omega_1
+and W (the same grains, the same blocks) is in them.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError, ParameterError
+from .decks import Deck, dimension
+from .dumps import iter_dump
+from .geometry import FREE, LOWER_WALL, UPPER_WALL
+from .params import MIN_SAMPLES, PlaneShearDEM
+
+LAYER_SUMS = ("mass", "mom", "spin", "m_dist", "count", "radius")
+"""Per wall and layer sums of one sample: mass, mass x velocity along the flow, mass x spin,
+mass x distance from the wall's surface, grain count, sum of the radii."""
+LAYERS = 2
+"""Layers kept per wall."""
+WALLS = ("lower", "upper")
+WALL_SIGN = {"lower": 1.0, "upper": -1.0}
+"""d(distance)/dy at each wall [-]."""
+HALF_VORTICITIES = ("W_layers", "W_wall_second", "W_wall_first")
+
+
+def layer_sums(
+    distance: np.ndarray, vt: np.ndarray, omega: np.ndarray, mass: np.ndarray,
+    radius: np.ndarray, layers: int = LAYERS,
+) -> np.ndarray:  # fmt: skip
+    """Sums of :data:`LAYER_SUMS` over the grains in each layer (distance in [k, k + 1) d),
+    shape (layers, len(LAYER_SUMS)); grains farther than ``layers`` d are not counted.
+
+    Parameters
+    ----------
+    distance : ndarray
+        Distance of each grain's centre from the wall's surface [d] (inside the gap >= 0).
+    vt, omega, mass, radius : ndarray
+        Velocity along the flow [velocity], spin [1 / time], mass [rho_s d^2], radius [d].
+    layers : int
+        Number of layers [-].
+    """
+    distance = np.asarray(distance, dtype=float)
+    k = np.floor(distance).astype(np.int64)
+    keep = (distance >= 0.0) & (k < layers)
+    k, m = k[keep], np.asarray(mass, dtype=float)[keep]
+    cols = (m, m * vt[keep], m * omega[keep], m * distance[keep], np.ones_like(m),
+            np.asarray(radius, dtype=float)[keep])  # fmt: skip
+    return np.stack([np.bincount(k, weights=c, minlength=layers) for c in cols], axis=1)
+
+
+@dataclass(frozen=True)
+class LayerSamples:
+    """Per-sample layer sums of a run: ``sums`` of shape (samples, 2 walls (lower, upper),
+    layers, len(LAYER_SUMS)), the walls' mean velocity along the flow ``u_wall`` (samples, 2)
+    [velocity] and the ``steps``."""
+
+    steps: np.ndarray
+    sums: np.ndarray
+    u_wall: np.ndarray
+
+
+def read_layers(folder: str | Path, deck: Deck, layers: int = LAYERS) -> LayerSamples:
+    """Read the layer sums of every sample of a finished plane run's ``atoms.dump``.
+
+    Raises
+    ------
+    InputError
+        Not a 2-D plane cell, a missing dump, or fewer than MIN_SAMPLES samples.
+    """
+    cell, info = deck.cell, deck.layout.info
+    if not isinstance(cell, PlaneShearDEM) or dimension(cell) != 2:
+        raise InputError(f"{folder}: the layer measure is for 2-D plane cells; got {cell.cell}")
+    path = Path(folder) / "atoms.dump"
+    if not path.is_file():
+        raise InputError(f"{path} is missing: did the run keep its dumps?")
+    off = info["surface_offset"]
+    top = off + info["upper_offset"] if "upper_offset" in info else 2.0 * off
+    density = cell.grains.density
+    steps, sums, u_wall = [], [], []
+    for step, atoms in iter_dump(path):
+        kind = atoms[:, 1].astype(int)
+        free = kind == FREE
+        upper, lower = kind == UPPER_WALL, kind == LOWER_WALL
+        rad, y, vx, om = atoms[:, 2], atoms[:, 4], atoms[:, 5], atoms[:, 7]
+        gap = y[upper].mean() - top
+        s = y[free] - off
+        mass = density * math.pi * rad[free] ** 2
+        per = [layer_sums(d, vx[free], om[free], mass, rad[free], layers) for d in (s, gap - s)]
+        steps.append(step)
+        sums.append(np.stack(per))
+        u_wall.append([vx[lower].mean() if lower.any() else 0.0, vx[upper].mean()])
+    if len(steps) < MIN_SAMPLES:
+        raise InputError(f"{path}: {len(steps)} samples; at least {MIN_SAMPLES} are needed")
+    return LayerSamples(np.array(steps), np.array(sums), np.array(u_wall))
+
+
+def layer_blocks(layers: LayerSamples, first: int, blocks: int) -> list[dict[str, np.ndarray]]:
+    """Per block (contiguous samples from index ``first``): each wall's layer means ``u``,
+    ``omega``, ``d`` (distance), ``r`` (mean radius), each of shape (2 walls, layers), and
+    ``u_wall`` (2,) [simulation units].
+
+    Raises
+    ------
+    ParameterError
+        Fewer than 2 blocks.
+    InputError
+        Fewer steady samples than blocks, or a layer with no grain in a block.
+    """
+    n = layers.sums.shape[0] - first
+    if blocks < 2:
+        raise ParameterError(f"blocks must be >= 2; got {blocks}")
+    if n < blocks:
+        raise InputError(f"{n} steady samples cannot make {blocks} blocks")
+    bounds = first + (np.arange(blocks + 1) * n) // blocks
+    out = []
+    for a, b in itertools.pairwise(bounds):
+        t = layers.sums[a:b].sum(axis=0)
+        S = {name: t[..., k] for k, name in enumerate(LAYER_SUMS)}
+        if np.any(S["count"] == 0):
+            raise InputError(f"a layer has no grain in the samples {a}-{b - 1}")
+        out.append({"u": S["mom"] / S["mass"], "omega": S["spin"] / S["mass"],
+                    "d": S["m_dist"] / S["mass"], "r": S["radius"] / S["count"],
+                    "u_wall": layers.u_wall[a:b].mean(axis=0)})  # fmt: skip
+    return out
+
+
+def layer_measures(
+    wall: str, u_wall: float, u_1: float, u_2: float, d_1: float, d_2: float, omega_1: float,
+    r_1: float,
+) -> dict[str, float]:  # fmt: skip
+    """The first layer's measures of the module docstring from one set of layer means.
+
+    Parameters
+    ----------
+    wall : {"lower", "upper"}
+        Which wall the distances are from.
+    u_wall, u_1, u_2 : float
+        The wall's and the layers' velocity along the flow [velocity].
+    d_1, d_2 : float
+        The layers' mean distance from the wall's surface, 0 < d_1 < d_2 [d].
+    omega_1 : float
+        Layer 1's mean spin, counter-clockwise positive [velocity / d].
+    r_1 : float
+        Layer 1's mean radius [d].
+
+    Returns
+    -------
+    dict
+        ``omega_1``, ``u_1``, ``u_2``, ``u_wall``, ``d_1``, ``d_2``, each W of
+        :data:`HALF_VORTICITIES`, ``departure_<W>``, ``omega_roll`` and ``rolling``
+        [velocity / d, velocity, d, -].
+
+    Raises
+    ------
+    ParameterError
+        An unknown wall, or distances not 0 < d_1 < d_2.
+    """
+    if wall not in WALL_SIGN:
+        raise ParameterError(f"wall must be one of {', '.join(WALLS)}; got {wall!r}")
+    if not 0.0 < d_1 < d_2:
+        raise ParameterError(f"the layers' distances must satisfy 0 < d_1 < d_2; got {d_1}, {d_2}")
+    s = WALL_SIGN[wall]
+    out = {"omega_1": omega_1, "u_1": u_1, "u_2": u_2, "u_wall": u_wall, "d_1": d_1, "d_2": d_2}
+    out["W_layers"] = -0.5 * s * (u_2 - u_1) / (d_2 - d_1)
+    out["W_wall_second"] = -0.5 * s * (u_2 - u_wall) / d_2
+    out["W_wall_first"] = -0.5 * s * (u_1 - u_wall) / d_1
+    for w in HALF_VORTICITIES:
+        out[f"departure_{w}"] = omega_1 - out[w]
+    out["omega_roll"] = s * (u_wall - u_1) / r_1
+    out["rolling"] = omega_1 / out["omega_roll"] if out["omega_roll"] != 0.0 else math.nan
+    return {k: float(v) for k, v in out.items()}
+
+
+def first_layer(
+    layers: LayerSamples, first: int, blocks: int, wall: str, scale: float
+) -> dict[str, tuple[float, float]]:
+    """The measures of :func:`layer_measures` at ``wall`` as (block mean, standard error
+    std(ddof=1) / sqrt(blocks)), velocities over ``scale`` (the cell's V; d = 1): u [-],
+    spins and half vorticities [V/d], distances [d], ``rolling`` [-].
+
+    Raises
+    ------
+    ParameterError
+        An unknown wall or a scale that is not positive.
+    """
+    if wall not in WALL_SIGN:
+        raise ParameterError(f"wall must be one of {', '.join(WALLS)}; got {wall!r}")
+    if not scale > 0.0:
+        raise ParameterError(f"scale (the velocity scale) must be > 0; got {scale}")
+    k = WALLS.index(wall)
+    per = []
+    for b in layer_blocks(layers, first, blocks):
+        u, om, d = b["u"][k] / scale, b["omega"][k] / scale, b["d"][k]
+        per.append(layer_measures(wall, float(b["u_wall"][k] / scale), u[0], u[1], d[0], d[1],
+                                  om[0], float(b["r"][k][0])))  # fmt: skip
+    out = {}
+    for name in per[0]:
+        v = np.array([p[name] for p in per])
+        out[name] = (float(v.mean()), float(v.std(ddof=1) / math.sqrt(v.size)))
+    return out
+
+
+__all__ = ["LAYER_SUMS", "LayerSamples", "first_layer", "layer_blocks", "layer_measures",
+           "layer_sums", "read_layers"]  # fmt: skip
