@@ -128,7 +128,7 @@ def test_fits_use_the_ar1_covariance_and_report_rho_and_effective_bins(tmp_path)
     engine's whitening is exact for AR(1)); the report line gives rho and n (1-rho)/(1+rho)
     effective bins, and the Akaike weights with and without the correlation."""
     run = _run(tmp_path, 0.6)
-    fits = fit_run(run, ["cosserat", "mui"], 0, None)
+    fits = fit_run(run, ["cosserat", "mui"], 0, None, independent_bins=True)
     assert fits.correlation.rho == 0.6
     for f in fits.ranking.fits:
         s_, opt = f.internal
@@ -154,8 +154,16 @@ def test_fits_use_the_ar1_covariance_and_report_rho_and_effective_bins(tmp_path)
 
 
 def test_independent_bins_say_nothing_more(tmp_path):
-    fits = fit_run(_run(tmp_path, 0.0), ["cosserat"], 0, None)
+    fits = fit_run(_run(tmp_path, 0.0), ["cosserat"], 0, None, independent_bins=True)
     assert fits.correlation.rho == 0.0
+    assert fits.weight_notes() == [] and fits.independent_weights == {}
+
+
+def test_the_independent_bin_refit_is_asked_for(tmp_path):
+    """validate fits each run once, with the bins' correlation; the second fit with
+    independent bins (it doubles to triples the cost) only with ``independent_bins``."""
+    fits = fit_run(_run(tmp_path, 0.6), ["cosserat", "mui"], 0, None)
+    assert fits.correlation.rho == 0.6
     assert fits.weight_notes() == [] and fits.independent_weights == {}
 
 

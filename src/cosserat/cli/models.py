@@ -138,6 +138,8 @@ def cmd_validate(args: argparse.Namespace) -> None:
     near = {} if args.near_wall is None else {"near_wall_d": args.near_wall}
     if args.spin_scan is not None:
         near["spin_scan"] = args.spin_scan
+    if args.independent_bins:
+        near["independent_bins"] = True
     workers = args.workers if args.workers is not None else min(2, os.cpu_count() or 1)
     report = validate(
         args.corpus, args.out, models, f=args.f, progress=progress, workers=workers, **near
@@ -198,6 +200,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         metavar="N",
         help="points per parameter (K, L) of the joint-calibration scan behind the spin_model "
         "verdict (default 11; 0: the u-only fits alone; docs/validation.md)",
+    )
+    vp.add_argument(
+        "--independent-bins",
+        action="store_true",
+        help="also fit every run with its bins taken as independent and give both sets of "
+        "Akaike weights in its notes (doubles to triples the fits' time)",
     )
     vp.add_argument("--format", choices=("text", "json"), default="text")
     vp.set_defaults(func=cmd_validate)

@@ -266,9 +266,15 @@ class RunFits:
 
 
 def fit_run(
-    run: Run, models: Sequence[str] | None, grid: int, stress: StressRatio | None
+    run: Run,
+    models: Sequence[str] | None,
+    grid: int,
+    stress: StressRatio | None,
+    independent_bins: bool = False,
 ) -> RunFits:
-    """Fit ``models`` (default: every one defined on the run's cell) to the run's velocity.
+    """Fit ``models`` (default: every one defined on the run's cell) to the run's velocity;
+    with ``independent_bins`` and correlated bins, fit them again with independent bins for
+    the notes' comparison of Akaike weights (it doubles to triples the fits' cost).
 
     Raises
     ------
@@ -286,7 +292,7 @@ def fit_run(
         measured, run.cell_parameters(), names, grid=grid, bin_correlation=corr.rho
     )
     out = RunFits(ranking, correlation=corr)
-    if corr.rho > 0.0:
+    if independent_bins and corr.rho > 0.0:
         out.independent_weights = _independent_weights(run, names, grid, measured)
     for f in ranking.fits:
         if not f.ok:
@@ -396,11 +402,15 @@ def _independent_weights(
 
 
 def try_fit_run(
-    run: Run, models: Sequence[str] | None, grid: int, stress: StressRatio | None
+    run: Run,
+    models: Sequence[str] | None,
+    grid: int,
+    stress: StressRatio | None,
+    independent_bins: bool = False,
 ) -> tuple[RunFits | None, str]:
     """:func:`fit_run`, or None and the reason in one line."""
     try:
-        return fit_run(run, models, grid, stress), ""
+        return fit_run(run, models, grid, stress, independent_bins), ""
     except CosseratError as exc:
         return None, " ".join(str(exc).split())
 

@@ -237,14 +237,16 @@ def analyse_run(
     near_wall_d: float,
     grid: int,
     figures_to: Path | None = None,
+    independent_bins: bool = False,
 ) -> RunResult:
     """Fit, measure and compare one run (module docstring); with ``figures_to``, also draw
-    the run's figure there (in the worker that analysed it, when there are workers)."""
+    the run's figure there (in the worker that analysed it, when there are workers);
+    ``independent_bins``: :func:`.fits.fit_run`'s."""
     stress = band_stress_ratio(run)
     if run.cell == "channel":
         fits, error = None, CHANNEL_NOTE
     else:
-        fits, error = try_fit_run(run, models, grid, stress)
+        fits, error = try_fit_run(run, models, grid, stress, independent_bins)
     skipped = [f"{q}: not in this run" for q in run.missing() if q in ("omega", "half_vorticity")]
     spin = measure_spin(run, near_wall_d)
     if not spin.available:
@@ -350,6 +352,7 @@ def _analyse_all(
     workers: int | None,
     figures_to: Path | None = None,
     jobs: Sequence[tuple[str, tuple[Run, ...], str, float]] = (),
+    independent_bins: bool = False,
 ) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]]]:
     """:func:`analyse_run` of every run and :func:`.fits.series_job` of every job, in worker
     processes when worth it (``validate``): (the runs' results, series key -> calibrations)."""
@@ -358,7 +361,7 @@ def _analyse_all(
     if workers <= 1:
         out = []
         for i, run in enumerate(runs):
-            out.append(analyse_run(run, models, f, near_wall_d, grid, figures_to))
+            out.append(analyse_run(run, models, f, near_wall_d, grid, figures_to, independent_bins))
             if progress:
                 progress("runs", i + 1, len(runs))
         for key, members, model, f_s in jobs:
@@ -376,7 +379,9 @@ def _analyse_all(
             pool.submit(series_job, jobs[k][1], jobs[k][2], jobs[k][3]): k for k in ranked
         }
         futures = {
-            pool.submit(analyse_run, runs[i], models, f, near_wall_d, grid, figures_to): i
+            pool.submit(
+                analyse_run, runs[i], models, f, near_wall_d, grid, figures_to, independent_bins
+            ): i
             for i in order
         }
         for k, fut in enumerate(as_completed(futures)):
@@ -589,6 +594,7 @@ def validate(
     progress: Callable[[str, int, int], None] | None = None,
     workers: int | None = None,
     spin_scan: int = COARSE,
+    independent_bins: bool = False,
 ) -> ValidationReport:
     """Fit, compare and judge every run of ``corpus``; write the report into ``out``.
 
@@ -617,6 +623,9 @@ def validate(
     spin_scan : int
         Points per parameter (K, L) of the spin scan behind ``spin_model``
         (:mod:`.spin_scan`; 0: the u-only fits' verdict alone).
+    independent_bins : bool
+        Also fit each run's models with independent bins, and give both sets of Akaike
+        weights in the run's notes (off by default: it doubles to triples the fits' cost).
 
     Raises
     ------
@@ -647,7 +656,7 @@ def validate(
         folder.mkdir(parents=True, exist_ok=True)
     jobs = series_jobs(data.runs, models, f)
     results, cals = _analyse_all(
-        data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs
+        data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs, independent_bins
     )
     series, verdicts, notes = judge(results, models, f, calibrations=cals, spin_scan=spin_scan)
     used = sorted({m for r in results if r.fits for m in r.fits.models})
