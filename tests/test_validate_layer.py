@@ -276,9 +276,12 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     # the regime line is the layer's own (both walls; this synthetic run gives neither), not
     # validate's moving-wall one
     assert layer["evidence"].count("Regime:") == 1
-    assert layer["evidence"].endswith(
-        "Regime: not every run gives its inertial number next to both walls."
+    assert (
+        "Regime: not every run gives its inertial number next to both walls. Warnings: (1) "
+        in layer["evidence"]
     )
+    # the single-run fits' asymmetries are a footnote (referee 6, point 6)
+    assert layer["evidence"].endswith("predict nothing about the layer: numbers.predicted.)")
     # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)
     assert layer["numbers"]["asymmetry"] == pytest.approx(0.635, abs=0.03)
     assert layer["numbers"]["predicted"]["mui"] == pytest.approx(0.0, abs=0.05)
@@ -354,16 +357,22 @@ def test_the_regime_line_quotes_the_bands_side():
     (v,) = layer_verdicts([_run(inertial=4e-4)])
     assert (
         "Regime: the local inertial number next to either wall (the band's side included) is "
-        "at most 0.0004 (quasi-static bound I <= 0.001)." in v.evidence
+        "at most 0.0004 (quasi-static bound I <= 0.001); the slip layer (the first half bin at "
+        "the smoother wall, where the grains slide and roll on it) is counted in a but "
+        "excluded from I" in v.evidence
     )
 
 
 def test_the_fits_are_not_called_predictions_of_the_layer():
+    """Referee 6, point 6: the single-run fits' a = +0.000 is a footnote, not evidence."""
     v = layer_position_verdict([pos(predicted={"mui": 0.0})])
-    assert (
-        "validate's single-run fits (not predictions of the layer: they give the fixed wall the "
-        "moving wall's kind): mui a = +0.000." in v.evidence
+    assert v.evidence.endswith(
+        " (validate's single-run fits give the fixed wall the moving wall's kind and predict "
+        "nothing about the layer: numbers.predicted.)"
     )
+    assert "a = +0.000" not in v.evidence
+    assert v.numbers["predicted"] == {"mui": 0.0}
+    assert "sufficiently smoother than the material" in LAYER_CLAIM
     assert "whichever moves" not in LAYER_CLAIM
 
 
