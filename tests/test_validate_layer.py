@@ -414,12 +414,31 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     layer = entry["layer"]
     assert layer["walls"] == {"fixed": "smooth, fixed", "moving": "rough, moving"}
     assert layer["within_d"] == 3.0 and layer["gap_d"] == pytest.approx(10.0)
-    assert [name[:3] for name in entry["models"]] == ["(a)", "(a)", "(b)", "(c)", "(c)", "(c)"]
-    assert "mui" not in entry["models"] and entry["spin"]["predicted"] == {}
+    # every alternative the verdict lists is drawn, the NGF no-slip fit too (referee 6, point 8)
+    assert [name[:3] for name in entry["models"]] == [
+        "(a)", "(a)", "(b)", "(b)", "(c)", "(c)", "(c)",
+    ]  # fmt: skip
+    assert sum(r"$\xi$" in name for name in entry["models"]) == 2  # Greek xi
+    assert "GLS fits under the bins' AR(1) errors (rho = " in layer["note"]
+    # the spin panel: the Cosserat layer profiles at L = 4, 5 d and the fitted L (point 7)
+    assert "mui" not in entry["models"]
+    spins = entry["spin"]["predicted"]
+    assert [k.split(",")[0] for k in spins] == ["(c) Cosserat spin"] * 3
+    assert [k.split("L = ")[1].split(" d")[0] for k in spins][:2] == ["4", "5"]
+    assert all(len(v) == len(entry["spin"]["distance_d"]) for v in spins.values())
     assert len(layer["rate"]["rate"]) == len(entry["u"]) - 1
     fig = run_figure(entry)
     lin, rate = fig.axes[0], fig.axes[1]
     assert rate.get_yscale() == "log" and lin.get_yscale() == "linear"
     assert {t.get_text() for t in lin.texts} == {"smooth, fixed", "rough, moving"}
+    # x runs from the smoother (here the fixed) wall, as the text and the CSV (point 8)
+    at = {t.get_text(): t.xy[0] for t in lin.texts}
+    assert at["smooth, fixed"] == 0.0 and at["rough, moving"] == pytest.approx(10.0)
+    assert lin.get_xlabel() == r"distance from the smoother (fixed) wall [$d$]"
+    assert fig.axes[2].get_xlabel() == lin.get_xlabel()
+    assert len(fig.axes[2].lines) >= 3  # the three Cosserat spin curves
+    # the data's u rises from the smoother wall: the first points are the band
+    xs, ys = lin.containers[0].lines[0].get_data()
+    assert ys[int(np.argmin(xs))] < ys[int(np.argmax(xs))]
     assert len(lin.patches) >= 2  # the two 3 d windows
     assert len(rate.lines) >= 5  # the decaying alternatives' rates, and the local one's
