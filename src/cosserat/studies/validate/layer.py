@@ -708,7 +708,8 @@ def _kind_text(alts: Sequence[LayerAlternative]) -> str:
         f"{x.key} " + ", ".join(f"{c.chi2:.3g}/{c.dof} (p = {c.p:.2g})" for c in x.by_covariance)
         for x in fits
     )
-    robust, flips = [], []
+    robust: list[str] = []
+    flips: list[str] = []
     for i, x in enumerate(fits):
         for y in fits[i + 1 :]:
             signs = {np.sign(per_dof(x, k) - per_dof(y, k)) for k in kinds}
