@@ -434,7 +434,7 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     # x runs from the smoother (here the fixed) wall, as the text and the CSV (point 8)
     at = {t.get_text(): t.xy[0] for t in lin.texts}
     assert at["smooth, fixed"] == 0.0 and at["rough, moving"] == pytest.approx(10.0)
-    assert lin.get_xlabel() == r"distance from the smoother (fixed) wall [$d$]"
+    assert lin.get_xlabel() == r"from the smoother (fixed) wall [$d$]"
     assert fig.axes[2].get_xlabel() == lin.get_xlabel()
     assert len(fig.axes[2].lines) >= 3  # the three Cosserat spin curves
     # the data's u rises from the smoother wall: the first points are the band

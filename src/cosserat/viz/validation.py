@@ -9,6 +9,7 @@ plain numbers.
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -95,7 +96,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     spin = entry.get("spin")
     layer = entry.get("layer")
     ncols = 3 if spin else 2
-    fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=3.1)
+    fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=4.4 if layer else 3.1)
     order = list(entry.get("order", ()))
     channel = entry.get("cell") == "channel"
     x_label = (
@@ -157,8 +158,11 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 yerr=e,
                 **DATA_STYLE,
             )
+            like = layer.get("spin_like", {}) if layer else {}
             for name, pred in spin.get("predicted", {}).items():
-                ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **model_style(name, order))
+                # a layer's Cosserat spin in the colour of its velocity curve
+                look = model_style(like.get(name, name), order)
+                ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **look)
             ax.axhline(0.0, color="0.5", linewidth=0.6)
             near, gap = float(spin["near_wall_d"]), float(spin["gap_d"])
             ax.axvspan(0.0, near, color="0.92", zorder=0)
@@ -170,10 +174,14 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 + ("\nlines: Cosserat layer profile; NGF has no spin" if layer else ""),
                 fontsize=8,
             )
-        fig.suptitle(entry["title"] + (f"\n{layer['note']}" if layer else ""), fontsize=8)
+        note = "\n" + textwrap.fill(layer["note"], 150) if layer else ""
+        fig.suptitle(entry["title"] + note, fontsize=8)
         _legend_below(fig, list(axes[0]), ncol=3 if layer else 4)
         # fixed margins: tight_layout costs more than the drawing (saved with a tight box)
-        fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
+        if layer:  # a longer legend (every alternative and the spin curves) and caption
+            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.34, top=0.8, wspace=0.45)
+        else:
+            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
     return fig
 
 
@@ -239,7 +247,7 @@ def _layer_x_label(layer: Mapping[str, Any]) -> str:
     """The layer panels' x label: from the smoother wall, naming which wall it is."""
     which = layer.get("smoother")
     return (
-        rf"distance from the smoother ({which}) wall [$d$]"
+        rf"from the smoother ({which}) wall [$d$]"
         if which in ("fixed", "moving")
         else r"distance from the moving wall [$d$]"
     )

@@ -125,6 +125,14 @@ def _layer_entry(
         "rate": {"d": 0.5 * (so[1:] + so[:-1]), "rate": gap_rate, "se": rate_se},
         "model_rates": rates,
         "smoother": p.smoother,
+        # each Cosserat spin curve drawn in the colour of its velocity curve
+        "spin_like": {
+            _spin_name(x.L_d, x.chi2, x.dof): name
+            for x in p.spin
+            for alt in p.alternatives
+            if alt.key == x.key
+            for name in [_figure_label(alt.label) + rf" ($\chi^2$ {alt.chi2:.0f}/{alt.dof})"]
+        },
         "note": "lines: the alternatives with the right walls, GLS fits under the bins' AR(1) "
         f"errors (rho = {rho:.2g}: a shared offset is cheap, so they may sit below most points; "
         "validate's single-run fits give the fixed wall the moving wall's kind: not drawn); "
@@ -147,11 +155,13 @@ def _layer_spin_curves(r: RunResult, distance_d: np.ndarray) -> dict[str, np.nda
     s = np.array([x[0] for x in p.spin_data])
     o = np.argsort(s)
     return {
-        rf"(c) Cosserat spin, L = {x.L_d:.3g} d ($\chi^2$ {x.chi2:.0f}/{x.dof})": np.interp(
-            distance_d, s[o], np.asarray(x.departure)[o]
-        )
+        _spin_name(x.L_d, x.chi2, x.dof): np.interp(distance_d, s[o], np.asarray(x.departure)[o])
         for x in p.spin
     }
+
+
+def _spin_name(L_d: float, chi2: float, dof: int) -> str:
+    return rf"(c) Cosserat spin, L = {L_d:.3g} d ($\chi^2$ {chi2:.0f}/{dof})"
 
 
 def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
