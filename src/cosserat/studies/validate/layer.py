@@ -32,6 +32,16 @@ tell the Cosserat model from wall friction is the shear rate decaying away from 
 wall under uniform stress, so the verdict's numbers carry the measured du/dy per bin
 (``shear_rate``, from the smoother wall).
 
+Referee 6's checks, in the evidence: each alternative refitted under other error models
+with a runs test (:mod:`.layer_alternatives`); the tensorial stress ratio ``|tau|/p`` per bin
+(:func:`tensorial_ratio`) against a local monotonic mu(I) on the bins beyond the slip layer
+(:func:`monotonic_violation`); the Cosserat layer profiles' spin forward-modelled like the data
+(:func:`layer_spin`; NGF has no spin field); and warnings: the premise (the smoother wall
+sufficiently smoother than the material) is assumed, not measured (other runs' walls of the
+same kind quoted, :func:`wall_references`), the design's prediction (:data:`DESIGN_DELTA_DEG`,
+:data:`DESIGN_L_D`) recomputed on the run's bins with its miss in se
+(:func:`design_asymmetry`), and a's stationarity not tested (``validate`` sees no time blocks).
+
 The verdict (:func:`layer_position_verdict`): the inverse-variance mean of the runs'
 asymmetries, ``a +- se``; "supported" (the band at the smoother wall) when ``a >=``
 :data:`SIGMAS` ``se``, "refuted" when ``a <= -SIGMAS se`` (the band at the rougher wall), or when
@@ -45,7 +55,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -550,8 +560,6 @@ def design_asymmetry(data: LayerData) -> tuple[float, float] | None:
     """The Cosserat model's ``a`` on the run's bins at the design's delta and each of
     :data:`DESIGN_L_D` (:data:`DESIGN_DELTA_DEG`): what was pre-registered (None when the
     model cannot be solved there)."""
-    from dataclasses import replace
-
     design = replace(data, ratio=math.tan(math.radians(DESIGN_DELTA_DEG)))
     try:
         a = [design.asymmetry(cosserat_velocity(design, L)) for L in DESIGN_L_D]
