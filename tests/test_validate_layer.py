@@ -276,9 +276,12 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     # the regime line is the layer's own (both walls; this synthetic run gives neither), not
     # validate's moving-wall one
     assert layer["evidence"].count("Regime:") == 1
-    assert layer["evidence"].endswith(
-        "Regime: not every run gives its inertial number next to both walls."
+    assert (
+        "Regime: not every run gives its inertial number next to both walls. Warnings: (1) "
+        in layer["evidence"]
     )
+    # the single-run fits' asymmetries are a footnote (referee 6, point 6)
+    assert layer["evidence"].endswith("predict nothing about the layer: numbers.predicted.)")
     # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)
     assert layer["numbers"]["asymmetry"] == pytest.approx(0.635, abs=0.03)
     assert layer["numbers"]["predicted"]["mui"] == pytest.approx(0.0, abs=0.05)
@@ -354,16 +357,22 @@ def test_the_regime_line_quotes_the_bands_side():
     (v,) = layer_verdicts([_run(inertial=4e-4)])
     assert (
         "Regime: the local inertial number next to either wall (the band's side included) is "
-        "at most 0.0004 (quasi-static bound I <= 0.001)." in v.evidence
+        "at most 0.0004 (quasi-static bound I <= 0.001); the slip layer (the first half bin at "
+        "the smoother wall, where the grains slide and roll on it) is counted in a but "
+        "excluded from I" in v.evidence
     )
 
 
 def test_the_fits_are_not_called_predictions_of_the_layer():
+    """Referee 6, point 6: the single-run fits' a = +0.000 is a footnote, not evidence."""
     v = layer_position_verdict([pos(predicted={"mui": 0.0})])
-    assert (
-        "validate's single-run fits (not predictions of the layer: they give the fixed wall the "
-        "moving wall's kind): mui a = +0.000." in v.evidence
+    assert v.evidence.endswith(
+        " (validate's single-run fits give the fixed wall the moving wall's kind and predict "
+        "nothing about the layer: numbers.predicted.)"
     )
+    assert "a = +0.000" not in v.evidence
+    assert v.numbers["predicted"] == {"mui": 0.0}
+    assert "sufficiently smoother than the material" in LAYER_CLAIM
     assert "whichever moves" not in LAYER_CLAIM
 
 
@@ -405,12 +414,31 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     layer = entry["layer"]
     assert layer["walls"] == {"fixed": "smooth, fixed", "moving": "rough, moving"}
     assert layer["within_d"] == 3.0 and layer["gap_d"] == pytest.approx(10.0)
-    assert [name[:3] for name in entry["models"]] == ["(a)", "(a)", "(b)", "(c)", "(c)", "(c)"]
-    assert "mui" not in entry["models"] and entry["spin"]["predicted"] == {}
+    # every alternative the verdict lists is drawn, the NGF no-slip fit too (referee 6, point 8)
+    assert [name[:3] for name in entry["models"]] == [
+        "(a)", "(a)", "(b)", "(b)", "(c)", "(c)", "(c)",
+    ]  # fmt: skip
+    assert sum(r"$\xi$" in name for name in entry["models"]) == 2  # Greek xi
+    assert "GLS fits under the bins' AR(1) errors (rho = " in layer["note"]
+    # the spin panel: the Cosserat layer profiles at L = 4, 5 d and the fitted L (point 7)
+    assert "mui" not in entry["models"]
+    spins = entry["spin"]["predicted"]
+    assert [k.split(",")[0] for k in spins] == ["(c) Cosserat spin"] * 3
+    assert [k.split("L = ")[1].split(" d")[0] for k in spins][:2] == ["4", "5"]
+    assert all(len(v) == len(entry["spin"]["distance_d"]) for v in spins.values())
     assert len(layer["rate"]["rate"]) == len(entry["u"]) - 1
     fig = run_figure(entry)
     lin, rate = fig.axes[0], fig.axes[1]
     assert rate.get_yscale() == "log" and lin.get_yscale() == "linear"
     assert {t.get_text() for t in lin.texts} == {"smooth, fixed", "rough, moving"}
+    # x runs from the smoother (here the fixed) wall, as the text and the CSV (point 8)
+    at = {t.get_text(): t.xy[0] for t in lin.texts}
+    assert at["smooth, fixed"] == 0.0 and at["rough, moving"] == pytest.approx(10.0)
+    assert lin.get_xlabel() == r"from the smoother (fixed) wall [$d$]"
+    assert fig.axes[2].get_xlabel() == lin.get_xlabel()
+    assert len(fig.axes[2].lines) >= 3  # the three Cosserat spin curves
+    # the data's u rises from the smoother wall: the first points are the band
+    xs, ys = lin.containers[0].lines[0].get_data()
+    assert ys[int(np.argmin(xs))] < ys[int(np.argmax(xs))]
     assert len(lin.patches) >= 2  # the two 3 d windows
     assert len(rate.lines) >= 5  # the decaying alternatives' rates, and the local one's

@@ -9,6 +9,7 @@ plain numbers.
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -95,7 +96,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     spin = entry.get("spin")
     layer = entry.get("layer")
     ncols = 3 if spin else 2
-    fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=3.1)
+    fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=4.4 if layer else 3.1)
     order = list(entry.get("order", ()))
     channel = entry.get("cell") == "channel"
     x_label = (
@@ -145,6 +146,8 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
         if spin:
             ax = axes[0, 2]
             x = np.asarray(spin["distance_d"], dtype=float)
+            if layer:  # the layer's panels run from the smoother wall
+                x = _from_smoother(layer, x)
             o = np.argsort(x)
             y = np.asarray(spin["departure"], dtype=float)[o]
             e = np.asarray(spin["stderr"], dtype=float)[o]
@@ -155,19 +158,30 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 yerr=e,
                 **DATA_STYLE,
             )
+            like = layer.get("spin_like", {}) if layer else {}
             for name, pred in spin.get("predicted", {}).items():
-                ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **model_style(name, order))
+                # a layer's Cosserat spin in the colour of its velocity curve
+                look = model_style(like.get(name, name), order)
+                ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **look)
             ax.axhline(0.0, color="0.5", linewidth=0.6)
             near, gap = float(spin["near_wall_d"]), float(spin["gap_d"])
             ax.axvspan(0.0, near, color="0.92", zorder=0)
             ax.axvspan(gap - near, gap, color="0.92", zorder=0)
-            ax.set_xlabel(x_label)
+            ax.set_xlabel(_layer_x_label(layer) if layer else x_label)
             ax.set_ylabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ [-]")
-            ax.set_title("spin departure (shaded: near the walls)", fontsize=8)
-        fig.suptitle(entry["title"] + (f"\n{layer['note']}" if layer else ""), fontsize=8)
+            ax.set_title(
+                "spin departure (shaded: near the walls)"
+                + ("\nlines: Cosserat layer profile; NGF has no spin" if layer else ""),
+                fontsize=8,
+            )
+        note = "\n" + textwrap.fill(layer["note"], 150) if layer else ""
+        fig.suptitle(entry["title"] + note, fontsize=8)
         _legend_below(fig, list(axes[0]), ncol=3 if layer else 4)
         # fixed margins: tight_layout costs more than the drawing (saved with a tight box)
-        fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
+        if layer:  # a longer legend (every alternative and the spin curves) and caption
+            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.34, top=0.8, wspace=0.45)
+        else:
+            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
     return fig
 
 
@@ -181,16 +195,19 @@ def _layer_panel(
     import numpy as np
 
     gap, w = float(layer["gap_d"]), float(layer["within_d"])
+    d = _from_smoother(layer, np.asarray(d, dtype=float))
     ax.axvspan(0.0, w, color="0.92", zorder=0, label=f"{w:g} d windows of a")
     ax.axvspan(gap - w, gap, color="0.92", zorder=0)
     if rate:
         g = layer["rate"]
         x, y, e = (np.asarray(g[k], dtype=float) for k in ("d", "rate", "se"))
+        x = _from_smoother(layer, x)
         ok = y > 0
         lower = np.minimum(e, y * (1 - 1e-9))
         ax.errorbar(x[ok], y[ok], yerr=[lower[ok], e[ok]], **{**DATA_STYLE, "label": None})
         for name, c in layer["model_rates"].items():
             cx, cy = np.asarray(c["d"], dtype=float), np.asarray(c["rate"], dtype=float)
+            cx = _from_smoother(layer, cx)
             keep = cy > 1e-6
             if np.any(keep):
                 ax.plot(cx[keep], cy[keep], label=name, **model_style(name, order))
@@ -203,18 +220,37 @@ def _layer_panel(
     else:
         ax.errorbar(d, u, yerr=se, **DATA_STYLE)
         for name, c in models.items():
-            ax.plot(c["d"], c["u"], label=name, **model_style(name, order))
+            cx = _from_smoother(layer, np.asarray(c["d"], dtype=float))
+            ax.plot(cx, c["u"], label=name, **model_style(name, order))
         ax.set_ylabel(r"$u/V$ [-]")
         ax.set_title("linear axis: the band", fontsize=8)
-    ax.set_xlabel(r"distance from the moving wall [$d$]")
+    ax.set_xlabel(_layer_x_label(layer))
     ax.set_xlim(-0.3, gap + 0.3)
     walls = layer["walls"]
-    for x_wall, text, ha in ((0.0, walls["moving"], "left"), (gap, walls["fixed"], "right")):
+    at_zero = layer.get("smoother", "moving")  # the wall at x = 0
+    other = "moving" if at_zero == "fixed" else "fixed"
+    for x_wall, text, ha in ((0.0, walls[at_zero], "left"), (gap, walls[other], "right")):
         ax.annotate(
             text, (x_wall, 0.0), xycoords=("data", "axes fraction"),
             xytext=(2 if ha == "left" else -2, 3),
             textcoords="offset points", ha=ha, va="bottom", fontsize=6.5, color="0.25",
         )  # fmt: skip
+
+
+def _from_smoother(layer: Mapping[str, Any], x: Any) -> Any:
+    """Distances from the moving wall as distances from the layer run's smoother wall [d]
+    (unchanged when the moving wall is the smoother or the entry does not say)."""
+    return float(layer["gap_d"]) - x if layer.get("smoother") == "fixed" else x
+
+
+def _layer_x_label(layer: Mapping[str, Any]) -> str:
+    """The layer panels' x label: from the smoother wall, naming which wall it is."""
+    which = layer.get("smoother")
+    return (
+        rf"from the smoother ({which}) wall [$d$]"
+        if which in ("fixed", "moving")
+        else r"distance from the moving wall [$d$]"
+    )
 
 
 def spin_claim_figure(

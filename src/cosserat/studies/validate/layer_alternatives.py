@@ -54,19 +54,33 @@ a mu_s: ``A = xi sqrt(|mu - mu_s|) / d``.
 **chi^2**: over all the run's bins, with the bins' errors an AR(1) sequence of lag-1
 correlation ``rho`` (the sidecar's ``bin_correlation.u``; the covariance and whitening of
 :mod:`cosserat.calibration.noise`); dof = bins - fitted parameters.
+
+**Robustness to the covariance model** (referee 6, point 2): rho is one lag-1 coefficient from
+ten blocks, and the sidecar stores no lag-2 or lag-3 correlation, so ``rho^|i - j|`` is not
+checked beyond lag 1. Every alternative is therefore refitted and its chi^2 given under
+:data:`COVARIANCES`: ``ar1`` (the above), ``diagonal`` (independent bins, rho = 0) and
+``common-mode`` (independent bins plus one offset shared by all bins, the bulk-speed wander:
+``C = diag(se^2 - s_cm^2) + s_cm^2``, with ``s_cm^2 = rho min(se^2)``, the largest shared
+variance that keeps every bin's variance ``se^2`` and gives the quietest bins the measured
+lag-1 correlation ``rho``). With each fit a Wald-Wolfowitz runs test of the residuals' signs
+(:func:`cosserat.calibration.diagnostics.runs_test`): a fit whose curve lies on one side of
+every bin has one run.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
-from functools import partial
+from dataclasses import dataclass, field, replace
+from functools import cached_property, partial
 from typing import Any
 
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
+from scipy.stats import chi2 as chi2_dist
 
+from ...calibration.diagnostics import runs_test
+from ...calibration.noise import covariance as ar1_covariance
 from ...calibration.noise import whiten
 from ...errors import CosseratError, ParameterError
 
@@ -79,6 +93,8 @@ L_RANGE = (0.5, 40.0)
 """The range searched for the best-fitting L [d]."""
 XI_RANGE = (0.05, 1e3)
 """The range searched for NGF's cooperativity length [d]."""
+COVARIANCES = ("ar1", "diagonal", "common-mode")
+"""The bins' error models each alternative is fitted under (module docstring)."""
 DERIVED = ("g_w",)
 """Parameters that follow from the fitted ones (NGF's wall fluidity from xi and the slip)."""
 REFERENCES = {
@@ -172,6 +188,65 @@ def profile_chi2(residual: np.ndarray, se: np.ndarray, rho: float) -> float:
     return float(np.sum(w * w))
 
 
+def error_covariance(se: np.ndarray, rho: float, kind: str = "ar1") -> np.ndarray:
+    """The bins' error covariance under one of :data:`COVARIANCES` [-]: ``ar1``
+    ``se_i se_j rho^|i-j|``; ``diagonal`` ``diag(se^2)``; ``common-mode``
+    ``diag(se^2 - s_cm^2) + s_cm^2`` with ``s_cm^2 = rho min(se^2)`` (module docstring).
+
+    Raises
+    ------
+    ParameterError
+        An unknown ``kind``, ``rho`` not in [0, 1) or ``se`` not finite and > 0.
+    """
+    s = np.asarray(se, dtype=float)
+    if kind not in COVARIANCES:
+        raise ParameterError(f"kind must be one of {', '.join(COVARIANCES)}; got {kind!r}")
+    if not (math.isfinite(rho) and 0.0 <= rho < 1.0):
+        raise ParameterError(f"rho must be in [0, 1) (a bin correlation); got {rho}")
+    if not (s.ndim == 1 and s.size >= 1 and np.all(np.isfinite(s)) and np.all(s > 0.0)):
+        raise ParameterError("se must be a 1-D array of finite values > 0")
+    if kind == "ar1":
+        return ar1_covariance(s, rho)
+    if kind == "diagonal":
+        return np.diag(s * s)
+    cm = rho * float(np.min(s * s))
+    return np.diag(s * s - cm) + cm
+
+
+@dataclass(frozen=True)
+class CovarianceFit:
+    """One alternative refitted under one error model of :data:`COVARIANCES`.
+
+    Parameters
+    ----------
+    kind : str
+        The error model.
+    chi2 : float
+        chi^2 of the refit [-].
+    dof : int
+        Bins minus fitted parameters.
+    p : float
+        P(chi^2 >= this) [-].
+    parameters : mapping
+        The refitted parameters.
+    """
+
+    kind: str
+    chi2: float
+    dof: int
+    p: float
+    parameters: Mapping[str, float]
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "kind": self.kind,
+            "chi2": self.chi2,
+            "dof": self.dof,
+            "p": self.p,
+            "parameters": dict(self.parameters),
+        }
+
+
 @dataclass(frozen=True)
 class LayerAlternative:
     """One alternative's profile against a run's velocities (module docstring).
@@ -202,6 +277,12 @@ class LayerAlternative:
     curve : (distance_d, u)
         Its profile on a fine grid, distances from the moving wall [d] and u over V [-] (for
         the figure).
+    sign_runs : (runs, expected, p)
+        The runs test of the residuals' signs in bin order: the number of runs, the number
+        expected for independent signs and P(this few or fewer) (None with fewer than two of
+        either sign) (:func:`~cosserat.calibration.diagnostics.runs_test`).
+    by_covariance : tuple of CovarianceFit
+        The same alternative refitted under each error model of :data:`COVARIANCES`.
     """
 
     key: str
@@ -215,6 +296,8 @@ class LayerAlternative:
     decays: bool
     asymmetry: float = math.nan
     curve: tuple[tuple[float, ...], tuple[float, ...]] = ((), ())
+    sign_runs: tuple[int, float, float | None] = (0, math.nan, None)
+    by_covariance: tuple[CovarianceFit, ...] = ()
 
     @property
     def text(self) -> str:
@@ -241,6 +324,12 @@ class LayerAlternative:
             "shape": self.shape,
             "decays": self.decays,
             "curve": {"distance_d": list(self.curve[0]), "u": list(self.curve[1])},
+            "sign_runs": {
+                "runs": self.sign_runs[0],
+                "expected": self.sign_runs[1],
+                "p": self.sign_runs[2],
+            },
+            "by_covariance": [c.to_dict() for c in self.by_covariance],
         }
 
 
@@ -259,6 +348,24 @@ class LayerData:
     ratio: float
     smoother: str
     extra: Mapping[str, Any] = field(default_factory=dict)
+    covariance: str = "ar1"
+
+    @cached_property
+    def _cholesky(self) -> np.ndarray:
+        return np.linalg.cholesky(error_covariance(self.se, self.rho, self.covariance))
+
+    def white(self, residual: np.ndarray) -> np.ndarray:
+        """Residuals (bin order) whitened under this data's error model [-] (the AR(1) one by
+        :func:`~cosserat.calibration.noise.whiten`; the others by their Cholesky factor)."""
+        r = np.asarray(residual, dtype=float)
+        if self.covariance == "ar1":
+            return whiten(r, self.se, self.rho)
+        return np.linalg.solve(self._cholesky, r)
+
+    def under(self, kind: str) -> LayerData:
+        """The same data with the error model ``kind`` (:data:`COVARIANCES`)."""
+        error_covariance(self.se, self.rho, kind)  # checks kind
+        return replace(self, covariance=kind)
 
     @classmethod
     def from_run(
@@ -289,7 +396,8 @@ class LayerData:
         return np.asarray(v, dtype=float) if self.smoother == "fixed" else 1.0 - np.asarray(v)
 
     def chi2(self, v_model: np.ndarray) -> float:
-        return profile_chi2(self.v - v_model, self.se, self.rho)
+        w = self.white(self.v - np.asarray(v_model, dtype=float))
+        return float(np.sum(w * w))
 
     def asymmetry(self, v_model: np.ndarray, within_d: float = 3.0) -> float:
         """``a = v(within_d) - (1 - v(H - within_d))`` of a model's ``v`` at these bins."""
@@ -311,9 +419,11 @@ def _alternative(
     y = np.linspace(0.0, data.gap_d, CURVE_POINTS)
     s = data.gap_d - y if data.smoother == "fixed" else y
     curve = (tuple(float(x) for x in s), tuple(float(x) for x in data.to_u(model(y))))
+    rt = runs_test(data.v - v)
     return LayerAlternative(
         key, label, pars, fitted, data.chi2(v), data.v.size - len(fitted),
         tuple(float(x) for x in data.to_u(v)), shape, decays, data.asymmetry(v), curve,
+        (rt.runs, rt.expected, rt.p_value),
     )  # fmt: skip
 
 
@@ -321,8 +431,8 @@ def fit_local(data: LayerData) -> list[LayerAlternative]:
     """(a): the linear profile with its slip fitted (generalised least squares, the slip
     clipped to [0, 1]) and the rigid block (``slip = 1``)."""
     x = 1.0 - data.y / data.gap_d  # v = y/H + slip (1 - y/H)
-    wx = whiten(x, data.se, data.rho)
-    wr = whiten(data.v - data.y / data.gap_d, data.se, data.rho)
+    wx = data.white(x)
+    wr = data.white(data.v - data.y / data.gap_d)
     slip = float(np.clip(np.dot(wx, wr) / np.dot(wx, wx), 0.0, 1.0))
     linear = "a linear profile: a uniform shear rate (1 - slip)/H"
     return [
@@ -349,7 +459,7 @@ def fit_ngf(data: LayerData) -> list[LayerAlternative]:
         def residual(p: np.ndarray, with_slip: bool = with_slip) -> np.ndarray:
             s = float(p[1]) if with_slip else 0.0
             v = ngf_wall_velocity(data.y, data.gap_d, math.exp(float(p[0])), s)
-            return whiten(data.v - v, data.se, data.rho)
+            return data.white(data.v - v)
 
         best = None
         for start in np.log([0.3, 1.0, 3.0, 10.0, 100.0]):
@@ -379,10 +489,10 @@ def fit_ngf(data: LayerData) -> list[LayerAlternative]:
     return out
 
 
-def cosserat_velocity(data: LayerData, L_d: float, y_d: np.ndarray | None = None) -> np.ndarray:
-    """(c): the Cosserat model's ``v`` at ``y_d`` (distances from the smoother wall [d]; the
-    bins when None), the smoother wall at ``delta = atan(ratio)`` and the rougher fully rough,
-    ``phi`` = :data:`COSSERAT_PHI`, material length ``L_d`` [d]."""
+def cosserat_profile(data: LayerData, L_d: float) -> Any:
+    """(c): the Cosserat model's solution (a :class:`~cosserat.results.profile.Profile`, the
+    moving wall at xi = 1) with the smoother wall at ``delta = atan(ratio)`` and the rougher
+    fully rough, ``phi`` = :data:`COSSERAT_PHI`, material length ``L_d`` [d]."""
     from ...model import make_problem
     from ...routes import solve
 
@@ -393,7 +503,14 @@ def cosserat_velocity(data: LayerData, L_d: float, y_d: np.ndarray | None = None
         else {"delta": delta, "delta_lower": "fully-rough"}
     )
     values = {"phi": COSSERAT_PHI, "B": 0.0, "L": L_d, "eps": 1.0 / data.gap_d, **walls}
-    sol = solve(make_problem("cosserat", "plane", values))
+    return solve(make_problem("cosserat", "plane", values))
+
+
+def cosserat_velocity(data: LayerData, L_d: float, y_d: np.ndarray | None = None) -> np.ndarray:
+    """(c): the Cosserat model's ``v`` at ``y_d`` (distances from the smoother wall [d]; the
+    bins when None), the smoother wall at ``delta = atan(ratio)`` and the rougher fully rough,
+    ``phi`` = :data:`COSSERAT_PHI`, material length ``L_d`` [d] (:func:`cosserat_profile`)."""
+    sol = cosserat_profile(data, L_d)
     xi, u = np.asarray(sol.xi, dtype=float), np.asarray(sol.u, dtype=float)
     y = data.y if y_d is None else np.asarray(y_d, dtype=float)
     y_fixed = y if data.smoother == "fixed" else data.gap_d - y
@@ -435,11 +552,7 @@ def fit_cosserat(data: LayerData) -> list[LayerAlternative]:
     return out
 
 
-def layer_alternatives(data: LayerData) -> tuple[tuple[LayerAlternative, ...], str]:
-    """Every alternative of the module docstring on one run's data, and a note naming any left
-    out and why ("" when none is): the Cosserat profile needs the smoother wall smoother than
-    the material, ``tan(delta) < sin(phi)``, which a stress ratio above ``sin(phi)`` (0.326 at
-    :data:`COSSERAT_PHI`) is not."""
+def _fit_all(data: LayerData) -> tuple[tuple[LayerAlternative, ...], str]:
     out = (*fit_local(data), *fit_ngf(data))
     try:
         return (*out, *fit_cosserat(data)), ""
@@ -447,18 +560,53 @@ def layer_alternatives(data: LayerData) -> tuple[tuple[LayerAlternative, ...], s
         return out, f"the Cosserat layer profile is not computed: {exc}"
 
 
+def layer_alternatives(
+    data: LayerData, covariances: tuple[str, ...] = COVARIANCES
+) -> tuple[tuple[LayerAlternative, ...], str]:
+    """Every alternative of the module docstring on one run's data (fitted under ``data``'s
+    error model), each with its refits under ``covariances`` (:data:`COVARIANCES`;
+    ``by_covariance``), and a note naming any left out and why ("" when none is): the
+    Cosserat profile needs the smoother wall smoother than the material,
+    ``tan(delta) < sin(phi)``, which a stress ratio above ``sin(phi)`` (0.326 at
+    :data:`COSSERAT_PHI`) is not."""
+    alts, note = _fit_all(data)
+    refits: dict[str, dict[str, LayerAlternative]] = {}
+    for kind in covariances:
+        again = alts if kind == data.covariance else _fit_all(data.under(kind))[0]
+        refits[kind] = {x.key: x for x in again}
+    out = []
+    for x in alts:
+        fits = tuple(
+            CovarianceFit(
+                kind,
+                r.chi2,
+                r.dof,
+                float(chi2_dist.sf(r.chi2, r.dof)),
+                {k: float(r.parameters[k]) for k in r.fitted},
+            )
+            for kind in covariances
+            if (r := refits[kind].get(x.key)) is not None
+        )
+        out.append(replace(x, by_covariance=fits))
+    return tuple(out), note
+
+
 __all__ = [
     "COSSERAT_L",
     "COSSERAT_PHI",
+    "COVARIANCES",
     "CURVE_POINTS",
     "DERIVED",
     "L_RANGE",
     "REFERENCES",
     "XI_RANGE",
+    "CovarianceFit",
     "LayerAlternative",
     "LayerData",
     "cooperativity_amplitude",
+    "cosserat_profile",
     "cosserat_velocity",
+    "error_covariance",
     "fit_cosserat",
     "fit_local",
     "fit_ngf",

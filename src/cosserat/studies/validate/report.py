@@ -74,8 +74,8 @@ def run_entry(r: RunResult) -> dict[str, Any]:
     if r.layer is not None:
         assert m.u_err is not None  # the layer measure needs u's errors (layer.jump_fractions)
         models, order, layer, title = _layer_entry(r, m.distance_d, m.u_over_uw, m.u_err)
-        if spin is not None:  # the single-run fits' spin has the wrong walls too
-            spin = {**spin, "predicted": {}}
+        if spin is not None:  # the single-run fits' spin has the wrong walls: the layer's own
+            spin = {**spin, "predicted": _layer_spin_curves(r, np.asarray(spin["distance_d"]))}
     return {
         "name": r.run.name,
         "cell": r.run.cell,
@@ -105,9 +105,7 @@ def _layer_entry(
     models: dict[str, Any] = {}
     rates: dict[str, Any] = {}
     for alt in p.alternatives:
-        if alt.key == "ngf-wall-noslip":
-            continue  # in the verdict's numbers; the figure keeps one NGF line
-        name = f"{alt.label} (chi2 {alt.chi2:.0f}/{alt.dof})"
+        name = _figure_label(alt.label) + rf" ($\chi^2$ {alt.chi2:.0f}/{alt.dof})"
         d, cu = np.asarray(alt.curve[0]), np.asarray(alt.curve[1])
         o = np.argsort(d)
         models[name] = {"d": d[o], "u": cu[o]}
@@ -131,10 +129,44 @@ def _layer_entry(
         "gap_d": r.run.gap_d,
         "rate": {"d": 0.5 * (so[1:] + so[:-1]), "rate": gap_rate, "se": rate_se},
         "model_rates": rates,
-        "note": "lines: the alternatives with the right walls (validate's single-run fits give "
-        "the fixed wall the moving wall's kind, fit a uniform shear and coincide: not drawn)",
+        "smoother": p.smoother,
+        # each Cosserat spin curve drawn in the colour of its velocity curve
+        "spin_like": {
+            _spin_name(x.L_d, x.chi2, x.dof): name
+            for x in p.spin
+            for alt in p.alternatives
+            if alt.key == x.key
+            for name in [_figure_label(alt.label) + rf" ($\chi^2$ {alt.chi2:.0f}/{alt.dof})"]
+        },
+        "note": "lines: the alternatives with the right walls, GLS fits under the bins' AR(1) "
+        f"errors (rho = {rho:.2g}: a shared offset is cheap, so they may sit below most points; "
+        "validate's single-run fits give the fixed wall the moving wall's kind: not drawn); "
+        "spin: the Cosserat layer profiles forward-modelled (NGF has no spin)",
     }
     return models, list(models), layer, title
+
+
+def _figure_label(label: str) -> str:
+    """An alternative's label with xi as the Greek letter (mathtext)."""
+    return label.replace(" xi ", r" $\xi$ ").replace(", xi ", r", $\xi$ ")
+
+
+def _layer_spin_curves(r: RunResult, distance_d: np.ndarray) -> dict[str, np.ndarray]:
+    """The Cosserat layer profiles' forward-modelled spin departure at the spin panel's bins
+    (``distance_d`` from the moving wall, in that order), by figure label."""
+    p = r.layer
+    if p is None or not p.spin_data:
+        return {}
+    s = np.array([x[0] for x in p.spin_data])
+    o = np.argsort(s)
+    return {
+        _spin_name(x.L_d, x.chi2, x.dof): np.interp(distance_d, s[o], np.asarray(x.departure)[o])
+        for x in p.spin
+    }
+
+
+def _spin_name(L_d: float, chi2: float, dof: int) -> str:
+    return rf"(c) Cosserat spin, L = {L_d:.3g} d ($\chi^2$ {chi2:.0f}/{dof})"
 
 
 def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
