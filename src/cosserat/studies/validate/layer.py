@@ -61,6 +61,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from scipy.stats import chi2 as chi2_dist
 
+from ..._text import significance
 from ...calibration.noise import whiten
 from ...errors import CosseratError, ParameterError
 from .forward import forward_departure
@@ -713,7 +714,10 @@ def _kind_text(alts: Sequence[LayerAlternative]) -> str:
         return c.chi2 / max(c.dof, 1)
 
     rows = "; ".join(
-        f"{x.key} " + ", ".join(f"{c.chi2:.3g}/{c.dof} (p = {c.p:.2g})" for c in x.by_covariance)
+        f"{x.key} "
+        + ", ".join(
+            f"{c.chi2:.3g}/{c.dof} ({significance(c.chi2, c.dof)})" for c in x.by_covariance
+        )
         for x in fits
     )
     robust: list[str] = []
