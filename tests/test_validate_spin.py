@@ -275,6 +275,8 @@ def test_the_spin_claim_figure_draws_the_bins_the_verdict_rests_on():
     right = fig.axes[1]
     assert right.get_xlabel() == "distance from the wall [d]"
     labels = right.get_legend_handles_labels()[1]
-    assert labels == ["L: fixed (open: left out)", "a: moving (not judged: no null, against 0)"]
-    # three errorbar groups: L used, L left out, a
+    assert labels == ["L: fixed (open: left out)", "a: moving (not judged: no null; against 0)"]
+    # three errorbar groups: L used, L left out, a; an unsheared wall is not drawn
     assert len(right.containers) == 3
+    rows.append({**rows[1], "label": "b: fixed", "sheared": False})
+    assert len(spin_claim_figure(rows).axes[1].containers) == 3

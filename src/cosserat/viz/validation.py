@@ -321,8 +321,8 @@ def spin_claim_figure(
         k = 0
         for r in rows:
             b = r.get("bins")
-            if not b or not b["distance_d"]:
-                continue
+            if not b or not b["distance_d"] or not r["sheared"]:
+                continue  # an unsheared wall is neither tested nor a candidate
             x = np.asarray(b["distance_d"], dtype=float)
             v = np.asarray(b["beyond"], dtype=float)
             e = 2.0 * np.asarray(b["se"], dtype=float)
@@ -333,9 +333,7 @@ def spin_claim_figure(
                 lab = f"{r['label']}" + ("" if used.all() else " (open: left out)")
             else:
                 c = "0.6"
-                lab = f"{r['label']} (not judged" + (
-                    ": no null, against 0)" if r["sheared"] else ": not sheared)"
-                )
+                lab = f"{r['label']} (not judged: no null; against 0)"
             for sel, face in ((used, c), (~used, "none")):
                 if sel.any():
                     named = face != "none" or not used.any()
@@ -347,7 +345,8 @@ def spin_claim_figure(
         bx.set_ylabel("departure beyond the null, +- 2 se [-]", fontsize=7)
         bx.set_title("the near-wall bins the verdict rests on (filled)", fontsize=8)
         if bx.get_legend_handles_labels()[0]:
-            bx.legend(fontsize=6, frameon=False, loc="upper right")
+            bx.legend(fontsize=7, frameon=False, loc="upper left",
+                      bbox_to_anchor=(0.0, -0.18 - 0.9 / fig.get_figheight()))  # fmt: skip
         fig.subplots_adjust(left=0.2, right=0.98, wspace=0.3,
                             bottom=min(0.6, 0.25 + 1.6 / fig.get_figheight() * 0.3),
                             top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
