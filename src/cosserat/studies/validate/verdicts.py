@@ -463,9 +463,7 @@ def spin_verdict(
         "runs_departing_p_0.05": showing,
         "runs_departing_p_significant": significant,
     }
-    # only fits that supply a prediction say what the errors could have seen
-    shift = sum(_shift(w, model) for w in tested if w.run not in unfit)
-    usable = [r for r in runs if r not in unfit]
+    shift = sum(_shift(w, model) for w in tested)
     needed = float(chi2_dist.isf(P_SIGNIFICANT, dof)) - dof
     p_seen = float(chi2_dist.sf(dof + shift, dof))
     numbers["p_if_model_departure_were_there"] = p_seen
@@ -545,21 +543,15 @@ def spin_verdict(
         )
     else:
         change = (
-            f"no usable {model} fit predicts a departure at these bins: errors small enough "
-            f"to see a pooled chi^2 above {needed + dof:.4g}, or fits that predict one."
+            f"no {model} fit predicts a departure at these bins: errors small enough to see a "
+            f"pooled chi^2 above {needed + dof:.4g}."
         )
-    seen = (
-        f"the errors are too large to have seen the departure the {model} model predicts (it "
-        f"would give p = {p_seen:.2g})"
-        if usable
-        else f"no {model} fit to these runs supplies a prediction to say whether the errors "
-        "could have seen a departure"
-    )
     return Verdict(
         key,
         "undecided",
-        f"The data cannot decide: no significant departure ({p_text(chi2, dof, p)}), and "
-        f"{seen}; {head}",
+        f"The data cannot decide: no significant departure ({p_text(chi2, dof, p)}), and the "
+        f"errors are too large to have seen the departure the {model} model predicts (it "
+        f"would give p = {p_seen:.2g}); {head}",
         change,
         tuple(runs),
         numbers,
