@@ -232,6 +232,12 @@ def test_a_run_whose_fit_supplies_no_prediction_is_counted_not_excused():
     assert "counted although the cosserat fit supplies no prediction there: z0 (phi pinned)" in (
         v.evidence
     )
+    # no run departs, and the unusable fits' departure would show: the verdict says whose
+    loud = [wall(f"z{i}", [0.0] * 3, 0.002, predicted={"cosserat": np.full(3, 0.01)})
+            for i in range(3)]  # fmt: skip
+    v = spin_verdict(loud, unfit=unfit)
+    assert v.numbers["model_departure_from_unusable_fits"] == ["z0", "z1", "z2"]
+    assert "from cosserat fits of which those to z0, z1, z2 supply no prediction" in v.evidence
 
 
 def test_the_rate_sentence_names_the_wall_speeds():

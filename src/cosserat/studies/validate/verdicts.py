@@ -464,6 +464,14 @@ def spin_verdict(
         "runs_departing_p_significant": significant,
     }
     shift = sum(_shift(w, model) for w in tested)
+    from_unfit = sorted({w.run for w in tested if w.run in unfit and model in w.predicted})
+    caveat = (
+        f", from {model} fits of which those to {', '.join(from_unfit)} supply no prediction "
+        "(counted above)"
+        if from_unfit
+        else ""
+    )
+    numbers["model_departure_from_unusable_fits"] = from_unfit
     needed = float(chi2_dist.isf(P_SIGNIFICANT, dof)) - dof
     p_seen = float(chi2_dist.sf(dof + shift, dof))
     numbers["p_if_model_departure_were_there"] = p_seen
@@ -528,7 +536,7 @@ def spin_verdict(
             "refuted",
             f"Refuted: no departure near the sheared walls, although the departure the "
             f"{model} model predicts for these runs (fitted to their velocities, measured as "
-            f"the data) would have given p = {p_seen:.2g}; {head}",
+            f"the data) would have given p = {p_seen:.2g}{caveat}; {head}",
             "a departure in runs with smaller errors, or a model whose predicted departure "
             "these errors could not see.",
             tuple(runs),
@@ -551,7 +559,7 @@ def spin_verdict(
         "undecided",
         f"The data cannot decide: no significant departure ({p_text(chi2, dof, p)}), and the "
         f"errors are too large to have seen the departure the {model} model predicts (it "
-        f"would give p = {p_seen:.2g}); {head}",
+        f"would give p = {p_seen:.2g}{caveat}); {head}",
         change,
         tuple(runs),
         numbers,
