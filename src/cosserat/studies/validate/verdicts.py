@@ -266,7 +266,8 @@ def t_p(z: float, blocks: int) -> float | None:
 
 
 def carrying_bins(w: WallSpin) -> list[dict[str, float]]:
-    """The bins of a wall's test (:func:`_decisive`) with |z| >= :data:`CARRY_Z`: distance
+    """The bins of a wall's test (every near-wall bin, or all but the first layer where its
+    sign depends on the stencil) with |z| >= :data:`CARRY_Z`: distance
     from the wall [d], departure beyond the null and its se [-], whitened z [-], and p of z
     under t(blocks - 1) (None when the blocks are not recorded)."""
     order = np.argsort(w.distance_d)
