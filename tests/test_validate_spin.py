@@ -158,3 +158,122 @@ def test_the_layer_runs_fixed_wall_under_the_referees_stencils(tmp_path):
     assert fixed.stencils["wall-first"][0] == pytest.approx(0.154, abs=5e-4)
     assert fixed.stencil_dependent()
     assert not moving.stencil_dependent()
+
+
+# ------------------------------------------------ referee 7: which walls carry the verdict
+def test_a_sheared_wall_without_a_null_is_reported_not_judged():
+    """The layer run's fixed wall departs by 6 se against 0, but no fit describes its
+    velocity (no null): it is named and left out; the verdict rests on the moving walls,
+    which show nothing (chi^2 = 0 for 6 bins)."""
+    from dataclasses import replace
+
+    quiet = [wall(r, [0.0, 0.0, 0.0], 0.01, null=[0.0, 0.0, 0.0]) for r in ("a", "b")]
+    lone = replace(wall("L", [0.0, 0.0795, 0.0], 0.013), wall="fixed", no_null="no fit")
+    v = spin_verdict([*quiet, lone])
+    assert v.verdict != "supported", v.text
+    assert v.numbers["pooled_dof"] == 6 and v.numbers["pooled_chi2"] == pytest.approx(0.0)
+    assert v.numbers["walls_without_null"] == ["L:fixed"]
+    assert "Not judged (no null: no fit describes the velocity there" in v.evidence
+    assert "L (fixed wall, 3 bins" in v.evidence
+    # with only that wall there is nothing to judge
+    only = spin_verdict([lone])
+    assert only.verdict == "undecided" and only.runs == ("L",)
+    assert "with a null to test against" in only.evidence
+
+
+def test_the_evidence_names_the_bins_the_verdict_rests_on():
+    """One bin at 1.5 d departs by 0.0795 +- 0.013 (z = 6.12; p = 1.7e-4 under t(9), the se
+    coming from 10 blocks); the two other runs' walls show nothing and are named as such."""
+    from dataclasses import replace
+
+    from cosserat.studies.validate.verdicts import carrying_bins, t_p
+
+    one = replace(wall("L", [0.0, 0.0795, 0.0], 0.013, null=[0.0] * 3), blocks=10)
+    quiet = [wall(r, [0.001, 0.0, -0.001], 0.01, null=[0.0] * 3) for r in ("a", "b")]
+    assert t_p(6.09, 10) == pytest.approx(1.814e-4, rel=1e-3)  # referee 7's number
+    assert t_p(6.09, 0) is None
+    bins = carrying_bins(one)
+    assert len(bins) == 1 and bins[0]["distance_d"] == 1.5
+    assert bins[0]["z"] == pytest.approx(0.0795 / 0.013)
+    v = spin_verdict([one, *quiet])
+    z = 0.0795 / 0.013
+    p = 2 * student_t_sf(z, 9)
+    assert (
+        f"the departure rests on 1 bin with |z| >= 3: 1.5 d from L's moving wall (+0.0795 +- "
+        f"0.013, z = {z:.3g}, p = {p:.2g} under t(9))"
+    ) in v.evidence
+    assert "none detected at a's moving wall, b's moving wall (chi^2 = 0.04 for 6 bins" in (
+        v.evidence
+    )
+    assert v.numbers["carrying_bins"]["L:moving"][0]["p_t"] == pytest.approx(p)
+    assert "under t(9) z = 6.1 is p = 0.00018, not 1.1e-09" in v.evidence
+
+
+def student_t_sf(z, dof):
+    from scipy.stats import t
+
+    return float(t.sf(z, dof))
+
+
+def test_a_run_whose_fit_supplies_no_prediction_is_counted_not_excused():
+    """Three runs do not depart and their errors could not have shown the Cosserat fit's
+    departure: excused, the one departing run carries "supported"; when those fits supply no
+    prediction (pinned, or contradicting the stress ratio) they count: 1 of 4, "mixed"."""
+    big = np.array([-1.0, -1.0, -1.0])
+    walls = [wall("big", [-2.0, -1.0, 0.0], 0.1, predicted={"cosserat": big})]
+    walls += [wall(f"z{i}", [0.0] * 3, 0.05, predicted={"cosserat": np.full(3, 0.01)})
+              for i in range(3)]  # fmt: skip
+    assert spin_verdict(walls).verdict == "supported"
+    unfit = {f"z{i}": "phi pinned" for i in range(3)}
+    v = spin_verdict(walls, unfit=unfit)
+    assert v.verdict == "mixed", v.text
+    assert v.numbers["runs_counted_with_unusable_fits"] == ["z0", "z1", "z2"]
+    assert v.numbers["runs_too_noisy_to_show_the_model_departure"] == []
+    assert "counted although the cosserat fit supplies no prediction there: z0 (phi pinned)" in (
+        v.evidence
+    )
+    # no run departs, and the unusable fits' departure would show: the verdict says whose
+    loud = [wall(f"z{i}", [0.0] * 3, 0.002, predicted={"cosserat": np.full(3, 0.01)})
+            for i in range(3)]  # fmt: skip
+    v = spin_verdict(loud, unfit=unfit)
+    assert v.numbers["model_departure_from_unusable_fits"] == ["z0", "z1", "z2"]
+    assert "from cosserat fits of which those to z0, z1, z2 supply no prediction" in v.evidence
+
+
+def test_the_rate_sentence_names_the_wall_speeds():
+    from types import SimpleNamespace
+
+    from cosserat.studies.validate.study import rate_text
+
+    def res(v):
+        return SimpleNamespace(run=SimpleNamespace(meta={"wall_speed": v}))
+
+    assert rate_text([res(0.0025), res(0.0025)]) == (
+        "Rate independence is not shown (one wall speed: V = 0.0025)."
+    )
+    assert rate_text([res(0.0025), res(0.00125)]).startswith(
+        "The runs span 2 wall speeds (V = 0.00125, 0.0025); the spin's test does not compare"
+    )
+
+
+def test_the_spin_claim_figure_draws_the_bins_the_verdict_rests_on():
+    """The right panel: every near-wall bin of each wall, the used ones filled."""
+    from cosserat.viz.validation import spin_claim_figure
+
+    rows = [
+        {"label": "L: fixed", "first": 0.1, "se": 0.01, "sheared": True, "predicted": {},
+         "bins": {"distance_d": [0.5, 1.5], "beyond": [0.1, 0.08], "se": [0.01, 0.013],
+                  "used": [False, True], "judged": True}},
+        {"label": "a: moving", "first": 0.0, "se": 0.01, "sheared": True, "predicted": {},
+         "bins": {"distance_d": [0.5, 1.5], "beyond": [0.0, 0.0], "se": [0.01, 0.01],
+                  "used": [True, True], "judged": False}},
+    ]  # fmt: skip
+    fig = spin_claim_figure(rows)
+    right = fig.axes[1]
+    assert right.get_xlabel() == "distance from the wall [d]"
+    labels = right.get_legend_handles_labels()[1]
+    assert labels == ["L: fixed (open: left out)", "a: moving (not judged: no null; against 0)"]
+    # three errorbar groups: L used, L left out, a; an unsheared wall is not drawn
+    assert len(right.containers) == 3
+    rows.append({**rows[1], "label": "b: fixed", "sheared": False})
+    assert len(spin_claim_figure(rows).axes[1].containers) == 3

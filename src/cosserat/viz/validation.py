@@ -256,16 +256,21 @@ def _layer_x_label(layer: Mapping[str, Any]) -> str:
 def spin_claim_figure(
     rows: Sequence[Mapping[str, Any]], models: Sequence[str] = (), title: str = ""
 ) -> Figure:
-    """The measured departure of the spin in the first layer at each wall of each run, with
-    its error bar (2 se), beside each model's prediction there (one row per run and wall).
+    """Left: the measured departure of the spin in the first layer at each wall of each run,
+    with its error bar (2 se), beside each model's prediction there (one row per run and
+    wall). Right: the departure beyond the null in every near-wall bin of each wall against
+    the distance from it, the bins the verdict rests on (filled) apart from those it leaves
+    out (open: a stencil-dependent first layer; grey: walls not judged).
 
     Parameters
     ----------
     rows : sequence of mapping
         ``label``, ``first``, ``se``, ``sheared`` (bool), ``predicted`` (model -> value),
         optional ``stencil_range`` ((low, high): the measured first-layer departure's range
-        over the difference stencils, drawn as a grey bar) and ``null`` (what the measurement
-        reports for grains turning with the material, drawn as a grey cross).
+        over the difference stencils, drawn as a grey bar), ``null`` (what the measurement
+        reports for grains turning with the material, drawn as a grey cross) and ``bins``
+        (``distance_d`` [d], ``beyond``, ``se`` [-], ``used`` and ``judged`` (bool): the
+        right panel).
     models : sequence of str
         The models to draw, in order.
     title : str
@@ -276,8 +281,8 @@ def spin_claim_figure(
     from .plotting import new_figure, style
 
     n = max(len(rows), 1)
-    fig, axes = new_figure(1, 1, width=7.5, height=1.3 + 0.26 * n)
-    ax = axes[0, 0]
+    fig, axes = new_figure(1, 2, width=11.0, height=max(2.6, 1.3 + 0.26 * n))
+    ax, bx = axes[0, 0], axes[0, 1]
     with style():
         y = np.arange(len(rows))[::-1]
         for yi, r in zip(y, rows, strict=True):
@@ -309,9 +314,41 @@ def spin_claim_figure(
         handles, labels = ax.get_legend_handles_labels()
         uniq = dict(zip(labels, handles, strict=True))
         if uniq:
-            ax.legend(uniq.values(), uniq.keys(), loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                      fontsize=7, frameon=False)  # fmt: skip
-        fig.subplots_adjust(left=0.32, right=0.72, bottom=0.6 / fig.get_figheight() + 0.02,
+            ax.legend(uniq.values(), uniq.keys(), loc="upper left",
+                      bbox_to_anchor=(0.0, -0.18 - 0.9 / fig.get_figheight()), fontsize=7,
+                      frameon=False)  # fmt: skip
+        colors = [f"C{i}" for i in range(10)]
+        k = 0
+        for r in rows:
+            b = r.get("bins")
+            if not b or not b["distance_d"] or not r["sheared"]:
+                continue  # an unsheared wall is neither tested nor a candidate
+            x = np.asarray(b["distance_d"], dtype=float)
+            v = np.asarray(b["beyond"], dtype=float)
+            e = 2.0 * np.asarray(b["se"], dtype=float)
+            used = np.asarray(b["used"], dtype=bool)
+            if b["judged"]:
+                c = colors[k % len(colors)]
+                k += 1
+                lab = f"{r['label']}" + ("" if used.all() else " (open: left out)")
+            else:
+                c = "0.6"
+                lab = f"{r['label']} (not judged: no null; against 0)"
+            for sel, face in ((used, c), (~used, "none")):
+                if sel.any():
+                    named = face != "none" or not used.any()
+                    bx.errorbar(x[sel], v[sel], yerr=e[sel], fmt="o", color=c, capsize=2,
+                                markerfacecolor=face, markersize=4, elinewidth=0.8,
+                                label=lab if named else None)  # fmt: skip
+        bx.axhline(0.0, color="0.5", linewidth=0.6)
+        bx.set_xlabel("distance from the wall [d]")
+        bx.set_ylabel("departure beyond the null, +- 2 se [-]", fontsize=7)
+        bx.set_title("the near-wall bins the verdict rests on (filled)", fontsize=8)
+        if bx.get_legend_handles_labels()[0]:
+            bx.legend(fontsize=7, frameon=False, loc="upper left",
+                      bbox_to_anchor=(0.0, -0.18 - 0.9 / fig.get_figheight()))  # fmt: skip
+        fig.subplots_adjust(left=0.2, right=0.98, wspace=0.3,
+                            bottom=min(0.6, 0.25 + 1.6 / fig.get_figheight() * 0.3),
                             top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
     return fig
 

@@ -386,6 +386,12 @@ class WallSpin:
         The fit whose velocity made ``null`` ("" without one).
     null_stencils : mapping of stencil to float
         The null's first layer under each stencil [-].
+    no_null : str
+        Why this wall has no null although it would need one (no fit describes the velocity
+        there); such a wall is reported and not judged ("" where it has a null, or where no
+        fit was made at all).
+    blocks : int
+        The number of time blocks the standard errors come from (0: not recorded).
     """
 
     run: str
@@ -403,6 +409,8 @@ class WallSpin:
     null: FloatArray | None = None
     null_model: str = ""
     null_stencils: dict[str, float] = field(default_factory=dict)
+    no_null: str = ""
+    blocks: int = 0
 
     @property
     def beyond(self) -> FloatArray:
@@ -533,6 +541,8 @@ class WallSpin:
             null,
             null_model,
             dict(null_stencils or {}),
+            self.no_null,
+            self.blocks,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -554,6 +564,7 @@ class WallSpin:
             "chi2_against_zero": chi2_p(self.z_zero)[0],
             "p_against_zero": chi2_p(self.z_zero)[2],
             "null_model": self.null_model,
+            "no_null": self.no_null,
             "null_first_layer": None
             if self.null is None or self.dof == 0
             else float(np.asarray(self.null)[self.nearest]),

@@ -24,6 +24,7 @@ from .measures import (
     P_SIGNIFICANT,
     SHEARED_U,
     WALL_EXCLUSION_D,
+    WallSpin,
 )
 from .verdicts import EXPONENT_TOL, MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, calibration_text, relevant
 
@@ -191,9 +192,28 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
                     )
                     if w.stencils
                     else None,
+                    "bins": _spin_bins(w),
                 }
             )
     return rows
+
+
+def _spin_bins(w: WallSpin) -> dict[str, Any]:
+    """A wall's near-wall bins as the spin verdict uses them: distance [d], departure beyond
+    the null (against 0 without one) and se [-], whether the verdict's test uses each bin
+    (the first layer is left out where its sign depends on the stencil), and whether the
+    wall is judged at all (sheared, with the null it needs)."""
+    order = np.argsort(w.distance_d)
+    used = np.ones(order.size, dtype=bool)
+    if w.stencil_dependent():
+        used[0] = False
+    return {
+        "distance_d": [float(x) for x in np.asarray(w.distance_d, dtype=float)[order]],
+        "beyond": [float(x) for x in np.asarray(w.beyond, dtype=float)[order]],
+        "se": [float(x) for x in np.asarray(w.stderr, dtype=float)[order]],
+        "used": [bool(x) for x in used],
+        "judged": bool(w.sheared and not w.no_null),
+    }
 
 
 def fit_status(s: FitSummary | None) -> tuple[str, bool]:

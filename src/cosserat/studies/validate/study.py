@@ -264,8 +264,8 @@ def analyse_run(
         no_null = {"fixed"} if walls_differ(run) else set()
         if no_null:
             spin.notes.append(
-                "fixed wall: tested against 0, not against a null: its kind differs from the "
-                "moving wall's, which the fits give it, so their velocity there is not the run's"
+                "fixed wall: no null (its kind differs from the moving wall's, which the fits "
+                "give it, so their velocity there is not the run's): reported, not judged"
             )
         differ = walls_differ(run)
         chosen = min(fits.models, key=lambda m: _null_misfit(spin, nulls[m]["analysis"], differ))
@@ -300,6 +300,14 @@ def analyse_run(
             )
             for w in spin.walls
         ]
+        # a sheared wall that would need a null and has none is reported, not judged
+        why = (
+            "no fit describes the velocity there (its kind differs from the moving wall's, "
+            "which the fits give it): no null, so not judged"
+        )
+        spin.walls = [replace(w, no_null=why) if w.wall in no_null else w for w in spin.walls]
+    if spin.available and run.meta.get("blocks"):
+        spin.walls = [replace(w, blocks=int(run.meta["blocks"])) for w in spin.walls]
     layer = measure_layer(run, fits)
     thickness = (
         Thickness(None, None, CHANNEL_NOTE)
@@ -526,7 +534,7 @@ def judge(
         )
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
     verdicts = [
-        spin_verdict(walls),
+        spin_verdict(walls, unfit=_spin_model_inputs(results)[2]),
         delta_law_verdict(series, "smoother"),
         delta_law_verdict(series, "rough"),
         _spin_model(results, spin_scan),
@@ -549,7 +557,27 @@ def judge(
         else v
         for v in verdicts
     ]
+    verdicts = [
+        replace(v, evidence=f"{v.evidence} {rate_text([by_name[n] for n in v.runs])}")
+        if v.key == "spin" and v.runs
+        else v
+        for v in verdicts
+    ]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))
+
+
+def rate_text(results: Sequence[RunResult]) -> str:
+    """One sentence for the spin verdict: its test does not show the departure
+    rate-independent (that takes one cell at two wall speeds); the runs' wall speeds
+    (the sidecar's ``wall_speed``) are named."""
+    speeds = sorted({float(v) for r in results if (v := r.run.meta.get("wall_speed")) is not None})
+    named = ", ".join(f"{v:.3g}" for v in speeds) or "not recorded"
+    if len(speeds) <= 1:
+        return f"Rate independence is not shown (one wall speed: V = {named})."
+    return (
+        f"The runs span {len(speeds)} wall speeds (V = {named}); the spin's test does not "
+        "compare one cell at two speeds, so it does not show rate independence."
+    )
 
 
 def regime(results: Sequence[RunResult]) -> str:

@@ -12,11 +12,16 @@ p-values, the runs used) and what data would change it. The rules:
   whose first-layer departure changes sign between the difference stencils
   (:data:`~cosserat.studies.validate.forward.STENCILS`) is tested without its first layer; a
   run's test adds its sheared walls, the pooled test adds every run's (degrees of freedom
-  added; runs taken as independent). "supported" when the pooled p <
-  :data:`P_SIGNIFICANT` and at least half the runs show a departure at p < :data:`P_CONSISTENT`
-  ("mixed" when fewer do: the pooled result rests on a few runs; a run that does not depart
-  and whose errors would not have shown the departure the Cosserat model predicts for it, at
-  p < :data:`P_CONSISTENT`, counts neither way); "refuted" when the pooled p
+  added; runs taken as independent). A sheared wall that needs a null and has none (no fit
+  describes the velocity there, ``WallSpin.no_null``) is reported, not judged: a test against
+  0 would count what the binning and the stencil make as a departure. "supported" when the
+  pooled p < :data:`P_SIGNIFICANT` and at least half the runs show a departure at p <
+  :data:`P_CONSISTENT` ("mixed" when fewer do: the pooled result rests on a few runs; a run
+  that does not depart and whose errors would not have shown the departure the Cosserat model
+  predicts for it, at p < :data:`P_CONSISTENT`, counts neither way, unless that fit supplies
+  no prediction, ``unfit``: then it counts as not departing); the evidence names the bins
+  with |z| >= :data:`CARRY_Z` the departure rests on (with p under t(blocks - 1), the se
+  coming from the blocks) and the walls where none is detected; "refuted" when the pooled p
   >= :data:`P_CONSISTENT` although the departure the Cosserat model predicts (fitted to the
   same velocities) would have given a pooled p < :data:`P_SIGNIFICANT` at these errors;
   "undecided" otherwise.
@@ -67,6 +72,7 @@ from typing import Any
 import numpy as np
 from scipy.stats import chi2 as chi2_dist
 from scipy.stats import norm
+from scipy.stats import t as student_t
 
 from ..._text import significance
 from ...analysis.gap import PAPER_SLOPES, SlopeFit, power_law_slope
@@ -246,6 +252,74 @@ def _walls_text(walls: Sequence[WallSpin], models: Sequence[str] = ()) -> str:
     return "; ".join(rows)
 
 
+CARRY_Z = 3.0
+"""A near-wall bin whose whitened departure beyond the null has |z| at or above this is named
+as one the spin verdict rests on [-]."""
+
+
+def t_p(z: float, blocks: int) -> float | None:
+    """Two-sided p of ``z`` read as Student's t with ``blocks - 1`` degrees of freedom (the
+    standard error comes from ``blocks`` time blocks; None when not recorded) [-]."""
+    if blocks < 2:
+        return None
+    return float(2.0 * student_t.sf(abs(z), blocks - 1))
+
+
+def carrying_bins(w: WallSpin) -> list[dict[str, float]]:
+    """The bins of a wall's test (every near-wall bin, or all but the first layer where its
+    sign depends on the stencil) with |z| >= :data:`CARRY_Z`: distance
+    from the wall [d], departure beyond the null and its se [-], whitened z [-], and p of z
+    under t(blocks - 1) (None when the blocks are not recorded)."""
+    order = np.argsort(w.distance_d)
+    if w.stencil_dependent():
+        order = order[1:]
+    z = _decisive(w)
+    beyond = np.asarray(w.beyond, dtype=float)[order]
+    se = np.asarray(w.stderr, dtype=float)[order]
+    dist = np.asarray(w.distance_d, dtype=float)[order]
+    return [
+        {
+            "distance_d": float(dist[i]),
+            "departure": float(beyond[i]),
+            "se": float(se[i]),
+            "z": float(z[i]),
+            "p_t": t_p(float(z[i]), w.blocks),
+        }
+        for i in range(z.size)
+        if abs(float(z[i])) >= CARRY_Z
+    ]
+
+
+def _carry_text(tested: Sequence[WallSpin]) -> str:
+    """Which walls and bins carry the departure, and where none is detected."""
+    parts = []
+    for w in tested:
+        for b in carrying_bins(w):
+            under_t = (
+                f", p = {b['p_t']:.2g} under t({w.blocks - 1})" if b["p_t"] is not None else ""
+            )
+            parts.append(
+                f"{b['distance_d']:.2g} d from {w.run}'s {w.wall} wall ({b['departure']:+.3g} "
+                f"+- {b['se']:.2g}, z = {b['z']:.3g}{under_t})"
+            )
+    p_wall = [chi2_p(_decisive(w))[2] for w in tested]
+    quiet = [w for w, p in zip(tested, p_wall, strict=True) if p is None or p >= P_CONSISTENT]
+    n = len(parts)
+    out = (
+        f"the departure rests on {n} bin{'s' if n != 1 else ''} with |z| >= {CARRY_Z:g}: "
+        + "; ".join(parts)
+        if parts
+        else f"no bin departs by |z| >= {CARRY_Z:g}"
+    )
+    if quiet:
+        out += (
+            "; none detected at "
+            + ", ".join(f"{w.run}'s {w.wall} wall" for w in quiet)
+            + f" ({_test_text(chi2_p(np.concatenate([_decisive(w) for w in quiet])))})"
+        )
+    return out
+
+
 SPIN_METHOD = (
     "Method: z = (omega - half vorticity - null)/se in the bins near each wall, the null "
     "being what the analysis reports where the grains turn with the material (omega = half "
@@ -263,32 +337,57 @@ SPIN_METHOD = (
     f"difference stencil: its departure is given under {len(STENCILS)} stencils "
     f"({', '.join(STENCILS)}), the models' forward-modelled as the data; where its sign is "
     "not the same under all of them the first layer is stencil-dependent and that wall's test "
-    "rests on its other bins."
+    "rests on its other bins. A sheared wall that needs a null and has none (no fit describes "
+    "the velocity there) is reported, not judged. Every se comes from the runs' time blocks "
+    "(10 in the shipped runs: 9 degrees of freedom) and z is read as normal: under t(9) "
+    f"z = 6.1 is p = {2.0 * float(student_t.sf(6.1, 9)):.2g}, not "
+    f"{2.0 * float(norm.sf(6.1)):.2g}; the p of each bin the verdict rests on is given "
+    "under t as well."
 )
 
 
 # --------------------------------------------------------------------------- spin
-def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
+def spin_verdict(
+    walls: Sequence[WallSpin], model: str = "cosserat", unfit: Mapping[str, str] | None = None
+) -> Verdict:
     """Does the spin depart from half the vorticity near the walls (module docstring)?
 
     Parameters
     ----------
     walls : sequence of WallSpin
-        Every run's near-wall tests; unsheared walls are reported, not judged.
+        Every run's near-wall tests; unsheared walls, and sheared walls without the null they
+        need (``WallSpin.no_null``), are reported, not judged.
     model : str
         The model whose predicted departure says whether the errors could have seen one.
+    unfit : mapping of run name to str, optional
+        Runs whose ``model`` fit supplies no prediction (pinned, or contradicting the measured
+        stress ratio), with why: such a run is counted among the runs, never excused as too
+        noisy to have shown the model's departure.
     """
-    tested = [w for w in walls if w.sheared and w.dof > 0]
+    unfit = dict(unfit or {})
+    sheared = [w for w in walls if w.sheared and w.dof > 0]
+    no_null = [w for w in sheared if w.no_null]
+    tested = [w for w in sheared if not w.no_null]
     untested = [w for w in walls if not w.sheared and w.dof > 0]
     key = "spin"
+    unjudged = (
+        " Not judged (no null: no fit describes the velocity there, and a test against 0 "
+        "would count what the binning and the stencil make as a departure): "
+        + _walls_text(no_null)
+        + "."
+        if no_null
+        else ""
+    )
     if not tested:
         return Verdict(
             key,
             "undecided",
             "The data cannot decide: no run has the spin and half the vorticity measured near "
-            "a sheared wall.",
+            "a sheared wall with a null to test against." + unjudged,
             "omega and half_vorticity columns with their standard errors in the bins next to "
-            "the moving wall.",
+            "the moving wall, and a velocity a fit describes there.",
+            tuple(sorted({w.run for w in no_null})),
+            {"walls_without_null": [f"{w.run}:{w.wall}" for w in no_null]},
         )
     runs = sorted({w.run for w in tested})
     dependent = [w for w in tested if w.stencil_dependent()]
@@ -313,7 +412,7 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
     blind = []
     for r in runs:
         own = [w for w in tested if w.run == r]
-        if r in showing or not any(model in w.predicted for w in own):
+        if r in showing or r in unfit or not any(model in w.predicted for w in own):
             continue
         n_r = sum(_decisive(w).size for w in own)
         if float(chi2_dist.sf(n_r + sum(_shift(w, model) for w in own), n_r)) >= P_CONSISTENT:
@@ -366,6 +465,14 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         "runs_departing_p_significant": significant,
     }
     shift = sum(_shift(w, model) for w in tested)
+    from_unfit = sorted({w.run for w in tested if w.run in unfit and model in w.predicted})
+    caveat = (
+        f", from {model} fits of which those to {', '.join(from_unfit)} supply no prediction "
+        "(counted above)"
+        if from_unfit
+        else ""
+    )
+    numbers["model_departure_from_unusable_fits"] = from_unfit
     needed = float(chi2_dist.isf(P_SIGNIFICANT, dof)) - dof
     p_seen = float(chi2_dist.sf(dof + shift, dof))
     numbers["p_if_model_departure_were_there"] = p_seen
@@ -382,10 +489,22 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         if dependent
         else ""
     )
+    counted = sorted(r for r in runs if r in unfit and r not in showing)
+    counted_text = (
+        f"; counted although the {model} fit supplies no prediction there: "
+        + "; ".join(f"{r} ({unfit[r]})" for r in counted)
+        if counted
+        else ""
+    )
+    numbers["runs_counted_with_unusable_fits"] = counted
+    numbers["carrying_bins"] = {
+        f"{w.run}:{w.wall}": carrying_bins(w) for w in tested if carrying_bins(w)
+    }
+    numbers["walls_without_null"] = [f"{w.run}:{w.wall}" for w in no_null]
     head = (
-        f"{pooled}. {len(showing)} of {len(runs)} runs depart at p < {P_CONSISTENT:g} "
-        f"({len(significant)} at p < {P_SIGNIFICANT:g}){too_noisy}.{rests} {detail}. "
-        f"{SPIN_METHOD}"
+        f"{_carry_text(tested)}. In detail: {pooled}. {len(showing)} of {len(runs)} runs "
+        f"depart at p < {P_CONSISTENT:g} ({len(significant)} at p < {P_SIGNIFICANT:g})"
+        f"{too_noisy}{counted_text}.{rests} {detail}.{unjudged} {SPIN_METHOD}"
     )
     if p < P_SIGNIFICANT:
         if 2 * len(showing) >= len(runs) - len(blind):
@@ -406,7 +525,7 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
             "mixed",
             f"Mixed: the pooled test departs, but only {len(showing)} of "
             f"{len(runs) - len(blind)} runs that could show it do; the pooled result rests on "
-            f"them. {head}",
+            f"them; {head}",
             "more runs at the conditions of those that do not depart, to tell a real "
             "difference between runs from scatter.",
             tuple(runs),
@@ -418,7 +537,7 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
             "refuted",
             f"Refuted: no departure near the sheared walls, although the departure the "
             f"{model} model predicts for these runs (fitted to their velocities, measured as "
-            f"the data) would have given p = {p_seen:.2g}; {head}",
+            f"the data) would have given p = {p_seen:.2g}{caveat}; {head}",
             "a departure in runs with smaller errors, or a model whose predicted departure "
             "these errors could not see.",
             tuple(runs),
@@ -441,7 +560,7 @@ def spin_verdict(walls: Sequence[WallSpin], model: str = "cosserat") -> Verdict:
         "undecided",
         f"The data cannot decide: no significant departure ({p_text(chi2, dof, p)}), and the "
         f"errors are too large to have seen the departure the {model} model predicts (it "
-        f"would give p = {p_seen:.2g}); {head}",
+        f"would give p = {p_seen:.2g}{caveat}); {head}",
         change,
         tuple(runs),
         numbers,
