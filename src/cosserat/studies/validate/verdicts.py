@@ -265,7 +265,7 @@ def t_p(z: float, blocks: int) -> float | None:
     return float(2.0 * student_t.sf(abs(z), blocks - 1))
 
 
-def carrying_bins(w: WallSpin) -> list[dict[str, float]]:
+def carrying_bins(w: WallSpin) -> list[dict[str, float | None]]:
     """The bins of a wall's test (every near-wall bin, or all but the first layer where its
     sign depends on the stencil) with |z| >= :data:`CARRY_Z`: distance
     from the wall [d], departure beyond the null and its se [-], whitened z [-], and p of z
