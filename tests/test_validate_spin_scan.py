@@ -113,7 +113,7 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
     assert ss.wall_call(sc) == "refuted"
     v = ss.scan_verdict([sc])
     assert v.verdict == "refuted"
-    assert v.evidence.startswith("Refuted: at reversed no admissible (K, L)")
+    assert v.evidence.startswith("Refuted: at reversed by the sign rule: the data's departure")
 
 
 def test_runs_without_a_spin_are_one_line_errors(tmp_path, pair):
