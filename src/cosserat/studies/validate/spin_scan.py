@@ -1136,7 +1136,15 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         if outside
         else ""
     )
-    if verdict == "refuted":
+    sized = [r for r in refuted if rules[r].startswith("size rule")]
+    if verdict == "refuted" and sized:
+        change = (
+            f"at {', '.join(sized)}: a best fit within {SIZE_RULE_SIGMAS:g} se of the data "
+            "under some stencil: another wall spin condition than eqn-nd_bc3u (omega_w = 0, "
+            "half the vorticity, couple-stress free) in the joint fit, or one calibration of "
+            "the material's runs with L shared that fits them."
+        )
+    elif verdict == "refuted":
         change = (
             "a first-layer departure of the measured sign inside the 95% region when the model "
             "is measured another way (another stencil, finer bins), or a wall spin condition "
