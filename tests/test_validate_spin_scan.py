@@ -320,3 +320,18 @@ def test_claim_spin_model_draws_the_joint_fits(pair, tmp_path):
     assert [t.get_text() for t in ax.get_yticklabels()] == ["rough", "smooth"]
     assert "beyond its null" in ax.get_xlabel()
     fig.savefig(tmp_path / "joint.png")
+
+
+def test_two_runs_of_one_material_get_one_calibration_with_L_shared(pair):
+    rough, smooth = pair
+    scans, skipped = ss.spin_scans([rough, smooth], [rough, smooth], points=2)
+    assert skipped == [] and [sc.run for sc in scans] == ["rough", "smooth"]
+    a, b = (sc.shared for sc in scans)
+    assert a["runs"] == b["runs"] == ["rough", "smooth"]
+    assert a["L"] == b["L"] and a["chi2"] == b["chi2"]
+    assert abs(a["L"] - COMMON["L"]) < 1.0  # the L the data were made with
+    # the shared fit of Cosserat-made data gives each run's first layer within 2 se
+    for sc in scans:
+        assert abs(sc.shared["beyond"] - sc.measured_beyond) <= 2.0 * sc.measured_beyond_se
+    text = ss._material_text(scans)
+    assert "that calibration (first layers held out): L = " in text

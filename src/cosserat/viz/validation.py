@@ -429,14 +429,15 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
     """The first-layer departure beyond its null at each scanned run's moving wall: the data's
     (beyond the null of the joint fit's velocity, +- 2 se) against the joint u + omega +
     stress-ratio calibration's (its best fit +- 2 se, and the span over its 95% region),
-    the runs the ``spin_model`` verdict judges, each row saying the call and the rule.
+    and the material's shared-L calibration (a cross, where there is one), the runs the
+    ``spin_model`` verdict judges, each row saying the call and the null.
 
     Parameters
     ----------
     scans : sequence of mapping
         ``cosserat.studies.validate.spin_scan.Scan.to_dict``: ``run``,
         ``measured_beyond_null`` (``_se``), ``best_beyond_null`` (``_se``),
-        ``admissible_beyond_null``, ``null_best``, ``call``, ``rule``.
+        ``admissible_beyond_null``, ``null_best``, ``call``, ``rule`` and ``shared``.
     title : str
         Above the axes.
     """
@@ -461,6 +462,10 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
             ax.errorbar([sc["best_beyond_null"]], [yi - 0.15],
                         xerr=[2 * sc["best_beyond_null_se"]], fmt="d", color="C3", capsize=2,
                         elinewidth=0.8, zorder=3)  # fmt: skip
+            shared = sc.get("shared", {}).get("beyond")
+            if shared is not None and np.isfinite(shared):
+                ax.plot([shared], [yi - 0.15], marker="x", color="C0", markersize=7, mew=1.5,
+                        linestyle="none", zorder=4)  # fmt: skip
             ax.annotate(f"{sc['call']} (null {sc['null_best']:+.3g})", (1.01, yi),
                         xycoords=("axes fraction", "data"), fontsize=6.5,
                         va="center")  # fmt: skip
@@ -479,11 +484,13 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
             Line2D([], [], marker="o", color="k", linestyle="none"),
             Line2D([], [], marker="d", color="C3", linestyle="none"),
             Line2D([], [], color="C3", linewidth=5, alpha=0.3),
+            Line2D([], [], marker="x", color="C0", mew=1.5, linestyle="none"),
         ]
         labels = [
             "data beyond the joint fit's null (+- 2 se)",
             "joint fit beyond its own null (+- 2 se)",
             "joint fit's 95% region",
+            "the material's shared-L calibration",
         ]
         ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.0, -0.25 / n),
                   fontsize=6.5, frameon=False)  # fmt: skip
