@@ -556,7 +556,7 @@ class Scan:
 
     @property
     def threshold(self) -> float:
-        """Delta chi^2 of the admissible region: chi2.ppf(LEVEL, k) times :attr:`scale`."""
+        """Delta chi^2 of the admissible region: chi2.ppf(LEVEL, k) times ``scale``."""
         return float(chi2_dist.ppf(LEVEL, self.k)) * self.scale
 
     @property
@@ -572,13 +572,13 @@ class Scan:
     @property
     def null_se(self) -> float:
         """The null's standard error from its spread over the 95% region, as
-        :attr:`prediction_se` [-]."""
+        ``prediction_se`` [-]."""
         lo, hi = self._span(self.null, self.null_near, self.null_best)
         return (hi - lo) / (2.0 * math.sqrt(self.threshold / self.scale))
 
     @property
     def measured_beyond_se(self) -> float:
-        """se of :attr:`measured_beyond`: the data's and the null's, in quadrature [-]."""
+        """se of ``measured_beyond``: the data's and the null's, in quadrature [-]."""
         return math.hypot(self.measured_se, self.null_se)
 
     @property
@@ -592,7 +592,7 @@ class Scan:
 
     @property
     def beyond_se(self) -> float:
-        """The spread of :attr:`beyond_span` as a standard error, as :attr:`prediction_se`."""
+        """The spread of ``beyond_span`` as a standard error, as ``prediction_se``."""
         lo, hi = self.beyond_span
         return (hi - lo) / (2.0 * math.sqrt(self.threshold / self.scale))
 
@@ -1272,7 +1272,7 @@ def shared_fits(
 ) -> None:
     """One joint calibration per material over its scanned runs (referee 7, point 7): phi and
     every wall's roughness fixed as in each run's scan, L shared, K per wall kind, each run's
-    first-layer omega held out; sets each scan's :attr:`Scan.shared` (its prediction beyond
+    first-layer omega held out; sets each scan's ``Scan.shared`` (its prediction beyond
     its null there)."""
     from ...calibration.data import from_run, with_correlations
     from ...calibration.joint import calibrate_model
@@ -1331,6 +1331,7 @@ __all__ = [
     "LEVEL",
     "LOCAL_SPAN",
     "PREDICTORS",
+    "SIZE_RULE_SIGMAS",
     "SIZE_SIGMAS",
     "Angles",
     "JointFit",
@@ -1347,7 +1348,9 @@ __all__ = [
     "scan",
     "scan_run",
     "scan_verdict",
+    "shared_fits",
     "shear_stress",
     "spin_scans",
     "wall_call",
+    "wall_rule",
 ]
