@@ -462,6 +462,80 @@ def spin_model_figure(
     return fig
 
 
+def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "") -> Figure:
+    """The first-layer departure beyond its null at each scanned run's moving wall: the data's
+    (beyond the null of the joint fit's velocity, +- 2 se) against the joint u + omega +
+    stress-ratio calibration's (its best fit +- 2 se, and the span over its 95% region),
+    and the material's shared-L calibration (a cross, where there is one), the runs the
+    ``spin_model`` verdict judges, each row saying the call and the null.
+
+    Parameters
+    ----------
+    scans : sequence of mapping
+        ``cosserat.studies.validate.spin_scan.Scan.to_dict``: ``run``,
+        ``measured_beyond_null`` (``_se``), ``best_beyond_null`` (``_se``),
+        ``admissible_beyond_null``, ``null_best``, ``call``, ``rule`` and ``shared``.
+    title : str
+        Above the axes.
+    """
+    import numpy as np
+    from matplotlib.lines import Line2D
+
+    from .plotting import new_figure, style
+
+    n = max(len(scans), 1)
+    fig, axes = new_figure(1, 1, width=9.0, height=1.6 + 0.55 * n)
+    ax = axes[0, 0]
+    with style():
+        y = np.arange(len(scans))[::-1].astype(float)
+        for yi, sc in zip(y, scans, strict=True):
+            ax.axhspan(yi - 0.5, yi + 0.5, color="0.94" if int(yi) % 2 else "white", zorder=0)
+            ax.errorbar([sc["measured_beyond_null"]], [yi + 0.15],
+                        xerr=[2 * sc["measured_beyond_null_se"]], fmt="o", color="k", capsize=2,
+                        elinewidth=0.8, zorder=3)  # fmt: skip
+            lo, hi = sc["admissible_beyond_null"]
+            ax.plot([lo, hi], [yi - 0.15, yi - 0.15], color="C3", linewidth=5, alpha=0.3,
+                    solid_capstyle="butt", zorder=2)  # fmt: skip
+            ax.errorbar([sc["best_beyond_null"]], [yi - 0.15],
+                        xerr=[2 * sc["best_beyond_null_se"]], fmt="d", color="C3", capsize=2,
+                        elinewidth=0.8, zorder=3)  # fmt: skip
+            shared = sc.get("shared", {}).get("beyond")
+            if shared is not None and np.isfinite(shared):
+                ax.plot([shared], [yi - 0.15], marker="x", color="C0", markersize=7, mew=1.5,
+                        linestyle="none", zorder=4)  # fmt: skip
+            ax.annotate(f"{sc['call']} (null {sc['null_best']:+.3g})", (1.01, yi),
+                        xycoords=("axes fraction", "data"), fontsize=6.5,
+                        va="center")  # fmt: skip
+        ax.axvline(0.0, color="0.5", linewidth=0.6, zorder=1)
+        ax.set_yticks(y, [sc["run"] for sc in scans], fontsize=7)
+        ax.set_ylim(-0.5, n - 0.5)
+        ax.tick_params(axis="y", length=0)
+        ax.set_xlabel(
+            r"first-layer $(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ beyond its null [-]"
+        )
+        if title:
+            ax.set_title(title, fontsize=8)
+        if not scans:
+            ax.text(0.5, 0.5, "no run scanned", ha="center", transform=ax.transAxes)
+        handles = [
+            Line2D([], [], marker="o", color="k", linestyle="none"),
+            Line2D([], [], marker="d", color="C3", linestyle="none"),
+            Line2D([], [], color="C3", linewidth=5, alpha=0.3),
+            Line2D([], [], marker="x", color="C0", mew=1.5, linestyle="none"),
+        ]
+        labels = [
+            "data beyond the joint fit's null (+- 2 se)",
+            "joint fit beyond its own null (+- 2 se)",
+            "joint fit's 95% region",
+            "the material's shared-L calibration",
+        ]
+        ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.0, -0.25 / n),
+                  fontsize=6.5, frameon=False)  # fmt: skip
+        fig.subplots_adjust(left=0.2, right=0.62, bottom=0.6 / fig.get_figheight() + 0.02,
+                            top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
+    return fig
+
+
 def _nice_ticks(lo: float, hi: float, wanted: Sequence[float]) -> list[float]:
     return [t for t in wanted if lo <= t <= hi]
 
@@ -661,5 +735,6 @@ __all__ = [
     "run_figure",
     "spin_claim_figure",
     "spin_model_figure",
+    "spin_model_joint_figure",
     "spin_scan_figure",
 ]

@@ -296,13 +296,21 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
             r.figure = write_run_figure(r, out)
         files[r.run.name] = r.figure
     rows = spin_rows(report)
+    scans = next(
+        (list(v.numbers.get("scans", [])) for v in report.verdicts if v.key == "spin_model"), []
+    )
     with style():
         save_figure(
             fig.spin_claim_figure(rows, [], "does the spin depart from half the vorticity?"),
             out / CLAIM_FIGURES["spin"],
         )
+        # the verdict's own fits, the joint calibrations, where it has them (referee 7, 10)
         save_figure(
-            fig.spin_model_figure(
+            fig.spin_model_joint_figure(
+                scans, "the first-layer departure beyond its null: data and the joint fits"
+            )
+            if scans
+            else fig.spin_model_figure(
                 spin_model_rows(report, [r for r in rows if r["sheared"]]),
                 report.models,
                 [m for m in report.models if not Model(m).has_spin],
@@ -310,9 +318,6 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
             ),
             out / CLAIM_FIGURES["spin_model"],
         )
-    scans = next(
-        (list(v.numbers.get("scans", [])) for v in report.verdicts if v.key == "spin_model"), []
-    )
     if scans:
         with style():
             save_figure(fig.spin_scan_figure(scans), out / SPIN_SCAN_FIGURE)
