@@ -269,7 +269,52 @@ def test_the_size_rule_refutes_a_fit_that_misses_under_every_stencil(pair):
     assert ss.wall_rule(dataclasses.replace(good, stencils=near))[0] == "supported"
     v = ss.scan_verdict([missed])
     assert v.verdict == "refuted"
-    assert v.evidence.startswith("Refuted: at rough by the size rule: best fit - data beyond 3")
+    # the refutation is scoped to the calibration and its wall spin condition (referee 8)
+    assert v.evidence.startswith(
+        "Refuted as calibrated with the eqn-nd_bc3u wall spin condition: calibrated jointly "
+        "on u, omega (the first layer's held out) and the stress ratio, phi and delta from "
+        "the stresses; rough"
+    )
+    spin = missed.omega_model - missed.omega_measured
+    assert (
+        f"first-layer omega d / V {missed.omega_model:+.3g} (model) against "
+        f"{missed.omega_measured:+.3g} +- {missed.omega_measured_se:.2g} (measured), "
+        f"{spin:+.3g} of the best fit - data {missed.best - missed.measured:+.3g}"
+    ) in v.evidence
+    assert (
+        "Other wall spin conditions (omega_w = 0, half the vorticity, couple-stress free), "
+        "gaps, seeds and wall speeds are untested. at rough by the size rule: best fit - data "
+        "beyond 3 se"
+    ) in v.evidence
+
+
+def test_the_size_rule_scales_the_data_se_as_the_region_is(pair):
+    """One error model (referee 8, point 1): where chi^2/dof = s > 1 scales the region's Delta
+    chi^2, the size rule's se is the data's times sqrt(s) with the prediction's spread in
+    quadrature; a 5 se miss in the data's bare se is not refuted at s = 4."""
+    import dataclasses
+
+    rough, smooth = pair
+    good = ss.scan_run(rough, [rough, smooth], points=3)
+    stencils = {k: {"data": 0.0, "se": 0.01, "model": 0.05} for k in ("analysis", "wall")}
+    mc = good.fit.calibration
+    bad = dataclasses.replace(
+        good,
+        fit=dataclasses.replace(good.fit, calibration=dataclasses.replace(mc, chi2=4.0 * mc.dof)),
+        chi2_min=4.0 * mc.dof,
+        stencils=stencils,
+    )
+    assert bad.scale == pytest.approx(4.0)
+    se = math.hypot(0.02, bad.prediction_se)
+    assert ss.size_se(bad, 0.01) == pytest.approx(se, rel=1e-12)
+    assert ss.size_z(bad) == pytest.approx({"analysis": 0.05 / se, "wall": 0.05 / se})
+    assert ss.wall_rule(bad)[0] != "refuted"
+    assert "in se of the data's se times sqrt(chi^2/dof) = 2, as the 95% region is scaled" in (
+        ss._stencil_text(bad)
+    )
+    # a miss of 3.5 such se under both stencils: refuted by the size rule
+    far = {k: {**v, "model": 3.5 * se} for k, v in stencils.items()}
+    assert ss.wall_rule(dataclasses.replace(bad, stencils=far))[1].startswith("size rule")
 
 
 def test_a_misfit_scales_the_region_and_is_warned(pair):

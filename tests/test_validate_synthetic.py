@@ -124,6 +124,10 @@ def test_cosserat_data_support_both_spin_claims_and_noisy_ones_cannot_decide(tmp
     # u-only fits' reading is kept
     assert set(sm.numbers["calls"].values()) == {"supported"}, sm.numbers["calls"]
     assert sm.numbers["u_only_fits"]["opposite_sign"] == []
+    # one speed per cell: spin_model, as spin, says rate independence is not shown (referee 8)
+    for key in ("spin", "spin_model"):
+        text = report.verdict(key).evidence
+        assert "Rate independence is not shown" in text or "show rate independence" in text
     noisy = validate(corpus(tmp_path / "noisy", "cosserat", noise=0.3), models=["cosserat"])
     v = verdicts(noisy)
     assert v["spin"] == "undecided", noisy.verdict("spin").text

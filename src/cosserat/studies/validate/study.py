@@ -559,7 +559,7 @@ def judge(
     ]
     verdicts = [
         replace(v, evidence=f"{v.evidence} {rate_text([by_name[n] for n in v.runs])}")
-        if v.key == "spin" and v.runs
+        if v.key in ("spin", "spin_model") and v.runs
         else v
         for v in verdicts
     ]
@@ -567,9 +567,9 @@ def judge(
 
 
 def rate_text(results: Sequence[RunResult]) -> str:
-    """One sentence for the spin verdict: its test does not show the departure
-    rate-independent (that takes one cell at two wall speeds); the runs' wall speeds
-    (the sidecar's ``wall_speed``) are named."""
+    """One sentence for the spin and spin_model verdicts (referee 8, point 7): their test
+    does not show the departure rate-independent (that takes one cell at two wall speeds);
+    the runs' wall speeds (the sidecar's ``wall_speed``) are named."""
     speeds = sorted({float(v) for r in results if (v := r.run.meta.get("wall_speed")) is not None})
     named = ", ".join(f"{v:.3g}" for v in speeds) or "not recorded"
     if len(speeds) <= 1:
