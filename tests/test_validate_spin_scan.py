@@ -113,7 +113,10 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
     assert ss.wall_call(sc) == "refuted"
     v = ss.scan_verdict([sc])
     assert v.verdict == "refuted"
-    assert v.evidence.startswith("Refuted: at reversed by the sign rule: the data's departure")
+    assert v.evidence.startswith(
+        "Refuted as calibrated with the eqn-nd_bc3u wall spin condition: calibrated jointly"
+    )
+    assert "untested. at reversed by the sign rule: the data's departure" in v.evidence
 
 
 def test_runs_without_a_spin_are_one_line_errors(tmp_path, pair):
@@ -198,7 +201,8 @@ def test_the_forward_scan_reports_the_first_layer_under_every_stencil(pair):
     # the analysis' stencil is the run's own half_vorticity column: the scan's measured value
     assert sc.stencils["analysis"]["data"] == pytest.approx(sc.measured, abs=1e-12)
     assert sc.stencils["analysis"]["model"] == pytest.approx(sc.best, abs=1e-12)
-    assert "best fit - data under each stencil: analysis" in ss._describe(sc)
+    assert "best fit - data under each stencil, in se of the data's se " in ss._describe(sc)
+    assert f"in quadrature: analysis {sc.best - sc.measured:+.3g} (" in ss._describe(sc)
     assert ss.scan(rough, fit, points=2, predictor="point").stencils == {}
 
 
@@ -309,6 +313,10 @@ def test_the_size_rule_scales_the_data_se_as_the_region_is(pair):
     assert ss.size_se(bad, 0.01) == pytest.approx(se, rel=1e-12)
     assert ss.size_z(bad) == pytest.approx({"analysis": 0.05 / se, "wall": 0.05 / se})
     assert ss.wall_rule(bad)[0] != "refuted"
+    # the sign and null rules read the data beyond the null in the same error model
+    assert bad.measured_beyond_se == pytest.approx(
+        math.hypot(2.0 * bad.measured_se, bad.null_se), rel=1e-12
+    )
     assert "in se of the data's se times sqrt(chi^2/dof) = 2, as the 95% region is scaled" in (
         ss._stencil_text(bad)
     )

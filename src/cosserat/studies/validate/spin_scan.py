@@ -581,8 +581,10 @@ class Scan:
 
     @property
     def measured_beyond_se(self) -> float:
-        """se of ``measured_beyond``: the data's and the null's, in quadrature [-]."""
-        return math.hypot(self.measured_se, self.null_se)
+        """se of ``measured_beyond``: the data's times sqrt(``scale``), the error model of the
+        95% region (referee 8, point 1: one error model for every rule), and the null's, in
+        quadrature [-]."""
+        return math.hypot(self.measured_se * math.sqrt(self.scale), self.null_se)
 
     @property
     def beyond_span(self) -> tuple[float, float]:
@@ -1146,11 +1148,12 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         f"declared ranges. Each departure is taken beyond its null (what the analysis reports "
         f"for grains turning with the material in that velocity: the data's, the joint fit's "
         f"velocity's, with its spread over the 95% region as its error; the model's, each "
-        f"point's own). 'supported' only where the data exclude the null (>= {SIGN_SIGMAS:g} "
-        f"se) and the best fit gives the sign and the size beyond it within {SIZE_SIGMAS:g} se; "
+        f"point's own). Every rule takes the data's se times sqrt(chi^2/dof) where that "
+        f"exceeds 1, the error model of the 95% region. 'supported' only where the data "
+        f"exclude the null (>= {SIGN_SIGMAS:g} se) and the best fit gives the sign and the "
+        f"size beyond it within {SIZE_SIGMAS:g} se; "
         f"'refuted' by the size rule (best fit - data beyond {SIZE_RULE_SIGMAS:g} se, one sign, "
-        f"under every stencil; the data's se times sqrt(chi^2/dof) where that exceeds 1, one "
-        f"error model with the region's, and the prediction's spread in quadrature), or by the "
+        f"under every stencil, the prediction's spread in quadrature), or by the "
         f"sign rule (the data exclude the null and no point of the 95% region gives their "
         f"sign), or where the data do not exclude the null and every "
         f"admissible point departs beyond its null by more than {SIGN_SIGMAS:g} se from it. The "
@@ -1179,7 +1182,7 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         verdict, head = (
             "refuted",
             f"Refuted {SCOPE}: "
-            + _scope_text([sc for sc in scans if sc.run in refuted])
+            + _scope_text(scans)
             + "; ".join(f"at {r} by the {rules[r]}" for r in refuted)
             + (f"; undecided at {', '.join(undecided)}" if undecided else "")
             + ".",
