@@ -116,7 +116,7 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
     assert v.evidence.startswith(
         "Refuted as calibrated with the eqn-nd_bc3u wall spin condition: calibrated jointly"
     )
-    assert "untested. at reversed by the sign rule: the data's departure" in v.evidence
+    assert "untested. Refuted at reversed by the sign rule: the data's departure" in v.evidence
 
 
 def test_runs_without_a_spin_are_one_line_errors(tmp_path, pair):
@@ -287,8 +287,8 @@ def test_the_size_rule_refutes_a_fit_that_misses_under_every_stencil(pair):
     ) in v.evidence
     assert (
         "Other wall spin conditions (omega_w = 0, half the vorticity, couple-stress free), "
-        "gaps, seeds and wall speeds are untested. at rough by the size rule: best fit - data "
-        "beyond 3 se"
+        "gaps, seeds and wall speeds are untested. Refuted at rough by the size rule: best fit "
+        "- data beyond 3 se"
     ) in v.evidence
 
 

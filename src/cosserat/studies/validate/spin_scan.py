@@ -1183,6 +1183,7 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
             "refuted",
             f"Refuted {SCOPE}: "
             + _scope_text(scans)
+            + "Refuted "
             + "; ".join(f"at {r} by the {rules[r]}" for r in refuted)
             + (f"; undecided at {', '.join(undecided)}" if undecided else "")
             + ".",
