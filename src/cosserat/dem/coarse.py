@@ -121,16 +121,30 @@ def _fields(total: np.ndarray, n_samples: int, bin_area: np.ndarray) -> dict[str
     }
 
 
-def block_fields(samples: Samples, first: int, blocks: int) -> list[dict[str, np.ndarray]]:
-    """The fields of each of ``blocks`` contiguous blocks of the samples from index ``first``."""
-    n = samples.sums.shape[0] - first
+def block_ranges(n_samples: int, first: int, blocks: int) -> list[tuple[int, int]]:
+    """``blocks`` contiguous sample ranges ``[a, b)`` covering the samples from index
+    ``first`` of ``n_samples``, as equal as whole samples allow.
+
+    Raises
+    ------
+    ParameterError
+        Fewer than 2 blocks.
+    InputError
+        Fewer steady samples than blocks.
+    """
+    n = n_samples - first
     if blocks < 2:
         raise ParameterError(f"blocks must be >= 2; got {blocks}")
     if n < blocks:
         raise InputError(f"{n} steady samples cannot make {blocks} blocks")
     bounds = first + (np.arange(blocks + 1) * n) // blocks
+    return [(int(a), int(b)) for a, b in itertools.pairwise(bounds)]
+
+
+def block_fields(samples: Samples, first: int, blocks: int) -> list[dict[str, np.ndarray]]:
+    """The fields of each of ``blocks`` contiguous blocks of the samples from index ``first``."""
     out = []
-    for a, b in itertools.pairwise(bounds):
+    for a, b in block_ranges(samples.sums.shape[0], first, blocks):
         total = samples.sums[a:b].sum(axis=0)
         out.append(_fields(total, b - a, samples.bin_area))
     return out

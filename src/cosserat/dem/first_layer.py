@@ -28,7 +28,6 @@ and W (the same grains, the same blocks) is in them.
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError, ParameterError
+from .coarse import block_ranges
 from .decks import Deck, dimension
 from .dumps import iter_dump
 from .geometry import FREE, LOWER_WALL, UPPER_WALL
@@ -135,14 +135,8 @@ def layer_blocks(layers: LayerSamples, first: int, blocks: int) -> list[dict[str
     InputError
         Fewer steady samples than blocks, or a layer with no grain in a block.
     """
-    n = layers.sums.shape[0] - first
-    if blocks < 2:
-        raise ParameterError(f"blocks must be >= 2; got {blocks}")
-    if n < blocks:
-        raise InputError(f"{n} steady samples cannot make {blocks} blocks")
-    bounds = first + (np.arange(blocks + 1) * n) // blocks
     out = []
-    for a, b in itertools.pairwise(bounds):
+    for a, b in block_ranges(layers.sums.shape[0], first, blocks):
         t = layers.sums[a:b].sum(axis=0)
         S = {name: t[..., k] for k, name in enumerate(LAYER_SUMS)}
         if np.any(S["count"] == 0):
