@@ -405,13 +405,29 @@ def jump_covariance(
     return sf, sm, float(np.clip(float(c_f @ cov @ c_m) / (sf * sm), -1.0, 1.0))
 
 
-def shear_rates(distance_d: np.ndarray, u: np.ndarray, smoother: str) -> tuple[float, ...]:
-    """``-du/ds`` between neighbouring bins (``s`` from the moving wall; positive in the sense
-    of the shear), ordered from the ``smoother`` wall ("fixed" or "moving") [V/d]."""
+def rate_between_bins(
+    distance_d: np.ndarray, u: np.ndarray, se: np.ndarray | None = None, rho: float = 0.0
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """``-du/ds`` between neighbouring bins, ``s`` from the moving wall ascending (positive in
+    the sense of the shear) [V/d]: the midpoints [d], the rates, and with ``se`` their errors
+    (neighbouring bins' errors correlated at ``rho``) [V/d]."""
     s = np.asarray(distance_d, dtype=float)
     order = np.argsort(s)
     s, u = s[order], np.asarray(u, dtype=float)[order]
-    rate = -np.diff(u) / np.diff(s)
+    ds = np.diff(s)
+    rate = -np.diff(u) / ds
+    rate_se = None
+    if se is not None:
+        e = np.asarray(se, dtype=float)[order]
+        var = e[1:] ** 2 + e[:-1] ** 2 - 2.0 * rho * e[1:] * e[:-1]
+        rate_se = np.sqrt(np.maximum(var, 0.0)) / ds
+    return 0.5 * (s[1:] + s[:-1]), rate, rate_se
+
+
+def shear_rates(distance_d: np.ndarray, u: np.ndarray, smoother: str) -> tuple[float, ...]:
+    """:func:`rate_between_bins`, ordered from the ``smoother`` wall ("fixed" or "moving")
+    [V/d]."""
+    rate = rate_between_bins(distance_d, u)[1]
     return tuple(float(r) for r in (rate[::-1] if smoother == "fixed" else rate))
 
 

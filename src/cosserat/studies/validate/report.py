@@ -18,6 +18,7 @@ from ...analysis.gap import PAPER_SLOPES
 from ...calibration.models import Model
 from ...viz.report import write_report as write_templates
 from .grouping import wall_label
+from .layer import rate_between_bins
 from .measures import (
     BAND_U,
     FILLS_GAP,
@@ -111,13 +112,8 @@ def _layer_entry(
         o = np.argsort(d)
         models[name] = {"d": d[o], "u": cu[o]}
         rates[name] = {"d": d[o], "rate": -np.gradient(cu[o], d[o])}
-    o = np.argsort(s)
-    so, uo, seo = s[o], u[o], se[o]
     rho = p.bin_correlation
-    gap_rate = -np.diff(uo) / np.diff(so)
-    rate_se = np.sqrt(
-        np.maximum(seo[1:] ** 2 + seo[:-1] ** 2 - 2.0 * rho * seo[1:] * seo[:-1], 0.0)
-    ) / np.diff(so)
+    mid, gap_rate, rate_se = rate_between_bins(s, u, se, rho)
     i_band = r.inertial_number
     title = (
         f"{r.run.name}: plane, H/d = {r.run.gap_d:.3g}, B = 0; {kinds['fixed']} fixed wall, "
@@ -128,7 +124,7 @@ def _layer_entry(
         "walls": {w: f"{kinds[w]}, {w}" for w in ("fixed", "moving")},
         "within_d": p.within_d,
         "gap_d": r.run.gap_d,
-        "rate": {"d": 0.5 * (so[1:] + so[:-1]), "rate": gap_rate, "se": rate_se},
+        "rate": {"d": mid, "rate": gap_rate, "se": rate_se},
         "model_rates": rates,
         "smoother": p.smoother,
         # each Cosserat spin curve drawn in the colour of its velocity curve
