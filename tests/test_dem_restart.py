@@ -251,7 +251,12 @@ def test_corpus_v2_regenerates_the_kept_runs_decks():
         assert made.run.steps <= cell.run.steps
         assert build_deck(made).text == deck.read_text(), name
         checked.append(name)
-    assert {"plane_rough_H10_qs", "plane_smooth_H10_qs", "plane_layer_H10_qs"} <= set(checked)
+    assert {
+        "plane_rough_H10_qs",
+        "plane_smooth_H10_qs",
+        "plane_layer_H10_qs",
+        "plane_rough_H20_qs",
+    } <= set(checked)
 
 
 def test_corpus_version_is_checked(tmp_path):
