@@ -240,7 +240,7 @@ def test_corpus_v2_regenerates_the_kept_runs_decks():
 
     kept = Path(__file__).resolve().parents[1] / "data" / "dem_v2"
     cells = corpus_v2_cells()
-    assert CORPORA[2] is corpus_v2_cells and len(cells) == 9
+    assert CORPORA[2] is corpus_v2_cells and len(cells) == 13
     checked = []
     for name, cell in cells.items():
         deck = kept / name / "deck.lmp"

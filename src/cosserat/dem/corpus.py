@@ -82,7 +82,8 @@ def corpus_v2_cells() -> dict[str, Cell]:
     plane shear under gravity (B = 1) at H = 10 and 20 d for a rough and a smooth wall, the
     layer-position cell (no gravity, a smooth fixed lower wall, a rough moving upper one) and
     the 3-D twin of the rough run at H = 10 d; the half-speed partner of the rough run at
-    H = 10 d, and the layer cell with a second seed and at a quarter of the speed. A sitting
+    H = 10 d, and the layer cell with a second seed and at a quarter of the speed; the gap
+    series' next runs (both walls at H = 40 d, and a second seed at H = 20 d). A sitting
     rarely finishes one: every run writes checkpoints, and ``cosserat dem corpus --version 2``
     continues each from its last one.
 
@@ -117,6 +118,17 @@ def corpus_v2_cells() -> dict[str, Cell]:
     cells["plane_layer_H10_qs_quarter"] = replace(
         layer, wall_speed=QS_SPEED / 4, run=_qs_run(80_000_000)
     )
+    # the gap series' next runs (docs/dem.md, "Corpus v2: the design"): both walls at H = 40 d
+    # (40 d + H = 80 d of travel: 32M steps), and a second seed at H = 20 d, the smallest gap
+    # whose band does not fill it, for the run-to-run scatter of Delta the design assumed
+    for label, wall in (("rough", ROUGH), ("smooth", SMOOTH)):
+        h20 = cells[f"plane_{label}_H20_qs"]
+        assert isinstance(h20, PlaneShearDEM)
+        cells[f"plane_{label}_H20_qs_s2"] = replace(h20, seed=2)
+        cells[f"plane_{label}_H40_qs"] = PlaneShearDEM(
+            gap=40.0, width=30.0, B=1.0, wall_speed=QS_SPEED, wall=wall,
+            run=_qs_run(32_000_000),
+        )  # fmt: skip
     # the 3-D twin: the 2-D wall travel (49.9 d) at the 3-D time step (0.727e-3, 2-D 0.996e-3)
     cells["plane3d_rough_H10_qs"] = PlaneShearDEM(
         gap=10.0, width=15.0, B=1.0, wall_speed=QS_SPEED, wall=ROUGH, dim=3, depth=8.0,
