@@ -1264,6 +1264,8 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         return Verdict(
             key, "undecided", "The data cannot decide: no run could be scanned.", "", (), numbers
         )
+    if reading == "inadequacy":  # a model that does not describe u and omega supports nothing
+        supported = [r for r in supported if r not in misfit]
     on_misfit = reading == "inadequacy" and len(misfit) == len(scans) and not supported
     if on_misfit:
         verdict, head = (
@@ -1271,7 +1273,7 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
             f"Refuted {SCOPE}: "
             + _scope_text(scans)
             + why
-            + " The first layer corroborates: "
+            + " The held-out first layer: "
             + "; ".join(f"{r} {calls[r]} ({rules[r]})" for r in runs)
             + ".",
         )

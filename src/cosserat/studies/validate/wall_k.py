@@ -189,6 +189,8 @@ def _wall_geometry(run: Run, wall: str) -> tuple[NDArray[np.intp], FloatArray, f
     if wall not in ("moving", "fixed"):
         raise ParameterError(f"wall must be 'moving' or 'fixed'; got {wall!r}")
     d = np.asarray(run.distance_d, dtype=float)
+    if d.size < 3:
+        raise InputError(f"run {run.name}: fewer than three bins to measure K")
     if wall == "fixed":
         d = run.gap_d - d
     upper = (run.moving_wall == "upper") == (wall == "moving")
@@ -211,12 +213,10 @@ def wall_value(
     InputError
         Not a plane run, no omega column, or fewer than three bins.
     """
-    if not (run.has("u") and run.has("omega")):
-        raise InputError(f"run {run.name}: no u and omega columns with errors to measure K")
-    if np.asarray(run.distance_d).size < 3:
-        raise InputError(f"run {run.name}: fewer than three bins to measure K")
     from ...calibration.noise import covariance
 
+    if not (run.has("u") and run.has("omega")):
+        raise InputError(f"run {run.name}: no u and omega columns with errors to measure K")
     rows, s, u_wall, sigma = _wall_geometry(run, wall)
     w = extrapolation_weights(s, extrapolation)
     u, u_se = run.quantity("u")
