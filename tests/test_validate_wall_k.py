@@ -168,7 +168,7 @@ def test_a_fit_whose_K_the_data_contradict_is_warned(made):
 
 
 def test_a_misfit_with_a_fitting_stress_ratio_is_read_as_inadequacy(made):
-    run, sc = made
+    _, sc = made
     mc = sc.fit.calibration
     assert ss.misfit_reading([sc]) == ("", "")
     bad = dataclasses.replace(
