@@ -122,7 +122,7 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
     assert "untested. The misfit at reversed (p < 0.001) is read as the model's inadequacy" in (
         v.evidence
     )
-    assert "The held-out first layer: reversed refuted (sign rule: the data's departure" in (
+    assert "The held-out first layer: reversed refuted by the sign rule: the data's departure" in (
         v.evidence
     )
 

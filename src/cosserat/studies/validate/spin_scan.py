@@ -1274,7 +1274,12 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
             + _scope_text(scans)
             + why
             + " The held-out first layer: "
-            + "; ".join(f"{r} {calls[r]} ({rules[r]})" for r in runs)
+            + "; ".join(
+                f"{r} refuted by the {rules[r]}"
+                if calls[r] == "refuted"
+                else f"{r} {calls[r]} ({rules[r]})"
+                for r in runs
+            )
             + ".",
         )
     elif supported and (refuted or missed):

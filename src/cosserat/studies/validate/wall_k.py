@@ -206,7 +206,8 @@ def wall_value(
 ) -> WallValue:
     """Both sides of eqn-bc3 at ``wall`` of ``run`` under ``extrapolation`` (module
     docstring); ``fields``: (u, omega) per row in the run's sign to use instead of the run's
-    (a model measured like the data), their errors still the run's.
+    (a model measured like the data), their errors still the run's, K determined wherever
+    their spin is not 0.
 
     Raises
     ------
@@ -227,7 +228,8 @@ def wall_value(
     omega = float(w @ om[rows])
     slip_se = math.sqrt(max(float(w @ covariance(u_se[rows], _rho(run, "u")) @ w), 0.0))
     omega_se = math.sqrt(max(float(w @ covariance(om_se[rows], _rho(run, "omega")) @ w), 0.0))
-    determined = omega != 0.0 and abs(omega) >= DETERMINED_SIGMAS * omega_se
+    # a model's fields carry no noise: its K is determined wherever its spin is not 0
+    determined = omega != 0.0 and (fields is not None or abs(omega) >= DETERMINED_SIGMAS * omega_se)
     if determined:
         K = slip / (sigma * omega)
         K_se = math.hypot(slip_se, K * omega_se) / abs(omega)
