@@ -519,13 +519,37 @@ def matching_point(scan: Scan, run: Run, refits: Sequence[HeldK] = ()) -> dict[s
         "p_scaled": float(chi2_dist.sf(max(scaled, 0.0), 1)),
         "source": source,
         "matched": bool(near),
+        "at_range_edge": bool(
+            scan.L.size and (math.isclose(L, scan.L[0]) or math.isclose(L, scan.L[-1]))
+        ),
     }
 
 
 # --------------------------------------------------------------------------- per scan
 @dataclass
 class WallCheck:
-    """eqn-bc3 at one scanned run's moving wall against its joint fit (module docstring)."""
+    """eqn-bc3 at one scanned run's moving wall against its joint fit (module docstring).
+
+    Attributes
+    ----------
+    run : str
+    measured : MeasuredK
+        The data's K.
+    fitted, fitted_se : float
+        The joint fit's K and its se times sqrt(chi^2/dof) where it misfits [-].
+    model : MeasuredK or None
+        The joint fit's profile measured like the data (None: no solution).
+    scale : float
+        The scan's chi^2/dof (>= 1) [-].
+    omega_measured, omega_measured_se, omega_free : float
+        The first-layer omega d / V measured, its se, and the joint fit's [-].
+    held_free_chi2 : float
+        The joint fit's chi^2 [-].
+    held : list of HeldK
+        The refits of :data:`HELD`.
+    match : dict or None
+        :func:`matching_point`.
+    """
 
     run: str
     measured: MeasuredK
@@ -636,9 +660,10 @@ class WallCheck:
                 else f"nearest the data's first-layer departure (none within {MATCH_SIGMAS:g} se)"
             )
             where = "a grid point of the scan" if mt["source"] == "grid" else "L refitted"
+            edge = " (the edge of its range)" if mt.get("at_range_edge") else ""
             out += (
                 f"; the best first-layer-matching point ({how}; {where}): K = {mt['K']:.3g}, "
-                f"L = {mt['L']:.3g} d, departure {mt['departure']:+.3g}, first-layer omega "
+                f"L = {mt['L']:.3g} d{edge}, departure {mt['departure']:+.3g}, first-layer omega "
                 f"{_fmt(mt['omega_1'])}, Delta chi^2 = {mt['delta_chi2']:.3g} for "
                 f"1 dof (p = {mt['p']:.2g}; over chi^2/dof "
                 f"{mt['delta_chi2_scaled']:.3g}, p = {mt['p_scaled']:.2g})"
