@@ -1090,7 +1090,8 @@ def misfit_reading(scans: Sequence[Scan]) -> tuple[str, str]:
     return "inadequacy", (
         f"The misfit at {names} (p < {MISFIT_P:g}) is read as the model's inadequacy, not "
         "understated errors: the model with this wall condition does not describe u and omega "
-        "here, so the verdict rests on the misfit and the first layer corroborates, because "
+        "here, so the verdict rests on the misfit, the held-out first layer as corroboration, "
+        "because "
         f"{t_factor}the stress ratio from the same blocks fits ({stress}){k_text}; the rules' "
         "se and 95% region scaled by chi^2/dof are then a conservative widening, not a "
         "confidence region."
