@@ -116,7 +116,15 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
     assert v.evidence.startswith(
         "Refuted as calibrated with the eqn-nd_bc3u wall spin condition: calibrated jointly"
     )
-    assert "untested. Refuted at reversed by the sign rule: the data's departure" in v.evidence
+    # the mirrored spin misfits the joint fit while the stress ratio fits: the verdict rests
+    # on the misfit (inadequacy, referee 8 point 3) and the first layer's sign rule corroborates
+    assert v.numbers["reading"] == "inadequacy"
+    assert "untested. The misfit at reversed (p < 0.001) is read as the model's inadequacy" in (
+        v.evidence
+    )
+    assert "The held-out first layer: reversed refuted by the sign rule: the data's departure" in (
+        v.evidence
+    )
 
 
 def test_runs_without_a_spin_are_one_line_errors(tmp_path, pair):

@@ -56,6 +56,7 @@ from .verdicts import (
     spin_verdict,
     within_regime,
 )
+from .wall_k import check_scans
 
 QUASI_STATIC_I = 1e-3
 """Largest local inertial number of the slow flow the models are for [-]."""
@@ -208,6 +209,7 @@ def _spin_model(results: Sequence[RunResult], points: int) -> Verdict:
         return u_only
     corpus = [r.run for r in results]
     scans, skipped = spin_scans([r.run for r in results if r.spin.available], corpus, points)
+    check_scans(scans, corpus)  # eqn-bc3 against the measured K (referee 8, points 2-3)
     if not scans:
         if not skipped:
             return u_only
