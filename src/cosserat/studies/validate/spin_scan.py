@@ -1057,10 +1057,13 @@ def misfit_reading(scans: Sequence[Scan]) -> tuple[str, str]:
     bad = [sc for sc in scans if _misfits(sc)]
     if not bad:
         return "", ""
-    ratios = {}
+    ratios: dict[str, tuple[float, int, float] | None] = {}
     for sc in bad:
         f = next((f for f in sc.fit.calibration.fields if f.field == "stress_ratio"), None)
-        p = None if f is None else dg.chi2_p_value(f.chi2, f.n)
+        if f is None:
+            ratios[sc.run] = None
+            continue
+        p = dg.chi2_p_value(f.chi2, f.n)
         ratios[sc.run] = None if p is None else (f.chi2, f.n, p)
     ok = [r for r, v in ratios.items() if v is not None and v[2] >= FITS_P]
     per_dof = ", ".join(f"{sc.chi2_min / sc.fit.calibration.dof:.3g}" for sc in bad)

@@ -493,25 +493,26 @@ def matching_point(scan: Scan, run: Run, refits: Sequence[HeldK] = ()) -> dict[s
     if not pts:
         return None
     near = [p for p in pts if abs(p[2] - scan.measured) <= MATCH_SIGMAS * scan.measured_se]
-    K, L, dep, chi2, omega_1, source = (
+    best = (
         min(near, key=lambda p: p[3]) if near else min(pts, key=lambda p: abs(p[2] - scan.measured))
     )
+    K_best, L_best, dep_best, chi2_best, omega_1, source = best
     if not math.isfinite(omega_1):
         fit = scan.fit
         s, theta = fit.setup, fit.theta.copy()
         k_slot, l_slot = fit._slot("K"), fit._slot("L")
         free = [sl.name for sl in s.free]
-        theta[free.index(k_slot.name)] = k_slot.internal(K)
-        theta[free.index(l_slot.name)] = l_slot.internal(L)
+        theta[free.index(k_slot.name)] = k_slot.internal(K_best)
+        theta[free.index(l_slot.name)] = l_slot.internal(L_best)
         with contextlib.suppress(*SOLVE_ERRORS):
             prof = _profile(s.model, s.runs[0], s.run_values(s.runs[0], theta))
             omega_1 = first_layer(prof, run)[0]
-    dchi2 = chi2 - scan.chi2_min
+    dchi2 = chi2_best - scan.chi2_min
     scaled = dchi2 / scan.scale
     return {
-        "K": K,
-        "L": L,
-        "departure": dep,
+        "K": K_best,
+        "L": L_best,
+        "departure": dep_best,
         "omega_1": _num(omega_1),
         "delta_chi2": dchi2,
         "delta_chi2_scaled": scaled,
@@ -520,7 +521,7 @@ def matching_point(scan: Scan, run: Run, refits: Sequence[HeldK] = ()) -> dict[s
         "source": source,
         "matched": bool(near),
         "at_range_edge": bool(
-            scan.L.size and (math.isclose(L, scan.L[0]) or math.isclose(L, scan.L[-1]))
+            scan.L.size and (math.isclose(L_best, scan.L[0]) or math.isclose(L_best, scan.L[-1]))
         ),
     }
 
