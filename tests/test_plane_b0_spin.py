@@ -6,10 +6,10 @@ eqn-nd_fr1 and eqn-nd_zangmom give ``omega + du/dxi / 2 = (1 - A)(A + 1) eps alp
 departs from half the vorticity exactly where the couple stress varies. At B = 0 the
 couple-stress equation (eqn-eta_g0) is autonomous, and eqn-nd_bc4 at a wall that does not
 slip puts m at its fixed point m0 there, so m = m0 across the gap and the departure is zero at
-every point: one slipping wall (eqn-eta_soln_aw_g0; the caption of the paper's figure 4 says so)
-and, since m = 0, identical fully rough walls (vel_g0). It is not zero between identical
-walls smoother than the material (m(1/2) = 0, the paper's figure 3(b)), with a prescribed
-m(0) != m0 (figure 5) or under gravity.
+every point: one slipping wall (eqn-eta_soln_aw_g0; the caption of the paper's figure 3,
+fig-zero_g_aw, says so) and, since m = 0, identical fully rough walls (vel_g0). It is not
+zero between identical walls smoother than the material (m(1/2) = 0, the paper's figure
+2(b), fig-zero_g), with a prescribed m(0) != m0 (figure 5, fig-bc) or under gravity.
 
 The reference here is SciPy's solve_bvp on the five balances and the flow rule written out
 from the paper's labels (eqn-nd_xmom ... eqn-nd_fr2 with eqn-nd_sigxy's negative root) and the
@@ -194,8 +194,8 @@ def test_identical_fully_rough_walls_at_b0_have_no_departure():
 
 @pytest.mark.parametrize("name", list(DEPARTING))
 def test_where_the_couple_stress_varies_the_spin_departs_in_both_solvers(name):
-    """The identical-wall case departs near the midplane (figure 3(b): omega + du/dxi/2 != 0),
-    a prescribed m(0) near the fixed wall (figure 5), gravity everywhere: the package and the
+    """The identical-wall case departs, most at the midplane (figure 2(b): omega + du/dxi/2
+    != 0), a prescribed m(0) near the fixed wall (figure 5), gravity everywhere: the package and the
     reference give the same departure, so the zero above is not a solver's blind spot."""
     values, largest, dm_sign = DEPARTING[name]
     prof, _, dep = _agree(values)
