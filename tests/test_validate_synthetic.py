@@ -19,7 +19,8 @@ claim, the verdict that follows from the claim's definition (``docs/validation.m
 Only the Cosserat model is fitted (the spin claims need its predicted departure, and the
 other fits cost most of the time): these tests took 30 s together (pytest's durations, at a
 load average of 2-7 on two cores), and the 20-seed ``spin_model`` test (marked slow) 32 s
-of CPU more (70-100 s at a load of 5-7). The larger version: ``benchmarks/bench_validate_synthetic.py``.
+of CPU more (70-100 s at a load of 5-7). The larger version:
+``benchmarks/bench_validate_synthetic.py``.
 """
 
 from __future__ import annotations
