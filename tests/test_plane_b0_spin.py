@@ -230,7 +230,7 @@ def test_the_layer_runs_cosserat_spin_is_the_binning_of_a_material_spin():
     exactly. The model predicts no departure of its own here (docs/validation.md)."""
     from cosserat.analysis.corpus import read_run
     from cosserat.studies.validate.forward import forward_departure, null_departure
-    from cosserat.studies.validate.layer import measure_layer
+    from cosserat.studies.validate.layer import layer_position_verdict, measure_layer
     from cosserat.studies.validate.layer_alternatives import LayerData, cosserat_profile
 
     run = read_run(DATA / "plane_layer_H10_qs" / "profile.csv")
@@ -249,3 +249,7 @@ def test_the_layer_runs_cosserat_spin_is_the_binning_of_a_material_spin():
         assert prof.problem.equations.case.value == "layer-at-lower-wall"
         assert np.max(np.abs(prof.spin_minus_half_vorticity)) == 0.0
         assert np.array_equal(forward_departure(prof, run), null_departure(prof, run))
+        assert s.own_departure == 0.0 and s.turns_with_the_material
+    text = layer_position_verdict([pos]).evidence
+    assert "Cosserat layer profiles' own spin is half their vorticity at every point" in text
+    assert "The spin, the one observable that can tell" not in text
