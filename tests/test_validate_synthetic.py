@@ -6,8 +6,9 @@ between neighbouring bins, quasi-static wall speed) and ``validate`` must return
 claim, the verdict that follows from the claim's definition (``docs/validation.md``):
 
 * data made by the Cosserat model depart from half the vorticity near the moving wall, with
-  the sign and size the model (fitted to the velocity) predicts: ``spin`` and ``spin_model``
-  supported;
+  the sign and size the model (fitted to the velocity) predicts: ``spin`` supported, and
+  ``spin_model`` supported in at least the fraction of independent seeds its own 2-se rule
+  predicts (a binomial bound, computed);
 * data made by mu(I) or NGF turn with the material (spin = half the vorticity), where the
   Cosserat model fitted to the same velocities predicts a departure these errors would see:
   both refuted;
@@ -17,12 +18,15 @@ claim, the verdict that follows from the claim's definition (``docs/validation.m
 
 Only the Cosserat model is fitted (the spin claims need its predicted departure, and the
 other fits cost most of the time): these tests took 30 s together (pytest's durations, at a
-load average of 2-7 on two cores). The larger version: ``benchmarks/bench_validate_synthetic.py``.
+load average of 2-7 on two cores), and the 20-seed ``spin_model`` test (marked slow) 32 s
+of CPU more (70-100 s at a load of 5-7). The larger version:
+``benchmarks/bench_validate_synthetic.py``.
 """
 
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -108,21 +112,22 @@ def _escape(text):
 
 
 # --------------------------------------------------------------------------- the verdicts
-def test_cosserat_data_support_both_spin_claims_and_noisy_ones_cannot_decide(tmp_path):
-    # seed 1: the scan's joint fit holds the first layer's omega out (referee 7, point 6), so
-    # that bin's noise is no longer fitted, and the 2-se "supported" window misses about one
-    # honest run in twenty; under seed 0 the rough run's first bin lies 1.8 se from the
-    # truth (+0.041 measured, +0.033 true) and its held-out prediction (+0.030) 2.2 se away
-    report = validate(
-        corpus(tmp_path / "clean", "cosserat", noise=0.01, seed=1), models=["cosserat"]
-    )
+def test_cosserat_data_support_the_spin_claim_and_noisy_ones_cannot_decide(tmp_path):
+    """Seed 0, as every other corpus here. ``spin`` is supported: the first layers depart by
+    6.5 (rough) and 34 (smooth) se, so the pooled test cannot miss. ``spin_model`` is a 2-se
+    window per run and misses honest runs at a rate: its fraction over many seeds is the next
+    test's; here only what holds at every seed is asserted (no run refuted: with no stencil
+    for synthetic runs the size rule never applies, and the null and sign rules need a first
+    layer within 3 se of the null, P < 3e-4 per run). Noisy corpora (errors x 30): the first
+    layers are 0.2 and 1.1 se, undecided."""
+    report = validate(corpus(tmp_path / "clean", "cosserat", noise=0.01), models=["cosserat"])
     v = verdicts(report)
     assert v["spin"] == "supported", report.verdict("spin").text
     sm = report.verdict("spin_model")
-    assert v["spin_model"] == "supported", sm.text
-    # the joint u + omega calibration and scan (spin_scan) decide, each run supported; the
-    # u-only fits' reading is kept
-    assert set(sm.numbers["calls"].values()) == {"supported"}, sm.numbers["calls"]
+    assert v["spin_model"] in ("supported", "mixed"), sm.text
+    # the joint u + omega calibration and scan (spin_scan) decide; the u-only reading is kept
+    assert set(sm.numbers["calls"]) == {"cosserat_plane_rough_H20", "cosserat_plane_smooth_H20"}
+    assert "refuted" not in sm.numbers["calls"].values(), sm.numbers["calls"]
     assert sm.numbers["u_only_fits"]["opposite_sign"] == []
     # one speed per cell: spin_model, as spin, says rate independence is not shown (referee 8)
     for key in ("spin", "spin_model"):
@@ -133,6 +138,56 @@ def test_cosserat_data_support_both_spin_claims_and_noisy_ones_cannot_decide(tmp
     assert v["spin"] == "undecided", noisy.verdict("spin").text
     assert v["spin_model"] == "undecided", noisy.verdict("spin_model").text
     assert "errors smaller by a factor" in noisy.verdict("spin").would_change
+
+
+SEEDS = range(0, 60, 3)  # corpus() gives its three runs seeds s, s + 1, s + 2: none shared
+ALPHA = 1e-3  # the chance that a correct implementation fails the fraction test
+
+
+@pytest.mark.slow
+def test_spin_model_supports_cosserat_data_as_often_as_its_statistics_predict(tmp_path):
+    """Over 20 independent clean Cosserat corpora, ``spin_model`` (validate's verdict:
+    :func:`scan_verdict` of the plane runs' scans) is "supported" in at least the number its
+    own rules predict. A run is supported when its first layer is >= 3 se from the null
+    (P = Phi(t/se - 3), t the noise-free departure) and the best fit is within 2 se
+    (P(|z| <= 2) = 0.9545 if its se are right and both runs' errors independent); the
+    corpus when both runs are: p = 0.911 here. The count is binomial(20, p), and the test
+    asks for the largest count k with P(X < k) <= ALPHA (k = 13; P(X < 13) = 1.9e-4).
+
+    Measured (this commit): 15 of 20 (P(X <= 15) = 0.028); per run 19 and 16 of 20, every
+    miss by the 2-se window. The rough run's z = (best - data)/se is as stated (mean -0.04,
+    sd 0.89); the smooth run's is not: mean +1.03, +1.18 at the true phi (the best fit
+    over-predicts that first layer by about 1 se), and it falls with the phi the scan fixes
+    from the rough run's stresses (correlation -0.77; phi's error, ~0.4 deg, is not in the
+    prediction's se). Left as found, for the scan's owner. 20 corpora x 2 joint fits and
+    scans: 32 s of CPU, 70-100 s on two busy cores (load 5-7), hence slow."""
+    from scipy.stats import binom, norm
+
+    from cosserat.studies.validate.spin_scan import first_bin, scan_verdict, spin_scans
+
+    def runs(folder):
+        return [read_run(path) for path in sorted(folder.glob("*.csv"))]
+
+    truth, se0 = {}, {}
+    for run in runs(corpus(tmp_path / "truth", "cosserat", noise=1e-6)):
+        if run.cell == "plane":
+            (omega, _), (half, _) = run.quantity("omega"), run.quantity("half_vorticity")
+            truth[run.name] = float(omega[first_bin(run)] - half[first_bin(run)])
+    supported, calls = 0, []
+    for seed in SEEDS:
+        corpus_runs = runs(corpus(tmp_path / f"s{seed}", "cosserat", noise=0.01, seed=seed))
+        scans, _ = spin_scans(corpus_runs, corpus_runs)
+        assert [sc.run for sc in scans] == list(truth)
+        se0 = se0 or {sc.run: sc.measured_beyond_se for sc in scans}
+        verdict = scan_verdict(scans)
+        calls.append(verdict.numbers["calls"])
+        supported += verdict.verdict == "supported"
+    window = 1.0 - 2.0 * norm.sf(2.0)
+    p = math.prod(window * norm.cdf(abs(truth[r]) / se0[r] - 3.0) for r in truth)
+    k = next(k for k in range(len(SEEDS), -1, -1) if binom.cdf(k - 1, len(SEEDS), p) <= ALPHA)
+    assert p == pytest.approx(0.911, abs=5e-3) and k == 13
+    assert supported >= k, calls
+    assert all("refuted" not in c.values() for c in calls), calls
 
 
 @pytest.mark.parametrize("model", ["mui", "ngf"])

@@ -116,6 +116,10 @@ class LayerVerdict(Verdict):
         return LAYER_CLAIM
 
 
+OWN_DEPARTURE_ZERO = 1e-12
+"""A profile's own spin departure (omega d / V) at or below this is zero to rounding [-]."""
+
+
 @dataclass(frozen=True)
 class LayerSpin:
     """The Cosserat layer profile's spin against a layer run's (referee 6, point 7): ``omega -
@@ -135,6 +139,11 @@ class LayerSpin:
         (:func:`~.measures.spin_correlation`) and ``se = sqrt(se_omega^2 + se_half^2)`` [-].
     dof : int
         The bins (nothing fitted to the spin).
+    own_departure : float
+        The profile's own largest ``|omega - half vorticity|`` over the gap, point values
+        before any binning [-] (omega d / V). Zero (to rounding) without gravity and one
+        slipping wall: the couple stress stays at m0 (``docs/derivation_plane.md`` section 5a),
+        so ``departure`` is then the bins' and the stencil's reading of the velocity alone.
     """
 
     key: str
@@ -142,6 +151,12 @@ class LayerSpin:
     departure: tuple[float, ...]
     chi2: float
     dof: int
+    own_departure: float = math.nan
+
+    @property
+    def turns_with_the_material(self) -> bool:
+        """The profile's own spin is half its vorticity at every point (to rounding)."""
+        return self.own_departure <= OWN_DEPARTURE_ZERO
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -150,6 +165,7 @@ class LayerSpin:
             "departure": list(self.departure),
             "chi2": self.chi2,
             "dof": self.dof,
+            "own_departure": self.own_departure,
         }
 
 
@@ -611,13 +627,20 @@ def layer_spin(
             continue
         L = float(alt.parameters["L_d"])
         try:
-            model = forward_departure(cosserat_profile(data, L), run)
+            profile = cosserat_profile(data, L)
+            model = forward_departure(profile, run)
         except CosseratError:
             continue
         w = whiten(dep[order] - model[order], se[order], rho)
+        own = float(np.max(np.abs(profile.spin_minus_half_vorticity))) / data.gap_d
         out.append(
             LayerSpin(
-                alt.key, L, tuple(float(x) for x in model[order]), float(np.sum(w * w)), len(order)
+                alt.key,
+                L,
+                tuple(float(x) for x in model[order]),
+                float(np.sum(w * w)),
+                len(order),
+                own,
             )
         )
     return tuple(out), measured, rho
@@ -846,9 +869,22 @@ def _spin_text(p: LayerPosition) -> str:
     w0 = whiten(m, e, p.spin_rho)
     null = float(np.sum(w0 * w0))
     sizes = [x.departure[0] / m0 for x in p.spin if m0 != 0.0]
+    if all(x.turns_with_the_material for x in p.spin):
+        head = (
+            " The spin (NGF has no spin field: its grains turn with the material). The "
+            "Cosserat layer profiles' own spin is half their vorticity at every point too "
+            "(no gravity, one slipping wall: the couple stress stays at m0, "
+            "docs/derivation_plane.md section 5a), so the model values below are what the bins "
+            "and the stencil make of each profile's velocity, not a spin of the model's own, "
+            "and the spin tells the two models apart here only through the velocity"
+        )
+    else:
+        head = (
+            " The spin, the one observable that can tell the Cosserat model from NGF (NGF has "
+            "no spin field: its grains turn with the material)"
+        )
     return (
-        f" The spin, the one observable that can tell the Cosserat model from NGF (NGF has no "
-        f"spin field: its grains turn with the material): omega - half vorticity in the first "
+        head + ": omega - half vorticity in the first "
         f"two bins from the smoother wall measures {m0:+.3f} +- {e0:.2g} and {m1:+.3f} +- "
         f"{e1:.2g}; the Cosserat layer profile, forward-modelled like the data (the analysis "
         f"stencil; chi^2 over all bins, whitened with the spin's lag-1 correlation "
