@@ -808,11 +808,12 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                 mesh = ax.pcolormesh(Lf, Kf, np.ma.masked_invalid(cells), cmap="RdBu_r",
                                      norm=norm, shading="flat")  # fmt: skip
                 xe, ye, band = band_cells(L, K, d, m - 2 * se, m + 2 * se, log_x=True)
-                # where the raw departure (the null included) equals the raw measured one
+                # where the raw departure (the null included) equals the raw measured one, on
+                # the declared ranges' grid (drawn above the finer grid's colours)
                 raw = refine_grid(L, K, arr(g, "departure"), log_x=True)[2]
-                if np.nanmin(raw) < sc["measured"] < np.nanmax(raw):
+                if name == "range" and np.nanmin(raw) < sc["measured"] < np.nanmax(raw):
                     ax.contour(Lf, Kf, raw, levels=[sc["measured"]], colors="0.25",
-                               linewidths=0.8, linestyles="--")  # fmt: skip
+                               linewidths=0.8, linestyles="--", zorder=3)  # fmt: skip
                 if band.any():
                     hatched = True
                     hatch = ax.pcolor(xe, ye, np.ma.masked_where(~band, np.ones(band.shape)),
