@@ -748,13 +748,15 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
     bilinearly between the grid's points (dots; blue negative, red positive, white 0), the
     declared ranges' grid with the finer grid around the joint fit drawn over it; hatched
     where the model comes within 2 se of the data's departure beyond the null
-    (:func:`band_cells`, the verdict's se); the 95% region of the joint u + omega calibration
-    (black contour) and its optimum (star).
+    (:func:`band_cells`, the verdict's se; each title says when nothing is, with the model's
+    range beyond its null over the grid, :func:`beyond_range`); dashed where the raw
+    departure (its null included) equals the raw measured value; the 95% region of the joint
+    u + omega calibration (black contour) and its optimum (star).
 
     Parameters
     ----------
     scans : sequence of mapping
-        ``run``, ``measured_beyond_null``, ``measured_beyond_null_se``, ``best_K``,
+        ``run``, ``measured``, ``measured_beyond_null``, ``measured_beyond_null_se``, ``best_K``,
         ``best_L``, ``best_beyond_null``, ``threshold``, ``phi``, ``delta`` (wall -> deg) and
         ``grids`` (``range`` and ``near``: ``K``, ``L``, ``departure``, ``null``,
         ``delta_chi2``, None where the model has no solution).

@@ -27,10 +27,12 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
   between f values says nothing about the conditioning; ``w_f`` does not change unless the
   profile leaves an exponential there.
 * **Spin at a wall**: the departure omega - half vorticity over the bins within
-  ``near_wall_d`` of that wall, se = sqrt(se_omega^2 + se_half^2): omega and half the
-  vorticity come from the same particles and time blocks, but their errors' correlation is not
-  recorded, so the quadrature (independent) is the central choice and the largest error any
-  correlation allows, se_omega + se_half, is reported beside it (``chi2_bound``). Neighbouring
+  ``near_wall_d`` of that wall, se = sqrt(se_omega^2 + se_half^2 - 2 r se_omega se_half):
+  omega and half the vorticity come from the same particles and time blocks, r the
+  correlation of their block means that the sidecar records per bin
+  (:func:`omega_half_correlation`); where it records none, the quadrature (independent,
+  :data:`INDEPENDENT`) is the central choice; the largest error any correlation allows,
+  se_omega + se_half, is reported beside it (``chi2_bound``). Neighbouring
   bins are correlated: the residuals are whitened with the AR(1) error model of
   :mod:`cosserat.calibration.noise`, whose lag-1 correlation is the sidecar's
   ``bin_correlation.omega`` (omega's error dominates the departure's near the walls), else

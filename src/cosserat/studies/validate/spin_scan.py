@@ -38,7 +38,8 @@ first-layer spin: a scan"):
    :data:`~.verdicts.SIGN_SIGMAS` se under the analysis' stencil) and no admissible (K, L)
    gives its sign, or by the size rule (:func:`size_z`: best fit - data beyond
    :data:`SIZE_RULE_SIGMAS` se, one sign, under every stencil, the data's se scaled by
-   sqrt(chi^2/dof) as the region is and the prediction's spread added in quadrature), or
+   sqrt(chi^2/dof) as the region is and the prediction's spread added in quadrature; each
+   z also given as p under Student's t with the blocks' dof, :func:`size_p`), or
    where it is not significant and every admissible departure is more than
    :data:`~.verdicts.SIGN_SIGMAS` se from it (the model departs where the data do not);
    "supported" where the best joint fit gives the sign and the size within :data:`SIZE_SIGMAS`
@@ -47,6 +48,10 @@ first-layer spin: a scan"):
    refuted and none supported; "supported" when every run of significant departure is
    supported; "mixed" when some are supported and others refuted or missed in size;
    "undecided" otherwise.
+
+The data's first-layer se takes the covariance of omega and half the vorticity where the
+sidecar records their per-bin correlation (:func:`~.measures.omega_half_correlation`), and
+says "independent (bound)" where it does not (:func:`covariance_text`).
 """
 
 from __future__ import annotations
