@@ -304,6 +304,11 @@ def test_tiny_plane_shear_run_end_to_end(tmp_path):
     assert 0.5 < np.mean(c["nu"]) < 0.9
     lo, hi = meta["steady_window"]
     assert hi == 8000 and 0 <= lo < hi and meta["dropped_steps"] == lo
+    # the omega / half-vorticity correlation of each bin's block means (referee 8, point 8)
+    r = meta["omega_half_vorticity_correlation"]["per_bin"]
+    assert len(r) == n and all(x is None or -1.0 <= x <= 1.0 for x in r)
+    assert any(x is not None for x in r)
+    assert "moving_wall_spin" in meta["block_autocorrelation"]["observables"]
     _, json_path = profile.write(tmp_path, "tiny")
     assert json.loads(json_path.read_text())["deck_sha256"] == build_deck(cell).sha256
 
@@ -375,6 +380,9 @@ def test_dumps_to_profile_exact_on_a_rigidly_turning_annulus(tmp_path):
     # constant series have no autocorrelation time; the block length is still recorded
     record = profile.sidecar["block_autocorrelation"]
     assert record["observables"] == {} and record["short"] is False
+    # a rigid rotation: omega and half the vorticity do not vary between blocks, no correlation
+    r = profile.sidecar["omega_half_vorticity_correlation"]["per_bin"]
+    assert len(r) == profile.columns["r"].size and all(x is None for x in r)
     assert record["block_samples"] == 2.1 and record["block_steps"] == 2100
     c = profile.columns
     r = c["r"]

@@ -26,6 +26,7 @@ from .coarse import (
     Grains2D,
     Samples,
     bin_sums,
+    block_correlation,
     block_fields,
     inertial_number,
     mean_and_error,
@@ -471,16 +472,28 @@ def steady_profile(
     ws = extra.pop("wall_stress_se")
     sidecar["wall_stress"].update(ws)
     sidecar.update(extra)
-    sidecar["block_autocorrelation"] = block_autocorrelation(
-        {
-            "mean_velocity": run.flow,
-            "wall_shear": run.wall_shear,
-            "wall_normal" if polar else "gap": run.wall_normal if polar else run.gap,
-        },
-        first,
-        blocks,
-        every,
-    )
+    series = {
+        "mean_velocity": run.flow,
+        "wall_shear": run.wall_shear,
+        "wall_normal" if polar else "gap": run.wall_normal if polar else run.gap,
+    }
+    moving = {"plane": -1, "couette": 0}.get(cell.cell)
+    if moving is not None:  # the spin the spin verdicts rest on: the moving wall's first bin
+        series["moving_wall_spin"] = moving_bin_spin(samples, moving)
+    sidecar["block_autocorrelation"] = block_autocorrelation(series, first, blocks, every)
+    sidecar["omega_half_vorticity_correlation"] = {
+        "per_bin": block_correlation(
+            np.stack([f["omega"] for f in per_block]),
+            np.stack([f["half_vorticity"] for f in per_block]),
+        ),
+        "note": (
+            f"per bin (the profile's rows), the correlation across the {blocks} blocks of the "
+            "block means of omega and of half_vorticity: the covariance of the two columns' "
+            "errors is r omega_se half_vorticity_se, so omega - half_vorticity has the variance "
+            "omega_se^2 + half_vorticity_se^2 - 2 r omega_se half_vorticity_se; null where a "
+            "bin's blocks do not vary"
+        ),
+    }
     if three:
         sidecar.update(_three_d(cell, info, run, first, blocks))
     if bin_width != BIN_WIDTH:
@@ -488,6 +501,15 @@ def steady_profile(
     if anchor != "lower":
         sidecar["bins_from"] = anchor
     return DEMProfile(columns, sidecar)
+
+
+def moving_bin_spin(samples: Samples, index: int) -> np.ndarray:
+    """Per sample, the mean spin of the grains in bin ``index`` (the moving wall's first bin),
+    NaN for a sample with no grain there [1 / time]."""
+    k = SUMS.index("spin")
+    m = samples.sums[:, index, SUMS.index("mass")]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(m > 0, samples.sums[:, index, k] / m, np.nan)
 
 
 def _three_d(cell, info: dict, run: RunSamples, first: int, blocks: int) -> dict:

@@ -160,6 +160,39 @@ def mean_and_error(blocks: list[dict[str, np.ndarray]]) -> dict[str, tuple[np.nd
     return out
 
 
+def block_correlation(a: np.ndarray, b: np.ndarray) -> list[float | None]:
+    """Per bin, the correlation across blocks of two per-block profiles of shape (blocks,
+    bins): the correlation of the errors of their block means, so that the covariance of the
+    means is ``r se_a se_b`` (``se`` from :func:`mean_and_error`) [-]. None for a bin where
+    either profile is not finite in every block or does not vary.
+
+    Raises
+    ------
+    InputError
+        The profiles' shapes differ, or fewer than 2 blocks.
+    """
+    x, y = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    if x.shape != y.shape or x.ndim != 2 or x.shape[0] < 2:
+        raise InputError(
+            f"block_correlation needs two (blocks >= 2, bins) arrays of one shape; got "
+            f"{x.shape} and {y.shape}"
+        )
+    out: list[float | None] = []
+    for k in range(x.shape[1]):
+        u, v = x[:, k], y[:, k]
+        if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
+            out.append(None)
+            continue
+        du, dv = u - u.mean(), v - v.mean()
+        norm = float(np.sqrt(np.sum(du * du) * np.sum(dv * dv)))
+        # a profile constant up to round-off has no correlation to speak of
+        if not norm > 1e-24 * max(float(np.max(np.abs(u))) * float(np.max(np.abs(v))), 1e-300):
+            out.append(None)
+            continue
+        out.append(round(float(np.clip(np.sum(du * dv) / norm, -1.0, 1.0)), 4))
+    return out
+
+
 def mser_truncation(series: np.ndarray, batch: int = 5) -> int:
     """Samples to drop from the start of a series as its transient: the Marginal Standard
     Error Rule MSER-5 (White 1997; White, Cobb & Spratt 2000), on batch means of ``batch``

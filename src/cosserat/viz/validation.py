@@ -9,6 +9,7 @@ plain numbers.
 
 from __future__ import annotations
 
+import math
 import textwrap
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
@@ -18,6 +19,7 @@ from .calibration import MODEL_STYLES
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
 
 U_FLOOR = 1e-4
 """Lowest velocity on the log axis when the data do not go lower [-]."""
@@ -646,20 +648,119 @@ def delta_claim_figure(
     return fig
 
 
+BAND_REFINE = 8
+"""The spin scan figure interpolates each grid this many times finer in each direction for its
+colours and its hatched band (:func:`band_cells`)."""
+
+
+def _refine_axis(values: Any, t: Any, axis: int) -> Any:
+    """``values`` interpolated linearly in the index along ``axis`` at fractional indices ``t``
+    (a grid point's own value where ``t`` is whole, so a NaN neighbour does not spread onto
+    it)."""
+    import numpy as np
+
+    a = np.asarray(values, dtype=float)
+    n = a.shape[axis]
+    j = np.clip(np.floor(t).astype(int), 0, n - 2)
+    f = t - j
+    shape = [1] * a.ndim
+    shape[axis] = t.size
+    f = f.reshape(shape)
+    a0, a1 = np.take(a, j, axis=axis), np.take(a, j + 1, axis=axis)
+    with np.errstate(invalid="ignore"):
+        mixed = a0 * (1.0 - f) + a1 * f
+    return np.where(f == 0.0, a0, np.where(f == 1.0, a1, mixed))
+
+
+def refine_grid(
+    x: ArrayLike, y: ArrayLike, values: Any, refine: int = BAND_REFINE,
+    log_x: bool = False, log_y: bool = False,
+) -> tuple[Any, Any, Any]:  # fmt: skip
+    """A grid's values ``values[i, j]`` at ``(x[j], y[i])`` interpolated ``refine`` times finer
+    in each direction, bilinearly in the grid index (so linearly in x, or in ln x where
+    ``log_x``, for a grid evenly spaced on that scale); a NaN grid point (no solution) makes
+    the cells around it NaN. Returns the fine ``x``, ``y`` and values; a direction with one
+    point is kept as it is."""
+    import numpy as np
+
+    v = np.asarray(values, dtype=float)
+    xs, ys = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    out = []
+    for axis, (c, log) in enumerate(((ys, log_y), (xs, log_x))):
+        if c.size < 2:
+            out.append(c)
+            continue
+        t = np.linspace(0.0, c.size - 1.0, (c.size - 1) * refine + 1)
+        v = _refine_axis(v, t, axis)
+        scale = np.log(c) if log else c
+        fine = _refine_axis(scale, t, 0)
+        out.append(np.exp(fine) if log else fine)
+    return out[1], out[0], v
+
+
+def band_cells(
+    x: ArrayLike, y: ArrayLike, values: Any, lo: float, hi: float,
+    refine: int = BAND_REFINE, log_x: bool = False, log_y: bool = False,
+) -> tuple[Any, Any, Any]:  # fmt: skip
+    """Where a grid's values, interpolated bilinearly between its points
+    (:func:`refine_grid`), reach the interval [``lo``, ``hi``]: the spin scan's hatched band.
+
+    Over each cell of the fine grid the bilinear interpolant ranges between its four corners'
+    values, so a cell is in the band when the smallest corner is at most ``hi`` and the largest
+    at least ``lo``; a cell with a corner where the model has no solution (NaN) is not. A band
+    that falls between two grid points is found even where no grid point lies inside it.
+
+    Returns
+    -------
+    x_edges, y_edges, mask
+        The fine cells' edges (the fine grid's points) and, shape ``(y_edges.size - 1,
+        x_edges.size - 1)``, whether each is in the band (empty along a direction with one
+        point).
+    """
+    import numpy as np
+
+    xe, ye, v = refine_grid(x, y, values, refine, log_x, log_y)
+    corners = np.stack([v[:-1, :-1], v[:-1, 1:], v[1:, :-1], v[1:, 1:]])
+    finite = np.all(np.isfinite(corners), axis=0)
+    with np.errstate(invalid="ignore"):
+        inside = (np.min(corners, axis=0) <= hi) & (np.max(corners, axis=0) >= lo)
+    return xe, ye, finite & inside
+
+
+def beyond_range(scan: Mapping[str, Any]) -> tuple[float, float] | None:
+    """(min, max) of the model's first-layer departure beyond its own null over every solved
+    point of a scan's grids (``Scan.to_dict``: ``grids``, each with ``departure`` and ``null``),
+    None where no point solved [-]."""
+    import numpy as np
+
+    vals = []
+    for g in scan["grids"].values():
+        for drow, nrow in zip(g["departure"], g["null"], strict=True):
+            for d, n in zip(drow, nrow, strict=True):
+                if d is not None and n is not None and math.isfinite(d - n):
+                    vals.append(d - n)
+    return (float(np.min(vals)), float(np.max(vals))) if vals else None
+
+
 def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
-    """The Cosserat model's first-layer spin departure over (K, L), one panel per scanned run
-    (``cosserat.studies.validate.spin_scan.Scan.to_dict``): the departure in colour (blue
-    negative, red positive, white 0), the declared ranges' grid with the finer grid around the
-    joint fit drawn over it, the measured value's +- 2 se band (where the model gives it,
-    hatched), the 95% region of the joint u + omega calibration (black contour) and its optimum
-    (star).
+    """The Cosserat model's first-layer spin departure beyond its null over (K, L), one panel
+    per scanned run (``cosserat.studies.validate.spin_scan.Scan.to_dict``): each point's
+    departure minus its own null (as the verdict takes it) in colour, interpolated
+    bilinearly between the grid's points (dots; blue negative, red positive, white 0), the
+    declared ranges' grid with the finer grid around the joint fit drawn over it; hatched
+    where the model comes within 2 se of the data's departure beyond the null
+    (:func:`band_cells`, the verdict's se; each title says when nothing is, with the model's
+    range beyond its null over the grid, :func:`beyond_range`); dashed where the raw
+    departure (its null included) equals the raw measured value; the 95% region of the joint
+    u + omega calibration (black contour) and its optimum (star).
 
     Parameters
     ----------
     scans : sequence of mapping
-        ``run``, ``measured``, ``measured_se``, ``best_K``, ``best_L``, ``best_departure``,
-        ``threshold``, ``phi``, ``delta`` (wall -> deg) and ``grids`` (``range`` and ``near``:
-        ``K``, ``L``, ``departure``, ``delta_chi2``, None where the model has no solution).
+        ``run``, ``measured``, ``measured_beyond_null``, ``measured_beyond_null_se``, ``best_K``,
+        ``best_L``, ``best_beyond_null``, ``threshold``, ``phi``, ``delta`` (wall -> deg) and
+        ``grids`` (``range`` and ``near``: ``K``, ``L``, ``departure``, ``null``,
+        ``delta_chi2``, None where the model has no solution).
     """
     import numpy as np
     from matplotlib.colors import TwoSlopeNorm
@@ -667,7 +768,7 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
     from .plotting import new_figure, style
 
     n = max(len(scans), 1)
-    fig, axes = new_figure(1, n, width=3.6 * n + 0.6, height=3.4)
+    fig, axes = new_figure(1, n, width=3.6 * n + 0.6, height=3.6)
     with style():
         if not scans:
             axes[0, 0].text(0.5, 0.5, "no run scanned", ha="center",
@@ -677,61 +778,101 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
         def arr(g: Mapping[str, Any], key: str) -> Any:
             return np.array([[np.nan if x is None else x for x in row] for row in g[key]])
 
+        def beyond(g: Mapping[str, Any]) -> Any:
+            return arr(g, "departure") - arr(g, "null")
+
         lim = max(
-            max(abs(sc["measured"]) + 2 * sc["measured_se"], abs(sc["best_departure"]))
+            max(
+                abs(sc["measured_beyond_null"]) + 2 * sc["measured_beyond_null_se"],
+                abs(sc["best_beyond_null"]),
+            )
             for sc in scans
         )
         for sc in scans:
             for g in sc["grids"].values():
-                d = arr(g, "departure")
+                d = beyond(g)
                 if np.isfinite(d).any():
                     lim = max(lim, float(np.nanmax(np.abs(d))))
         norm = TwoSlopeNorm(vcenter=0.0, vmin=-lim, vmax=lim)
         mesh = None
         for ax, sc in zip(axes[0], scans, strict=False):
-            m, se = sc["measured"], sc["measured_se"]
+            m, se = sc["measured_beyond_null"], sc["measured_beyond_null_se"]
+            reach = beyond_range(sc)
+            hatched = False
             for name in ("range", "near"):
                 g = sc["grids"][name]
                 K, L = np.array(g["K"]), np.array(g["L"])
-                d, dc = arr(g, "departure"), arr(g, "delta_chi2")
-                mesh = ax.pcolormesh(L, K, d, cmap="RdBu_r", norm=norm, shading="nearest")
-                band = np.where(np.abs(d - m) <= 2 * se, 1.0, np.nan)
-                if np.isfinite(band).any():
-                    ax.contourf(L, K, band, levels=[0.5, 1.5], colors="none", hatches=["////"])
-                if name == "near" and np.isfinite(dc).any() and len(K) > 1 and len(L) > 1:
+                d, dc = beyond(g), arr(g, "delta_chi2")
+                if K.size < 2 or L.size < 2:
+                    continue
+                Lf, Kf, df = refine_grid(L, K, d, log_x=True)
+                # each fine cell coloured by its corners' mean (the interpolant's at its centre)
+                cells = 0.25 * (df[:-1, :-1] + df[:-1, 1:] + df[1:, :-1] + df[1:, 1:])
+                mesh = ax.pcolormesh(Lf, Kf, np.ma.masked_invalid(cells), cmap="RdBu_r",
+                                     norm=norm, shading="flat")  # fmt: skip
+                xe, ye, band = band_cells(L, K, d, m - 2 * se, m + 2 * se, log_x=True)
+                # where the raw departure (the null included) equals the raw measured one, on
+                # the declared ranges' grid (drawn above the finer grid's colours)
+                raw = refine_grid(L, K, arr(g, "departure"), log_x=True)[2]
+                if name == "range" and np.nanmin(raw) < sc["measured"] < np.nanmax(raw):
+                    ax.contour(Lf, Kf, raw, levels=[sc["measured"]], colors="0.25",
+                               linewidths=0.8, linestyles="--", zorder=3)  # fmt: skip
+                if band.any():
+                    hatched = True
+                    hatch = ax.pcolor(xe, ye, np.ma.masked_where(~band, np.ones(band.shape)),
+                                      hatch="////", linewidth=0.0)  # fmt: skip
+                    hatch.set_facecolor("none")
+                    hatch.set_edgecolor("0.15")
+                LL, KK = np.meshgrid(L, K)
+                ax.plot(LL[np.isfinite(d)], KK[np.isfinite(d)], linestyle="none", marker=".",
+                        markersize=1.5, color="0.35")  # fmt: skip
+                if name == "near" and np.isfinite(dc).any():
                     ax.contour(L, K, np.where(np.isfinite(dc), dc, 1e9),
                                levels=[sc["threshold"]], colors="k", linewidths=1.0)  # fmt: skip
-                if name == "near":
                     ax.plot([L[0], L[-1], L[-1], L[0], L[0]], [K[0], K[0], K[-1], K[-1], K[0]],
                             color="0.3", linewidth=0.5, linestyle=":")  # fmt: skip
             ax.plot([sc["best_L"]], [sc["best_K"]], marker="*", color="k", markersize=9,
                     linestyle="none")  # fmt: skip
             ax.set_facecolor("0.85")
             ax.set_xscale("log")
+            _plain(ax, "x")
             ax.set_xlabel("L [d]")
             ax.set_ylabel("K (moving wall) [-]")
             deltas = ", ".join(f"delta {w} {v:.3g} deg" for w, v in sc["delta"].items())
+            over = (
+                "" if reach is None else f"model over the grid {reach[0]:+.2g} to {reach[1]:+.2g}"
+            )
+            if not hatched:
+                over += ("; " if over else "") + "none within 2 se of the data"
             ax.set_title(
-                f"{sc['run']}\nphi {sc['phi']:.3g} deg, {deltas}\nmeasured {m:+.3g} +- {se:.2g};"
-                f" best fit {sc['best_departure']:+.3g}",
+                f"{sc['run']}\nphi {sc['phi']:.3g} deg, {deltas}\nbeyond the null: data "
+                f"{m:+.3g} +- {se:.2g}, best fit {sc['best_beyond_null']:+.3g}\n{over}",
                 fontsize=7,
             )
-        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.22, top=0.78, wspace=0.35)
+        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.24, top=0.78, wspace=0.35)
         if mesh is not None:
-            cax = fig.add_axes((0.87, 0.22, 0.015, 0.56))
+            cax = fig.add_axes((0.87, 0.24, 0.015, 0.54))
             bar = fig.colorbar(mesh, cax=cax)
-            bar.set_label("model's first-layer (omega - vorticity/2) d/V [-]", fontsize=7)
-        fig.text(0.01, 0.01, "hatched: within 2 se of the measured value; black contour: the "
-                 "95% region of the joint u + omega + stress-ratio fit (star: its optimum);\n"
-                 "dotted box: the finer grid around it; grey: the model has no solution (the "
-                 "couple stress reaches its yield bound inside the gap)", fontsize=6)  # fmt: skip
+            bar.set_label("model's first-layer departure beyond its null,\n"
+                          "(omega - vorticity/2 - null) d/V [-]", fontsize=7)  # fmt: skip
+        fig.text(0.01, 0.01, "colour: interpolated between the computed points (dots); hatched: "
+                 "the model within 2 se of the data's departure beyond the null (the verdict's "
+                 "se);\ndashed: the raw departure (its null included) equal to the raw measured "
+                 "one; black contour: the 95% region of the joint u + omega + stress-ratio fit "
+                 "(star: its optimum);\ndotted box: the finer grid around it; grey: the model "
+                 "has no solution (the couple stress reaches its yield bound inside the gap)",
+                 fontsize=6)  # fmt: skip
     return fig
 
 
 __all__ = [
+    "BAND_REFINE",
     "STATUS_CODES",
+    "band_cells",
+    "beyond_range",
     "delta_claim_figure",
     "model_style",
+    "refine_grid",
     "run_figure",
     "spin_claim_figure",
     "spin_model_figure",

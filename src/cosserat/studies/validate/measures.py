@@ -27,10 +27,12 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
   between f values says nothing about the conditioning; ``w_f`` does not change unless the
   profile leaves an exponential there.
 * **Spin at a wall**: the departure omega - half vorticity over the bins within
-  ``near_wall_d`` of that wall, se = sqrt(se_omega^2 + se_half^2): omega and half the
-  vorticity come from the same particles and time blocks, but their errors' correlation is not
-  recorded, so the quadrature (independent) is the central choice and the largest error any
-  correlation allows, se_omega + se_half, is reported beside it (``chi2_bound``). Neighbouring
+  ``near_wall_d`` of that wall, se = sqrt(se_omega^2 + se_half^2 - 2 r se_omega se_half):
+  omega and half the vorticity come from the same particles and time blocks, r the
+  correlation of their block means that the sidecar records per bin
+  (:func:`omega_half_correlation`); where it records none, the quadrature (independent,
+  :data:`INDEPENDENT`) is the central choice; the largest error any correlation allows,
+  se_omega + se_half, is reported beside it (``chi2_bound``). Neighbouring
   bins are correlated: the residuals are whitened with the AR(1) error model of
   :mod:`cosserat.calibration.noise`, whose lag-1 correlation is the sidecar's
   ``bin_correlation.omega`` (omega's error dominates the departure's near the walls), else
@@ -66,7 +68,7 @@ from scipy.stats import chi2 as chi2_dist
 from ...analysis.corpus import Run, usable
 from ...calibration.noise import RHO_MAX, whiten
 from ...config import DEFAULT_F
-from ...errors import ParameterError
+from ...errors import InputError, ParameterError
 from ...model.constitutive import FloatArray
 from . import forward
 
@@ -338,6 +340,59 @@ def spin_correlation(run: Run) -> tuple[float, str]:
         if isinstance(rho, int | float) and not isinstance(rho, bool) and math.isfinite(rho):
             return float(np.clip(rho, -RHO_MAX, RHO_MAX)), source
     return 0.0, "none recorded (bins taken as independent)"
+
+
+OMEGA_HALF_KEY = "omega_half_vorticity_correlation"
+"""The sidecar's per-bin correlation of the errors of omega and half_vorticity
+(``docs/dem.md``, the corpus format)."""
+INDEPENDENT = "independent (bound)"
+"""How the departure's error takes omega and half the vorticity where the sidecar records no
+correlation: independent, se_omega + se_half (the largest error any correlation allows)
+reported as the bound."""
+
+
+def omega_half_correlation(run: Run) -> tuple[FloatArray | None, str]:
+    """Per row of ``run``, the correlation of the errors of its omega and half_vorticity columns
+    from the sidecar's ``omega_half_vorticity_correlation.per_bin`` (NaN where it gives none),
+    and how the departure's error takes them (:func:`departure_se`): ``(None,
+    INDEPENDENT)`` where the sidecar does not record it [-].
+
+    Raises
+    ------
+    InputError
+        The record is not one correlation in [-1, 1] (or null) per row of the profile.
+    """
+    record = run.meta.get(OMEGA_HALF_KEY)
+    if record is None:
+        return None, INDEPENDENT
+    rows = int(np.asarray(run.distance_d).size)
+    values = record.get("per_bin") if isinstance(record, dict) else None
+    ok = isinstance(values, list) and len(values) == rows
+    out = np.full(rows, np.nan)
+    for i, v in enumerate(values if ok and isinstance(values, list) else []):
+        if v is None:
+            continue
+        if isinstance(v, bool) or not isinstance(v, int | float) or not -1.0 <= v <= 1.0:
+            ok = False
+            break
+        out[i] = float(v)
+    if not ok:
+        raise InputError(
+            f"run {run.name}: the sidecar's {OMEGA_HALF_KEY}.per_bin must hold one correlation "
+            f"in [-1, 1] (or null) per row of the profile ({rows} rows)"
+        )
+    return out, "the sidecar's per-bin correlation of their block means"
+
+
+def departure_se(se_omega: Any, se_half: Any, r: Any = None) -> Any:
+    """The standard error of omega - half vorticity from the two errors and the correlation
+    ``r`` of their block means, sqrt(se_omega^2 + se_half^2 - 2 r se_omega se_half); in
+    quadrature (independent) where ``r`` is None or NaN [-]."""
+    so, sh = np.asarray(se_omega, dtype=float), np.asarray(se_half, dtype=float)
+    rr = np.zeros(np.broadcast(so, sh).shape) if r is None else np.asarray(r, dtype=float)
+    rr = np.where(np.isfinite(rr), rr, 0.0)
+    out = np.sqrt(np.maximum(so * so + sh * sh - 2.0 * rr * so * sh, 0.0))
+    return float(out) if out.ndim == 0 else out
 
 
 def _sign(x: float) -> int:
@@ -690,7 +745,8 @@ def measure_spin(run: Run, near_wall_d: float = NEAR_WALL_D) -> SpinMeasure:
     if np.sum(ok) < 3:
         return SpinMeasure(False, "fewer than 3 bins with a finite spin and its error")
     dep = omega[ok] - half[ok]
-    se = np.sqrt(s_o[ok] ** 2 + s_h[ok] ** 2)
+    r, r_source = omega_half_correlation(run)
+    se = departure_se(s_o[ok], s_h[ok], None if r is None else r[ok])
     bound = s_o[ok] + s_h[ok]
     dist = run.distance_d[ok]
     other = run.gap_d - dist
@@ -705,12 +761,27 @@ def measure_spin(run: Run, near_wall_d: float = NEAR_WALL_D) -> SpinMeasure:
         rho=rho,
         rho_source=source,
     )
+    if r is None:
+        how = (
+            f"omega / half-vorticity covariance: {INDEPENDENT}. The standard error of omega - "
+            "half vorticity is sqrt(se_omega^2 + se_half^2): omega and half the vorticity come "
+            "from the same particles and blocks, but the sidecar does not record the "
+            f"correlation of their errors ({OMEGA_HALF_KEY}), so they are taken as "
+            "independent (chi2_bound: with se_omega + se_half, the largest error any "
+            "correlation allows)"
+        )
+    else:
+        nearest = r[ok][np.argsort(dist)][:3]
+        how = (
+            "omega / half-vorticity covariance: from the sidecar. The standard error of omega - "
+            "half vorticity is sqrt(se_omega^2 + se_half^2 - 2 r se_omega se_half), r per bin "
+            f"from {r_source} ({OMEGA_HALF_KEY}; r = "
+            + ", ".join("-" if not math.isfinite(x) else f"{x:+.2f}" for x in nearest)
+            + " in the 3 bins nearest the moving wall; independent where it gives none; "
+            "chi2_bound: with se_omega + se_half, the largest error any correlation allows)"
+        )
     out.notes.append(
-        "the standard error of omega - half vorticity is sqrt(se_omega^2 + se_half^2): omega "
-        "and half the vorticity come from the same particles and blocks, but the correlation "
-        "of their errors is not recorded, so they are taken as independent (chi2_bound: with "
-        "se_omega + se_half, the largest error any correlation allows); neighbouring bins "
-        f"correlated with rho = {rho:.3g} (AR(1); from {source})"
+        f"{how}; neighbouring bins correlated with rho = {rho:.3g} (AR(1); from {source})"
     )
     names = ("lower", "upper") if run.cell == "channel" else ("moving", "fixed")
     u, _ = run.quantity("u")

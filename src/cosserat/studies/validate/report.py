@@ -47,6 +47,28 @@ SPIN_SCAN_FIGURE = "claim_spin_scan.png"
 """The spin scan's figure (``spin_model``, :mod:`.spin_scan`), where a run was scanned."""
 
 
+def spin_scan_caption(scans: list[dict[str, Any]]) -> str:
+    """The caption of ``claim_spin_scan.png`` (referee 8, point 9): what is coloured, what
+    the hatch means, with each run's numbers (``Scan.to_dict`` records)."""
+    runs = "; ".join(
+        f"{sc['run']}: data {sc['measured_beyond_null']:+.3g} +- "
+        f"{sc['measured_beyond_null_se']:.2g}, best fit {sc['best_beyond_null']:+.3g}"
+        for sc in scans
+    )
+    return (
+        "The Cosserat model's first-layer spin departure at the moving wall over its wall "
+        "spin parameter K and the length L, one panel per scanned run. Coloured: the "
+        "departure beyond the null, omega - half vorticity - null (d/V; blue negative, red "
+        "positive), each (K, L) with its own null (what the analysis reports for grains "
+        "turning with the material in that point's velocity), as the spin_model verdict takes "
+        "it, interpolated between the computed points (dots). Hatched: where the model comes "
+        "within 2 se of the data's departure beyond the null of the joint fit's velocity (the "
+        "verdict's se: the data's times sqrt(chi^2/dof), the null's spread in quadrature; "
+        f"{runs}). Black contour: the 95% region of the joint u + omega + stress-ratio fit; "
+        "star: its optimum; dotted box: the finer grid around it; grey: no solution."
+    )
+
+
 def run_entry(r: RunResult) -> dict[str, Any]:
     """The plain data of a run's figure (``cosserat.viz.validation.run_figure``)."""
     m = r.run.measured()
@@ -401,6 +423,25 @@ def _spin_p(w: Any) -> str:
     return significance(float(w.chi2), int(w.dof))
 
 
+def extra_figures(report: ValidationReport, key: str) -> list[dict[str, str]]:
+    """A verdict's figures beside its claim figure, each with its caption: ``spin_model``'s
+    scan (``claim_spin_scan.png``) where it was drawn."""
+    if key != "spin_model" or "claim_spin_scan" not in report.files:
+        return []
+    scans = next(
+        (list(v.numbers.get("scans", [])) for v in report.verdicts if v.key == "spin_model"), []
+    )
+    if not scans:
+        return []
+    return [
+        {
+            "file": report.files["claim_spin_scan"],
+            "alt": "spin_model scan",
+            "caption": spin_scan_caption(scans),
+        }
+    ]
+
+
 def context(report: ValidationReport) -> dict[str, Any]:
     """The templates' context: plain strings and numbers."""
     figures = {r.run.name: r.figure for r in report.results}
@@ -528,6 +569,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 # a claim without a figure of its own (the layer's) shows its first run's
                 "figure": CLAIM_FIGURES.get(v.key)
                 or next(iter(figures.get(n, "") for n in v.runs), ""),
+                "extra_figures": extra_figures(report, v.key),
             }
             for v in report.verdicts
         ],

@@ -38,7 +38,8 @@ first-layer spin: a scan"):
    :data:`~.verdicts.SIGN_SIGMAS` se under the analysis' stencil) and no admissible (K, L)
    gives its sign, or by the size rule (:func:`size_z`: best fit - data beyond
    :data:`SIZE_RULE_SIGMAS` se, one sign, under every stencil, the data's se scaled by
-   sqrt(chi^2/dof) as the region is and the prediction's spread added in quadrature), or
+   sqrt(chi^2/dof) as the region is and the prediction's spread added in quadrature; each
+   z also given as p under Student's t with the blocks' dof, :func:`size_p`), or
    where it is not significant and every admissible departure is more than
    :data:`~.verdicts.SIGN_SIGMAS` se from it (the model departs where the data do not);
    "supported" where the best joint fit gives the sign and the size within :data:`SIZE_SIGMAS`
@@ -47,6 +48,10 @@ first-layer spin: a scan"):
    refuted and none supported; "supported" when every run of significant departure is
    supported; "mixed" when some are supported and others refuted or missed in size;
    "undecided" otherwise.
+
+The data's first-layer se takes the covariance of omega and half the vorticity where the
+sidecar records their per-bin correlation (:func:`~.measures.omega_half_correlation`), and
+says "independent (bound)" where it does not (:func:`covariance_text`).
 """
 
 from __future__ import annotations
@@ -63,6 +68,7 @@ from scipy.stats import chi2 as chi2_dist
 from ...analysis.corpus import Run
 from ...errors import InputError, ParameterError
 from ...model.constitutive import FloatArray
+from .measures import INDEPENDENT, departure_se, omega_half_correlation
 
 Predictor = Callable[[Any, Run], FloatArray]
 """``predictor(profile, run)``: a solved model profile's omega - half vorticity at every bin of
@@ -544,6 +550,14 @@ class Scan:
     """The first-layer omega d / V the joint fit (its K) implies, measured like the data."""
     omega_measured: float = math.nan
     omega_measured_se: float = math.nan
+    blocks: int = 0
+    """The time blocks the data's standard errors come from (the sidecar's ``blocks``; 0: not
+    recorded): the size rule's z is read under Student's t with ``blocks - 1`` dof."""
+    omega_half_r: float = math.nan
+    """The correlation of the first layer's omega and half-vorticity errors the sidecar records
+    (NaN: none, taken as independent) [-]."""
+    omega_half_how: str = ""
+    """How ``measured_se`` takes that covariance (:func:`~.measures.omega_half_correlation`)."""
     shared: dict[str, Any] = field(default_factory=dict)
     """The run in its material's shared calibration (:func:`shared_fits`): ``L`` [d], ``K``
     (this run's wall kind), ``chi2``, ``dof``, ``p``, ``runs``, and the first-layer
@@ -708,10 +722,21 @@ class Scan:
             "shared": dict(self.shared),
             "wall_k": {k: v for k, v in self.wall_k.items() if k != "text"},
             "stencils": {k: dict(v) for k, v in self.stencils.items()},
+            "blocks": self.blocks,
+            "size_z": size_z(self),
+            "size_p_t": size_p(self),
+            "omega_half_correlation": self.omega_half_r,
+            "omega_half_covariance": covariance_text(self),
             "grids": {
-                "range": _grid(self.K, self.L, self.departure, self.chi2 - self.chi2_min),
+                "range": _grid(
+                    self.K, self.L, self.departure, self.chi2 - self.chi2_min, self.null
+                ),
                 "near": _grid(
-                    self.K_near, self.L_near, self.departure_near, self.chi2_near - self.chi2_min
+                    self.K_near,
+                    self.L_near,
+                    self.departure_near,
+                    self.chi2_near - self.chi2_min,
+                    self.null_near,
                 ),
             },
             "notes": list(self.notes),
@@ -723,12 +748,18 @@ def _finite(a: FloatArray) -> list[Any]:
     return [[float(x) if math.isfinite(x) else None for x in row] for row in np.asarray(a)]
 
 
-def _grid(K: FloatArray, L: FloatArray, dep: FloatArray, dchi2: FloatArray) -> dict[str, Any]:
-    """A grid as plain data: K [-], L [d], the departure and Delta chi^2 over (K, L)."""
+def _grid(
+    K: FloatArray, L: FloatArray, dep: FloatArray, dchi2: FloatArray, null: FloatArray
+) -> dict[str, Any]:
+    """A grid as plain data: K [-], L [d], the departure, each point's null (0 where the scan
+    has none: a stencil-free predictor) and Delta chi^2 over (K, L)."""
+    dep = np.asarray(dep, dtype=float)
+    null = np.asarray(null, dtype=float)
     return {
         "K": [float(x) for x in K],
         "L": [float(x) for x in L],
         "departure": _finite(dep),
+        "null": _finite(null if null.shape == dep.shape else np.zeros(dep.shape)),
         "delta_chi2": _finite(dchi2),
     }
 
@@ -767,7 +798,9 @@ def scan(
     h, sh = run.quantity("half_vorticity")
     assert usable(w, sw)[i0] and usable(h, sh)[i0]
     measured = float(w[i0] - h[i0])
-    measured_se = float(math.hypot(sw[i0], sh[i0]))
+    corr, corr_how = omega_half_correlation(run)
+    r0 = math.nan if corr is None else float(corr[i0])
+    measured_se = float(departure_se(sw[i0], sh[i0], r0))
     s = fit.setup
     rd = s.runs[0]
     k_slot, l_slot = fit._slot("K"), fit._slot("L")
@@ -823,7 +856,7 @@ def scan(
     best = float(predictor(best_profile, run)[i0])
     null_best = float(null_of(best_profile, run)[i0])
     omega_model = _first_layer_omega(best_profile, run, i0)
-    stencils = _stencils(best_profile, run, i0) if how == PREDICTORS["forward"][1] else {}
+    stencils = _stencils(best_profile, run, i0, r0) if how == PREDICTORS["forward"][1] else {}
     return Scan(
         run.name,
         fit,
@@ -849,7 +882,16 @@ def scan(
         omega_model=omega_model,
         omega_measured=float(w[i0]),
         omega_measured_se=float(sw[i0]),
+        blocks=_blocks(run),
+        omega_half_r=r0,
+        omega_half_how=corr_how,
     )
+
+
+def _blocks(run: Run) -> int:
+    """The sidecar's time blocks (0 where it records none)."""
+    b = run.meta.get("blocks")
+    return int(b) if isinstance(b, int) and not isinstance(b, bool) and b >= 2 else 0
 
 
 def _first_layer_omega(profile: Any, run: Run, i0: int) -> float:
@@ -860,10 +902,14 @@ def _first_layer_omega(profile: Any, run: Run, i0: int) -> float:
     return float(forward_fields(model_fields(profile, run), run, "analysis")["omega"][i0])
 
 
-def _stencils(profile: Any, run: Run, i0: int) -> dict[str, dict[str, float]]:
+def _stencils(profile: Any, run: Run, i0: int, r0: float = math.nan) -> dict[str, dict[str, float]]:
     """The first layer under every stencil of ``forward.STENCILS``: the data's departure and
     its se, and the best fit's, measured the same way (the sign of either may turn with the
-    stencil; their difference is what a stencil cannot explain)."""
+    stencil; their difference is what a stencil cannot explain). ``r0``: the correlation of
+    the first layer's omega and half_vorticity errors the sidecar records, which the analysis
+    stencil's se takes (:func:`~.measures.departure_se`; that column is the one it is recorded
+    for); the other stencils difference u and take omega's and their half vorticity's errors
+    as independent."""
     from .forward import STENCILS, forward_departure, measured_first_layer
     from .measures import velocity_correlation
 
@@ -873,7 +919,8 @@ def _stencils(profile: Any, run: Run, i0: int) -> dict[str, dict[str, float]]:
     for name in STENCILS:
         m, se_half, se_omega = measured_first_layer(run, wall, name, rho)
         model = float(forward_departure(profile, run, name)[i0])
-        out[name] = {"data": m, "se": math.hypot(se_half, se_omega), "model": model}
+        r = r0 if name == "analysis" else math.nan
+        out[name] = {"data": m, "se": float(departure_se(se_omega, se_half, r)), "model": model}
     return out
 
 
@@ -924,6 +971,15 @@ def size_z(sc: Scan) -> dict[str, float]:
         for k, v in sc.stencils.items()
         if v["se"] > 0.0
     }
+
+
+def size_p(sc: Scan) -> dict[str, float | None]:
+    """The two-sided p of each stencil's :func:`size_z` read under Student's t with the
+    blocks' dof (``Scan.blocks - 1``; :func:`~.verdicts.t_p`), None where the blocks are not
+    recorded [-]."""
+    from .verdicts import t_p
+
+    return {k: t_p(z, sc.blocks) for k, z in size_z(sc).items()}
 
 
 def _size_rule(sc: Scan) -> bool:
@@ -1170,13 +1226,25 @@ def _wall_spin_text(sc: Scan) -> str:
     )
 
 
+def covariance_text(sc: Scan) -> str:
+    """How the first layer's se takes the covariance of omega and half the vorticity (referee
+    8, point 8): the sidecar's correlation, or independent (bound)."""
+    if math.isfinite(sc.omega_half_r):
+        return (
+            f"omega / half-vorticity covariance from the sidecar: r = {sc.omega_half_r:+.2f} "
+            "in this bin"
+        )
+    return f"omega / half-vorticity covariance: {INDEPENDENT}"
+
+
 def _describe(sc: Scan) -> str:
     a, w = sc.admissible_span, sc.whole_span
     rng = "no solution" if w is None else f"{w[0]:+.3g} to {w[1]:+.3g}"
     adm = "-" if a is None else f"{a[0]:+.3g} to {a[1]:+.3g}"
     return (
         f"{sc.run} (moving wall, first layer at {sc.distance_d:.3g} d): measured "
-        f"{sc.measured:+.3g} +- {sc.measured_se:.2g}; joint u + omega + stress-ratio fit "
+        f"{sc.measured:+.3g} +- {sc.measured_se:.2g} ({covariance_text(sc)}); joint u + omega "
+        "+ stress-ratio fit "
         f"(chi^2 = {sc.chi2_min:.4g} for {sc.fit.calibration.dof} dof; K = "
         f"{sc.fit.value('K'):.3g}, L = {sc.fit.value('L'):.3g} d; {sc.fit.angles.text()}) "
         f"predicts {sc.best:+.3g} +- {sc.prediction_se:.2g}; over its 95% region (Delta "
@@ -1197,9 +1265,11 @@ def _stencil_text(sc: Scan) -> str:
     """The best fit - data under every stencil, in se ("" without stencils)."""
     if not sc.stencils:
         return ""
-    z = size_z(sc)
+    z, p = size_z(sc), size_p(sc)
     parts = [
-        f"{k} {v['model'] - v['data']:+.3g} ({z[k]:+.1f} se)"
+        f"{k} {v['model'] - v['data']:+.3g} ({z[k]:+.1f} se"
+        + ("" if p[k] is None else f", p = {p[k]:.2g} under t({sc.blocks - 1})")
+        + ")"
         for k, v in sc.stencils.items()
         if v["se"] > 0.0
     ]
@@ -1559,6 +1629,7 @@ __all__ = [
     "ShearStress",
     "angles",
     "binned_departure",
+    "covariance_text",
     "first_bin",
     "joint_fit",
     "material_phi",
@@ -1570,6 +1641,9 @@ __all__ = [
     "scan_verdict",
     "shared_fits",
     "shear_stress",
+    "size_p",
+    "size_se",
+    "size_z",
     "spin_scans",
     "wall_call",
     "wall_rule",
