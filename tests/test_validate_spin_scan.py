@@ -396,3 +396,50 @@ def test_two_runs_of_one_material_get_one_calibration_with_L_shared(pair):
         assert abs(sc.shared["beyond"] - sc.measured_beyond) <= 2.0 * sc.measured_beyond_se
     text = ss._material_text(scans)
     assert "that calibration (first layers held out): L = " in text
+
+
+def test_the_outside_note_compares_departures_beyond_their_nulls(pair):
+    """"Some (K, L) outside the 95% region gives the measured sign" is about the departure
+    beyond each point's null, as every rule compares (fig9's finding: the raw departure can
+    have the data's sign through its null alone)."""
+    import dataclasses
+
+    rough, smooth = pair
+    good = ss.scan_run(rough, [rough, smooth], points=3)
+    stencils = {k: {"data": 0.0, "se": 0.01, "model": 0.05} for k in ("analysis", "wall")}
+    missed = dataclasses.replace(good, stencils=stencils)
+    assert ss.scan_verdict([missed]).verdict == "refuted"
+    size = 2.0 * abs(missed.measured_beyond) + 0.01
+    sign = 1.0 if missed.measured_beyond > 0.0 else -1.0
+    # each raw departure has the data's sign, and each null twice it: beyond the null every
+    # point has the other sign
+    raw = dataclasses.replace(
+        missed,
+        best=missed.null_best - missed.measured_beyond,  # the best fit beyond its null: -data
+        departure=np.full(good.departure.shape, sign * size),
+        null=np.full(good.departure.shape, 2.0 * sign * size),
+        departure_near=np.full(good.departure_near.shape, sign * size),
+        null_near=np.full(good.departure_near.shape, 2.0 * sign * size),
+    )
+    lo, hi = raw.whole_beyond_span
+    assert sign * hi < 0.0 if sign > 0.0 else sign * lo < 0.0  # none has the data's sign
+    assert not ss._sign_given(raw.whole_beyond_span, raw.measured_beyond)
+    assert ss._sign_given(raw.whole_span, raw.measured)  # raw, every point has it
+    text = ss.scan_verdict([raw]).evidence
+    assert "outside the 95% region gives the sign" not in text
+    # no null, and the data's sign only outside the 95% region: the note names the run
+    far = np.where(good.admissible, -sign * size, sign * size)
+    assert (~good.admissible & np.isfinite(good.departure)).any()
+    bare = dataclasses.replace(
+        raw,
+        departure=far,
+        null=np.zeros(good.departure.shape),
+        departure_near=np.full(good.departure_near.shape, -sign * size),
+        null_near=np.zeros(good.departure_near.shape),
+    )
+    assert ss._sign_given(bare.whole_beyond_span, bare.measured_beyond)
+    assert ss.scan_verdict([bare]).verdict == "refuted"
+    assert (
+        "At rough some (K, L) of the declared ranges outside the 95% region gives the sign of "
+        "the measured departure beyond the null."
+    ) in ss.scan_verdict([bare]).evidence

@@ -670,6 +670,20 @@ class Scan:
         ]
         return float(min(vals)), float(max(vals))
 
+    @property
+    def whole_beyond_span(self) -> tuple[float, float] | None:
+        """(min, max) of the model's departure beyond its own null over every solved point of
+        both grids [-] (None where the grids carry no null): what the verdict compares with
+        the data's departure beyond the joint fit's null."""
+        vals = [self.beyond_best]
+        for dep, null in ((self.departure, self.null), (self.departure_near, self.null_near)):
+            if null.shape != dep.shape:
+                return None
+            diff = dep - null
+            vals += list(diff[np.isfinite(diff)])
+        vals = [v for v in vals if math.isfinite(v)]
+        return (float(min(vals)), float(max(vals))) if vals else None
+
     def to_dict(self) -> dict[str, Any]:
         a, w = self.admissible_span, self.whole_span
         return {
@@ -1405,11 +1419,13 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
     outside = [
         sc.run
         for sc in scans
-        if calls[sc.run] == "refuted" and _sign_given(sc.whole_span, sc.measured)
+        if calls[sc.run] == "refuted" and _sign_given(sc.whole_beyond_span, sc.measured_beyond)
     ]
+    # beyond the null, as every rule compares (the raw departure's sign is the null's too:
+    # a (K, L) whose raw departure has the measured sign may owe it to its null alone)
     note = (
         f" At {', '.join(outside)} some (K, L) of the declared ranges outside the 95% region "
-        "gives the measured sign."
+        "gives the sign of the measured departure beyond the null."
         if outside
         else ""
     )
