@@ -399,7 +399,7 @@ def test_two_runs_of_one_material_get_one_calibration_with_L_shared(pair):
 
 
 def test_the_outside_note_compares_departures_beyond_their_nulls(pair):
-    """"Some (K, L) outside the 95% region gives the measured sign" is about the departure
+    """ "Some (K, L) outside the 95% region gives the measured sign" is about the departure
     beyond each point's null, as every rule compares (fig9's finding: the raw departure can
     have the data's sign through its null alone)."""
     import dataclasses
