@@ -73,6 +73,11 @@ def test_the_first_layer_is_tested_beyond_the_null_under_every_stencil():
     # 15.4 for 6 bins is p = 0.017: significant under the analysis' stencil alone, not under
     # every stencil
     assert v.verdict == "undecided", v.text
+    assert v.evidence.startswith(
+        "The data cannot decide: the departure beyond the null is significant under 1 of 2 "
+        "stencils (the analysis' chi^2 = 31.43 for 6 bins (p = 2.1e-05)), not under every one "
+        "(under wall: p = 0.017)"
+    )
     assert n["pooled_p"] == pytest.approx(float(chi2_dist.sf(2 * (0.111 / 0.04) ** 2, 6)))
     assert n["pooled_by_stencil"]["analysis"]["p"] < P_SIGNIFICANT
     assert "departs at p < 0.001 under 1 of 2 stencils (analysis), not under wall (p = 0.017)" in (

@@ -725,6 +725,16 @@ def spin_verdict(
     change = "; ".join(changes) or (
         f"errors small enough to see a pooled chi^2 above {needed + dof:.4g}"
     )
+    a = by_stencil.get("analysis", (chi2, dof, p))
+    lead = (
+        f"the departure beyond the null is significant under {len(strong)} of {len(names)} "
+        f"stencils (the analysis' {_test_text(a)}), not under every one (under {weak}: "
+        f"{p_text(chi2, dof, p)})"
+        if strong
+        else f"no significant departure ({p_text(chi2, dof, p)}, under the {weak} stencil)"
+        if len(names) > 1
+        else f"no significant departure ({p_text(chi2, dof, p)})"
+    )
     seen = (
         f"the errors are too large to have seen {whose} departure beyond the null (it would "
         f"give p = {p_seen:.2g})"
@@ -734,8 +744,7 @@ def spin_verdict(
     return Verdict(
         key,
         "undecided",
-        f"The data cannot decide: no significant departure under every stencil "
-        f"({p_text(chi2, dof, p)}), and {seen}; {head}",
+        f"The data cannot decide: {lead}, and {seen}; {head}",
         f"{change}; {DECIDING_RUNS}.",
         tuple(runs),
         numbers,
