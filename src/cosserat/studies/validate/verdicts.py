@@ -8,23 +8,28 @@ p-values, the runs used) and what data would change it. The rules:
 * **spin departs** (:func:`spin_verdict`): each sheared wall of each run is tested on its own:
   chi^2 of z = (omega - half vorticity - null)/se over its near-wall bins, whitened with the
   bins' AR(1) correlation, the null being what the measurement reports for grains that turn
-  with the material (``WallSpin.null``); a wall
-  whose first-layer departure changes sign between the difference stencils
-  (:data:`~cosserat.studies.validate.forward.STENCILS`) is tested without its first layer; a
-  run's test adds its sheared walls, the pooled test adds every run's (degrees of freedom
-  added; runs taken as independent). A sheared wall that needs a null and has none (no fit
-  describes the velocity there, ``WallSpin.no_null``) is reported, not judged: a test against
-  0 would count what the binning and the stencil make as a departure. "supported" when the
-  pooled p < :data:`P_SIGNIFICANT` and at least half the runs show a departure at p <
+  with the material (``WallSpin.null``: in the joint u + omega + stress-ratio fit's velocity,
+  the one ``spin_model`` judges, with its error in quadrature; an envelope of nulls is an
+  interval, :mod:`.nulls`). The first layer's departure beyond the null is formed under every
+  difference stencil (:data:`~cosserat.studies.validate.forward.STENCILS`), the null
+  forward-modelled under each; a wall where it changes sign between them is tested without
+  its first layer; every test is made under each stencil and the verdict taken under the one
+  where it is weakest (a run departs when it does under every stencil). A run's test adds its
+  sheared walls, the pooled test adds every run's (degrees of freedom added; runs taken as
+  independent). A sheared wall whose null is not determined (``WallSpin.no_null``) is
+  reported, not judged, with what judging it against the null it carries would change. The
+  power is stated against the joint fit's departure beyond the null (``WallSpin.joint``; else
+  a usable u-only fit's, never one in ``unfit``) and against a model-free
+  :data:`DETECT_SIZE` in the bins beyond the first layers. "supported" when the pooled p <
+  :data:`P_SIGNIFICANT` and at least half the runs show a departure at p <
   :data:`P_CONSISTENT` ("mixed" when fewer do: the pooled result rests on a few runs; a run
-  that does not depart and whose errors would not have shown the departure the Cosserat model
-  predicts for it, at p < :data:`P_CONSISTENT`, counts neither way, unless that fit supplies
-  no prediction, ``unfit``: then it counts as not departing); the evidence names the bins
-  with |z| >= :data:`CARRY_Z` the departure rests on (with p under t(blocks - 1), the se
-  coming from the blocks) and the walls where none is detected; "refuted" when the pooled p
-  >= :data:`P_CONSISTENT` although the departure the Cosserat model predicts (fitted to the
-  same velocities) would have given a pooled p < :data:`P_SIGNIFICANT` at these errors;
-  "undecided" otherwise.
+  that does not depart and whose errors would not have shown the predicted departure at p <
+  :data:`P_CONSISTENT` counts neither way, unless its fit supplies no prediction,
+  ``unfit``: then it counts as not departing); the evidence names the bins with |z| >=
+  :data:`CARRY_Z` the departure rests on (with p under t(blocks - 1), the se coming from the
+  blocks) and the walls where none is detected; "refuted" when the pooled p >=
+  :data:`P_CONSISTENT` although the predicted departure would have given a pooled p <
+  :data:`P_SIGNIFICANT` at these errors; "undecided" otherwise.
 * **the model's departure** (:func:`spin_model_verdict`): at each sheared wall, the measured
   departure in the first layer (the bin nearest to the wall, where the departure is largest) m
   +- s against the model's there, p_m, forward-modelled as the data are measured
