@@ -313,9 +313,10 @@ def _null_misfit(spin: SpinMeasure, null: FloatArray, skip_fixed: bool = False) 
 
 def _unresolved(run: Run, w: WallSpin, rows: NDArray[np.intp]) -> str:
     """Why a wall no fit describes is not judged against the measured velocity's null
-    (referee 8, point 6): that null needs the velocity inside the bins, and any monotone
-    velocity with the measured bin means allows the departure beyond the null in the ranges
-    given (:func:`.nulls.monotone_beyond`), each containing 0 or within 2 se of it."""
+    (referee 8, point 6): that null needs the velocity inside the bins, which they do not
+    resolve; the ranges any monotone velocity with the measured bin means allows for the
+    departure beyond the null (:func:`.nulls.monotone_beyond`) are given, with how far the
+    nearest end of each is from 0 in se."""
     why = (
         "no fit describes the velocity there (its kind differs from the moving wall's, which "
         "the fits give it)"
@@ -324,6 +325,8 @@ def _unresolved(run: Run, w: WallSpin, rows: NDArray[np.intp]) -> str:
     if bounds is None or w.dof == 0:
         return why + ": no null, so not judged"
     lo, hi = (np.asarray(b, dtype=float)[rows] for b in bounds)
+    se = np.asarray(w.stderr, dtype=float)
+    gap = np.maximum(np.maximum(lo, -hi), 0.0) / se  # 0 where the range holds 0
     order = np.argsort(w.distance_d)
     parts = ", ".join(
         f"{float(w.distance_d[i]):.2g} d: {float(lo[i]):+.3g} to {float(hi[i]):+.3g}" for i in order
@@ -333,7 +336,8 @@ def _unresolved(run: Run, w: WallSpin, rows: NDArray[np.intp]) -> str:
         "velocity inside the bins, which the bins do not resolve: a velocity monotone across "
         "the gap with the measured bin means (a layered packing's steps between grain layers "
         "as well as a smooth profile) allows the departure beyond the null to be anywhere in "
-        f"{parts}, so the null is not determined and the wall is not judged"
+        f"{parts} (the nearest to 0 at most {float(np.max(gap)):.2g} se from it), so the null "
+        "is not determined and the wall is not judged"
     )
 
 
