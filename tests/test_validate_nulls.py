@@ -214,3 +214,32 @@ def test_the_measured_velocitys_null_of_a_linear_profile(tmp_path):
     bad = plane(tmp_path, np.linspace(0, 1, 5), "bad", y=[0.5, 1.5, 4.0, 7.0, 9.5])
     with pytest.raises(ParameterError, match=r"^run bad: the bins do not tile the gap"):
         velocity_null(bad)
+
+
+def test_the_layer_runs_fixed_wall_is_shown_against_the_measured_velocitys_null(tmp_path):
+    """Referee 8, point 6: the layer run's fixed wall, raw +0.0795 +- 0.013 at 1.5 d, against
+    its measured velocity's null (+0.05 beyond it under the smooth reconstructions); any
+    monotone velocity with its bin means allows +0.0035 to +0.156 there (0.27 se from 0) and
+    -0.33 to +0.036 in the first layer: not determined, not judged, the numbers shown."""
+    import shutil
+    from pathlib import Path
+
+    from cosserat.studies.validate.measures import measure_spin
+    from cosserat.studies.validate.study import _unresolved
+
+    src = Path(__file__).resolve().parents[1] / "data" / "dem_v2" / "plane_layer_H10_qs"
+    for ext in ("csv", "json"):
+        shutil.copy(src / f"profile.{ext}", tmp_path / f"layer.{ext}")
+    run = read_run(tmp_path / "layer.csv")
+    s = measure_spin(run)
+    fixed = next(w for w in s.walls if w.wall == "fixed")
+    rows = s.rows[s.index["fixed"]]
+    w = with_null(fixed, velocity_null(run), rows, s.wall_rows["fixed"])
+    assert w.beyond[1] == pytest.approx(0.0495, abs=1e-3)  # beyond the largest null, 0.030
+    assert not w.beyond_dependent()  # -0.145 under every stencil
+    why = _unresolved(run, w, rows)
+    assert "measured (raw, the analysis' stencil) 0.5 d: -0.206 +- 0.023 (beyond the " \
+        "reconstructions' null -0.145 +- 0.023), 1.5 d: +0.0795 +- 0.013 (beyond the " \
+        "reconstructions' null +0.0494 +- 0.013)" in why  # fmt: skip
+    assert "0.5 d: -0.33 to +0.0356, 1.5 d: +0.00353 to +0.156" in why
+    assert "(the nearest to 0 at most 0.27 se from it), so the null is not determined" in why

@@ -331,8 +331,19 @@ def _unresolved(run: Run, w: WallSpin, rows: NDArray[np.intp]) -> str:
     parts = ", ".join(
         f"{float(w.distance_d[i]):.2g} d: {float(lo[i]):+.3g} to {float(hi[i]):+.3g}" for i in order
     )
+    raw = ", ".join(
+        f"{float(w.distance_d[i]):.2g} d: {float(w.departure[i]):+.3g} +- {float(se[i]):.2g}"
+        + (
+            ""
+            if w.null is None
+            else f" (beyond the reconstructions' null {float(w.beyond[i]):+.3g} +- "
+            f"{float(w.se_beyond[i]):.2g})"
+        )
+        for i in order
+    )
     return (
-        f"{why}; the measured velocity's null (smooth reconstructions of u, shown) needs the "
+        f"{why}; measured (raw, the analysis' stencil) {raw}; the measured velocity's null "
+        "(smooth reconstructions of u, shown) needs the "
         "velocity inside the bins, which the bins do not resolve: a velocity monotone across "
         "the gap with the measured bin means (a layered packing's steps between grain layers "
         "as well as a smooth profile) allows the departure beyond the null to be anywhere in "
