@@ -449,7 +449,8 @@ class WallSpin:
 
     def beyond_first(self, stencil: str = "analysis") -> tuple[float, float]:
         """The first layer's departure beyond the null under ``stencil`` (the null's own
-        value under it) and its se, the data's and the null's in quadrature [-]."""
+        value under it, ``null_stencils``; the analysis' where it has none) and its se, the
+        data's and the null's in quadrature [-]."""
         k = self.nearest
         if stencil == "analysis" or stencil not in self.stencils:
             return float(self.beyond[k]), float(self.se_beyond[k])
@@ -457,8 +458,10 @@ class WallSpin:
         if stencil in self.null_stencils_range:
             lo, hi = self.null_stencils_range[stencil]
             b = d - min(max(d, lo), hi)
-        else:
-            b = d - self.null_stencils.get(stencil, 0.0 if self.null is None else math.nan)
+        else:  # a null given under the analysis' stencil alone is taken as the same under all
+            b = d - self.null_stencils.get(
+                stencil, 0.0 if self.null is None else float(np.asarray(self.null)[k])
+            )
         return float(b), float(math.hypot(se_h, se_o, self.null_stencils_se.get(stencil, 0.0)))
 
     def beyond_signs(self) -> set[int]:
