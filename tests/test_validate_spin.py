@@ -173,8 +173,9 @@ def test_a_sheared_wall_without_a_null_is_reported_not_judged():
     assert v.verdict != "supported", v.text
     assert v.numbers["pooled_dof"] == 6 and v.numbers["pooled_chi2"] == pytest.approx(0.0)
     assert v.numbers["walls_without_null"] == ["L:fixed"]
-    assert "Not judged (no null: no fit describes the velocity there" in v.evidence
-    assert "L (fixed wall, 3 bins" in v.evidence
+    assert "Not judged (a test against 0 would count what the binning and the stencil make " \
+        "as a departure): L (fixed wall, 3 bins" in v.evidence  # fmt: skip
+    assert "; not judged: no fit." in v.evidence
     # with only that wall there is nothing to judge
     only = spin_verdict([lone])
     assert only.verdict == "undecided" and only.runs == ("L",)
@@ -229,15 +230,18 @@ def test_a_run_whose_fit_supplies_no_prediction_is_counted_not_excused():
     assert v.verdict == "mixed", v.text
     assert v.numbers["runs_counted_with_unusable_fits"] == ["z0", "z1", "z2"]
     assert v.numbers["runs_too_noisy_to_show_the_model_departure"] == []
-    assert "counted although the cosserat fit supplies no prediction there: z0 (phi pinned)" in (
-        v.evidence
-    )
-    # no run departs, and the unusable fits' departure would show: the verdict says whose
+    assert "counted although the cosserat u-only fit supplies no prediction there: z0 (phi " \
+        "pinned)" in v.evidence  # fmt: skip
+    # no run departs, and the unusable fits' departure would show: it is no prediction to
+    # refute by, nor to state the power against (referee 8, point 5)
     loud = [wall(f"z{i}", [0.0] * 3, 0.002, predicted={"cosserat": np.full(3, 0.01)})
             for i in range(3)]  # fmt: skip
+    assert spin_verdict(loud).verdict == "refuted"
     v = spin_verdict(loud, unfit=unfit)
-    assert v.numbers["model_departure_from_unusable_fits"] == ["z0", "z1", "z2"]
-    assert "from cosserat fits of which those to z0, z1, z2 supply no prediction" in v.evidence
+    assert v.verdict == "undecided", v.text
+    assert v.numbers["p_if_model_departure_were_there"] is None
+    assert v.numbers["prediction_from"] == []
+    assert "no usable fit predicts a departure to have seen" in v.evidence
 
 
 def test_the_rate_sentence_names_the_wall_speeds():

@@ -447,6 +447,19 @@ class WallSpin:
         fit was made at all).
     blocks : int
         The number of time blocks the standard errors come from (0: not recorded).
+    null_se : array or None
+        The null's standard error at the same bins (None: none) [-].
+    null_range : (array, array) or None
+        The null's systematic interval at the same bins where it is an envelope of several
+        nulls (``validate.nulls``); the departure beyond it is the distance from the data to
+        the interval, 0 inside it [-].
+    null_stencils_se, null_stencils_range : mappings of stencil
+        The same in the first layer under each stencil [-].
+    null_source : str
+        Where the null comes from, in words ("" for a single fit's, ``null_model``).
+    joint : array or None
+        The joint u + omega + stress-ratio fit's departure beyond its own null at the same
+        bins (``spin_model``'s prediction), where the null is that fit's [-].
     """
 
     run: str
@@ -466,12 +479,66 @@ class WallSpin:
     null_stencils: dict[str, float] = field(default_factory=dict)
     no_null: str = ""
     blocks: int = 0
+    null_se: FloatArray | None = None
+    null_range: tuple[FloatArray, FloatArray] | None = None
+    null_stencils_se: dict[str, float] = field(default_factory=dict)
+    null_stencils_range: dict[str, tuple[float, float]] = field(default_factory=dict)
+    null_source: str = ""
+    joint: FloatArray | None = None
 
     @property
     def beyond(self) -> FloatArray:
-        """The departure beyond ``null`` (the measured departure where there is none) [-]."""
+        """The departure beyond ``null`` (the measured departure where there is none; beyond
+        an interval, the distance to it, 0 inside it) [-]."""
         d = np.asarray(self.departure, dtype=float)
+        if self.null_range is not None:
+            lo, hi = (np.asarray(a, dtype=float) for a in self.null_range)
+            return d - np.clip(d, lo, hi)
         return d if self.null is None else d - np.asarray(self.null, dtype=float)
+
+    @property
+    def se_beyond(self) -> FloatArray:
+        """The standard error of :attr:`beyond`: the data's and the null's in quadrature [-]."""
+        s = np.asarray(self.stderr, dtype=float)
+        return s if self.null_se is None else np.hypot(s, np.asarray(self.null_se, dtype=float))
+
+    def beyond_first(self, stencil: str = "analysis") -> tuple[float, float]:
+        """The first layer's departure beyond the null under ``stencil`` (the null's own
+        value under it, ``null_stencils``; the analysis' where it has none) and its se, the
+        data's and the null's in quadrature [-]."""
+        k = self.nearest
+        if stencil == "analysis" or stencil not in self.stencils:
+            return float(self.beyond[k]), float(self.se_beyond[k])
+        d, se_h, se_o = self.stencils[stencil]
+        if stencil in self.null_stencils_range:
+            lo, hi = self.null_stencils_range[stencil]
+            b = d - min(max(d, lo), hi)
+        else:  # a null given under the analysis' stencil alone is taken as the same under all
+            b = d - self.null_stencils.get(
+                stencil, 0.0 if self.null is None else float(np.asarray(self.null)[k])
+            )
+        return float(b), float(math.hypot(se_h, se_o, self.null_stencils_se.get(stencil, 0.0)))
+
+    def beyond_signs(self) -> set[int]:
+        """The signs (-1, 0, +1) of the first layer's departure beyond the null over the
+        stencils (the analysis' alone without stencils)."""
+        names = list(self.stencils) or ["analysis"]
+        return {_sign(self.beyond_first(s)[0]) for s in names}
+
+    def beyond_dependent(self) -> bool:
+        """The first layer's departure beyond the null changes sign between stencils (or is
+        inside the null's interval under some of them and outside under others)."""
+        return len(self.beyond_signs()) > 1
+
+    def z_under(self, stencil: str = "analysis", rest: bool = False) -> FloatArray:
+        """The whitened departure beyond the null (:attr:`se_beyond`) with the first layer
+        under ``stencil`` (every other bin keeps the analysis' stencil); ``rest``: without
+        the first layer [-]."""
+        r = np.array(self.beyond, dtype=float)
+        se = np.array(self.se_beyond, dtype=float)
+        r[self.nearest], se[self.nearest] = self.beyond_first(stencil)
+        order = np.argsort(self.distance_d)[1 if rest else 0 :]
+        return whiten(r[order], se[order], self.rho)
 
     def white(self, residual: FloatArray, se: FloatArray | None = None) -> FloatArray:
         """``residual`` over ``se`` (default ``stderr``) whitened with ``rho``, the
@@ -488,13 +555,14 @@ class WallSpin:
 
     @property
     def z(self) -> FloatArray:
-        """The whitened departure beyond the null (bins by distance from the wall) [-]."""
-        return self.white(self.beyond)
+        """The whitened departure beyond the null (bins by distance from the wall; the
+        null's error in quadrature) [-]."""
+        return self.white(self.beyond, self.se_beyond)
 
     @property
     def z_rest(self) -> FloatArray:
         """:attr:`z` without the first layer [-]."""
-        return self.white_rest(self.beyond)
+        return self.z_under(rest=True)
 
     @property
     def z_zero(self) -> FloatArray:
@@ -504,7 +572,12 @@ class WallSpin:
     @property
     def z_bound(self) -> FloatArray:
         """:attr:`z` over se_omega + se_half (the largest error) [-]."""
-        return self.white(self.beyond, self.bound if self.bound is not None else None)
+        if self.bound is None:
+            return self.z
+        b = np.asarray(self.bound, dtype=float)
+        return self.white(
+            self.beyond, b if self.null_se is None else np.hypot(b, np.asarray(self.null_se))
+        )
 
     @property
     def dof(self) -> int:
@@ -623,6 +696,23 @@ class WallSpin:
             "null_first_layer": None
             if self.null is None or self.dof == 0
             else float(np.asarray(self.null)[self.nearest]),
+            "null_source": self.null_source,
+            "null_first_layer_se": None
+            if self.null_se is None or self.dof == 0
+            else float(np.asarray(self.null_se)[self.nearest]),
+            "null_first_layer_range": None
+            if self.null_range is None or self.dof == 0
+            else [float(np.asarray(a)[self.nearest]) for a in self.null_range],
+            "first_layer_beyond_null": {
+                name: dict(zip(("departure", "se"), self.beyond_first(name), strict=True))
+                for name in (list(self.stencils) or ["analysis"])
+            }
+            if self.dof
+            else {},
+            "first_layer_beyond_null_sign_stable": bool(self.dof) and not self.beyond_dependent(),
+            "joint_beyond_null": None
+            if self.joint is None
+            else [float(x) for x in np.asarray(self.joint)],
             "rho": self.rho,
             "first_layer_distance_d": None
             if self.dof == 0
@@ -642,6 +732,10 @@ class WallSpin:
                         m: v[name] for m, v in self.predicted_stencils.items() if name in v
                     },
                     "null": self.null_stencils.get(name),
+                    "null_se": self.null_stencils_se.get(name),
+                    "null_range": None
+                    if name not in self.null_stencils_range
+                    else list(self.null_stencils_range[name]),
                 }
                 for name, (dep, se_h, se_o) in self.stencils.items()
             },
@@ -676,6 +770,9 @@ class SpinMeasure:
     """Each wall's nearest row of the run (its first layer in the forward model)."""
     rho: float = 0.0
     rho_source: str = ""
+    envelope: Any = None
+    """The envelope of the nulls of every velocity the run has but a joint fit's (a
+    ``validate.nulls.Null``; None without fits)."""
 
     @property
     def sheared_walls(self) -> list[WallSpin]:

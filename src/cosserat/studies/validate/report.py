@@ -218,17 +218,18 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
 
 def _spin_bins(w: WallSpin) -> dict[str, Any]:
     """A wall's near-wall bins as the spin verdict uses them: distance [d], departure beyond
-    the null (against 0 without one) and se [-], whether the verdict's test uses each bin
-    (the first layer is left out where its sign depends on the stencil), and whether the
+    the null (against 0 without one) and se (the null's in quadrature) [-], whether the
+    verdict's test uses each bin (the first layer is left out where its departure beyond the
+    null changes sign between stencils), and whether the
     wall is judged at all (sheared, with the null it needs)."""
     order = np.argsort(w.distance_d)
     used = np.ones(order.size, dtype=bool)
-    if w.stencil_dependent():
+    if w.beyond_dependent():
         used[0] = False
     return {
         "distance_d": [float(x) for x in np.asarray(w.distance_d, dtype=float)[order]],
         "beyond": [float(x) for x in np.asarray(w.beyond, dtype=float)[order]],
-        "se": [float(x) for x in np.asarray(w.stderr, dtype=float)[order]],
+        "se": [float(x) for x in np.asarray(w.se_beyond, dtype=float)[order]],
         "used": [bool(x) for x in used],
         "judged": bool(w.sheared and not w.no_null),
     }

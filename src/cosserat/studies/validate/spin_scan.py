@@ -908,6 +908,31 @@ def _blocks(run: Run) -> int:
     return int(b) if isinstance(b, int) and not isinstance(b, bool) and b >= 2 else 0
 
 
+def region_profiles(sc: Scan) -> list[Any]:
+    """The joint fit's solved profiles: its optimum first, then every admissible point of both
+    grids (the 95% region), for quantities other than the first-layer departure over the
+    region (``validate.nulls``: the null at every bin under every stencil)."""
+    from ...calibration.models import SOLVE_ERRORS
+
+    fit = sc.fit
+    s = fit.setup
+    rd = s.runs[0]
+    k_slot, l_slot = fit._slot("K"), fit._slot("L")
+    free = [sl.name for sl in s.free]
+    ik, il = free.index(k_slot.name), free.index(l_slot.name)
+    theta0 = fit.theta
+    out = [_profile(s.model, rd, s.run_values(rd, theta0))]
+    for kk, ll, ok in ((sc.K, sc.L, sc.admissible), (sc.K_near, sc.L_near, sc.admissible_near)):
+        for a, b in zip(*np.nonzero(ok), strict=True):
+            th = theta0.copy()
+            th[ik], th[il] = k_slot.internal(kk[a]), l_slot.internal(ll[b])
+            try:
+                out.append(_profile(s.model, rd, s.run_values(rd, th)))
+            except SOLVE_ERRORS:
+                continue
+    return out
+
+
 def _first_layer_omega(profile: Any, run: Run, i0: int) -> float:
     """The profile's omega d / V in bin ``i0`` of ``run``, averaged over the bin as the run
     measured it (``forward.forward_fields``), the run's units and sign [-]."""
@@ -1652,6 +1677,7 @@ __all__ = [
     "misfit_reading",
     "normal_stress",
     "point_departure",
+    "region_profiles",
     "scan",
     "scan_run",
     "scan_verdict",
