@@ -226,17 +226,29 @@ def test_blocks_shorter_than_two_autocorrelation_times_are_flagged():
         block_autocorrelation({"x": x}, 0, 0, 1000)
 
 
-def test_a_stored_run_without_the_record_says_what_it_lacks(v2_rough):
+def test_a_stored_run_without_the_record_says_what_it_lacks(v2_rough, tmp_path):
+    """A run analysed before cosserat.dem recorded the block autocorrelation (the v2 rough
+    run's sidecar without the record it now carries) says what it lacks; the stored run,
+    analysed again from its dumps, gives its blocks against the times."""
+    import json
+
     from cosserat.studies.validate.report import block_notes
 
-    (note,) = block_notes(v2_rough)
+    meta = json.loads((V2 / "plane_rough_H10_qs" / "profile.json").read_text())
+    assert "block_autocorrelation" in meta and "block_autocorrelation" in v2_rough.meta
+    del meta["block_autocorrelation"]
+    shutil.copy(V2 / "plane_rough_H10_qs" / "profile.csv", tmp_path / "old.csv")
+    (tmp_path / "old.json").write_text(json.dumps(meta))
+    old = read_run(tmp_path / "old.csv")
+    (note,) = block_notes(old)
     assert note == (
         "block length against the autocorrelation time: not recorded (blocks of 1,100,000 "
         "steps); the run was analysed before cosserat.dem recorded it, and its per-sample "
         "series are not kept with the profile, so it needs the run's dumps analysed again"
     )
-    assert "block_autocorrelation" not in v2_rough.meta
-    assert not any("block_autocorrelation" in n for n in v2_rough.notes)  # a key it knows
+    assert not any("block_autocorrelation" in n for n in old.notes)  # a key it knows
+    (stored,) = block_notes(v2_rough)
+    assert "not recorded" not in stored
 
 
 # --------------------------------------------------------------------------- the figure
