@@ -245,3 +245,49 @@ def test_the_layer_runs_fixed_wall_is_shown_against_the_measured_velocitys_null(
         "reconstructions' null +0.0494 +- 0.012)" in why  # fmt: skip
     assert "0.5 d: -0.33 to +0.0356, 1.5 d: +0.00353 to +0.156" in why
     assert "(the nearest to 0 at most 0.28 se from it), so the null is not determined" in why
+
+
+# ------------------------------------------------------------------ the pooled test under t
+def test_the_pooled_t_p_is_the_bins_t_reading_in_closed_form_for_one_bin():
+    """One bin: the pooled chi^2 is z^2 and its p under t(9) is t_p(z) exactly; the seeded
+    Monte Carlo is within 4 of its binomial standard errors of it. Many blocks: the chi^2
+    tail."""
+    from cosserat.studies.validate.verdicts import T_SAMPLES, pooled_t_p, t_p
+
+    for z in (2.0, 3.5, 4.5):
+        exact = t_p(z, 10)
+        got = pooled_t_p(z * z, 1, 10)
+        assert abs(got - exact) <= 4.0 * math.sqrt(exact * (1 - exact) / T_SAMPLES) + 2 / T_SAMPLES
+    assert pooled_t_p(20.0, 6, 10) == pooled_t_p(20.0, 6, 10)  # seeded: the same every call
+    assert pooled_t_p(20.0, 6, 10) > float(chi2_dist.sf(20.0, 6))  # t's heavier tails
+    p_inf = float(chi2_dist.sf(20.0, 6))
+    assert abs(pooled_t_p(20.0, 6, 100_000) - p_inf) <= 4.0 * math.sqrt(p_inf / T_SAMPLES)
+    assert pooled_t_p(20.0, 6, 0) is None and pooled_t_p(None, 6, 10) is None
+
+
+def test_support_that_needs_the_first_layers_is_given_a_smooth_velocity():
+    """Referee 9, point 1: the first layers' null is the velocity inside a first bin the bins
+    do not resolve. Where the bins beyond them do not depart on their own, "supported" says it
+    holds given a velocity smooth on the grain scale, and the pooled p is also given with
+    each bin read under t(9)."""
+    data = {"analysis": -0.30}
+    null = {"analysis": -0.04}
+    se = {"analysis": 0.03}
+    walls = [
+        replace(first_layer(r, data, null, se, rest=(0.01, 0.0)), blocks=10)
+        for r in ("rough", "smooth")
+    ]
+    v = spin_verdict(walls)
+    n = v.numbers
+    assert v.verdict == "supported", v.text
+    assert n["blocks"] == 10 and n["pooled_p_t"] < P_SIGNIFICANT
+    assert n["pooled_p_t_without_first_layer"] > P_SIGNIFICANT
+    assert n["supported_given_smooth_velocity"] is True
+    assert v.evidence.startswith(
+        "Supported, given a velocity smooth on the grain scale (the support needs the first "
+        "layers, whose null is the velocity inside a first bin the bins do not resolve;"
+    )
+    assert "Read with each bin's z under t(9), as the bins' p are" in v.evidence
+    # the same walls without blocks: no t reading, the chi^2 one alone
+    bare = spin_verdict([replace(w, blocks=0) for w in walls])
+    assert bare.numbers["pooled_p_t"] is None and "under t(9)" not in bare.evidence.split(".")[0]
