@@ -697,7 +697,13 @@ def judge(
         for v in verdicts
     ]
     verdicts = [
-        replace(v, evidence=f"{v.evidence} {regime([by_name[n] for n in v.runs])}".rstrip())
+        replace(
+            v,
+            evidence=(
+                f"{v.evidence} {regime([by_name[n] for n in v.runs])} "
+                f"{steadiness_text([by_name[n] for n in v.runs])}"
+            ).rstrip(),
+        )
         if v.key != "layer"  # the layer's evidence quotes I next to both walls itself
         else v
         for v in verdicts
@@ -754,6 +760,59 @@ def regime(results: Sequence[RunResult]) -> str:
             "their rates only."
         )
     return text + f", within the quasi-static bound I <= {QUASI_STATIC_I:g}."
+
+
+def _unsteady(record: Mapping[str, Any]) -> list[str]:
+    """The observables a sidecar's steadiness test finds not steady, each with its numbers."""
+    out = []
+    for name, o in (record.get("observables") or {}).items():
+        if not isinstance(o, Mapping) or o.get("steady", True):
+            continue
+        if "first_half" in o and "z" in o:
+            out.append(
+                f"{name}: halves {float(o['first_half']):.3g} / {float(o['second_half']):.3g}, "
+                f"z = {float(o['z']):+.3g}"
+            )
+        elif "bins_within" in o:
+            out.append(
+                f"{name}: {100.0 * float(o['bins_within']):.0f}% of bins within the bound "
+                f"(max |z| = {float(o.get('max_abs_z', float('nan'))):.3g})"
+            )
+        else:
+            out.append(name)
+    return out
+
+
+def steadiness_text(results: Sequence[RunResult]) -> str:
+    """One sentence: which runs the DEM analysis found steady on every observable it tests
+    (the sidecar's ``steadiness``: the second half of the time blocks against the first), and
+    what is not steady where a run is not (referee 9, point 5); empty without runs."""
+    if not results:
+        return ""
+    records = {r.run.name: r.run.meta.get("steadiness") for r in results}
+    known = {n: s for n, s in records.items() if isinstance(s, Mapping)}
+    missing = sorted(n for n in records if n not in known)
+    bad = {n: _unsteady(s) for n, s in known.items()}
+    bad = {
+        n: v or ["the run's overall test"]
+        for n, v in bad.items()
+        if v or not known[n].get("steady", True)
+    }
+    text = ""
+    if known:
+        names = sorted({k for s in known.values() for k in (s.get("observables") or {})})
+        test = next((s.get("test") for s in known.values() if s.get("test")), "")
+        text = (
+            f"Steady state ({', '.join(names)}; {test}): shown in "
+            f"{len(known) - len(bad)} of {len(known)} runs"
+        )
+        if bad:
+            text += "; NOT shown in " + "; ".join(
+                f"{n} ({', '.join(v)})" for n, v in sorted(bad.items())
+            )
+    if missing:
+        text += ("; " if text else "Steady state: ") + (f"not recorded for {', '.join(missing)}")
+    return text + "." if text else ""
 
 
 def validate(
