@@ -30,8 +30,10 @@ Against a joint fit (:func:`check_scan`), K is compared two ways. The fitted K i
 so it is set against the data's wall extrapolations; and the fitted profile is *measured like
 the data* (u and omega averaged over the run's bins, ``forward.forward_fields``) and put
 through the same extrapolations, the like-for-like test: the fit contradicts the measured
-wall condition (a WARNING in the evidence, DEVELOPERS.md: a fitted parameter that contradicts
-what the data measure directly is a bug in the method, not a finding) where that measured
+wall condition (a WARNING in the evidence: the first layer's omega is held out of the
+calibration, so this is that held-out spin's miss seen through eqn-bc3, not a parameter the
+fit set against the measurement; the verdict counts it once, as the first-layer miss) where
+that measured
 K differs from the data's by more than :data:`CONTRADICTS_SIGMAS` se, one sign, under every
 extrapolation (the data's se times sqrt(chi^2/dof), the error model of the scan's rules).
 
@@ -619,8 +621,10 @@ class WallCheck:
         )
         return (
             f"WARNING: {self.run}'s joint fit contradicts the wall condition the data measure: "
-            f"{what}; a fitted parameter that contradicts what the data measure directly is a "
-            "bug in the method, not a finding"
+            f"{what}. With the first layer's omega held out of the calibration, K is not a "
+            "parameter fitted against this measurement: the contradiction is the held-out "
+            "first-layer spin's miss restated (the slip side of eqn-bc3 is fitted), the "
+            "finding the verdict rests on, counted once there (referee 9, point 4)"
         )
 
     def text(self) -> str:
