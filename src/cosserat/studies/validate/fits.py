@@ -127,8 +127,10 @@ class StressFix:
 
     @property
     def tan_delta(self) -> float:
-        """The fixed model's T: tan delta of the moving wall (sin phi when fully rough) [-]."""
-        assert self.phi is not None
+        """The fixed model's T: tan delta of the moving wall (sin phi when fully rough) [-];
+        NaN when nothing is fixed."""
+        if self.phi is None:
+            return math.nan
         if self.delta == "fully-rough":
             return math.sin(math.radians(self.phi))
         return math.tan(math.radians(float(self.delta)))
@@ -150,16 +152,6 @@ class StressFix:
             f"fixed from the run's stresses (not fitted): phi = {self.phi:.4g} deg "
             f"({self.sources.get('phi', '')}); {delta} ({self.sources.get('delta', '')})"
         )
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "phi": self.phi,
-            "delta": self.delta if self.phi is not None else None,
-            "sources": dict(self.sources),
-            "T": None if math.isnan(self.T) else self.T,
-            "T_se": None if math.isnan(self.T_se) else self.T_se,
-            "reason": self.reason,
-        }
 
 
 def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
