@@ -196,9 +196,10 @@ def test_data_that_turn_with_the_material_refute_both_spin_claims(tmp_path, mode
 
     NGF-made data: no first-layer departure, while every (K, L) in the 95% region of the
     Cosserat model's joint u + omega calibration (phi from the runs' stresses) departs by more
-    than 3 se: refuted by the scan (spin_scan). The u-only fits' reading is kept: their
-    sin phi = 0.477 contradicts the band stress ratio, so they decide nothing (undecided), and
-    what the data say on them, refuted, is kept as well.
+    than 3 se: refuted by the scan (spin_scan). The u-only fits' reading is kept: on the plane
+    runs phi and delta are fixed from the stresses (fits.cosserat_fix), so those fits agree with
+    the band's stress and predict a departure the data reject: refuted too; only the Couette
+    run's fit (phi at 28.5 deg: the relations are plane shear's) contradicts its stress.
 
     mu(I)-made data: the band is thinner than a bin, so no bin measures the band's stress ratio
     and phi cannot be fixed: no run is scanned (said in the evidence) and the u-only fits
@@ -220,8 +221,9 @@ def test_data_that_turn_with_the_material_refute_both_spin_claims(tmp_path, mode
             sm.evidence
         )
         u_only = sm.numbers["u_only_fits"]
-        assert u_only["verdict"] == "undecided"
-        assert u_only["with_contradicting_fits"]["verdict"] == "refuted"
+        assert u_only["verdict"] == "refuted"
+        unfit = {r.run.name: r.fits.summary("cosserat").unfit_reason for r in report.results}
+        assert [k for k, why in unfit.items() if why] == ["ngf_couette_rough_H20"], unfit
 
 
 def test_a_band_thinner_than_a_bin_has_no_delta_and_decides_no_delta_law(tmp_path):

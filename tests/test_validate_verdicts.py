@@ -335,7 +335,8 @@ def test_couette_runs_at_one_inner_radius_are_not_a_series_and_the_report_says_w
 def test_misfit_pinned_and_contradicted_parameters_are_warned_in_every_output(tmp_path):
     """An exponential profile with errors of 1e-3 that the Cosserat model cannot follow
     (misfit), its phi pinned at 28.5 deg (sin phi = 0.477) while the run's band carries a
-    stress ratio of 0.27: each said in results.json and in the report."""
+    stress ratio of 0.27: each said in results.json and in the report. With ``fit_angles``,
+    the fits of one profile (by default the stresses fix phi: test_validate_stress_fix)."""
     gap = 20.0
     y = np.arange(int(gap)) + 0.5
     u = np.exp(-(gap - y) / 2.0)
@@ -346,7 +347,7 @@ def test_misfit_pinned_and_contradicted_parameters_are_warned_in_every_output(tm
               {"y": y, "u": u + np.random.default_rng(0).normal(0, 1e-3, y.size), "u_se": se,
                "sigma_yx": -ratio, "sigma_yx_se": np.full(y.size, 0.005),
                "sigma_yy": np.ones(y.size), "sigma_yy_se": np.full(y.size, 0.005)})  # fmt: skip
-    report = validate(tmp_path / "c", tmp_path / "out", models=["cosserat"])
+    report = validate(tmp_path / "c", tmp_path / "out", models=["cosserat"], fit_angles=True)
     (result,) = report.results
     assert result.stress.value == pytest.approx(0.27) and result.stress.bins >= 2
     (fit,) = result.fits.summaries

@@ -140,6 +140,8 @@ def cmd_validate(args: argparse.Namespace) -> None:
         near["spin_scan"] = args.spin_scan
     if args.independent_bins:
         near["independent_bins"] = True
+    if args.fit_angles:
+        near["fit_angles"] = True
     workers = args.workers if args.workers is not None else min(2, os.cpu_count() or 1)
     report = validate(
         args.corpus, args.out, models, f=args.f, progress=progress, workers=workers, **near
@@ -206,6 +208,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         action="store_true",
         help="also fit every run with its bins taken as independent and give both sets of "
         "Akaike weights in its notes (doubles to triples the fits' time)",
+    )
+    vp.add_argument(
+        "--fit-angles",
+        action="store_true",
+        help="fit each run's Cosserat model to its velocity alone (phi at its default, the "
+        "moving wall's delta fitted) instead of fixing phi and delta from the run's stresses",
     )
     vp.add_argument("--format", choices=("text", "json"), default="text")
     vp.set_defaults(func=cmd_validate)

@@ -22,12 +22,34 @@ as validate fitted before it took the correlation into account). The warnings:
   where the measured u < :data:`~cosserat.studies.validate.measures.BAND_U`, or in the band);
 * **pinned**: every material or wall parameter with a fit range that the fit held at its
   declared default, named with its value;
+* **fixed from the run's stresses** (:func:`cosserat_fix`, a note, not a warning): on a plane
+  run that carries its stresses, the Cosserat fit does not search phi or the moving wall's
+  delta, which the stresses measure, but fixes them as the spin scan does
+  (:func:`~cosserat.studies.validate.spin_scan.angles`): the model's shear stress over the
+  moving wall's normal stress is uniform, ``T`` (eqn-nd_xmom), and equals ``sin phi`` at a fully
+  rough wall (eqn-nd_bc2, eqn-bc_fullyrough), so sin phi is ``T`` of the material's runs whose
+  two walls are fully rough (their band bins through ``T / sigma_yy(s)``, not the band's mean
+  ratio, which gravity lowers below sin phi: by 10-22 per cent on the v2 runs at B = 1); a wall
+  that slips has ``tan delta`` = its measured ratio ``|wall shear|/normal`` (the sidecar's
+  ``wall_stress``), a fully rough one ``tan delta = sin phi``. K and the material length L,
+  which the stresses do not give, are fitted (as in the spin scan's joint calibration). The
+  band's stress ratio is not a fair estimate of mu(I)'s or NGF's mu_s, and they are not fixed
+  from it: mu_s is the ratio where the flow stops (I -> 0), while the band (u >= BAND_U) spans
+  the ratios from the wall's ``T`` down to its edge, so its mean is above mu_s in mu(I) (an
+  upper bound, not an estimate: fixing it puts mu(I)'s band edge inside the measured band), and
+  NGF flows below mu_s by its nonlocal term, so its band ratio does not bound mu_s at all.
+  ``fit_angles`` (``cosserat validate --fit-angles``) restores the fits of one profile (phi at
+  its declared default, delta and K fitted). A run without its stresses, on another cell, or of
+  a material without a fully rough run keeps those fits, and its ``cosserat_fix`` says why.
 * **contradicts the measured stress ratio**: the band's |shear|/normal stress ratio of the run
   (:func:`~cosserat.studies.validate.measures.band_stress_ratio`) against the model's own
   (sin phi for the Cosserat model, mu_s for mu(I) and nonlocal fluidity), whether fitted or
   pinned: flagged when they differ by more than :data:`STRESS_SIGMAS` errors of the measured
   ratio and more than :data:`STRESS_RELATIVE` of it (the model's ratio in the band is only
-  about its yield value: the relative margin allows for that).
+  about its yield value: the relative margin allows for that). Where the stresses fixed the
+  Cosserat fit's angles, the comparison is of like with like: the model's ``T`` (the moving
+  wall's tan delta, sin phi when fully rough) against the run's ``T`` from its band bins
+  (:func:`~cosserat.studies.validate.spin_scan.shear_stress`).
 """
 
 from __future__ import annotations
@@ -70,6 +92,93 @@ BAND_RATIO: dict[str, tuple[str, str, Callable[[float], float]]] = {
 """Each rheology's stress ratio in a slowly shearing band: (parameter, what, its value)."""
 
 
+FIT_ANGLES_FREE = ("K", "L")
+"""What a Cosserat fit to one profile frees when the run's stresses fix phi and the moving
+wall's delta (:func:`cosserat_fix`): the wall's slip K and the material length L, as the spin
+scan's joint calibration does."""
+
+
+@dataclass(frozen=True)
+class StressFix:
+    """What a run's stresses fix in its Cosserat fit (module docstring), or why nothing.
+
+    Attributes
+    ----------
+    phi : float or None
+        Angle of internal friction [deg] (None: not fixed, ``reason`` says why).
+    delta : float or str
+        The moving wall's angle of wall friction [deg], or ``"fully-rough"`` (tan delta =
+        sin phi).
+    sources : mapping of str to str
+        Where phi and delta come from.
+    T, T_se : float
+        The run's shear stress over the moving wall's normal stress from its band bins [-]
+        (:func:`~cosserat.studies.validate.spin_scan.shear_stress`), and its error [-].
+    reason : str
+        Why nothing is fixed ("" when phi is).
+    """
+
+    phi: float | None = None
+    delta: float | str = "fully-rough"
+    sources: dict[str, str] = field(default_factory=dict)
+    T: float = math.nan
+    T_se: float = math.nan
+    reason: str = ""
+
+    @property
+    def tan_delta(self) -> float:
+        """The fixed model's T: tan delta of the moving wall (sin phi when fully rough) [-];
+        NaN when nothing is fixed."""
+        if self.phi is None:
+            return math.nan
+        if self.delta == "fully-rough":
+            return math.sin(math.radians(self.phi))
+        return math.tan(math.radians(float(self.delta)))
+
+    def values(self) -> dict[str, float | str]:
+        """The problem's values: ``phi`` and ``delta`` (empty when nothing is fixed)."""
+        return {} if self.phi is None else {"phi": self.phi, "delta": self.delta}
+
+    def text(self) -> str:
+        """One line: what is fixed and from what, or why nothing is."""
+        if self.phi is None:
+            return f"phi and delta not fixed from the stresses: {self.reason}"
+        delta = (
+            "delta fully rough (tan delta = sin phi)"
+            if self.delta == "fully-rough"
+            else f"delta = {float(self.delta):.4g} deg"
+        )
+        return (
+            f"fixed from the run's stresses (not fitted): phi = {self.phi:.4g} deg "
+            f"({self.sources.get('phi', '')}); {delta} ({self.sources.get('delta', '')})"
+        )
+
+
+def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
+    """phi and the moving wall's delta of ``run``'s Cosserat fit from the stresses (module
+    docstring): :func:`~cosserat.studies.validate.spin_scan.angles` with ``runs``, the corpus
+    (phi from its material's fully rough runs); the run itself must carry its band's stresses.
+    Never raises: where the stresses fix nothing, the result's ``reason`` says why."""
+    from .measures import band_stress_ratio
+    from .spin_scan import angles, shear_stress
+
+    if run.cell != "plane":
+        return StressFix(
+            reason=f"a {run.cell} run (the relations T = sin phi, tan delta are plane shear's)"
+        )
+    if band_stress_ratio(run) is None:
+        return StressFix(reason="the run does not carry its band's stresses")
+    try:
+        t = shear_stress(run)
+        a = angles(run, runs)
+    except CosseratError as exc:
+        return StressFix(reason=" ".join(str(exc).split()))
+    moving = a.roughness["moving"]
+    delta: float | str = "fully-rough" if moving >= 1.0 else a.delta("moving")
+    sources = {"phi": a.phi_source, "delta": a.delta_source["moving"]}
+    return StressFix(a.phi, delta, sources, t.value, t.stderr)
+
+
 @dataclass
 class FitSummary:
     """One model's fit to a run, as validation uses it."""
@@ -97,6 +206,9 @@ class FitSummary:
     unidentified: dict[str, str] = field(default_factory=dict)
     """Free parameters the data do not determine (the engine's identifiability rule, or at a
     bound), name -> why: they have no error."""
+    fixed: dict[str, tuple[float | str, str]] = field(default_factory=dict)
+    """Parameters fixed from the run's stresses (:func:`cosserat_fix`), name -> (value
+    [deg], source)."""
 
     @property
     def bounded(self) -> list[str]:
@@ -153,6 +265,9 @@ class FitSummary:
             "effective_bins": self.effective_bins,
             "unidentified": self.unidentified,
             "pinned": self.pinned,
+            "fixed_from_stresses": {
+                k: {"value": v, "source": src} for k, (v, src) in self.fixed.items()
+            },
             "band_stress_ratio": None
             if self.band_ratio is None
             else {
@@ -271,10 +386,16 @@ def fit_run(
     grid: int,
     stress: StressRatio | None,
     independent_bins: bool = False,
+    fix: StressFix | None = None,
 ) -> RunFits:
     """Fit ``models`` (default: every one defined on the run's cell) to the run's velocity;
     with ``independent_bins`` and correlated bins, fit them again with independent bins for
     the notes' comparison of Akaike weights (it doubles to triples the fits' cost).
+
+    ``fix``: what the run's stresses fix in the Cosserat fit (:func:`cosserat_fix`): phi and
+    the moving wall's delta held at its values, :data:`FIT_ANGLES_FREE` fitted, and the stress
+    check made on ``T``; None or a fix with ``phi`` None: the fits of one profile
+    (:data:`~cosserat.calibration.single.SINGLE_RUN_FREE`, phi at its declared default).
 
     Raises
     ------
@@ -288,12 +409,18 @@ def fit_run(
         names = [m for m in names if run.cell in cells_for(m)]
     measured = run.measured()
     corr = bin_correlation(run)
+    fixing = fix is not None and fix.phi is not None
+    given: dict[str, Any] = (
+        {"model_parameters": {"cosserat": fix.values()}, "free": {"cosserat": FIT_ANGLES_FREE}}
+        if fixing and fix is not None
+        else {}
+    )
     ranking = rank_models(
-        measured, run.cell_parameters(), names, grid=grid, bin_correlation=corr.rho
+        measured, run.cell_parameters(), names, grid=grid, bin_correlation=corr.rho, **given
     )
     out = RunFits(ranking, correlation=corr)
     if independent_bins and corr.rho > 0.0:
-        out.independent_weights = _independent_weights(run, names, grid, measured)
+        out.independent_weights = _independent_weights(run, names, grid, measured, given)
     for f in ranking.fits:
         if not f.ok:
             out.summaries.append(
@@ -314,10 +441,16 @@ def fit_run(
         values = f.problem.values()
         free = {k for k, e in f.parameters.items() if e.free}
         declared = f.problem.declared()
+        fixed: dict[str, tuple[float | str, str]] = {}
+        if f.model == "cosserat" and fix is not None:
+            if fixing:
+                fixed = {k: (v, fix.sources.get(k, "")) for k, v in fix.values().items()}
+            warnings.append(fix.text())
         pinned = {
             k: float(v)
             for k, v in values.items()
             if k in declared
+            and k not in fixed
             and declared[k].role in ("material", "wall")
             and declared[k].numeric
             and declared[k].fit_range is not None
@@ -339,7 +472,13 @@ def fit_run(
             and not e.derived
             and (f.model, k, e.at_bound) not in ADMISSIBLE_EDGES
         }
-        if f.model in BAND_RATIO and BAND_RATIO[f.model][0] in values:
+        if fixed and fix is not None:
+            band = ("T = tan delta", fix.tan_delta, True)
+            text = _shear_contradiction(fix)
+            if text:
+                warnings.append(text)
+                contradiction = text
+        elif f.model in BAND_RATIO and BAND_RATIO[f.model][0] in values:
             key, what, ratio = BAND_RATIO[f.model]
             band = (what, float(ratio(float(values[key]))), key in pinned)
             text = _stress_contradiction(
@@ -367,6 +506,7 @@ def fit_run(
                 corr.rho,
                 f.n,
                 {k: e.reason for k, e in f.parameters.items() if e.free and e.stderr is None},
+                fixed,
             )
         )
     return out
@@ -392,12 +532,12 @@ def bin_correlation(run: Run) -> Correlation:
 
 
 def _independent_weights(
-    run: Run, names: Sequence[str] | None, grid: int, measured: Any
+    run: Run, names: Sequence[str] | None, grid: int, measured: Any, given: dict[str, Any]
 ) -> dict[str, float]:
     """Akaike weights of the same models fitted with independent bins (rho = 0; the same
-    fits, starts and design as the correlated ones): what the weights are if the bins'
-    correlation is ignored."""
-    ranking = rank_models(measured, run.cell_parameters(), names, grid=grid)
+    fits, starts, design and fixed values as the correlated ones): what the weights are if
+    the bins' correlation is ignored."""
+    ranking = rank_models(measured, run.cell_parameters(), names, grid=grid, **given)
     return {m: float(w) for m, w in ranking.weights().items()}
 
 
@@ -407,10 +547,11 @@ def try_fit_run(
     grid: int,
     stress: StressRatio | None,
     independent_bins: bool = False,
+    fix: StressFix | None = None,
 ) -> tuple[RunFits | None, str]:
     """:func:`fit_run`, or None and the reason in one line."""
     try:
-        return fit_run(run, models, grid, stress, independent_bins), ""
+        return fit_run(run, models, grid, stress, independent_bins, fix), ""
     except CosseratError as exc:
         return None, " ".join(str(exc).split())
 
@@ -460,6 +601,20 @@ def _stress_contradiction(
         f"{ratio:.3g}, but the run's |shear|/normal stress ratio in the band is "
         f"{stress.value:.3g} +- {stress.stderr:.2g} ({stress.bins} bins), "
         f"{diff / stress.stderr:.1f} errors away"
+    )
+
+
+def _shear_contradiction(fix: StressFix) -> str:
+    """The fixed Cosserat model's T against the run's (module docstring): "" when they agree
+    within :data:`STRESS_SIGMAS` errors of the run's T or :data:`STRESS_RELATIVE` of it."""
+    model = fix.tan_delta
+    diff = abs(model - fix.T)
+    if diff <= STRESS_SIGMAS * fix.T_se or diff <= STRESS_RELATIVE * fix.T:
+        return ""
+    return (
+        f"contradicts the measured stress: the fixed angles give T = tan delta = {model:.3g} "
+        f"(the shear stress over the moving wall's normal stress), but the run's band gives "
+        f"T = {fix.T:.3g} +- {fix.T_se:.2g}, {diff / fix.T_se:.1f} errors away"
     )
 
 

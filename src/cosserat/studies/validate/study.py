@@ -23,7 +23,7 @@ from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
-from .fits import RunFits, SeriesCalibration, series_job, try_fit_run
+from .fits import RunFits, SeriesCalibration, StressFix, cosserat_fix, series_job, try_fit_run
 from .forward import STENCILS
 from .grouping import couette_note, group_runs, walls_differ
 from .layer import LayerPosition, band_inertial_number, layer_verdicts, measure_layer
@@ -364,15 +364,17 @@ def analyse_run(
     grid: int,
     figures_to: Path | None = None,
     independent_bins: bool = False,
+    fix: StressFix | None = None,
 ) -> RunResult:
     """Fit, measure and compare one run (module docstring); with ``figures_to``, also draw
     the run's figure there (in the worker that analysed it, when there are workers);
-    ``independent_bins``: :func:`.fits.fit_run`'s."""
+    ``independent_bins`` and ``fix`` (what the stresses fix in the Cosserat fit):
+    :func:`.fits.fit_run`'s."""
     stress = band_stress_ratio(run)
     if run.cell == "channel":
         fits, error = None, CHANNEL_NOTE
     else:
-        fits, error = try_fit_run(run, models, grid, stress, independent_bins)
+        fits, error = try_fit_run(run, models, grid, stress, independent_bins, fix)
     skipped = [f"{q}: not in this run" for q in run.missing() if q in ("omega", "half_vorticity")]
     spin = measure_spin(run, near_wall_d)
     if not spin.available:
@@ -497,6 +499,7 @@ def _analyse_all(
     figures_to: Path | None = None,
     jobs: Sequence[tuple[str, tuple[Run, ...], str, float]] = (),
     independent_bins: bool = False,
+    fixes: Mapping[str, StressFix] | None = None,
 ) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]]]:
     """:func:`analyse_run` of every run and :func:`.fits.series_job` of every job, in worker
     processes when worth it (``validate``): (the runs' results, series key -> calibrations)."""
@@ -505,7 +508,12 @@ def _analyse_all(
     if workers <= 1:
         out = []
         for i, run in enumerate(runs):
-            out.append(analyse_run(run, models, f, near_wall_d, grid, figures_to, independent_bins))
+            out.append(
+                analyse_run(
+                    run, models, f, near_wall_d, grid, figures_to, independent_bins,
+                    (fixes or {}).get(run.name),
+                )
+            )  # fmt: skip
             if progress:
                 progress("runs", i + 1, len(runs))
         for key, members, model, f_s in jobs:
@@ -524,7 +532,15 @@ def _analyse_all(
         }
         futures = {
             pool.submit(
-                analyse_run, runs[i], models, f, near_wall_d, grid, figures_to, independent_bins
+                analyse_run,
+                runs[i],
+                models,
+                f,
+                near_wall_d,
+                grid,
+                figures_to,
+                independent_bins,
+                (fixes or {}).get(runs[i].name),
             ): i
             for i in order
         }
@@ -827,6 +843,7 @@ def validate(
     workers: int | None = None,
     spin_scan: int = COARSE,
     independent_bins: bool = False,
+    fit_angles: bool = False,
 ) -> ValidationReport:
     """Fit, compare and judge every run of ``corpus``; write the report into ``out``.
 
@@ -858,6 +875,10 @@ def validate(
     independent_bins : bool
         Also fit each run's models with independent bins, and give both sets of Akaike
         weights in the run's notes (off by default: it doubles to triples the fits' cost).
+    fit_angles : bool
+        Fit each run's Cosserat model as one profile alone is fitted (phi at its declared
+        default, the moving wall's delta and K fitted) rather than with phi and delta fixed from
+        the stresses (:func:`.fits.cosserat_fix`; the default).
 
     Raises
     ------
@@ -887,9 +908,11 @@ def validate(
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
     jobs = series_jobs(data.runs, models, f)
+    fixes = None if fit_angles else {r.name: cosserat_fix(r, data.runs) for r in data.runs}
     results, cals = _analyse_all(
-        data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs, independent_bins
-    )
+        data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs,
+        independent_bins, fixes,
+    )  # fmt: skip
     series, verdicts, notes = judge(results, models, f, calibrations=cals, spin_scan=spin_scan)
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)

@@ -1,0 +1,133 @@
+"""validate's per-run Cosserat fits take phi and the moving wall's delta from the run's
+stresses (``fits.cosserat_fix``), keep the fits of one profile where the stresses are absent,
+and give them back with ``fit_angles``."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import read_corpus, write_run
+from cosserat.studies.validate.fits import FIT_ANGLES_FREE, cosserat_fix, fit_run
+from cosserat.studies.validate.measures import band_stress_ratio
+
+GAP = 12.0
+T0 = 0.3
+"""The constructed runs' shear stress over the moving wall's normal stress [-]."""
+
+
+def plane_run(folder: Path, name: str, kind: str, *, B: float, stresses: bool = True,
+              wall_ratio: float | None = None) -> None:  # fmt: skip
+    """A plane run whose upper wall moves, u = exp(-s/2) at s from it, and (``stresses``) the
+    model's stresses under gravity: sigma_yy = 1 + B eps s, sigma_yx = -T0 (uniform)."""
+    y = np.arange(int(GAP)) + 0.5
+    s = GAP - y
+    u = np.exp(-s / 2.0)
+    cols = {"y": y, "u": u + np.random.default_rng(1).normal(0.0, 2e-3, y.size),
+            "u_se": np.full(y.size, 2e-3)}  # fmt: skip
+    if stresses:
+        syy = 1.0 + B * s / GAP
+        cols.update(sigma_yx=np.full(y.size, -T0), sigma_yx_se=np.full(y.size, 0.003),
+                    sigma_yy=syy, sigma_yy_se=np.full(y.size, 0.003))  # fmt: skip
+    meta = {"cell": "plane", "gap_d": GAP, "B": B, "wall": {"kind": kind},
+            "grains": {"n": 100, "diameter_range_d": [0.8, 1.2]}}  # fmt: skip
+    if wall_ratio is not None:
+        meta["wall_stress"] = {"normal": 1.0, "shear": -wall_ratio, "normal_se": 1e-4,
+                               "shear_se": 0.005}  # fmt: skip
+    write_run(folder, name, meta, cols)
+
+
+def test_a_fully_rough_run_fixes_sin_phi_at_the_wall_ratio_not_the_band_mean(tmp_path):
+    """Under gravity (B = 1) the band's mean ratio is below T0; the fixed phi is asin(T0), the
+    ratio at the fully rough moving wall, and the fit frees K and L only."""
+    plane_run(tmp_path, "rough", "glued-grains", B=1.0)
+    (run,) = read_corpus(tmp_path).runs
+    stress = band_stress_ratio(run)
+    assert stress is not None and stress.value < 0.95 * T0
+    fix = cosserat_fix(run, [run])
+    assert fix.phi == pytest.approx(math.degrees(math.asin(T0)), rel=1e-9)
+    assert fix.delta == "fully-rough" and fix.T == pytest.approx(T0, rel=1e-9)
+    fits = fit_run(run, ["cosserat"], 0, stress, fix=fix)
+    (s,) = fits.summaries
+    assert s.ok
+    assert s.fixed["phi"][0] == pytest.approx(math.degrees(math.asin(T0)), rel=1e-9)
+    assert "sin phi = 0.3 from the fully rough run(s) rough" in s.fixed["phi"][1]
+    assert s.fixed["delta"][0] == "fully-rough"
+    assert set(s.parameters) == set(FIT_ANGLES_FREE)
+    assert "phi" not in s.pinned and "delta" not in s.pinned
+    assert fits.ranking.fits[0].problem.values()["phi"] == pytest.approx(fix.phi, rel=1e-12)
+    assert s.contradiction == "" and s.unfit_reason == ""
+    assert s.band_ratio == ("T = tan delta", pytest.approx(T0, rel=1e-9), True)
+    assert any(w.startswith("fixed from the run's stresses (not fitted): phi = 17.46 deg")
+               for w in s.warnings)  # fmt: skip
+    entry = fits.to_dict()["fits"][0]
+    assert entry["fixed_from_stresses"]["phi"]["value"] == pytest.approx(fix.phi)
+
+
+def test_a_smooth_run_takes_phi_from_the_material_and_delta_from_its_wall(tmp_path):
+    """A slipping wall: tan delta = the wall's measured ratio, phi from the fully rough run of
+    the same material (the band of the smooth run gives only its wall's T)."""
+    plane_run(tmp_path, "rough", "glued-grains", B=0.0)
+    plane_run(tmp_path, "smooth", "smooth-frictional", B=0.0, wall_ratio=0.29)
+    runs = read_corpus(tmp_path).runs
+    smooth = next(r for r in runs if r.name == "smooth")
+    fix = cosserat_fix(smooth, runs)
+    assert fix.phi == pytest.approx(math.degrees(math.asin(T0)), rel=1e-9)
+    assert fix.delta == pytest.approx(math.degrees(math.atan(0.29)), rel=1e-9)
+    assert "the moving wall's measured ratio 0.29" in fix.sources["delta"]
+    # the model's T (tan delta = 0.29) against the band's (0.3): within 10 per cent
+    fits = fit_run(smooth, ["cosserat"], 0, band_stress_ratio(smooth), fix=fix)
+    (s,) = fits.summaries
+    assert s.fixed["delta"][0] == pytest.approx(math.degrees(math.atan(0.29)), rel=1e-9)
+    assert s.contradiction == ""
+    assert fits.ranking.fits[0].problem.values()["delta"] == pytest.approx(fix.delta, rel=1e-9)
+
+
+def test_a_wall_ratio_far_from_the_band_is_a_contradiction(tmp_path):
+    """The fixed model's T = tan delta = 0.2 against the band's T = 0.3 +- 0.0017."""
+    plane_run(tmp_path, "rough", "glued-grains", B=0.0)
+    plane_run(tmp_path, "smooth", "smooth-frictional", B=0.0, wall_ratio=0.2)
+    runs = read_corpus(tmp_path).runs
+    smooth = next(r for r in runs if r.name == "smooth")
+    fix = cosserat_fix(smooth, runs)
+    (s,) = fit_run(smooth, ["cosserat"], 0, band_stress_ratio(smooth), fix=fix).summaries
+    assert s.contradiction.startswith(
+        "contradicts the measured stress: the fixed angles give T = tan delta = 0.2 (the shear "
+        "stress over the moving wall's normal stress), but the run's band gives T = 0.3 +- "
+    )
+    assert "its T = tan delta = 0.2 contradicts the measured band stress ratio" in s.unfit_reason
+
+
+def test_a_run_without_stresses_keeps_the_fits_of_one_profile(tmp_path):
+    plane_run(tmp_path, "bare", "glued-grains", B=1.0, stresses=False)
+    (run,) = read_corpus(tmp_path).runs
+    fix = cosserat_fix(run, [run])
+    assert fix.phi is None and fix.reason == "the run does not carry its band's stresses"
+    (s,) = fit_run(run, ["cosserat"], 0, None, fix=fix).summaries
+    (plain,) = fit_run(run, ["cosserat"], 0, None).summaries
+    assert s.fixed == {} and s.pinned == plain.pinned and s.pinned["phi"] == 28.5
+    assert set(s.parameters) == set(plain.parameters) == {"delta", "K", "roughness"}
+    assert s.chi2 == pytest.approx(plain.chi2, rel=1e-9)
+    assert any(w.startswith("phi and delta not fixed from the stresses: the run does not carry")
+               for w in s.warnings)  # fmt: skip
+
+
+def test_a_couette_run_says_why_nothing_is_fixed(tmp_path):
+    r = np.linspace(20.5, 29.5, 10)
+    write_run(tmp_path, "c", {"cell": "couette", "gap_d": 10.0, "Ri_d": 20.0,
+                              "wall": {"kind": "glued-grains"}},
+              {"r": r, "u": np.exp(-(r - 20.0) / 2.0), "u_se": np.full(r.size, 0.01)})  # fmt: skip
+    (run,) = read_corpus(tmp_path).runs
+    fix = cosserat_fix(run, [run])
+    assert fix.phi is None and fix.reason.startswith("a couette run")
+
+
+def test_the_command_line_offers_to_fit_the_angles():
+    out = subprocess.run([sys.executable, "-m", "cosserat", "validate", "--help"],
+                         capture_output=True, text=True, check=True)  # fmt: skip
+    assert "--fit-angles" in out.stdout
