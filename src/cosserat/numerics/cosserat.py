@@ -946,7 +946,9 @@ def _dop853_step(ts: np.ndarray, t: float, hint: int) -> int:
 
 # The field loop below is split into passes over the points so that LLVM vectorises the
 # arithmetic (4 points per AVX2 instruction): the searches for each point's steps are
-# sequential, the rest is branch-free. error_model="numpy": a division by zero gives inf
+# sequential, the rest is branch-free. The vectorised loops index with a range's own counter
+# from 0 (on slices): numba checks any other index for a negative value (wraparound), and
+# that check alone kept the loops scalar. error_model="numpy": a division by zero gives inf
 # instead of a Python exception, which numba checks for before each division, and which keeps
 # a loop from being vectorised; no divisor here is zero (step lengths, the span, r = Ri + xi,
 # the floored sqrt(S), (1+A) tau + sqrt(S) with tau > 0), and a non-finite field would be
@@ -955,13 +957,13 @@ _VECTOR = {"cache": True, "nogil": True, "error_model": "numpy"}
 
 
 @njit(**_VECTOR)
-def _couple_run(ts, hs, ys, Q, i, tp, m, a, b):
-    """m at the points ``tp[a:b]``, all in Radau step i: :func:`dense_eval1`'s operations
+def _couple_run(ts, hs, ys, Q, i, tp, m):
+    """m at the points ``tp``, all in Radau step i: :func:`dense_eval1`'s operations
     (a point on the step's end takes the stored value) [-]."""
     t0, t1, hh = ts[i], ts[i + 1], hs[i]
     y0, y1 = ys[i, 0], ys[i + 1, 0]
     c0, c1, c2 = Q[i, 0, 0], Q[i, 0, 1], Q[i, 0, 2]
-    for q in range(a, b):
+    for q in range(tp.shape[0]):
         t = tp[q]
         s = (t - t0) / hh
         v = y0 + s * (c0 + s * (c1 + s * c2))
@@ -969,8 +971,8 @@ def _couple_run(ts, hs, ys, Q, i, tp, m, a, b):
 
 
 @njit(**_VECTOR)
-def _spin_run(ts, ys, F, i, tau, ell, P, a, b):
-    """(l, P) at the points ``tau[a:b]``, all in DOP853 step i: :func:`dop853_eval1`'s
+def _spin_run(ts, ys, F, i, tau, ell, P):
+    """(l, P) at the points ``tau``, all in DOP853 step i: :func:`dop853_eval1`'s
     operations for both components [-]."""
     t0 = ts[i]
     hh = ts[i + 1] - t0
@@ -980,7 +982,7 @@ def _spin_run(ts, ys, F, i, tau, ell, P, a, b):
     p6, p5, p4, p3 = F[i, 6, 1], F[i, 5, 1], F[i, 4, 1], F[i, 3, 1]
     p2, p1, p0 = F[i, 2, 1], F[i, 1, 1], F[i, 0, 1]
     y0, y1 = ys[i, 0], ys[i, 1]
-    for q in range(a, b):
+    for q in range(tau.shape[0]):
         x = (tau[q] - t0) / hh if nonzero else 0.0
         x = 0.0 if x < 0.0 else x
         x = 1.0 if x > 1.0 else x
@@ -992,14 +994,21 @@ def _spin_run(ts, ys, F, i, tau, ell, P, a, b):
         P[q] = r + y1
 
 
+BLOCK = 256
+"""Points per block of :func:`_fields`: its scratch (8 x BLOCK numbers, 16 kB) stays in the
+first-level cache and is allocated once per call. Scratch the size of the grid (256 kB at
+2,001 points) cost more than the arithmetic: freed at the top of the heap, glibc's malloc gave
+it back to the system and every call faulted it in again."""
+
+
 @njit(**_VECTOR)
 def _fields(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
-    """:func:`fields_checked` (its docstring): the passes over the points."""
+    """:func:`fields_checked` (its docstring): passes over blocks of points."""
     n = xi.shape[0]
     out = np.empty((N_FIELDS, n))
-    work = np.empty((6, n))
+    work = np.empty((6, BLOCK))
     h_, tp_, tau_, m_, w_, P_ = work[0], work[1], work[2], work[3], work[4], work[5]
-    steps = np.empty((2, n), dtype=np.int64)
+    steps = np.empty((2, BLOCK), dtype=np.int64)
     i1_, i2_ = steps[0], steps[1]
     couette = p[P_GEOMETRY] == COUETTE
     symmetric = not couette and p[P_CASE] == SYMMETRIC
@@ -1012,72 +1021,8 @@ def _fields(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
     reach = abs(_map(tau_end, g)[0] - g0)
     cut = reach < abs(g1)
     reach_tol = reach * (1.0 + 1e-15)
-
-    # 1. each point on the solved half (h), in the couple-stress pass (tp: dense_eval's
-    # clipping) and in the spin pass (tau), then the steps they fall in (searches from the
-    # last point's step: sorted points cost no search)
-    for q in range(n):
-        x = xi[q]
-        h = 1.0 - x if symmetric and x < 0.5 else x
-        h_[q] = h
-        tp = hi1 if h > hi1 else h
-        tp_[q] = lo1 if tp < lo1 else tp
-        frac = (h - g0) / g1
-        frac = 0.0 if frac < 0.0 else frac
-        frac = 1.0 if frac > 1.0 else frac
-        tau = 1.0 - math.sqrt(1.0 - frac) if singular else frac
-        tau_[q] = tau_end if tau > tau_end else tau
-    # int64, not the literal 0: numba would compile the step searches twice (Literal[int](0)
-    # and int64), for nothing
-    i1 = np.int64(0)
-    i2 = np.int64(0)
-    for q in range(n):
-        if k1 > 0:
-            i1 = _radau_step(ts1, tp_[q], i1)
-        i1_[q] = i1
-        if cut and abs(h_[q] - g0) > reach_tol:
-            i2_[q] = -1  # beyond the cut: e^l underflows (spin_pass_at: l = -inf)
-        else:
-            if k2 > 0:
-                i2 = _dop853_step(ts2, tau_[q], i2)
-            i2_[q] = i2
-
-    # 2. the couple stress m and the spin pass's (l, P), on runs of points in one step
-    a = 0
-    while a < n:
-        b = a + 1
-        while b < n and i1_[b] == i1_[a]:
-            b += 1
-        if k1 == 0:
-            for q in range(a, b):
-                m_[q] = ys1[0, 0]
-        else:
-            _couple_run(ts1, hs1, ys1, Q1, i1_[a], tp_, m_, a, b)
-        a = b
     P_cut = ys2[k2, 1]
-    a = 0
-    while a < n:
-        b = a + 1
-        while b < n and i2_[b] == i2_[a]:
-            b += 1
-        i = i2_[a]
-        if i < 0:
-            for q in range(a, b):
-                P_[q] = P_cut
-        elif k2 == 0:
-            for q in range(a, b):
-                w_[q] = ys2[0, 0]
-                P_[q] = ys2[0, 1]
-        else:
-            _spin_run(ts2, ys2, F2, i, tau_, w_, P_, a, b)
-        a = b
     w_s = info[I_W_S]
-    for q in range(n):  # w = w_s e^l, 0 beyond the cut
-        w_[q] = w_s * 0.0 if i2_[q] < 0 else w_s * math.exp(w_[q])
-
-    # 3. the fields (the arithmetic of velocity, _shear_stress, _mean_stress, _curvature,
-    # k_velocity_ratio and k_torque, in the same order of operations, with S and sqrt(S)
-    # computed once) and the screen of fields_checked
     A, sp = p[P_A], p[P_SIN_PHI]
     Ri, tan_delta, couple = p[P_RI], p[P_TAN_DELTA], p[P_COUPLE]
     mu_Ri = info[I_MU] * Ri if couette else 0.0
@@ -1092,50 +1037,141 @@ def _fields(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
     bound = -slack * 2.0 * (A + 1.0)
     flagged = 0
     nonfinite = 0
-    for q in range(n):
-        h = h_[q]
-        m = m_[q]
-        w = w_[q]
-        P = P_[q]
-        if couette:
-            r = Ri + h
-            u = r * (u_s_Ri - w_s * P)
-            decay = Ri / r
-            syx = -tan_delta * (decay * decay) + couple * (m / r - mu_Ri / (r * r))
-            sc = 1.0
-            kappa = 1.0 / r
-        else:
-            u = u_s - w_s * P
-            syx = syx_plane
-            sc = 1.0 + B_nu * (1.0 - h)
-            kappa = 0.0
-        sc_sin = sc * sp
-        S = a2m1 * syx * syx + 2.0 * (A + 1.0) * sc_sin * sc_sin - four_a1sq * m * m
-        root = math.sqrt(S if S > 0.0 else 0.0)
-        denom = -(root if root > SQRT_S_FLOOR else SQRT_S_FLOOR)
-        F1 = one_a * ((denom - A * syx) + syx) / denom
-        tau = -syx
-        t_pos = ((sc_sin - tau) * (sc_sin + tau) - two_a1 * m * m) / (root + one_a * tau)
-        t_neg = (root - one_a * tau) / two_a1
-        sxy = syx - two_a1 * (t_pos if tau > 0.0 else t_neg)
-        omega = w - kappa * u
-        du = -w * F1 + kappa * u
-        low = symmetric and xi[q] < 0.5
-        u = two_uc - u if low else u
-        m = -m if low else m
-        out[F_U, q] = u
-        out[F_OMEGA, q] = omega
-        out[F_M, q] = m
-        out[F_SIGMA_XY, q] = sxy
-        out[F_SIGMA_YX, q] = syx
-        out[F_SIGMA_YY, q] = sc
-        out[F_DU_DXI, q] = du
-        out[F_KAPPA, q] = kappa
-        # S of the returned fields is this S ((-m)(-m) = m m); NaN compares false
-        flagged += 0 if S >= bound * sc_sin * sc_sin else 1
-        # counted, not summed: an integer count vectorises, a float sum would not
-        z = ((u + omega) + (m + sxy)) + ((syx + sc) + (du + kappa))
-        nonfinite += 0 if z - z == 0.0 else 1
+    # int64, not the literal 0: numba would compile the step searches twice (Literal[int](0)
+    # and int64), for nothing
+    i1 = np.int64(0)
+    i2 = np.int64(0)
+    s1 = 1.0 if ts1[k1] >= ts1[0] else -1.0  # the direction of the couple-stress pass
+    for start in range(0, n, BLOCK):
+        nb = min(BLOCK, n - start)
+        end = start + nb
+        xb = xi[start:end]
+        o_u, o_omega, o_m = out[F_U, start:end], out[F_OMEGA, start:end], out[F_M, start:end]
+        o_sxy, o_syx = out[F_SIGMA_XY, start:end], out[F_SIGMA_YX, start:end]
+        o_syy, o_du, o_kappa = (
+            out[F_SIGMA_YY, start:end],
+            out[F_DU_DXI, start:end],
+            out[F_KAPPA, start:end],
+        )
+        # 1. each point on the solved half (h), in the couple-stress pass (tp: dense_eval's
+        # clipping) and in the spin pass (tau), then the steps they fall in: the last point's
+        # step or the next (_radau_step's and _dop853_step's conditions), else a search (sorted
+        # points need none)
+        for j in range(nb):
+            x = xb[j]
+            h = 1.0 - x if symmetric and x < 0.5 else x
+            h_[j] = h
+            tp = hi1 if h > hi1 else h
+            tp_[j] = lo1 if tp < lo1 else tp
+            frac = (h - g0) / g1
+            frac = 0.0 if frac < 0.0 else frac
+            frac = 1.0 if frac > 1.0 else frac
+            tau = 1.0 - math.sqrt(1.0 - frac) if singular else frac
+            tau_[j] = tau_end if tau > tau_end else tau
+        for j in range(nb):
+            if k1 > 0:
+                t = tp_[j]
+                st = s1 * t
+                if i1 < k1 - 1 and st > s1 * ts1[i1 + 1]:
+                    if i1 + 1 < k1 - 1 and st > s1 * ts1[i1 + 2]:
+                        i1 = _radau_step(ts1, t, i1)
+                    else:
+                        i1 += 1
+                elif i1 > 0 and st <= s1 * ts1[i1]:
+                    i1 = _radau_step(ts1, t, i1)
+            i1_[j] = i1
+            if cut and abs(h_[j] - g0) > reach_tol:
+                i2_[j] = -1  # beyond the cut: e^l underflows (spin_pass_at: l = -inf)
+            else:
+                if k2 > 0:
+                    t = tau_[j]
+                    if i2 < k2 - 1 and ts2[i2 + 1] <= t:
+                        if i2 + 1 < k2 - 1 and ts2[i2 + 2] <= t:
+                            i2 = _dop853_step(ts2, t, i2)
+                        else:
+                            i2 += 1
+                    elif i2 > 0 and ts2[i2] > t:
+                        i2 = _dop853_step(ts2, t, i2)
+                i2_[j] = i2
+
+        # 2. the couple stress m and the spin pass's (l, P), on runs of points in one step
+        a = 0
+        while a < nb:
+            b = a + 1
+            while b < nb and i1_[b] == i1_[a]:
+                b += 1
+            if k1 == 0:
+                for j in range(a, b):
+                    m_[j] = ys1[0, 0]
+            else:
+                _couple_run(ts1, hs1, ys1, Q1, i1_[a], tp_[a:b], m_[a:b])
+            a = b
+        a = 0
+        while a < nb:
+            b = a + 1
+            while b < nb and i2_[b] == i2_[a]:
+                b += 1
+            i = i2_[a]
+            if i < 0:
+                for j in range(a, b):
+                    P_[j] = P_cut
+            elif k2 == 0:
+                for j in range(a, b):
+                    w_[j] = ys2[0, 0]
+                    P_[j] = ys2[0, 1]
+            else:
+                _spin_run(ts2, ys2, F2, i, tau_[a:b], w_[a:b], P_[a:b])
+            a = b
+        for j in range(nb):  # w = w_s e^l, 0 beyond the cut
+            w_[j] = w_s * 0.0 if i2_[j] < 0 else w_s * math.exp(w_[j])
+
+        # 3. the fields (the arithmetic of velocity, _shear_stress, _mean_stress, _curvature,
+        # k_velocity_ratio and k_torque, in the same order of operations, with S and sqrt(S)
+        # computed once) and the screen of fields_checked
+        for j in range(nb):
+            h = h_[j]
+            m = m_[j]
+            w = w_[j]
+            P = P_[j]
+            if couette:
+                r = Ri + h
+                u = r * (u_s_Ri - w_s * P)
+                decay = Ri / r
+                syx = -tan_delta * (decay * decay) + couple * (m / r - mu_Ri / (r * r))
+                sc = 1.0
+                kappa = 1.0 / r
+            else:
+                u = u_s - w_s * P
+                syx = syx_plane
+                sc = 1.0 + B_nu * (1.0 - h)
+                kappa = 0.0
+            sc_sin = sc * sp
+            S = a2m1 * syx * syx + 2.0 * (A + 1.0) * sc_sin * sc_sin - four_a1sq * m * m
+            root = math.sqrt(S if S > 0.0 else 0.0)
+            denom = -(root if root > SQRT_S_FLOOR else SQRT_S_FLOOR)
+            F1 = one_a * ((denom - A * syx) + syx) / denom
+            tau = -syx
+            t_pos = ((sc_sin - tau) * (sc_sin + tau) - two_a1 * m * m) / (root + one_a * tau)
+            t_neg = (root - one_a * tau) / two_a1
+            sxy = syx - two_a1 * (t_pos if tau > 0.0 else t_neg)
+            omega = w - kappa * u
+            du = -w * F1 + kappa * u
+            low = symmetric and xb[j] < 0.5
+            u = two_uc - u if low else u
+            m = -m if low else m
+            o_u[j] = u
+            o_omega[j] = omega
+            o_m[j] = m
+            o_sxy[j] = sxy
+            o_syx[j] = syx
+            o_syy[j] = sc
+            o_du[j] = du
+            o_kappa[j] = kappa
+            # S of the returned fields is this S ((-m)(-m) = m m); NaN compares false
+            flagged += 0 if S >= bound * sc_sin * sc_sin else 1
+            # counted, not summed: an integer count vectorises, a float sum would not
+            z = ((u + omega) + (m + sxy)) + ((syx + sc) + (du + kappa))
+            nonfinite += 0 if z - z == 0.0 else 1
     first = -1
     if flagged:
         for q in range(n):
