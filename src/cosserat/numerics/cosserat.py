@@ -995,15 +995,27 @@ def _spin_run(ts, ys, F, i, tau, ell, P):
 
 
 BLOCK = 256
-"""Points per block of :func:`_fields`: its scratch (8 x BLOCK numbers, 16 kB) stays in the
+"""Points per block of :func:`fields_checked`: its scratch (8 x BLOCK numbers, 16 kB) stays in the
 first-level cache and is allocated once per call. Scratch the size of the grid (256 kB at
 2,001 points) cost more than the arithmetic: freed at the top of the heap, glibc's malloc gave
 it back to the system and every call faulted it in again."""
 
 
 @njit(**_VECTOR)
-def _fields(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
-    """:func:`fields_checked` (its docstring): passes over blocks of points."""
+def fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
+    """:func:`fields_at`, and where a profile's checks must look: (out, first, finite).
+
+    ``first`` is the first point whose yield radicand S (``eqn-nd_sigxy``, of the returned
+    sigma_yx, sigma_yy and m) is below ``-slack`` times its scale 2(A+1)(sigma_c sin phi)^2,
+    or NaN (-1 if none); ``finite`` is False if any field is not finite. A slack a little
+    below the profile check's round-off allowance (``RADICAND_ROUNDOFF``) flags every point
+    that check could reject and a few it accepts: the caller runs that check only on a flag,
+    so its decision and message are the same, and an unflagged profile costs no Python.
+
+    Passes over blocks of points (the comment above :data:`BLOCK`). One compiled body: the
+    route calls it for the profile and for the evaluator (:func:`fields_at` is this without
+    the screen, for :func:`predict_batch`), so a first solve compiles and emits it once.
+    """
     n = xi.shape[0]
     out = np.empty((N_FIELDS, n))
     work = np.empty((6, BLOCK))
@@ -1196,21 +1208,7 @@ def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
     (``eqn-nd_bc6``). Points in any order; sorted points are cheapest (no search for the step
     of each point).
     """
-    return _fields(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, 0.0)[0]
-
-
-@njit(cache=True, nogil=True)
-def fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
-    """:func:`fields_at`, and where a profile's checks must look: (out, first, finite).
-
-    ``first`` is the first point whose yield radicand S (``eqn-nd_sigxy``, of the returned
-    sigma_yx, sigma_yy and m) is below ``-slack`` times its scale 2(A+1)(sigma_c sin phi)^2,
-    or NaN (-1 if none); ``finite`` is False if any field is not finite. A slack a little
-    below the profile check's round-off allowance (``RADICAND_ROUNDOFF``) flags every point
-    that check could reject and a few it accepts: the caller runs that check only on a flag,
-    so its decision and message are the same, and an unflagged profile costs no Python.
-    """
-    return _fields(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack)
+    return fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, 0.0)[0]
 
 
 @njit(cache=True, nogil=True)
