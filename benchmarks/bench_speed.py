@@ -74,7 +74,12 @@ from cosserat import (  # noqa: E402
 )
 from cosserat.model.build import make_problem  # noqa: E402
 from cosserat.numerics import cosserat as kernel  # noqa: E402
-from cosserat.routes.numerical import parameter_vector, predict, predict_many  # noqa: E402
+from cosserat.routes.numerical import (  # noqa: E402
+    SCREEN_SLACK,
+    parameter_vector,
+    predict,
+    predict_many,
+)
 
 RTOL = config.RTOL
 ATOL = RTOL * config.ATOL_OVER_RTOL
@@ -135,6 +140,23 @@ def kernel_call(problem: Any, rtol: float = RTOL) -> Callable[[], object]:
     entry = kernel.solve_couette_case if problem.cell_name == "couette" else kernel.solve_plane_case
     atol = rtol * config.ATOL_OVER_RTOL
     return lambda: entry(p, rtol, atol, config.DEFAULT_F, config.MAX_STEPS)
+
+
+def kernel_and_fields_call(problem: Any, rtol: float = RTOL) -> Callable[[], object]:
+    """The kernel, then the fields and the profile's screen at the default output grid
+    (``fields_checked``): what any solve returning a profile must compute, in two compiled
+    calls from Python, with no Python in between (a second measure of section 2)."""
+    p = parameter_vector(problem)
+    entry = kernel.solve_couette_case if problem.cell_name == "couette" else kernel.solve_plane_case
+    atol = rtol * config.ATOL_OVER_RTOL
+    grid = solve(problem).xi.copy()
+    slack = SCREEN_SLACK
+
+    def call() -> object:
+        _, info, cs, sp, g = entry(p, rtol, atol, config.DEFAULT_F, config.MAX_STEPS)
+        return kernel.fields_checked(grid, p, info, *cs, g, *sp, slack)
+
+    return call
 
 
 # ----------------------------------------------------------------- 1. Couette vs solve_bvp
@@ -243,9 +265,12 @@ def solve_against_kernel(rep: Report, rounds: int, min_time: float, eps_list: li
         "and the default solve of a new problem each call (`solve(Problem(cell, rheology))` "
         "less the time to make the problem: what the per-problem parameter vector and output "
         f"grid cost when they are made). {rounds} rounds, minimum per call; ratios to the "
-        "kernel in wall time and (in brackets) in CPU time.\n"
+        "kernel in wall time and (in brackets) in CPU time. A second measure, not the "
+        "target's: the kernel followed by the fields at the 201 output points "
+        "(`fields_checked`, the compiled evaluation with the profile's screen), which any "
+        "solve returning a profile must compute, and the ratio of `solve(p)` to it.\n"
     )
-    rows, ratios, with_check, fresh = [], [], [], []
+    rows, ratios, with_check, fresh, second = [], [], [], [], []
     for name, base in BASE.items():
         for eps in eps_list:
             problem = with_eps(base, eps)
@@ -253,6 +278,7 @@ def solve_against_kernel(rep: Report, rounds: int, min_time: float, eps_list: li
             times = in_turns(
                 {
                     "kernel": kernel_call(problem),
+                    "kernel+fields": kernel_and_fields_call(problem),
                     "solve": lambda p=problem: solve(p),
                     "checked": lambda p=problem: solve(p).diagnostics.residuals["spin"],
                     "new": lambda c=cell, r=law: solve(Problem(c, r)),
@@ -269,18 +295,23 @@ def solve_against_kernel(rep: Report, rounds: int, min_time: float, eps_list: li
             ratios.append((r1, r1c, name, eps))
             with_check.append(r2)
             fresh.append(c_new / kc)
+            kf, kfc = times["kernel+fields"], cpu["kernel+fields"]
+            r3, r3c = times["solve"] / kf, cpu["solve"] / kfc
+            second.append((r3, r3c, name))
             rows.append(
                 [name, f"{eps:g}", f"{k * 1e6:.0f} ({kc * 1e6:.0f})",
                  f"{times['solve'] * 1e6:.0f} ({cpu['solve'] * 1e6:.0f})",
                  f"{r1:.2f} ({r1c:.2f})",
                  f"{times['checked'] * 1e6:.0f}", f"{r2:.1f} ({r2c:.1f})",
                  f"{t_new * 1e6:.0f} ({c_new * 1e6:.0f})",
-                 f"{t_new / k:.2f} ({c_new / kc:.2f})"]
+                 f"{t_new / k:.2f} ({c_new / kc:.2f})",
+                 f"{kf * 1e6:.0f} ({kfc * 1e6:.0f})", f"{r3:.2f} ({r3c:.2f})"]
             )  # fmt: skip
     rep.table(
         rows,
         ["case", "eps", "kernel [us]", "solve(p) [us]", "ratio", "solve + residuals [us]",
-         "ratio", "solve(new p) [us]", "ratio"],
+         "ratio", "solve(new p) [us]", "ratio", "kernel + fields [us]",
+         "solve(p) / (kernel + fields)"],
     )  # fmt: skip
 
     def span(n: str, i: int) -> str:
@@ -289,11 +320,18 @@ def solve_against_kernel(rep: Report, rounds: int, min_time: float, eps_list: li
 
     per_case = ", ".join(f"{n} {span(n, 0)}" for n in BASE)
     per_case_cpu = ", ".join(f"{n} {span(n, 1)}" for n in BASE)
+
+    def span2(n: str) -> str:
+        values = [r[1] for r in second if r[2] == n]
+        return f"{min(values):.2f}-{max(values):.2f}x"
+
+    second_cpu = ", ".join(f"{n} {span2(n)}" for n in BASE)
     rep.target(
         "the default `solve(p)` within 1.5x of its compiled kernel",
         f"wall: {per_case}; CPU: {per_case_cpu} (a new problem each call, CPU: "
         f"{min(fresh):.1f}-{max(fresh):.1f}x; with the residuals read, wall: "
-        f"{min(with_check):.1f}-{max(with_check):.1f}x)",
+        f"{min(with_check):.1f}-{max(with_check):.1f}x; second measure, not the target's: "
+        f"solve(p) over the kernel and its 201-point evaluation, CPU: {second_cpu})",
         *_verdict(max(r[0] for r in ratios) <= 1.5, max(r[1] for r in ratios) <= 1.5),
     )
 

@@ -64,6 +64,23 @@ def test_screen_is_fields_at_and_clears_a_good_profile(name: str) -> None:
     assert first == 0
 
 
+@pytest.mark.parametrize("name", list(PROBLEMS))
+def test_fields_of_points_in_any_order_and_across_blocks_are_the_same_numbers(name: str) -> None:
+    """The field loop works on blocks of kernel.BLOCK points and searches each point's steps
+    from the last point's: shuffled points, and points spanning several blocks, give each
+    point the same numbers as one point at a time."""
+    problem = PROBLEMS[name]
+    sol = run_kernel(problem, config.RTOL, config.RTOL * config.ATOL_OVER_RTOL)
+    rest = (sol.params, sol.info, *sol.couple, sol.geometry, *sol.spin)
+    grid = np.linspace(0.0, 1.0, 3 * kernel.BLOCK + 17)
+    order = np.random.default_rng(3).permutation(grid.size)
+    sorted_out = kernel.fields_at(grid, *rest)
+    assert np.array_equal(kernel.fields_at(grid[order], *rest), sorted_out[:, order])
+    for q in (0, kernel.BLOCK - 1, kernel.BLOCK, grid.size - 1):
+        single = kernel.fields_at(grid[q : q + 1], *rest)
+        assert np.array_equal(single[:, 0], sorted_out[:, q])
+
+
 def test_a_flagged_profile_is_checked_in_python_and_unchanged(monkeypatch) -> None:  # type: ignore[no-untyped-def]
     problem = PROBLEMS["gravity"]
     plain = solve(problem)

@@ -35,6 +35,7 @@ from numba import njit
 from ..model.cells.plane import mean_stress
 from ..model.constitutive import (
     RADICAND_ROUNDOFF,
+    SQRT_S_FLOOR,
     k_radicand,
     k_spin_ratio,
     k_torque,
@@ -943,23 +944,255 @@ def _dop853_step(ts: np.ndarray, t: float, hint: int) -> int:
     return lo
 
 
-@njit(cache=True, nogil=True)
-def _dop853_at(
-    ts: np.ndarray, ys: np.ndarray, F: np.ndarray, t: float, i: int
-) -> tuple[float, float]:
-    """:func:`~cosserat.numerics.dop853.dop853_eval1` of both components (l, P) in step i:
-    the same operations, the step's position and 1 - x computed once for both."""
-    h = ts[i + 1] - ts[i]
-    x = (t - ts[i]) / h if h != 0.0 else 0.0
-    x = min(max(x, 0.0), 1.0)
-    y = 1.0 - x
-    out0 = 0.0
-    out1 = 0.0
-    for j in range(6, -1, -1):
-        w = x if (6 - j) % 2 == 0 else y
-        out0 = (out0 + F[i, j, 0]) * w
-        out1 = (out1 + F[i, j, 1]) * w
-    return out0 + ys[i, 0], out1 + ys[i, 1]
+# The field loop below is split into passes over the points so that LLVM vectorises the
+# arithmetic (4 points per AVX2 instruction): the searches for each point's steps are
+# sequential, the rest is branch-free. The vectorised loops index with a range's own counter
+# from 0 (on slices): numba checks any other index for a negative value (wraparound), and
+# that check alone kept the loops scalar. error_model="numpy": a division by zero gives inf
+# instead of a Python exception, which numba checks for before each division, and which keeps
+# a loop from being vectorised; no divisor here is zero (step lengths, the span, r = Ri + xi,
+# the floored sqrt(S), (1+A) tau + sqrt(S) with tau > 0), and a non-finite field would be
+# flagged by the screen.
+_VECTOR = {"cache": True, "nogil": True, "error_model": "numpy"}
+
+
+@njit(**_VECTOR)
+def _couple_run(ts, hs, ys, Q, i, tp, m):
+    """m at the points ``tp``, all in Radau step i: :func:`dense_eval1`'s operations
+    (a point on the step's end takes the stored value) [-]."""
+    t0, t1, hh = ts[i], ts[i + 1], hs[i]
+    y0, y1 = ys[i, 0], ys[i + 1, 0]
+    c0, c1, c2 = Q[i, 0, 0], Q[i, 0, 1], Q[i, 0, 2]
+    for q in range(tp.shape[0]):
+        t = tp[q]
+        s = (t - t0) / hh
+        v = y0 + s * (c0 + s * (c1 + s * c2))
+        m[q] = y1 if t == t1 else v
+
+
+@njit(**_VECTOR)
+def _spin_run(ts, ys, F, i, tau, ell, P):
+    """(l, P) at the points ``tau``, all in DOP853 step i: :func:`dop853_eval1`'s
+    operations for both components [-]."""
+    t0 = ts[i]
+    hh = ts[i + 1] - t0
+    nonzero = hh != 0.0
+    e6, e5, e4, e3 = F[i, 6, 0], F[i, 5, 0], F[i, 4, 0], F[i, 3, 0]
+    e2, e1, e0 = F[i, 2, 0], F[i, 1, 0], F[i, 0, 0]
+    p6, p5, p4, p3 = F[i, 6, 1], F[i, 5, 1], F[i, 4, 1], F[i, 3, 1]
+    p2, p1, p0 = F[i, 2, 1], F[i, 1, 1], F[i, 0, 1]
+    y0, y1 = ys[i, 0], ys[i, 1]
+    for q in range(tau.shape[0]):
+        x = (tau[q] - t0) / hh if nonzero else 0.0
+        x = 0.0 if x < 0.0 else x
+        x = 1.0 if x > 1.0 else x
+        y = 1.0 - x
+        # out = (out + F[j]) * (x if (6 - j) is even else 1 - x), j = 6 ... 0
+        o = ((((((e6 * x + e5) * y + e4) * x + e3) * y + e2) * x + e1) * y + e0) * x
+        r = ((((((p6 * x + p5) * y + p4) * x + p3) * y + p2) * x + p1) * y + p0) * x
+        ell[q] = o + y0
+        P[q] = r + y1
+
+
+BLOCK = 256
+"""Points per block of :func:`fields_checked`: its scratch (8 x BLOCK numbers, 16 kB) stays in the
+first-level cache and is allocated once per call. Scratch the size of the grid (256 kB at
+2,001 points) cost more than the arithmetic: freed at the top of the heap, glibc's malloc gave
+it back to the system and every call faulted it in again."""
+
+
+@njit(**_VECTOR)
+def fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
+    """:func:`fields_at`, and where a profile's checks must look: (out, first, finite).
+
+    ``first`` is the first point whose yield radicand S (``eqn-nd_sigxy``, of the returned
+    sigma_yx, sigma_yy and m) is below ``-slack`` times its scale 2(A+1)(sigma_c sin phi)^2,
+    or NaN (-1 if none); ``finite`` is False if any field is not finite. A slack a little
+    below the profile check's round-off allowance (``RADICAND_ROUNDOFF``) flags every point
+    that check could reject and a few it accepts: the caller runs that check only on a flag,
+    so its decision and message are the same, and an unflagged profile costs no Python.
+
+    Passes over blocks of points (the comment above :data:`BLOCK`). One compiled body: the
+    route calls it for the profile and for the evaluator (:func:`fields_at` is this without
+    the screen, for :func:`predict_batch`), so a first solve compiles and emits it once.
+    """
+    n = xi.shape[0]
+    out = np.empty((N_FIELDS, n))
+    work = np.empty((6, BLOCK))
+    h_, tp_, tau_, m_, w_, P_ = work[0], work[1], work[2], work[3], work[4], work[5]
+    steps = np.empty((2, BLOCK), dtype=np.int64)
+    i1_, i2_ = steps[0], steps[1]
+    couette = p[P_GEOMETRY] == COUETTE
+    symmetric = not couette and p[P_CASE] == SYMMETRIC
+    k1 = ts1.shape[0] - 1
+    lo1 = min(ts1[0], ts1[k1])
+    hi1 = max(ts1[0], ts1[k1])
+    k2 = ts2.shape[0] - 1
+    tau_end = ts2[k2]
+    g0, g1, singular = g[0], g[1], g[2] != 0.0
+    reach = abs(_map(tau_end, g)[0] - g0)
+    cut = reach < abs(g1)
+    reach_tol = reach * (1.0 + 1e-15)
+    P_cut = ys2[k2, 1]
+    w_s = info[I_W_S]
+    A, sp = p[P_A], p[P_SIN_PHI]
+    Ri, tan_delta, couple = p[P_RI], p[P_TAN_DELTA], p[P_COUPLE]
+    mu_Ri = info[I_MU] * Ri if couette else 0.0
+    u_s = info[I_U_S]
+    u_s_Ri = u_s / Ri if couette else 0.0
+    syx_plane, B_nu = p[P_SIGMA_YX], p[P_B_NU]
+    two_uc = 2.0 * info[I_U_REF]
+    a2m1 = A * A - 1.0
+    two_a1 = 2.0 * (A + 1.0)
+    four_a1sq = 4.0 * (A + 1.0) ** 2
+    one_a = 1.0 + A
+    bound = -slack * 2.0 * (A + 1.0)
+    flagged = 0
+    nonfinite = 0
+    # int64, not the literal 0: numba would compile the step searches twice (Literal[int](0)
+    # and int64), for nothing
+    i1 = np.int64(0)
+    i2 = np.int64(0)
+    s1 = 1.0 if ts1[k1] >= ts1[0] else -1.0  # the direction of the couple-stress pass
+    for start in range(0, n, BLOCK):
+        nb = min(BLOCK, n - start)
+        end = start + nb
+        xb = xi[start:end]
+        o_u, o_omega, o_m = out[F_U, start:end], out[F_OMEGA, start:end], out[F_M, start:end]
+        o_sxy, o_syx = out[F_SIGMA_XY, start:end], out[F_SIGMA_YX, start:end]
+        o_syy, o_du, o_kappa = (
+            out[F_SIGMA_YY, start:end],
+            out[F_DU_DXI, start:end],
+            out[F_KAPPA, start:end],
+        )
+        # 1. each point on the solved half (h), in the couple-stress pass (tp: dense_eval's
+        # clipping) and in the spin pass (tau), then the steps they fall in: the last point's
+        # step or the next (_radau_step's and _dop853_step's conditions), else a search (sorted
+        # points need none)
+        for j in range(nb):
+            x = xb[j]
+            h = 1.0 - x if symmetric and x < 0.5 else x
+            h_[j] = h
+            tp = hi1 if h > hi1 else h
+            tp_[j] = lo1 if tp < lo1 else tp
+            frac = (h - g0) / g1
+            frac = 0.0 if frac < 0.0 else frac
+            frac = 1.0 if frac > 1.0 else frac
+            tau = 1.0 - math.sqrt(1.0 - frac) if singular else frac
+            tau_[j] = tau_end if tau > tau_end else tau
+        for j in range(nb):
+            if k1 > 0:
+                t = tp_[j]
+                st = s1 * t
+                if i1 < k1 - 1 and st > s1 * ts1[i1 + 1]:
+                    if i1 + 1 < k1 - 1 and st > s1 * ts1[i1 + 2]:
+                        i1 = _radau_step(ts1, t, i1)
+                    else:
+                        i1 += 1
+                elif i1 > 0 and st <= s1 * ts1[i1]:
+                    i1 = _radau_step(ts1, t, i1)
+            i1_[j] = i1
+            if cut and abs(h_[j] - g0) > reach_tol:
+                i2_[j] = -1  # beyond the cut: e^l underflows (spin_pass_at: l = -inf)
+            else:
+                if k2 > 0:
+                    t = tau_[j]
+                    if i2 < k2 - 1 and ts2[i2 + 1] <= t:
+                        if i2 + 1 < k2 - 1 and ts2[i2 + 2] <= t:
+                            i2 = _dop853_step(ts2, t, i2)
+                        else:
+                            i2 += 1
+                    elif i2 > 0 and ts2[i2] > t:
+                        i2 = _dop853_step(ts2, t, i2)
+                i2_[j] = i2
+
+        # 2. the couple stress m and the spin pass's (l, P), on runs of points in one step
+        a = 0
+        while a < nb:
+            b = a + 1
+            while b < nb and i1_[b] == i1_[a]:
+                b += 1
+            if k1 == 0:
+                for j in range(a, b):
+                    m_[j] = ys1[0, 0]
+            else:
+                _couple_run(ts1, hs1, ys1, Q1, i1_[a], tp_[a:b], m_[a:b])
+            a = b
+        a = 0
+        while a < nb:
+            b = a + 1
+            while b < nb and i2_[b] == i2_[a]:
+                b += 1
+            i = i2_[a]
+            if i < 0:
+                for j in range(a, b):
+                    P_[j] = P_cut
+            elif k2 == 0:
+                for j in range(a, b):
+                    w_[j] = ys2[0, 0]
+                    P_[j] = ys2[0, 1]
+            else:
+                _spin_run(ts2, ys2, F2, i, tau_[a:b], w_[a:b], P_[a:b])
+            a = b
+        for j in range(nb):  # w = w_s e^l, 0 beyond the cut
+            w_[j] = w_s * 0.0 if i2_[j] < 0 else w_s * math.exp(w_[j])
+
+        # 3. the fields (the arithmetic of velocity, _shear_stress, _mean_stress, _curvature,
+        # k_velocity_ratio and k_torque, in the same order of operations, with S and sqrt(S)
+        # computed once) and the screen of fields_checked
+        for j in range(nb):
+            h = h_[j]
+            m = m_[j]
+            w = w_[j]
+            P = P_[j]
+            if couette:
+                r = Ri + h
+                u = r * (u_s_Ri - w_s * P)
+                decay = Ri / r
+                syx = -tan_delta * (decay * decay) + couple * (m / r - mu_Ri / (r * r))
+                sc = 1.0
+                kappa = 1.0 / r
+            else:
+                u = u_s - w_s * P
+                syx = syx_plane
+                sc = 1.0 + B_nu * (1.0 - h)
+                kappa = 0.0
+            sc_sin = sc * sp
+            S = a2m1 * syx * syx + 2.0 * (A + 1.0) * sc_sin * sc_sin - four_a1sq * m * m
+            root = math.sqrt(S if S > 0.0 else 0.0)
+            denom = -(root if root > SQRT_S_FLOOR else SQRT_S_FLOOR)
+            F1 = one_a * ((denom - A * syx) + syx) / denom
+            tau = -syx
+            t_pos = ((sc_sin - tau) * (sc_sin + tau) - two_a1 * m * m) / (root + one_a * tau)
+            t_neg = (root - one_a * tau) / two_a1
+            sxy = syx - two_a1 * (t_pos if tau > 0.0 else t_neg)
+            omega = w - kappa * u
+            du = -w * F1 + kappa * u
+            low = symmetric and xb[j] < 0.5
+            u = two_uc - u if low else u
+            m = -m if low else m
+            o_u[j] = u
+            o_omega[j] = omega
+            o_m[j] = m
+            o_sxy[j] = sxy
+            o_syx[j] = syx
+            o_syy[j] = sc
+            o_du[j] = du
+            o_kappa[j] = kappa
+            # S of the returned fields is this S ((-m)(-m) = m m); NaN compares false
+            flagged += 0 if S >= bound * sc_sin * sc_sin else 1
+            # counted, not summed: an integer count vectorises, a float sum would not
+            z = ((u + omega) + (m + sxy)) + ((syx + sc) + (du + kappa))
+            nonfinite += 0 if z - z == 0.0 else 1
+    first = -1
+    if flagged:
+        for q in range(n):
+            sc_sin = out[F_SIGMA_YY, q] * sp
+            S = k_radicand(out[F_SIGMA_YX, q], out[F_SIGMA_YY, q], out[F_M, q], A, sp)
+            if not S >= bound * sc_sin * sc_sin:
+                first = q
+                break
+    return out, first, nonfinite == 0
 
 
 @njit(cache=True, nogil=True)
@@ -972,97 +1205,10 @@ def fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2):
     of the constitutive law (``eqn-nd_sigxy``, the flow rule ``eqn-nd_fr1``): the arithmetic of
     :func:`cosserat.routes.assemble.fields_from_state`, compiled. Between identical walls (the
     symmetric case) the solved upper half is reflected: u - u_c odd, m odd, the rest even
-    (``eqn-nd_bc6``). Sorted points are cheapest (no search for the step of each point).
+    (``eqn-nd_bc6``). Points in any order; sorted points are cheapest (no search for the step
+    of each point).
     """
-    n = xi.shape[0]
-    out = np.empty((N_FIELDS, n))
-    symmetric = p[P_GEOMETRY] == PLANE and p[P_CASE] == SYMMETRIC
-    mu = info[I_MU] if p[P_GEOMETRY] == COUETTE else 0.0
-    A, sp = p[P_A], p[P_SIN_PHI]
-    w_s = info[I_W_S]
-    u_c = info[I_U_REF]
-    k1 = ts1.shape[0] - 1
-    lo1 = min(ts1[0], ts1[k1])
-    hi1 = max(ts1[0], ts1[k1])
-    k2 = ts2.shape[0] - 1
-    tau_end = ts2[k2]
-    reach = abs(_map(tau_end, g)[0] - g[0])
-    cut = reach < abs(g[1])
-    # int64, not the literal 0: numba would compile the step searches twice (Literal[int](0)
-    # and int64), for nothing
-    i1 = np.int64(0)
-    i2 = np.int64(0)
-    for q in range(n):
-        x = xi[q]
-        low = symmetric and x < 0.5
-        h = 1.0 - x if low else x
-        # couple stress: radau's dense output (dense_eval's clipping and step ends)
-        if k1 == 0:
-            m = ys1[0, 0]
-        else:
-            tp = min(max(h, lo1), hi1)
-            i1 = _radau_step(ts1, tp, i1)
-            if tp == ts1[i1 + 1]:
-                m = ys1[i1 + 1, 0]
-            else:
-                s = (tp - ts1[i1]) / hs1[i1]
-                m = ys1[i1, 0] + s * (Q1[i1, 0, 0] + s * (Q1[i1, 0, 1] + s * Q1[i1, 0, 2]))
-        # spin pass: l = ln(w/w_s) and P at h (spin_pass_at)
-        if cut and abs(h - g[0]) > reach * (1.0 + 1e-15):
-            w = w_s * 0.0  # e^l underflows beyond the cut (spin_pass_at: l = -inf)
-            P = ys2[k2, 1]
-        else:
-            frac = min(max((h - g[0]) / g[1], 0.0), 1.0)
-            tau = 1.0 - math.sqrt(1.0 - frac) if g[2] != 0.0 else frac
-            tau = min(tau, tau_end)
-            if k2 == 0:
-                ell = ys2[0, 0]
-                P = ys2[0, 1]
-            else:
-                i2 = _dop853_step(ts2, tau, i2)
-                ell, P = _dop853_at(ts2, ys2, F2, tau, i2)
-            w = w_s * math.exp(ell)
-        u = velocity(h, P, p, info)
-        syx = _shear_stress(h, m, p, mu)
-        sc = _mean_stress(h, p)
-        kappa = _curvature(h, p)
-        F1 = k_velocity_ratio(syx, sc, m, A, sp)
-        out[F_SIGMA_YX, q] = syx
-        out[F_SIGMA_XY, q] = syx - 2.0 * (A + 1.0) * k_torque(syx, sc, m, A, sp)
-        out[F_SIGMA_YY, q] = sc
-        out[F_OMEGA, q] = w - kappa * u
-        out[F_DU_DXI, q] = -w * F1 + kappa * u
-        out[F_KAPPA, q] = kappa
-        out[F_U, q] = 2.0 * u_c - u if low else u
-        out[F_M, q] = -m if low else m
-    return out
-
-
-@njit(cache=True, nogil=True)
-def fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
-    """:func:`fields_at`, and where a profile's checks must look: (out, first, finite).
-
-    ``first`` is the first point whose yield radicand S (``eqn-nd_sigxy``, of the returned
-    sigma_yx, sigma_yy and m) is below ``-slack`` times its scale 2(A+1)(sigma_c sin phi)^2,
-    or NaN (-1 if none); ``finite`` is False if any field is not finite. A slack a little
-    below the profile check's round-off allowance (``RADICAND_ROUNDOFF``) flags every point
-    that check could reject and a few it accepts: the caller runs that check only on a flag,
-    so its decision and message are the same, and an unflagged profile costs no Python.
-    """
-    out = fields_at(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2)
-    A, sp = p[P_A], p[P_SIN_PHI]
-    first = -1
-    finite = True
-    for q in range(xi.shape[0]):
-        sc = out[F_SIGMA_YY, q]
-        sc_sin = sc * sp
-        S = k_radicand(out[F_SIGMA_YX, q], sc, out[F_M, q], A, sp)
-        if first < 0 and not S >= -slack * 2.0 * (A + 1.0) * sc_sin * sc_sin:
-            first = q
-        for r in range(N_FIELDS):
-            if not math.isfinite(out[r, q]):
-                finite = False
-    return out, first, finite
+    return fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, 0.0)[0]
 
 
 @njit(cache=True, nogil=True)

@@ -205,13 +205,16 @@ class NumericalSolution:
 
     def __call__(self, xi: FloatArray) -> Fields:
         x = np.asarray(xi, dtype=float)
-        out = kernel.fields_at(
+        # fields_checked, not fields_at (the same numbers): the profile's own entry point, so a
+        # first solve compiles one field loop, not two
+        out, _, _ = kernel.fields_checked(
             np.ascontiguousarray(x.ravel()),
             self.params,
             self.info,
             *self.couple,
             self.geometry,
             *self.spin,
+            0.0,
         )
         if x.ndim == 1:
             return Fields(*out)
