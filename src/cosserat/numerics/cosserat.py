@@ -952,11 +952,11 @@ def _dop853_step(ts: np.ndarray, t: float, hint: int) -> int:
 # instead of a Python exception, which numba checks for before each division, and which keeps
 # a loop from being vectorised; no divisor here is zero (step lengths, the span, r = Ri + xi,
 # the floored sqrt(S), (1+A) tau + sqrt(S) with tau > 0), and a non-finite field would be
-# flagged by the screen.
-_VECTOR = {"cache": True, "nogil": True, "error_model": "numpy"}
+# flagged by the screen. (The options are written out at each decorator: mypy's numba stubs
+# do not accept them as **kwargs.)
 
 
-@njit(**_VECTOR)
+@njit(cache=True, nogil=True, error_model="numpy")
 def _couple_run(ts, hs, ys, Q, i, tp, m):
     """m at the points ``tp``, all in Radau step i: :func:`dense_eval1`'s operations
     (a point on the step's end takes the stored value) [-]."""
@@ -970,7 +970,7 @@ def _couple_run(ts, hs, ys, Q, i, tp, m):
         m[q] = y1 if t == t1 else v
 
 
-@njit(**_VECTOR)
+@njit(cache=True, nogil=True, error_model="numpy")
 def _spin_run(ts, ys, F, i, tau, ell, P):
     """(l, P) at the points ``tau``, all in DOP853 step i: :func:`dop853_eval1`'s
     operations for both components [-]."""
@@ -1001,7 +1001,7 @@ first-level cache and is allocated once per call. Scratch the size of the grid (
 it back to the system and every call faulted it in again."""
 
 
-@njit(**_VECTOR)
+@njit(cache=True, nogil=True, error_model="numpy")
 def fields_checked(xi, p, info, ts1, hs1, ys1, Q1, g, ts2, ys2, F2, slack):
     """:func:`fields_at`, and where a profile's checks must look: (out, first, finite).
 
