@@ -153,6 +153,39 @@ def test_the_joint_fit_recovers_the_model_that_made_noise_free_data(tmp_path):
         assert abs(sc.best - sc.measured) <= 4.0 * math.hypot(sc.measured_se, sc.prediction_se)
 
 
+def test_the_calibrations_bin_means_are_the_forward_models(tmp_path):
+    """calibration.data.Field.bins: a model's prediction of a binned field is its mean over
+    each bin by the rule of validation's forward model (the generator's), to rounding; without
+    bins, its value at the bin centre."""
+    from cosserat.analysis.ranking import model_solve
+    from cosserat.calibration.data import from_run
+    from cosserat.calibration.models import Model
+    from cosserat.studies.validate.forward import bin_average, bin_edges, model_fields
+    from cosserat.studies.validate.spin_scan import bin_means
+
+    run = read_run(synthetic_run(tmp_path, "r", "cosserat", "plane", 20.0, parameters=SMOOTH,
+                                 wall="smooth", noise=1e-6, seed=0))  # fmt: skip
+    rough = math.tan(math.radians(15.0)) / math.sin(math.radians(28.5))
+    values = {"phi": 28.5, "L": 10.0, "A": 1.0 / 3.0, ("K", "moving"): 0.5,
+              ("roughness", "moving"): rough}  # fmt: skip
+    model = Model("cosserat")
+    point = from_run(run)
+    binned = bin_means(point, run)
+    assert binned.fields["u"].bins is not None and point.fields["u"].bins is None
+    fields = model_fields(model_solve(model.problem(binned, values)), run)
+    bins = bin_edges(run)
+    order = np.argsort(run.distance_d)  # the calibration's order: from the moving wall
+    for name, f in (("u", fields.u), ("omega", fields.omega)):
+        mean = np.empty(bins.centre.size)
+        mean[bins.order] = bin_average(bins, f)
+        got = model.predict(binned, values, (name,))[name]
+        np.testing.assert_allclose(got, mean[order], rtol=1e-9, atol=1e-12)
+        at_centre = model.predict(point, values, (name,))[name]
+        y = np.asarray(run.columns["y"], dtype=float)[order]
+        np.testing.assert_allclose(at_centre, f(y), rtol=1e-9, atol=1e-12)
+        assert np.max(np.abs(at_centre - got)) > 1e-4  # u bends within the first bins
+
+
 # --------------------------------------------------------------------------- the verdicts
 def test_cosserat_data_support_the_spin_claim_and_noisy_ones_cannot_decide(tmp_path):
     """Seed 0, as every other corpus here. ``spin`` is supported: the first layers depart by
