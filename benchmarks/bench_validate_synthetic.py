@@ -36,7 +36,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for maker in args.makers.split(","):
             params = (
-                {"rough": {"delta": 25.5}, "smooth": {"delta": 15.0}}
+                {"rough": {"delta": "fully-rough"}, "smooth": {"delta": 15.0}}
                 if maker == "cosserat"
                 else None
             )

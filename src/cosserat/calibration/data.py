@@ -65,6 +65,9 @@ force network is frozen for the whole run, so the time blocks that give the stan
 not sample it, and bin-to-bin differences of the stress many times those errors are structure,
 not noise (seen in every shipped run deeper than 20 d). The models' stresses there are averages
 over such structures."""
+BIN_NODES = 24
+"""Gauss-Legendre points per bin of a model's bin mean (:meth:`Field.nodes`; the same rule as
+``studies.validate.forward.bin_average``, so a model measured either way agrees to rounding)."""
 WALL_EXCLUSION_D = 1.0
 """Stress bins whose centre is closer than this to a wall are left out of ``stress_ratio`` [d]:
 the first layer's stresses are those of a half-filled bin against the wall's grains."""
@@ -84,6 +87,11 @@ class Field:
         The field and its standard error, in bin order.
     correlation : Correlation
         The lag-1 correlation of neighbouring bins' errors (``calibration.noise``).
+    bins : (ndarray, ndarray) or None
+        The bins' edges as distances from the moving wall (near, far) [d], where the values
+        are bin means (a coarse-grained u or omega): a model's prediction is then its mean over
+        each bin (:data:`BIN_NODES` Gauss-Legendre points, weighted by r in Couette flow), not
+        its value at the centre. None (the default): values at the bin centres ``s``.
     """
 
     name: str
@@ -91,13 +99,26 @@ class Field:
     value: FloatArray
     se: FloatArray
     correlation: Correlation = field(default_factory=lambda: Correlation(0.0, "given"))
+    bins: tuple[FloatArray, FloatArray] | None = None
 
     @property
     def n(self) -> int:
         return int(self.s.size)
 
     def with_correlation(self, correlation: Correlation) -> Field:
-        return Field(self.name, self.s, self.value, self.se, correlation)
+        return dataclasses.replace(self, correlation=correlation)
+
+    def nodes(self) -> tuple[FloatArray, FloatArray]:
+        """Where a model is evaluated for this field and with what weight: the bins' Gauss-
+        Legendre points row by row (``n x BIN_NODES``, distances [d]) and their weights, or the
+        centres ``s`` with weight 1 (one column) where the values are not bin means."""
+        if self.bins is None:
+            return self.s[:, None], np.ones((self.n, 1))
+        lo, hi = (np.asarray(b, dtype=float) for b in self.bins)
+        x, w = np.polynomial.legendre.leggauss(BIN_NODES)
+        half = 0.5 * (hi - lo)
+        pts = 0.5 * (hi + lo)[:, None] + half[:, None] * x[None, :]
+        return pts, np.broadcast_to(w[None, :], pts.shape)
 
 
 @dataclass(frozen=True)

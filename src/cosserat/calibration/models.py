@@ -225,7 +225,7 @@ class Model:
                 raise out
             return out
         use = [f for f in fields if f in run.fields]
-        positions = [run.fields[name].s for name in use]
+        positions = [_nodes(run, name)[0] for name in use]
         problem = self.problem(run, values)
         xw, xi = self._where(run, problem, use, positions)
         ev = model_solve(problem).evaluate(xi)._asdict()
@@ -265,7 +265,7 @@ class Model:
         plans: list[tuple[Any, ...]] = []
         for run, values in items:
             use = [f for f in fields if f in run.fields]
-            positions = [run.fields[name].s for name in use]
+            positions = [_nodes(run, name)[0] for name in use]
             try:
                 problem = self.problem(run, values)
             except ParameterError as exc:
@@ -302,22 +302,43 @@ class Model:
         out: dict[str, FloatArray] = {}
         for i, name in enumerate(use):
             part = slice(sizes[i], sizes[i + 1])
+            weight = _nodes(run, name)[1]
+
+            def mean(v: FloatArray, weight: FloatArray = weight) -> FloatArray:
+                """Values at a field's nodes to one per bin (the bin mean, or the value)."""
+                v = np.asarray(v, dtype=float).reshape(weight.shape)
+                return np.asarray(np.sum(weight * v, axis=1) / np.sum(weight, axis=1))
+
+            def at(key: str, part: slice = part) -> FloatArray:
+                return np.asarray(ev[key])[part]
+
             if name == "u":
-                out[name] = ev["u"][part] / uw
+                out[name] = mean(at("u")) / uw
             elif name == "omega":
                 if self.has_spin:
-                    spin = ev["omega"][part]
+                    spin = mean(at("omega"))
                 else:  # half the vorticity of the velocity field (LOCAL_SPIN)
-                    spin = -0.5 * (ev["du_dxi"][part] + ev["kappa"][part] * ev["u"][part])
+                    spin = -0.5 * mean(at("du_dxi") + at("kappa") * at("u"))
                 # model: omega_z H / V; data: omega_z d / V. Both in a frame where the wall
                 # moves along +x above the layer (plane) or turns counter-clockwise (Couette:
                 # the model's x is -e_theta, so its z is e_z): the same sense, no sign change
                 out[name] = spin * run.eps / abs(uw)
             elif name in ("stress_ratio", "wall_ratio"):
-                out[name] = np.abs(ev["sigma_yx"][part]) / ev["sigma_yy"][part]
+                out[name] = np.abs(mean(at("sigma_yx"))) / mean(at("sigma_yy"))
             else:  # pragma: no cover - FIELDS is closed
                 raise ParameterError(f"unknown field {name!r}")
         return out
+
+
+def _nodes(run: RunData, name: str) -> tuple[FloatArray, FloatArray]:
+    """(the points [d] at which a model is evaluated for field ``name`` of ``run``, flattened;
+    their weights, one row per bin): the bin centres, or each bin's Gauss-Legendre points
+    where the field's values are bin means (``Field.nodes``), weighted by r in Couette flow
+    (a bin is an annulus; the inner cylinder moves, so r = R_i + s)."""
+    pts, weight = run.fields[name].nodes()
+    if run.cell == "couette" and run.fields[name].bins is not None:
+        weight = weight * (float(run.cell_values["Ri"]) * run.gap_d + pts)
+    return pts.ravel(), weight
 
 
 def models(names: Sequence[str] | None, local_spin: bool = True) -> list[Model]:

@@ -43,11 +43,13 @@ from numpy.typing import NDArray
 from ..._stencil import half_vorticity
 from ...analysis.corpus import COORDINATE, Run
 from ...analysis.fitting import moving_wall
+from ...calibration.data import BIN_NODES
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
 
-NODES = 24
-"""Gauss-Legendre points per bin of the bin averages."""
+NODES = BIN_NODES
+"""Gauss-Legendre points per bin of the bin averages (the calibration's bin means use the same
+rule, ``calibration.data.Field.nodes``)."""
 WALL_SHIFT_D = 0.5
 """The wall's position in the wall stencils is varied by +- this from its surface [d]."""
 

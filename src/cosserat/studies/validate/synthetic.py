@@ -9,13 +9,15 @@
 * every field's standard error grows with the local velocity, as block errors do (the corpus's
   u_se is about 1e-3 in the creep tail and 0.02-0.04 in the band): ``se_u = noise (floor +
   sqrt(u))``, the spin's ``spin_noise (floor + sqrt(u))``, half the vorticity's
-  :data:`HALF_OVER_OMEGA` of the spin's; the stresses' a fraction ``stress_noise`` of their
-  value;
+  :data:`HALF_OVER_OMEGA` of the spin's; the stresses' (the bins' and the moving wall's,
+  ``wall_stress``) a fraction ``stress_noise`` of their value;
 * the noise of each field is Gaussian with those standard errors and AR(1)-correlated
   between neighbouring bins (lag-1 correlation ``rho``, as the corpus's ``bin_correlation``
   records, 0.3-0.5 for the velocity of the DEM runs), drawn from ``seed``.
 
-The truth is the model's profile averaged over each bin (as the coarse-graining averages;
+The truth is the model's profile averaged over each bin (as the coarse-graining averages,
+weighted by r in a Couette annulus, by the Gauss-Legendre rule of validation's forward model
+and the calibration's bin means, ``forward.bin_average``;
 half the vorticity too, the bin's exact mean rather than a difference stencil over the binned
 u: the sidecar says so with ``half_vorticity_method: bin-average``, and validation's forward
 model measures a model the same way, :mod:`cosserat.studies.validate.forward`), in
@@ -52,6 +54,7 @@ from ...analysis.ranking import model_solve
 from ...errors import ParameterError
 from ...model import make_problem
 from ...model.constitutive import FloatArray
+from .forward import Bins, bin_average
 from .measures import correlated_normal
 
 WALL_SPEED = 1e-3
@@ -66,8 +69,6 @@ QUASI_STATIC_I = 1e-3
 """The slow-flow bound on the local inertial number next to the moving wall [-]."""
 WALL_BINS = 3
 """Bins next to each wall whose inertial number the sidecar records."""
-SUB = 16
-"""Points per bin at which the model is averaged over the bin [-]."""
 WALLS = {
     "rough": {"kind": "glued-grains", "glued_diameter_d": 1.0, "glued_spacing_d": 1.0},
     "smooth": {"kind": "smooth-frictional", "glued_diameter_d": 1.0, "glued_spacing_d": 0.1},
@@ -86,6 +87,33 @@ def _check(name: str, value: float, lo: float, hi: float, closed_hi: bool = True
     if not (math.isfinite(value) and ok):
         bound = f"[{lo:g}, {hi:g}]" if closed_hi else f"[{lo:g}, {hi:g})"
         raise ParameterError(f"{name} must lie in {bound}; got {value:g}")
+
+
+def _fully_rough(values: dict[str, Any]) -> None:
+    """A rough wall's delta: fully rough (``"fully-rough"`` where not given), as the corpus reads
+    a wall of glued grains (``docs/dem.md``: phi is then measured as sin phi = the band's
+    |sigma_yx|/sigma_yy at the wall). A delta the model takes as smoother would make a sidecar
+    that says what the model is not (delta = 25.5 deg at phi = 28.5 deg is 0.04% smoother:
+    the stresses then give phi 0.012 deg low, and noise-free data do not fit their own model).
+
+    Raises
+    ------
+    ParameterError
+        A numeric delta with tan(delta) below sin(phi) by more than the model's round-off
+        tolerance (``config.FULLY_ROUGH_RTOL``)."""
+    from ... import config
+
+    delta = values.setdefault("delta", "fully-rough")
+    if isinstance(delta, str):
+        return
+    phi = float(values.get("phi", config.PHI))
+    ratio = math.tan(math.radians(float(delta))) / math.sin(math.radians(phi))
+    if ratio < 1.0 - config.FULLY_ROUGH_RTOL:
+        raise ParameterError(
+            f"a rough wall (glued grains) is fully rough, tan(delta) = sin(phi) "
+            f"(eqn-bc_fullyrough); got delta = {float(delta):g} deg, tan(delta)/sin(phi) = "
+            f"{ratio:.6g} at phi = {phi:g} deg: give delta = 'fully-rough' or wall = 'smooth'"
+        )
 
 
 def synthetic_run(
@@ -122,8 +150,10 @@ def synthetic_run(
         The model's parameters by key (``delta``, ``K``, ``phi``, ``L``, ``A``, ``mu_s``, ...);
         the others take their declared defaults. ``I_w`` is not given: the wall speed sets it.
     wall : str
-        "rough" (glued grains) or "smooth" (a smooth frictional wall): the sidecar's wall. It
-        does not set the model's wall friction: give ``delta`` for that.
+        "rough" (glued grains) or "smooth" (a smooth frictional wall): the sidecar's wall. A
+        rough wall is fully rough, as the corpus reads glued grains: its ``delta`` is
+        ``"fully-rough"`` unless given, and a given one must be; a smooth wall's friction is
+        its ``delta``.
     B : float
         rho_s nu g H / N of plane shear (0: no gravity) [-].
     Ri_d : float, optional
@@ -149,7 +179,8 @@ def synthetic_run(
     Raises
     ------
     ParameterError
-        A bound above broken, an unknown model or cell, or parameters the model rejects.
+        A bound above broken, an unknown model or cell, parameters the model rejects, or a
+        rough wall whose delta is not fully rough.
     """
     if cell not in ("plane", "couette"):
         raise ParameterError(f"cell must be 'plane' or 'couette' (a moving wall); got {cell!r}")
@@ -181,6 +212,8 @@ def synthetic_run(
     I_w = wall_speed / gap_d  # the moving wall's normal stress is the applied N = 1
     if "I_w" in probe.declared():
         values["I_w"] = I_w
+    if wall == "rough" and "delta" in probe.declared():
+        _fully_rough(values)
     problem = make_problem(model, cell, values)
     profile = model_solve(problem, points=401)
     xw, uw = moving_wall(problem)
@@ -189,16 +222,28 @@ def synthetic_run(
     s = (np.arange(n) + 0.5) * gap_d / n  # bin centres from the lower/inner wall [d]
     edges = np.linspace(0.0, gap_d, n + 1)
     xi = s / gap_d
-    # a bin holds the mean over its width, as the coarse-graining does: SUB points per bin
-    sub = (edges[:-1, None] + (np.arange(SUB) + 0.5)[None, :] * (gap_d / n / SUB)) / gap_d
-    f = profile.evaluate(sub.ravel())
-    u = (f.u / uw).reshape(n, SUB).mean(axis=1)
+    # a bin holds the mean over its width, as the coarse-graining does (weighted by r in an
+    # annulus): the rule validation's forward model and the calibration's bin means use
+    lower = (Ri_d or 0.0) if cell == "couette" else 0.0
+    bins = Bins(lower + s, lower + edges[:-1], lower + edges[1:], np.arange(n),
+                (lower, lower + gap_d), cell == "couette")  # fmt: skip
+
+    def at(x: FloatArray) -> Any:
+        return profile.evaluate(np.clip((np.asarray(x) - lower) / gap_d, 0.0, 1.0))
+
+    def model_half(x: FloatArray) -> FloatArray:
+        g = at(x)
+        return np.asarray(-0.5 * (g.du_dxi + g.kappa * g.u), dtype=float)
+
+    def model_omega(x: FloatArray) -> FloatArray:
+        g = at(x)
+        return model_half(x) if g.omega is None else np.asarray(g.omega, dtype=float)
+
+    u = bin_average(bins, lambda x: np.asarray(at(x).u, dtype=float) / uw)
     u_edges = profile.evaluate(edges / gap_d).u / uw
-    model_half = -0.5 * (f.du_dxi + f.kappa * f.u)
-    model_omega = model_half if f.omega is None else f.omega
     # in units of V/d, in the deck's rotation sense (see the module docstring)
-    half = (eps * model_half / abs(uw)).reshape(n, SUB).mean(axis=1)
-    omega = (eps * model_omega / abs(uw)).reshape(n, SUB).mean(axis=1)
+    half = eps * bin_average(bins, model_half) / abs(uw)
+    omega = eps * bin_average(bins, model_omega) / abs(uw)
     fc = profile.evaluate(xi)
     normal = np.asarray(fc.sigma_yy, dtype=float)
     shear = np.asarray(fc.sigma_yx, dtype=float) * math.copysign(1.0, uw)
@@ -251,6 +296,13 @@ def synthetic_run(
     fw = profile.evaluate(np.array([float(xw)]))
     wall_normal = float(np.asarray(fw.sigma_yy, dtype=float)[0])
     wall_shear = float(np.asarray(fw.sigma_yx, dtype=float)[0]) * math.copysign(1.0, uw)
+    # measured with the errors the sidecar states, as every column is (drawn after the
+    # columns: a seed's columns do not depend on it). Exact values with a 2% error bar made a
+    # smooth wall's delta exact while the scan propagated its stated error.
+    wall_noise = rng.normal(0.0, 1.0, 2) * stress_noise
+    wall_normal_se, wall_shear_se = stress_noise * abs(wall_normal), stress_noise * abs(wall_shear)
+    wall_normal += wall_noise[0] * abs(wall_normal)
+    wall_shear += wall_noise[1] * abs(wall_shear)
     true_params = {k: v for k, v in problem.values().items() if isinstance(v, int | float | str)}
     meta: dict[str, Any] = {
         "cell": cell,
@@ -269,9 +321,10 @@ def synthetic_run(
         "wall_stress": {
             "normal": wall_normal,
             "shear": wall_shear,
-            "normal_se": stress_noise * abs(wall_normal),
-            "shear_se": stress_noise * abs(wall_shear),
-            "note": "the model's stresses at the moving wall (synthetic)",
+            "normal_se": wall_normal_se,
+            "shear_se": wall_shear_se,
+            "note": "the model's stresses at the moving wall with the stated errors' noise "
+            "(synthetic)",
         },
         "wall_inertial_number": {
             "moving": moving,

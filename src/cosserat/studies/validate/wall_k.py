@@ -65,7 +65,7 @@ from ...analysis.corpus import Run
 from ...errors import InputError, ParameterError
 from ...model.constitutive import FloatArray
 from .forward import WALL_SHIFT_D
-from .spin_scan import Scan, _profile, _without_first_layer, first_bin
+from .spin_scan import Scan, _profile, _without_first_layer, bin_means, first_bin
 
 EXTRAPOLATIONS: dict[str, str] = {
     "first-bin": "u and omega of the bin nearest the wall (the grains adjacent to it)",
@@ -436,6 +436,7 @@ def held_k_fit(run: Run, scan: Scan, K: float, name: str = "profile") -> HeldK:
     fit = scan.fit
     (rd,) = with_correlations([from_run(run)], None)
     rd, _ = _without_first_layer(rd, float(np.asarray(run.distance_d)[first_bin(run)]))
+    rd = bin_means(rd, run)  # as the joint fit it is compared with
     fix: dict[str, float] = {"phi": fit.angles.phi, f"K[{rd.walls['moving']}]": K}
     for wall, r in fit.angles.roughness.items():
         fix[f"roughness[{rd.walls[wall]}]"] = r
