@@ -216,11 +216,26 @@ def test_cosserat_data_support_the_spin_claim_and_noisy_ones_cannot_decide(tmp_p
 
 
 SEEDS = range(0, 60, 3)  # corpus() gives its three runs seeds s, s + 1, s + 2: none shared
+CI_SEEDS = range(0, 24, 3)  # the first 8 of them: what CI runs (the 20 are a study)
 ALPHA = 1e-3  # the chance that a correct implementation fails the fraction test
 
 
 @pytest.mark.slow
+def test_spin_model_supports_cosserat_data_as_often_as_its_statistics_predict_8_seeds(tmp_path):
+    """The study below on its first 8 corpora, with the bound its own statistics give for 8
+    (k = 4: P(X < 4) = 2.5e-4 under binomial(8, 0.911)) and the z means within 3 / sqrt(8):
+    a weaker test in a third of the time, run in CI."""
+    _coverage(tmp_path, CI_SEEDS)
+
+
+@pytest.mark.study
 def test_spin_model_supports_cosserat_data_as_often_as_its_statistics_predict(tmp_path):
+    """The 20-corpus study (``pytest -m study``; not in CI: see the cost below)."""
+    k = _coverage(tmp_path, SEEDS)
+    assert k == 13
+
+
+def _coverage(tmp_path, seeds) -> int:
     """Over 20 independent clean Cosserat corpora, ``spin_model`` (validate's verdict:
     :func:`scan_verdict` of the plane runs' scans) is "supported" in at least the number its
     own rules predict. A run is supported when its first layer is >= 3 se from the null
@@ -252,7 +267,7 @@ def test_spin_model_supports_cosserat_data_as_often_as_its_statistics_predict(tm
             (omega, _), (half, _) = run.quantity("omega"), run.quantity("half_vorticity")
             truth[run.name] = float(omega[first_bin(run)] - half[first_bin(run)])
     supported, calls, z = 0, [], {r: [] for r in truth}
-    for seed in SEEDS:
+    for seed in seeds:
         corpus_runs = runs(corpus(tmp_path / f"s{seed}", "cosserat", noise=0.01, seed=seed))
         scans, _ = spin_scans(corpus_runs, corpus_runs)
         assert [sc.run for sc in scans] == list(truth)
@@ -265,12 +280,14 @@ def test_spin_model_supports_cosserat_data_as_often_as_its_statistics_predict(tm
         supported += verdict.verdict == "supported"
     window = 1.0 - 2.0 * norm.sf(2.0)
     p = math.prod(window * norm.cdf(abs(truth[r]) / se0[r] - 3.0) for r in truth)
-    k = next(k for k in range(len(SEEDS), -1, -1) if binom.cdf(k - 1, len(SEEDS), p) <= ALPHA)
-    assert p == pytest.approx(0.911, abs=5e-3) and k == 13
+    n = len(seeds)
+    k = next(k for k in range(n, -1, -1) if binom.cdf(k - 1, n, p) <= ALPHA)
+    assert p == pytest.approx(0.911, abs=5e-3) and k >= n // 2
     assert supported >= k, calls
     assert all("refuted" not in c.values() for c in calls), calls
     for run, zs in z.items():
-        assert abs(np.mean(zs)) <= 3.0 / math.sqrt(len(SEEDS)), (run, np.mean(zs), zs)
+        assert abs(np.mean(zs)) <= 3.0 / math.sqrt(n), (run, np.mean(zs), zs)
+    return k
 
 
 @pytest.mark.parametrize("model", ["mui", "ngf"])
