@@ -1268,12 +1268,13 @@ def _exponent_text(s: DeltaSeries) -> str:
 
 def scope_text(c: ModelDelta) -> str:
     """What one calibration was made on: "one calibration of the material over N runs of
-    both wall kinds (kind: n, ...)", or the series' runs where it does not say
+    both wall kinds (kind: n, ...), this series' n among them", or "calibrated on n runs"
+    (the series' runs) where it does not say
     (``calibration``'s ``runs`` and ``wall_kinds``, :func:`.fits.calibrate_material`)."""
     runs = c.calibration.get("runs")
     kinds = c.calibration.get("wall_kinds") or {}
     if not runs:
-        return f"{len(c.predicted)} runs"
+        return f"calibrated on {len(c.predicted)} runs"
     which = (
         "one wall kind"
         if len(kinds) <= 1
@@ -1337,7 +1338,7 @@ def _curve_call(
             f"{_g(p.stderr, '.2g')} d; {preds}"
         )
     calib = "; ".join(
-        f"{m} calibrated on {scope_text(c)}: {calibration_text(c)}"
+        f"{m}: {scope_text(c)}: {calibration_text(c)}"
         for m, c in s.curves.items()
         if c.ok
     )
