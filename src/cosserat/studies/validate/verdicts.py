@@ -1338,9 +1338,7 @@ def _curve_call(
             f"{_g(p.stderr, '.2g')} d; {preds}"
         )
     calib = "; ".join(
-        f"{m}: {scope_text(c)}: {calibration_text(c)}"
-        for m, c in s.curves.items()
-        if c.ok
+        f"{m}: {scope_text(c)}: {calibration_text(c)}" for m, c in s.curves.items() if c.ok
     )
     failed = "; ".join(f"{m}: {c.message}" for m, c in s.curves.items() if not c.ok)
     text = (
