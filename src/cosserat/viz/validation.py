@@ -546,8 +546,9 @@ def delta_claim_figure(
     series: Sequence[Mapping[str, Any]], exponents: Mapping[str, float], title: str
 ) -> Figure:
     """Measured Delta against H/d on log axes with error bars, one panel per gap series, each
-    model's Delta curve from one joint calibration of the series (its value at each run with
-    the calibration's error), and the claimed exponents through the data.
+    model's Delta curve from one joint calibration of the series' material, drawn with the
+    series' wall (its value at each run with the calibration's error), and the claimed
+    exponents through the data.
 
     Parameters
     ----------
@@ -597,7 +598,7 @@ def delta_claim_figure(
                 if cg:
                     ax.plot([g for g, _ in cg], [d for _, d in cg], color=st["color"],
                             linestyle=st.get("linestyle", "-"), linewidth=1.2,
-                            label=f"{model}, one joint calibration")  # fmt: skip
+                            label=f"{model}, one calibration of the material")  # fmt: skip
                     all_g += [g for g, _ in cg]
                     all_d += [d for _, d in cg]
                 cp = [p for p in c.get("points", []) if p[1]]

@@ -633,7 +633,8 @@ second [-]."""
 
 @dataclass
 class SeriesCalibration:
-    """One model calibrated jointly on a gap series, and its Delta there.
+    """One model calibrated jointly on the runs of a material (:func:`calibrate_material`),
+    and its Delta at one gap series' runs.
 
     Attributes
     ----------
@@ -641,7 +642,9 @@ class SeriesCalibration:
     status, message : str
         ``"ok"``, or ``"failed"`` and why.
     summary : dict
-        Parameters (value, stderr, free, reason), chi2, dof, p_value, warnings, seconds.
+        Parameters (value, stderr, free, reason), chi2, dof, p_value, warnings; ``material``
+        (the engine's label), ``runs`` (every run calibrated, of every series of the material)
+        and ``wall_kinds`` (wall kind -> its runs).
     predicted : dict of run name to (Delta, se)
         Delta of the calibrated model at each run's gap, bins and rate [d], with its error from
         the calibration's covariance [d].
@@ -721,10 +724,8 @@ def calibrate_series(
     curve: bool = True,
     use_fits: bool = False,
 ) -> list[SeriesCalibration]:
-    """Each model calibrated jointly on the runs of one gap series (``cosserat calibrate``'s
-    engine, :func:`cosserat.calibration.joint.calibrate_model`: material parameters shared,
-    wall parameters shared per wall kind, what the metadata give fixed, every measured field
-    the model predicts; NGF's A free), and its Delta at each run and on a grid of H/d.
+    """Each model calibrated jointly on ``runs`` as one series (:func:`calibrate_material`
+    with one series of every run: what validate did before it calibrated per material).
 
     Parameters
     ----------
@@ -735,8 +736,7 @@ def calibrate_series(
     f : float
         Fraction defining Delta [-].
     fits : sequence of RunFits or None
-        The runs' own fits, whose median values start the calibration with ``use_fits``
-        (default: the declared defaults, as ``cosserat calibrate`` starts).
+        The runs' own fits (``use_fits``: their median values start the calibration).
     curve : bool
         Also compute the curve on a grid of H/d (for the figure).
 
@@ -745,30 +745,75 @@ def calibrate_series(
     CosseratError
         A run the calibration cannot take (:func:`cosserat.calibration.data.from_run`).
     """
+    return calibrate_material(runs, models, [("", tuple(runs), f)], fits, curve, use_fits)[""]
+
+
+def calibrate_material(
+    runs: Sequence[Run],
+    models: Sequence[str] | None,
+    series: Sequence[tuple[str, Sequence[Run], float]],
+    fits: Sequence[RunFits | None] = (),
+    curve: bool = True,
+    use_fits: bool = False,
+) -> dict[str, list[SeriesCalibration]]:
+    """Each model calibrated jointly on every run of one material (``cosserat calibrate``'s
+    engine, :func:`cosserat.calibration.joint.calibrate_model`: material parameters shared by
+    every run, wall parameters shared per wall kind, what the metadata give fixed, every
+    measured field the model predicts; NGF's A free), and, for each of the material's gap
+    series, that one calibration's Delta at the series' runs and on a grid of H/d with the
+    series' own wall (its first run the template).
+
+    Parameters
+    ----------
+    runs : sequence of Run
+        The material's runs (plane or Couette; every wall kind).
+    models : sequence of str, optional
+        Registered rheologies (default: every one the calibration knows on the runs' cell).
+    series : sequence of (key, runs, f)
+        The gap series that read the calibration: a key, its runs (among ``runs``) and the
+        fraction defining its Delta [-].
+    fits : sequence of RunFits or None
+        The runs' own fits, whose median values start the calibration with ``use_fits``
+        (default: the declared defaults, as ``cosserat calibrate`` starts).
+    curve : bool
+        Also compute each series' curve on a grid of H/d (for the figure).
+
+    Returns
+    -------
+    dict
+        Series key -> one :class:`SeriesCalibration` per model (a failed calibration fails
+        for every series).
+
+    Raises
+    ------
+    CosseratError
+        A run the calibration cannot take (:func:`cosserat.calibration.data.from_run`).
+    """
     from ...calibration.data import from_run, with_correlations
-    from ...calibration.engine import FD_STEP
     from ...calibration.joint import calibrate_model
     from ...calibration.models import Model
     from ...calibration.models import models as make_models
-    from .measures import reference_velocity
 
     data = with_correlations([from_run(r) for r in runs], None)
+    by_name = {rd.name: rd for rd in data}
     cell = runs[0].cell
     chosen = [m for m in make_models(None) if cell in m.cells()]
     if models is not None:
         chosen = [m for m in chosen if m.name in models]
-    u0 = reference_velocity(runs[0])
-    rate = _rate(data)
-    out = []
+    kinds: dict[str, list[str]] = {}
+    for r in runs:
+        kind = r.wall.get("kind") if isinstance(r.wall, dict) else None
+        kinds.setdefault(str(kind or "unknown wall"), []).append(r.name)
+    out: dict[str, list[SeriesCalibration]] = {key: [] for key, _, _ in series}
     for m in chosen:
         keys = {p.key for p in m.parameters()}
         start = _series_start(m.name, keys, fits) if use_fits else None
         mc = calibrate_model(Model(m.name), data, None, start=start, starts=SERIES_STARTS)
         if not mc.ok:
-            out.append(SeriesCalibration(m.name, "failed", " ".join(mc.message.split())))
+            for key, _, _ in series:
+                out[key].append(SeriesCalibration(m.name, "failed", " ".join(mc.message.split())))
             continue
         s, opt = mc.internal
-        model = s.model
         theta = opt.theta
         scale = max((e.scale for e in mc.parameters.values()), default=1.0)
         cov = (
@@ -776,47 +821,6 @@ def calibrate_series(
             if mc.covariance is not None
             else np.zeros((theta.size, theta.size))
         )
-        lo, hi = s.bounds()
-        predicted: dict[str, tuple[float | None, float | None]] = {}
-        for run, rd in zip(runs, data, strict=True):
-            probe = _probe(rd, rd.name, rd.gap_d, run.measured().distance_d, rd.I_w)
-            value = _delta(model, probe, s.run_values(rd, theta), u0, f)
-            se = None
-            if value is not None and theta.size:
-                g = np.zeros(theta.size)
-                ok = True
-                for j in range(theta.size):
-                    h = (
-                        FD_STEP
-                        * (hi[j] - lo[j])
-                        * (1.0 if theta[j] + FD_STEP * (hi[j] - lo[j]) <= hi[j] else -1.0)
-                    )
-                    moved = theta.copy()
-                    moved[j] += h
-                    dj = _delta(model, probe, s.run_values(rd, moved), u0, f)
-                    if dj is None:
-                        ok = False
-                        break
-                    g[j] = (dj - value) / h
-                se = math.sqrt(max(float(g @ cov @ g), 0.0)) if ok else None
-            predicted[rd.name] = (value, se)
-        grid: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
-        if curve:
-            m0 = runs[0].measured().distance_d
-            first = float(np.min(m0))
-            step = float(np.median(np.diff(np.sort(m0)))) if m0.size > 1 else 1.0
-            gaps = np.geomspace(
-                min(r.gap_d for r in runs) / CURVE_SPAN[0],
-                max(r.gap_d for r in runs) * CURVE_SPAN[1],
-                CURVE_POINTS,
-            )
-            values = s.run_values(data[0], theta)
-            ds = []
-            for g in gaps:
-                probe = _probe(data[0], f"{data[0].name}@H{g:.4g}", float(g),
-                               np.arange(first, g, step), rate(float(g)))  # fmt: skip
-                ds.append(_delta(model, probe, values, u0, f))
-            grid = (tuple(float(g) for g in gaps), tuple(ds))
         summary = {
             "parameters": {
                 n: {
@@ -837,9 +841,107 @@ def calibrate_series(
             "log10_p_value": mc.log10_p_value,
             "unidentified": [d.describe() for d in mc.flat],
             "warnings": list(mc.warnings),
+            "material": data[0].material,
+            "runs": [r.name for r in runs],
+            "wall_kinds": {k: list(v) for k, v in kinds.items()},
         }
-        out.append(SeriesCalibration(m.name, "ok", "", summary, predicted, grid))
+        for key, members, f in series:
+            rds = [by_name[r.name] for r in members]
+            predicted, grid = _series_delta(s, theta, cov, members, rds, f, curve)
+            out[key].append(SeriesCalibration(m.name, "ok", "", dict(summary), predicted, grid))
     return out
+
+
+def _series_delta(
+    s: Any,
+    theta: FloatArray,
+    cov: FloatArray,
+    runs: Sequence[Run],
+    data: Sequence[Any],
+    f: float,
+    curve: bool,
+) -> tuple[
+    dict[str, tuple[float | None, float | None]],
+    tuple[tuple[float, ...], tuple[float | None, ...]],
+]:
+    """One calibration's Delta at a series' runs, with its error from the covariance ``cov``
+    (delta method), and on a grid of H/d with the series' first run as the template (its
+    wall, its bins' spacing; I_w from :func:`_rate` of the series' runs)."""
+    from ...calibration.engine import FD_STEP
+    from .measures import reference_velocity
+
+    model = s.model
+    u0 = reference_velocity(runs[0])
+    rate = _rate(data)
+    lo, hi = s.bounds()
+    predicted: dict[str, tuple[float | None, float | None]] = {}
+    for run, rd in zip(runs, data, strict=True):
+        probe = _probe(rd, rd.name, rd.gap_d, run.measured().distance_d, rd.I_w)
+        value = _delta(model, probe, s.run_values(rd, theta), u0, f)
+        se = None
+        if value is not None and theta.size:
+            g = np.zeros(theta.size)
+            ok = True
+            for j in range(theta.size):
+                h = (
+                    FD_STEP
+                    * (hi[j] - lo[j])
+                    * (1.0 if theta[j] + FD_STEP * (hi[j] - lo[j]) <= hi[j] else -1.0)
+                )
+                moved = theta.copy()
+                moved[j] += h
+                dj = _delta(model, probe, s.run_values(rd, moved), u0, f)
+                if dj is None:
+                    ok = False
+                    break
+                g[j] = (dj - value) / h
+            se = math.sqrt(max(float(g @ cov @ g), 0.0)) if ok else None
+        predicted[rd.name] = (value, se)
+    grid: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
+    if curve:
+        m0 = runs[0].measured().distance_d
+        first = float(np.min(m0))
+        step = float(np.median(np.diff(np.sort(m0)))) if m0.size > 1 else 1.0
+        gaps = np.geomspace(
+            min(r.gap_d for r in runs) / CURVE_SPAN[0],
+            max(r.gap_d for r in runs) * CURVE_SPAN[1],
+            CURVE_POINTS,
+        )
+        values = s.run_values(data[0], theta)
+        ds = []
+        for g in gaps:
+            probe = _probe(data[0], f"{data[0].name}@H{g:.4g}", float(g),
+                           np.arange(first, g, step), rate(float(g)))  # fmt: skip
+            ds.append(_delta(model, probe, values, u0, f))
+        grid = (tuple(float(g) for g in gaps), tuple(ds))
+    return predicted, grid
+
+
+@dataclass(frozen=True)
+class MaterialJob:
+    """One model's joint calibration of one material's runs, and the gap series that read it
+    (:func:`calibrate_material`); made by ``study.series_jobs``, run by :func:`material_job`."""
+
+    material: str
+    """The material's key (:class:`~cosserat.studies.validate.grouping.Material`)."""
+    runs: tuple[Run, ...]
+    model: str
+    series: tuple[tuple[str, tuple[Run, ...], float], ...]
+    """(series key, its runs, its f [-]) of every series of the material."""
+
+
+def material_job(job: MaterialJob) -> dict[str, SeriesCalibration]:
+    """:func:`calibrate_material` of one job, series key -> its calibration, a failure as a
+    result for every series (for worker processes)."""
+    try:
+        out = calibrate_material(job.runs, [job.model], job.series)
+    except CosseratError as exc:
+        why = " ".join(str(exc).split())
+        return {key: SeriesCalibration(job.model, "failed", why) for key, _, _ in job.series}
+    if not any(out.values()):
+        why = f"model {job.model!r} has no {job.runs[0].cell} cell"
+        return {key: SeriesCalibration(job.model, "failed", why) for key, _, _ in job.series}
+    return {key: cals[0] for key, cals in out.items()}
 
 
 def series_job(runs: Sequence[Run], model: str, f: float) -> SeriesCalibration:

@@ -10,6 +10,15 @@ itself is what varies. Several runs at one gap (a rate-check partner at another 
 are replicates, named as such. A plane run whose two walls differ (the sidecar's ``wall_fixed``
 or ``walls``, :func:`walls_differ`) is in no smooth-wall or rough-wall series: its
 :attr:`Series.roughness` is None, and its walls are named both (:func:`wall_label`).
+
+**One material.** The Delta verdicts' joint calibrations are made per material
+(:func:`group_materials`), not per series: the series of one cell whose runs are of one
+material (:func:`material_of`: the sidecar's ``material`` where it names one, else its
+``grains`` without their number and its ``contact`` law, the label
+:mod:`cosserat.calibration.data` gives, so that the engine shares the material parameters over
+exactly these runs) form one :class:`Material`, whatever their walls and their held cell
+parameter (B, R_i/H: cell parameters the models take from the metadata). Runs that give
+neither are one unnamed material, as the engine takes them.
 """
 
 from __future__ import annotations
@@ -90,6 +99,7 @@ def _material(run: Run) -> str:
         "wall_fixed": run.meta.get("wall_fixed"),
         "grains": grains,
         "contact": run.meta.get("contact"),
+        "material": run.meta.get("material"),
         "moving_wall": run.moving_wall,
     }
     return json.dumps(record, sort_keys=True, default=str)
@@ -184,6 +194,54 @@ def group_runs(runs: Sequence[Run]) -> list[Series]:
             out[i] = Series(f"{s.key} [{sum(1 for x in out[:i] if x.key == s.key) + 1}]", s.runs)
         keys[s.key] = i
     return sorted(out, key=lambda s: s.key)
+
+
+def material_of(run: Run) -> str:
+    """The label of a run's material (module docstring): the calibration engine's
+    (:mod:`cosserat.calibration.data`), so that runs with one label share one set of material
+    parameters there."""
+    from ...calibration.data import _material_label
+
+    return _material_label(run.meta)
+
+
+@dataclass(frozen=True)
+class Material:
+    """The gap series of one cell and one material (module docstring); ``key`` names both."""
+
+    key: str
+    label: str
+    series: tuple[Series, ...]
+
+    @property
+    def cell(self) -> str:
+        return self.series[0].cell
+
+    @property
+    def runs(self) -> tuple[Run, ...]:
+        """Every run of the material's series, series by series."""
+        return tuple(r for s in self.series for r in s.runs)
+
+    def wall_kinds(self) -> dict[str, list[str]]:
+        """Wall kind (the sidecar's ``wall.kind``, "unknown wall" without one) -> its runs."""
+        out: dict[str, list[str]] = {}
+        for r in self.runs:
+            out.setdefault(_kind(r.wall) or "unknown wall", []).append(r.name)
+        return out
+
+
+def group_materials(series: Sequence[Series]) -> list[Material]:
+    """The materials of ``series`` (module docstring), each with its series in their order;
+    series whose walls differ (:attr:`Series.roughness` None) are in none."""
+    groups: dict[tuple[str, str], list[Series]] = {}
+    for s in series:
+        if walls_differ(s.runs[0]):
+            continue
+        groups.setdefault((s.cell, material_of(s.runs[0])), []).append(s)
+    return [
+        Material(f"{cell}, {label}", label, tuple(members))
+        for (cell, label), members in sorted(groups.items())
+    ]
 
 
 def couette_note(series: Sequence[Series]) -> list[str]:

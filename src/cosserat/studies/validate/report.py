@@ -27,7 +27,15 @@ from .measures import (
     WALL_EXCLUSION_D,
     WallSpin,
 )
-from .verdicts import EXPONENT_TOL, MIN_GAPS, P_CONSISTENT, SIGN_SIGMAS, calibration_text, relevant
+from .verdicts import (
+    EXPONENT_TOL,
+    MIN_GAPS,
+    P_CONSISTENT,
+    SIGN_SIGMAS,
+    calibration_text,
+    relevant,
+    scope_text,
+)
 
 if TYPE_CHECKING:
     from .fits import FitSummary
@@ -531,11 +539,11 @@ def context(report: ValidationReport) -> dict[str, Any]:
         calibrated = []
         for m, c in g.curves.items():
             if not c.ok:
-                calibrated.append(f"joint calibration of {m} on the series failed: {c.message}")
+                calibrated.append(f"joint calibration of {m} on the material failed: {c.message}")
                 continue
             test = tests.get(m)
             calibrated.append(
-                f"{m}, one joint calibration of the series ({calibration_text(c)}): Delta = "
+                f"{m}, {scope_text(c)} ({calibration_text(c)}): Delta = "
                 + ", ".join(
                     f"{_g(v, '.3g')}" + ("" if e is None else f" +- {e:.2g}")
                     for v, e in c.predicted.values()

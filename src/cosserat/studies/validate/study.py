@@ -23,9 +23,17 @@ from ...analysis.gap import SlopeFit, power_law_slope
 from ...config import DEFAULT_F
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
-from .fits import RunFits, SeriesCalibration, StressFix, cosserat_fix, series_job, try_fit_run
+from .fits import (
+    MaterialJob,
+    RunFits,
+    SeriesCalibration,
+    StressFix,
+    cosserat_fix,
+    material_job,
+    try_fit_run,
+)
 from .forward import STENCILS
-from .grouping import couette_note, group_runs, walls_differ
+from .grouping import couette_note, group_materials, group_runs, walls_differ
 from .layer import LayerPosition, band_inertial_number, layer_verdicts, measure_layer
 from .measures import (
     NEAR_WALL_D,
@@ -497,12 +505,13 @@ def _analyse_all(
     progress: Callable[[str, int, int], None] | None,
     workers: int | None,
     figures_to: Path | None = None,
-    jobs: Sequence[tuple[str, tuple[Run, ...], str, float]] = (),
+    jobs: Sequence[MaterialJob] = (),
     independent_bins: bool = False,
     fixes: Mapping[str, StressFix] | None = None,
 ) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]]]:
-    """:func:`analyse_run` of every run and :func:`.fits.series_job` of every job, in worker
-    processes when worth it (``validate``): (the runs' results, series key -> calibrations)."""
+    """:func:`analyse_run` of every run and :func:`.fits.material_job` of every job, in worker
+    processes when worth it (``validate``): (the runs' results, series key -> calibrations,
+    one per model)."""
     workers = 1 if workers is None else min(workers, len(runs) + len(jobs))
     cals: dict[str, list[SeriesCalibration]] = {}
     if workers <= 1:
@@ -516,20 +525,19 @@ def _analyse_all(
             )  # fmt: skip
             if progress:
                 progress("runs", i + 1, len(runs))
-        for key, members, model, f_s in jobs:
-            cals.setdefault(key, []).append(series_job(members, model, f_s))
+        for job in jobs:
+            for key, cal in material_job(job).items():
+                cals.setdefault(key, []).append(cal)
         return out, cals
     from ...numerics.runtime import worker_processes
 
     done: dict[int, RunResult] = {}
-    # the longest first, so that the workers end together: mu(I)'s series calibrations (a
+    # the longest first, so that the workers end together: mu(I)'s material calibrations (a
     # quadrature per solve), then the runs with the most bins
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
-    ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k][2] != "mui", -len(jobs[k][1])))
+    ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k].model != "mui", -len(jobs[k].runs)))
     with worker_processes(workers) as pool:
-        series_futures = {
-            pool.submit(series_job, jobs[k][1], jobs[k][2], jobs[k][3]): k for k in ranked
-        }
+        series_futures = {pool.submit(material_job, jobs[k]): k for k in ranked}
         futures = {
             pool.submit(
                 analyse_run,
@@ -550,7 +558,8 @@ def _analyse_all(
                 progress("runs", k + 1, len(runs))
         got = {series_futures[fut]: fut.result() for fut in as_completed(series_futures)}
     for k in range(len(jobs)):  # in the jobs' order, whichever ended first
-        cals.setdefault(jobs[k][0], []).append(got[k])
+        for key, cal in got[k].items():
+            cals.setdefault(key, []).append(cal)
     return [done[i] for i in range(len(runs))], cals
 
 
@@ -599,26 +608,35 @@ def series_f(runs: Sequence[Run], f: float) -> dict[str, tuple[float, str]]:
 
 def series_jobs(
     runs: Sequence[Run], models: Sequence[str] | None, f: float = DEFAULT_F
-) -> list[tuple[str, tuple[Run, ...], str, float]]:
-    """(series key, its runs, model, f) of every joint calibration of a gap series that
-    validate makes: series of plane or Couette runs at two or more distinct gaps, each model
-    the calibration has on their cell (``models`` only, if given), at the series' f
-    (:func:`series_f`)."""
+) -> list[MaterialJob]:
+    """The joint calibrations behind the Delta verdicts that validate makes: one per material
+    (:func:`.grouping.group_materials`: one cell, one material, every wall kind; runs whose
+    walls differ are in none) and model the calibration has on its cell (``models`` only, if
+    given), over every run of the material's gap series, made when at least one of its series
+    is of plane or Couette runs at two or more distinct gaps; each series reads it at its own
+    f (:func:`series_f`)."""
     from ...calibration.models import models as make_models
 
     chosen = series_f(runs, f)
     out = []
-    for s in group_runs([r for r in runs if not walls_differ(r)]):
-        gaps: list[float] = []
-        for r in s.runs:
-            if not any(abs(r.gap_d - g) <= SAME_GAP * g for g in gaps):
-                gaps.append(r.gap_d)
-        if len(gaps) < 2 or s.cell not in ("plane", "couette"):
+    for mat in group_materials(group_runs([r for r in runs if not walls_differ(r)])):
+        if mat.cell not in ("plane", "couette"):
             continue
+        if max(_distinct_gaps(s.runs) for s in mat.series) < 2:
+            continue
+        parts = tuple((s.key, s.runs, chosen.get(s.key, (f, ""))[0]) for s in mat.series)
         for m in make_models(None):
-            if s.cell in m.cells() and (models is None or m.name in models):
-                out.append((s.key, s.runs, m.name, chosen.get(s.key, (f, ""))[0]))
+            if mat.cell in m.cells() and (models is None or m.name in models):
+                out.append(MaterialJob(mat.key, mat.runs, m.name, parts))
     return out
+
+
+def _distinct_gaps(runs: Sequence[Run]) -> int:
+    gaps: list[float] = []
+    for r in runs:
+        if not any(abs(r.gap_d - g) <= SAME_GAP * g for g in gaps):
+            gaps.append(r.gap_d)
+    return len(gaps)
 
 
 def _curves(cals: Sequence[SeriesCalibration]) -> dict[str, ModelDelta]:
@@ -637,16 +655,18 @@ def judge(
     spin_scan: int = COARSE,
 ) -> tuple[list[DeltaSeries], list[Verdict], list[str]]:
     """The gap series and the verdicts on every claim, from the runs' results. Each series'
-    joint calibrations (:func:`series_jobs`) are ``calibrations`` (series key -> one per
-    model), or else made here unless ``calibrate`` is False. ``spin_scan``: points per
+    joint calibrations (one per model over every run of its material, :func:`series_jobs`)
+    are ``calibrations`` (series key -> one per model), or else made here unless
+    ``calibrate`` is False. ``spin_scan``: points per
     parameter of the spin scan behind ``spin_model`` (:mod:`.spin_scan`; 0: the u-only fits
     alone)."""
     by_name = {r.run.name: r for r in results}
     if calibrations is None:
         made: dict[str, list[SeriesCalibration]] = {}
         if calibrate:
-            for key, runs, model, f_s in series_jobs([r.run for r in results], models, f):
-                made.setdefault(key, []).append(series_job(runs, model, f_s))
+            for job in series_jobs([r.run for r in results], models, f):
+                for key, cal in material_job(job).items():
+                    made.setdefault(key, []).append(cal)
         calibrations = made
     chosen = series_f([r.run for r in results], f)
     series = []

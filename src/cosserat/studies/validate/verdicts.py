@@ -48,8 +48,9 @@ p-values, the runs used) and what data would change it. The rules:
   holds a wall parameter at a search cut (``unfit``) decide nothing; with no other wall the
   verdict is "undecided", and what they would say is kept (``with_contradicting_fits``).
 * **Delta against the gap** (:func:`delta_law_verdict`): in each relevant series, the measured
-  Delta(H/d) against each model's Delta from one joint calibration of the series
-  (:class:`ModelDelta`; :func:`curve_test`: chi^2 with the two errors in quadrature, as it is
+  Delta(H/d) against each model's Delta from one joint calibration of the series' material
+  (every run of its material on its cell, every wall kind; read with the series' own wall:
+  :class:`ModelDelta`; :func:`curve_test`: chi^2 with the two errors in quadrature, as it is
   and up to a common factor, which tests the dependence on the gap). "supported" when the
   Cosserat curve's shape has p >= :data:`P_CONSISTENT` and an alternative (another model's
   curve, or the other claim's power law with a free level, :func:`power_law_test`) has p <
@@ -1076,7 +1077,8 @@ class DeltaPoint:
 
 @dataclass(frozen=True)
 class ModelDelta:
-    """One model's Delta from one joint calibration of a gap series.
+    """One model's Delta at a gap series from one joint calibration of its material (every
+    run of the material on the cell, every wall kind; the series' own wall).
 
     Attributes
     ----------
@@ -1088,7 +1090,8 @@ class ModelDelta:
     curve : (gaps, Delta)
         The model's Delta on a grid of H/d (for the figure) [-], [d].
     calibration : mapping
-        What the calibration gave (parameters, chi2, dof, p_value, warnings), for the report.
+        What the calibration gave (parameters, chi2, dof, p_value, warnings; ``runs`` and
+        ``wall_kinds``: what it was made on, :func:`scope_text`), for the report.
     status, message : str
         ``"ok"``, or ``"failed"`` and why.
     """
@@ -1236,7 +1239,7 @@ def power_law_test(
 @dataclass(frozen=True)
 class DeltaSeries:
     """Delta against H/d for one gap series, the fitted models' slopes there, and each model's
-    Delta from one joint calibration of the series (``curves``)."""
+    Delta from one joint calibration of the series' material (``curves``)."""
 
     key: str
     cell: str
@@ -1506,6 +1509,30 @@ def _exponent_text(s: DeltaSeries) -> str:
     )
 
 
+def scope_text(c: ModelDelta) -> str:
+    """What one calibration was made on: "one calibration of the material over N runs of
+    both wall kinds (kind: n, ...), this series' n among them", or "calibrated on n runs"
+    (the series' runs) where it does not say
+    (``calibration``'s ``runs`` and ``wall_kinds``, :func:`.fits.calibrate_material`)."""
+    runs = c.calibration.get("runs")
+    kinds = c.calibration.get("wall_kinds") or {}
+    if not runs:
+        return f"calibrated on {len(c.predicted)} runs"
+    which = (
+        "one wall kind"
+        if len(kinds) <= 1
+        else "both wall kinds"
+        if len(kinds) == 2
+        else f"{len(kinds)} wall kinds"
+    )
+    counts = ", ".join(f"{k}: {len(v)}" for k, v in sorted(kinds.items()))
+    return (
+        f"one calibration of the material over {len(runs)} runs of {which}"
+        + (f" ({counts})" if counts else "")
+        + f", this series' {len(c.predicted)} among them"
+    )
+
+
 def calibration_text(c: ModelDelta) -> str:
     params = c.calibration.get("parameters", {})
     rows = []
@@ -1554,14 +1581,12 @@ def _curve_call(
             f"{_g(p.stderr, '.2g')} d; {preds}"
         )
     calib = "; ".join(
-        f"{m} calibrated on {len(c.predicted)} runs: {calibration_text(c)}"
-        for m, c in s.curves.items()
-        if c.ok
+        f"{m}: {scope_text(c)}: {calibration_text(c)}" for m, c in s.curves.items() if c.ok
     )
     failed = "; ".join(f"{m}: {c.message}" for m, c in s.curves.items() if not c.ok)
     text = (
-        f"{s.key}: Delta against each model's curve from one joint calibration of the series "
-        f"({'; '.join(rows)}); {t.text()}; "
+        f"{s.key}: Delta against each model's curve from one calibration of the material "
+        f"(this series' wall) ({'; '.join(rows)}); {t.text()}; "
         + "; ".join(tt.text() for tt in others)
         + f". Calibrations: {calib}"
         + (f"; failed: {failed}" if failed else "")
@@ -1636,9 +1661,10 @@ def delta_law_verdict(
 ) -> Verdict:
     """Claim ``which`` = "smoother" (exponent 0) or "rough" (exponent 1/3) against the gap
     series (module docstring): the measured Delta(H/d) against ``model``'s finite-H curve from
-    one joint calibration of each series (and the other models' curves, and the other claim's
-    power law, as alternatives), the measured exponent judged only where ``model``'s own curve
-    has reached the claimed limit over the series' gaps (within :data:`EXPONENT_TOL`)."""
+    one joint calibration of each series' material (and the other models' curves, and the
+    other claim's power law, as alternatives), the measured exponent judged only where
+    ``model``'s own curve has reached the claimed limit over the series' gaps (within
+    :data:`EXPONENT_TOL`)."""
     if which not in ("smoother", "rough"):
         raise ParameterError(f"which must be 'smoother' or 'rough'; got {which!r}")
     target = PAPER_SLOPES["smoother walls" if which == "smoother" else "fully rough walls"]
@@ -1647,9 +1673,11 @@ def delta_law_verdict(
     kind = "smoother than the material" if which == "smoother" else "fully rough"
     rel = relevant(series, which)
     method = (
-        f"Method: each series' runs calibrated jointly, one calibration per model (material "
-        f"shared, walls shared per wall kind, what the metadata give fixed); each model's Delta "
-        f"at each run's gap, bins and rate (I_w), with its error from the calibration's "
+        f"Method: one joint calibration per model of every run of the material on this cell, "
+        f"every wall kind (one set of material parameters, wall parameters shared per wall "
+        f"kind, what the metadata give fixed); each series reads it with its own wall: each "
+        f"model's Delta at each run's gap, bins and rate (I_w), with its error from the "
+        f"calibration's "
         f"covariance (scaled by sqrt(chi^2/dof) where the calibration misfits); chi^2 of the "
         f"measured Delta against it (errors in quadrature; dof = points, nothing is fitted to "
         f"Delta) and times its best common factor (dof = points - 1: the dependence on H/d "
