@@ -287,7 +287,7 @@ def test_support_that_needs_the_first_layers_is_given_a_smooth_velocity():
         "Supported, given a velocity smooth on the grain scale (the support needs the first "
         "layers, whose null is the velocity inside a first bin the bins do not resolve;"
     )
-    assert "Read with each bin's z under t(9), as the bins' p are" in v.evidence
+    assert "; read with each bin's z under t(9), as the bins' p are" in v.evidence
     # the same walls without blocks: no t reading, the chi^2 one alone
     bare = spin_verdict([replace(w, blocks=0) for w in walls])
     assert bare.numbers["pooled_p_t"] is None and "under t(9)" not in bare.evidence.split(".")[0]

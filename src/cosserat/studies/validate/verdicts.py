@@ -707,11 +707,11 @@ def spin_verdict(
     numbers["blocks"] = blocks
     if p_t is not None:
         head = (
-            f"Read with each bin's z under t({blocks - 1}), as the bins' p are (the se come "
+            f"read with each bin's z under t({blocks - 1}), as the bins' p are (the se come "
             f"from {blocks} time blocks; a seeded Monte Carlo of {T_SAMPLES:,} draws): the "
             f"pooled p = {p_t:.2g}"
             + (f", without any first layer p = {p_t_rest:.2g}" if p_t_rest is not None else "")
-            + f". {head}"
+            + f"; {head}"
         )
     # the first layers' null is the velocity inside the first bin, which the bins do not
     # resolve (a sub-grain wall layer that fits the bins can absorb their departure; referee
