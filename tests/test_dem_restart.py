@@ -257,6 +257,7 @@ def test_corpus_v2_regenerates_the_kept_runs_decks():
         "plane_layer_H10_qs",
         "plane_rough_H20_qs",
         "plane_smooth_H20_qs",
+        "plane_layer_H10_qs_s2",
     } <= set(checked)
 
 
