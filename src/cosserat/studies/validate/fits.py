@@ -716,38 +716,6 @@ def _rate(runs: Sequence[Any]) -> Callable[[float], float | None]:
     return lambda g: float(math.exp(c0 + c1 * math.log(g)))
 
 
-def calibrate_series(
-    runs: Sequence[Run],
-    models: Sequence[str] | None,
-    f: float,
-    fits: Sequence[RunFits | None] = (),
-    curve: bool = True,
-    use_fits: bool = False,
-) -> list[SeriesCalibration]:
-    """Each model calibrated jointly on ``runs`` as one series (:func:`calibrate_material`
-    with one series of every run: what validate did before it calibrated per material).
-
-    Parameters
-    ----------
-    runs : sequence of Run
-        The series' runs (plane or Couette).
-    models : sequence of str, optional
-        Registered rheologies (default: every one the calibration knows on the runs' cell).
-    f : float
-        Fraction defining Delta [-].
-    fits : sequence of RunFits or None
-        The runs' own fits (``use_fits``: their median values start the calibration).
-    curve : bool
-        Also compute the curve on a grid of H/d (for the figure).
-
-    Raises
-    ------
-    CosseratError
-        A run the calibration cannot take (:func:`cosserat.calibration.data.from_run`).
-    """
-    return calibrate_material(runs, models, [("", tuple(runs), f)], fits, curve, use_fits)[""]
-
-
 def calibrate_material(
     runs: Sequence[Run],
     models: Sequence[str] | None,
@@ -942,14 +910,3 @@ def material_job(job: MaterialJob) -> dict[str, SeriesCalibration]:
         why = f"model {job.model!r} has no {job.runs[0].cell} cell"
         return {key: SeriesCalibration(job.model, "failed", why) for key, _, _ in job.series}
     return {key: cals[0] for key, cals in out.items()}
-
-
-def series_job(runs: Sequence[Run], model: str, f: float) -> SeriesCalibration:
-    """:func:`calibrate_series` of one model, a failure as a result (for worker processes)."""
-    try:
-        out = calibrate_series(runs, [model], f)
-    except CosseratError as exc:
-        return SeriesCalibration(model, "failed", " ".join(str(exc).split()))
-    if not out:
-        return SeriesCalibration(model, "failed", f"model {model!r} has no {runs[0].cell} cell")
-    return out[0]
