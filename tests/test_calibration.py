@@ -13,6 +13,7 @@ import math
 import subprocess
 import sys
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -33,6 +34,8 @@ TRUTH = {
     "mui": {"mu_s": 0.3, "I_0": 0.3},
     "ngf": {"mu_s": 0.3, "b": 1.0, "A": 0.5},
 }
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 # --------------------------------------------------------------------------- error model
@@ -478,3 +481,29 @@ def test_leave_one_out_names_the_run_of_another_material():
     cal = calibrate([*same, *odd], models=["cosserat"], leave_one_out=True)
     notes = [w for w in cal["cosserat"].warnings if "do not agree" in w and "phi" in w]
     assert notes and odd[0].name in notes[0]
+
+
+def test_load_compares_a_dem_runs_binned_fields_as_bin_means():
+    """cosserat calibrate (calibration.data.load) marks a cosserat.dem run's u and omega as bin
+    means over the run's own bins: contiguous, the first from the moving wall's surface, each
+    holding its centre; from_run alone keeps the centres, and a run whose sidecar says its
+    values are point values is left at the centres."""
+    from cosserat.analysis.corpus import read_run
+
+    path = ROOT / "data" / "dem_v2" / "plane_rough_H20_qs" / "profile.csv"
+    (binned,) = load([path])
+    (at_centres,) = load([path], bin_means=False)
+    run = read_run(path)
+    assert from_run(run).fields["u"].bins is None and at_centres.fields["u"].bins is None
+    for name in ("u", "omega"):
+        f = binned.fields[name]
+        near, far = f.bins
+        assert near[0] == 0.0  # the moving wall's surface
+        # contiguous, in order, to the 4 decimals of the CSV's centres (the end bin's far edge is
+        # twice its centre's distance)
+        np.testing.assert_allclose(near[1:], far[:-1], atol=2e-4)
+        assert np.all((near < f.s) & (f.s < far))
+        np.testing.assert_allclose(far[1:-1] - near[1:-1], 1.0, rtol=1e-9)  # 1 d bins inside
+    assert binned.fields["stress_ratio"].bins is None  # stresses stay at the centres
+    point = replace(run, meta={**run.meta, "half_vorticity_method": "point"})
+    assert from_run(point, bin_means=True).fields["u"].bins is None
