@@ -247,9 +247,13 @@ def test_the_layer_runs_cosserat_spin_is_the_binning_of_a_material_spin():
     for s in pos.spin:
         prof = cosserat_profile(data, s.L_d)
         assert prof.problem.equations.case.value == "layer-at-lower-wall"
-        assert np.max(np.abs(prof.spin_minus_half_vorticity)) == 0.0
-        assert np.array_equal(forward_departure(prof, run), null_departure(prof, run))
-        assert s.own_departure == 0.0 and s.turns_with_the_material
+        # zero up to round-off: 2 ulp of the spin at the run's tan delta (it was exactly 0.0
+        # at the stress ratio of the window from 2.7 d of travel)
+        scale = np.max(np.abs(prof.omega))
+        assert np.max(np.abs(prof.spin_minus_half_vorticity)) <= 4 * np.finfo(float).eps * scale
+        forward, null = forward_departure(prof, run), null_departure(prof, run)
+        np.testing.assert_allclose(forward, null, rtol=0, atol=4 * np.finfo(float).eps * scale)
+        assert 0.0 <= s.own_departure <= 4 * np.finfo(float).eps and s.turns_with_the_material
     text = layer_position_verdict([pos]).evidence
     assert "Cosserat layer profiles' own spin is half their vorticity at every point" in text
     assert "The spin, the one observable that can tell" not in text
