@@ -225,7 +225,7 @@ def test_the_departure_is_the_couple_stress_gradient(values):
 
 def test_the_layer_runs_cosserat_spin_is_the_binning_of_a_material_spin():
     """On the DEM layer run the Cosserat layer profiles (L = 4, 5 d and the fitted L) report a
-    first-bin departure (-0.047, -0.034, -0.112) only through the bins and the stencil: it is
+    first-bin departure (-0.046, -0.033, -0.095) only through the bins and the stencil: it is
     what the analysis reports for grains turning with the same velocity (null_departure),
     exactly. The model predicts no departure of its own here (docs/validation.md)."""
     from cosserat.analysis.corpus import read_run
@@ -243,13 +243,17 @@ def test_the_layer_runs_cosserat_spin_is_the_binning_of_a_material_spin():
         pos.stress_ratio,
     )  # fmt: skip
     first = [s.departure[0] for s in pos.spin]
-    assert first == pytest.approx([-0.0468, -0.0338, -0.1118], abs=5e-4)
+    assert first == pytest.approx([-0.0460, -0.0331, -0.0950], abs=5e-4)
     for s in pos.spin:
         prof = cosserat_profile(data, s.L_d)
         assert prof.problem.equations.case.value == "layer-at-lower-wall"
-        assert np.max(np.abs(prof.spin_minus_half_vorticity)) == 0.0
-        assert np.array_equal(forward_departure(prof, run), null_departure(prof, run))
-        assert s.own_departure == 0.0 and s.turns_with_the_material
+        # zero up to round-off: 2 ulp of the spin at the run's tan delta (it was exactly 0.0
+        # at the stress ratio of the window from 2.7 d of travel)
+        scale = np.max(np.abs(prof.omega))
+        assert np.max(np.abs(prof.spin_minus_half_vorticity)) <= 4 * np.finfo(float).eps * scale
+        forward, null = forward_departure(prof, run), null_departure(prof, run)
+        np.testing.assert_allclose(forward, null, rtol=0, atol=4 * np.finfo(float).eps * scale)
+        assert 0.0 <= s.own_departure <= 4 * np.finfo(float).eps and s.turns_with_the_material
     text = layer_position_verdict([pos]).evidence
     assert "Cosserat layer profiles' own spin is half their vorticity at every point" in text
     assert "The spin, the one observable that can tell" not in text

@@ -29,18 +29,30 @@ def _runs(tmp_path, names, edit=None):
 
 
 def test_the_unsteady_run_and_its_observable_are_named(tmp_path):
-    runs = _runs(tmp_path, ["plane_rough_H10_qs", "plane_rough_H20_qs"])
-    shear = runs[1].run.meta["steadiness"]["observables"]["wall_shear"]
-    assert shear["steady"] is False  # the stored run fails its own test
+    # with the window from 20 d of wall travel (referee 9, point 5) the rough H = 20 d run is
+    # steady; the smooth H = 10 d run's gap is not, and its blocks are shorter than the gap's
+    # autocorrelation time, which the line says
+    runs = _runs(tmp_path, ["plane_rough_H20_qs", "plane_smooth_H10_qs"])
+    assert runs[0].run.meta["steadiness"]["steady"] is True
+    dilation = runs[1].run.meta["steadiness"]["observables"]["dilation"]
+    assert dilation["steady"] is False  # the stored run fails its own test
     text = steadiness_text(runs)
-    assert "shown in 1 of 2 runs; NOT shown in plane_rough_H20_qs (wall_shear: halves " in text
-    assert f"z = {shear['z']:+.3g})." in text
+    assert "shown in 1 of 2 runs; NOT shown in plane_smooth_H10_qs (dilation: halves " in text
+    assert (
+        f"z = {dilation['z']:+.3g}; its autocorrelation time is at least 1.4 blocks, so its "
+        "block means are correlated and this z overstates the drift's significance)." in text
+    )
     assert "dilation, mean_velocity, spin_profile, u_profile, wall_shear" in text
+    assert text.endswith(
+        "Window rule (at least 20 d of wall travel discarded before averaging): met in 2 of 2 runs."
+    )
 
 
 def test_steady_runs_and_runs_without_the_record(tmp_path):
-    steady = _runs(tmp_path, ["plane_smooth_H10_qs"])
-    assert steadiness_text(steady).endswith("shown in 1 of 1 runs.")
+    steady = _runs(tmp_path, ["plane_rough_H20_qs"])
+    assert "shown in 1 of 1 runs." in steadiness_text(steady)
     bare = _runs(tmp_path, ["plane_layer_H10_qs"], edit=lambda m: m.pop("steadiness"))
-    assert steadiness_text(bare) == "Steady state: not recorded for plane_layer_H10_qs."
+    assert steadiness_text(bare).startswith(
+        "Steady state: not recorded for plane_layer_H10_qs. Window rule"
+    )
     assert steadiness_text([]) == ""

@@ -62,7 +62,7 @@ EXTRA_KEYS = (
     "wall_time_s", "wall_inertial_number", "quasi_static", "steadiness", "bin_correlation",
     "bin_correlation_note", "segments", "extended_from_steps", "wall_fixed", "walls",
     "half_vorticity_method",
-    "block_autocorrelation", "omega_half_vorticity_correlation",
+    "block_autocorrelation", "omega_half_vorticity_correlation", "window_rule", "truncated_bins",
 )  # fmt: skip
 """Keys this reader also understands: which wall moves; the model a synthetic run came from;
 and what ``cosserat.dem`` records of a run (how B was set, the settling and dump intervals,
@@ -74,7 +74,8 @@ block length against the autocorrelation times of the run's series, the segments
 run and the steps of its deck if it was continued for longer; how the half_vorticity column
 was made, ``np.gradient`` over the binned u by default or ``bin-average``, the bin's mean of
 the point value (synthetic runs); the per-bin correlation of omega's and half_vorticity's
-errors; ``docs/dem.md``)."""
+errors; the window rule (wall travel discarded before averaging) and the truncated end bins;
+``docs/dem.md``)."""
 WALL_KINDS = ("glued-grains", "smooth-frictional")
 ROUGHNESS = ("fully-rough", "smoother")
 

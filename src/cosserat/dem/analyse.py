@@ -56,6 +56,20 @@ first choice, failed half of all steady windows; ``tests/test_dem_sidecar.py``).
 STEADY_BINS = 0.85
 """A steady profile has at least this fraction of its bins within :data:`STEADY_Z` [-] (the
 rate check's 85%)."""
+MIN_TRAVEL_D = 20.0
+"""Wall travel every window discards before averaging [d]: the default window starts at the
+later of MSER-5's truncation and the first sample after the moving wall (plane: the upper
+wall; Couette: the inner ring's surface) has travelled this far (referee 9, point 5: one
+window rule for every v2 run; v1's transients lasted 11-52 d of travel). A run too short to
+keep :data:`~cosserat.dem.params.MIN_SAMPLES` samples after it keeps MSER-5's window, and its
+sidecar's ``window_rule`` says the rule is not met."""
+TRUNCATED_FRACTION = 0.9
+"""An end bin narrower than this fraction of the bin width is *truncated* [-]: the bins are
+counted from one wall, so the remainder of the gap at the other is 0.5-1 bin wide (a bin of
+0.56-0.84 d with its centre 0.28-0.42 d from the wall in the v2 runs). Centre binning puts a
+whole grain's contacts in the bin of its centre, so a truncated bin's stresses and solids
+fraction are not bulk values (sigma_yx -0.476 against the wall's -0.307, nu 0.965 above the
+hexagonal 0.907 in ``plane_rough_H20_qs``): the sidecar's ``truncated_bins`` names them."""
 
 
 @dataclass
@@ -278,6 +292,71 @@ def steady_start(run: RunSamples) -> int:
     return max(mser_truncation(x) for x in series)
 
 
+def window_start(
+    run: RunSamples, deck: Deck, first: int | None = None, min_travel_d: float = MIN_TRAVEL_D
+) -> tuple[int, dict]:
+    """The index of the window's first sample and the sidecar's ``window_rule`` record.
+
+    Parameters
+    ----------
+    run : RunSamples
+        The run's samples and series.
+    deck : Deck
+        The run's deck (its timestep; the cell's wall speed).
+    first : int, optional
+        A window start chosen by the caller (the rule is then only recorded, not applied).
+    min_travel_d : float
+        Wall travel to discard [d] (default :data:`MIN_TRAVEL_D`).
+
+    Returns
+    -------
+    tuple of (int, dict)
+        The first sample's index: by default the later of :func:`steady_start` (MSER-5) and
+        the first sample after ``min_travel_d`` of wall travel (a channel has no moving wall:
+        MSER-5 alone); the record: ``min_travel_d``, ``mser_start_step``,
+        ``travel_at_start_d`` (the moving wall's travel at the window's first step [d];
+        None for a channel), ``met`` and ``rule``.
+    """
+    steps = run.samples.steps
+    mser = steady_start(run)
+    cell = deck.cell
+    speed = None if isinstance(cell, ChannelDEM) else float(cell.wall_speed)
+    travel = None if speed is None else steps * deck.timestep * speed
+    chosen = first is not None
+    if first is None:
+        first = mser
+        if travel is not None:
+            after = np.flatnonzero(travel >= min_travel_d)
+            # the rule only where it leaves enough samples; else MSER-5's window, not met
+            if after.size and steps.size - max(int(after[0]), mser) >= MIN_SAMPLES:
+                first = max(int(after[0]), mser)
+    at = None if travel is None else round(float(travel[first]), 3)
+    record = {
+        "min_travel_d": min_travel_d,
+        "mser_start_step": int(steps[mser]),
+        "travel_at_start_d": at,
+        "met": None if at is None else bool(at >= min_travel_d - 1e-9),
+        "rule": (
+            f"the window starts at the later of MSER-5's truncation and the first sample after "
+            f"{min_travel_d:g} d of the moving wall's travel (steps x timestep x wall speed)"
+            + ("; chosen by the caller here" if chosen else "")
+            + ("" if travel is not None else "; a channel has no moving wall: MSER-5 alone")
+        ),
+    }
+    return first, record
+
+
+def truncated_bins(edges: np.ndarray, lo: float, hi: float, bin_width: float) -> dict[int, float]:
+    """The end bins narrower than :data:`TRUNCATED_FRACTION` of ``bin_width``: index -> width
+    [d] (the first bin spans ``lo`` to ``edges[1]``, the last ``edges[-2]`` to ``hi``)."""
+    out = {}
+    nb = len(edges) - 1
+    for k, width in ((0, edges[1] - lo), (nb - 1, hi - edges[-2])):
+        if width < TRUNCATED_FRACTION * bin_width:
+            out[k] = round(float(width), 4)
+    return out
+
+
 @dataclass(frozen=True)
 class DEMProfile:
     """A steady profile in the corpus format: ``columns`` (name -> array) and ``sidecar``."""
@@ -368,7 +447,8 @@ def steady_profile(
     lammps_version : str
         The LAMMPS version the sidecar names.
     first : int, optional
-        Index of the first steady sample (default: :func:`steady_start`).
+        Index of the first steady sample (default: :func:`window_start`, the later of MSER-5's
+        truncation and :data:`MIN_TRAVEL_D` of wall travel).
     blocks : int
         Blocks of the averages' standard errors [-].
     bin_width : float
@@ -397,7 +477,7 @@ def steady_profile(
     cell, info = deck.cell, deck.layout.info
     polar = isinstance(cell, CouetteDEM)
     three = dimension(cell) == 3
-    first = steady_start(run) if first is None else first
+    first, window_rule = window_start(run, deck, first)
     gap_mean = float(run.gap[first:].mean())
     if polar:
         lo, hi = info["inner_radius"], info["outer_radius"]
@@ -409,6 +489,9 @@ def steady_profile(
     s[-1] = 0.5 * (samples.edges[-2] + hi)
     per_block = block_fields(samples, first, blocks)
     density = cell.grains.density
+    truncated = truncated_bins(samples.edges, lo, hi, bin_width)
+    moving_bin = {"plane": len(s) - 1, "couette": 0}.get(cell.cell)
+    wall_p = block_series(run.wall_normal, first, blocks)  # the moving wall's normal stress
     # scales
     if isinstance(cell, CouetteDEM):
         V, stress = cell.wall_speed, float(run.wall_normal[first:].mean())
@@ -421,7 +504,7 @@ def steady_profile(
         V, stress = cell.wall_speed, 1.0
     else:
         V, stress = cell.wall_speed, 1.0
-    for f in per_block:
+    for b, f in enumerate(per_block):
         u = f["u"]
         if polar:
             f["half_vorticity"] = half_vorticity(s, u, polar=True)
@@ -431,6 +514,12 @@ def steady_profile(
             f["gamma_dot"] = _gradient(s, u)
         p = 0.5 * (f["sigma_tt"] + f["sigma_nn"])
         f["inertial_number"] = inertial_number(f["gamma_dot"], p, density)
+        # the regime's I: a truncated bin's p is not a bulk value (TRUNCATED_FRACTION); at the
+        # moving wall the wall's measured normal stress stands in, elsewhere the next bin's p
+        p_regime = p.copy()
+        for k in truncated:
+            p_regime[k] = wall_p[b] if k == moving_bin else p[k + 1 if k == 0 else k - 1]
+        f["inertial_number_regime"] = inertial_number(f["gamma_dot"], p_regime, density)
     stats = mean_and_error(per_block)
     coord = "r" if polar else "y"
     t, n = ("t", "r") if polar else ("x", "y")
@@ -468,10 +557,14 @@ def steady_profile(
     nu_mean = float(np.average(columns["nu"], weights=samples.bin_area))
     sidecar = _sidecar(cell, deck, run, gap_mean, V, stress, I_mean, desc, lammps_version,
                        steps, first, every, blocks, nu_mean)  # fmt: skip
-    extra = _regime_and_steadiness(cell, run, per_block, columns, coord, lo, hi, first, blocks)
+    regime_i = stats["inertial_number_regime"]
+    extra = _regime_and_steadiness(cell, run, per_block, columns, coord, lo, hi, first, blocks,
+                                   regime_i, truncated, moving_bin)  # fmt: skip
     ws = extra.pop("wall_stress_se")
     sidecar["wall_stress"].update(ws)
     sidecar.update(extra)
+    sidecar["window_rule"] = window_rule
+    sidecar["truncated_bins"] = _truncated_record(cell, truncated, columns, coord, lo, hi)
     series = {
         "mean_velocity": run.flow,
         "wall_shear": run.wall_shear,
@@ -621,35 +714,89 @@ def bin_correlation(values: np.ndarray) -> float | None:
     return round(float(np.clip(np.mean(r[pairs]), -1.0, 1.0)), 4)
 
 
-def _wall_bins(cell, columns: dict[str, np.ndarray], coord: str, lo: float, hi: float) -> dict:
-    """The local inertial number in the :data:`WALL_BINS` bins next to each wall (nearest
-    first), their distances from the wall's surface, and which wall moves."""
-    s = columns[coord]
-    inertial, se = columns["inertial_number"], columns["inertial_number_se"]
-    k = WALL_BINS
+def _wall_names(cell) -> tuple[tuple[str, str], str | None]:
+    """The walls' names (lower/upper or inner/outer, in the bins' order) and the moving one."""
     names = {"plane": ("lower", "upper"), "channel": ("lower", "upper"),
              "couette": ("inner", "outer")}[cell.cell]  # fmt: skip
     moving = {"plane": "upper", "couette": "inner", "channel": None}[cell.cell]
+    return names, moving
+
+
+def _wall_bins(cell, columns: dict[str, np.ndarray], coord: str, lo: float, hi: float,
+               regime: tuple[np.ndarray, np.ndarray], truncated: dict[int, float],
+               moving_bin: int | None) -> dict:  # fmt: skip
+    """The local inertial number in the :data:`WALL_BINS` bins next to each wall (nearest
+    first), their distances from the wall's surface, which wall moves, and where each bin's
+    p comes from (a truncated bin's own p is not a bulk value)."""
+    s = columns[coord]
+    nb = len(s)
+    inertial, se = regime
+    k = WALL_BINS
+    names, moving = _wall_names(cell)
     rec: dict = {"moving": moving, "bins": k, "limit": QUASI_STATIC_I}
     for name, where, wall in ((names[0], slice(0, k), lo), (names[1], slice(-1, -k - 1, -1), hi)):
         values = inertial[where]
+        index = list(range(nb))[where]
         rec[name] = {
             "per_bin": [float(v) for v in values] if np.all(np.isfinite(values)) else [],
             "se": [_finite(v) for v in se[where]],
             "distance_d": [round(float(abs(c - wall)), 4) for c in s[where]],
+            "p_source": [
+                "bin"
+                if j not in truncated
+                else ("wall normal stress" if j == moving_bin else "next bin")
+                for j in index
+            ],
         }
+        if any(j in truncated for j in index):
+            rec[name]["per_bin_own_p"] = [_finite(v) for v in columns["inertial_number"][where]]
     rec["note"] = (
         f"local I = |gamma_dot| d / sqrt(p / rho_s) in the {k} bins next to each wall, nearest "
-        "first (distance_d: bin centre from the wall's surface); the sidecar's quasi_static: "
-        "all of the moving wall's at most limit"
+        "first (distance_d: bin centre from the wall's surface); p is the bin's "
+        "(sigma_xx + sigma_yy) / 2 (p_source 'bin'), except in a truncated bin (truncated_bins), "
+        "whose own p is not a bulk value: there p is the moving wall's measured normal stress "
+        "(p_source 'wall normal stress'; per block) or, at a wall whose stress is not measured, "
+        "the next bin's p ('next bin'); per_bin_own_p: the profile's inertial_number column "
+        "(the bin's own p); the sidecar's quasi_static: all of the moving wall's per_bin at "
+        "most limit"
     )
     return rec
 
 
-def _regime_and_steadiness(cell, run, per_block, columns, coord, lo, hi, first, blocks) -> dict:
+def _truncated_record(cell, truncated: dict[int, float], columns: dict[str, np.ndarray],
+                      coord: str, lo: float, hi: float) -> dict:  # fmt: skip
+    """The sidecar's ``truncated_bins``: which end bins are narrower than
+    :data:`TRUNCATED_FRACTION` of a bin, and what that means for their columns."""
+    names, _ = _wall_names(cell)
+    s = columns[coord]
+    bins = []
+    for k, width in sorted(truncated.items()):
+        wall = names[0] if k == 0 else names[1]
+        bins.append({
+            "row": k, "wall": wall, coord: round(float(s[k]), 4), "width_d": width,
+            "distance_d": round(float(abs(s[k] - (lo if k == 0 else hi))), 4),
+            "nu": _finite(columns["nu"][k]),
+        })  # fmt: skip
+    return {
+        "bins": bins,
+        "fraction": TRUNCATED_FRACTION,
+        "note": (
+            f"end bins narrower than {TRUNCATED_FRACTION:g} of a bin (the remainder of the gap "
+            "at the wall the bins are not counted from); row: the profile's row (0-based). "
+            "Centre binning puts a grain's whole contact stress and area in the bin of its "
+            "centre, so a truncated bin's stresses and nu are not physical bulk values (its "
+            "sigma_yx breaks the momentum balance, its nu can exceed the hexagonal 0.907): "
+            "the stress-ratio fits leave them out (bins within 1 d of a wall), and the "
+            "regime's wall inertial number does not use their p (wall_inertial_number)"
+        ),
+    }
+
+
+def _regime_and_steadiness(cell, run, per_block, columns, coord, lo, hi, first, blocks, regime,
+                           truncated, moving_bin) -> dict:  # fmt: skip
     """Sidecar entries: ``wall_inertial_number``, ``quasi_static``, ``steadiness``,
     ``bin_correlation`` and the wall stresses' block errors."""
-    walls = _wall_bins(cell, columns, coord, lo, hi)
+    walls = _wall_bins(cell, columns, coord, lo, hi, regime, truncated, moving_bin)
     moving = walls["moving"]
     near = walls[moving]["per_bin"] if moving else []
     quasi = bool(max(near) <= QUASI_STATIC_I) if near else None
@@ -785,5 +932,6 @@ def _walls_meta(cell) -> dict:
     return out
 
 
-__all__ = ["FORMAT", "SUMS", "DEMProfile", "check_bin_width", "merge_empty_bins",
-           "read_samples", "steady_profile"]  # fmt: skip
+__all__ = ["FORMAT", "MIN_TRAVEL_D", "SUMS", "TRUNCATED_FRACTION", "DEMProfile",
+           "check_bin_width", "merge_empty_bins", "read_samples", "steady_profile",
+           "truncated_bins", "window_start"]  # fmt: skip

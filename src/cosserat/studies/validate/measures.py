@@ -65,7 +65,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.stats import chi2 as chi2_dist
 
-from ...analysis.corpus import Run, usable
+from ...analysis.corpus import COORDINATE, Run, usable
 from ...calibration.noise import RHO_MAX, whiten
 from ...config import DEFAULT_F
 from ...errors import InputError, ParameterError
@@ -959,10 +959,182 @@ def band_stress_ratio(run: Run) -> StressRatio | None:
 
 def moving_wall_inertial_number(run: Run, bins: int = 3) -> float | None:
     """The largest local inertial number in the ``bins`` bins next to the moving wall [-]
-    (None without an ``inertial_number`` column)."""
+    (None without an ``inertial_number`` column).
+
+    A truncated bin's own p is not a bulk value (:func:`truncated_rows`): where the sidecar's
+    ``wall_inertial_number`` records ``p_source`` for the moving wall's bins (the DEM analysis
+    since the window rule), its ``per_bin`` (a truncated bin's p the wall's measured normal
+    stress) is read; otherwise the profile's ``inertial_number`` column (:func:`wall_p_source`
+    says which)."""
     if "inertial_number" not in run.columns or run.cell == "channel":
         return None
+    recorded = _sidecar_wall_inertial(run)
+    if recorded is not None:
+        near = np.asarray(recorded[:bins], dtype=float)
+        near = near[np.isfinite(near)]
+        return float(np.max(near)) if near.size else None
     values = np.asarray(run.columns["inertial_number"], dtype=float)[np.argsort(run.distance_d)]
     near = values[:bins]
     near = near[np.isfinite(near)]
     return float(np.max(near)) if near.size else None
+
+
+TRUNCATED_FRACTION = 0.9
+"""An end bin narrower than this fraction of the bins' spacing is truncated [-] (as
+``cosserat.dem.analyse.TRUNCATED_FRACTION``, which the DEM sidecar's ``truncated_bins``
+applies)."""
+HEXAGONAL_NU = math.pi / (2.0 * math.sqrt(3.0))
+"""The densest packing of equal disks, hexagonal, pi / (2 sqrt 3) = 0.9069 [-]: a 2-D bin's
+solids fraction above it is an artefact of centre binning in a layered packing."""
+BALANCE_SIGMAS = 3.0
+"""A bin's shear stress breaks the momentum balance when it differs from the wall's by more
+than this many standard errors of the difference [-]."""
+
+
+def _sidecar_wall_inertial(run: Run) -> list[float] | None:
+    """The moving wall's ``per_bin`` inertial numbers from the sidecar when it records
+    ``p_source`` (None otherwise)."""
+    walls = run.meta.get("wall_inertial_number")
+    if not isinstance(walls, dict):
+        return None
+    rec = walls.get(walls.get("moving") or run.moving_wall)
+    if not isinstance(rec, dict) or "p_source" not in rec or not rec.get("per_bin"):
+        return None
+    return [float(v) for v in rec["per_bin"]]
+
+
+def wall_p_source(run: Run) -> str:
+    """Where the regime's inertial number next to the moving wall takes p in a truncated bin:
+    ``"wall"`` (the sidecar's per-bin record: the wall's measured normal stress), ``"bin"``
+    (the bin's own p: the sidecar predates the rule and the moving wall's bin is truncated)
+    or ``"full"`` (no truncated bin at the moving wall: every p is a bin's bulk value)."""
+    if _sidecar_wall_inertial(run) is not None:
+        walls = run.meta["wall_inertial_number"]
+        rec = walls[walls.get("moving") or run.moving_wall]
+        return "wall" if "wall normal stress" in rec["p_source"] else "full"
+    first = int(np.argmin(run.distance_d))
+    return "bin" if first in truncated_rows(run) else "full"
+
+
+def _wall_coordinates(run: Run) -> tuple[float, float]:
+    """The two walls' coordinates in the profile's coordinate column [d]."""
+    if run.cell == "couette":
+        inner = float(run.Ri_d or 0.0)
+        return inner, inner + run.gap_d
+    return 0.0, run.gap_d
+
+
+def truncated_rows(run: Run) -> dict[int, float]:
+    """The run's truncated end bins, row -> width [d]: the sidecar's ``truncated_bins`` where
+    recorded; otherwise an end bin whose width (twice its centre's distance from the wall: the
+    end bins' centres are midway between the wall and their inner edge) is under
+    :data:`TRUNCATED_FRACTION` of the median spacing of the bins' centres."""
+    rec = run.meta.get("truncated_bins")
+    if isinstance(rec, dict) and isinstance(rec.get("bins"), list):
+        return {int(b["row"]): float(b["width_d"]) for b in rec["bins"]}
+    c = np.asarray(run.columns[COORDINATE[run.cell]], dtype=float)
+    if c.size < 3:
+        return {}
+    spacing = float(np.median(np.diff(c)))
+    lo, hi = _wall_coordinates(run)
+    out = {}
+    for row, width in ((0, 2.0 * (c[0] - lo)), (c.size - 1, 2.0 * (hi - c[-1]))):
+        if 0.0 < width < TRUNCATED_FRACTION * spacing:
+            out[row] = round(float(width), 4)
+    return out
+
+
+@dataclass(frozen=True)
+class WallBins:
+    """The checks of a run's bins against the momentum balance and the densest packing.
+
+    Attributes
+    ----------
+    run : str
+        The run's name.
+    truncated : tuple of (row, distance [d], width [d])
+        The truncated end bins (:func:`truncated_rows`), their centre's distance from their
+        own wall.
+    balance : tuple of (row, distance [d], shear [-], z [-])
+        The bins whose shear stress differs from the one the wall's sets (plane:
+        ``sigma_yx = `` the moving wall's shear stress, uniform: no body force along x;
+        Couette: ``r^2 sigma_rt`` uniform) by more than :data:`BALANCE_SIGMAS` standard errors
+        (the bin's and the wall's, independent); distance from the moving wall.
+    tested : int
+        Bins the balance was tested in (0: the run gives no wall shear stress or no shear
+        column, or is a channel, whose gravity is along the flow).
+    wall_shear : float or None
+        The shear stress the balance sets at the moving wall, in the profile's units [-].
+    dense : tuple of (row, distance [d], nu [-])
+        The bins with nu above :data:`HEXAGONAL_NU` (2-D runs only).
+    """
+
+    run: str
+    truncated: tuple[tuple[int, float, float], ...]
+    balance: tuple[tuple[int, float, float, float], ...]
+    tested: int
+    wall_shear: float | None
+    dense: tuple[tuple[int, float, float], ...]
+
+
+def wall_bins(run: Run) -> WallBins:
+    """Check ``run``'s bins against the momentum balance and the hexagonal bound
+    (:class:`WallBins`): a corpus-level check of the coarse-graining, whose truncated end bins
+    (centre binning in a layered packing) break both."""
+    dist = run.distance_d
+    trunc = truncated_rows(run)
+    lo, hi = _wall_coordinates(run)
+    c = np.asarray(run.columns[COORDINATE[run.cell]], dtype=float)
+    truncated = tuple(
+        (k, round(float(c[k] - lo if k == 0 else hi - c[k]), 4), w)
+        for k, w in sorted(trunc.items())
+    )
+    dense: tuple[tuple[int, float, float], ...] = ()
+    if run.has("nu") and int(run.meta.get("dim", 2)) == 2:
+        nu, _ = run.quantity("nu")
+        dense = tuple(
+            (int(k), round(float(dist[k]), 4), round(float(nu[k]), 4))
+            for k in np.flatnonzero(np.isfinite(nu) & (nu > HEXAGONAL_NU))
+        )
+    shear = "sigma_rt" if run.cell == "couette" else "sigma_yx"
+    ws = run.meta.get("wall_stress")
+    if run.cell == "channel" or not run.has(shear) or not isinstance(ws, dict):
+        return WallBins(run.name, truncated, (), 0, None, dense)
+    t, st = run.quantity(shear)
+    wall, wall_se = float(ws["shear"]), float(ws.get("shear_se") or 0.0)
+    if run.cell == "couette":  # sigma_rt over the inner ring's normal stress, r^2 sigma_rt uniform
+        normal = float(ws["normal"])
+        ri = float(run.Ri_d or 0.0)
+        scale = (ri / np.maximum(c, 1e-300)) ** 2
+        expected, expected_se = -wall / normal * scale, wall_se / normal * scale
+        at_wall = -wall / normal
+    else:  # the plane's stress scale is N: the profile's sigma_yx is in the wall's units
+        expected, expected_se = np.full(c.shape, wall), np.full(c.shape, wall_se)
+        at_wall = wall
+    ok = usable(t, st)
+    z = np.full(c.shape, np.nan)
+    z[ok] = (t[ok] - expected[ok]) / np.hypot(st[ok], expected_se[ok])
+    balance = tuple(
+        (int(k), round(float(dist[k]), 4), round(float(t[k]), 4), round(float(z[k]), 2))
+        for k in np.flatnonzero(ok & (np.abs(z) > BALANCE_SIGMAS))
+    )
+    return WallBins(run.name, truncated, balance, int(np.count_nonzero(ok)), at_wall, dense)
+
+
+WINDOW_TRAVEL_D = 20.0
+"""Wall travel every DEM window discards before averaging [d] (the rule of
+``cosserat.dem.analyse.MIN_TRAVEL_D``; referee 9, point 5)."""
+
+
+def window_travel(run: Run) -> float | None:
+    """The moving wall's travel at the start of the run's averaging window [d]: the sidecar's
+    ``window_rule.travel_at_start_d`` where recorded, else ``steady_window[0]`` x
+    ``timestep`` x ``wall_speed`` (the DEM sidecar's; steps counted from the start of the
+    shear); None for a channel or a sidecar without them."""
+    rule = run.meta.get("window_rule")
+    if isinstance(rule, dict) and rule.get("travel_at_start_d") is not None:
+        return float(rule["travel_at_start_d"])
+    window, dt, speed = (run.meta.get(k) for k in ("steady_window", "timestep", "wall_speed"))
+    if run.cell == "channel" or not window or dt is None or speed is None:
+        return None
+    return float(window[0]) * float(dt) * float(speed)

@@ -36,13 +36,19 @@ from .forward import STENCILS
 from .grouping import couette_note, group_materials, group_runs, walls_differ
 from .layer import LayerPosition, band_inertial_number, layer_verdicts, measure_layer
 from .measures import (
+    BALANCE_SIGMAS,
+    HEXAGONAL_NU,
     NEAR_WALL_D,
     P_SIGNIFICANT,
     SENSITIVITY_F,
+    TRUNCATED_FRACTION,
+    WALL_EXCLUSION_D,
+    WINDOW_TRAVEL_D,
     DeltaSensitivity,
     SpinMeasure,
     StressRatio,
     Thickness,
+    WallBins,
     WallSpin,
     band_stress_ratio,
     measure_spin,
@@ -51,6 +57,9 @@ from .measures import (
     reference_velocity,
     thickness_of,
     thickness_sensitivity,
+    wall_bins,
+    wall_p_source,
+    window_travel,
 )
 from .nulls import (
     envelope,
@@ -790,16 +799,135 @@ def regime(results: Sequence[RunResult]) -> str:
         f"{min(values):.2g}-{max(values):.2g} in the {len(known)} runs that give it"
     )
     if above:
-        return (
-            text + f"; {len(above)} of them are above the quasi-static bound I <= "
+        text += (
+            f"; {len(above)} of them are above the quasi-static bound I <= "
             f"{QUASI_STATIC_I:g} of the rate-independent models, so this verdict holds at "
             "their rates only."
         )
-    return text + f", within the quasi-static bound I <= {QUASI_STATIC_I:g}."
+    else:
+        text += f", within the quasi-static bound I <= {QUASI_STATIC_I:g}."
+    return f"{text}{_p_source_text(results)}{wall_bins_text(results)}"
 
 
-def _unsteady(record: Mapping[str, Any]) -> list[str]:
-    """The observables a sidecar's steadiness test finds not steady, each with its numbers."""
+def _p_source_text(results: Sequence[RunResult]) -> str:
+    """Where the wall inertial number takes p in a truncated bin at the moving wall (referee
+    9, point 7): the wall's measured normal stress, or (older sidecars) the bin's own."""
+    source = {
+        r.run.name: wall_p_source(r.run)
+        for r in results
+        if r.inertial_number is not None and r.layer is None
+    }
+    wall = sorted(n for n, v in source.items() if v == "wall")
+    own = sorted(n for n, v in source.items() if v == "bin")
+    text = ""
+    if wall:
+        text += (
+            f" In the truncated bin next to the moving wall ({', '.join(wall)}) p is the "
+            "wall's measured normal stress, not the bin's (a truncated bin's stresses are not "
+            "bulk values)."
+        )
+    if own:
+        text += (
+            f" In {', '.join(own)} the truncated bin next to the moving wall gives I with its "
+            "own p, which is not a bulk value (the sidecar predates the rule that uses the "
+            "wall's measured normal stress there)."
+        )
+    return text
+
+
+MAX_LISTED = 3
+"""Bins a run's wall-bin sentence names before counting the rest."""
+
+
+def _balance_run(c: WallBins) -> str:
+    """One run's bins beyond the momentum balance: the truncated ones named, the others'
+    count and largest |z|."""
+    truncated = {row for row, *_ in c.truncated}
+    named = [b for b in c.balance if b[0] in truncated]
+    others = [b for b in c.balance if b[0] not in truncated]
+    parts = [f"the truncated bin at {d:.2g} d: {t:.3g}, z = {z:+.1f}" for _, d, t, z in named]
+    if others:
+        worst = max(others, key=lambda b: abs(b[3]))
+        parts.append(
+            f"{len(others)} of its other {c.tested - len(named)} bins, largest "
+            f"z = {worst[3]:+.1f} at {worst[1]:.2g} d"
+        )
+    return f"{c.run} (wall {c.wall_shear:.3g}; {', '.join(parts)})"
+
+
+def wall_bins_text(results: Sequence[RunResult]) -> str:
+    """Sentences on the runs' wall bins (referee 9, point 7; :func:`~.measures.wall_bins`):
+    the truncated end bins, whose stresses and nu are not bulk values and which no stress fit
+    uses; the bins whose shear stress breaks the momentum balance beyond 3 se of the wall's;
+    the bins with nu above the hexagonal bound. Empty where nothing is flagged."""
+    checks = [wall_bins(r.run) for r in results]
+    text = ""
+    truncated = [
+        f"{c.run} at {d:.2g} d ({w:.2g} d wide)" for c in checks for _, d, w in c.truncated
+    ]
+    if truncated:
+        text += (
+            f" Truncated wall bins (under {TRUNCATED_FRACTION:g} of a bin wide, centre "
+            f"distance from their wall): {'; '.join(truncated)}; centre binning makes their "
+            "stresses and nu not physical bulk values, and no stress fit uses them (the "
+            f"stress-ratio fits keep bins at least {WALL_EXCLUSION_D:g} d from the walls)."
+        )
+    tested = [c for c in checks if c.tested]
+    if tested:
+        n_bad = sum(len(c.balance) for c in tested)
+        n_all = sum(c.tested for c in tested)
+        text += (
+            " Momentum balance (plane: sigma_yx uniform and equal to the moving wall's shear "
+            "stress; Couette: r^2 sigma_rt uniform): "
+            + (
+                f"{n_bad} of {n_all} bins beyond {BALANCE_SIGMAS:g} se of the wall's: "
+                + "; ".join(_balance_run(c) for c in tested if c.balance)
+                if n_bad
+                else f"every one of {n_all} bins within {BALANCE_SIGMAS:g} se of the wall's"
+            )
+            + "."
+        )
+    dense = [c for c in checks if c.dense]
+    if dense:
+        text += (
+            f" Solids fraction above the hexagonal bound {HEXAGONAL_NU:.3f} (centre binning in "
+            "a layered packing; not a bulk value): "
+            + "; ".join(
+                f"{c.run} "
+                + ", ".join(f"{nu:.3f} at {d:.2g} d" for _, d, nu in c.dense[:MAX_LISTED])
+                + (f" and {len(c.dense) - MAX_LISTED} more" if len(c.dense) > MAX_LISTED else "")
+                for c in dense
+            )
+            + " (distance from the moving wall)."
+        )
+    return text
+
+
+BLOCK_SERIES = {"dilation": "gap", "wall_shear": "wall_shear", "mean_velocity": "mean_velocity",
+                "wall_normal": "wall_normal"}  # fmt: skip
+"""The steadiness test's scalar observables -> their series in the sidecar's
+``block_autocorrelation``."""
+
+
+def _short_blocks(name: str, blocks: Any) -> str:
+    """A clause for an unsteady scalar whose blocks are shorter than its autocorrelation
+    allows (the sidecar's ``block_autocorrelation``, flag ``short``): its block means are
+    correlated, so the halves' z is too large; empty otherwise."""
+    obs = (blocks or {}).get("observables") if isinstance(blocks, Mapping) else None
+    rec = (obs or {}).get(BLOCK_SERIES.get(name, ""))
+    if not isinstance(rec, Mapping) or not rec.get("short") or not rec.get("blocks_per_tau"):
+        return ""
+    tau = 1.0 / float(rec["blocks_per_tau"])
+    bound = "" if rec.get("reliable", True) else "at least "
+    return (
+        f"; its autocorrelation time is {bound}{tau:.2g} blocks, so its block means are "
+        "correlated and this z overstates the drift's significance"
+    )
+
+
+def _unsteady(record: Mapping[str, Any], blocks: Any = None) -> list[str]:
+    """The observables a sidecar's steadiness test finds not steady, each with its numbers
+    (and, from the sidecar's ``block_autocorrelation``, whether its blocks are too short)."""
     out = []
     for name, o in (record.get("observables") or {}).items():
         if not isinstance(o, Mapping) or o.get("steady", True):
@@ -807,7 +935,7 @@ def _unsteady(record: Mapping[str, Any]) -> list[str]:
         if "first_half" in o and "z" in o:
             out.append(
                 f"{name}: halves {float(o['first_half']):.3g} / {float(o['second_half']):.3g}, "
-                f"z = {float(o['z']):+.3g}"
+                f"z = {float(o['z']):+.3g}{_short_blocks(name, blocks)}"
             )
         elif "bins_within" in o:
             out.append(
@@ -828,7 +956,8 @@ def steadiness_text(results: Sequence[RunResult]) -> str:
     records = {r.run.name: r.run.meta.get("steadiness") for r in results}
     known = {n: s for n, s in records.items() if isinstance(s, Mapping)}
     missing = sorted(n for n in records if n not in known)
-    bad = {n: _unsteady(s) for n, s in known.items()}
+    blocks = {r.run.name: r.run.meta.get("block_autocorrelation") for r in results}
+    bad = {n: _unsteady(s, blocks.get(n)) for n, s in known.items()}
     bad = {
         n: v or ["the run's overall test"]
         for n, v in bad.items()
@@ -848,7 +977,27 @@ def steadiness_text(results: Sequence[RunResult]) -> str:
             )
     if missing:
         text += ("; " if text else "Steady state: ") + (f"not recorded for {', '.join(missing)}")
-    return text + "." if text else ""
+    return (text + "." if text else "") + _window_text(results)
+
+
+def _window_text(results: Sequence[RunResult]) -> str:
+    """One sentence on the window rule (referee 9, point 5): each run's averaging window
+    starts after at least :data:`~.measures.WINDOW_TRAVEL_D` of the moving wall's travel, or
+    which runs' windows start earlier (:func:`~.measures.window_travel`)."""
+    travel = {r.run.name: window_travel(r.run) for r in results}
+    known = {n: t for n, t in travel.items() if t is not None}
+    if not known:
+        return ""
+    early = {n: t for n, t in known.items() if t < WINDOW_TRAVEL_D - 1e-6}
+    text = (
+        f" Window rule (at least {WINDOW_TRAVEL_D:g} d of wall travel discarded before "
+        f"averaging): met in {len(known) - len(early)} of {len(known)} runs"
+    )
+    if early:
+        text += "; NOT met in " + "; ".join(
+            f"{n} (window from {t:.3g} d)" for n, t in sorted(early.items())
+        )
+    return text + "."
 
 
 def validate(
