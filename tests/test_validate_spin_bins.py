@@ -166,6 +166,52 @@ def test_a_refutation_rests_on_the_runs_no_null_enters_and_no_refit_repairs(monk
     assert ss._rests_on(scans) == (
         " It rests on one run, solid, and one seed: the only run refuted by the size rule, "
         "where no null enters, with no refit in the scan's reach matching the first layer at "
-        "p >= 0.001 (over chi^2/dof); a first-layer-matching point repairs repaired "
-        "(p = 0.011)."
+        "p >= 0.001 (over chi^2/dof); refuted by a rule a null enters at null (null rule); a "
+        "first-layer-matching point repairs repaired (p = 0.011)."
+    )
+
+
+def _fitted(run, p_fit, u, omega):
+    """A scan stand-in whose error models are given (``error_models``' cache)."""
+    fake = SimpleNamespace(
+        run=run,
+        fit=SimpleNamespace(calibration=SimpleNamespace(p_value=p_fit), held_out_s=0.3),
+    )
+    fake.__dict__["_error_models"] = {"u": u, "omega": omega}
+    return fake
+
+
+def test_the_error_models_text_says_where_u_and_omega_misfit():
+    def u(ar1, diag, cm, n=10):
+        chi = {"ar1": ar1, "diagonal": diag, "common-mode": cm}
+        from scipy.stats import chi2
+
+        return {"n": n, "rho": 0.9, **chi, "p": {k: float(chi2.sf(v, n)) for k, v in chi.items()}}
+
+    omega = {
+        "n": 3, "rho": 0.0, "ar1": 10.0, "diagonal": 10.0,
+        "bins": [{"distance_d": 1.3, "residual": 0.01, "se": 0.01, "chi2": 1.0},
+                 {"distance_d": 2.3, "residual": 0.06, "se": 0.02, "chi2": 9.0},
+                 {"distance_d": 3.3, "residual": 0.0, "se": 0.02, "chi2": 0.0}],
+    }  # fmt: skip
+    a = _fitted("a", 1e-6, u(40.0, 60.0, 62.0), omega)
+    b = _fitted("b", 1e-4, u(50.0, 10.5, 8.2, 20), omega)
+    c = _fitted("c", 0.3, u(11.8, 6.3, 7.8, 20), omega)
+    text = ss.error_models_text([a, b, c])
+    assert "a 40 / 60 / 62 on 10 bins (lag-1 rho = 0.90); b 50 / 10.5 / 8.2 on 20 bins" in text
+    # c fits: it is not among the misfitting runs; b's u misfits under AR(1) alone
+    assert (
+        "Where the joint fit misfits, u misfits (p < 0.001) a under ar1, diagonal, common-mode; "
+        "b under ar1. "
+    ) in text
+    # a run whose u fits under every error model though the joint fit misfits
+    d = _fitted("d", 1e-4, u(36.6, 10.5, 8.2, 20), omega)
+    assert "u misfits (p < 0.001) d under none of them. " in ss.error_models_text([d])
+    assert (
+        "a 10 on 3 bins (rho = +0.00; diagonal 10), half of it in 1 bin (2.3 d: 9, model - "
+        "data +0.06); the bin nearest the wall (1.3 d) carries 10%"
+    ) in text
+    assert text.endswith(
+        "In the misfitting runs the bin nearest the wall carries at most 10% of omega's chi^2 "
+        "(a): their omega misfit is not the per-bin table's size miss counted again."
     )
