@@ -201,7 +201,9 @@ def test_the_evidence_names_the_bins_the_verdict_rests_on():
     z = 0.0795 / 0.013
     p = 2 * student_t_sf(z, 9)
     assert (
-        f"the departure rests on 1 bin with |z| >= 3: 1.5 d from L's moving wall (+0.0795 +- "
+        "the departure rests on 1 bin with |z| >= 3 (se under the analysis stencil: the "
+        "data's, with the sidecar's omega/half-vorticity r where recorded, and the null's in "
+        f"quadrature): 1.5 d from L's moving wall (+0.0795 +- "
         f"0.013, z = {z:.3g}, p = {p:.2g} under t(9))"
     ) in v.evidence
     assert "none detected at a's moving wall, b's moving wall (chi^2 = 0.04 for 6 bins" in (

@@ -113,9 +113,12 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
     assert ss.wall_call(sc) == "refuted"
     v = ss.scan_verdict([sc])
     assert v.verdict == "refuted"
+    # refuted by the sign rule, not the size rule: a null enters, so no run is solid
     assert v.evidence.startswith(
-        "Refuted as calibrated with the eqn-nd_bc3u wall spin condition: calibrated jointly"
+        "Refuted at the first layer, as calibrated with the eqn-nd_bc3u wall spin condition. "
+        "No run is refuted by the size rule, where no null enters"
     )
+    assert "Calibrated jointly on u, omega" in v.evidence
     # the mirrored spin misfits the joint fit while the stress ratio fits: the verdict rests
     # on the misfit (inadequacy, referee 8 point 3) and the first layer's sign rule corroborates
     assert v.numbers["reading"] == "inadequacy"
@@ -282,11 +285,15 @@ def test_the_size_rule_refutes_a_fit_that_misses_under_every_stencil(pair):
     v = ss.scan_verdict([missed])
     assert v.verdict == "refuted"
     # the refutation is scoped to the calibration and its wall spin condition (referee 8)
+    # where it is refuted (referee 9, point 2) in the verdict line, and what it rests on
     assert v.evidence.startswith(
-        "Refuted as calibrated with the eqn-nd_bc3u wall spin condition: calibrated jointly "
-        "on u, omega (the first layer's held out) and the stress ratio, phi and delta from "
-        "the stresses; rough"
+        "Refuted at the first layer, as calibrated with the eqn-nd_bc3u wall spin condition. "
+        "It rests on one run, rough, and one seed: the only run refuted by the size rule, "
+        "where no null enters, with no refit in the scan's reach matching the first layer at "
+        "p >= 0.001 (over chi^2/dof). Calibrated jointly on u, omega (the first layer's held "
+        "out) and the stress ratio, phi and delta from the stresses; rough"
     )
+    assert v.numbers["solid_runs"] == ["rough"]
     spin = missed.omega_model - missed.omega_measured
     assert (
         f"first-layer omega d / V {missed.omega_model:+.3g} (model) against "

@@ -235,9 +235,17 @@ def test_the_scan_reads_the_covariance_when_present(pair, scan, tmp_path):
     )
     assert sc.measured_se > scan.measured_se
     text = ss._describe(sc)
+    # which se uses r, and r's sampling sd from the blocks (referee 9, point 8)
+    sd = (
+        f" (from {sc.blocks} blocks: sampling sd {0.84 / math.sqrt(sc.blocks - 1):.2g} here, "
+        f"{1.0 / math.sqrt(sc.blocks - 1):.2g} near 0)"
+        if sc.blocks >= 3
+        else ""
+    )
     assert (
         f"measured {sc.measured:+.3g} +- {sc.measured_se:.2g} (omega / half-vorticity "
-        "covariance from the sidecar: r = -0.40 in this bin)"
+        f"covariance from the sidecar: r = -0.40 in this bin{sd}, in the analysis stencil's se "
+        "(the other stencils' se take omega and their half vorticity as independent))"
     ) in text
     assert sc.to_dict()["omega_half_correlation"] == -0.4
 

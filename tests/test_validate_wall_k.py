@@ -137,7 +137,13 @@ def test_on_data_the_model_made_the_fit_does_not_contradict_the_measured_K(made)
     c = wk.check_scan(sc, run)
     assert c.measured.determined and not c.contradicts and c.warning() == ""
     assert all(abs(z) < wk.CONTRADICTS_SIGMAS for z in c.like_for_like_z().values())
-    assert [h.name for h in c.held] == ["rolling", "measured", "sliding"]
+    assert [h.name for h in c.held] == ["rolling", "proxy", "sliding"]
+    # the proxy refit holds the fit's own first-bin slip/spin at the data's (referee 9,
+    # point 4), not its input K; on data the model made that costs next to nothing
+    proxy = c.held[1]
+    assert abs(proxy.proxy - c.measured.K) <= wk.PROXY_TOL * abs(c.measured.K)
+    assert 0.0 <= proxy.delta_chi2 < 4.0
+    assert f"K = {proxy.K:.3g}, where the fit's own first-bin slip/spin is" in c.text()
     rolling = c.held[0]
     assert rolling.K == 0.5 and rolling.delta_chi2 >= -1e-6
     # K -> infinity: no spin at the wall, so hardly any in the first bin

@@ -725,7 +725,16 @@ class WallSpin:
             "stencils": {
                 name: {
                     "departure": dep,
-                    "se": math.hypot(se_h, se_o),
+                    # the se the tests use: the analysis stencil's takes the sidecar's
+                    # omega/half-vorticity r (stderr), the others' are independent (referee 9,
+                    # point 8)
+                    "se": float(self.stderr[self.nearest])
+                    if name == "analysis"
+                    else math.hypot(se_h, se_o),
+                    "se_independent": math.hypot(se_h, se_o),
+                    "se_correlated": float(self.stderr[self.nearest])
+                    if name == "analysis"
+                    else None,
                     "se_half": se_h,
                     "se_omega": se_o,
                     "predicted": {

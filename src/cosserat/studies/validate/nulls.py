@@ -108,11 +108,13 @@ def point_null(
 def joint_null(scan: Any, run: Run) -> Null:
     """The null of a run's joint fit (``spin_scan.Scan``; module docstring, item 1), with its
     standard error from the spread over the 95% region, and the joint fit's departure beyond
-    it (the prediction the spin claim's power is stated against)."""
+    it (the prediction the spin claim's power is stated against). Sets the scan's per-bin
+    sign-and-size table from the same profiles (``spin_scan.attach_near_bins``)."""
     from .forward import forward_departure
-    from .spin_scan import region_profiles
+    from .spin_scan import attach_near_bins, region_profiles
 
     profiles = region_profiles(scan)
+    attach_near_bins(scan, run, profiles)
     best = profiles[0]
     width = 2.0 * math.sqrt(scan.threshold / scan.scale)
     value, se, joint = {}, {}, {}

@@ -579,6 +579,8 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "figure": CLAIM_FIGURES.get(v.key)
                 or next(iter(figures.get(n, "") for n in v.runs), ""),
                 "extra_figures": extra_figures(report, v.key),
+                # a verdict's table (spin_model's per-bin sign and size: caption, header, rows)
+                "table": v.numbers.get("table"),
             }
             for v in report.verdicts
         ],

@@ -407,11 +407,18 @@ def _carry_text(tested: Sequence[WallSpin], stencil: str = "analysis") -> str:
                 f"{b['distance_d']:.2g} d from {w.run}'s {w.wall} wall ({b['departure']:+.3g} "
                 f"+- {b['se']:.2g}, z = {b['z']:.3g}{under_t})"
             )
+    # which se (referee 9, point 8): the first layer's under this stencil, with the null's
+    which = (
+        "with the sidecar's omega/half-vorticity r where recorded"
+        if stencil == "analysis"
+        else "omega and this stencil's half vorticity independent"
+    )
     p_wall = [chi2_p(_decisive(w, stencil))[2] for w in tested]
     quiet = [w for w, p in zip(tested, p_wall, strict=True) if p is None or p >= P_CONSISTENT]
     n = len(parts)
     out = (
-        f"the departure rests on {n} bin{'s' if n != 1 else ''} with |z| >= {CARRY_Z:g}: "
+        f"the departure rests on {n} bin{'s' if n != 1 else ''} with |z| >= {CARRY_Z:g} (se "
+        f"under the {stencil} stencil: the data's, {which}, and the null's in quadrature): "
         + "; ".join(parts)
         if parts
         else f"no bin departs by |z| >= {CARRY_Z:g}"
@@ -439,6 +446,9 @@ SPIN_METHOD = (
     "+ se_half^2 - 2 r se_omega se_half + se_null^2) (omega and half the vorticity come from "
     "the same particles and blocks: r is the per-bin correlation of their block means where "
     "the sidecar records it, else 0, 'independent (bound)', each run's notes saying which; "
+    "r is recorded for the analysis stencil's half vorticity, so under the other stencils, "
+    "which difference the binned u, omega and their half vorticity are taken as independent; "
+    "an r from 10 blocks has a sampling sd of (1 - r^2)/3, 0.33 near 0; "
     "the largest error any correlation allows, se_omega + se_half, reported as a bound); "
     "neighbouring bins' errors correlated as an AR(1) sequence with the sidecar's "
     "bin_correlation of omega (else u's), z whitened; chi^2 = sum z^2 against no departure, "

@@ -38,7 +38,9 @@ K differs from the data's by more than :data:`CONTRADICTS_SIGMAS` se, one sign, 
 extrapolation (the data's se times sqrt(chi^2/dof), the error model of the scan's rules).
 
 The limits of eqn-bc3 as alternative wall conditions (:func:`held_k_fit`, :data:`HELD`): the
-joint fit refitted with K held at 1/2 (rolling without sliding), at the measured K, and at
+joint fit refitted with K held at 1/2 (rolling without sliding), at the K whose profile,
+measured like the data, has the data's first-bin slip/spin (the proxy held, not the input K:
+:func:`proxy_matching_k` between the refits of :data:`PROFILE_K`, then secant steps), and at
 :data:`SLIDING_K` (K -> infinity: omega_w = 0, sliding without rolling), L refitted: chi^2,
 Delta chi^2 against the free fit (1 dof) and the first-layer omega it gives, measured like
 the data. The couple-stress-free wall (m_w = 0) would replace eqn-nd_bc2 at the moving wall,
@@ -52,6 +54,7 @@ chi^2, and its Delta chi^2 (referee 8, point 2).
 from __future__ import annotations
 
 import contextlib
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -90,10 +93,18 @@ ROLLING_K = 0.5
 """K of a grain rolling on the wall without sliding (eqn-bc3)."""
 HELD: dict[str, str] = {
     "rolling": "K = 1/2, rolling without sliding",
-    "measured": "K = the measured (first-bin) K",
+    "proxy": "K whose profile, measured like the data, has the data's first-bin slip/spin "
+    "(the fit's own proxy held equal to the measured one, not its input K)",
     "sliding": f"K -> infinity (held at {SLIDING_K:g}): omega_w = 0, sliding without rolling",
 }
-"""The alternative wall conditions of eqn-bc3 refitted, by name."""
+"""The alternative wall conditions of eqn-bc3 refitted, by name. The measured K is the first
+bin's slip over its spin, a proxy: a profile's own proxy differs from its input K (by a factor
+of 1.5-2.3 on the v2 runs), so the refit that matches the data holds the proxy, not the input
+(referee 9, point 4; :func:`proxy_matching_k`)."""
+PROXY_TOL = 0.02
+"""The proxy-matching refit stops when the fit's proxy is within this fraction of the data's."""
+PROXY_STEPS = 3
+"""At most this many refits to match the proxy (each a secant step between bracketing K)."""
 MATCH_SIGMAS = 2.0
 """:func:`matching_point`: a grid point matches the first layer within this many data se."""
 
@@ -380,6 +391,9 @@ class HeldK:
         scan's predictor, ``forward``) [-].
     failed : str
         Why the refit failed ("" when it did not).
+    proxy : float
+        Its profile's K measured like the data (the first bin's slip over its spin,
+        :func:`model_k`) [-]; NaN where not solved or its spin is 0.
     """
 
     name: str
@@ -391,11 +405,13 @@ class HeldK:
     omega_1: float
     departure_1: float = math.nan
     failed: str = ""
+    proxy: float = math.nan
 
     def to_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
             "K": _num(self.K),
+            "proxy_K": _num(self.proxy),
             "L": _num(self.L),
             "chi2": _num(self.chi2),
             "dof": self.dof,
@@ -453,11 +469,38 @@ def held_k_fit(run: Run, scan: Scan, K: float, name: str = "profile") -> HeldK:
     s, theta = mc.internal[0], np.asarray(mc.internal[1].theta, dtype=float)
     L = next(float(e.value) for e in mc.parameters.values() if e.key == "L")
     chi2 = float(mc.chi2 or 0.0)
-    omega_1 = departure_1 = nan
+    omega_1 = departure_1 = proxy = nan
     with contextlib.suppress(*SOLVE_ERRORS):
         prof = _profile(s.model, s.runs[0], s.run_values(s.runs[0], theta))
         omega_1, departure_1 = first_layer(prof, run)
-    return HeldK(name, K, L, chi2, mc.dof, chi2 - scan.chi2_min, omega_1, departure_1)
+        proxy = model_k(prof, run).K
+    return HeldK(name, K, L, chi2, mc.dof, chi2 - scan.chi2_min, omega_1, departure_1, proxy=proxy)
+
+
+def proxy_matching_k(
+    points: Sequence[tuple[float, float]], target: float, near: float
+) -> float | None:
+    """The input K at which a profile's proxy (its first-bin slip/spin) equals ``target``, by
+    linear interpolation between the two input K that bracket it (``points``: (input K,
+    proxy) pairs, NaN proxies skipped); of several brackets, the one nearest ``near`` (the
+    free fit's K); an exact hit is returned as it is; None where no pair brackets it [-].
+
+    Raises
+    ------
+    ParameterError
+        ``target`` or ``near`` not finite.
+    """
+    if not (math.isfinite(target) and math.isfinite(near)):
+        raise ParameterError(f"target and near must be finite; got {target}, {near}")
+    pts = sorted((float(k), float(p)) for k, p in points if math.isfinite(k) and math.isfinite(p))
+    hits = [k for k, p in pts if p == target]
+    cands = list(hits)
+    for (k0, p0), (k1, p1) in itertools.pairwise(pts):
+        if (p0 - target) * (p1 - target) < 0.0:
+            cands.append(k0 + (target - p0) * (k1 - k0) / (p1 - p0))
+    if not cands:
+        return None
+    return min(cands, key=lambda k: abs(k - near))
 
 
 PROFILE_K = (0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 5.0)
@@ -700,8 +743,14 @@ class WallCheck:
 def _held_text(h: HeldK, c: WallCheck) -> str:
     if h.failed:
         return f"{HELD.get(h.name, h.name)}: the refit failed ({h.failed})"
+    label = (
+        f"K = {h.K:.3g}, where the fit's own first-bin slip/spin is {h.proxy:.3g} (the data's "
+        f"{c.measured.K:.3g})"
+        if h.name == "proxy"
+        else HELD.get(h.name, h.name)
+    )
     return (
-        f"{HELD.get(h.name, h.name)}{f' ({h.K:.3g})' if h.name == 'measured' else ''}: L = "
+        f"{label}: L = "
         f"{h.L:.3g} d, chi^2 = {h.chi2:.4g}, Delta chi^2 = {h.delta_chi2:+.3g} "
         f"({h.delta_chi2 / c.scale:+.3g}), first-layer omega {h.omega_1:+.3g}"
     )
@@ -743,13 +792,36 @@ def check_scan(scan: Scan, run: Run, refits: bool = True) -> WallCheck:
         held_free_chi2=scan.chi2_min,
     )
     if refits:
-        values = {"rolling": ROLLING_K, "sliding": SLIDING_K}
-        if measured.determined and measured.K >= 0.0:
-            values = {"rolling": ROLLING_K, "measured": measured.K, "sliding": SLIDING_K}
-        check.held = [held_k_fit(run, scan, K, name) for name, K in values.items()]
+        held = {name: held_k_fit(run, scan, K, name)
+                for name, K in (("rolling", ROLLING_K), ("sliding", SLIDING_K))}  # fmt: skip
         profile = [held_k_fit(run, scan, K) for K in PROFILE_K]
+        if measured.determined:
+            proxy = _proxy_refit(run, scan, measured.K, [*held.values(), *profile])
+            if proxy is not None:
+                held = {"rolling": held["rolling"], "proxy": proxy, "sliding": held["sliding"]}
+        check.held = list(held.values())
         check.match = matching_point(scan, run, [*check.held, *profile])
     return check
+
+
+def _proxy_refit(run: Run, scan: Scan, target: float, refits: Sequence[HeldK]) -> HeldK | None:
+    """The refit whose proxy matches the data's K (``HELD["proxy"]``): secant steps of
+    :func:`proxy_matching_k` between the refits' (K, proxy), at most :data:`PROXY_STEPS`,
+    until the proxy is within :data:`PROXY_TOL` of ``target``; None where no pair of refits
+    brackets it."""
+    pts = [(h.K, h.proxy) for h in refits if not h.failed and h.K < SLIDING_K]
+    best: HeldK | None = None
+    for _ in range(PROXY_STEPS):
+        K = proxy_matching_k(pts, target, scan.fit.value("K"))
+        if K is None or K < 0.0:
+            break
+        best = held_k_fit(run, scan, K, "proxy")
+        if best.failed or not math.isfinite(best.proxy):
+            break
+        if abs(best.proxy - target) <= PROXY_TOL * abs(target):
+            break
+        pts.append((best.K, best.proxy))
+    return best
 
 
 def check_scans(scans: Sequence[Scan], runs: Sequence[Run], refits: bool = True) -> None:
@@ -788,6 +860,8 @@ __all__ = [
     "HELD",
     "MATCH_SIGMAS",
     "PROFILE_K",
+    "PROXY_STEPS",
+    "PROXY_TOL",
     "QUOTED",
     "ROLLING_K",
     "SLIDING_K",
@@ -803,6 +877,7 @@ __all__ = [
     "matching_point",
     "measured_k",
     "model_k",
+    "proxy_matching_k",
     "wall_value",
     "warnings",
 ]
