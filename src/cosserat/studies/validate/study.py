@@ -641,7 +641,16 @@ def _distinct_gaps(runs: Sequence[Run]) -> int:
 
 def _curves(cals: Sequence[SeriesCalibration]) -> dict[str, ModelDelta]:
     return {
-        c.model: ModelDelta(c.model, c.predicted, c.curve, c.summary, c.status, c.message)  # type: ignore[arg-type]
+        c.model: ModelDelta(
+            c.model,
+            c.predicted,
+            c.curve,  # type: ignore[arg-type]
+            c.summary,
+            c.status,
+            c.message,
+            c.why,
+            c.resolved_above,
+        )
         for c in cals
     }
 
@@ -928,6 +937,8 @@ def validate(
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
     jobs = series_jobs(data.runs, models, f)
+    if fit_angles:  # the Delta calibrations fit phi too
+        jobs = [replace(j, fix_phi=False) for j in jobs]
     fixes = None if fit_angles else {r.name: cosserat_fix(r, data.runs) for r in data.runs}
     results, cals = _analyse_all(
         data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs,
