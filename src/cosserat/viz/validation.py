@@ -86,8 +86,10 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     ----------
     entry : mapping
         ``name``, ``title``, ``distance_d``, ``u``, ``u_se`` (arrays), ``models`` (model ->
-        {"d", "u"}), ``order`` (model names, best first), optional ``spin`` ({"distance_d",
-        "departure", "stderr", "predicted": model -> array, "near_wall_d", "gap_d"}), optional
+        {"d", "u"}, optional "label" and "style": the legend's text and line options),
+        ``order`` (model names, best first), optional ``spin`` ({"distance_d", "departure",
+        "stderr", "predicted": model -> array, "near_wall_d", "gap_d"}, optional "labels" and
+        "styles" by model), optional
         ``cell`` (``"channel"``: no wall moves, the distance is from the wall at y = 0 and V is
         the run's velocity scale sqrt(g d); no creep tail is named).
     """
@@ -128,7 +130,8 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 cu = np.asarray(curve["u"], dtype=float)
                 cd = np.asarray(curve["d"], dtype=float)
                 keep = cu > 0 if log else np.ones(cu.size, bool)
-                ax.plot(cd[keep], cu[keep], label=name, **model_style(name, order))
+                look = {**model_style(name, order), **curve.get("style", {})}
+                ax.plot(cd[keep], cu[keep], label=curve.get("label", name), **look)
             ax.set_xlabel(x_label)
             ax.set_ylabel(u_label)
             if log:
@@ -161,10 +164,12 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 **DATA_STYLE,
             )
             like = layer.get("spin_like", {}) if layer else {}
+            labels, styles = spin.get("labels", {}), spin.get("styles", {})
             for name, pred in spin.get("predicted", {}).items():
                 # a layer's Cosserat spin in the colour of its velocity curve
-                look = model_style(like.get(name, name), order)
-                ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **look)
+                look = {**model_style(like.get(name, name), order), **styles.get(name, {})}
+                ax.plot(x, np.asarray(pred, dtype=float)[o], label=labels.get(name, name),
+                        **look)  # fmt: skip
             ax.axhline(0.0, color="0.5", linewidth=0.6)
             near, gap = float(spin["near_wall_d"]), float(spin["gap_d"])
             ax.axvspan(0.0, near, color="0.92", zorder=0)
@@ -607,6 +612,10 @@ def delta_claim_figure(
                     ax.errorbar([p[0] for p in cp], [p[1] for p in cp],
                                 yerr=[p[2] or 0.0 for p in cp], fmt="x", color=st["color"],
                                 capsize=2, markersize=5)  # fmt: skip
+                gap_note = none_ranges(c["gaps"], c["Delta"], c.get("why", []))
+                if gap_note:  # said in the legend, off the data, in the model's style
+                    ax.plot([], [], color=st["color"], linestyle=":", linewidth=1.2,
+                            label=f"{model}: {gap_note}")  # fmt: skip
             if not all_g:
                 ax.text(0.5, 0.5, "no usable Delta", ha="center", transform=ax.transAxes)
                 ax.set_title(s["label"], fontsize=7)
@@ -637,6 +646,15 @@ def delta_claim_figure(
             ax.set_ylim(lo, hi)
             ticks = (0.5, 1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100)
             ax.set_yticks(_nice_ticks(lo, hi, ticks))
+            floor = next((c["floor"] for c in s.get("curves", {}).values() if c.get("floor")),
+                         None)  # fmt: skip
+            if floor:  # the bins' resolution: the same for every model of the series
+                fg = [(g, f) for g, f in zip(s["curves"][next(iter(s["curves"]))]["gaps"], floor,
+                                             strict=True) if f]  # fmt: skip
+                ax.fill_between([g for g, _ in fg], lo, [f for _, f in fg], color="0.9",
+                                linewidth=0, zorder=0,
+                                label="at or below the second bin: a band thinner than the "
+                                "bins resolve (placed by where they fall)")  # fmt: skip
             ax.set_title(s["label"], fontsize=7)
             ax.set_xlabel(r"$H/d$ [-]")
         axs[0].set_ylabel(r"$\Delta$ [$d$]")
@@ -647,6 +665,29 @@ def delta_claim_figure(
         _legend_below(fig, axs, ncol=3)
         fig.subplots_adjust(left=0.09, right=0.98, bottom=0.33, top=0.84, wspace=0.3)
     return fig
+
+
+def none_ranges(gaps: Sequence[float], values: Sequence[float | None],
+                why: Sequence[str | None]) -> str:  # fmt: skip
+    """Where a model's Delta curve has no value, in words: "none at H/d = 8.04-11.8: <why>",
+    each run of consecutive gaps with its first reason shortened to its first clause ("" where
+    the curve has a value at every gap)."""
+    parts, k = [], 0
+    reasons = list(why) + [None] * (len(gaps) - len(why))
+    while k < len(gaps):
+        if values[k] is not None:
+            k += 1
+            continue
+        j = k
+        while j + 1 < len(gaps) and values[j + 1] is None:
+            j += 1
+        span = f"{gaps[k]:.3g}" if j == k else f"{gaps[k]:.3g}-{gaps[j]:.3g}"
+        reason = next((r for r in reasons[k : j + 1] if r), "")
+        short = reason.split(":")[0] if reason.startswith("no solution") else reason
+        short = short.split(" (")[0]
+        parts.append(f"none at H/d = {span}" + (f" ({short})" if short else ""))
+        k = j + 1
+    return "; ".join(parts)
 
 
 BAND_REFINE = 8
@@ -845,24 +886,26 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
             )
             if not hatched:
                 over += ("; " if over else "") + "none within 2 se of the data"
+            over = over.replace("; ", "\n")  # one clause a line: the titles stay in their panel
             ax.set_title(
                 f"{sc['run']}\nphi {sc['phi']:.3g} deg, {deltas}\nbeyond the null: data "
                 f"{m:+.3g} +- {se:.2g}, best fit {sc['best_beyond_null']:+.3g}\n{over}",
                 fontsize=7,
             )
-        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.24, top=0.78, wspace=0.35)
+        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.26, top=0.74, wspace=0.35)
         if mesh is not None:
-            cax = fig.add_axes((0.87, 0.24, 0.015, 0.54))
+            cax = fig.add_axes((0.87, 0.26, 0.015, 0.48))
             bar = fig.colorbar(mesh, cax=cax)
             bar.set_label("model's first-layer departure beyond its null,\n"
                           "(omega - vorticity/2 - null) d/V [-]", fontsize=7)  # fmt: skip
         fig.text(0.01, 0.01, "colour: interpolated between the computed points (dots); hatched: "
                  "the model within 2 se of the data's departure beyond the null (the verdict's "
-                 "se);\ndashed: the raw departure (its null included) equal to the raw measured "
-                 "one; black contour: the 95% region of the joint u + omega + stress-ratio fit "
-                 "(star: its optimum);\ndotted box: the finer grid around it; grey: the model "
-                 "has no solution (the couple stress reaches its yield bound inside the gap)",
-                 fontsize=6)  # fmt: skip
+                 "criterion and se);\ndashed: the raw departure (its null included) equal to the "
+                 "raw measured one (near it: the text's 'best first-layer-matching point', chosen "
+                 "on the raw departure); black contour: the 95% region of the joint u + omega + "
+                 "stress-ratio fit (star: its optimum);\ndotted box: the finer grid around it; "
+                 "grey: the model has no solution (the couple stress reaches its yield bound "
+                 "inside the gap)", fontsize=6)  # fmt: skip
     return fig
 
 
@@ -873,6 +916,7 @@ __all__ = [
     "beyond_range",
     "delta_claim_figure",
     "model_style",
+    "none_ranges",
     "refine_grid",
     "run_figure",
     "spin_claim_figure",

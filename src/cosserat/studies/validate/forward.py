@@ -502,3 +502,35 @@ def _distances_at(run: Run, x: FloatArray, lower: float, gap_d: float) -> FloatA
     else:
         d = lower + gap_d - x if run.moving_wall == "upper" else x - lower
     return np.sort(d)
+
+
+def calibration_profile(setup: Any, theta: FloatArray) -> Any:
+    """The profile of a one-run calibration (``calibration.engine.Setup``) at ``theta``: the
+    spin scan's joint fit at its optimum (``spin_scan.JointFit``)."""
+    from ...analysis.ranking import model_solve
+
+    rd = setup.runs[0]
+    return model_solve(setup.model.problem(rd, setup.run_values(rd, theta)))
+
+
+def figure_curves(profile: Any, run: Run, points: int = 300) -> dict[str, FloatArray]:
+    """A fitted profile for the run's figure: ``d`` (distances from the moving wall [d]) and
+    ``u`` there (the run's units and sign) [-]; per row of the run, its departure as the run's
+    analysis would report it (``departure``, the analysis' stencil) and the null of its
+    velocity (``null``: grains turning with the material, :func:`turning_with_the_material`)
+    [-]."""
+    fields = model_fields(profile, run)
+    d = np.linspace(0.0, run.gap_d, points)
+    lower = float(run.Ri_d or 0.0) if run.cell == "couette" else 0.0
+    if run.cell != "couette":  # the run's coordinate of each distance
+        x = run.gap_d - d if run.moving_wall == "upper" else d
+    elif run.moving_wall == "inner":
+        x = lower + d
+    else:
+        x = lower + run.gap_d - d
+    return {
+        "d": d,
+        "u": np.asarray(fields.u(x), dtype=float),
+        "departure": forward_fields(fields, run)["departure"],
+        "null": forward_fields(turning_with_the_material(fields), run)["departure"],
+    }
