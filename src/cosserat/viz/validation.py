@@ -100,7 +100,10 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     spin = entry.get("spin")
     layer = entry.get("layer")
     ncols = 3 if spin else 2
-    fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=4.4 if layer else 3.1)
+    # long legend labels (the joint fit's) take two columns and more rows
+    wide = any(len(str(c.get("label", ""))) > 40 for c in entry["models"].values())
+    fig, axes = new_figure(1, ncols, width=3.1 * ncols,
+                           height=4.4 if layer else 3.6 if wide else 3.1)  # fmt: skip
     order = list(entry.get("order", ()))
     channel = entry.get("cell") == "channel"
     x_label = (
@@ -183,10 +186,12 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
             )
         note = "\n" + textwrap.fill(layer["note"], 150) if layer else ""
         fig.suptitle(entry["title"] + note, fontsize=8)
-        _legend_below(fig, list(axes[0]), ncol=3 if layer else 4)
+        _legend_below(fig, list(axes[0]), ncol=3 if layer else 2 if wide else 4)
         # fixed margins: tight_layout costs more than the drawing (saved with a tight box)
         if layer:  # a longer legend (every alternative and the spin curves) and caption
             fig.subplots_adjust(left=0.08, right=0.98, bottom=0.34, top=0.8, wspace=0.45)
+        elif wide:
+            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.36, top=0.83, wspace=0.45)
         else:
             fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
     return fig
@@ -572,7 +577,7 @@ def delta_claim_figure(
     from .plotting import new_figure, style
 
     n = max(1, len(series))
-    fig, axes = new_figure(1, n, width=min(3.2 * n + 0.6, 11.0), height=3.6)
+    fig, axes = new_figure(1, n, width=min(3.2 * n + 2.4, 11.0), height=4.0)
     axs = [axes[0, k] for k in range(n)]
     order = sorted({m for s in series for m in s.get("curves", {})})
     with style():
@@ -600,8 +605,8 @@ def delta_claim_figure(
             for model, c in s.get("curves", {}).items():
                 st = model_style(model, order)
                 cg = [(g, d) for g, d in zip(c["gaps"], c["Delta"], strict=True) if d]
-                if cg:
-                    ax.plot([g for g, _ in cg], [d for _, d in cg], color=st["color"],
+                if cg:  # broken where the model gives none (NaN), not drawn across
+                    ax.plot(c["gaps"], [d if d else np.nan for d in c["Delta"]], color=st["color"],
                             linestyle=st.get("linestyle", "-"), linewidth=1.2,
                             label=f"{model}, one calibration of the material")  # fmt: skip
                     all_g += [g for g, _ in cg]
@@ -622,13 +627,13 @@ def delta_claim_figure(
                 continue
             g0, g1 = min(all_g) / 1.15, max(all_g) * 1.15
             data = [p for p in pts if p[3]]  # never the claimed laws through a left-out point
-            if not data:  # the words above the left-out points
-                ax.text(0.5, 0.94, "no run with a band thinner than its gap" if pts
-                        else "no usable Delta", ha="center", va="top", fontsize=7,
+            if not data:  # the words in a corner, below the data's points
+                ax.text(0.98, 0.03, "no run with a band thinner than its gap" if pts
+                        else "no usable Delta", ha="right", va="bottom", fontsize=7,
                         transform=ax.transAxes)  # fmt: skip
             elif len({p[0] for p in data}) < 2:  # two lines through one point show nothing
-                ax.text(0.5, 0.94, "one gap: no dependence on H/d to show", ha="center",
-                        va="top", fontsize=7, transform=ax.transAxes)  # fmt: skip
+                ax.text(0.98, 0.03, "one gap: no dependence on H/d to show", ha="right",
+                        va="bottom", fontsize=7, transform=ax.transAxes)  # fmt: skip
             else:
                 gg = np.geomspace(g0, g1, 20)
                 d0 = float(np.exp(np.mean(np.log([p[1] for p in data]))))
@@ -662,18 +667,19 @@ def delta_claim_figure(
                       for p in c.get("points", []))  # fmt: skip
         fig.suptitle(title + ("  (x: each model at the runs, +- its calibration's error)"
                               if markers else ""), fontsize=8)  # fmt: skip
-        _legend_below(fig, axs, ncol=3)
-        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.33, top=0.84, wspace=0.3)
+        _legend_below(fig, axs, ncol=2)
+        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.36, top=0.86, wspace=0.3)
     return fig
 
 
 def none_ranges(gaps: Sequence[float], values: Sequence[float | None],
                 why: Sequence[str | None]) -> str:  # fmt: skip
-    """Where a model's Delta curve has no value, in words: "none at H/d = 8.04-11.8: <why>",
-    each run of consecutive gaps with its first reason shortened to its first clause ("" where
-    the curve has a value at every gap)."""
-    parts, k = [], 0
+    """Where a model's Delta curve has no value, in words: "none at H/d = 8.04-11.8, 30
+    (<why>)", each run of consecutive gaps with its first reason cut to its first clause (before
+    a colon), runs with one reason together ("" where the curve has a value at every gap)."""
+    spans: dict[str, list[str]] = {}
     reasons = list(why) + [None] * (len(gaps) - len(why))
+    k = 0
     while k < len(gaps):
         if values[k] is not None:
             k += 1
@@ -681,13 +687,16 @@ def none_ranges(gaps: Sequence[float], values: Sequence[float | None],
         j = k
         while j + 1 < len(gaps) and values[j + 1] is None:
             j += 1
-        span = f"{gaps[k]:.3g}" if j == k else f"{gaps[k]:.3g}-{gaps[j]:.3g}"
         reason = next((r for r in reasons[k : j + 1] if r), "")
-        short = reason.split(":")[0] if reason.startswith("no solution") else reason
-        short = short.split(" (")[0]
-        parts.append(f"none at H/d = {span}" + (f" ({short})" if short else ""))
+        short = reason.split(":")[0].split(" (")[0]
+        spans.setdefault(short, []).append(
+            f"{gaps[k]:.3g}" if j == k else f"{gaps[k]:.3g}-{gaps[j]:.3g}"
+        )
         k = j + 1
-    return "; ".join(parts)
+    return "; ".join(
+        f"none at H/d = {', '.join(where)}" + (f" ({short})" if short else "")
+        for short, where in spans.items()
+    )
 
 
 BAND_REFINE = 8

@@ -712,8 +712,9 @@ def _delta(model: Any, probe: Any, values: Any, u0: float, f: float) -> tuple[fl
     u = np.asarray(u, dtype=float)
     if u[0] == u0:
         return None, (
-            "no shear band: the velocity is the far wall's in every bin (the moving wall slides "
-            "over grains at rest)"
+            "no band at the bins: the velocity is the far wall's at every bin centre (a band, "
+            "if any, lies between the wall and the first bin's centre, or the wall slides over "
+            "grains at rest)"
         )
     value = thickness_of(probe.fields["u"].s, u, u0, f)
     if value is None:

@@ -188,8 +188,7 @@ def run_entry(r: RunResult) -> dict[str, Any]:
             spin["styles"][JOINT] = JOINT_STYLE
             spin["predicted"][JOINT_NULL] = np.asarray(j["null"])[rows]
             spin["labels"][JOINT_NULL] = (
-                "the spin verdicts' null: grains turning with the material in the joint fit's "
-                "velocity, measured like the data"
+                "null of both spin verdicts: spin = half the vorticity in the joint fit's u"
             )
             spin["styles"][JOINT_NULL] = NULL_STYLE
     i_w = r.inertial_number
