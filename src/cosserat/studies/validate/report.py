@@ -105,7 +105,8 @@ def delta_caption(report: ValidationReport, which: str) -> str:
                 continue
             full = [c.why.get(curve_key(g)) for g in c.curve[0]]
             where = none_ranges(c.curve[0], c.curve[1], [None] * len(full))
-            reasons = sorted({w for w in full if w})
+            # one reason once: the solver's messages differ only in the value they got
+            reasons = sorted({re.sub(r"; got [^:;]*", "", w) for w in full if w})
             if where:
                 gaps.append(f"{m} at {short(s.key)}: {where} ({'; '.join(reasons)})")
     text = (
