@@ -161,7 +161,7 @@ def run_entry(r: RunResult) -> dict[str, Any]:
             name: {"d": d, "u": r.fits.curve(name, d), "label": f"{name}: u-only fit"}
             for name in order
         }
-    spin = None
+    spin: dict[str, Any] | None = None
     if r.spin.available:
         spin = {
             "distance_d": r.spin.distance_d,
