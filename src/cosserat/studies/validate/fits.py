@@ -653,7 +653,7 @@ class SeriesCalibration:
         the curve passes through them) [-], [d]; None where the model gives none.
     why : dict
         Why the model gives no Delta, by run name (``predicted``) and by curve gap (its
-        ``f"{gap:.6g}"``): :func:`_delta`'s reasons.
+        ``f"{gap:.6g}"``): ``_delta``'s reasons.
     resolved_above : dict
         Like ``why``: the distance of the second bin from the moving wall [d] at that run or
         gap; a Delta at or below it is not resolved by the bins (the data's rule,
@@ -723,7 +723,7 @@ def _delta(model: Any, probe: Any, values: Any, u0: float, f: float) -> tuple[fl
 
 
 def curve_key(gap_d: float) -> str:
-    """The key of a curve gap in :attr:`SeriesCalibration.why` and ``resolved_above``."""
+    """The key of a curve gap in a :class:`SeriesCalibration`'s ``why`` and ``resolved_above``."""
     return f"{gap_d:.6g}"
 
 
