@@ -93,6 +93,9 @@ def test_the_series_of_one_material_share_its_calibration_and_keep_their_walls(t
     }
     params = rough.summary["parameters"]
     assert [n for n in params if n.startswith("phi")] == ["phi"]  # one material
+    # without stresses phi is fitted, and the calibration says why
+    assert rough.summary["fixed"] == {}
+    assert rough.summary["fixed_note"].startswith("phi fitted: material ")
     # one roughness tan(delta)/sin(phi) per wall kind, each its wall's (phi itself is not
     # identified by velocities alone, so delta is not either: the roughness is)
     sin_phi = np.sin(np.radians(28.5))
@@ -103,16 +106,18 @@ def test_the_series_of_one_material_share_its_calibration_and_keep_their_walls(t
     # each series reads it at its own runs ...
     assert set(rough.predicted) == {"rough_20", "rough_40"}
     assert set(smooth.predicted) == {"smooth_20", "smooth_40"}
-    # ... and draws its curve with its own wall: through its own predictions (within the
-    # log-log interpolation between the curve's gaps, where Delta bends), far from the other's
+    # ... and draws its curve with its own wall: through its own predictions (the runs' gaps
+    # are among the curve's, with the runs' values: referee 9, point 9), far from the other's
     for cal, other in ((rough, smooth), (smooth, rough)):
         pts = [(g, v) for g, v in zip(*cal.curve, strict=True) if v is not None]
-        assert len(pts) >= 7
+        assert len(pts) >= 9
         lg, lv = np.log([g for g, _ in pts]), np.log([v for _, v in pts])
         for run, (delta, _) in cal.predicted.items():
             wall, g = run.split("_")
             at = float(np.exp(np.interp(np.log(float(g)), lg, lv)))
-            assert at == pytest.approx(delta, rel=0.1)
+            assert at == pytest.approx(delta, rel=1e-12)
+            # the second bin's distance where the band must be to be resolved
+            assert cal.resolved_above[run] == pytest.approx(1.5)
             partner = other.predicted[f"{'smooth' if wall == 'rough' else 'rough'}_{g}"][0]
             assert abs(at - partner) > 0.5 * min(at, partner)
     assert rough.predicted["rough_40"][0] > 1.2 * smooth.predicted["smooth_40"][0]

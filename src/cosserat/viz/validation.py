@@ -86,8 +86,10 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     ----------
     entry : mapping
         ``name``, ``title``, ``distance_d``, ``u``, ``u_se`` (arrays), ``models`` (model ->
-        {"d", "u"}), ``order`` (model names, best first), optional ``spin`` ({"distance_d",
-        "departure", "stderr", "predicted": model -> array, "near_wall_d", "gap_d"}), optional
+        {"d", "u"}, optional "label" and "style": the legend's text and line options),
+        ``order`` (model names, best first), optional ``spin`` ({"distance_d", "departure",
+        "stderr", "predicted": model -> array, "near_wall_d", "gap_d"}, optional "labels" and
+        "styles" by model), optional
         ``cell`` (``"channel"``: no wall moves, the distance is from the wall at y = 0 and V is
         the run's velocity scale sqrt(g d); no creep tail is named).
     """
@@ -98,7 +100,10 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
     spin = entry.get("spin")
     layer = entry.get("layer")
     ncols = 3 if spin else 2
-    fig, axes = new_figure(1, ncols, width=3.1 * ncols, height=4.4 if layer else 3.1)
+    # long legend labels (the joint fit's) take two columns and more rows
+    wide = any(len(str(c.get("label", ""))) > 40 for c in entry["models"].values())
+    fig, axes = new_figure(1, ncols, width=3.1 * ncols,
+                           height=4.4 if layer else 3.6 if wide else 3.1)  # fmt: skip
     order = list(entry.get("order", ()))
     channel = entry.get("cell") == "channel"
     x_label = (
@@ -128,7 +133,8 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 cu = np.asarray(curve["u"], dtype=float)
                 cd = np.asarray(curve["d"], dtype=float)
                 keep = cu > 0 if log else np.ones(cu.size, bool)
-                ax.plot(cd[keep], cu[keep], label=name, **model_style(name, order))
+                look = {**model_style(name, order), **curve.get("style", {})}
+                ax.plot(cd[keep], cu[keep], label=curve.get("label", name), **look)
             ax.set_xlabel(x_label)
             ax.set_ylabel(u_label)
             if log:
@@ -161,10 +167,12 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 **DATA_STYLE,
             )
             like = layer.get("spin_like", {}) if layer else {}
+            labels, styles = spin.get("labels", {}), spin.get("styles", {})
             for name, pred in spin.get("predicted", {}).items():
                 # a layer's Cosserat spin in the colour of its velocity curve
-                look = model_style(like.get(name, name), order)
-                ax.plot(x, np.asarray(pred, dtype=float)[o], label=name, **look)
+                look = {**model_style(like.get(name, name), order), **styles.get(name, {})}
+                ax.plot(x, np.asarray(pred, dtype=float)[o], label=labels.get(name, name),
+                        **look)  # fmt: skip
             ax.axhline(0.0, color="0.5", linewidth=0.6)
             near, gap = float(spin["near_wall_d"]), float(spin["gap_d"])
             ax.axvspan(0.0, near, color="0.92", zorder=0)
@@ -178,10 +186,12 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
             )
         note = "\n" + textwrap.fill(layer["note"], 150) if layer else ""
         fig.suptitle(entry["title"] + note, fontsize=8)
-        _legend_below(fig, list(axes[0]), ncol=3 if layer else 4)
+        _legend_below(fig, list(axes[0]), ncol=3 if layer else 2 if wide else 4)
         # fixed margins: tight_layout costs more than the drawing (saved with a tight box)
         if layer:  # a longer legend (every alternative and the spin curves) and caption
             fig.subplots_adjust(left=0.08, right=0.98, bottom=0.34, top=0.8, wspace=0.45)
+        elif wide:
+            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.36, top=0.83, wspace=0.45)
         else:
             fig.subplots_adjust(left=0.08, right=0.98, bottom=0.28, top=0.8, wspace=0.45)
     return fig
@@ -567,7 +577,7 @@ def delta_claim_figure(
     from .plotting import new_figure, style
 
     n = max(1, len(series))
-    fig, axes = new_figure(1, n, width=min(3.2 * n + 0.6, 11.0), height=3.6)
+    fig, axes = new_figure(1, n, width=min(3.2 * n + 2.4, 11.0), height=4.0)
     axs = [axes[0, k] for k in range(n)]
     order = sorted({m for s in series for m in s.get("curves", {})})
     with style():
@@ -595,8 +605,8 @@ def delta_claim_figure(
             for model, c in s.get("curves", {}).items():
                 st = model_style(model, order)
                 cg = [(g, d) for g, d in zip(c["gaps"], c["Delta"], strict=True) if d]
-                if cg:
-                    ax.plot([g for g, _ in cg], [d for _, d in cg], color=st["color"],
+                if cg:  # broken where the model gives none (NaN), not drawn across
+                    ax.plot(c["gaps"], [d if d else np.nan for d in c["Delta"]], color=st["color"],
                             linestyle=st.get("linestyle", "-"), linewidth=1.2,
                             label=f"{model}, one calibration of the material")  # fmt: skip
                     all_g += [g for g, _ in cg]
@@ -607,19 +617,23 @@ def delta_claim_figure(
                     ax.errorbar([p[0] for p in cp], [p[1] for p in cp],
                                 yerr=[p[2] or 0.0 for p in cp], fmt="x", color=st["color"],
                                 capsize=2, markersize=5)  # fmt: skip
+                gap_note = none_ranges(c["gaps"], c["Delta"], c.get("why", []))
+                if gap_note:  # said in the legend, off the data, in the model's style
+                    ax.plot([], [], color=st["color"], linestyle=":", linewidth=1.2,
+                            label=f"{model}: {gap_note}")  # fmt: skip
             if not all_g:
                 ax.text(0.5, 0.5, "no usable Delta", ha="center", transform=ax.transAxes)
                 ax.set_title(s["label"], fontsize=7)
                 continue
             g0, g1 = min(all_g) / 1.15, max(all_g) * 1.15
             data = [p for p in pts if p[3]]  # never the claimed laws through a left-out point
-            if not data:  # the words above the left-out points
-                ax.text(0.5, 0.94, "no run with a band thinner than its gap" if pts
-                        else "no usable Delta", ha="center", va="top", fontsize=7,
+            if not data:  # the words in a corner, below the data's points
+                ax.text(0.98, 0.03, "no run with a band thinner than its gap" if pts
+                        else "no usable Delta", ha="right", va="bottom", fontsize=7,
                         transform=ax.transAxes)  # fmt: skip
             elif len({p[0] for p in data}) < 2:  # two lines through one point show nothing
-                ax.text(0.5, 0.94, "one gap: no dependence on H/d to show", ha="center",
-                        va="top", fontsize=7, transform=ax.transAxes)  # fmt: skip
+                ax.text(0.98, 0.03, "one gap: no dependence on H/d to show", ha="right",
+                        va="bottom", fontsize=7, transform=ax.transAxes)  # fmt: skip
             else:
                 gg = np.geomspace(g0, g1, 20)
                 d0 = float(np.exp(np.mean(np.log([p[1] for p in data]))))
@@ -637,6 +651,15 @@ def delta_claim_figure(
             ax.set_ylim(lo, hi)
             ticks = (0.5, 1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100)
             ax.set_yticks(_nice_ticks(lo, hi, ticks))
+            floor = next((c["floor"] for c in s.get("curves", {}).values() if c.get("floor")),
+                         None)  # fmt: skip
+            if floor:  # the bins' resolution: the same for every model of the series
+                fg = [(g, f) for g, f in zip(s["curves"][next(iter(s["curves"]))]["gaps"], floor,
+                                             strict=True) if f]  # fmt: skip
+                ax.fill_between([g for g, _ in fg], lo, [f for _, f in fg], color="0.9",
+                                linewidth=0, zorder=0,
+                                label="at or below the second bin: a band thinner than the "
+                                "bins resolve (placed by where they fall)")  # fmt: skip
             ax.set_title(s["label"], fontsize=7)
             ax.set_xlabel(r"$H/d$ [-]")
         axs[0].set_ylabel(r"$\Delta$ [$d$]")
@@ -644,9 +667,36 @@ def delta_claim_figure(
                       for p in c.get("points", []))  # fmt: skip
         fig.suptitle(title + ("  (x: each model at the runs, +- its calibration's error)"
                               if markers else ""), fontsize=8)  # fmt: skip
-        _legend_below(fig, axs, ncol=3)
-        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.33, top=0.84, wspace=0.3)
+        _legend_below(fig, axs, ncol=2)
+        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.36, top=0.86, wspace=0.3)
     return fig
+
+
+def none_ranges(gaps: Sequence[float], values: Sequence[float | None],
+                why: Sequence[str | None]) -> str:  # fmt: skip
+    """Where a model's Delta curve has no value, in words: "none at H/d = 8.04-11.8, 30
+    (<why>)", each run of consecutive gaps with its first reason cut to its first clause (before
+    a colon), runs with one reason together ("" where the curve has a value at every gap)."""
+    spans: dict[str, list[str]] = {}
+    reasons = list(why) + [None] * (len(gaps) - len(why))
+    k = 0
+    while k < len(gaps):
+        if values[k] is not None:
+            k += 1
+            continue
+        j = k
+        while j + 1 < len(gaps) and values[j + 1] is None:
+            j += 1
+        reason = next((r for r in reasons[k : j + 1] if r), "")
+        short = reason.split(":")[0].split(" (")[0]
+        spans.setdefault(short, []).append(
+            f"{gaps[k]:.3g}" if j == k else f"{gaps[k]:.3g}-{gaps[j]:.3g}"
+        )
+        k = j + 1
+    return "; ".join(
+        f"none at H/d = {', '.join(where)}" + (f" ({short})" if short else "")
+        for short, where in spans.items()
+    )
 
 
 BAND_REFINE = 8
@@ -845,24 +895,26 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
             )
             if not hatched:
                 over += ("; " if over else "") + "none within 2 se of the data"
+            over = over.replace("; ", "\n")  # one clause a line: the titles stay in their panel
             ax.set_title(
                 f"{sc['run']}\nphi {sc['phi']:.3g} deg, {deltas}\nbeyond the null: data "
                 f"{m:+.3g} +- {se:.2g}, best fit {sc['best_beyond_null']:+.3g}\n{over}",
                 fontsize=7,
             )
-        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.24, top=0.78, wspace=0.35)
+        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.26, top=0.74, wspace=0.35)
         if mesh is not None:
-            cax = fig.add_axes((0.87, 0.24, 0.015, 0.54))
+            cax = fig.add_axes((0.87, 0.26, 0.015, 0.48))
             bar = fig.colorbar(mesh, cax=cax)
             bar.set_label("model's first-layer departure beyond its null,\n"
                           "(omega - vorticity/2 - null) d/V [-]", fontsize=7)  # fmt: skip
         fig.text(0.01, 0.01, "colour: interpolated between the computed points (dots); hatched: "
                  "the model within 2 se of the data's departure beyond the null (the verdict's "
-                 "se);\ndashed: the raw departure (its null included) equal to the raw measured "
-                 "one; black contour: the 95% region of the joint u + omega + stress-ratio fit "
-                 "(star: its optimum);\ndotted box: the finer grid around it; grey: the model "
-                 "has no solution (the couple stress reaches its yield bound inside the gap)",
-                 fontsize=6)  # fmt: skip
+                 "criterion and se);\ndashed: the raw departure (its null included) equal to the "
+                 "raw measured one (near it: the text's 'best first-layer-matching point', chosen "
+                 "on the raw departure); black contour: the 95% region of the joint u + omega + "
+                 "stress-ratio fit (star: its optimum);\ndotted box: the finer grid around it; "
+                 "grey: the model has no solution (the couple stress reaches its yield bound "
+                 "inside the gap)", fontsize=6)  # fmt: skip
     return fig
 
 
@@ -873,6 +925,7 @@ __all__ = [
     "beyond_range",
     "delta_claim_figure",
     "model_style",
+    "none_ranges",
     "refine_grid",
     "run_figure",
     "spin_claim_figure",

@@ -649,7 +649,15 @@ class SeriesCalibration:
         Delta of the calibrated model at each run's gap, bins and rate [d], with its error from
         the calibration's covariance [d].
     curve : (gaps, Delta)
-        Delta on a grid of H/d [-], [d] (None where the model has no solution).
+        Delta on a grid of H/d and at the series' runs (their ``predicted`` values, so that
+        the curve passes through them) [-], [d]; None where the model gives none.
+    why : dict
+        Why the model gives no Delta, by run name (``predicted``) and by curve gap (its
+        ``f"{gap:.6g}"``): ``_delta``'s reasons.
+    resolved_above : dict
+        Like ``why``: the distance of the second bin from the moving wall [d] at that run or
+        gap; a Delta at or below it is not resolved by the bins (the data's rule,
+        ``measures.measured_thickness``): it is set by where the first bins fall.
     """
 
     model: str
@@ -658,6 +666,8 @@ class SeriesCalibration:
     summary: dict[str, Any] = field(default_factory=dict)
     predicted: dict[str, tuple[float | None, float | None]] = field(default_factory=dict)
     curve: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
+    why: dict[str, str] = field(default_factory=dict)
+    resolved_above: dict[str, float] = field(default_factory=dict)
 
 
 def _series_start(model: str, keys: set[str], fits: Sequence[RunFits | None]) -> dict[str, float]:
@@ -688,17 +698,33 @@ def _probe(template: Any, name: str, gap_d: float, s: FloatArray, I_w: float | N
     )
 
 
-def _delta(model: Any, probe: Any, values: Any, u0: float, f: float) -> float | None:
+def _delta(model: Any, probe: Any, values: Any, u0: float, f: float) -> tuple[float | None, str]:
+    """The model's Delta at the probe's bins [d], or None and why ("" with a value)."""
     from ...calibration.models import SOLVE_ERRORS
     from .measures import thickness_of
 
     try:
         u = model.predict(probe, values, ["u"])["u"]
-    except SOLVE_ERRORS:
-        return None
+    except SOLVE_ERRORS as exc:
+        return None, "no solution: " + " ".join(str(exc).split())
     if not np.all(np.isfinite(u)):
-        return None
-    return thickness_of(probe.fields["u"].s, u, u0, f)
+        return None, "no solution: a non-finite velocity"
+    u = np.asarray(u, dtype=float)
+    if u[0] == u0:
+        return None, (
+            "no band at the bins: the velocity is the far wall's at every bin centre (a band, "
+            "if any, lies between the wall and the first bin's centre, or the wall slides over "
+            "grains at rest)"
+        )
+    value = thickness_of(probe.fields["u"].s, u, u0, f)
+    if value is None:
+        return None, f"the band fills the gap: u does not fall to {f:g} of its first bin's value"
+    return value, ""
+
+
+def curve_key(gap_d: float) -> str:
+    """The key of a curve gap in a :class:`SeriesCalibration`'s ``why`` and ``resolved_above``."""
+    return f"{gap_d:.6g}"
 
 
 def _rate(runs: Sequence[Any]) -> Callable[[float], float | None]:
@@ -716,6 +742,32 @@ def _rate(runs: Sequence[Any]) -> Callable[[float], float | None]:
     return lambda g: float(math.exp(c0 + c1 * math.log(g)))
 
 
+def material_fix(model: str, runs: Sequence[Run]) -> tuple[dict[str, float], str]:
+    """What the stresses fix in a material's joint calibration of ``model``, and a note: the
+    Cosserat model's phi on a plane material, sin phi = T of its runs with both walls fully
+    rough (:func:`~cosserat.studies.validate.spin_scan.material_phi`, the phi that the per-run
+    fits and the spin scan fix: one material, one phi); nothing otherwise, the note saying why
+    where the model is the Cosserat one. The walls' roughness stays fitted per wall kind (one
+    value for all the runs of a kind, where the runs' measured wall ratios differ)."""
+    from ...calibration.data import _material_label
+    from .spin_scan import material_phi
+
+    if model != "cosserat":
+        return {}, ""
+    if runs[0].cell != "plane":
+        return {}, (
+            f"phi fitted: a {runs[0].cell} material (the relation sin phi = T is plane shear's)"
+        )
+    try:
+        phi, phi_se, source = material_phi(runs, _material_label(runs[0].meta))
+    except CosseratError as exc:
+        return {}, "phi fitted: " + " ".join(str(exc).split())
+    return {"phi": phi}, (
+        f"phi = {phi:.4g} +- {phi_se:.2g} deg fixed from the stresses ({source}); its error is "
+        "not propagated into Delta's"
+    )
+
+
 def calibrate_material(
     runs: Sequence[Run],
     models: Sequence[str] | None,
@@ -723,6 +775,7 @@ def calibrate_material(
     fits: Sequence[RunFits | None] = (),
     curve: bool = True,
     use_fits: bool = False,
+    fix_phi: bool = True,
 ) -> dict[str, list[SeriesCalibration]]:
     """Each model calibrated jointly on every run of one material (``cosserat calibrate``'s
     engine, :func:`cosserat.calibration.joint.calibrate_model`: material parameters shared by
@@ -745,6 +798,10 @@ def calibrate_material(
         (default: the declared defaults, as ``cosserat calibrate`` starts).
     curve : bool
         Also compute each series' curve on a grid of H/d (for the figure).
+    fix_phi : bool
+        Fix what the stresses measure (:func:`material_fix`: the Cosserat model's phi on a
+        plane material), as the per-run fits and the spin scan do; False fits it (``cosserat
+        validate --fit-angles``).
 
     Returns
     -------
@@ -776,7 +833,12 @@ def calibrate_material(
     for m in chosen:
         keys = {p.key for p in m.parameters()}
         start = _series_start(m.name, keys, fits) if use_fits else None
-        mc = calibrate_model(Model(m.name), data, None, start=start, starts=SERIES_STARTS)
+        fix, fix_note = material_fix(m.name, runs) if fix_phi else ({}, "")
+        if start is not None:
+            start = {k: v for k, v in start.items() if k not in fix}
+        mc = calibrate_model(
+            Model(m.name), data, None, fix=fix or None, start=start, starts=SERIES_STARTS
+        )
         if not mc.ok:
             for key, _, _ in series:
                 out[key].append(SeriesCalibration(m.name, "failed", " ".join(mc.message.split())))
@@ -812,11 +874,15 @@ def calibrate_material(
             "material": data[0].material,
             "runs": [r.name for r in runs],
             "wall_kinds": {k: list(v) for k, v in kinds.items()},
+            "fixed": dict(fix),
+            "fixed_note": fix_note,
         }
         for key, members, f in series:
             rds = [by_name[r.name] for r in members]
-            predicted, grid = _series_delta(s, theta, cov, members, rds, f, curve)
-            out[key].append(SeriesCalibration(m.name, "ok", "", dict(summary), predicted, grid))
+            predicted, grid, why, floor = _series_delta(s, theta, cov, members, rds, f, curve)
+            out[key].append(
+                SeriesCalibration(m.name, "ok", "", dict(summary), predicted, grid, why, floor)
+            )
     return out
 
 
@@ -831,11 +897,17 @@ def _series_delta(
 ) -> tuple[
     dict[str, tuple[float | None, float | None]],
     tuple[tuple[float, ...], tuple[float | None, ...]],
+    dict[str, str],
+    dict[str, float],
 ]:
     """One calibration's Delta at a series' runs, with its error from the covariance ``cov``
     (delta method), and on a grid of H/d with the series' first run as the template (its
-    wall, its bins' spacing; I_w from :func:`_rate` of the series' runs)."""
+    wall; at each gap the bins its analysis would make there, ``forward.analysis_distances``;
+    I_w from :func:`_rate` of the series' runs), the runs' own values among the grid's; why
+    the model gives none where it does not, and the second bin's distance at each
+    (:class:`SeriesCalibration`)."""
     from ...calibration.engine import FD_STEP
+    from .forward import analysis_distances
     from .measures import reference_velocity
 
     model = s.model
@@ -843,9 +915,15 @@ def _series_delta(
     rate = _rate(data)
     lo, hi = s.bounds()
     predicted: dict[str, tuple[float | None, float | None]] = {}
+    why: dict[str, str] = {}
+    floor: dict[str, float] = {}
     for run, rd in zip(runs, data, strict=True):
-        probe = _probe(rd, rd.name, rd.gap_d, run.measured().distance_d, rd.I_w)
-        value = _delta(model, probe, s.run_values(rd, theta), u0, f)
+        dist = run.measured().distance_d
+        probe = _probe(rd, rd.name, rd.gap_d, dist, rd.I_w)
+        value, reason = _delta(model, probe, s.run_values(rd, theta), u0, f)
+        floor[rd.name] = float(dist[1]) if dist.size > 1 else 0.0
+        if reason:
+            why[rd.name] = reason
         se = None
         if value is not None and theta.size:
             g = np.zeros(theta.size)
@@ -858,7 +936,7 @@ def _series_delta(
                 )
                 moved = theta.copy()
                 moved[j] += h
-                dj = _delta(model, probe, s.run_values(rd, moved), u0, f)
+                dj = _delta(model, probe, s.run_values(rd, moved), u0, f)[0]
                 if dj is None:
                     ok = False
                     break
@@ -867,22 +945,32 @@ def _series_delta(
         predicted[rd.name] = (value, se)
     grid: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
     if curve:
-        m0 = runs[0].measured().distance_d
-        first = float(np.min(m0))
-        step = float(np.median(np.diff(np.sort(m0)))) if m0.size > 1 else 1.0
+        # each gap measured as the analysis would bin a run there (the series' first run's
+        # rule), and the series' runs themselves: the curve passes through their predictions
         gaps = np.geomspace(
             min(r.gap_d for r in runs) / CURVE_SPAN[0],
             max(r.gap_d for r in runs) * CURVE_SPAN[1],
             CURVE_POINTS,
         )
         values = s.run_values(data[0], theta)
-        ds = []
+        points: dict[float, float | None] = {}
         for g in gaps:
-            probe = _probe(data[0], f"{data[0].name}@H{g:.4g}", float(g),
-                           np.arange(first, g, step), rate(float(g)))  # fmt: skip
-            ds.append(_delta(model, probe, values, u0, f))
-        grid = (tuple(float(g) for g in gaps), tuple(ds))
-    return predicted, grid
+            dist = analysis_distances(runs[0], float(g))
+            probe = _probe(data[0], f"{data[0].name}@H{g:.4g}", float(g), dist,
+                           rate(float(g)))  # fmt: skip
+            value, reason = _delta(model, probe, values, u0, f)
+            points[float(g)] = value
+            floor[curve_key(float(g))] = float(dist[1]) if dist.size > 1 else 0.0
+            if reason:
+                why[curve_key(float(g))] = reason
+        for rd in data:
+            points[float(rd.gap_d)] = predicted[rd.name][0]
+            floor[curve_key(float(rd.gap_d))] = floor[rd.name]
+            if rd.name in why:
+                why[curve_key(float(rd.gap_d))] = why[rd.name]
+        order = sorted(points)
+        grid = (tuple(order), tuple(points[g] for g in order))
+    return predicted, grid, why, floor
 
 
 @dataclass(frozen=True)
@@ -896,13 +984,15 @@ class MaterialJob:
     model: str
     series: tuple[tuple[str, tuple[Run, ...], float], ...]
     """(series key, its runs, its f [-]) of every series of the material."""
+    fix_phi: bool = True
+    """:func:`calibrate_material`'s ``fix_phi``."""
 
 
 def material_job(job: MaterialJob) -> dict[str, SeriesCalibration]:
     """:func:`calibrate_material` of one job, series key -> its calibration, a failure as a
     result for every series (for worker processes)."""
     try:
-        out = calibrate_material(job.runs, [job.model], job.series)
+        out = calibrate_material(job.runs, [job.model], job.series, fix_phi=job.fix_phi)
     except CosseratError as exc:
         why = " ".join(str(exc).split())
         return {key: SeriesCalibration(job.model, "failed", why) for key, _, _ in job.series}

@@ -442,3 +442,95 @@ def measured_first_layer(
     half = stencil_half(bins, u, wall_velocities(run), stencil)
     se = first_layer_half_se(bins, u_se, rho_u, wall, stencil)
     return float(omega[k] - half[k]), se, float(omega_se[k])
+
+
+def _counted_centres(gap_d: float, w: float) -> FloatArray:
+    """Bin centres [d] from the wall the bins are counted from, at a gap ``gap_d``, as the DEM
+    analysis cuts them (``cosserat.dem.analyse.merge_bins``): bins of ``w`` from that wall,
+    the remainder at the other end a narrower bin, or joined to its neighbour if under half a
+    bin. The analysis decides that on its fine bins (``FINE_BIN``, the gap's end rounded to
+    the nearest), and a remainder that rounds to none widens the last bin."""
+    from ...dem.analyse import FINE_BIN
+
+    n = math.floor(gap_d / w + 1e-9)
+    edges = [k * w for k in range(n + 1)]
+    rest = gap_d - edges[-1]
+    if rest > 1e-9 * w:
+        if round(rest / FINE_BIN) * FINE_BIN < 0.5 * w and len(edges) > 2:
+            edges[-1] = gap_d
+        else:
+            edges.append(gap_d)
+    e = np.asarray(edges, dtype=float)
+    return 0.5 * (e[:-1] + e[1:])
+
+
+def analysis_distances(run: Run, gap_d: float) -> FloatArray:
+    """Distances from the moving wall [d] of the bin centres that ``run``'s analysis would
+    make in the same cell at gap ``gap_d``, in increasing order: a model's Delta measured at
+    them is measured as the data's would be (a band thinner than a bin is placed by where the
+    first bin's centre falls, which the remainder of the gap over the bins sets).
+
+    The rule is read off the run: bins of its median spacing w counted from the wall its
+    interior centres sit at (k + 1/2) w from, the remainder at the other wall a narrower bin,
+    or joined to its neighbour if under half a bin (``cosserat.dem.analyse.merge_bins``).
+    Where that rule does not give the run's own centres at its own gap (another analysis;
+    bins merged for want of grains), the run's first centre and spacing are kept: centres at
+    ``s_0 + k w`` from the moving wall."""
+    bins = bin_edges(run)
+    own = np.sort(_distance_from_moving(run, bins.centre))
+    w = float(np.median(np.diff(bins.centre)))
+    lower, upper = bins.walls
+    size = upper - lower
+    for counted_from_lower in (True, False):
+        c = _counted_centres(size, w)
+        x = lower + c if counted_from_lower else upper - c
+        if c.size == own.size and np.allclose(
+            np.sort(_distance_from_moving(run, x)), own, atol=1e-3 * w
+        ):
+            c = _counted_centres(float(gap_d), w)
+            x = lower + c if counted_from_lower else lower + float(gap_d) - c
+            return _distances_at(run, x, lower, float(gap_d))
+    return np.arange(float(own[0]), float(gap_d), w)
+
+
+def _distances_at(run: Run, x: FloatArray, lower: float, gap_d: float) -> FloatArray:
+    """Distances from the moving wall of coordinates ``x`` in a cell like ``run``'s whose gap
+    is ``gap_d`` (the lower/inner wall at ``lower``) [d], sorted."""
+    x = np.asarray(x, dtype=float)
+    if run.cell == "couette":
+        d = x - lower if run.moving_wall == "inner" else lower + gap_d - x
+    else:
+        d = lower + gap_d - x if run.moving_wall == "upper" else x - lower
+    return np.sort(d)
+
+
+def calibration_profile(setup: Any, theta: FloatArray) -> Any:
+    """The profile of a one-run calibration (``calibration.engine.Setup``) at ``theta``: the
+    spin scan's joint fit at its optimum (``spin_scan.JointFit``)."""
+    from ...analysis.ranking import model_solve
+
+    rd = setup.runs[0]
+    return model_solve(setup.model.problem(rd, setup.run_values(rd, theta)))
+
+
+def figure_curves(profile: Any, run: Run, points: int = 300) -> dict[str, FloatArray]:
+    """A fitted profile for the run's figure: ``d`` (distances from the moving wall [d]) and
+    ``u`` there (the run's units and sign) [-]; per row of the run, its departure as the run's
+    analysis would report it (``departure``, the analysis' stencil) and the null of its
+    velocity (``null``: grains turning with the material, :func:`turning_with_the_material`)
+    [-]."""
+    fields = model_fields(profile, run)
+    d = np.linspace(0.0, run.gap_d, points)
+    lower = float(run.Ri_d or 0.0) if run.cell == "couette" else 0.0
+    if run.cell != "couette":  # the run's coordinate of each distance
+        x = run.gap_d - d if run.moving_wall == "upper" else d
+    elif run.moving_wall == "inner":
+        x = lower + d
+    else:
+        x = lower + run.gap_d - d
+    return {
+        "d": d,
+        "u": np.asarray(fields.u(x), dtype=float),
+        "departure": forward_fields(fields, run)["departure"],
+        "null": forward_fields(turning_with_the_material(fields), run)["departure"],
+    }

@@ -17,6 +17,7 @@ from ..._text import significance
 from ...analysis.gap import PAPER_SLOPES
 from ...calibration.models import Model
 from ...viz.report import write_report as write_templates
+from .fits import curve_key
 from .grouping import wall_label
 from .layer import rate_between_bins
 from .measures import (
@@ -72,8 +73,79 @@ def spin_scan_caption(scans: list[dict[str, Any]]) -> str:
         "it, interpolated between the computed points (dots). Hatched: where the model comes "
         "within 2 se of the data's departure beyond the null of the joint fit's velocity (the "
         "verdict's se: the data's times sqrt(chi^2/dof), the null's spread in quadrature; "
-        f"{runs}). Black contour: the 95% region of the joint u + omega + stress-ratio fit; "
-        "star: its optimum; dotted box: the finer grid around it; grey: no solution."
+        f"{runs}). Dashed: where the raw departure (its null included) equals the raw measured "
+        "one. Two criteria, then (referee 9, point 9): the hatching and the verdict's rules "
+        "take the departure beyond the null; the evidence's 'best first-layer-matching point' "
+        "takes the raw departure (a point within 2 se of the data's raw first-layer departure, "
+        "near the dashed line), so it can sit where nothing is hatched: the model reaches the "
+        "measured first-layer value there through its null (a velocity steep next to the wall), "
+        "not through a spin of its own. Black contour: the 95% region of the joint u + omega + "
+        "stress-ratio fit; star: its optimum; dotted box: the finer grid around it; grey: no "
+        "solution."
+    )
+
+
+JOINT = "cosserat (joint)"
+"""A run figure's key of the spin scan's joint fit (:attr:`RunResult.joint`)."""
+JOINT_NULL = "null (joint)"
+JOINT_STYLE = {"color": "k", "linestyle": "--", "linewidth": 1.1}
+NULL_STYLE = {"color": "0.45", "linestyle": ":", "linewidth": 1.3}
+
+
+def delta_caption(report: ValidationReport, which: str) -> str:
+    """The caption of a Delta claim's figure (referee 9, point 9): what the curves and the
+    markers are, the bins' resolution, and where each model gives no Delta and why."""
+    from ...viz.validation import none_ranges
+    from .verdicts import short
+
+    gaps = []
+    for s in relevant(report.groups, which):
+        for m, c in s.curves.items():
+            if not c.ok:
+                continue
+            full = [c.why.get(curve_key(g)) for g in c.curve[0]]
+            where = none_ranges(c.curve[0], c.curve[1], [None] * len(full))
+            # one reason once: the solver's messages differ only in the value they got
+            reasons = sorted({re.sub(r"; got [^:;]*", "", w) for w in full if w})
+            if where:
+                gaps.append(f"{m} at {short(s.key)}: {where} ({'; '.join(reasons)})")
+    text = (
+        "Measured Delta (black; open: the band fills its gap, left out) against H/d, and each "
+        "model's Delta from one joint calibration of the material (the Cosserat model's phi "
+        "fixed from the stresses), read with the series' wall: each curve is the model's Delta "
+        "measured as the data's (point values at the bin centres the analysis would make at "
+        "that gap, the wall's remainder bin included), and it passes through its value at each "
+        "run (x, +- the calibration's error). Grey: at or below the second bin's distance "
+        "from the moving wall, where a band is thinner than the bins resolve and its Delta is "
+        "set by where the first bins fall (the remainder of the gap over the bins), not by the "
+        "model: the data's Delta is not used there, and a model's curve there (mu(I)'s and "
+        "NGF's, bands within the first bin) jumps with the bins, not with H."
+    )
+    if gaps:
+        text += " Where a model gives no Delta: " + "; ".join(gaps) + "."
+    return text
+
+
+def run_caption(r: RunResult) -> str:
+    """What a run figure's lines are and which verdicts use them (referee 9, point 9)."""
+    if r.layer is not None or r.fits is None:
+        return ""
+    text = (
+        "Coloured lines ('u-only fit'): each model fitted to the run's velocity alone (the "
+        "Cosserat model with phi and the moving wall's delta fixed from the stresses where the "
+        "run carries them, K and L fitted); they make the ranking (results.json "
+        "runs[].ranking), the per-run Delta and slopes the Delta claims report beside their "
+        "joint calibrations, and the models' columns of the spin table; in the spin panel, "
+        "each measured like the data (bin means, the analysis' stencil)."
+    )
+    if r.joint is None:
+        return text + " The run was not scanned: no joint fit, and the spin's null is not drawn."
+    return text + (
+        " Black dashed: the joint u + omega + stress-ratio fit of the spin scan (phi and the "
+        "walls' delta from the stresses, K and L fitted, the first layer's omega held out), "
+        "which spin_model judges; grey dotted (spin panel): its null, what the analysis "
+        "reports for grains turning with the material in that fit's velocity, the null both "
+        "spin verdicts test against."
     )
 
 
@@ -85,19 +157,41 @@ def run_entry(r: RunResult) -> dict[str, Any]:
     if r.fits is not None:
         order = r.fits.models
         d = np.linspace(0.0, float(m.distance_d.max()), 300)
-        models = {name: {"d": d, "u": r.fits.curve(name, d)} for name in order}
-    spin = None
+        models = {
+            name: {"d": d, "u": r.fits.curve(name, d), "label": f"{name}: u-only fit"}
+            for name in order
+        }
+    spin: dict[str, Any] | None = None
     if r.spin.available:
         spin = {
             "distance_d": r.spin.distance_d,
             "departure": r.spin.departure,
             "stderr": r.spin.stderr,
-            "predicted": r.spin.predicted,
+            "predicted": dict(r.spin.predicted),
+            "labels": {name: f"{name}: u-only fit" for name in r.spin.predicted},
+            "styles": {},
             "near_wall_d": max(
                 (float(np.max(w.distance_d)) for w in r.spin.walls if w.dof), default=0.0
             ),
             "gap_d": r.run.gap_d,
         }
+    if r.joint is not None and r.layer is None:
+        # the spin verdicts' fit (referee 9, point 9): its velocity is their null
+        j = r.joint
+        what = (
+            f"cosserat: joint u + omega + stress-ratio fit (K = {j['K']:.3g}, L = {j['L']:.3g} d)"
+        )
+        models[JOINT] = {"d": j["d"], "u": j["u"], "label": what, "style": JOINT_STYLE}
+        if spin is not None and r.spin.rows is not None:
+            rows = r.spin.rows
+            spin["predicted"][JOINT] = np.asarray(j["departure"])[rows]
+            spin["labels"][JOINT] = what
+            spin["styles"][JOINT] = JOINT_STYLE
+            spin["predicted"][JOINT_NULL] = np.asarray(j["null"])[rows]
+            spin["labels"][JOINT_NULL] = (
+                "null of both spin verdicts: spin = half the vorticity in the joint fit's u"
+            )
+            spin["styles"][JOINT_NULL] = NULL_STYLE
     i_w = r.inertial_number
     title = f"{r.run.name}: {r.run.cell}, H/d = {r.run.gap_d:.3g}" + (
         f", I at the moving wall = {i_w:.2g}" if i_w is not None else ""
@@ -288,6 +382,8 @@ def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
                     m: {
                         "gaps": list(c.curve[0]),
                         "Delta": list(c.curve[1]),
+                        "why": [c.why.get(curve_key(g)) for g in c.curve[0]],
+                        "floor": [c.resolved_above.get(curve_key(g)) for g in c.curve[0]],
                         "points": [
                             (p.gap_d, *c.predicted.get(p.run, (None, None))) for p in s.points
                         ],
@@ -319,7 +415,8 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
 
     files: dict[str, str] = {}
     for r in report.results:
-        if not (r.figure and (out / r.figure).is_file()):
+        # drawn again where judge() added the joint fit after the worker drew the figure
+        if not (r.figure and (out / r.figure).is_file()) or r.joint is not None:
             r.figure = write_run_figure(r, out)
         files[r.run.name] = r.figure
     rows = spin_rows(report)
@@ -516,6 +613,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "fits": fits,
                 "walls": walls,
                 "figure": r.figure,
+                "caption": run_caption(r),
                 "ranking_text": r.fits.to_text().rstrip() if r.fits else "",
                 "error": r.error,
                 "notes": r.skipped
@@ -578,6 +676,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 # a claim without a figure of its own (the layer's) shows its first run's
                 "figure": CLAIM_FIGURES.get(v.key)
                 or next(iter(figures.get(n, "") for n in v.runs), ""),
+                "caption": delta_caption(report, v.key) if v.key in ("smoother", "rough") else "",
                 "extra_figures": extra_figures(report, v.key),
                 # a verdict's table (spin_model's per-bin sign and size: caption, header, rows)
                 "table": v.numbers.get("table"),

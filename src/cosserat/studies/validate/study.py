@@ -116,6 +116,10 @@ class RunResult:
     figure: str = ""
     layer: LayerPosition | None = None
     sensitivity: DeltaSensitivity | None = None
+    joint: dict[str, Any] | None = None
+    """The spin scan's joint u + omega + stress-ratio fit for the run's figure
+    (``forward.figure_curves``; None where the run was not scanned): the velocity of both
+    spin verdicts' null."""
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -235,6 +239,24 @@ def _scans(results: Sequence[RunResult], points: int) -> tuple[list[Scan], list[
     scans, skipped = spin_scans([r.run for r in results if r.spin.available], corpus, points)
     check_scans(scans, corpus)  # eqn-bc3 against the measured K (referee 8, points 2-3)
     return scans, skipped
+
+
+def _joint_curves(results: Sequence[RunResult], scans: Sequence[Scan]) -> None:
+    """Each scanned run's joint fit for its figure (:attr:`RunResult.joint`)."""
+    from ...calibration.models import SOLVE_ERRORS
+    from .forward import calibration_profile, figure_curves
+
+    by_name = {r.run.name: r for r in results}
+    for sc in scans:
+        r = by_name.get(sc.run)
+        if r is None:
+            continue
+        try:
+            profile = calibration_profile(sc.fit.setup, sc.fit.theta)
+            r.joint = {**figure_curves(profile, r.run), "K": sc.fit.value("K"),
+                       "L": sc.fit.value("L")}  # fmt: skip
+        except SOLVE_ERRORS:
+            r.joint = None
 
 
 def _joint_nulls(results: Sequence[RunResult], scans: Sequence[Scan]) -> str:
@@ -650,7 +672,16 @@ def _distinct_gaps(runs: Sequence[Run]) -> int:
 
 def _curves(cals: Sequence[SeriesCalibration]) -> dict[str, ModelDelta]:
     return {
-        c.model: ModelDelta(c.model, c.predicted, c.curve, c.summary, c.status, c.message)  # type: ignore[arg-type]
+        c.model: ModelDelta(
+            c.model,
+            c.predicted,
+            c.curve,  # type: ignore[arg-type]
+            c.summary,
+            c.status,
+            c.message,
+            c.why,
+            c.resolved_above,
+        )
         for c in cals
     }
 
@@ -714,6 +745,7 @@ def judge(
             )
         )
     scans, skipped = _scans(results, spin_scan)
+    _joint_curves(results, scans)
     systematic = _joint_nulls(results, scans)
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
     spin = spin_verdict(walls, unfit=_spin_model_inputs(results)[2])
@@ -1077,6 +1109,8 @@ def validate(
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
     jobs = series_jobs(data.runs, models, f)
+    if fit_angles:  # the Delta calibrations fit phi too
+        jobs = [replace(j, fix_phi=False) for j in jobs]
     fixes = None if fit_angles else {r.name: cosserat_fix(r, data.runs) for r in data.runs}
     results, cals = _analyse_all(
         data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs,

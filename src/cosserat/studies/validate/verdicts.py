@@ -1104,6 +1104,11 @@ class ModelDelta:
         ``wall_kinds``: what it was made on, :func:`scope_text`), for the report.
     status, message : str
         ``"ok"``, or ``"failed"`` and why.
+    why : mapping of str to str
+        Why the model gives no Delta, by run name and by curve gap (``fits.curve_key``).
+    resolved_above : mapping of str to float
+        The second bin's distance from the moving wall at each run and curve gap [d]: a Delta
+        at or below it is not resolved by the bins (:meth:`resolved`).
     """
 
     model: str
@@ -1112,6 +1117,14 @@ class ModelDelta:
     calibration: Mapping[str, Any] = field(default_factory=dict)
     status: str = "ok"
     message: str = ""
+    why: Mapping[str, str] = field(default_factory=dict)
+    resolved_above: Mapping[str, float] = field(default_factory=dict)
+
+    def resolved(self, key: str, value: float | None) -> bool:
+        """Whether ``value`` (the model's Delta at run or curve gap ``key``) is above the second
+        bin there, as the data's Delta must be to be used (True where that is not recorded)."""
+        floor = self.resolved_above.get(key)
+        return value is not None and (floor is None or value > floor)
 
     @property
     def ok(self) -> bool:
@@ -1146,6 +1159,10 @@ class CurveTest:
     scale: float
     chi2_shape: float
     p_shape: float | None
+    level_free: bool = False
+    """A law with no level of its own (a power law, :func:`power_law_test`): its "as it is"
+    chi^2 is against an arbitrary level (Delta = 1 d at H/d = 1) and tests nothing, so only
+    the shape test is reported; with one point there is none."""
 
     @property
     def dof(self) -> int:
@@ -1173,6 +1190,10 @@ class CurveTest:
             if self.p_shape is not None
             else "no shape test (one point)"
         )
+        if self.level_free:
+            if self.p_shape is None:
+                return f"{self.label}: not tested (its level is free, so one gap tests nothing)"
+            return f"{self.label} with a free level, {shape}"
         return f"{self.label}: chi^2 = {self.chi2:.3g} for {self.dof} dof ({self.sig}); " + shape
 
     def to_dict(self) -> dict[str, Any]:
@@ -1185,6 +1206,7 @@ class CurveTest:
             "chi2_shape": self.chi2_shape,
             "dof_shape": self.dof_shape,
             "p_shape": self.p_shape,
+            "level_free": self.level_free,
         }
 
 
@@ -1238,12 +1260,13 @@ def power_law_test(
     exponent: float, points: Sequence[tuple[float, float, float]]
 ) -> CurveTest | None:
     """:func:`curve_test` of Delta proportional to (H/d)^exponent, points (H/d, Delta, se):
-    only its shape test means something (its level is the free factor)."""
-    return curve_test(
+    only its shape test means something (its level is the free factor: ``level_free``)."""
+    t = curve_test(
         f"Delta ~ (H/d)^{exponent:.3g}",
         [(v, s) for _, v, s in points],
         [(g**exponent, 0.0) for g, _, _ in points],
     )
+    return None if t is None else replace(t, level_free=True)
 
 
 @dataclass(frozen=True)
@@ -1404,6 +1427,8 @@ class DeltaSeries:
                         run: {"value": v, "stderr": e} for run, (v, e) in c.predicted.items()
                     },
                     "curve": {"gaps": list(c.curve[0]), "Delta": list(c.curve[1])},
+                    "why": dict(c.why),
+                    "resolved_above": dict(c.resolved_above),
                     "test": None if (t := tests.get(c.model)) is None else t.to_dict(),
                 }
                 for c in self.curves.values()
@@ -1557,7 +1582,25 @@ def calibration_text(c: ModelDelta) -> str:
     chi2, dof, p = (c.calibration.get(k) for k in ("chi2", "dof", "p_value"))
     sig = significance(chi2, dof) if chi2 is not None and dof and dof > 0 else f"p = {_g(p)}"
     fit = f"chi^2 = {_g(chi2, '.4g')} for {dof} dof, {sig}" if chi2 is not None else ""
-    return "; ".join(x for x in (fit, ", ".join(rows)) if x)
+    # what the stresses fixed (fits.material_fix), or why they did not
+    return "; ".join(x for x in (fit, ", ".join(rows), c.calibration.get("fixed_note", "")) if x)
+
+
+def _predicted_text(model: str, c: ModelDelta, run: str) -> str:
+    """A model's Delta at a run for the evidence: the value +- its error, said to be below the
+    bins' resolution where it is (a band thinner than the first bin, placed by the bins), or
+    why there is none."""
+    value, se = c.predicted.get(run, (None, None))
+    if value is None:
+        why = c.why.get(run)
+        return f"{model} none" + (f" ({why})" if why else "")
+    text = f"{model} {value:.3g}" + ("" if se is None else f" +- {se:.2g}")
+    if not c.resolved(run, value):
+        text += (
+            f" (at or below the second bin, {c.resolved_above[run]:.3g} d: a band thinner than "
+            "the bins resolve, its value set by where they fall)"
+        )
+    return text
 
 
 def _curve_call(
@@ -1580,12 +1623,7 @@ def _curve_call(
     for p in s.points:
         if not p.usable:
             continue
-        preds = ", ".join(
-            f"{m} {_g(c.predicted.get(p.run, (None, None))[0], '.3g')}"
-            + ("" if (e := c.predicted.get(p.run, (None, None))[1]) is None else f" +- {e:.2g}")
-            for m, c in s.curves.items()
-            if c.ok
-        )
+        preds = ", ".join(_predicted_text(m, c, p.run) for m, c in s.curves.items() if c.ok)
         rows.append(
             f"{p.run} (H/d = {p.gap_d:.3g}): measured {_g(p.value, '.3g')} +- "
             f"{_g(p.stderr, '.2g')} d; {preds}"

@@ -1,0 +1,147 @@
+"""The Delta claims' curves and figures after referee 9 (points 6 and 9): each model's curve is
+measured on the bins the analysis would make at each gap and passes through its values at the
+runs; the Cosserat material calibration takes phi from the stresses; a power law's level-free
+test says nothing where one gap tests nothing; where a model gives no Delta, the figure says
+why."""
+
+from __future__ import annotations
+
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import read_corpus
+from cosserat.studies.validate.fits import material_fix
+from cosserat.studies.validate.forward import analysis_distances
+from cosserat.studies.validate.grouping import material_of
+from cosserat.studies.validate.spin_scan import material_phi
+from cosserat.studies.validate.verdicts import ModelDelta, _predicted_text, power_law_test
+from cosserat.viz.validation import none_ranges
+
+V2 = Path(__file__).resolve().parents[1] / "data" / "dem_v2"
+GRAVITY = ("plane_rough_H10_qs", "plane_rough_H20_qs", "plane_smooth_H10_qs",
+           "plane_smooth_H20_qs")  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def v2_runs(tmp_path_factory):
+    """The four v2 gravity runs as a corpus (profile.csv and .json copied to <run>.csv)."""
+    folder = tmp_path_factory.mktemp("v2")
+    for name in GRAVITY:
+        for ext in ("csv", "json"):
+            shutil.copy(V2 / name / f"profile.{ext}", folder / f"{name}.{ext}")
+    return {r.name: r for r in read_corpus(folder).runs}
+
+
+def test_the_analysis_bins_of_one_run_give_every_other_runs_bins_at_its_gap(v2_runs):
+    """The rule read off one run (1 d bins counted from the fixed wall, the remainder at the
+    moving wall a narrower bin or joined to its neighbour under half a bin) gives each run's
+    own bin centres at its own gap, and every other run's at that run's gap: the first bin's
+    centre is 0.419, 0.282, 0.527 and 0.332 d from the moving wall, set by the remainder."""
+    firsts = {}
+    for name, run in v2_runs.items():
+        own = np.sort(np.asarray(run.distance_d))
+        firsts[name] = float(own[0])
+        for other in v2_runs.values():
+            got = analysis_distances(other, run.gap_d)
+            assert got.size == own.size
+            np.testing.assert_allclose(got, own, atol=1e-4)  # the CSV keeps 5 digits
+    assert firsts == pytest.approx({"plane_rough_H10_qs": 0.41885, "plane_rough_H20_qs": 0.28205,
+                                    "plane_smooth_H10_qs": 0.5267, "plane_smooth_H20_qs": 0.33175},
+                                   abs=1e-4)  # fmt: skip
+    # a remainder under half a bin joins its neighbour: 10.3 d -> a first bin of 1.3 d
+    np.testing.assert_allclose(analysis_distances(v2_runs["plane_rough_H10_qs"], 10.3)[:2],
+                               [0.65, 1.8])  # fmt: skip
+
+
+def test_the_cosserat_material_calibration_fixes_phi_from_the_stresses(v2_runs):
+    """One material, one phi: the Delta calibration fixes the phi that the spin scan and the
+    per-run fits take (sin phi = T of the two fully rough runs, 18.5 deg); mu(I) and NGF fix
+    nothing (their mu_s is not the band's ratio)."""
+    runs = list(v2_runs.values())
+    fix, note = material_fix("cosserat", runs)
+    phi, phi_se, _ = material_phi(runs, material_of(runs[0]))
+    assert fix == {"phi": phi}
+    assert math.sin(math.radians(phi)) == pytest.approx(0.317, abs=5e-4)
+    assert note.startswith(f"phi = {phi:.4g} +- {phi_se:.2g} deg fixed from the stresses")
+    assert material_fix("mui", runs) == ({}, "")
+    assert material_fix("ngf", runs) == ({}, "")
+
+
+def test_a_power_law_with_a_free_level_is_not_tested_at_one_gap():
+    """Delta ~ (H/d)^0 at one point: its "as it is" chi^2 was against Delta = 1 d (67.1 for 1
+    dof on the rough series), which tests nothing; now only the shape test is given, and at
+    one gap there is none."""
+    one = power_law_test(0.0, [(19.56, 7.56, 0.8)])
+    assert one.level_free and one.p_shape is None
+    assert one.text() == "Delta ~ (H/d)^0: not tested (its level is free, so one gap tests nothing)"
+    assert one.to_dict()["level_free"] is True
+    two = power_law_test(0.0, [(10.0, 5.0, 0.5), (20.0, 5.0, 0.5)])
+    assert two.text() == "Delta ~ (H/d)^0 with a free level, times 5: chi^2 = 0 for 1 dof (p = 1)"
+
+
+def test_a_prediction_below_the_second_bin_is_said_to_be_unresolved():
+    """mu(I)'s Delta at plane_smooth_H20_qs (1.12 d) is under the second bin (1.16 d): its
+    value is where the bins fall, and the evidence says so; a missing one says why."""
+    c = ModelDelta("mui", {"a": (1.12, 0.0), "b": (None, None), "c": (4.1, 0.2)},
+                   why={"b": "no shear band: the velocity is 0"},
+                   resolved_above={"a": 1.163, "b": 1.553, "c": 1.163})  # fmt: skip
+    assert not c.resolved("a", 1.12) and c.resolved("c", 4.1) and not c.resolved("b", None)
+    assert _predicted_text("mui", c, "a") == (
+        "mui 1.12 +- 0 (at or below the second bin, 1.16 d: a band thinner than the bins "
+        "resolve, its value set by where they fall)"
+    )
+    assert _predicted_text("mui", c, "b") == "mui none (no shear band: the velocity is 0)"
+    assert _predicted_text("mui", c, "c") == "mui 4.1 +- 0.2"
+
+
+def test_where_a_curve_has_no_value_is_said_in_words():
+    gaps = [8.0, 9.8, 12.0, 14.6, 17.8, 21.7, 26.4]
+    values = [None, None, 1.4, 1.5, 1.4, None, None]
+    why = ["no shear band: the velocity is the far wall's (the moving wall slides)", None,
+           None, None, None, "no solution: I_w must satisfy I_w >= 1e-07 mu_s/b", None]  # fmt: skip
+    assert none_ranges(gaps, values, why) == (
+        "none at H/d = 8-9.8 (no shear band); none at H/d = 21.7-26.4 (no solution)"
+    )
+    # one reason at gaps apart: said once
+    assert none_ranges([8.0, 9.8, 10.1], [None, 1.3, None], ["no shear band: u = 0"] * 3) == (
+        "none at H/d = 8, 10.1 (no shear band)"
+    )
+    assert none_ranges(gaps, [1.0] * 7, []) == ""
+
+
+def test_a_run_figure_draws_the_joint_fit_and_its_null_with_their_own_labels():
+    """The run figure takes a label and a line style per curve (the joint fit black dashed,
+    its null grey dotted), so that the u-only fits and the spin verdicts' fit are told apart
+    in its legend (referee 9, point 9)."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import run_figure
+
+    d = np.arange(10) + 0.5
+    u = np.exp(-d / 3.0)
+    dense = np.linspace(0.0, 10.0, 50)
+    joint = "cosserat: joint u + omega + stress-ratio fit (K = 2.97, L = 5.33 d)"
+    entry = {
+        "name": "r", "title": "r", "distance_d": d, "u": u, "u_se": np.full(10, 0.01),
+        "order": ["cosserat"],
+        "models": {
+            "cosserat": {"d": dense, "u": np.exp(-dense / 3.0), "label": "cosserat: u-only fit"},
+            "cosserat (joint)": {"d": dense, "u": np.exp(-dense / 2.9), "label": joint,
+                                 "style": {"color": "k", "linestyle": "--"}},
+        },
+        "spin": {"distance_d": d, "departure": np.zeros(10), "stderr": np.full(10, 0.01),
+                 "predicted": {"null (joint)": np.zeros(10)},
+                 "labels": {"null (joint)": "null of both spin verdicts"},
+                 "styles": {"null (joint)": {"color": "0.45", "linestyle": ":"}},
+                 "near_wall_d": 2.5, "gap_d": 10.0},
+    }  # fmt: skip
+    fig = run_figure(entry)
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert {"cosserat: u-only fit", joint, "null of both spin verdicts"} <= set(labels)
+    (line,) = [ln for ln in fig.axes[0].get_lines() if ln.get_label() == joint]
+    assert line.get_linestyle() == "--" and line.get_color() == "k"
+    plt.close(fig)
