@@ -128,6 +128,57 @@ def assembled(cls: type[_Frozen], values: dict[str, Any]) -> _Frozen:
     return obj
 
 
+PENDING = "_pending"
+"""The key of a profile's ``__dict__`` under which a route leaves fields to fill on first read
+(:func:`pending`)."""
+
+
+def pending(
+    cls: type[Profile],
+    values: dict[str, Any],
+    names: tuple[str, ...],
+    fill: Callable[..., dict[str, Any]],
+    *args: Any,
+) -> Profile:
+    """:func:`assembled`, with the fields ``names`` that ``values`` lacks made when first
+    read (then kept, as if they had been given): ``fill(name, *args)`` returns ``name`` and
+    any others made with it (``fill(None, *args)``: all of them).
+
+    The numerical route's fields are rows of one array its compiled kernel returns, and its
+    :class:`Diagnostics` are read by few callers: making the eight rows' views, the
+    diagnostics and their statistics cost more than a tenth of a plane-shear kernel
+    (``docs/performance.md``). Their numbers are computed, and the profile checked, before
+    :func:`cosserat.solve` returns; only the Python objects that hold them wait. A profile
+    pickles with them filled. Two threads reading a new profile at once may both call
+    ``fill``; the first's objects are kept.
+    """
+    obj = object.__new__(cls)
+    values[PENDING] = (names, fill, args)
+    obj.__dict__.update(values)
+    return obj
+
+
+def _filled(profile: Profile, name: str | None) -> Any:
+    """``name`` of a profile made by :func:`pending`, filled first if it is pending (None:
+    fill every pending field)."""
+    state = profile.__dict__
+    todo = state.get(PENDING)
+    if todo is not None and (name is None or name in todo[0]):
+        names, fill, args = todo
+        for key, value in fill(name, *args).items():
+            state.setdefault(key, value)
+        if all(key in state for key in names):
+            state.pop(PENDING, None)
+        if name is None:
+            return None
+    try:
+        return state[name]
+    except KeyError:
+        raise AttributeError(
+            f"{type(profile).__name__!r} object has no attribute {name!r}"
+        ) from None
+
+
 FIELD_MEANINGS = {
     "xi": "distance from the lower wall (inner cylinder) over the gap, y/H or (r - R_i)/H",
     "u": "velocity over the moving wall's speed",
@@ -217,11 +268,21 @@ class Profile:
         default=None, repr=False
     )
 
+    # ----------------------------------------------------------------- fields filled when read
+    if not TYPE_CHECKING:  # mypy would take every attribute for one of these
+
+        def __getattr__(self, name: str) -> Any:
+            """A field the route left to be filled on first read (:func:`pending`), filled
+            with all the others; AttributeError for any other name."""
+            return _filled(self, name)
+
     # ----------------------------------------------------------------- pickling and display
     def __getstate__(self) -> dict[str, Any]:
         """Everything but a route's dense evaluator when it is a closure: that is rebuilt
         from ``recipe`` (the route function and its options) on first use after unpickling.
         The numerical route's evaluator is plain arrays and travels as it is."""
+        if PENDING in self.__dict__:
+            _filled(self, None)
         state = dict(self.__dict__)
         if self.recipe is not None:
             state["evaluator"] = None
