@@ -133,16 +133,38 @@ PENDING = "_pending"
 (:func:`pending`)."""
 
 
+class _Pending:
+    # A field of Profile that a route may leave to its first read (pending): a non-data
+    # descriptor, which the value, once in the instance's __dict__, shadows (as
+    # model._cached.cached does); no docstring, so the API docs list the field once, in the
+    # class's Attributes. Read on the class, it is absent, as a dataclass field without a
+    # default is.
+    __slots__ = ("name",)
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj: Profile | None, owner: type | None = None) -> Any:
+        if obj is None:
+            raise AttributeError(self.name)
+        return _filled(obj, self.name)
+
+
+PENDABLE = (*Fields._fields, "diagnostics")
+"""The fields of a :class:`Profile` a route may leave to first read (:func:`pending`)."""
+
+
 def pending(
     cls: type[Profile],
     values: dict[str, Any],
-    names: tuple[str, ...],
+    names: frozenset[str],
     fill: Callable[..., dict[str, Any]],
     *args: Any,
 ) -> Profile:
-    """:func:`assembled`, with the fields ``names`` that ``values`` lacks made when first
-    read (then kept, as if they had been given): ``fill(name, *args)`` returns ``name`` and
-    any others made with it (``fill(None, *args)``: all of them).
+    """:func:`assembled`, with the fields ``names`` (some of :data:`PENDABLE`) that
+    ``values`` lacks made when first read (then kept, as if they had been given):
+    ``fill(name, *args)`` returns ``name`` and any others made with it (``fill(None, *args)``:
+    all of them).
 
     The numerical route's fields are rows of one array its compiled kernel returns, and its
     :class:`Diagnostics` are read by few callers: making the eight rows' views, the
@@ -167,7 +189,7 @@ def _filled(profile: Profile, name: str | None) -> Any:
         names, fill, args = todo
         for key, value in fill(name, *args).items():
             state.setdefault(key, value)
-        if all(key in state for key in names):
+        if state.keys() >= names:
             state.pop(PENDING, None)
         if name is None:
             return None
@@ -267,14 +289,6 @@ class Profile:
     recipe: tuple[Callable[..., Profile], Mapping[str, Any]] | None = field(
         default=None, repr=False
     )
-
-    # ----------------------------------------------------------------- fields filled when read
-    if not TYPE_CHECKING:  # mypy would take every attribute for one of these
-
-        def __getattr__(self, name: str) -> Any:
-            """A field the route left to be filled on first read (:func:`pending`), filled
-            with all the others; AttributeError for any other name."""
-            return _filled(self, name)
 
     # ----------------------------------------------------------------- pickling and display
     def __getstate__(self) -> dict[str, Any]:
@@ -582,3 +596,7 @@ class _Rebuilt:
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (_Rebuilt, (self._problem, self._recipe))
+
+
+for _name in PENDABLE:  # pending() may leave them to first read
+    setattr(Profile, _name, _Pending(_name))

@@ -32,7 +32,7 @@ from ..model.rheologies.cosserat import (
 from ..numerics import cosserat as kernel
 from ..numerics.runtime import map_batches
 from ..results.diagnostics import Deferred, DeferredResiduals
-from ..results.profile import Diagnostics, Fields, Profile, assembled, pending
+from ..results.profile import PENDABLE, Diagnostics, Fields, Profile, assembled, pending
 from .assemble import check_fields, profile_grid
 
 DEFAULT_RTOL = config.RTOL
@@ -442,7 +442,7 @@ def _profile(
     )
 
 
-_LEFT = (*Fields._fields, "diagnostics")
+_LEFT = frozenset(PENDABLE)
 """The fields of a numerical profile made on first read (:func:`_rest`)."""
 
 
