@@ -191,8 +191,8 @@ def _filled(profile: Profile, name: str | None) -> Any:
             state.setdefault(key, value)
         if state.keys() >= names:
             state.pop(PENDING, None)
-        if name is None:
-            return None
+    if name is None:
+        return None
     try:
         return state[name]
     except KeyError:
