@@ -27,7 +27,7 @@ from cosserat.model._cached import cached
 from cosserat.model.grids import layered_grid
 from cosserat.numerics import cosserat as kernel
 from cosserat.results.diagnostics import Deferred
-from cosserat.results.profile import Diagnostics, Profile
+from cosserat.results.profile import PENDING, Diagnostics, Fields, Profile
 from cosserat.routes import assemble, numerical
 from cosserat.routes.numerical import NumericalSolution, parameter_vector, run_kernel
 
@@ -85,13 +85,13 @@ def test_a_flagged_profile_is_checked_in_python_and_unchanged(monkeypatch) -> No
     problem = PROBLEMS["gravity"]
     plain = solve(problem)
     calls = []
-    check = assemble.check_fields
+    check = numerical.check_fields
 
     def spy(*args, **kwargs):  # type: ignore[no-untyped-def]
         calls.append(args[1])
         return check(*args, **kwargs)
 
-    monkeypatch.setattr(assemble, "check_fields", spy)
+    monkeypatch.setattr(numerical, "check_fields", spy)  # the route calls it by that name
     assert solve(problem).u is not None and calls == []  # cleared by the screen
     monkeypatch.setattr(numerical, "SCREEN_SLACK", -1.0)  # flag every profile
     flagged = solve(problem)
@@ -101,15 +101,15 @@ def test_a_flagged_profile_is_checked_in_python_and_unchanged(monkeypatch) -> No
 
 def test_a_flagged_non_finite_field_raises_the_python_message(monkeypatch) -> None:  # type: ignore[no-untyped-def]
     problem = PROBLEMS["couette"]
-    screened = NumericalSolution.screened
+    screen = kernel.fields_checked
 
-    def poisoned(self, xi):  # type: ignore[no-untyped-def]
-        f, _ = screened(self, xi)
-        u = f.u.copy()
-        u[3] = np.nan
-        return f._replace(u=u), False
+    def poisoned(*args):  # type: ignore[no-untyped-def]
+        out, first, _ = screen(*args)
+        out = out.copy()
+        out[kernel.F_U, 3] = np.nan
+        return out, first, False
 
-    monkeypatch.setattr(NumericalSolution, "screened", poisoned)
+    monkeypatch.setattr(kernel, "fields_checked", poisoned)
     with pytest.raises(ConvergenceError) as err:
         solve(problem)
     assert str(err.value) == (
@@ -206,6 +206,11 @@ def test_assembled_profile_is_the_constructors(name: str) -> None:
     field is there, and the constructor makes the same object from the same values."""
     profile = solve(PROBLEMS[name])
     fields = {f.name for f in dataclasses.fields(Profile)}
+    # the fields' arrays and the diagnostics are made when first read (results.profile.pending)
+    pending = {*Fields._fields, "diagnostics"}
+    assert set(vars(profile)) == (fields - pending) | {PENDING}
+    assert profile.u is vars(profile)["u"] and "diagnostics" not in vars(profile)
+    assert profile.diagnostics is vars(profile)["diagnostics"]
     assert set(vars(profile)) == fields
     assert set(vars(profile.diagnostics)) == {f.name for f in dataclasses.fields(Diagnostics)}
     again = Profile(**{k: getattr(profile, k) for k in fields})
@@ -256,3 +261,28 @@ def test_cached_property_computes_once_per_instance() -> None:
     assert isinstance(Thing.double, cached) and Thing.double.__doc__ == "Twice x."
     eq = PROBLEMS["rough lower wall"].equations
     assert eq.case is eq.case and eq.slip_constants is eq.slip_constants
+
+
+@pytest.mark.parametrize("name", ["symmetric", "couette"])
+def test_fields_made_on_first_read_behave_as_given(name: str) -> None:
+    """A numerical profile's field arrays and diagnostics wait for their first read
+    (results.profile.pending): pickling, copying and dataclasses.replace see them filled, an
+    unknown name is still an AttributeError, and reading one group leaves the other pending."""
+    problem = PROBLEMS[name]
+    fresh = solve(problem)
+    plain = solve(problem)
+    expected = {k: getattr(plain, k) for k in FIELDS}
+    again = pickle.loads(pickle.dumps(fresh))
+    assert PENDING not in vars(fresh) and PENDING not in vars(again)
+    _same_profile(again, plain)
+    assert again.diagnostics.to_dict() == plain.diagnostics.to_dict()
+    other = solve(problem)
+    with pytest.raises(AttributeError, match="has no attribute 'spin_rate'"):
+        other.spin_rate  # type: ignore[attr-defined]  # noqa: B018
+    assert not hasattr(other, "nothing") and PENDING in vars(other)
+    replaced = dataclasses.replace(other, recipe=None)
+    _same_profile(replaced, plain)
+    assert all(np.array_equal(getattr(replaced, k), v) for k, v in expected.items())
+    third = solve(problem, check=False)
+    assert third.m is not None and PENDING in vars(third)
+    assert third.diagnostics.residuals == {} and PENDING not in vars(third)

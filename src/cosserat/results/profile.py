@@ -128,6 +128,79 @@ def assembled(cls: type[_Frozen], values: dict[str, Any]) -> _Frozen:
     return obj
 
 
+PENDING = "_pending"
+"""The key of a profile's ``__dict__`` under which a route leaves fields to fill on first read
+(:func:`pending`)."""
+
+
+class _Pending:
+    # A field of Profile that a route may leave to its first read (pending): a non-data
+    # descriptor, which the value, once in the instance's __dict__, shadows (as
+    # model._cached.cached does); no docstring, so the API docs list the field once, in the
+    # class's Attributes. Read on the class, it is absent, as a dataclass field without a
+    # default is.
+    __slots__ = ("name",)
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj: Profile | None, owner: type | None = None) -> Any:
+        if obj is None:
+            raise AttributeError(self.name)
+        return _filled(obj, self.name)
+
+
+PENDABLE = (*Fields._fields, "diagnostics")
+"""The fields of a :class:`Profile` a route may leave to first read (:func:`pending`)."""
+
+
+def pending(
+    cls: type[Profile],
+    values: dict[str, Any],
+    names: frozenset[str],
+    fill: Callable[..., dict[str, Any]],
+    *args: Any,
+) -> Profile:
+    """:func:`assembled`, with the fields ``names`` (some of :data:`PENDABLE`) that
+    ``values`` lacks made when first read (then kept, as if they had been given):
+    ``fill(name, *args)`` returns ``name`` and any others made with it (``fill(None, *args)``:
+    all of them).
+
+    The numerical route's fields are rows of one array its compiled kernel returns, and its
+    :class:`Diagnostics` are read by few callers: making the eight rows' views, the
+    diagnostics and their statistics cost more than a tenth of a plane-shear kernel
+    (``docs/performance.md``). Their numbers are computed, and the profile checked, before
+    :func:`cosserat.solve` returns; only the Python objects that hold them wait. A profile
+    pickles with them filled. Two threads reading a new profile at once may both call
+    ``fill``; the first's objects are kept.
+    """
+    obj = object.__new__(cls)
+    values[PENDING] = (names, fill, args)
+    obj.__dict__.update(values)
+    return obj
+
+
+def _filled(profile: Profile, name: str | None) -> Any:
+    """``name`` of a profile made by :func:`pending`, filled first if it is pending (None:
+    fill every pending field)."""
+    state = profile.__dict__
+    todo = state.get(PENDING)
+    if todo is not None and (name is None or name in todo[0]):
+        names, fill, args = todo
+        for key, value in fill(name, *args).items():
+            state.setdefault(key, value)
+        if state.keys() >= names:
+            state.pop(PENDING, None)
+    if name is None:
+        return None
+    try:
+        return state[name]
+    except KeyError:
+        raise AttributeError(
+            f"{type(profile).__name__!r} object has no attribute {name!r}"
+        ) from None
+
+
 FIELD_MEANINGS = {
     "xi": "distance from the lower wall (inner cylinder) over the gap, y/H or (r - R_i)/H",
     "u": "velocity over the moving wall's speed",
@@ -222,6 +295,8 @@ class Profile:
         """Everything but a route's dense evaluator when it is a closure: that is rebuilt
         from ``recipe`` (the route function and its options) on first use after unpickling.
         The numerical route's evaluator is plain arrays and travels as it is."""
+        if PENDING in self.__dict__:
+            _filled(self, None)
         state = dict(self.__dict__)
         if self.recipe is not None:
             state["evaluator"] = None
@@ -521,3 +596,7 @@ class _Rebuilt:
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (_Rebuilt, (self._problem, self._recipe))
+
+
+for _name in PENDABLE:  # pending() may leave them to first read
+    setattr(Profile, _name, _Pending(_name))

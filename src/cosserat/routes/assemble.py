@@ -101,7 +101,6 @@ def make_profile(
     stats: Mapping[str, Any] | None = None,
     check: bool = True,
     velocity: Callable[[FloatArray], FloatArray] | None = None,
-    screened: Callable[[FloatArray], tuple[Fields, bool]] | None = None,
 ) -> Profile:
     """Evaluate on the output grid, verify, and package.
 
@@ -109,18 +108,13 @@ def make_profile(
     boundary errors and the ODE residuals on a layer-resolving check grid, both computed when
     first read (:class:`~cosserat.results.diagnostics.Deferred`); sweeps that need only wall
     quantities may skip both. ``form`` may be a callable that makes the formulation when the
-    residuals are read. ``screened(grid)``, if given, evaluates the fields and says whether
-    they passed a compiled screen that flags everything :func:`check_fields` rejects (then
-    that check is not run again in Python).
+    residuals are read. The numerical route of the Cosserat model makes its profiles with
+    less Python (:func:`cosserat.routes.numerical.solve_plane`), to the same effect.
     """
     eq = cosserat_equations(problem)
     grid = profile_grid(eq, points, xi)
-    if screened is None:
-        f, clear = evaluate(grid), False
-    else:
-        f, clear = screened(grid)
-    if not clear:
-        check_fields(problem, method, grid, f)
+    f = evaluate(grid)
+    check_fields(problem, method, grid, f)
     res: Mapping[str, float]
     bc: Mapping[str, float]
     if check:

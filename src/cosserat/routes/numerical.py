@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import weakref
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -31,10 +31,12 @@ from ..model.rheologies.cosserat import (
 )
 from ..numerics import cosserat as kernel
 from ..numerics.runtime import map_batches
-from ..results.profile import Fields, Profile
-from .assemble import make_profile
+from ..results.diagnostics import Deferred, DeferredResiduals
+from ..results.profile import PENDABLE, Diagnostics, Fields, Profile, assembled, pending
+from .assemble import check_fields, profile_grid
 
 DEFAULT_RTOL = config.RTOL
+_DEFAULT_TOLERANCES = (float(DEFAULT_RTOL), float(DEFAULT_RTOL) * config.ATOL_OVER_RTOL)
 SCREEN_SLACK = RADICAND_ROUNDOFF * (1.0 - 1e-6)
 """The compiled screen of a profile's radicand check flags S < -SCREEN_SLACK * scale: a hair
 stricter than the check itself (``RADICAND_ROUNDOFF``), which then decides in Python."""
@@ -48,6 +50,8 @@ _CASES = {
 
 def tolerances(rtol: float, atol: float | None) -> tuple[float, float]:
     """Validated (rtol, atol); atol defaults to ``config.ATOL_OVER_RTOL`` times rtol."""
+    if rtol is DEFAULT_RTOL and atol is None:  # the default call: config.RTOL, in range
+        return _DEFAULT_TOLERANCES
     lo, hi = config.RTOL_RANGE
     if not (isinstance(rtol, int | float) and lo <= rtol <= hi):
         raise ParameterError(
@@ -220,20 +224,6 @@ class NumericalSolution:
             return Fields(*out)
         return Fields(*(row.reshape(x.shape) for row in out))
 
-    def screened(self, xi: FloatArray) -> tuple[Fields, bool]:
-        """The fields at a 1-D grid, and True if they passed the compiled screen of the
-        profile's checks (``kernel.fields_checked``; :func:`~.assemble.make_profile`)."""
-        out, first, finite = kernel.fields_checked(
-            np.ascontiguousarray(xi, dtype=float),
-            self.params,
-            self.info,
-            *self.couple,
-            self.geometry,
-            *self.spin,
-            SCREEN_SLACK,
-        )
-        return Fields(*out), first < 0 and finite
-
     def velocity(self, xi: FloatArray) -> FloatArray:
         """u only (cheaper than the fields) [-]."""
         x = np.asarray(xi, dtype=float)
@@ -259,6 +249,46 @@ class NumericalSolution:
     info_f: float = config.DEFAULT_F
 
 
+class _Inputs:
+    """What every solve of one problem passes to the kernel, made once per problem: the
+    parameter vector (no guess of m(0)), the slipping wall, and the default output grid
+    (made on its first use: a caller with its own points never pays for it)."""
+
+    __slots__ = ("couette", "equations", "grid", "params", "slip_wall")
+
+    def __init__(self, problem: Problem) -> None:
+        eq = cosserat_equations(problem)
+        params = _VECTORS.get(eq)
+        if params is None:
+            params = _VECTORS[eq] = _parameter_vector(problem, eq)
+        self.equations: Any = eq
+        self.params: FloatArray = params
+        self.slip_wall = float(problem.slip_wall)
+        self.couette = isinstance(eq, CosseratCouette)
+        self.grid: FloatArray | None = None
+
+    def output_grid(self, points: int | None, xi: FloatArray | None) -> FloatArray:
+        """The profile's grid (:func:`~.assemble.profile_grid`), a new array."""
+        if xi is not None or points is not None:
+            return profile_grid(self.equations, points, xi)
+        if self.grid is None:
+            self.grid = profile_grid(self.equations, None, None)
+        return self.grid.copy()
+
+
+_INPUTS: weakref.WeakKeyDictionary[Any, _Inputs] = weakref.WeakKeyDictionary()
+""":class:`_Inputs` per problem (its equations helper)."""
+
+
+def _inputs(problem: Problem) -> _Inputs:
+    """The problem's :class:`_Inputs` (the first call checks it is the Cosserat model's)."""
+    found = _INPUTS.get(problem.equations)
+    if found is None:
+        found = _Inputs(problem)
+        _INPUTS[found.equations] = found
+    return found
+
+
 def run_kernel(
     problem: Problem,
     rtol: float,
@@ -267,11 +297,23 @@ def run_kernel(
     f: float = config.DEFAULT_F,
 ) -> NumericalSolution:
     """Solve ``problem`` on the compiled core; raise the package's error if it fails."""
-    p = parameter_vector(problem, mu_guess)
+    return _run(_inputs(problem), problem, rtol, atol, mu_guess, f)
+
+
+def _run(
+    inputs: _Inputs,
+    problem: Problem,
+    rtol: float,
+    atol: float,
+    mu_guess: float | None = None,
+    f: float = config.DEFAULT_F,
+) -> NumericalSolution:
+    """:func:`run_kernel` with the problem's inputs at hand."""
+    p = inputs.params.copy()  # the caller's own (NumericalSolution.params)
+    if mu_guess is not None:
+        p[kernel.P_MU_GUESS] = float(mu_guess)
     # one cell's entry point: a first run compiles only that cell's search
-    solve_case = (
-        kernel.solve_couette_case if problem.cell_name == "couette" else kernel.solve_plane_case
-    )
+    solve_case = kernel.solve_couette_case if inputs.couette else kernel.solve_plane_case
     status, info, couple, spin, geometry = solve_case(p, rtol, atol, f, config.MAX_STEPS)
     if status != kernel.OK:
         raise_for_status(problem, int(status), info)
@@ -296,6 +338,13 @@ def _stats(info: FloatArray) -> dict[str, Any]:
     }
 
 
+PLANE_MESSAGE = "compiled: Radau IIA couple stress (stable direction), DOP853 spin and velocity"
+COUETTE_MESSAGE = (
+    "compiled: Newton (secant/Brent as fallback) on m(0); Radau IIA couple stress "
+    "(outer to inner), DOP853 spin and velocity"
+)
+
+
 def solve_plane(
     problem: Problem,
     *,
@@ -312,9 +361,8 @@ def solve_plane(
     wall back.
     """
     rtol, atol = tolerances(rtol, atol)
-    sol = run_kernel(problem, rtol, atol)
-    message = "compiled: Radau IIA couple stress (stable direction), DOP853 spin and velocity"
-    return _profile(sol, rtol, atol, points, xi, check, message, _stats(sol.info))
+    inputs = _inputs(problem)
+    return _profile(inputs, _run(inputs, problem, rtol, atol), rtol, atol, points, xi, check)
 
 
 def solve_couette(
@@ -335,45 +383,115 @@ def solve_couette(
     rtol, atol = tolerances(rtol, atol)
     if m_inner_guess is not None and not math.isfinite(float(m_inner_guess)):
         raise ParameterError(f"m_inner_guess must be finite; got {shown(m_inner_guess)}")
-    sol = run_kernel(problem, rtol, atol, m_inner_guess)
-    stats = _stats(sol.info)
-    stats["m_inner"] = sol.mu
-    stats["shooting_iterations"] = int(sol.info[kernel.I_ITERATIONS])
-    message = (
-        "compiled: Newton (secant/Brent as fallback) on m(0); Radau IIA couple stress "
-        "(outer to inner), "
-        "DOP853 spin and velocity"
-    )
-    return _profile(sol, rtol, atol, points, xi, check, message, stats)
+    inputs = _inputs(problem)
+    sol = _run(inputs, problem, rtol, atol, m_inner_guess)
+    return _profile(inputs, sol, rtol, atol, points, xi, check)
 
 
 def _profile(
+    inputs: _Inputs,
     sol: NumericalSolution,
     rtol: float,
     atol: float,
     points: int | None,
     xi: FloatArray | None,
     check: bool,
-    message: str,
-    stats: dict[str, Any],
 ) -> Profile:
-    """The checked :class:`Profile` of a kernel solution (``routes/assemble.py``)."""
-    return make_profile(
-        sol.problem,
-        sol.formulation,
-        sol,
-        method="numerical",
-        points=points,
-        xi=xi,
-        reference_velocity=float(sol.info[kernel.I_U_REF]),
-        rtol=rtol,
-        atol=atol,
-        message=message,
-        stats=stats,
-        check=check,
-        velocity=sol.velocity,
-        screened=sol.screened,
+    """The checked :class:`Profile` of a kernel solution: what
+    :func:`~.assemble.make_profile` makes, with less Python (``docs/performance.md``).
+
+    The fields at the output grid and the compiled screen of the profile's checks in one
+    call (``kernel.fields_checked``): a point it flags sends the profile through
+    :func:`~.assemble.check_fields`, which decides and words any refusal. The fields' arrays
+    (rows of the kernel's one array) and the :class:`Diagnostics` are made on first read
+    (:func:`~cosserat.results.profile.pending`, :func:`_rest`); the residuals and boundary
+    errors when first read, as in every route.
+    """
+    problem = sol.problem
+    grid = inputs.output_grid(points, xi)
+    out, first, finite = kernel.fields_checked(
+        grid if xi is None else np.ascontiguousarray(grid),
+        sol.params,
+        sol.info,
+        *sol.couple,
+        sol.geometry,
+        *sol.spin,
+        SCREEN_SLACK,
     )
+    if first >= 0 or not finite:
+        check_fields(problem, "numerical", grid, Fields(*out))
+    return pending(
+        Profile,
+        {
+            "problem": problem,
+            "xi": grid,
+            "slip_wall": inputs.slip_wall,
+            "reference_velocity": float(sol.info[kernel.I_U_REF]),
+            "evaluator": sol,
+            "velocity": sol.velocity,
+            "recipe": None,
+        },
+        _LEFT,
+        _rest,
+        inputs,
+        sol,
+        out,
+        rtol,
+        atol,
+        check,
+    )
+
+
+_LEFT = frozenset(PENDABLE)
+"""The fields of a numerical profile made on first read (:func:`_rest`)."""
+
+
+def _rest(
+    name: str | None,
+    inputs: _Inputs,
+    sol: NumericalSolution,
+    out: FloatArray,
+    rtol: float,
+    atol: float,
+    check: bool,
+) -> dict[str, Any]:
+    """What :func:`_profile` leaves to first read of ``name`` (None: all of it): the eight
+    fields, the rows of ``out`` in the order of :class:`Fields`; or the diagnostics, their
+    residuals and boundary errors computed when read
+    (:class:`~cosserat.results.diagnostics.Deferred`)."""
+    values: dict[str, Any] = {}
+    if name != "diagnostics":
+        # indexed, not iterated: iterating a 2-D array costs twice as much per row
+        for i, field in enumerate(Fields._fields):
+            values[field] = out[i]
+    if name is not None and name != "diagnostics":
+        return values
+    eq = inputs.equations
+    info = sol.info
+    stats = _stats(info)
+    if inputs.couette:
+        stats["m_inner"] = sol.mu
+        stats["shooting_iterations"] = int(info[kernel.I_ITERATIONS])
+    res: Mapping[str, float]
+    bc: Mapping[str, float]
+    if check:
+        res = DeferredResiduals(sol.formulation, sol, lambda: eq.output_grid(config.CHECK_POINTS))
+        bc = Deferred(lambda: eq.boundary_errors(sol))
+    else:
+        res, bc = {}, {}
+    values["diagnostics"] = assembled(
+        Diagnostics,
+        {
+            "method": "numerical",
+            "rtol": rtol,
+            "atol": atol,
+            "residuals": res,
+            "bc_errors": bc,
+            "message": COUETTE_MESSAGE if inputs.couette else PLANE_MESSAGE,
+            "stats": stats,
+        },
+    )
+    return values
 
 
 # ----------------------------------------------------------------- many problems at once
