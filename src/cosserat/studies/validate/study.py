@@ -53,6 +53,7 @@ from .measures import (
     thickness_sensitivity,
 )
 from .nulls import (
+    Null,
     envelope,
     joint_null,
     monotone_beyond,
@@ -60,7 +61,7 @@ from .nulls import (
     velocity_null,
     with_null,
 )
-from .spin_scan import COARSE, Scan, scan_verdict, spin_scans
+from .spin_scan import COARSE, Scan, scan_or_skip, scan_verdict, shared_fits, spin_scans
 from .verdicts import (
     MIN_GAPS,
     SAME_GAP,
@@ -228,19 +229,69 @@ def _scans(results: Sequence[RunResult], points: int) -> tuple[list[Scan], list[
     return scans, skipped
 
 
-def _joint_nulls(results: Sequence[RunResult], scans: Sequence[Scan]) -> str:
+@dataclass
+class ScanOutcome:
+    """One run's part of :func:`_scans`, made alone (:func:`scan_job`, in a worker process
+    when there are workers): its scan with its wall check (``Scan.wall_k``) and its joint
+    fit's null, or why it is left out."""
+
+    run: str
+    scan: Scan | None = None
+    skipped: str = ""
+    null: Null | None = None
+
+
+@dataclass
+class Scanned:
+    """:func:`_scans` and the joint fits' nulls of :func:`_joint_nulls`, made before
+    :func:`judge` (by :func:`validate`, its runs' scans in parallel)."""
+
+    scans: list[Scan]
+    skipped: list[str]
+    nulls: dict[str, Null]
+
+
+def scan_job(run: Run, corpus: Sequence[Run], points: int) -> ScanOutcome:
+    """The scan of one run (:func:`.spin_scan.scan_or_skip`), its wall check
+    (:func:`.wall_k.check_scans`) and its joint fit's null (:func:`.nulls.joint_null`): each
+    depends on this run's scan alone, so runs can be scanned in parallel; the material's
+    shared fit (:func:`.spin_scan.shared_fits`) is made afterwards over every scan
+    (:func:`gather_scans`)."""
+    got = scan_or_skip(run, corpus, points)
+    if not isinstance(got, Scan):
+        return ScanOutcome(run.name, skipped=got or "")
+    check_scans([got], corpus)
+    return ScanOutcome(run.name, got, null=joint_null(got, run))
+
+
+def gather_scans(outcomes: Sequence[ScanOutcome], scanned_runs: Sequence[Run]) -> Scanned:
+    """The scans of :func:`scan_job` in the runs' order, each material's shared fit over them
+    (:func:`.spin_scan.shared_fits`, with ``scanned_runs``: the runs with a measured spin, as
+    :func:`_scans` gives it) as :func:`.spin_scan.spin_scans` makes it."""
+    scans = [o.scan for o in outcomes if o.scan is not None]
+    skipped = [o.skipped for o in outcomes if o.scan is None and o.skipped]
+    shared_fits(scans, scanned_runs)
+    nulls = {o.run: o.null for o in outcomes if o.null is not None}
+    return Scanned(scans, skipped, nulls)
+
+
+def _joint_nulls(
+    results: Sequence[RunResult],
+    scans: Sequence[Scan],
+    nulls: Mapping[str, Null] | None = None,
+) -> str:
     """Put each scanned run's joint-fit null (:func:`.nulls.joint_null`, spin_model's) on its
     walls in ``results`` (one null for both spin verdicts, referee 8, point 4); return one
     sentence with the first layer beyond every null the run has (the joint fit's, the u-only
     fits', the measured velocity's), the systematic a choice of velocity would make ("" without
-    a scan)."""
+    a scan). ``nulls``: the joint nulls already made (run name -> null), else made here."""
     by_name = {r.run.name: r for r in results}
     rows = []
     for sc in scans:
         r = by_name.get(sc.run)
         if r is None or not r.spin.available or r.spin.rows is None:
             continue
-        joint = joint_null(sc, r.run)
+        joint = nulls[sc.run] if nulls and sc.run in nulls else joint_null(sc, r.run)
         spin = r.spin
         spin_rows = r.spin.rows
         spin.walls = [
@@ -508,10 +559,15 @@ def _analyse_all(
     jobs: Sequence[MaterialJob] = (),
     independent_bins: bool = False,
     fixes: Mapping[str, StressFix] | None = None,
-) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]]]:
+    scan_runs: Sequence[Run] = (),
+    points: int = COARSE,
+) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]], Scanned | None]:
     """:func:`analyse_run` of every run and :func:`.fits.material_job` of every job, in worker
     processes when worth it (``validate``): (the runs' results, series key -> calibrations,
-    one per model)."""
+    one per model, and the spin scans). With workers, the spin scans of ``scan_runs`` (the
+    runs with a measured spin; ``points`` per parameter) are made there too (:func:`scan_job`,
+    :func:`gather_scans`); in one process (and without ``scan_runs`` or ``points``) they are
+    left to :func:`judge` (None)."""
     workers = 1 if workers is None else min(workers, len(runs) + len(jobs))
     cals: dict[str, list[SeriesCalibration]] = {}
     if workers <= 1:
@@ -528,16 +584,25 @@ def _analyse_all(
         for job in jobs:
             for key, cal in material_job(job).items():
                 cals.setdefault(key, []).append(cal)
-        return out, cals
+        return out, cals, None
     from ...numerics.runtime import worker_processes
 
     done: dict[int, RunResult] = {}
     # the longest first, so that the workers end together: mu(I)'s material calibrations (a
-    # quadrature per solve), then the runs with the most bins
+    # quadrature per solve), then the spin scans (a joint fit, two grids and the refits of
+    # each), then the other calibrations, then the runs with the most bins
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k].model != "mui", -len(jobs[k].runs)))
+    first = [k for k in ranked if jobs[k].model == "mui"]
+    later = [k for k in ranked if jobs[k].model != "mui"]
+    to_scan = list(scan_runs) if points > 0 else []
     with worker_processes(workers) as pool:
-        series_futures = {pool.submit(material_job, jobs[k]): k for k in ranked}
+        series_futures = {pool.submit(material_job, jobs[k]): k for k in first}
+        scan_futures = {
+            pool.submit(scan_job, run, list(runs), points): i
+            for i, run in sorted(enumerate(to_scan), key=lambda ir: -ir[1].measured().n)
+        }
+        series_futures.update({pool.submit(material_job, jobs[k]): k for k in later})
         futures = {
             pool.submit(
                 analyse_run,
@@ -557,10 +622,12 @@ def _analyse_all(
             if progress:
                 progress("runs", k + 1, len(runs))
         got = {series_futures[fut]: fut.result() for fut in as_completed(series_futures)}
+        outcomes = {scan_futures[fut]: fut.result() for fut in as_completed(scan_futures)}
     for k in range(len(jobs)):  # in the jobs' order, whichever ended first
         for key, cal in got[k].items():
             cals.setdefault(key, []).append(cal)
-    return [done[i] for i in range(len(runs))], cals
+    scanned = gather_scans([outcomes[i] for i in range(len(to_scan))], to_scan) if to_scan else None
+    return [done[i] for i in range(len(runs))], cals, scanned
 
 
 def sensitivity_fs(f: float) -> tuple[float, ...]:
@@ -653,13 +720,15 @@ def judge(
     calibrate: bool = True,
     calibrations: Mapping[str, Sequence[SeriesCalibration]] | None = None,
     spin_scan: int = COARSE,
+    scanned: Scanned | None = None,
 ) -> tuple[list[DeltaSeries], list[Verdict], list[str]]:
     """The gap series and the verdicts on every claim, from the runs' results. Each series'
     joint calibrations (one per model over every run of its material, :func:`series_jobs`)
     are ``calibrations`` (series key -> one per model), or else made here unless
     ``calibrate`` is False. ``spin_scan``: points per
     parameter of the spin scan behind ``spin_model`` (:mod:`.spin_scan`; 0: the u-only fits
-    alone)."""
+    alone); ``scanned``: those scans and their nulls already made (:func:`gather_scans`, at
+    ``spin_scan`` points), else made here."""
     by_name = {r.run.name: r for r in results}
     if calibrations is None:
         made: dict[str, list[SeriesCalibration]] = {}
@@ -704,8 +773,12 @@ def judge(
                 {r.run.name: r.run.meta.get("wall_speed") for r in members},
             )
         )
-    scans, skipped = _scans(results, spin_scan)
-    systematic = _joint_nulls(results, scans)
+    if scanned is None or spin_scan <= 0:
+        scans, skipped = _scans(results, spin_scan)
+        systematic = _joint_nulls(results, scans)
+    else:
+        scans, skipped = scanned.scans, scanned.skipped
+        systematic = _joint_nulls(results, scans, scanned.nulls)
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
     spin = spin_verdict(walls, unfit=_spin_model_inputs(results)[2])
     if systematic:
@@ -929,11 +1002,15 @@ def validate(
         folder.mkdir(parents=True, exist_ok=True)
     jobs = series_jobs(data.runs, models, f)
     fixes = None if fit_angles else {r.name: cosserat_fix(r, data.runs) for r in data.runs}
-    results, cals = _analyse_all(
+    # the runs with a measured spin, which the spin scans take (as judge's _scans)
+    spin_runs = [r for r in data.runs if measure_spin(r, near_wall_d).available]
+    results, cals, scanned = _analyse_all(
         data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs,
-        independent_bins, fixes,
+        independent_bins, fixes, spin_runs, spin_scan,
     )  # fmt: skip
-    series, verdicts, notes = judge(results, models, f, calibrations=cals, spin_scan=spin_scan)
+    series, verdicts, notes = judge(
+        results, models, f, calibrations=cals, spin_scan=spin_scan, scanned=scanned
+    )
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
     if out is not None:
