@@ -10,7 +10,7 @@ series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from concurrent.futures import as_completed
+from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -264,13 +264,30 @@ def scan_job(run: Run, corpus: Sequence[Run], points: int) -> ScanOutcome:
     return ScanOutcome(run.name, got, null=joint_null(got, run))
 
 
-def gather_scans(outcomes: Sequence[ScanOutcome], scanned_runs: Sequence[Run]) -> Scanned:
+def shared_job(scans: Sequence[Scan], scanned_runs: Sequence[Run]) -> dict[str, dict[str, Any]]:
+    """:func:`.spin_scan.shared_fits` of ``scans`` (in a worker process): run name -> its
+    ``Scan.shared``."""
+    shared_fits(scans, scanned_runs)
+    return {sc.run: sc.shared for sc in scans}
+
+
+def gather_scans(
+    outcomes: Sequence[ScanOutcome],
+    scanned_runs: Sequence[Run],
+    shared: Mapping[str, dict[str, Any]] | None = None,
+) -> Scanned:
     """The scans of :func:`scan_job` in the runs' order, each material's shared fit over them
     (:func:`.spin_scan.shared_fits`, with ``scanned_runs``: the runs with a measured spin, as
-    :func:`_scans` gives it) as :func:`.spin_scan.spin_scans` makes it."""
+    :func:`_scans` gives it) as :func:`.spin_scan.spin_scans` makes it; ``shared``: those fits
+    already made (:func:`shared_job`), else made here."""
     scans = [o.scan for o in outcomes if o.scan is not None]
     skipped = [o.skipped for o in outcomes if o.scan is None and o.skipped]
-    shared_fits(scans, scanned_runs)
+    if shared is None:
+        shared_fits(scans, scanned_runs)
+    else:
+        for sc in scans:
+            if sc.run in shared:
+                sc.shared = shared[sc.run]
     nulls = {o.run: o.null for o in outcomes if o.null is not None}
     return Scanned(scans, skipped, nulls)
 
@@ -587,46 +604,66 @@ def _analyse_all(
         return out, cals, None
     from ...numerics.runtime import worker_processes
 
-    done: dict[int, RunResult] = {}
     # the longest first, so that the workers end together: mu(I)'s material calibrations (a
     # quadrature per solve), then the spin scans (a joint fit, two grids and the refits of
-    # each), then the other calibrations, then the runs with the most bins
+    # each), then the other calibrations, then the runs with the most bins; the material's
+    # shared spin fit goes first in the queue once its scans are in
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k].model != "mui", -len(jobs[k].runs)))
-    first = [k for k in ranked if jobs[k].model == "mui"]
-    later = [k for k in ranked if jobs[k].model != "mui"]
     to_scan = list(scan_runs) if points > 0 else []
-    with worker_processes(workers) as pool:
-        series_futures = {pool.submit(material_job, jobs[k]): k for k in first}
-        scan_futures = {
-            pool.submit(scan_job, run, list(runs), points): i
-            for i, run in sorted(enumerate(to_scan), key=lambda ir: -ir[1].measured().n)
-        }
-        series_futures.update({pool.submit(material_job, jobs[k]): k for k in later})
-        futures = {
-            pool.submit(
-                analyse_run,
-                runs[i],
-                models,
-                f,
-                near_wall_d,
-                grid,
-                figures_to,
-                independent_bins,
-                (fixes or {}).get(runs[i].name),
-            ): i
+    everyone = list(runs)
+    queue: list[tuple[str, int, Callable[..., Any], tuple[Any, ...]]] = [
+        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model == "mui"),
+        *(
+            ("scan", i, scan_job, (to_scan[i], everyone, points))
+            for i in sorted(range(len(to_scan)), key=lambda i: -to_scan[i].measured().n)
+        ),
+        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model != "mui"),
+        *(
+            (
+                "run", i, analyse_run,
+                (runs[i], models, f, near_wall_d, grid, figures_to, independent_bins,
+                 (fixes or {}).get(runs[i].name)),
+            )
             for i in order
-        }
-        for k, fut in enumerate(as_completed(futures)):
-            done[futures[fut]] = fut.result()
-            if progress:
-                progress("runs", k + 1, len(runs))
-        got = {series_futures[fut]: fut.result() for fut in as_completed(series_futures)}
-        outcomes = {scan_futures[fut]: fut.result() for fut in as_completed(scan_futures)}
+        ),
+    ]  # fmt: skip
+    done: dict[int, RunResult] = {}
+    got: dict[int, dict[str, SeriesCalibration]] = {}
+    outcomes: dict[int, ScanOutcome] = {}
+    shared: dict[str, dict[str, Any]] | None = None if to_scan else {}
+    with worker_processes(workers) as pool:
+        running: dict[Future[Any], tuple[str, int]] = {}
+        while queue or running:
+            # at most one job waiting per worker: a job queued later (the shared fit) can
+            # still go before the runs not yet handed out
+            while queue and len(running) < 2 * workers:
+                kind, i, fn, fn_args = queue.pop(0)
+                running[pool.submit(fn, *fn_args)] = (kind, i)
+            finished, _ = wait(running, return_when=FIRST_COMPLETED)
+            for fut in finished:
+                kind, i = running.pop(fut)
+                if kind == "run":
+                    done[i] = fut.result()
+                    if progress:
+                        progress("runs", len(done), len(runs))
+                elif kind == "job":
+                    got[i] = fut.result()
+                elif kind == "scan":
+                    outcomes[i] = fut.result()
+                    if len(outcomes) == len(to_scan):
+                        scans = [o.scan for _, o in sorted(outcomes.items()) if o.scan]
+                        queue.insert(0, ("shared", 0, shared_job, (scans, to_scan)))
+                else:
+                    shared = fut.result()
     for k in range(len(jobs)):  # in the jobs' order, whichever ended first
         for key, cal in got[k].items():
             cals.setdefault(key, []).append(cal)
-    scanned = gather_scans([outcomes[i] for i in range(len(to_scan))], to_scan) if to_scan else None
+    scanned = (
+        gather_scans([outcomes[i] for i in range(len(to_scan))], to_scan, shared)
+        if to_scan
+        else None
+    )
     return [done[i] for i in range(len(runs))], cals, scanned
 
 
