@@ -995,10 +995,9 @@ def validate(
     progress : callable, optional
         Called as ``progress("runs", done, total)`` after each run.
     workers : int, optional
-        Processes that analyse runs (and draw their figures) and calibrate the gap series in
-        parallel; None: one. On the shipped corpus one process needs 84 s of CPU, two workers
-        101 s between them (each pays its start): on two idle cores about 51 s; on cores
-        already busy they were slower (``docs/validation.md``, Speed).
+        Processes that analyse runs (and draw their figures), make the spin scans and
+        calibrate the gap series in parallel; None: one. Timings: ``docs/validation.md``,
+        Speed.
     spin_scan : int
         Points per parameter (K, L) of the spin scan behind ``spin_model``
         (:mod:`.spin_scan`; 0: the u-only fits' verdict alone).
