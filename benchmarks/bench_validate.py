@@ -1,10 +1,12 @@
 """``cosserat validate`` on the shipped corpus: wall time with one process and with two, side by
 side in one run (issue 18, item 8: under 60 s on two cores).
 
-Run: ``python benchmarks/bench_validate.py [--repeat N]``. The kernels are compiled (or loaded
-from numba's cache) by a first call that is not timed; each timed call writes its report into a
+Run: ``python benchmarks/bench_validate.py [--repeat N] [--corpus DIR] [--workers 1,2]``
+(``--corpus``: another corpus folder, e.g. the five quasi-static v2 runs; default the shipped
+one, what ``.ci/run``'s release check validates). The kernels are compiled (or loaded from
+numba's cache) by a first call that is not timed; each timed call writes its report into a
 fresh temporary folder. Prints one JSON object: the wall seconds and the CPU seconds (this
-process and its workers) of every call, and the machine's load.
+process and its workers) of every call, and the machine's load before and after.
 """
 
 from __future__ import annotations
@@ -21,24 +23,35 @@ from pathlib import Path
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=2, help="timed calls per setting")
+    parser.add_argument("--corpus", default=None, help="corpus folder (default: the shipped one)")
+    parser.add_argument("--workers", default="1,2", help="worker counts to time, comma-separated")
     args = parser.parse_args()
+    settings = [int(w) for w in args.workers.split(",") if w.strip()]
 
     from cosserat.studies.validate import validate
 
+    load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as tmp:
-        validate(None, Path(tmp) / "warm")  # compile or load the kernels, not timed
-        seconds: dict[str, list[float]] = {"workers=1": [], "workers=2": []}
-        cpu: dict[str, list[float]] = {"workers=1": [], "workers=2": []}
+        validate(args.corpus, Path(tmp) / "warm", workers=1)  # compile or load, not timed
+        seconds: dict[str, list[float]] = {f"workers={w}": [] for w in settings}
+        cpu: dict[str, list[float]] = {f"workers={w}": [] for w in settings}
         for k in range(args.repeat):
-            for workers in (1, 2):  # interleaved: both settings see the same machine
+            for workers in settings:  # interleaved: every setting sees the same machine
                 before = _cpu()
                 start = time.perf_counter()
-                validate(None, Path(tmp) / f"w{workers}_{k}", workers=workers)
+                validate(args.corpus, Path(tmp) / f"w{workers}_{k}", workers=workers)
                 seconds[f"workers={workers}"].append(round(time.perf_counter() - start, 2))
                 cpu[f"workers={workers}"].append(round(_cpu() - before, 2))
     print(
         json.dumps(
-            {"seconds": seconds, "cpu_seconds": cpu, "load_average": os.getloadavg()}, indent=1
+            {
+                "corpus": args.corpus or "shipped",
+                "seconds": seconds,
+                "cpu_seconds": cpu,
+                "load_average_before": load_before,
+                "load_average_after": os.getloadavg(),
+            },
+            indent=1,
         )
     )
 

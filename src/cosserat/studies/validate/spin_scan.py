@@ -2222,31 +2222,45 @@ def spin_scans(
 ) -> tuple[list[Scan], list[str]]:
     """:func:`scan_run` of every plane run of ``runs`` with a measured spin whose two walls are
     of one kind (``corpus``: every run, for phi); the others left out, each with why."""
+    scans, skipped = [], []
+    for run in runs:
+        got = scan_or_skip(run, corpus, points, predictor)
+        if isinstance(got, Scan):
+            scans.append(got)
+        elif got is not None:
+            skipped.append(got)
+    shared_fits(scans, runs, predictor)
+    return scans, skipped
+
+
+def scan_or_skip(
+    run: Run,
+    corpus: Sequence[Run],
+    points: int = COARSE,
+    predictor: Predictor | str = DEFAULT_PREDICTOR,
+) -> Scan | str | None:
+    """One run of :func:`spin_scans` (without the shared fits): its :func:`scan_run`, or why
+    it is left out (one line starting with its name), or None for a run without a measured
+    spin (for worker processes: each run's scan is independent of the others')."""
     from ...errors import CosseratError
     from .grouping import walls_differ
 
-    scans, skipped = [], []
-    for run in runs:
-        if not (run.has("omega") and run.has("half_vorticity")):
-            continue
-        if run.cell != "plane":
-            skipped.append(
-                f"{run.name} (a {run.cell} cell: the scan takes plane shear, where the stress "
-                "ratio is T / sigma_yy)"
-            )
-            continue
-        if walls_differ(run):
-            skipped.append(
-                f"{run.name} (its walls differ: the band is where the smoother wall slips, and "
-                "the scan is of the moving wall's first layer)"
-            )
-            continue
-        try:
-            scans.append(scan_run(run, corpus, points, predictor))
-        except CosseratError as exc:
-            skipped.append(f"{run.name} ({' '.join(str(exc).split())})")
-    shared_fits(scans, runs, predictor)
-    return scans, skipped
+    if not (run.has("omega") and run.has("half_vorticity")):
+        return None
+    if run.cell != "plane":
+        return (
+            f"{run.name} (a {run.cell} cell: the scan takes plane shear, where the stress "
+            "ratio is T / sigma_yy)"
+        )
+    if walls_differ(run):
+        return (
+            f"{run.name} (its walls differ: the band is where the smoother wall slips, and "
+            "the scan is of the moving wall's first layer)"
+        )
+    try:
+        return scan_run(run, corpus, points, predictor)
+    except CosseratError as exc:
+        return f"{run.name} ({' '.join(str(exc).split())})"
 
 
 def shared_fits(
@@ -2335,6 +2349,7 @@ __all__ = [
     "point_departure",
     "region_profiles",
     "scan",
+    "scan_or_skip",
     "scan_run",
     "scan_verdict",
     "shared_fits",

@@ -10,7 +10,7 @@ series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from concurrent.futures import as_completed
+from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -62,6 +62,7 @@ from .measures import (
     window_travel,
 )
 from .nulls import (
+    Null,
     envelope,
     joint_null,
     monotone_beyond,
@@ -69,7 +70,7 @@ from .nulls import (
     velocity_null,
     with_null,
 )
-from .spin_scan import COARSE, Scan, scan_verdict, spin_scans
+from .spin_scan import COARSE, Scan, scan_or_skip, scan_verdict, shared_fits, spin_scans
 from .verdicts import (
     MIN_GAPS,
     SAME_GAP,
@@ -259,19 +260,86 @@ def _joint_curves(results: Sequence[RunResult], scans: Sequence[Scan]) -> None:
             r.joint = None
 
 
-def _joint_nulls(results: Sequence[RunResult], scans: Sequence[Scan]) -> str:
+@dataclass
+class ScanOutcome:
+    """One run's part of :func:`_scans`, made alone (:func:`scan_job`, in a worker process
+    when there are workers): its scan with its wall check (``Scan.wall_k``) and its joint
+    fit's null, or why it is left out."""
+
+    run: str
+    scan: Scan | None = None
+    skipped: str = ""
+    null: Null | None = None
+
+
+@dataclass
+class Scanned:
+    """:func:`_scans` and the joint fits' nulls of :func:`_joint_nulls`, made before
+    :func:`judge` (by :func:`validate`, its runs' scans in parallel)."""
+
+    scans: list[Scan]
+    skipped: list[str]
+    nulls: dict[str, Null]
+
+
+def scan_job(run: Run, corpus: Sequence[Run], points: int) -> ScanOutcome:
+    """The scan of one run (:func:`.spin_scan.scan_or_skip`), its wall check
+    (:func:`.wall_k.check_scans`) and its joint fit's null (:func:`.nulls.joint_null`): each
+    depends on this run's scan alone, so runs can be scanned in parallel; the material's
+    shared fit (:func:`.spin_scan.shared_fits`) is made afterwards over every scan
+    (:func:`gather_scans`)."""
+    got = scan_or_skip(run, corpus, points)
+    if not isinstance(got, Scan):
+        return ScanOutcome(run.name, skipped=got or "")
+    check_scans([got], corpus)
+    return ScanOutcome(run.name, got, null=joint_null(got, run))
+
+
+def shared_job(scans: Sequence[Scan], scanned_runs: Sequence[Run]) -> dict[str, dict[str, Any]]:
+    """:func:`.spin_scan.shared_fits` of ``scans`` (in a worker process): run name -> its
+    ``Scan.shared``."""
+    shared_fits(scans, scanned_runs)
+    return {sc.run: sc.shared for sc in scans}
+
+
+def gather_scans(
+    outcomes: Sequence[ScanOutcome],
+    scanned_runs: Sequence[Run],
+    shared: Mapping[str, dict[str, Any]] | None = None,
+) -> Scanned:
+    """The scans of :func:`scan_job` in the runs' order, each material's shared fit over them
+    (:func:`.spin_scan.shared_fits`, with ``scanned_runs``: the runs with a measured spin, as
+    :func:`_scans` gives it) as :func:`.spin_scan.spin_scans` makes it; ``shared``: those fits
+    already made (:func:`shared_job`), else made here."""
+    scans = [o.scan for o in outcomes if o.scan is not None]
+    skipped = [o.skipped for o in outcomes if o.scan is None and o.skipped]
+    if shared is None:
+        shared_fits(scans, scanned_runs)
+    else:
+        for sc in scans:
+            if sc.run in shared:
+                sc.shared = shared[sc.run]
+    nulls = {o.run: o.null for o in outcomes if o.null is not None}
+    return Scanned(scans, skipped, nulls)
+
+
+def _joint_nulls(
+    results: Sequence[RunResult],
+    scans: Sequence[Scan],
+    nulls: Mapping[str, Null] | None = None,
+) -> str:
     """Put each scanned run's joint-fit null (:func:`.nulls.joint_null`, spin_model's) on its
     walls in ``results`` (one null for both spin verdicts, referee 8, point 4); return one
     sentence with the first layer beyond every null the run has (the joint fit's, the u-only
     fits', the measured velocity's), the systematic a choice of velocity would make ("" without
-    a scan)."""
+    a scan). ``nulls``: the joint nulls already made (run name -> null), else made here."""
     by_name = {r.run.name: r for r in results}
     rows = []
     for sc in scans:
         r = by_name.get(sc.run)
         if r is None or not r.spin.available or r.spin.rows is None:
             continue
-        joint = joint_null(sc, r.run)
+        joint = nulls[sc.run] if nulls and sc.run in nulls else joint_null(sc, r.run)
         spin = r.spin
         spin_rows = r.spin.rows
         spin.walls = [
@@ -539,10 +607,15 @@ def _analyse_all(
     jobs: Sequence[MaterialJob] = (),
     independent_bins: bool = False,
     fixes: Mapping[str, StressFix] | None = None,
-) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]]]:
+    scan_runs: Sequence[Run] = (),
+    points: int = COARSE,
+) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]], Scanned | None]:
     """:func:`analyse_run` of every run and :func:`.fits.material_job` of every job, in worker
     processes when worth it (``validate``): (the runs' results, series key -> calibrations,
-    one per model)."""
+    one per model, and the spin scans). With workers, the spin scans of ``scan_runs`` (the
+    runs with a measured spin; ``points`` per parameter) are made there too (:func:`scan_job`,
+    :func:`gather_scans`); in one process (and without ``scan_runs`` or ``points``) they are
+    left to :func:`judge` (None)."""
     workers = 1 if workers is None else min(workers, len(runs) + len(jobs))
     cals: dict[str, list[SeriesCalibration]] = {}
     if workers <= 1:
@@ -559,39 +632,70 @@ def _analyse_all(
         for job in jobs:
             for key, cal in material_job(job).items():
                 cals.setdefault(key, []).append(cal)
-        return out, cals
+        return out, cals, None
     from ...numerics.runtime import worker_processes
 
-    done: dict[int, RunResult] = {}
     # the longest first, so that the workers end together: mu(I)'s material calibrations (a
-    # quadrature per solve), then the runs with the most bins
+    # quadrature per solve), then the spin scans (a joint fit, two grids and the refits of
+    # each), then the other calibrations, then the runs with the most bins; the material's
+    # shared spin fit goes first in the queue once its scans are in
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k].model != "mui", -len(jobs[k].runs)))
-    with worker_processes(workers) as pool:
-        series_futures = {pool.submit(material_job, jobs[k]): k for k in ranked}
-        futures = {
-            pool.submit(
-                analyse_run,
-                runs[i],
-                models,
-                f,
-                near_wall_d,
-                grid,
-                figures_to,
-                independent_bins,
-                (fixes or {}).get(runs[i].name),
-            ): i
+    to_scan = list(scan_runs) if points > 0 else []
+    everyone = list(runs)
+    queue: list[tuple[str, int, Callable[..., Any], tuple[Any, ...]]] = [
+        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model == "mui"),
+        *(
+            ("scan", i, scan_job, (to_scan[i], everyone, points))
+            for i in sorted(range(len(to_scan)), key=lambda i: -to_scan[i].measured().n)
+        ),
+        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model != "mui"),
+        *(
+            (
+                "run", i, analyse_run,
+                (runs[i], models, f, near_wall_d, grid, figures_to, independent_bins,
+                 (fixes or {}).get(runs[i].name)),
+            )
             for i in order
-        }
-        for k, fut in enumerate(as_completed(futures)):
-            done[futures[fut]] = fut.result()
-            if progress:
-                progress("runs", k + 1, len(runs))
-        got = {series_futures[fut]: fut.result() for fut in as_completed(series_futures)}
+        ),
+    ]  # fmt: skip
+    done: dict[int, RunResult] = {}
+    got: dict[int, dict[str, SeriesCalibration]] = {}
+    outcomes: dict[int, ScanOutcome] = {}
+    shared: dict[str, dict[str, Any]] | None = None if to_scan else {}
+    with worker_processes(workers) as pool:
+        running: dict[Future[Any], tuple[str, int]] = {}
+        while queue or running:
+            # at most one job waiting per worker: a job queued later (the shared fit) can
+            # still go before the runs not yet handed out
+            while queue and len(running) < 2 * workers:
+                kind, i, fn, fn_args = queue.pop(0)
+                running[pool.submit(fn, *fn_args)] = (kind, i)
+            finished, _ = wait(running, return_when=FIRST_COMPLETED)
+            for fut in finished:
+                kind, i = running.pop(fut)
+                if kind == "run":
+                    done[i] = fut.result()
+                    if progress:
+                        progress("runs", len(done), len(runs))
+                elif kind == "job":
+                    got[i] = fut.result()
+                elif kind == "scan":
+                    outcomes[i] = fut.result()
+                    if len(outcomes) == len(to_scan):
+                        scans = [o.scan for _, o in sorted(outcomes.items()) if o.scan]
+                        queue.insert(0, ("shared", 0, shared_job, (scans, to_scan)))
+                else:
+                    shared = fut.result()
     for k in range(len(jobs)):  # in the jobs' order, whichever ended first
         for key, cal in got[k].items():
             cals.setdefault(key, []).append(cal)
-    return [done[i] for i in range(len(runs))], cals
+    scanned = (
+        gather_scans([outcomes[i] for i in range(len(to_scan))], to_scan, shared)
+        if to_scan
+        else None
+    )
+    return [done[i] for i in range(len(runs))], cals, scanned
 
 
 def sensitivity_fs(f: float) -> tuple[float, ...]:
@@ -693,13 +797,15 @@ def judge(
     calibrate: bool = True,
     calibrations: Mapping[str, Sequence[SeriesCalibration]] | None = None,
     spin_scan: int = COARSE,
+    scanned: Scanned | None = None,
 ) -> tuple[list[DeltaSeries], list[Verdict], list[str]]:
     """The gap series and the verdicts on every claim, from the runs' results. Each series'
     joint calibrations (one per model over every run of its material, :func:`series_jobs`)
     are ``calibrations`` (series key -> one per model), or else made here unless
     ``calibrate`` is False. ``spin_scan``: points per
     parameter of the spin scan behind ``spin_model`` (:mod:`.spin_scan`; 0: the u-only fits
-    alone)."""
+    alone); ``scanned``: those scans and their nulls already made (:func:`gather_scans`, at
+    ``spin_scan`` points), else made here."""
     by_name = {r.run.name: r for r in results}
     if calibrations is None:
         made: dict[str, list[SeriesCalibration]] = {}
@@ -744,9 +850,13 @@ def judge(
                 {r.run.name: r.run.meta.get("wall_speed") for r in members},
             )
         )
-    scans, skipped = _scans(results, spin_scan)
+    if scanned is None or spin_scan <= 0:
+        scans, skipped = _scans(results, spin_scan)
+        systematic = _joint_nulls(results, scans)
+    else:
+        scans, skipped = scanned.scans, scanned.skipped
+        systematic = _joint_nulls(results, scans, scanned.nulls)
     _joint_curves(results, scans)
-    systematic = _joint_nulls(results, scans)
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
     spin = spin_verdict(walls, unfit=_spin_model_inputs(results)[2])
     if systematic:
@@ -1066,10 +1176,9 @@ def validate(
     progress : callable, optional
         Called as ``progress("runs", done, total)`` after each run.
     workers : int, optional
-        Processes that analyse runs (and draw their figures) and calibrate the gap series in
-        parallel; None: one. On the shipped corpus one process needs 84 s of CPU, two workers
-        101 s between them (each pays its start): on two idle cores about 51 s; on cores
-        already busy they were slower (``docs/validation.md``, Speed).
+        Processes that analyse runs (and draw their figures), make the spin scans and
+        calibrate the gap series in parallel; None: one. Timings: ``docs/validation.md``,
+        Speed.
     spin_scan : int
         Points per parameter (K, L) of the spin scan behind ``spin_model``
         (:mod:`.spin_scan`; 0: the u-only fits' verdict alone).
@@ -1112,11 +1221,15 @@ def validate(
     if fit_angles:  # the Delta calibrations fit phi too
         jobs = [replace(j, fix_phi=False) for j in jobs]
     fixes = None if fit_angles else {r.name: cosserat_fix(r, data.runs) for r in data.runs}
-    results, cals = _analyse_all(
+    # the runs with a measured spin, which the spin scans take (as judge's _scans)
+    spin_runs = [r for r in data.runs if measure_spin(r, near_wall_d).available]
+    results, cals, scanned = _analyse_all(
         data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs,
-        independent_bins, fixes,
+        independent_bins, fixes, spin_runs, spin_scan,
     )  # fmt: skip
-    series, verdicts, notes = judge(results, models, f, calibrations=cals, spin_scan=spin_scan)
+    series, verdicts, notes = judge(
+        results, models, f, calibrations=cals, spin_scan=spin_scan, scanned=scanned
+    )
     used = sorted({m for r in results if r.fits for m in r.fits.models})
     report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
     if out is not None:

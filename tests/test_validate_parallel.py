@@ -1,0 +1,70 @@
+"""validate's spin scans made one run at a time (``study.scan_job``, as the worker pool makes
+them) give what the scans made together in the parent give (issue 18, item 8: the speed-up
+must not change a number)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from cosserat.analysis.corpus import read_run
+from cosserat.studies.validate import spin_scan as ss
+from cosserat.studies.validate import study
+from cosserat.studies.validate.nulls import joint_null
+from cosserat.studies.validate.synthetic import synthetic_run
+from cosserat.studies.validate.wall_k import check_scans
+
+PHI = 20.0
+ROUGH = math.degrees(math.atan(math.sin(math.radians(PHI))))  # tan delta = sin phi
+COMMON = {"phi": PHI, "L": 3.0, "K": 0.5}
+
+
+def _run(folder, name, wall, delta, seed):
+    path = synthetic_run(
+        folder, name, "cosserat", "plane", 10.0, parameters={**COMMON, "delta": delta},
+        wall=wall, B=1.0, noise=0.005, stress_noise=0.005, seed=seed,
+    )  # fmt: skip
+    return read_run(path)
+
+
+@pytest.fixture(scope="module")
+def pair(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("pair")
+    return _run(folder, "rough", "rough", ROUGH, 0), _run(folder, "smooth", "smooth", 15.0, 1)
+
+
+def _plain(x):
+    """JSON's view of a record (NaN and None compare equal to themselves)."""
+    return json.loads(json.dumps(x, default=str))
+
+
+def test_scans_made_one_run_at_a_time_equal_the_scans_made_together(pair):
+    runs = list(pair)
+    # the parent's way before: every scan, the shared fit, the wall checks, the nulls
+    together, skipped = ss.spin_scans(runs, runs, points=2)
+    check_scans(together, runs)
+    nulls = {sc.run: joint_null(sc, r) for sc, r in zip(together, runs, strict=True)}
+    # the pool's way: one job per run, then the shared fit as its own job
+    outcomes = [study.scan_job(r, runs, 2) for r in runs]
+    shared = study.shared_job([o.scan for o in outcomes if o.scan is not None], runs)
+    apart = study.gather_scans(outcomes, runs, shared)
+    assert skipped == apart.skipped == []
+    assert [sc.run for sc in apart.scans] == ["rough", "smooth"]
+    for a, b in zip(together, apart.scans, strict=True):
+        assert _plain(a.to_dict()) == _plain(b.to_dict())
+        assert b.shared["runs"] == ["rough", "smooth"]  # the shared fit reached every scan
+        assert "held" in b.wall_k or "failed" in b.wall_k
+    for name, null in nulls.items():
+        other = apart.nulls[name]
+        for stencil, value in null.value.items():
+            assert list(value) == list(other.value[stencil])
+            assert list(null.se[stencil]) == list(other.se[stencil])
+
+
+def test_a_run_without_a_spin_is_dropped_and_a_run_left_out_keeps_why():
+    none = study.gather_scans([study.ScanOutcome("x")], [])
+    assert none.scans == [] and none.skipped == [] and none.nulls == {}
+    left = study.gather_scans([study.ScanOutcome("y", skipped="y (its walls differ)")], [])
+    assert left.skipped == ["y (its walls differ)"]
