@@ -513,35 +513,13 @@ def joint_fit(
     return JointFit(run.name, ang, mc, held_out)
 
 
-BINNED_FIELDS = ("u", "omega")
-"""The fields a run reports as bin means (the coarse-graining's mean over the grains in a bin,
-``forward``'s step 2): the joint fit predicts them as the model's bin means, as the scan's
-predictors measure the first layer."""
-
-
 def bin_means(rd: Any, run: Run) -> Any:
-    """``rd`` with :data:`BINNED_FIELDS` marked as bin means over ``run``'s bins
-    (``calibration.data.Field.bins``, the edges of ``forward.bin_edges`` as distances from the
-    moving wall), unless the run's values are point values at the bin centres
-    (``forward.half_vorticity_method`` "point"). A model fitted to bin means at its point
-    values is biased where u bends within a bin, next to the moving wall: on synthetic data
-    at noise 1e-6 the point fit's chi^2/dof was 9,500 (rough run) and 31,000 (smooth), K 7%
-    and 39% low."""
-    from .forward import _distance_from_moving, bin_edges, half_vorticity_method
+    """``rd`` with u and omega marked as bin means over ``run``'s bins, as the joint fit
+    predicts them (:func:`cosserat.calibration.data.with_bin_means`, the rule ``cosserat
+    calibrate`` uses too), unless the run's values are point values at the bin centres."""
+    from ...calibration.data import with_bin_means
 
-    if half_vorticity_method(run) == "point":
-        return rd
-    bins = bin_edges(run)
-    a, b = _distance_from_moving(run, bins.lo), _distance_from_moving(run, bins.hi)
-    near, far, centre = np.minimum(a, b), np.maximum(a, b), _distance_from_moving(run, bins.centre)
-    fields = dict(rd.fields)
-    for name in BINNED_FIELDS:
-        f = fields.get(name)
-        if f is None:
-            continue
-        j = np.argmin(np.abs(f.s[:, None] - centre[None, :]), axis=1)
-        fields[name] = dataclasses.replace(f, bins=(near[j], far[j]))
-    return dataclasses.replace(rd, fields=fields)
+    return with_bin_means(rd, run)
 
 
 def _without_first_layer(rd: Any, s0: float) -> tuple[Any, float | None]:
