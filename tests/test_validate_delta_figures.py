@@ -60,8 +60,8 @@ def test_the_analysis_bins_of_one_run_give_every_other_runs_bins_at_its_gap(v2_r
 
 def test_the_cosserat_material_calibration_fixes_phi_from_the_stresses(v2_runs):
     """One material, one phi: the Delta calibration fixes the phi that the spin scan and the
-    per-run fits take (sin phi = T of the two fully rough runs, 18.8 deg with the 20 d window rule); mu(I) and NGF fix
-    nothing (their mu_s is not the band's ratio)."""
+    per-run fits take (sin phi = T of the two fully rough runs, 18.8 deg with the 20 d window
+    rule); mu(I) and NGF fix nothing (their mu_s is not the band's ratio)."""
     runs = list(v2_runs.values())
     fix, note = material_fix("cosserat", runs)
     phi, phi_se, _ = material_phi(runs, material_of(runs[0]))
