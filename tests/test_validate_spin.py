@@ -252,13 +252,14 @@ def test_the_rate_sentence_names_the_wall_speeds():
 
     from cosserat.studies.validate.study import rate_text
 
-    def res(v):
-        return SimpleNamespace(run=SimpleNamespace(meta={"wall_speed": v}))
+    def res(v, cell="plane"):
+        return SimpleNamespace(run=SimpleNamespace(meta={"wall_speed": v}, cell=cell))
 
     assert rate_text([res(0.0025), res(0.0025)]) == (
         "Rate independence is not shown (one wall speed: V = 0.0025)."
     )
-    assert rate_text([res(0.0025), res(0.00125)]).startswith(
+    # two speeds, but no cell at both
+    assert rate_text([res(0.0025), res(0.00125, "couette")]).startswith(
         "The runs span 2 wall speeds (V = 0.00125, 0.0025); the spin's test does not compare"
     )
 
@@ -284,3 +285,42 @@ def test_the_spin_claim_figure_draws_the_bins_the_verdict_rests_on():
     assert len(right.containers) == 3
     rows.append({**rows[1], "label": "b: fixed", "sheared": False})
     assert len(spin_claim_figure(rows).axes[1].containers) == 3
+
+
+def test_one_cell_at_two_speeds_is_compared():
+    """The rough H = 10 d cell at V and V/2 (referee 10, point 2): u agrees bin by bin, omega
+    does not by the 85% rule (8 of 10 bins), Delta agrees, and the moving walls' stress
+    ratios differ by more than 2 se, each number from the two sidecars and profiles."""
+    import math
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from cosserat.analysis.corpus import read_run
+    from cosserat.studies.validate.measures import measured_thickness
+    from cosserat.studies.validate.rate import rate_pairs
+    from cosserat.studies.validate.study import rate_text
+
+    results = []
+    for name in ("plane_rough_H10_qs", "plane_rough_H10_qs_half", "plane_smooth_H20_qs"):
+        run = read_run(DATA / name / "profile.csv")
+        results.append(SimpleNamespace(run=run, thickness=measured_thickness(run)))
+    (pair,) = rate_pairs(results)  # the smooth run is another cell
+    assert pair.speeds == (0.0025, 0.00125)
+    assert pair.checks["u"].consistent and not pair.checks["omega"].consistent
+    assert pair.checks["omega"].within == 0.8
+    ratios = []
+    for r in results[:2]:
+        ws = r.run.meta["wall_stress"]
+        ratio = abs(ws["shear"]) / ws["normal"]
+        se = ratio * math.hypot(ws["shear_se"] / ws["shear"], ws["normal_se"] / ws["normal"])
+        ratios.append((ratio, se))
+    z = (ratios[0][0] - ratios[1][0]) / math.hypot(ratios[0][1], ratios[1][1])
+    assert pair.wall_ratio_z == pytest.approx(z, rel=1e-12) and z > 2.0
+    text = rate_text(results)
+    assert "u agrees, omega does not (the rule: at least 85% of the bins within 2 se)" in text
+    assert "the stress level differs beyond 2 se" in text
+    # another gap is another cell
+    run = results[1].run
+    wider = replace(run, meta={**run.meta, "gap_d": 1.05 * results[0].run.gap_d})
+    other = SimpleNamespace(run=wider, thickness=results[1].thickness)
+    assert rate_pairs([results[0], other]) == []

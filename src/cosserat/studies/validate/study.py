@@ -905,16 +905,27 @@ def judge(
 
 
 def rate_text(results: Sequence[RunResult]) -> str:
-    """One sentence for the spin and spin_model verdicts (referee 8, point 7): their test
-    does not show the departure rate-independent (that takes one cell at two wall speeds);
-    the runs' wall speeds (the sidecar's ``wall_speed``) are named."""
+    """One sentence for the spin and spin_model verdicts (referee 8, point 7): the runs' wall
+    speeds (the sidecar's ``wall_speed``), and, for one cell run at two speeds, what its
+    scaled profiles, Delta and wall stress ratio say (:func:`.rate.rate_pairs`; referee 10,
+    point 2); with one speed, that rate independence is not shown."""
+    from .rate import rate_pairs
+
     speeds = sorted({float(v) for r in results if (v := r.run.meta.get("wall_speed")) is not None})
     named = ", ".join(f"{v:.3g}" for v in speeds) or "not recorded"
     if len(speeds) <= 1:
         return f"Rate independence is not shown (one wall speed: V = {named})."
+    pairs = rate_pairs(results)
+    if not pairs:
+        return (
+            f"The runs span {len(speeds)} wall speeds (V = {named}); the spin's test does not "
+            "compare one cell at two speeds, so it does not show rate independence."
+        )
     return (
-        f"The runs span {len(speeds)} wall speeds (V = {named}); the spin's test does not "
-        "compare one cell at two speeds, so it does not show rate independence."
+        f"The runs span {len(speeds)} wall speeds (V = {named}); one cell at two speeds "
+        "(bins compared at equal y, block errors, the two runs independent): "
+        + "; ".join(p.text() for p in pairs)
+        + "."
     )
 
 

@@ -1,0 +1,159 @@
+"""Rate independence: one cell at two wall speeds, compared bin by bin (issue 18, item 1).
+
+A rate-independent (quasi-static) flow scaled by the wall speed V -- u / V, omega d / V -- and
+its stresses over the normal stress do not depend on V. Two runs of the same cell (cell, walls,
+gap within :data:`GAP_TOLERANCE`, B within :data:`B_TOLERANCE`) at different wall speeds are
+compared: u and omega bin by bin at equal y (:func:`cosserat.dem.checks.rate_independence`:
+|z| <= 2 in at least the fraction a normal law puts there less 10 points, 85%), Delta, and the
+moving wall's measured stress ratio |shear| / normal from its contacts (the sidecar's
+``wall_stress``). Errors are the runs' block errors, the two runs' taken as independent.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ...dem.checks import RateCheck, rate_independence
+from ...errors import InputError
+
+GAP_TOLERANCE = 0.02
+"""Two runs are one cell when their gaps differ by at most this fraction [-]."""
+B_TOLERANCE = 0.05
+"""... and their B (eqn-nd_B) by at most this [-]."""
+
+
+@dataclass(frozen=True)
+class RatePair:
+    """Two runs of one cell at two wall speeds (``fast`` the faster), compared."""
+
+    fast: str
+    slow: str
+    speeds: tuple[float, float]
+    checks: dict[str, RateCheck]
+    delta: tuple[tuple[float, float] | None, tuple[float, float] | None]
+    wall_ratio: tuple[tuple[float, float] | None, tuple[float, float] | None]
+
+    @property
+    def wall_ratio_z(self) -> float | None:
+        """(fast - slow) over the combined error of the walls' stress ratios [-]."""
+        a, b = self.wall_ratio
+        if a is None or b is None or not math.hypot(a[1], b[1]) > 0.0:
+            return None
+        return (a[0] - b[0]) / math.hypot(a[1], b[1])
+
+    def text(self) -> str:
+        """One clause: what agrees and what does not."""
+        parts = []
+        for name, c in self.checks.items():
+            n = c.z.size
+            inside = round(c.within * n)
+            z2 = c.chi2_per_dof * n
+            parts.append(f"{name} within 2 se in {inside} of {n} bins (sum of z^2 = {z2:.3g})")
+        d_fast, d_slow = self.delta
+        if d_fast is not None and d_slow is not None:
+            parts.append(
+                f"Delta {d_fast[0]:.3g} +- {d_fast[1]:.2g} against {d_slow[0]:.3g} +- "
+                f"{d_slow[1]:.2g} d"
+            )
+        z = self.wall_ratio_z
+        w_fast, w_slow = self.wall_ratio
+        if z is not None and w_fast is not None and w_slow is not None:
+            parts.append(
+                f"the moving wall's stress ratio {w_fast[0]:.3g} +- {w_fast[1]:.2g} against "
+                f"{w_slow[0]:.3g} +- {w_slow[1]:.2g} (z = {z:+.2g})"
+            )
+        agree = [n for n, c in self.checks.items() if c.consistent]
+        differ = [n for n, c in self.checks.items() if not c.consistent]
+        reading = []
+        if agree:
+            reading.append(f"{' and '.join(agree)} {'agree' if len(agree) > 1 else 'agrees'}")
+        if differ:
+            reading.append(
+                f"{' and '.join(differ)} {'do' if len(differ) > 1 else 'does'} not (the rule: "
+                "at least 85% of the bins within 2 se)"
+            )
+        if z is not None:
+            reading.append(
+                "the stress level agrees within 2 se"
+                if abs(z) <= 2.0
+                else "the stress level differs beyond 2 se (a rate dependence the "
+                "rate-independent models cannot carry, or run-to-run scatter: one seed at each "
+                "speed)"
+            )
+        return (
+            f"{self.fast} (V = {self.speeds[0]:.3g}) against {self.slow} (V = "
+            f"{self.speeds[1]:.3g}): {'; '.join(parts)}: {', '.join(reading)}"
+        )
+
+
+def _same_cell(a: Any, b: Any) -> bool:
+    ma, mb = a.meta, b.meta
+    if a.cell != b.cell or ma.get("wall") != mb.get("wall"):
+        return False
+    if ma.get("wall_fixed", ma.get("wall")) != mb.get("wall_fixed", mb.get("wall")):
+        return False
+    if abs(a.gap_d - b.gap_d) > GAP_TOLERANCE * max(a.gap_d, b.gap_d):
+        return False
+    ba, bb = ma.get("B"), mb.get("B")
+    if isinstance(ba, int | float) and isinstance(bb, int | float):
+        return abs(ba - bb) <= B_TOLERANCE
+    return ba == bb
+
+
+def _wall_ratio(run: Any) -> tuple[float, float] | None:
+    ws = run.meta.get("wall_stress")
+    if not isinstance(ws, dict):
+        return None
+    values = [
+        v
+        for k in ("shear", "normal", "shear_se", "normal_se")
+        if isinstance(v := ws.get(k), int | float)
+    ]
+    if len(values) < 4:
+        return None
+    shear, normal, s_se, n_se = (float(v) for v in values)
+    if not normal > 0.0 or shear == 0.0:
+        return None
+    ratio = abs(shear) / normal
+    return ratio, ratio * math.hypot(s_se / abs(shear), n_se / normal)
+
+
+def _delta(result: Any) -> tuple[float, float] | None:
+    t = result.thickness
+    if t is None or t.value is None or t.stderr is None:
+        return None
+    return float(t.value), float(t.stderr)
+
+
+def rate_pairs(results: Sequence[Any]) -> list[RatePair]:
+    """Every pair of ``results`` (validate's run results: ``run``, ``thickness``) that is one
+    cell at two wall speeds (the sidecars' ``wall_speed``), compared (module docstring)."""
+    out: list[RatePair] = []
+    for i, a in enumerate(results):
+        for b in results[i + 1 :]:
+            va, vb = a.run.meta.get("wall_speed"), b.run.meta.get("wall_speed")
+            if not (isinstance(va, int | float) and isinstance(vb, int | float)) or va == vb:
+                continue
+            if not _same_cell(a.run, b.run):
+                continue
+            fast, slow = (a, b) if va > vb else (b, a)
+            checks = {}
+            for column in ("u", "omega"):
+                try:
+                    checks[column] = rate_independence(fast.run.columns, slow.run.columns, column)
+                except InputError:
+                    continue
+            out.append(
+                RatePair(
+                    fast.run.name,
+                    slow.run.name,
+                    (float(max(va, vb)), float(min(va, vb))),
+                    checks,
+                    (_delta(fast), _delta(slow)),
+                    (_wall_ratio(fast.run), _wall_ratio(slow.run)),
+                )
+            )
+    return out
