@@ -336,10 +336,19 @@ def test_validate_onto_a_full_disk_is_one_line(one_run, tmp_path, monkeypatch, c
     from cosserat import _atomic
     from cosserat.cli import main
 
-    def full(src, dst):
-        raise OSError(errno.ENOSPC, "No space left on device")
+    class FullDisk:
+        """The os module as _atomic sees it, with a replace that fails as on a full disk. Only
+        _atomic's writes fail: patching os.replace itself also failed numba's cache writes
+        when the kernels compiled in this test (a fresh cache), before any report file."""
 
-    monkeypatch.setattr(_atomic.os, "replace", full)
+        def __getattr__(self, name):
+            return getattr(os, name)
+
+        @staticmethod
+        def replace(src, dst):
+            raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(_atomic, "os", FullDisk())
     out = tmp_path / "report"
     assert main(["validate", str(one_run), "--out", str(out), "--models", "mui"]) == 2
     err = capsys.readouterr().err
