@@ -254,9 +254,9 @@ bin): a model is compared with them as its mean over each bin (:func:`with_bin_m
 
 def with_bin_means(rd: RunData, run: Run) -> RunData:
     """``rd`` with :data:`BINNED_FIELDS` marked as bin means over ``run``'s bins
-    (:attr:`Field.bins`, the edges of :func:`cosserat.analysis.bins.bin_edges` as distances
+    (``Field.bins``, the edges of ``cosserat.analysis.bins.bin_edges`` as distances
     from the moving wall), unless the run's values are point values at the bin centres
-    (:func:`~cosserat.analysis.bins.half_vorticity_method` ``"point"``: a run not made by
+    (``cosserat.analysis.bins.half_vorticity_method`` ``"point"``: a run not made by
     ``cosserat.dem`` that does not say otherwise).
 
     A model fitted to bin means at its point values is biased where u bends within a bin, next

@@ -8,8 +8,8 @@ derivatives, is not that: near a wall, where u bends within one bin, the binned 
 stencil's half vorticity differ from the point values by as much as the departure itself. So
 a model's departure is compared with the data's only after the same measurement:
 
-1. **bins**: the run's own, from its coordinate column (:func:`bin_edges`, defined in
-   :mod:`cosserat.analysis.bins` for the calibration's bin means too): an interior bin spans
+1. **bins**: the run's own, from its coordinate column (``bin_edges``, defined in
+   ``cosserat.analysis.bins`` for the calibration's bin means too): an interior bin spans
    its centre +- w/2 (w the median spacing of the centres); a bin next to a wall spans from
    the wall's surface to twice its centre's distance from it (the analysis puts the end
    bins' centres midway between the wall and the inner edge);
@@ -18,7 +18,7 @@ a model's departure is compared with the data's only after the same measurement:
 3. **stencil**: half the vorticity from the binned u at the bin centres by the analysis'
    stencil (``"analysis"``) or, at the first bin next to each wall, by one of the alternative
    stencils of :data:`STENCILS`. That is how ``cosserat.dem`` measures a run; a run made
-   otherwise says so in its sidecar (:func:`half_vorticity_method`: ``bin-average``, the
+   otherwise says so in its sidecar (``half_vorticity_method``: ``bin-average``, the
    synthetic runs, or ``point``, values at the bin centres, the default for a run that is not
    from ``cosserat.dem``) and the model is measured the same way (the alternative stencils
    still replace the first layers).

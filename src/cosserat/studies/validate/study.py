@@ -262,7 +262,7 @@ def _joint_curves(results: Sequence[RunResult], scans: Sequence[Scan]) -> None:
 
 @dataclass
 class ScanOutcome:
-    """One run's part of :func:`_scans`, made alone (:func:`scan_job`, in a worker process
+    """One run's part of ``_scans``, made alone (:func:`scan_job`, in a worker process
     when there are workers): its scan with its wall check (``Scan.wall_k``) and its joint
     fit's null, or why it is left out."""
 
@@ -274,7 +274,7 @@ class ScanOutcome:
 
 @dataclass
 class Scanned:
-    """:func:`_scans` and the joint fits' nulls of :func:`_joint_nulls`, made before
+    """``_scans`` and the joint fits' nulls of ``_joint_nulls``, made before
     :func:`judge` (by :func:`validate`, its runs' scans in parallel)."""
 
     scans: list[Scan]
@@ -309,7 +309,7 @@ def gather_scans(
 ) -> Scanned:
     """The scans of :func:`scan_job` in the runs' order, each material's shared fit over them
     (:func:`.spin_scan.shared_fits`, with ``scanned_runs``: the runs with a measured spin, as
-    :func:`_scans` gives it) as :func:`.spin_scan.spin_scans` makes it; ``shared``: those fits
+    ``_scans`` gives it) as :func:`.spin_scan.spin_scans` makes it; ``shared``: those fits
     already made (:func:`shared_job`), else made here."""
     scans = [o.scan for o in outcomes if o.scan is not None]
     skipped = [o.skipped for o in outcomes if o.scan is None and o.skipped]
@@ -907,7 +907,7 @@ def judge(
 def rate_text(results: Sequence[RunResult]) -> str:
     """One sentence for the spin and spin_model verdicts (referee 8, point 7): the runs' wall
     speeds (the sidecar's ``wall_speed``), and, for one cell run at two speeds, what its
-    scaled profiles, Delta and wall stress ratio say (:func:`.rate.rate_pairs`; referee 10,
+    scaled profiles, Delta and wall stress ratio say (``rate.rate_pairs``; referee 10,
     point 2); with one speed, that rate independence is not shown."""
     from .rate import rate_pairs
 
