@@ -17,7 +17,6 @@ from cosserat.dem import PlaneShearDEM, RunLength, build_deck
 from cosserat.dem.analyse import (
     FINE_BIN,
     MIN_TRAVEL_D,
-    TRUNCATED_FRACTION,
     RunSamples,
     steady_profile,
     truncated_bins,
@@ -27,7 +26,6 @@ from cosserat.dem.coarse import Grains2D, Samples, bin_sums
 from cosserat.studies.validate import measures
 from cosserat.studies.validate.measures import (
     HEXAGONAL_NU,
-    WINDOW_TRAVEL_D,
     moving_wall_inertial_number,
     truncated_rows,
     wall_bins,
@@ -103,8 +101,6 @@ def test_truncated_bins_are_the_narrow_end_bins():
     assert truncated_bins(edges, 0.0, 3.56, 1.0) == {3: 0.56}
     assert truncated_bins(edges, 0.0, 3.95, 1.0) == {}  # 0.95 of a bin: not truncated
     assert truncated_bins(np.arange(0.0, 4.0), 0.3, 3.0, 1.0) == {0: 0.7}
-    assert TRUNCATED_FRACTION == measures.TRUNCATED_FRACTION
-    assert MIN_TRAVEL_D == WINDOW_TRAVEL_D
 
 
 def test_the_wall_inertial_number_takes_the_walls_normal_stress_in_a_truncated_bin():

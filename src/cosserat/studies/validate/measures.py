@@ -68,6 +68,7 @@ from scipy.stats import chi2 as chi2_dist
 from ...analysis.corpus import COORDINATE, Run, usable
 from ...calibration.noise import RHO_MAX, whiten
 from ...config import DEFAULT_F
+from ...dem.analyse import MIN_TRAVEL_D, TRUNCATED_FRACTION
 from ...errors import InputError, ParameterError
 from ...model.constitutive import FloatArray
 from . import forward
@@ -988,10 +989,6 @@ def moving_wall_inertial_number(run: Run, bins: int = 3) -> float | None:
     return float(np.max(near)) if near.size else None
 
 
-TRUNCATED_FRACTION = 0.9
-"""An end bin narrower than this fraction of the bins' spacing is truncated [-] (as
-``cosserat.dem.analyse.TRUNCATED_FRACTION``, which the DEM sidecar's ``truncated_bins``
-applies)."""
 HEXAGONAL_NU = math.pi / (2.0 * math.sqrt(3.0))
 """The densest packing of equal disks, hexagonal, pi / (2 sqrt 3) = 0.9069 [-]: a 2-D bin's
 solids fraction above it is an artefact of centre binning in a layered packing."""
@@ -1130,9 +1127,9 @@ def wall_bins(run: Run) -> WallBins:
     return WallBins(run.name, truncated, balance, int(np.count_nonzero(ok)), at_wall, dense)
 
 
-WINDOW_TRAVEL_D = 20.0
-"""Wall travel every DEM window discards before averaging [d] (the rule of
-``cosserat.dem.analyse.MIN_TRAVEL_D``; referee 9, point 5)."""
+WINDOW_TRAVEL_D = MIN_TRAVEL_D
+"""Wall travel every DEM window discards before averaging [d]: the DEM analysis' own rule
+(``cosserat.dem.analyse.MIN_TRAVEL_D``; referee 9, point 5)."""
 
 
 def window_travel(run: Run) -> float | None:
