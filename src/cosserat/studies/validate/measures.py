@@ -1034,7 +1034,7 @@ def truncated_rows(run: Run) -> dict[int, float]:
     """The run's truncated end bins, row -> width [d]: the sidecar's ``truncated_bins`` where
     recorded; otherwise an end bin whose width (twice its centre's distance from the wall: the
     end bins' centres are midway between the wall and their inner edge) is under
-    :data:`TRUNCATED_FRACTION` of the median spacing of the bins' centres."""
+    ``cosserat.dem.analyse.TRUNCATED_FRACTION`` of the median spacing of the bins' centres."""
     rec = run.meta.get("truncated_bins")
     if isinstance(rec, dict) and isinstance(rec.get("bins"), list):
         return {int(b["row"]): float(b["width_d"]) for b in rec["bins"]}
