@@ -115,6 +115,10 @@ def corpus_v2_cells() -> dict[str, Cell]:
         rough, wall_speed=QS_SPEED / 2, run=_qs_run(40_000_000)
     )
     cells["plane_layer_H10_qs_s2"] = replace(layer, seed=2)
+    # referee 10, point 2: the wall's stress ratio differs by 2.2 se between V and V/2 (one
+    # seed at each); a second seed at both speeds tells rate dependence from run-to-run scatter
+    cells["plane_rough_H10_qs_s2"] = replace(rough, seed=2)
+    cells["plane_rough_H10_qs_half_s2"] = replace(cells["plane_rough_H10_qs_half"], seed=2)
     cells["plane_layer_H10_qs_quarter"] = replace(
         layer, wall_speed=QS_SPEED / 4, run=_qs_run(80_000_000)
     )
