@@ -547,3 +547,33 @@ def test_replicates_at_two_wall_speeds_are_named_with_their_difference():
     assert f"they differ by {z:.2g} se at different wall speeds (beyond 2 se" in text
     assert "a (wall speed 0.1: Delta = 5.7 +- 0.63 d)" in text
     assert s.to_dict()["replicates"] == [text]
+
+
+def test_a_verdicts_qualifier_stands_beside_it_in_every_output():
+    """Referee 10, point 3: the condition a verdict holds under is in the verdict field of
+    report.md, index.html, results.json and the terminal text, not only in the evidence."""
+    from types import SimpleNamespace
+
+    from cosserat.studies.validate.study import ValidationReport
+    from cosserat.studies.validate.verdicts import Verdict
+    from cosserat.viz.report import render
+
+    v = Verdict("spin", "supported", "e", qualifier="given a velocity smooth on the grain scale")
+    assert v.to_dict()["qualifier"] == "given a velocity smooth on the grain scale"
+    assert Verdict("spin", "undecided", "e").to_dict()["qualifier"] == ""
+    ctx = {
+        "title": "t", "corpus": "c", "n_runs": 1, "models": "cosserat", "f": "0.1",
+        "near_wall_d": "3", "rules": "r", "runs": [], "series": [], "notes": [],
+        "verdicts": [{"key": "spin", "claim": "claim", "verdict": "supported",
+                      "qualifier": v.qualifier, "evidence": "e", "would_change": "",
+                      "figure": "claim_spin.png", "extra_figures": []}],
+    }  # fmt: skip
+    md = render("validate.md.j2", ctx)
+    assert "Verdict: **supported**, given a velocity smooth on the grain scale." in md
+    page = render("validate.html.j2", ctx)
+    assert "<b>supported</b>, given a velocity smooth on the grain scale.</p>" in page
+    fake = SimpleNamespace(corpus="c", results=[], verdicts=[v])
+    text = ValidationReport.to_text(fake)  # type: ignore[arg-type]
+    assert "[supported, given a velocity smooth on the grain scale] " in text
+    ctx["verdicts"][0].pop("qualifier")
+    assert "Verdict: **supported**.\n" in render("validate.md.j2", ctx)

@@ -671,6 +671,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "key": v.key,
                 "claim": v.claim,
                 "verdict": v.verdict,
+                "qualifier": v.qualifier,
                 "evidence": v.evidence,
                 "would_change": v.would_change,
                 # a claim without a figure of its own (the layer's) shows its first run's

@@ -183,7 +183,8 @@ class ValidationReport:
     def to_text(self) -> str:
         lines = [f"Validation against {self.corpus} ({len(self.results)} runs)", ""]
         for v in self.verdicts:
-            lines += [f"[{v.verdict}] {v.claim}", f"  {v.text}", ""]
+            qualified = f"{v.verdict}, {v.qualifier}" if v.qualifier else v.verdict
+            lines += [f"[{qualified}] {v.claim}", f"  {v.text}", ""]
         for r in self.results:
             best = r.fits.best if r.fits and r.fits.best else "-"
             lines.append(

@@ -128,6 +128,10 @@ class Verdict:
     would_change: str = ""
     runs: tuple[str, ...] = ()
     numbers: Mapping[str, Any] = field(default_factory=dict)
+    qualifier: str = ""
+    """The condition or scope the verdict holds under, shown beside it wherever the verdict is
+    (e.g. spin "supported" *given a velocity smooth on the grain scale*; referee 10, point 3);
+    empty when the verdict stands alone."""
 
     @property
     def claim(self) -> str:
@@ -145,6 +149,7 @@ class Verdict:
             "key": self.key,
             "claim": self.claim,
             "verdict": self.verdict,
+            "qualifier": self.qualifier,
             "evidence": self.evidence,
             "would_change": self.would_change,
             "runs": list(self.runs),
@@ -1863,6 +1868,7 @@ def within_regime(v: Verdict, inertial_numbers: Sequence[float | None], bound: f
             f"{v.would_change}"
         ),
         numbers={**dict(v.numbers), "at_these_rates": v.verdict},
+        qualifier="",
     )
 
 
