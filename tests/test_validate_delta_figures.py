@@ -86,14 +86,16 @@ def test_a_power_law_with_a_free_level_is_not_tested_at_one_gap():
 
 def test_a_prediction_below_the_second_bin_is_said_to_be_unresolved():
     """mu(I)'s Delta at plane_smooth_H20_qs (1.12 d) is under the second bin (1.16 d): its
-    value is where the bins fall, and the evidence says so; a missing one says why."""
+    value is where the bins fall, and the evidence says so, without the calibration's error
+    (which moved it as the interpolation between two fixed bins moves: "+- 0"); a missing one
+    says why."""
     c = ModelDelta("mui", {"a": (1.12, 0.0), "b": (None, None), "c": (4.1, 0.2)},
                    why={"b": "no shear band: the velocity is 0"},
                    resolved_above={"a": 1.163, "b": 1.553, "c": 1.163})  # fmt: skip
     assert not c.resolved("a", 1.12) and c.resolved("c", 4.1) and not c.resolved("b", None)
     assert _predicted_text("mui", c, "a") == (
-        "mui 1.12 +- 0 (at or below the second bin, 1.16 d: a band thinner than the bins "
-        "resolve, its value set by where they fall)"
+        "mui 1.12 (at or below the second bin, 1.16 d: a band thinner than the bins "
+        "resolve, its value set by where they fall, so no error is given)"
     )
     assert _predicted_text("mui", c, "b") == "mui none (no shear band: the velocity is 0)"
     assert _predicted_text("mui", c, "c") == "mui 4.1 +- 0.2"

@@ -1599,13 +1599,14 @@ def _predicted_text(model: str, c: ModelDelta, run: str) -> str:
     if value is None:
         why = c.why.get(run)
         return f"{model} none" + (f" ({why})" if why else "")
-    text = f"{model} {value:.3g}" + ("" if se is None else f" +- {se:.2g}")
     if not c.resolved(run, value):
-        text += (
+        # no error: the calibration's covariance moves such a Delta by how the interpolation
+        # between two fixed bins moves (printed as +- 0 or +- 4e-14), not by the band's width
+        return f"{model} {value:.3g}" + (
             f" (at or below the second bin, {c.resolved_above[run]:.3g} d: a band thinner than "
-            "the bins resolve, its value set by where they fall)"
+            "the bins resolve, its value set by where they fall, so no error is given)"
         )
-    return text
+    return f"{model} {value:.3g}" + ("" if se is None else f" +- {se:.2g}")
 
 
 def _curve_call(
