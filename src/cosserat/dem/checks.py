@@ -219,10 +219,11 @@ def profile_autocorrelation(profiles: dict[str, np.ndarray], first: int, blocks:
     Returns
     -------
     dict
-        Per name: ``per_bin`` (tau in blocks to 4 significant digits, null where :func:`autocorrelation_time` gives
-        none), ``max``, ``max_row``, ``median`` (over the bins that have one), ``bins``,
-        ``unreliable_bins`` and ``short`` (a block shorter than :data:`MIN_BLOCK_TAUS` tau
-        in any bin); ``short``: any name's; ``note``: :data:`PROFILE_NOTE`.
+        Per name: ``per_bin`` (tau in blocks to 4 significant digits, null where
+        :func:`autocorrelation_time` gives none), ``max``, ``max_row``, ``median`` (over the
+        bins that have one), ``bins``, ``unreliable_bins`` and ``short`` (a block shorter
+        than :data:`MIN_BLOCK_TAUS` tau in any bin); ``short``: any name's; ``note``:
+        :data:`PROFILE_NOTE`.
 
     Raises
     ------
