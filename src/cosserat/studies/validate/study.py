@@ -1067,7 +1067,7 @@ def _unsteady(record: Mapping[str, Any]) -> list[str]:
             continue
         if "first_half" in o and "z" in o:
             out.append(
-                f"{name}: halves {float(o['first_half']):.3g} / {float(o['second_half']):.3g}, "
+                f"{name}: halves {float(o['first_half']):.4g} / {float(o['second_half']):.4g}, "
                 f"z = {float(o['z']):+.3g}"
             )
         elif "bins_within" in o:
