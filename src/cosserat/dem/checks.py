@@ -322,7 +322,8 @@ def block_length_text(
     record: dict | None, blocks: int | None = None, steps: int | None = None
 ) -> str:
     """One sentence on a run's block length against its autocorrelation times (the sidecar's
-    ``block_autocorrelation``), or on what a sidecar without it lacks."""
+    ``block_autocorrelation``, its stresses' per-bin times where recorded), or on what a
+    sidecar without it lacks."""
     if not record:
         length = f" (blocks of {steps / blocks:,.0f} steps)" if blocks and steps else ""
         return (
@@ -345,6 +346,24 @@ def block_length_text(
         if record.get("short")
         else f"; every block is at least {MIN_BLOCK_TAUS:g} autocorrelation times long"
     )
+    profiles = record.get("profiles") or {}
+    stresses = [
+        f"{name} up to {v['max']:.2g} blocks (median {v['median']:.2g})"
+        for name, v in profiles.items()
+        if isinstance(v, dict) and "max" in v
+    ]
+    tail = (
+        "; the stresses' per-bin times: " + ", ".join(stresses)
+        + (f" (some bins' blocks shorter than {MIN_BLOCK_TAUS:g} tau: their errors too "
+           "small)" if profiles.get("short") else "")
+        if stresses
+        else ""
+    )  # fmt: skip
     return (
-        head + " against the integrated autocorrelation time (" + "; ".join(parts) + ")" + verdict
+        head
+        + " against the integrated autocorrelation time ("
+        + "; ".join(parts)
+        + ")"
+        + verdict
+        + tail
     )
