@@ -97,8 +97,12 @@ def test_sample_fields_are_one_sample_blocks():
 def test_the_run_notes_quote_the_stresses_times():
     from cosserat.dem.checks import block_length_text
 
-    rec = {"block_steps": 1000, "observables": {}, "short": False,
-           "profiles": {"sigma_yx": {"max": 0.85, "median": 0.11}, "short": True, "note": ""}}
+    rec = {
+        "block_steps": 1000,
+        "observables": {},
+        "short": False,
+        "profiles": {"sigma_yx": {"max": 0.85, "median": 0.11}, "short": True, "note": ""},
+    }
     assert block_length_text(rec).endswith(
         "; the stresses' per-bin times: sigma_yx up to 0.85 blocks (median 0.11) (some bins' "
         "blocks shorter than 2 tau: their errors too small)"

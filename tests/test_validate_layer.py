@@ -282,8 +282,9 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     )
     # the single-run fits' asymmetries are a footnote (referee 6, point 6), then the block
     assert "predict nothing about the layer: numbers.predicted.) Regime: " in layer["evidence"]
-    assert "Steady state: not recorded for layer. Autocorrelation times not recorded" in (
-        layer["evidence"]
+    assert (
+        "Steady state: not recorded for layer. Autocorrelation times not recorded"
+        in (layer["evidence"])
     )
     assert layer["qualifier"] == "on the band's side"
     # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)

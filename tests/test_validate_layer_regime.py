@@ -53,9 +53,7 @@ def test_a_placement_that_rests_on_the_unsteady_run():
         "(s2) give a = +0.750 +- 0.28 (+2.7 se); the band's placement rests on the unsteady "
         "run(s)."
     )
-    v = layer_position_verdict(
-        [pos("s1", unsteady=("dilation",)), pos("s2", se=0.2, unsteady=())]
-    )
+    v = layer_position_verdict([pos("s1", unsteady=("dilation",)), pos("s2", se=0.2, unsteady=())])
     assert v.qualifier == "on the band's side, resting on a run that is not steady"
     # every run steady, or no record: nothing to say
     assert steadiness_of_a([pos("s1", unsteady=()), pos("s2")]) == ("", False)
@@ -149,8 +147,7 @@ def test_the_momentum_balance_misses_rescaled(tmp_path):
     assert (
         "The 3 momentum-balance misses beyond 3 se outside the truncated bins, each z divided by "
         "its bin's sigma_yx factor: 3 stay beyond 3 se (largest z = +5.5, was +5.8, "
-        "plane_rough_H20_qs at 14 d): the stresses' autocorrelation does not explain them."
-        in text
+        "plane_rough_H20_qs at 14 d): the stresses' autocorrelation does not explain them." in text
     )
 
     def slow(meta):

@@ -56,6 +56,7 @@ def test_the_unsteady_run_and_its_observable_are_named(tmp_path):
 def test_steady_runs_and_runs_without_the_record(tmp_path):
     steady = _runs(tmp_path, ["plane_rough_H20_qs"])
     assert "shown in 1 of 1 runs." in steadiness_text(steady)
+
     def strip(meta):
         meta.pop("steadiness")
         meta.pop("block_autocorrelation")

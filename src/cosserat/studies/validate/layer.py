@@ -1080,15 +1080,15 @@ def steadiness_of_a(positions: Sequence[LayerPosition]) -> tuple[str, bool]:
     what the steady runs alone give, and whether the band's placement rests on an unsteady
     run (the steady runs alone do not reach :data:`SIGMAS` se on the same side); ("",
     False) when every run is steady or none says."""
-    bad = [p for p in positions if p.unsteady]
+    bad = {p.run: p.unsteady for p in positions if p.unsteady}
     if not bad:
         return "", False
     steady = [p for p in positions if p.unsteady == ()]
     a, se = _pooled(positions)
     text = " Steadiness of a: " + "; ".join(
-        f"{p.run} is not steady in {', '.join(p.unsteady)}"
-        + ("" if "u_profile" in p.unsteady else " (its u profile, which a is read from, is)")
-        for p in bad
+        f"{run} is not steady in {', '.join(names)}"
+        + ("" if "u_profile" in names else " (its u profile, which a is read from, is)")
+        for run, names in bad.items()
     )
     if not steady:
         return text + "; no run used is steady on every observable.", abs(a) >= SIGMAS * se
