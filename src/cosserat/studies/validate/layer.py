@@ -1232,9 +1232,9 @@ def layer_position_verdict(
     elif z >= SIGMAS:
         verdict = "supported"
         change = (
-            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se (one seed at one gap "
-            "here); a measured mu_s at or below the smoother wall's tan delta (the premise). "
-            "The band's side is the claim; its shape (the alternatives above) does not "
+            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se ({len(positions)} "
+            "run(s) here); a measured mu_s at or below the smoother wall's tan delta (the "
+            "premise). The band's side is the claim; its shape (the alternatives above) does not "
             "tell the Cosserat model from NGF with a wall fluidity."
         )
     elif z <= -SIGMAS:
