@@ -380,6 +380,8 @@ def test_dumps_to_profile_exact_on_a_rigidly_turning_annulus(tmp_path):
     # constant series have no autocorrelation time; the block length is still recorded
     record = profile.sidecar["block_autocorrelation"]
     assert record["observables"] == {} and record["short"] is False
+    # nor do the stresses (one grain per bin, the contacts fixed): no per-bin times either
+    assert set(record["profiles"]) == {"short", "note"} and record["profiles"]["short"] is False
     # a rigid rotation: omega and half the vorticity do not vary between blocks, no correlation
     r = profile.sidecar["omega_half_vorticity_correlation"]["per_bin"]
     assert len(r) == profile.columns["r"].size and all(x is None for x in r)

@@ -273,15 +273,20 @@ def test_validate_judges_the_layer_on_a_run_whose_walls_differ(tmp_path):
     (layer,) = [v for v in results["verdicts"] if v["key"] == "layer"]
     assert layer["verdict"] == "supported" and layer["claim"] == LAYER_CLAIM
     assert layer["runs"] == ["layer"]
-    # the regime line is the layer's own (both walls; this synthetic run gives neither), not
-    # validate's moving-wall one
+    # both walls' I is the layer's own line (this synthetic run gives neither); the regime
+    # block is every verdict's (referee 10, point 4): I, the wall bins, steadiness, window
     assert layer["evidence"].count("Regime:") == 1
     assert (
-        "Regime: not every run gives its inertial number next to both walls. Warnings: (1) "
+        "Both walls: not every run gives its inertial number next to both walls. Warnings: (1) "
         in layer["evidence"]
     )
-    # the single-run fits' asymmetries are a footnote (referee 6, point 6)
-    assert layer["evidence"].endswith("predict nothing about the layer: numbers.predicted.)")
+    # the single-run fits' asymmetries are a footnote (referee 6, point 6), then the block
+    assert "predict nothing about the layer: numbers.predicted.) Regime: " in layer["evidence"]
+    assert (
+        "Steady state: not recorded for layer. Autocorrelation times not recorded"
+        in (layer["evidence"])
+    )
+    assert layer["qualifier"] == "on the band's side"
     # the model's own profile: f_fixed 0.69, f_moving 0.06 at H = 10 d, L = 5 (docs/dem.md)
     assert layer["numbers"]["asymmetry"] == pytest.approx(0.635, abs=0.03)
     assert layer["numbers"]["predicted"]["mui"] == pytest.approx(0.0, abs=0.05)
@@ -356,8 +361,8 @@ def test_the_regime_line_quotes_the_bands_side():
     regime line quotes the larger, next to the band."""
     (v,) = layer_verdicts([_run(inertial=4e-4)])
     assert (
-        "Regime: the local inertial number next to either wall (the band's side included) is "
-        "at most 0.0004 (quasi-static bound I <= 0.001); the slip layer (the first half bin at "
+        "Both walls: the local inertial number next to either wall (the band's side included) "
+        "is at most 0.0004 (quasi-static bound I <= 0.001); the slip layer (the first half bin at "
         "the smoother wall, where the grains slide and roll on it) is counted in a but "
         "excluded from I" in v.evidence
     )
@@ -407,10 +412,12 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     r = analyse_run(read_run(csv_path), ["mui"], 0.05, 3.0, 3)
     assert r.inertial_number == pytest.approx(7e-4)  # the band's, next to the smooth fixed wall
     entry = run_entry(r)
-    assert (
-        "smooth fixed wall, rough moving wall; I in the band (next to the fixed wall) = 0.0007"
-        in (entry["title"])
+    # one line (referee 10, point 9: the four-line titles were crowded)
+    assert entry["title"] == (
+        "layer: H/d = 10, B = 0, smooth fixed / rough moving wall; I = 0.0007 in the band "
+        "(fixed wall)"
     )
+    assert len(entry["layer"]["note"]) <= 150  # one line of the figure's caption
     layer = entry["layer"]
     assert layer["walls"] == {"fixed": "smooth, fixed", "moving": "rough, moving"}
     assert layer["within_d"] == 3.0 and layer["gap_d"] == pytest.approx(10.0)
@@ -419,7 +426,7 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
         "(a)", "(a)", "(b)", "(b)", "(c)", "(c)", "(c)",
     ]  # fmt: skip
     assert sum(r"$\xi$" in name for name in entry["models"]) == 2  # Greek xi
-    assert "GLS fits under the bins' AR(1) errors (rho = " in layer["note"]
+    assert "lines: GLS fits, AR(1) bin errors (rho = " in layer["note"]
     # the spin panel: the Cosserat layer profiles at L = 4, 5 d and the fitted L (point 7)
     assert "mui" not in entry["models"]
     spins = entry["spin"]["predicted"]

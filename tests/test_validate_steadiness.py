@@ -39,9 +39,13 @@ def test_the_unsteady_run_and_its_observable_are_named(tmp_path):
     assert dilation["steady"] is False  # the stored run fails its own test
     text = steadiness_text(runs)
     assert "shown in 1 of 2 runs; NOT shown in plane_layer_H10_qs (dilation: halves " in text
+    assert f"z = {dilation['z']:+.3g})." in text
+    # beside it, the gap's autocorrelation time (referee 10, point 8): 1 / 0.45 blocks per tau,
+    # 10 / 2.2 = 4.5 independent samples, a lower bound (Sokal's window not closed)
     assert (
-        f"z = {dilation['z']:+.3g}; its autocorrelation time is at least 2.2 blocks, so its "
-        "block means are correlated and this z overstates the drift's significance)." in text
+        "plane_layer_H10_qs (not steady): dilation (gap) at least 2.2 blocks, about 4.5 "
+        "independent samples of 10, block se too small by 1.8; under one block in every "
+        "steadiness series of the other 1 run(s)." in text
     )
     assert "dilation, mean_velocity, spin_profile, u_profile, wall_shear" in text
     assert text.endswith(
@@ -52,8 +56,14 @@ def test_the_unsteady_run_and_its_observable_are_named(tmp_path):
 def test_steady_runs_and_runs_without_the_record(tmp_path):
     steady = _runs(tmp_path, ["plane_rough_H20_qs"])
     assert "shown in 1 of 1 runs." in steadiness_text(steady)
-    bare = _runs(tmp_path, ["plane_layer_H10_qs"], edit=lambda m: m.pop("steadiness"))
+
+    def strip(meta):
+        meta.pop("steadiness")
+        meta.pop("block_autocorrelation")
+
+    bare = _runs(tmp_path, ["plane_layer_H10_qs"], edit=strip)
     assert steadiness_text(bare).startswith(
-        "Steady state: not recorded for plane_layer_H10_qs. Window rule"
+        "Steady state: not recorded for plane_layer_H10_qs. Autocorrelation times not recorded "
+        "for plane_layer_H10_qs. Window rule"
     )
     assert steadiness_text([]) == ""

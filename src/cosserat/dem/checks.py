@@ -3,11 +3,12 @@ long enough for their means to be independent (:func:`block_autocorrelation`)?""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, ParameterError
 
 
 @dataclass(frozen=True)
@@ -188,11 +189,141 @@ def block_autocorrelation(
     }
 
 
+PROFILE_NOTE = (
+    "per bin (the profile's rows), the integrated autocorrelation time of the per-sample "
+    "stress of that bin over the steady window (as for 'observables'), in blocks "
+    "(tau_blocks = tau_samples / block_samples): per_bin (null where a bin's series is "
+    "constant or too short), its largest (max, at row max_row) and median over the bins, the "
+    "bins whose estimate is a lower bound (unreliable_bins) and 'short' (any bin's block shorter "
+    "than 2 tau). A series whose tau is one block or more gives about blocks / tau_blocks "
+    "independent samples in the window, and its block standard errors are too small by about "
+    "cosserat.dem.checks.block_se_factor (about sqrt(tau_blocks) for tau of several blocks)"
+)
+"""The ``note`` of the sidecar's ``block_autocorrelation.profiles`` record."""
+
+
+def profile_autocorrelation(profiles: dict[str, np.ndarray], first: int, blocks: int) -> dict:
+    """Per-bin integrated autocorrelation times of per-sample profiles, in blocks (the
+    sidecar's ``block_autocorrelation.profiles``; referee 10, point 8: the stresses').
+
+    Parameters
+    ----------
+    profiles : dict
+        Name (the profile's column, e.g. ``sigma_yx``) -> the whole per-sample profile, shape
+        (samples, bins) [any unit: tau does not depend on it].
+    first : int
+        Index of the first steady sample.
+    blocks : int
+        Blocks of the steady window.
+
+    Returns
+    -------
+    dict
+        Per name: ``per_bin`` (tau in blocks to 4 significant digits, null where
+        :func:`autocorrelation_time` gives none), ``max``, ``max_row``, ``median`` (over the
+        bins that have one), ``bins``, ``unreliable_bins`` and ``short`` (a block shorter
+        than :data:`MIN_BLOCK_TAUS` tau in any bin); ``short``: any name's; ``note``:
+        :data:`PROFILE_NOTE`.
+
+    Raises
+    ------
+    InputError
+        Fewer than one block, a profile that is not 2-D, or fewer steady samples than blocks.
+    """
+    if blocks < 1:
+        raise InputError(f"blocks must be >= 1; got {blocks}")
+    out: dict = {}
+    for name, values in profiles.items():
+        x = np.asarray(values, dtype=float)
+        if x.ndim != 2:
+            raise InputError(f"profile {name!r} must be (samples, bins); got shape {x.shape}")
+        x = x[first:]
+        if x.shape[0] < blocks:
+            raise InputError(f"{x.shape[0]} steady samples cannot make {blocks} blocks")
+        block = x.shape[0] / blocks
+        per_bin: list[float | None] = []
+        unreliable = 0
+        for k in range(x.shape[1]):
+            est = autocorrelation_time(x[:, k])
+            if est is None:
+                per_bin.append(None)
+                continue
+            per_bin.append(float(f"{est[0] / block:.4g}"))
+            unreliable += not est[1]
+        known = [(v, k) for k, v in enumerate(per_bin) if v is not None]
+        if not known:
+            continue
+        top, row = max(known)
+        out[name] = {
+            "per_bin": per_bin,
+            "max": top,
+            "max_row": row,
+            "median": float(f"{float(np.median([v for v, _ in known])):.4g}"),
+            "bins": len(known),
+            "unreliable_bins": unreliable,
+            "short": bool(top > 1.0 / MIN_BLOCK_TAUS),
+        }
+    return {
+        **out,
+        "short": any(v["short"] for v in out.values()),
+        "note": PROFILE_NOTE,
+    }
+
+
+def block_se_factor(tau_blocks: float, blocks: int, block_samples: float = 1000.0) -> float:
+    """How much too small the block standard error of a window mean is, for a series whose
+    integrated autocorrelation time is ``tau_blocks`` blocks [-].
+
+    The series is taken as AR(1) with that time (lag-1 correlation ``phi = (tau - 1) /
+    (tau + 1)``, ``tau`` in samples): the factor is ``sqrt(Var(window mean) / E[s_B^2 /
+    blocks])``, ``s_B^2`` the sample variance of the ``blocks`` block means, both exact for
+    AR(1) (``S(m) = sum_{i,j<m} phi^|i-j| = m (1 + phi)/(1 - phi) - 2 phi (1 - phi^m) /
+    (1 - phi)^2``; ``Var(mean of m) = S(m)/m^2``, ``E[s_B^2] = blocks (Var(B) - Var(M)) /
+    (blocks - 1)``). 1 for independent samples; about ``sqrt(tau_blocks)`` once tau is
+    several blocks (more with few blocks: ``s_B^2`` is then biased low too).
+
+    Parameters
+    ----------
+    tau_blocks : float
+        The autocorrelation time in blocks (> 0) [-].
+    blocks : int
+        Blocks of the window (>= 2).
+    block_samples : float
+        Samples per block [-] (the factor depends on it only through ``tau_blocks`` once a
+        block holds many samples).
+
+    Raises
+    ------
+    ParameterError
+        tau_blocks not positive and finite, fewer than 2 blocks, or tau under one sample.
+    """
+    if not (math.isfinite(tau_blocks) and tau_blocks > 0.0):
+        raise ParameterError(f"tau_blocks must be positive and finite; got {tau_blocks}")
+    if blocks < 2:
+        raise ParameterError(f"blocks must be >= 2; got {blocks}")
+    tau = tau_blocks * block_samples
+    if tau < 1.0:
+        raise ParameterError(
+            f"tau must be at least one sample (tau_blocks x block_samples = {tau:g})"
+        )
+    phi = (tau - 1.0) / (tau + 1.0)
+
+    def s(m: float) -> float:
+        return m * (1.0 + phi) / (1.0 - phi) - 2.0 * phi * (1.0 - phi**m) / (1.0 - phi) ** 2
+
+    var_b = s(block_samples) / block_samples**2
+    n = blocks * block_samples
+    var_m = s(n) / n**2
+    expected = blocks * (var_b - var_m) / (blocks - 1) / blocks
+    return math.sqrt(var_m / expected)
+
+
 def block_length_text(
     record: dict | None, blocks: int | None = None, steps: int | None = None
 ) -> str:
     """One sentence on a run's block length against its autocorrelation times (the sidecar's
-    ``block_autocorrelation``), or on what a sidecar without it lacks."""
+    ``block_autocorrelation``, its stresses' per-bin times where recorded), or on what a
+    sidecar without it lacks."""
     if not record:
         length = f" (blocks of {steps / blocks:,.0f} steps)" if blocks and steps else ""
         return (
@@ -215,6 +346,24 @@ def block_length_text(
         if record.get("short")
         else f"; every block is at least {MIN_BLOCK_TAUS:g} autocorrelation times long"
     )
+    profiles = record.get("profiles") or {}
+    stresses = [
+        f"{name} up to {v['max']:.2g} blocks (median {v['median']:.2g})"
+        for name, v in profiles.items()
+        if isinstance(v, dict) and "max" in v
+    ]
+    tail = (
+        "; the stresses' per-bin times: " + ", ".join(stresses)
+        + (f" (some bins' blocks shorter than {MIN_BLOCK_TAUS:g} tau: their errors too "
+           "small)" if profiles.get("short") else "")
+        if stresses
+        else ""
+    )  # fmt: skip
     return (
-        head + " against the integrated autocorrelation time (" + "; ".join(parts) + ")" + verdict
+        head
+        + " against the integrated autocorrelation time ("
+        + "; ".join(parts)
+        + ")"
+        + verdict
+        + tail
     )

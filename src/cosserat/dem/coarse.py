@@ -121,6 +121,26 @@ def _fields(total: np.ndarray, n_samples: int, bin_area: np.ndarray) -> dict[str
     }
 
 
+def sample_fields(samples: Samples, first: int, names: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """Per sample from index ``first``, the fields ``names`` of each bin, as one sample alone
+    gives them (:func:`block_fields` with one-sample blocks), shape (samples, bins) [simulation
+    units]: the per-sample series whose autocorrelation sets how long a block must be.
+
+    Raises
+    ------
+    InputError
+        A name that is not a field, or ``first`` outside the samples.
+    """
+    n = samples.sums.shape[0]
+    if not 0 <= first < n:
+        raise InputError(f"first sample {first} outside the {n} samples")
+    rows = [_fields(samples.sums[k], 1, samples.bin_area) for k in range(first, n)]
+    unknown = [x for x in names if x not in rows[0]]
+    if unknown:
+        raise InputError(f"unknown fields {unknown}; known: {sorted(rows[0])}")
+    return {x: np.stack([r[x] for r in rows]) for x in names}
+
+
 def block_ranges(n_samples: int, first: int, blocks: int) -> list[tuple[int, int]]:
     """``blocks`` contiguous sample ranges ``[a, b)`` covering the samples from index
     ``first`` of ``n_samples``, as equal as whole samples allow.

@@ -179,9 +179,8 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
             ax.axvspan(gap - near, gap, color="0.92", zorder=0)
             ax.set_xlabel(_layer_x_label(layer) if layer else x_label)
             ax.set_ylabel(r"$(\omega - \frac{1}{2}\,\mathrm{vorticity})\,d/V$ [-]")
-            ax.set_title(
-                "spin departure (shaded: near the walls)"
-                + ("\nlines: Cosserat layer profile; NGF has no spin" if layer else ""),
+            ax.set_title(  # one line (referee 10, point 9); the legend names the lines
+                "spin departure (shaded: near the walls)" + ("; NGF: none" if layer else ""),
                 fontsize=8,
             )
         note = "\n" + textwrap.fill(layer["note"], 150) if layer else ""
@@ -189,7 +188,7 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
         _legend_below(fig, list(axes[0]), ncol=3 if layer else 2 if wide else 4)
         # fixed margins: tight_layout costs more than the drawing (saved with a tight box)
         if layer:  # a longer legend (every alternative and the spin curves) and caption
-            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.34, top=0.8, wspace=0.45)
+            fig.subplots_adjust(left=0.08, right=0.98, bottom=0.34, top=0.84, wspace=0.45)
         elif wide:
             fig.subplots_adjust(left=0.08, right=0.98, bottom=0.36, top=0.83, wspace=0.45)
         else:

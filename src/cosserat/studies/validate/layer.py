@@ -221,6 +221,9 @@ class LayerPosition:
         the moving wall [d], the departure and its standard error [-].
     spin_rho : float
         The spin's lag-1 bin correlation used in the chi^2 [-].
+    unsteady : tuple of str or None
+        The observables the DEM analysis' steadiness test finds not steady (the sidecar's
+        ``steadiness``; empty: steady on every one), or None where the sidecar does not say.
     """
 
     run: str
@@ -243,6 +246,7 @@ class LayerPosition:
     spin: tuple[LayerSpin, ...] = ()
     spin_data: tuple[tuple[float, float, float], ...] = ()
     spin_rho: float = 0.0
+    unsteady: tuple[str, ...] | None = None
 
     def __post_init__(self) -> None:
         for name in ("u_correlation", "bin_correlation"):
@@ -308,6 +312,7 @@ class LayerPosition:
             "spin": [x.to_dict() for x in self.spin],
             "spin_data": [{"distance_d": s, "departure": m, "se": e} for s, m, e in self.spin_data],
             "spin_rho": self.spin_rho,
+            "unsteady": None if self.unsteady is None else list(self.unsteady),
         }
 
 
@@ -707,7 +712,21 @@ def measure_layer(
         spin,
         spin_data,
         spin_rho,
+        unsteady_observables(run.meta),
     )
+
+
+def unsteady_observables(meta: Mapping[str, Any]) -> tuple[str, ...] | None:
+    """The observables a sidecar's ``steadiness`` finds not steady (empty: none; None: no
+    record)."""
+    rec = meta.get("steadiness")
+    if not isinstance(rec, Mapping):
+        return None
+    obs = rec.get("observables") or {}
+    bad = tuple(
+        sorted(k for k, o in obs.items() if isinstance(o, Mapping) and not o.get("steady", True))
+    )
+    return bad or (() if rec.get("steady", True) else ("the run's overall test",))
 
 
 def _run_text(p: LayerPosition) -> str:
@@ -1049,6 +1068,93 @@ def _warnings(
     return out
 
 
+def _pooled(positions: Sequence[LayerPosition]) -> tuple[float, float]:
+    """The inverse-variance mean of the runs' asymmetries and its standard error [-]."""
+    w = np.array([1.0 / p.asymmetry_se**2 for p in positions])
+    a_runs = np.array([p.asymmetry for p in positions])
+    return float(np.sum(w * a_runs) / np.sum(w)), float(1.0 / math.sqrt(np.sum(w)))
+
+
+def steadiness_of_a(positions: Sequence[LayerPosition]) -> tuple[str, bool]:
+    """A sentence on the runs the DEM analysis finds not steady (referee 10, point 4) and
+    what the steady runs alone give, and whether the band's placement rests on an unsteady
+    run (the steady runs alone do not reach :data:`SIGMAS` se on the same side); ("",
+    False) when every run is steady or none says."""
+    bad = {p.run: p.unsteady for p in positions if p.unsteady}
+    if not bad:
+        return "", False
+    steady = [p for p in positions if p.unsteady == ()]
+    a, se = _pooled(positions)
+    text = " Steadiness of a: " + "; ".join(
+        f"{run} is not steady in {', '.join(names)}"
+        + ("" if "u_profile" in names else " (its u profile, which a is read from, is)")
+        for run, names in bad.items()
+    )
+    if not steady:
+        return text + "; no run used is steady on every observable.", abs(a) >= SIGMAS * se
+    a_s, se_s = _pooled(steady)
+    same_side = abs(a_s) >= SIGMAS * se_s and np.sign(a_s) == np.sign(a)
+    rests = abs(a) >= SIGMAS * se and not same_side
+    if rests:
+        tail = "; the band's placement rests on the unsteady run(s)."
+    elif same_side:
+        tail = ", on the same side: the verdict does not rest on the unsteady run(s)."
+    else:
+        tail = "."
+    return (
+        text
+        + f"; the {len(steady)} steady run(s) alone ({', '.join(p.run for p in steady)}) give "
+        + f"a = {a_s:+.3f} +- {se_s:.2g} ({a_s / se_s:+.1f} se){tail}",
+        rests,
+    )
+
+
+def _family_p(alts: Sequence[LayerAlternative], family: str) -> tuple[float, float, int] | None:
+    """A family's p-values over its alternatives and error models: (the largest p of any,
+    the largest over its alternatives of each one's smallest p over the error models, the
+    number of error models); None without refits."""
+    own = [x for x in alts if x.key.split("-")[0] == family and x.by_covariance]
+    if not own:
+        return None
+    best = max(c.p for x in own for c in x.by_covariance)
+    robust = max(min(c.p for c in x.by_covariance) for x in own)
+    return best, robust, len(own[0].by_covariance)
+
+
+def shape_text(positions: Sequence[LayerPosition]) -> str:
+    """Referee 10's line for the layer (accepted verdict (5)): per run, whether the Cosserat
+    layer profile itself is rejected under every error model and whether NGF with a wall
+    fluidity fits (p >= :data:`~.measures.P_SIGNIFICANT` under every one); empty without
+    refits."""
+    parts = []
+    for family in ("cosserat", "ngf"):
+        rows = []
+        for p in positions:
+            got = _family_p(p.alternatives, family)
+            if got is None:
+                continue
+            best, robust, n = got
+            if best < P_SIGNIFICANT:
+                rows.append(f"rejected in {p.run} (p <= {best:.2g} under all {n} error models)")
+            elif robust >= P_SIGNIFICANT:
+                rows.append(f"fits {p.run} (p >= {robust:.2g} under every error model)")
+            else:
+                rows.append(
+                    f"fits {p.run} under some error models and not others (best p = "
+                    f"{best:.2g}, worst {robust:.2g})"
+                )
+        if rows:
+            parts.append(f"{FAMILIES[family]} {'; '.join(rows)}")
+    if not parts:
+        return ""
+    return (
+        " The layer's shape (each alternative refitted under the AR(1), diagonal and "
+        f"common-mode error models; p < {P_SIGNIFICANT:g} rejects): "
+        + "; ".join(parts)
+        + ". The band's side, not its shape, is what the verdict judges."
+    )
+
+
 def layer_position_verdict(
     positions: Sequence[LayerPosition], references: Sequence[WallReference] = ()
 ) -> LayerVerdict:
@@ -1063,10 +1169,7 @@ def layer_position_verdict(
             "No plane run without gravity whose walls differ.",
             "a plane run with B = 0 between a smooth and a rough wall (docs/dem.md).",
         )
-    w = np.array([1.0 / p.asymmetry_se**2 for p in positions])
-    a_runs = np.array([p.asymmetry for p in positions])
-    a = float(np.sum(w * a_runs) / np.sum(w))
-    se = float(1.0 / math.sqrt(np.sum(w)))
+    a, se = _pooled(positions)
     z = a / se
     models = sorted({m for p in positions for m in p.predicted})
     predicted = {
@@ -1093,19 +1196,22 @@ def layer_position_verdict(
     )
     walls_i = [p.wall_inertial_number for p in positions if p.wall_inertial_number is not None]
     regime_text = (
-        f" Regime: the local inertial number next to either wall (the band's side included) is "
+        f" Both walls: the local inertial number next to either wall (the band's side included) is "
         f"at most {max(walls_i):.2g} (quasi-static bound I <= {QUASI_STATIC_I:g}); the slip "
         "layer (the first half bin at the smoother wall, where the grains slide and roll on "
         "it) is counted in a but excluded from I, which is the bins' shear rate; rate "
         "independence is not shown (one wall speed)."
         if len(walls_i) == len(positions)
-        else " Regime: not every run gives its inertial number next to both walls."
+        else " Both walls: not every run gives its inertial number next to both walls."
     )
     warnings = _warnings(positions, a, se, references)
+    steady_text, on_unsteady = steadiness_of_a(positions)
     evidence = (
         f"a = {a:+.3f} +- {se:.2g} ({z:+.1f} se) over {len(positions)} run(s): "
         + "; ".join(_run_text(p) for p in positions)
         + "."
+        + steady_text
+        + shape_text(positions)
         + reading
         + " "
         + method
@@ -1126,9 +1232,9 @@ def layer_position_verdict(
     elif z >= SIGMAS:
         verdict = "supported"
         change = (
-            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se (one seed at one gap "
-            "here); a measured mu_s at or below the smoother wall's tan delta (the premise). "
-            "The band's side is the claim; its shape (the alternatives above) does not "
+            f"runs at larger gaps or other seeds with a < {SIGMAS:g} se ({len(positions)} "
+            "run(s) here); a measured mu_s at or below the smoother wall's tan delta (the "
+            "premise). The band's side is the claim; its shape (the alternatives above) does not "
             "tell the Cosserat model from NGF with a wall fluidity."
         )
     elif z <= -SIGMAS:
@@ -1173,7 +1279,12 @@ def layer_position_verdict(
             runs,
             {**numbers, "at_these_rates": verdict},
         )
-    return LayerVerdict(LAYER_KEY, verdict, evidence, change, runs, numbers)
+    qualifier = ""
+    if verdict in ("supported", "refuted"):  # a places the band; its shape is not judged
+        qualifier = "on the band's side" + (
+            ", resting on a run that is not steady" if on_unsteady else ""
+        )
+    return LayerVerdict(LAYER_KEY, verdict, evidence, change, runs, numbers, qualifier)
 
 
 def layer_verdicts(

@@ -58,6 +58,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -69,6 +70,7 @@ from ...analysis.corpus import COORDINATE, Run, usable
 from ...calibration.noise import RHO_MAX, whiten
 from ...config import DEFAULT_F
 from ...dem.analyse import MIN_TRAVEL_D, TRUNCATED_FRACTION
+from ...dem.checks import block_se_factor
 from ...errors import InputError, ParameterError
 from ...model.constitutive import FloatArray
 from . import forward
@@ -1144,3 +1146,263 @@ def window_travel(run: Run) -> float | None:
     if run.cell == "channel" or not window or dt is None or speed is None:
         return None
     return float(window[0]) * float(dt) * float(speed)
+
+
+# --------------------------------------------------------------------------- autocorrelation
+LONG_TAU_BLOCKS = 1.0
+"""A series whose integrated autocorrelation time is at least this many blocks is named in the
+regime text (referee 10, point 8): the window then holds about ``blocks / tau`` independent
+samples, and its block standard errors are too small [blocks]."""
+STEADINESS_SERIES = {
+    "dilation": "gap",
+    "wall_normal": "wall_normal",
+    "wall_shear": "wall_shear",
+    "mean_velocity": "mean_velocity",
+    "spin_profile": "moving_wall_spin",
+}
+"""The steadiness test's observables -> the per-sample series of the sidecar's
+``block_autocorrelation.observables`` recorded for them (``spin_profile``: the moving wall's
+first bin only; the ``u_profile`` has none)."""
+
+
+@dataclass(frozen=True)
+class LongTau:
+    """A series of one run whose autocorrelation time is at least :data:`LONG_TAU_BLOCKS`.
+
+    Attributes
+    ----------
+    run, observable, series : str
+        The run, the steadiness observable (or the stress column) and its recorded series.
+    tau_blocks : float
+        The integrated autocorrelation time in blocks [-] (a lower bound when not
+        ``reliable``).
+    reliable : bool
+        Sokal's window closed within half the series.
+    blocks : int
+        Blocks of the window.
+    distance_d : float or None
+        For a stress bin, its centre's distance from the moving wall [d].
+    """
+
+    run: str
+    observable: str
+    series: str
+    tau_blocks: float
+    reliable: bool
+    blocks: int
+    distance_d: float | None = None
+
+    @property
+    def effective(self) -> float:
+        """About how many independent samples the window holds, ``blocks / tau_blocks``."""
+        return self.blocks / self.tau_blocks
+
+    @property
+    def se_factor(self) -> float:
+        """How much too small the block standard error is (AR(1) with this time,
+        ``cosserat.dem.checks.block_se_factor``) [-]."""
+        return block_se_factor(self.tau_blocks, self.blocks)
+
+
+def _blocks(run: Run) -> int:
+    """The run's blocks (the sidecar's ``blocks``; 10, the DEM analysis' default, without)."""
+    value = run.meta.get("blocks")
+    return int(value) if isinstance(value, int | float) and value >= 2 else 10
+
+
+def series_taus(run: Run) -> dict[str, tuple[float, bool]]:
+    """The steadiness observables' autocorrelation times, observable -> (tau in blocks,
+    reliable), from the sidecar's ``block_autocorrelation`` (empty without it)."""
+    rec = run.meta.get("block_autocorrelation")
+    obs = rec.get("observables") if isinstance(rec, dict) else None
+    if not isinstance(obs, dict):
+        return {}
+    out = {}
+    for name, series in STEADINESS_SERIES.items():
+        v = obs.get(series)
+        rate = v.get("blocks_per_tau") if isinstance(v, dict) else None
+        if isinstance(rate, int | float) and rate > 0:
+            out[name] = (1.0 / float(rate), bool(v.get("reliable", True)))  # type: ignore[union-attr]
+    return out
+
+
+def stress_taus(run: Run) -> dict[str, list[float | None]] | None:
+    """The stresses' per-bin autocorrelation times in blocks, column -> per row (the
+    sidecar's ``block_autocorrelation.profiles``; None where the run does not record them)."""
+    rec = run.meta.get("block_autocorrelation")
+    prof = rec.get("profiles") if isinstance(rec, dict) else None
+    if not isinstance(prof, dict):
+        return None
+    return {
+        k: [None if x is None else float(x) for x in v["per_bin"]]
+        for k, v in prof.items()
+        if isinstance(v, dict) and isinstance(v.get("per_bin"), list)
+    }
+
+
+def long_taus(run: Run) -> list[LongTau]:
+    """The run's steadiness series and stress bins whose autocorrelation time is at least
+    :data:`LONG_TAU_BLOCKS` (:class:`LongTau`), series first, then stress bins by column."""
+    blocks = _blocks(run)
+    out = [
+        LongTau(run.name, name, STEADINESS_SERIES[name], tau, ok, blocks)
+        for name, (tau, ok) in series_taus(run).items()
+        if tau >= LONG_TAU_BLOCKS
+    ]
+    stresses = stress_taus(run) or {}
+    unreliable = _unreliable_stress(run)
+    dist = run.distance_d
+    for column, per_bin in stresses.items():
+        for row, tau in enumerate(per_bin):
+            if tau is not None and tau >= LONG_TAU_BLOCKS and row < dist.size:
+                reliable = column not in unreliable
+                at = round(float(dist[row]), 4)
+                out.append(LongTau(run.name, column, column, tau, reliable, blocks, at))
+    return out
+
+
+def _unreliable_stress(run: Run) -> set[str]:
+    """The stress columns some of whose bins' times are lower bounds."""
+    prof = (run.meta.get("block_autocorrelation") or {}).get("profiles") or {}
+    return {k for k, v in prof.items() if isinstance(v, dict) and v.get("unreliable_bins")}
+
+
+def _steady(run: Run) -> str:
+    """``"steady"``, ``"not steady"`` or ``"steadiness not recorded"`` (the sidecar's)."""
+    rec = run.meta.get("steadiness")
+    if not isinstance(rec, dict):
+        return "steadiness not recorded"
+    return "steady" if rec.get("steady", True) else "not steady"
+
+
+def _balance_rescaled(run: Run, per_bin: list[float | None], blocks: int) -> list[tuple]:
+    """The run's momentum-balance misses (:func:`wall_bins`) outside its truncated bins
+    (whose stresses are not bulk values), each as (distance [d], z, z divided by its bin's
+    shear-stress block-error factor)."""
+    out = []
+    checks = wall_bins(run)
+    truncated = {row for row, *_ in checks.truncated}
+    for row, d, _, z in checks.balance:
+        if row in truncated:
+            continue
+        tau = per_bin[row] if row < len(per_bin) else None
+        factor = block_se_factor(tau, blocks) if tau else 1.0
+        out.append((d, z, z / factor))
+    return out
+
+
+def autocorrelation_text(runs: Sequence[Run]) -> str:
+    """The regime block's sentences on the runs' autocorrelation times (referee 10, point 8;
+    every verdict's regime block says it, through ``study.steadiness_text``): beside each
+    run's steadiness result, its steadiness series whose time is at least
+    :data:`LONG_TAU_BLOCKS` (the halves test then rests on about ``blocks / tau`` independent
+    samples, so its z is inflated); the stresses' per-bin times, and where they are one block
+    or more, how much too small their block standard errors are
+    (``cosserat.dem.checks.block_se_factor``); the momentum-balance misses rescaled by their
+    bins' shear-stress factor. Empty without runs or a sidecar recording any of it."""
+    if not runs:
+        return ""
+    recorded = [r for r in runs if series_taus(r)]
+    text = ""
+    if recorded:
+        longs = {r.name: [x for x in long_taus(r) if x.distance_d is None] for r in recorded}
+        flagged = {n: v for n, v in longs.items() if v}
+        text = (
+            " Autocorrelation times (the sidecar's block_autocorrelation: tau = 1 + 2 x the sum "
+            "of the autocorrelations, in blocks of the window; a series with tau of one block "
+            "or more holds about blocks / tau independent samples, so a halves test on it rests "
+            "on that many and its z is inflated, and its block se is too small by the factor "
+            "given, AR(1) with that tau): "
+        )
+        if flagged:
+            by_name = {r.name: r for r in recorded}
+            text += "; ".join(
+                f"{n} ({_steady(by_name[n])}): "
+                + ", ".join(
+                    f"{x.observable} ({x.series}) {'' if x.reliable else 'at least '}"
+                    f"{x.tau_blocks:.2g} blocks, about {x.effective:.2g} independent samples "
+                    f"of {x.blocks}, block se too small by {x.se_factor:.2g}"
+                    for x in v
+                )
+                for n, v in sorted(flagged.items())
+            )
+            rest = len(recorded) - len(flagged)
+            text += (
+                f"; under one block in every steadiness series of the other {rest} run(s)"
+                if rest
+                else ""
+            ) + "."
+        else:
+            worst = max(
+                ((r.name, o, t) for r in recorded for o, (t, _) in series_taus(r).items()),
+                key=lambda x: x[2],
+            )
+            text += (
+                f"under one block in every steadiness series of the {len(recorded)} run(s) "
+                f"(largest {worst[2]:.2g} blocks: {worst[1]} in {worst[0]})."
+            )
+    missing = sorted(r.name for r in runs if not series_taus(r))
+    if missing:
+        text += f" Autocorrelation times not recorded for {', '.join(missing)}."
+    return text + _stress_tau_text(runs)
+
+
+def _stress_tau_text(runs: Sequence[Run]) -> str:
+    """The stresses' part of :func:`autocorrelation_text`."""
+    records = {r.name: (r, t) for r in runs if (t := stress_taus(r))}
+    if not records:
+        return ""
+    columns = sorted({c for _, t in records.values() for c in t})
+    parts = []
+    for c in columns:
+        rows = [
+            (n, tau, float(r.distance_d[k]), _blocks(r))
+            for n, (r, t) in records.items()
+            for k, tau in enumerate(t.get(c, []))
+            if tau is not None and k < r.distance_d.size
+        ]
+        if not rows:
+            continue
+        top = max(rows, key=lambda x: x[1])
+        long = [x for x in rows if x[1] >= LONG_TAU_BLOCKS]
+        factor = block_se_factor(top[1], top[3])
+        where = f"{top[0]} at {top[2]:.2g} d"
+        if long:
+            parts.append(
+                f"{c} one block or more in {len(long)} of {len(rows)} bins of "
+                f"{len({x[0] for x in long})} run(s) (largest {top[1]:.2g} blocks, {where}: "
+                f"its block se too small by about {factor:.2g})"
+            )
+        else:
+            parts.append(
+                f"{c} under one block in every bin of {len({x[0] for x in rows})} run(s) "
+                f"(largest {top[1]:.2g} blocks, {where}: block se too small by {factor:.2g} "
+                "at most)"
+            )
+    text = (
+        " The stresses' per-bin autocorrelation times (block_autocorrelation.profiles; "
+        "distance from the moving wall): " + "; ".join(parts) + "."
+    )
+    shear = "sigma_rt" if any(r.cell == "couette" for r, _ in records.values()) else "sigma_yx"
+    misses = [
+        (n, d, z, zr)
+        for n, (r, t) in records.items()
+        if t.get(shear)
+        for d, z, zr in _balance_rescaled(r, t[shear], _blocks(r))
+    ]
+    if misses:
+        still = [m for m in misses if abs(m[3]) > BALANCE_SIGMAS]
+        worst = max(misses, key=lambda m: abs(m[3]))
+        text += (
+            f" The {len(misses)} momentum-balance misses beyond {BALANCE_SIGMAS:g} se outside "
+            f"the truncated bins, each z divided by its bin's {shear} factor: {len(still)} stay "
+            "beyond "
+            f"{BALANCE_SIGMAS:g} se (largest z = {worst[3]:+.1f}, was {worst[2]:+.1f}, "
+            f"{worst[0]} at {worst[1]:.2g} d)"
+            + (
+                ": the stresses' autocorrelation does not explain them."
+                if len(still) == len(misses)
+                else "."
+            )
+        )
+    return text

@@ -240,9 +240,9 @@ def _layer_entry(
     mid, gap_rate, rate_se = rate_between_bins(s, u, se, rho)
     i_band = r.inertial_number
     title = (
-        f"{r.run.name}: plane, H/d = {r.run.gap_d:.3g}, B = 0; {kinds['fixed']} fixed wall, "
+        f"{r.run.name}: H/d = {r.run.gap_d:.3g}, B = 0, {kinds['fixed']} fixed / "
         f"{kinds['moving']} moving wall"
-        + (f"; I in the band (next to the {p.smoother} wall) = {i_band:.2g}" if i_band else "")
+        + (f"; I = {i_band:.2g} in the band ({p.smoother} wall)" if i_band else "")
     )
     layer = {
         "walls": {w: f"{kinds[w]}, {w}" for w in ("fixed", "moving")},
@@ -259,10 +259,10 @@ def _layer_entry(
             if alt.key == x.key
             for name in [_figure_label(alt.label) + rf" ($\chi^2$ {alt.chi2:.0f}/{alt.dof})"]
         },
-        "note": "lines: the alternatives with the right walls, GLS fits under the bins' AR(1) "
-        f"errors (rho = {rho:.2g}: a shared offset is cheap, so they may sit below most points; "
-        "validate's single-run fits give the fixed wall the moving wall's kind: not drawn); "
-        "spin: the Cosserat layer profiles forward-modelled (NGF has no spin)",
+        # one line (referee 10, point 9: the four-line title was crowded; docs/validation.md
+        # says the rest)
+        "note": f"lines: GLS fits, AR(1) bin errors (rho = {rho:.2g}: may sit below most "
+        "points); validate's single-run fits (wrong fixed wall) not drawn",
     }
     return models, list(models), layer, title
 

@@ -50,6 +50,7 @@ from .measures import (
     Thickness,
     WallBins,
     WallSpin,
+    autocorrelation_text,
     band_stress_ratio,
     measure_spin,
     measured_thickness,
@@ -892,8 +893,6 @@ def judge(
                 f"{steadiness_text([by_name[n] for n in v.runs])}"
             ).rstrip(),
         )
-        if v.key != "layer"  # the layer's evidence quotes I next to both walls itself
-        else v
         for v in verdicts
     ]
     verdicts = [
@@ -943,10 +942,12 @@ def regime(results: Sequence[RunResult]) -> str:
         )
     values = [i for _, i in known]
     above = [n for n, i in known if i > QUASI_STATIC_I]
-    where = "next to the moving wall" + (
-        " (in the band, next to the smoother wall, for a layer run)"
-        if any(r.layer is not None for r in results)
-        else ""
+    layers = sum(r.layer is not None for r in results)
+    where = (
+        "in the band (next to the smoother wall)"
+        if layers == len(results)
+        else "next to the moving wall"
+        + (" (in the band, next to the smoother wall, for a layer run)" if layers else "")
     )
     text = (
         f"Regime: the local inertial number {where} is "
@@ -1057,39 +1058,17 @@ def wall_bins_text(results: Sequence[RunResult]) -> str:
     return text
 
 
-BLOCK_SERIES = {"dilation": "gap", "wall_shear": "wall_shear", "mean_velocity": "mean_velocity",
-                "wall_normal": "wall_normal"}  # fmt: skip
-"""The steadiness test's scalar observables -> their series in the sidecar's
-``block_autocorrelation``."""
-
-
-def _short_blocks(name: str, blocks: Any) -> str:
-    """A clause for an unsteady scalar whose blocks are shorter than its autocorrelation
-    allows (the sidecar's ``block_autocorrelation``, flag ``short``): its block means are
-    correlated, so the halves' z is too large; empty otherwise."""
-    obs = (blocks or {}).get("observables") if isinstance(blocks, Mapping) else None
-    rec = (obs or {}).get(BLOCK_SERIES.get(name, ""))
-    if not isinstance(rec, Mapping) or not rec.get("short") or not rec.get("blocks_per_tau"):
-        return ""
-    tau = 1.0 / float(rec["blocks_per_tau"])
-    bound = "" if rec.get("reliable", True) else "at least "
-    return (
-        f"; its autocorrelation time is {bound}{tau:.2g} blocks, so its block means are "
-        "correlated and this z overstates the drift's significance"
-    )
-
-
-def _unsteady(record: Mapping[str, Any], blocks: Any = None) -> list[str]:
+def _unsteady(record: Mapping[str, Any]) -> list[str]:
     """The observables a sidecar's steadiness test finds not steady, each with its numbers
-    (and, from the sidecar's ``block_autocorrelation``, whether its blocks are too short)."""
+    (their autocorrelation times: :func:`~.measures.autocorrelation_text`)."""
     out = []
     for name, o in (record.get("observables") or {}).items():
         if not isinstance(o, Mapping) or o.get("steady", True):
             continue
         if "first_half" in o and "z" in o:
             out.append(
-                f"{name}: halves {float(o['first_half']):.3g} / {float(o['second_half']):.3g}, "
-                f"z = {float(o['z']):+.3g}{_short_blocks(name, blocks)}"
+                f"{name}: halves {float(o['first_half']):.4g} / {float(o['second_half']):.4g}, "
+                f"z = {float(o['z']):+.3g}"
             )
         elif "bins_within" in o:
             out.append(
@@ -1110,8 +1089,7 @@ def steadiness_text(results: Sequence[RunResult]) -> str:
     records = {r.run.name: r.run.meta.get("steadiness") for r in results}
     known = {n: s for n, s in records.items() if isinstance(s, Mapping)}
     missing = sorted(n for n in records if n not in known)
-    blocks = {r.run.name: r.run.meta.get("block_autocorrelation") for r in results}
-    bad = {n: _unsteady(s, blocks.get(n)) for n, s in known.items()}
+    bad = {n: _unsteady(s) for n, s in known.items()}
     bad = {
         n: v or ["the run's overall test"]
         for n, v in bad.items()
@@ -1131,7 +1109,11 @@ def steadiness_text(results: Sequence[RunResult]) -> str:
             )
     if missing:
         text += ("; " if text else "Steady state: ") + (f"not recorded for {', '.join(missing)}")
-    return (text + "." if text else "") + _window_text(results)
+    return (
+        (text + "." if text else "")
+        + autocorrelation_text([r.run for r in results])
+        + _window_text(results)
+    )
 
 
 def _window_text(results: Sequence[RunResult]) -> str:
