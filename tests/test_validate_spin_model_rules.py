@@ -89,7 +89,7 @@ def test_u_error_models_scale_the_size_rule():
     assert call == "refuted"
     assert rule == (
         "size rule: best fit - data beyond 3 se, one sign, under every stencil and every "
-        "error model of u (ar1, diagonal, common-mode)"
+        "error model of u (AR(1), diagonal, common-mode)"
     )
     # 0.05 above: 5 se under AR(1), 2.89 under diagonal: the size rule does not refute
     sc5 = scan(0.15)
@@ -100,8 +100,10 @@ def test_u_error_models_scale_the_size_rule():
         "6 stencils and error models, not all"
     )
     line = ss.rules_line(sc5)
-    assert line.startswith("x: undecided; null rule 0/2, sign rule 0/2; size z ar1 +5.0 to +5.0")
-    assert "diagonal +2.9 to +2.9 (0/2)" in line
+    assert line == (
+        "x: undecided; null rule 0/2, sign rule 0/2; size z AR(1) +5.0 (2/2), diagonal +2.9 "
+        "(0/2), common-mode +3.5 (2/2)"
+    )
     assert ss.rules_summary(sc5) == "size 4/6, null 0/2, sign 0/2"
 
 

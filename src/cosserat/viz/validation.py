@@ -496,7 +496,8 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
     from .plotting import new_figure, style
 
     n = max(len(scans), 1)
-    fig, axes = new_figure(1, 1, width=9.0, height=1.6 + 0.55 * n)
+    note = any(sc.get("rules_summary") for sc in scans)
+    fig, axes = new_figure(1, 1, width=9.0, height=1.6 + 0.55 * n + (0.45 if note else 0.0))
     ax = axes[0, 0]
     with style():
         y = np.arange(len(scans))[::-1].astype(float)
@@ -515,9 +516,13 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
             if shared is not None and np.isfinite(shared):
                 ax.plot([shared], [yi - 0.15], marker="x", color="C0", markersize=7, mew=1.5,
                         linestyle="none", zorder=4)  # fmt: skip
-            ax.annotate(f"{sc['call']} (null {sc['null_best']:+.3g})", (1.01, yi),
-                        xycoords=("axes fraction", "data"), fontsize=6.5,
-                        va="center")  # fmt: skip
+            rules = sc.get("rules_summary")
+            unsteady = sc.get("steadiness") == "not steady"
+            ax.annotate(
+                f"{sc['call']}" + (" (not steady)" if unsteady else "")
+                + (f"\n{rules}" if rules else "") + f"\nnull {sc['null_best']:+.3g}",
+                (1.01, yi), xycoords=("axes fraction", "data"), fontsize=6.5, va="center",
+            )  # fmt: skip
         ax.axvline(0.0, color="0.5", linewidth=0.6, zorder=1)
         ax.set_yticks(y, [sc["run"] for sc in scans], fontsize=7)
         ax.set_ylim(-0.5, n - 0.5)
@@ -543,7 +548,15 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
         ]
         ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.0, -0.25 / n),
                   fontsize=6.5, frameon=False)  # fmt: skip
-        fig.subplots_adjust(left=0.2, right=0.62, bottom=0.6 / fig.get_figheight() + 0.02,
+        if note:
+            text = (
+                "Right of each row: the run's call; size n/m: the stencil x u error model pairs "
+                "with best fit - data beyond 3 se; null, sign n/m: the stencils the rule holds "
+                "under. A rule refutes only at m/m (referee 10, point 1)."
+            )
+            fig.text(0.02, 0.01, "\n".join(textwrap.wrap(text, 78)), fontsize=6.5, va="bottom")
+        foot = 0.45 if note else 0.0
+        fig.subplots_adjust(left=0.2, right=0.62, bottom=(0.6 + foot) / fig.get_figheight() + 0.02,
                             top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
     return fig
 
@@ -952,9 +965,10 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
             ax.axis("off")
         bottom = (foot + 0.55) / height
         fig.subplots_adjust(left=0.09, right=0.86, bottom=bottom, top=1.0 - 1.05 / height,
-                            wspace=0.32, hspace=0.62 * 4.3 / 3.0)  # fmt: skip
+                            wspace=0.32, hspace=0.5)  # fmt: skip
         if mesh is not None:
-            cax = fig.add_axes((0.885, bottom, 0.018, 1.0 - 1.05 / height - bottom))
+            top = flat[0].get_position()  # one row high, beside the first row
+            cax = fig.add_axes((0.885, top.y0, 0.018, top.height))
             bar = fig.colorbar(mesh, cax=cax)
             bar.set_label("model's first-layer departure beyond its null,\n"
                           "(omega - vorticity/2 - null) d/V [-]", fontsize=8)  # fmt: skip

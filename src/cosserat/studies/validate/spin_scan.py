@@ -1800,6 +1800,10 @@ calibration's AR(1), independent bins, and independent bins plus one shared offs
 (:func:`chi2_by_error_model`)."""
 
 
+ERROR_MODEL_NAMES = {"ar1": "AR(1)", "diagonal": "diagonal", "common-mode": "common-mode"}
+"""The error models' names in the evidence (results.json keeps the keys)."""
+
+
 def error_model_scales(sc: Scan) -> dict[str, float]:
     """The chi^2/dof scaling (at least 1) of the rules' se under each of u's error models of
     :data:`ERROR_MODELS`: the joint fit's chi^2 with u's AR(1) chi^2 (the calibration's)
@@ -1919,17 +1923,21 @@ def rules_line(sc: Scan) -> str:
     for rule in ("null", "sign"):
         yes = [k for k in st if table[k][rule]]
         no = [k for k in st if not table[k][rule]]
-        parts.append(
-            f"{rule} rule {len(yes)}/{len(st)}" + (f" (not {_names(no)})" if yes and no else "")
-        )
+        which = ""
+        if yes and no:
+            which = f" (under {_names(yes)})" if len(yes) <= len(no) else f" (not {_names(no)})"
+        parts.append(f"{rule} rule {len(yes)}/{len(st)}{which}")
     z = size_z_by_model(sc)
     sizes = []
     for em, per in z.items():
         if per:
             vals = list(per.values())
             n = sum(abs(x) > SIZE_RULE_SIGMAS for x in vals)
-            sizes.append(f"{em} {min(vals):+.1f} to {max(vals):+.1f} ({n}/{len(vals)})")
-    size = f"size z {'; '.join(sizes)}" if sizes else "size rule: no stencils"
+            span = f"{min(vals):+.1f}" + (
+                f" to {max(vals):+.1f}" if f"{min(vals):+.1f}" != f"{max(vals):+.1f}" else ""
+            )
+            sizes.append(f"{ERROR_MODEL_NAMES[em]} {span} ({n}/{len(vals)})")
+    size = f"size z {', '.join(sizes)}" if sizes else "size rule: no stencils"
     missing = [k for k in sc.stencils if k not in table]
     more = f"; not judged under {_names(missing)} (no null)" if missing else ""
     return f"{sc.run}: {wall_call(sc)}; {', '.join(parts)}; {size}{more}"
@@ -1968,11 +1976,11 @@ def wall_rule(sc: Scan) -> tuple[str, str]:
         " (judged under the analysis' stencil alone)" if st == ["analysis"] and sc.stencils else ""
     )
     z = size_z_by_model(sc)
-    models = [em for em, per in z.items() if per]
+    models = ", ".join(ERROR_MODEL_NAMES[em] for em, per in z.items() if per)
     if size_holds(z):
         return "refuted", (
             f"size rule: best fit - data beyond {SIZE_RULE_SIGMAS:g} se, one sign, under every "
-            f"stencil and every error model of u ({', '.join(models)})"
+            f"stencil and every error model of u ({models})"
         )
     if all(table[k]["null"] for k in st):
         return "refuted", (
@@ -2071,6 +2079,18 @@ def _u_models(sc: Scan) -> str:
     )
 
 
+def _misfit_fields(sc: Scan) -> str:
+    """The joint fit's fields whose chi^2 p is below :data:`MISFIT_P`, in words."""
+    from ...calibration import diagnostics as dg
+
+    bad = [
+        f.field
+        for f in sc.fit.calibration.fields
+        if (q := dg.chi2_p_value(f.chi2, f.n)) is not None and q < MISFIT_P
+    ]
+    return " and ".join(bad) if bad else "its fields together"
+
+
 def lead_text(scans: Sequence[Scan]) -> str:
     """The verdict's first paragraph in the form referee 10 accepts ("Verdicts I would
     accept", (2)), every number computed: at each firm run the joint fit's p with u's chi^2
@@ -2085,11 +2105,10 @@ def lead_text(scans: Sequence[Scan]) -> str:
         z = size_z_by_model(sc)
         if sc.run in firm:
             p = mc.p_value
-            fits = (
-                "describes u, omega and the stress ratio"
-                if p is None or p >= MISFIT_P
-                else "misfits u, omega and the stress ratio"
-            )
+            if p is None or p >= MISFIT_P:
+                fits = "describes u, omega and the stress ratio"
+            else:
+                fits = f"misfits {_misfit_fields(sc)}"
             text = (
                 f"At {sc.run} the joint fit {fits} (p = {'-' if p is None else f'{p:.2g}'}"
                 + (f"; {_u_models(sc)}" if _u_models(sc) else "")
@@ -2114,7 +2133,8 @@ def lead_text(scans: Sequence[Scan]) -> str:
                 )
                 if k in held and held[k].get("delta_chi2") is not None
             ]
-            parts.append(text + (f". {'; '.join(costs).capitalize()}" if costs else ""))
+            cost = "; ".join(costs)
+            parts.append(text + (f". {cost[:1].upper()}{cost[1:]}" if cost else ""))
             continue
         call, rule = wall_rule(sc)
         why = []
@@ -2122,7 +2142,7 @@ def lead_text(scans: Sequence[Scan]) -> str:
             why.append(f"refuted by the {rule.split(':')[0]}, but {_unsteady_text(sc)}")
         else:
             by_model = [
-                f"{_z_range(per)} se under {em}" for em, per in z.items() if per
+                f"{_z_range(per)} se under {ERROR_MODEL_NAMES[em]}" for em, per in z.items() if per
             ]  # fmt: skip
             near = any(abs(x) > SIZE_RULE_SIGMAS for per in z.values() for x in per.values())
             if near and by_model:
@@ -2144,7 +2164,8 @@ def lead_text(scans: Sequence[Scan]) -> str:
         )
     seeds = {sc.fit.setup.runs[0].meta.get("seed") for sc in scans}
     seeds.discard(None)
-    tail = (f"{len(seeds)} seed{'s' if len(seeds) != 1 else ''}; " if seeds else "") + (
+    count = {1: "one seed", 2: "two seeds"}.get(len(seeds), f"{len(seeds)} seeds")
+    tail = (f"{count}; " if seeds else "") + (
         "half the vorticity and a couple-stress-free wall untested"
     )
     return ". ".join(parts) + f". {tail[0].upper()}{tail[1:]}."
@@ -2516,7 +2537,7 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         "every error model of u as well; n/m: the stencils it holds under, and the size rule's "
         "z range and count beyond "
         f"{SIZE_RULE_SIGMAS:g} se under each error model): "
-        + "; ".join(rules_line(sc) for sc in scans)
+        + ". ".join(rules_line(sc) for sc in scans)
         + "."
     )
     qualifier = ""
@@ -2527,7 +2548,9 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
     if on_misfit:
         where = [r for r in misfit if steady[r]]
         qualifier = (
-            f"where the joint fit misfits u and omega ({', '.join(where)}), {QUALIFIER_SCOPE}"
+            "where the joint fit misfits ("
+            + "; ".join(f"{sc.run}: {_misfit_fields(sc)}" for sc in scans if sc.run in where)
+            + f"), {QUALIFIER_SCOPE}"
         )
         verdict, head = (
             "refuted",
@@ -2851,10 +2874,13 @@ def shared_fits(
 __all__ = [
     "COARSE",
     "DEFAULT_PREDICTOR",
+    "ERROR_MODELS",
+    "ERROR_MODEL_NAMES",
     "FITS_P",
     "LEVEL",
     "LOCAL_SPAN",
     "PREDICTORS",
+    "QUALIFIER_SCOPE",
     "SIZE_RULE_SIGMAS",
     "SIZE_SIGMAS",
     "Angles",
@@ -2867,23 +2893,37 @@ __all__ = [
     "bin_means",
     "binned_departure",
     "covariance_text",
+    "error_model_scales",
+    "firm_runs",
     "first_bin",
     "joint_fit",
+    "lead_text",
     "material_phi",
     "misfit_reading",
     "normal_stress",
+    "null_sign_rules",
     "point_departure",
+    "prediction_se_at",
+    "region_extent",
     "region_profiles",
+    "region_text",
+    "rules_line",
+    "rules_summary",
+    "run_steadiness",
     "scan",
     "scan_or_skip",
+    "scan_region",
     "scan_run",
     "scan_verdict",
     "shared_fits",
     "shear_stress",
+    "size_holds",
     "size_p",
     "size_se",
     "size_z",
+    "size_z_by_model",
     "spin_scans",
+    "stencil_rules",
     "wall_call",
     "wall_rule",
 ]
