@@ -221,3 +221,18 @@ def test_the_hand_scan_region_is_its_admissible_points_and_crossings():
     assert ext["K"] == pytest.approx([0.0, PPF / 100.0])
     assert ext["K_bounds"] == ["range", "data"]
     assert ext["L_bounds"] == ["range", "range"]
+
+
+def test_a_grid_point_below_the_optimum_is_warned():
+    """The hand scan's grid with (K 1, L 2) at chi^2 2 below the joint fit's: the optimum is a
+    local one, which the evidence says; a point 0.005 below (round-off) is not reported."""
+    sc = _scan(-0.1, 0.04)
+    assert ss.below_optimum(sc) is None
+    sc.chi2[1, 1] = sc.chi2_min - 2.0
+    assert ss.below_optimum(sc) == {"K": 1.0, "L": 2.0, "delta_chi2": -2.0}
+    assert ss._below_text(sc) == (
+        "; WARNING: the grid point K = 1, L = 2 d has chi^2 2 below the joint fit's optimum, "
+        "which is a local one"
+    )
+    sc.chi2[1, 1] = sc.chi2_min - 0.005
+    assert ss.below_optimum(sc) is None

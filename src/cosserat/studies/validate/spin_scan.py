@@ -837,6 +837,7 @@ class Scan:
             "notes": list(self.notes),
             "region": scan_region(self),
             "region_text": region_text(scan_region(self)),
+            "below_optimum": below_optimum(self),
             "rules_by_stencil": stencil_rules(self),
             "size_z_by_error_model": size_z_by_model(self),
             "error_model_scales": error_model_scales(self),
@@ -1136,6 +1137,27 @@ def region_text(extent: Mapping[str, Any] | None) -> str:
             if why not in ("data", "point"):
                 notes.append(f"{name}'s {end} limit is {BOUND_WORDS[why]}")
     return text + (f" ({'; '.join(notes)})" if notes else "")
+
+
+BELOW_OPTIMUM = 0.01
+"""A grid point whose chi^2 is more than this below the joint fit's is reported
+(:func:`below_optimum`): the fit's optimum is then not the grid's minimum."""
+
+
+def below_optimum(sc: Scan) -> dict[str, float] | None:
+    """The grid point (either grid) of lowest chi^2 where it lies more than
+    :data:`BELOW_OPTIMUM` below the joint fit's optimum (``K``, ``L`` [d], ``delta_chi2`` < 0):
+    the optimiser stopped short of a lower chi^2 (on the 7 v2 runs: next to the model's
+    no-solution edge), so the "best fit" is a local one; None otherwise."""
+    best: dict[str, float] | None = None
+    for K, L, chi2 in ((sc.K, sc.L, sc.chi2), (sc.K_near, sc.L_near, sc.chi2_near)):
+        d = np.asarray(chi2, dtype=float) - sc.chi2_min
+        if d.size == 0 or not np.isfinite(d).any():
+            continue
+        a, b = np.unravel_index(int(np.nanargmin(np.where(np.isfinite(d), d, np.nan))), d.shape)
+        if d[a, b] < -BELOW_OPTIMUM and (best is None or d[a, b] < best["delta_chi2"]):
+            best = {"K": float(K[a]), "L": float(L[b]), "delta_chi2": float(d[a, b])}
+    return best
 
 
 def scan_region(sc: Scan) -> dict[str, Any] | None:
@@ -2431,7 +2453,8 @@ def _describe(sc: Scan) -> str:
         f"{sc.fit.value('K'):.3g}, L = {sc.fit.value('L'):.3g} d; {sc.fit.angles.text()}) "
         f"predicts {sc.best:+.3g} +- {sc.prediction_se:.2g}; over its 95% region (Delta "
         f"chi^2 <= {sc.threshold:.3g}, {sc.admissible_count} grid points: "
-        f"{region_text(scan_region(sc))}; the finer grid spans K {sc.K_near[0]:.3g}-"
+        f"{region_text(scan_region(sc))}{_below_text(sc)}; the finer grid spans K "
+        f"{sc.K_near[0]:.3g}-"
         f"{sc.K_near[-1]:.3g}, L {sc.L_near[0]:.3g}-{sc.L_near[-1]:.3g} d around the optimum) "
         f"{adm}; over K in [{sc.K[0]:g}, {sc.K[-1]:g}] and L in [{sc.L[0]:.3g}, "
         f"{sc.L[-1]:.3g}] d ({sc.K.size} x {sc.L.size} grid) {rng}; beyond the null "
@@ -2440,6 +2463,17 @@ def _describe(sc: Scan) -> str:
         f"{sc.beyond_best:+.3g} +- {sc.beyond_se:.2g} (95% region "
         f"{sc.beyond_span[0]:+.3g} to {sc.beyond_span[1]:+.3g}): {wall_call(sc)} "
         f"({wall_rule(sc)[1]})" + _stencil_text(sc) + "; " + _misfit_text(sc) + _wall_spin_text(sc)
+    )
+
+
+def _below_text(sc: Scan) -> str:
+    """A clause where the grid has a lower chi^2 than the joint fit (:func:`below_optimum`)."""
+    low = below_optimum(sc)
+    if low is None:
+        return ""
+    return (
+        f"; WARNING: the grid point K = {low['K']:.3g}, L = {low['L']:.3g} d has chi^2 "
+        f"{-low['delta_chi2']:.3g} below the joint fit's optimum, which is a local one"
     )
 
 
@@ -2872,6 +2906,7 @@ def shared_fits(
 
 
 __all__ = [
+    "BELOW_OPTIMUM",
     "COARSE",
     "DEFAULT_PREDICTOR",
     "ERROR_MODELS",
@@ -2890,6 +2925,7 @@ __all__ = [
     "ShearStress",
     "angle_errors",
     "angles",
+    "below_optimum",
     "bin_means",
     "binned_departure",
     "covariance_text",
