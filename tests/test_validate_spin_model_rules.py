@@ -236,3 +236,13 @@ def test_a_grid_point_below_the_optimum_is_warned():
     )
     sc.chi2[1, 1] = sc.chi2_min - 0.005
     assert ss.below_optimum(sc) is None
+
+
+def test_what_the_refutation_rests_on_names_an_unsteady_run(monkeypatch):
+    monkeypatch.setattr(ss, "wall_rule", lambda sc: ("refuted", "size rule: best fit - data"))
+    steady = SimpleNamespace(run="a", wall_k={}, steadiness="steady")
+    shaky = SimpleNamespace(run="b", wall_k={}, steadiness="not steady")
+    assert ss._rests_on([steady, shaky]).endswith(
+        "(over chi^2/dof); b fails the steadiness test, which does not make the verdict firm on "
+        "its own."
+    )

@@ -2234,6 +2234,13 @@ def _rests_on(scans: Sequence[Scan]) -> str:
     rest = (f"; refuted by a rule a null enters at {', '.join(nulled)}" if nulled else "") + (
         f"; a first-layer-matching point repairs {', '.join(repaired)}" if repaired else ""
     )
+    shaky = [sc.run for sc in scans
+             if sc.run in solid and getattr(sc, "steadiness", "") == "not steady"]  # fmt: skip
+    if shaky:  # referee 10, point 1
+        rest += (
+            f"; {', '.join(shaky)} {'fails' if len(shaky) == 1 else 'fail'} the steadiness "
+            "test, which does not make the verdict firm on its own"
+        )
     if not solid:
         return f" No run is {why}{rest}."
     if len(solid) == 1:
