@@ -991,7 +991,8 @@ def _region_lines(ax: Axes, L: Any, K: Any, dchi2: Any, threshold: float, width:
     z = np.where(np.isfinite(dchi2), dchi2, 1e9)
     gen = contourpy.contour_generator(x=np.log(L), y=K, z=z, line_type="Separate")
     for line in gen.lines(threshold):
-        ax.plot(np.exp(line[:, 0]), line[:, 1], color="k", linewidth=width, zorder=4)
+        xy = np.asarray(line, dtype=float)  # (n, 2): ln L, K
+        ax.plot(np.exp(xy[:, 0]), xy[:, 1], color="k", linewidth=width, zorder=4)
 
 
 __all__ = [
