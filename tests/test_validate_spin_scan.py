@@ -116,7 +116,15 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
     # refuted by the sign rule, not the size rule: a null enters, so no run is solid
     assert v.evidence.startswith(
         "Refuted at the first layer, as calibrated with the eqn-nd_bc3u wall spin condition. "
-        "No run is refuted by the size rule, where no null enters"
+        "At reversed the joint fit misfits "
+    )
+    fields = ss._misfit_fields(sc)
+    assert f"At reversed the joint fit misfits {fields} (p = " in v.evidence
+    assert "; sign rule under every stencil. " in v.evidence
+    assert " No run is refuted by the size rule, where no null enters" in v.evidence
+    # the scope in the verdict field (referee 10, point 1)
+    assert v.qualifier == (
+        f"where the joint fit misfits (reversed: {fields}), as calibrated with eqn-nd_bc3u"
     )
     assert "Calibrated jointly on u, omega" in v.evidence
     # the mirrored spin misfits the joint fit while the stress ratio fits: the verdict rests
@@ -275,25 +283,45 @@ def test_the_size_rule_refutes_a_fit_that_misses_under_every_stencil(pair):
     good = ss.scan_run(rough, [rough, smooth], points=3)
     stencils = {k: {"data": 0.0, "se": 0.01, "model": 0.05} for k in ("analysis", "wall")}
     missed = dataclasses.replace(good, stencils=stencils)
+    models = ", ".join(ss.ERROR_MODEL_NAMES[m] for m in ss.error_model_scales(missed))
     assert ss.wall_rule(missed) == (
         "refuted",
-        "size rule: best fit - data beyond 3 se, one sign, under every stencil",
+        "size rule: best fit - data beyond 3 se, one sign, under every stencil and every error "
+        f"model of u ({models})",
     )
-    # one stencil within 3 se: the size rule does not fire
+    # one stencil within 3 se: the size rule does not fire, and the run is not supported
+    # either: under the analysis' stencil the best fit misses by more than 3 se (referee 10,
+    # point 1: a call holds only under every stencil)
     near = {**stencils, "wall": {"data": 0.0, "se": 0.01, "model": 0.02}}
-    assert ss.wall_rule(dataclasses.replace(good, stencils=near))[0] == "supported"
+    call, rule = ss.wall_rule(dataclasses.replace(good, stencils=near))
+    assert call == "undecided"
+    assert rule.startswith("depends on the stencil or u's error model: best fit - data is ")
     v = ss.scan_verdict([missed])
     assert v.verdict == "refuted"
     # the refutation is scoped to the calibration and its wall spin condition (referee 8)
-    # where it is refuted (referee 9, point 2) in the verdict line, and what it rests on
+    # where it is refuted (referee 9, point 2; referee 10, point 1: the runs, in the verdict
+    # field) in the verdict line, and what it rests on
+    assert v.qualifier == "at the first layer of rough, as calibrated with eqn-nd_bc3u"
+    assert v.numbers["firm_runs"] == ["rough"]
     assert v.evidence.startswith(
-        "Refuted at the first layer, as calibrated with the eqn-nd_bc3u wall spin condition. "
-        "It rests on one run, rough, and one seed: the only run refuted by the size rule, "
+        "Refuted at the first layer of rough, as calibrated with eqn-nd_bc3u. At rough the "
+        "joint fit describes u, omega and the stress ratio (p = "
+    )
+    assert (
+        " It rests on one run, rough, and one seed: the only run refuted by the size rule, "
         "where no null enters, with no refit in the scan's reach matching the first layer at "
         "p >= 0.001 (over chi^2/dof). Calibrated jointly on u, omega (the first layer's held "
         "out) and the stress ratio, phi and delta from the stresses; rough"
-    )
+    ) in v.evidence
     assert v.numbers["solid_runs"] == ["rough"]
+    # an unsteady run does not make the verdict firm on its own (referee 10, point 1)
+    shaky = dataclasses.replace(missed, steadiness="not steady", unsteady=["dilation z = -5.77"])
+    u = ss.scan_verdict([shaky])
+    assert (u.verdict, u.qualifier) == ("undecided", "")
+    assert u.evidence.startswith(
+        "Undecided: refuted at the first layer of rough only, which fails the steadiness test "
+        "(rough: dilation z = -5.77): an unsteady run does not make the verdict firm on its own."
+    )
     spin = missed.omega_model - missed.omega_measured
     assert (
         f"first-layer omega d / V {missed.omega_model:+.3g} (model) against "

@@ -105,6 +105,8 @@ def test_a_model_departing_with_the_opposite_sign_is_refuted_and_said_so():
              for r in ("a", "b")]  # fmt: skip
     v = spin_model_verdict(walls)
     assert v.verdict == "refuted"
+    # the scope in the verdict field (referee 10, point 1): the u-only fits
+    assert v.qualifier == "with the cosserat model fitted to the velocity alone"
     assert "departs with the opposite sign (2 of 2 walls" in v.evidence
     assert "measured -0.09 +- 0.02, cosserat predicts +0.03" in v.evidence
     assert "other models mui +0" in v.evidence
@@ -118,7 +120,7 @@ def test_predictions_from_fits_that_contradict_the_measured_stress_decide_nothin
              for r in ("a", "b")]  # fmt: skip
     why = "the cosserat fit: its sin phi = 0.477 contradicts the measured band stress ratio"
     v = spin_model_verdict(walls, unfit={"a": why, "b": why})
-    assert v.verdict == "undecided", v.text
+    assert (v.verdict, v.qualifier) == ("undecided", ""), v.text
     assert v.evidence.startswith("Undecided: the cosserat fits that supply the predicted "
                                  f"departure cannot be used (a: {why}; b: {why})")  # fmt: skip
     assert "On these fits the data would read 'refuted'" in v.evidence
@@ -149,6 +151,7 @@ def test_a_slow_flow_claim_is_not_decided_by_runs_outside_the_slow_regime():
     v = spin_model_verdict(walls)
     fast = within_regime(v, [0.012, 0.074], 1e-3)
     assert (fast.verdict, fast.numbers["at_these_rates"]) == ("undecided", "refuted")
+    assert fast.qualifier == ""  # an undecided verdict carries no scope
     assert fast.evidence.startswith("Not tested in the model's regime: every run used has "
                                     "I = 0.012-0.074")  # fmt: skip
     assert "At these rates the data would say refuted: Refuted:" in fast.evidence

@@ -495,7 +495,8 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
     from .plotting import new_figure, style
 
     n = max(len(scans), 1)
-    fig, axes = new_figure(1, 1, width=9.0, height=1.6 + 0.55 * n)
+    note = any(sc.get("rules_summary") for sc in scans)
+    fig, axes = new_figure(1, 1, width=9.0, height=1.6 + 0.55 * n + (0.45 if note else 0.0))
     ax = axes[0, 0]
     with style():
         y = np.arange(len(scans))[::-1].astype(float)
@@ -514,9 +515,13 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
             if shared is not None and np.isfinite(shared):
                 ax.plot([shared], [yi - 0.15], marker="x", color="C0", markersize=7, mew=1.5,
                         linestyle="none", zorder=4)  # fmt: skip
-            ax.annotate(f"{sc['call']} (null {sc['null_best']:+.3g})", (1.01, yi),
-                        xycoords=("axes fraction", "data"), fontsize=6.5,
-                        va="center")  # fmt: skip
+            rules = sc.get("rules_summary")
+            unsteady = sc.get("steadiness") == "not steady"
+            ax.annotate(
+                f"{sc['call']}" + (" (not steady)" if unsteady else "")
+                + (f"\n{rules}" if rules else "") + f"\nnull {sc['null_best']:+.3g}",
+                (1.01, yi), xycoords=("axes fraction", "data"), fontsize=6.5, va="center",
+            )  # fmt: skip
         ax.axvline(0.0, color="0.5", linewidth=0.6, zorder=1)
         ax.set_yticks(y, [sc["run"] for sc in scans], fontsize=7)
         ax.set_ylim(-0.5, n - 0.5)
@@ -542,7 +547,15 @@ def spin_model_joint_figure(scans: Sequence[Mapping[str, Any]], title: str = "")
         ]
         ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.0, -0.25 / n),
                   fontsize=6.5, frameon=False)  # fmt: skip
-        fig.subplots_adjust(left=0.2, right=0.62, bottom=0.6 / fig.get_figheight() + 0.02,
+        if note:
+            text = (
+                "Right of each row: the run's call; size n/m: the stencil x u error model pairs "
+                "with best fit - data beyond 3 se; null, sign n/m: the stencils the rule holds "
+                "under. A rule refutes only at m/m (referee 10, point 1)."
+            )
+            fig.text(0.02, 0.01, "\n".join(textwrap.wrap(text, 78)), fontsize=6.5, va="bottom")
+        foot = 0.45 if note else 0.0
+        fig.subplots_adjust(left=0.2, right=0.62, bottom=(0.6 + foot) / fig.get_figheight() + 0.02,
                             top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
     return fig
 
@@ -792,37 +805,81 @@ def beyond_range(scan: Mapping[str, Any]) -> tuple[float, float] | None:
     return (float(np.min(vals)), float(np.max(vals))) if vals else None
 
 
+def region_short(scan: Mapping[str, Any]) -> str:
+    """The 95% region's extent for a panel title (``Scan.to_dict``'s ``region``:
+    ``spin_scan.region_extent``), with the ends the data do not set marked: "no solution
+    beyond" (the model's existence bound), "range" (the declared range's edge)."""
+    reg = scan.get("region")
+    if not reg:
+        return "95% region: no grid point"
+    marks = {"existence": " (no solution beyond)", "range": " (range edge)",
+             "box": " (finer grid's edge)"}  # fmt: skip
+    parts = []
+    for name, unit in (("K", ""), ("L", " d")):
+        lo, hi = reg[name]
+        b_lo, b_hi = reg[f"{name}_bounds"]
+        parts.append(f"{name} {lo:.3g}{marks.get(b_lo, '')}-{hi:.3g}{unit}{marks.get(b_hi, '')}")
+    return "95% region " + ", ".join(parts)
+
+
+SCAN_COLUMNS = 2
+"""Panels per row of :func:`spin_scan_figure` (referee 10, point 7: one row of five panels
+was 3430 px wide, readable only when zoomed)."""
+SCAN_KEY = (
+    "colour: the model's departure beyond its null, interpolated between the computed points "
+    "(grey dots; black dots: inside the 95% region); hatched: the model within 2 se of the "
+    "data's departure beyond the null (the verdict's criterion and se); dashed: the raw "
+    "departure (its null included) equal to the raw measured one (near it: the text's 'best "
+    "first-layer-matching point', chosen on the raw departure); black contour: the 95% region "
+    "of the joint u + omega + stress-ratio fit, Delta chi^2 <= chi2.ppf(0.95, k) x chi^2/dof "
+    "on both grids (thin: the declared ranges' grid; thick: the finer grid), the text's "
+    "region; star: its optimum; dotted box: the extent of the finer grid around it (its top "
+    "and bottom edges are the horizontal dotted lines); grey: the model has no solution (the "
+    "couple stress reaches its yield bound inside the gap), where the region meets it L's "
+    "limit is the model's existence bound, not the data's"
+)
+"""The key of :func:`spin_scan_figure`, drawn in its free panel or below it."""
+
+
 def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
     """The Cosserat model's first-layer spin departure beyond its null over (K, L), one panel
-    per scanned run (``cosserat.studies.validate.spin_scan.Scan.to_dict``): each point's
-    departure minus its own null (as the verdict takes it) in colour, interpolated
-    bilinearly between the grid's points (dots; blue negative, red positive, white 0), the
-    declared ranges' grid with the finer grid around the joint fit drawn over it; hatched
-    where the model comes within 2 se of the data's departure beyond the null
-    (:func:`band_cells`, the verdict's se; each title says when nothing is, with the model's
-    range beyond its null over the grid, :func:`beyond_range`); dashed where the raw
+    per scanned run (``cosserat.studies.validate.spin_scan.Scan.to_dict``), :data:`SCAN_COLUMNS`
+    panels a row: each point's departure minus its own null (as the verdict takes it) in
+    colour, interpolated bilinearly between the grid's points (dots; blue negative, red
+    positive, white 0), the declared ranges' grid with the finer grid around the joint fit
+    drawn over it; hatched where the model comes within 2 se of the data's departure beyond
+    the null (:func:`band_cells`, the verdict's se; each title says when nothing is, with the
+    model's range beyond its null over the grid, :func:`beyond_range`); dashed where the raw
     departure (its null included) equals the raw measured value; the 95% region of the joint
-    u + omega calibration (black contour) and its optimum (star).
+    u + omega calibration (black contour on both grids, its points black, its extent in the
+    title as the text gives it, :func:`region_short`) and its optimum (star).
 
     Parameters
     ----------
     scans : sequence of mapping
         ``run``, ``measured``, ``measured_beyond_null``, ``measured_beyond_null_se``, ``best_K``,
-        ``best_L``, ``best_beyond_null``, ``threshold``, ``phi``, ``delta`` (wall -> deg) and
-        ``grids`` (``range`` and ``near``: ``K``, ``L``, ``departure``, ``null``,
-        ``delta_chi2``, None where the model has no solution).
+        ``best_L``, ``best_beyond_null``, ``threshold``, ``phi``, ``delta`` (wall -> deg),
+        ``region`` (optional) and ``grids`` (``range`` and ``near``: ``K``, ``L``,
+        ``departure``, ``null``, ``delta_chi2``, None where the model has no solution).
     """
+    import textwrap
+
     import numpy as np
     from matplotlib.colors import TwoSlopeNorm
 
     from .plotting import new_figure, style
 
     n = max(len(scans), 1)
-    fig, axes = new_figure(1, n, width=3.6 * n + 0.6, height=3.6)
+    cols = min(SCAN_COLUMNS, n)
+    rows = -(-n // cols)
+    spare = rows * cols > n  # a free panel holds the key
+    foot = 0.0 if spare else 1.3  # inches below the panels for the key
+    height = 4.3 * rows + foot + 0.3
+    fig, axes = new_figure(rows, cols, width=4.9 * cols + 1.3, height=height)
+    flat = list(axes.ravel())
     with style():
         if not scans:
-            axes[0, 0].text(0.5, 0.5, "no run scanned", ha="center",
-                            transform=axes[0, 0].transAxes)  # fmt: skip
+            flat[0].text(0.5, 0.5, "no run scanned", ha="center", transform=flat[0].transAxes)
             return fig
 
         def arr(g: Mapping[str, Any], key: str) -> Any:
@@ -845,7 +902,7 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                     lim = max(lim, float(np.nanmax(np.abs(d))))
         norm = TwoSlopeNorm(vcenter=0.0, vmin=-lim, vmax=lim)
         mesh = None
-        for ax, sc in zip(axes[0], scans, strict=False):
+        for ax, sc in zip(flat, scans, strict=False):
             m, se = sc["measured_beyond_null"], sc["measured_beyond_null_se"]
             reach = beyond_range(sc)
             hatched = False
@@ -874,47 +931,67 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                     hatch.set_facecolor("none")
                     hatch.set_edgecolor("0.15")
                 LL, KK = np.meshgrid(L, K)
-                ax.plot(LL[np.isfinite(d)], KK[np.isfinite(d)], linestyle="none", marker=".",
-                        markersize=1.5, color="0.35")  # fmt: skip
-                if name == "near" and np.isfinite(dc).any():
-                    ax.contour(L, K, np.where(np.isfinite(dc), dc, 1e9),
-                               levels=[sc["threshold"]], colors="k", linewidths=1.0)  # fmt: skip
+                inside = np.isfinite(dc) & (dc <= sc["threshold"])
+                ax.plot(LL[np.isfinite(d) & ~inside], KK[np.isfinite(d) & ~inside],
+                        linestyle="none", marker=".", markersize=1.5, color="0.35")  # fmt: skip
+                ax.plot(LL[inside], KK[inside], linestyle="none", marker=".", markersize=3.5,
+                        color="k", zorder=4)  # fmt: skip
+                if np.isfinite(dc).any():
+                    _region_lines(ax, L, K, dc, sc["threshold"], 1.3 if name == "near" else 0.6)
+                if name == "near":
                     ax.plot([L[0], L[-1], L[-1], L[0], L[0]], [K[0], K[0], K[-1], K[-1], K[0]],
-                            color="0.3", linewidth=0.5, linestyle=":")  # fmt: skip
-            ax.plot([sc["best_L"]], [sc["best_K"]], marker="*", color="k", markersize=9,
-                    linestyle="none")  # fmt: skip
+                            color="0.3", linewidth=0.7, linestyle=":")  # fmt: skip
+            ax.plot([sc["best_L"]], [sc["best_K"]], marker="*", color="k", markersize=10,
+                    linestyle="none", zorder=5)  # fmt: skip
             ax.set_facecolor("0.85")
             ax.set_xscale("log")
             _plain(ax, "x")
-            ax.set_xlabel("L [d]")
-            ax.set_ylabel("K (moving wall) [-]")
-            deltas = ", ".join(f"delta {w} {v:.3g} deg" for w, v in sc["delta"].items())
+            ax.set_xlabel("L [d]", fontsize=9)
+            ax.set_ylabel("K (moving wall) [-]", fontsize=9)
+            deltas = ", ".join(f"delta {w} {v:.3g}" for w, v in sc["delta"].items())
             over = (
                 "" if reach is None else f"model over the grid {reach[0]:+.2g} to {reach[1]:+.2g}"
             )
             if not hatched:
                 over += ("; " if over else "") + "none within 2 se of the data"
-            over = over.replace("; ", "\n")  # one clause a line: the titles stay in their panel
             ax.set_title(
-                f"{sc['run']}\nphi {sc['phi']:.3g} deg, {deltas}\nbeyond the null: data "
-                f"{m:+.3g} +- {se:.2g}, best fit {sc['best_beyond_null']:+.3g}\n{over}",
-                fontsize=7,
+                f"{sc['run']}\nphi {sc['phi']:.3g}, {deltas} deg\nbeyond the null: data "
+                f"{m:+.3g} +- {se:.2g}, best fit {sc['best_beyond_null']:+.3g}\n"
+                f"{region_short(sc)}\n{over}",
+                fontsize=8.5,
             )
-        fig.subplots_adjust(left=0.09, right=0.84, bottom=0.26, top=0.74, wspace=0.35)
+        for ax in flat[len(scans) :]:
+            ax.axis("off")
+        bottom = (foot + 0.55) / height
+        fig.subplots_adjust(left=0.09, right=0.86, bottom=bottom, top=1.0 - 1.05 / height,
+                            wspace=0.32, hspace=0.5)  # fmt: skip
         if mesh is not None:
-            cax = fig.add_axes((0.87, 0.26, 0.015, 0.48))
+            top = flat[0].get_position()  # one row high, beside the first row
+            cax = fig.add_axes((0.885, top.y0, 0.018, top.height))
             bar = fig.colorbar(mesh, cax=cax)
             bar.set_label("model's first-layer departure beyond its null,\n"
-                          "(omega - vorticity/2 - null) d/V [-]", fontsize=7)  # fmt: skip
-        fig.text(0.01, 0.01, "colour: interpolated between the computed points (dots); hatched: "
-                 "the model within 2 se of the data's departure beyond the null (the verdict's "
-                 "criterion and se);\ndashed: the raw departure (its null included) equal to the "
-                 "raw measured one (near it: the text's 'best first-layer-matching point', chosen "
-                 "on the raw departure); black contour: the 95% region of the joint u + omega + "
-                 "stress-ratio fit (star: its optimum);\ndotted box: the finer grid around it; "
-                 "grey: the model has no solution (the couple stress reaches its yield bound "
-                 "inside the gap)", fontsize=6)  # fmt: skip
+                          "(omega - vorticity/2 - null) d/V [-]", fontsize=8)  # fmt: skip
+        if spare:
+            free = flat[-1]
+            free.text(0.0, 1.0, "\n".join(textwrap.wrap(SCAN_KEY, 62)), va="top", ha="left",
+                      fontsize=7.5, transform=free.transAxes)  # fmt: skip
+        else:
+            fig.text(0.01, 0.01, "\n".join(textwrap.wrap(SCAN_KEY, 190)), fontsize=7)
     return fig
+
+
+def _region_lines(ax: Axes, L: Any, K: Any, dchi2: Any, threshold: float, width: float) -> None:
+    """The 95% region's contour Delta chi^2 = ``threshold`` over a (K, L) grid, interpolated
+    linearly in K and in log L (as ``spin_scan.region_extent`` gives its extent); a point
+    without a solution counts as outside."""
+    import contourpy
+    import numpy as np
+
+    z = np.where(np.isfinite(dchi2), dchi2, 1e9)
+    gen = contourpy.contour_generator(x=np.log(L), y=K, z=z, line_type="Separate")
+    for line in gen.lines(threshold):
+        xy = np.asarray(line, dtype=float)  # (n, 2): ln L, K
+        ax.plot(np.exp(xy[:, 0]), xy[:, 1], color="k", linewidth=width, zorder=4)
 
 
 __all__ = [
@@ -926,6 +1003,7 @@ __all__ = [
     "model_style",
     "none_ranges",
     "refine_grid",
+    "region_short",
     "run_figure",
     "spin_claim_figure",
     "spin_model_figure",

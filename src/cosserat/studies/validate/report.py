@@ -59,6 +59,10 @@ SPIN_SCAN_FIGURE = "claim_spin_scan.png"
 def spin_scan_caption(scans: list[dict[str, Any]]) -> str:
     """The caption of ``claim_spin_scan.png`` (referee 8, point 9): what is coloured, what
     the hatch means, with each run's numbers (``Scan.to_dict`` records)."""
+    regions = (
+        "; ".join(f"{sc['run']}: {sc['region_text']}" for sc in scans if sc.get("region_text"))
+        or "no region recorded"
+    )
     runs = "; ".join(
         f"{sc['run']}: data {sc['measured_beyond_null']:+.3g} +- "
         f"{sc['measured_beyond_null_se']:.2g}, best fit {sc['best_beyond_null']:+.3g}"
@@ -79,9 +83,17 @@ def spin_scan_caption(scans: list[dict[str, Any]]) -> str:
         "takes the raw departure (a point within 2 se of the data's raw first-layer departure, "
         "near the dashed line), so it can sit where nothing is hatched: the model reaches the "
         "measured first-layer value there through its null (a velocity steep next to the wall), "
-        "not through a spin of its own. Black contour: the 95% region of the joint u + omega + "
-        "stress-ratio fit; star: its optimum; dotted box: the finer grid around it; grey: no "
-        "solution."
+        "not through a spin of its own. The 95% region of the joint u + omega + stress-ratio "
+        "fit is one thing in the figure, the text and the material summary: the points of "
+        "both grids with Delta chi^2 <= chi2.ppf(0.95, k) x chi^2/dof (where that exceeds 1) "
+        "(black dots), each extended along the grid lines to where Delta chi^2, interpolated "
+        "linearly in K and ln L, reaches that threshold (black contour: thick on the finer "
+        "grid, thin on the declared ranges'); each title gives its extent. Where it meets the "
+        "grey (no solution: the couple stress reaches its yield bound inside the gap), its "
+        "limit is the model's existence bound, not the data's (titled 'no solution beyond'; "
+        f"{regions}). Star: the optimum; dotted box: the finer grid around it (its top and "
+        "bottom edges are the horizontal dotted lines where its sides lie on the declared L "
+        "range's ends)."
     )
 
 

@@ -855,6 +855,9 @@ def spin_model_verdict(
     kept = [w for w in tested if w.run not in unfit]
     out = _spin_model_on(kept, model) if kept or not flagged else None
     note = f" Left out: {'; '.join(left_out)}." if left_out else ""
+    if out is not None and out.verdict != "undecided":
+        # the scope in the verdict field (referee 10, point 1): these are the u-only fits
+        out = replace(out, qualifier=f"with the {model} model fitted to the velocity alone")
     if not flagged:
         assert out is not None
         return replace(out, evidence=out.evidence + note)
