@@ -904,11 +904,12 @@ def judge(
         replace(
             v,
             evidence=(
-                f"{v.evidence} {regime([by_name[n] for n in v.runs])}"
-                + (
+                f"{v.evidence} "
+                + regime(
+                    [by_name[n] for n in v.runs],
                     slip_text([by_name[n] for n in v.runs], QUASI_STATIC_I)
                     if v.key in spin_keys
-                    else ""
+                    else "",
                 )
                 + f" {steadiness_text([by_name[n] for n in v.runs])}"
                 + (autocorrelation_text([by_name[n] for n in v.runs]) if v.key in spin_keys else "")
