@@ -953,9 +953,11 @@ def rate_text(results: Sequence[RunResult]) -> str:
     )
 
 
-def regime(results: Sequence[RunResult]) -> str:
+def regime(results: Sequence[RunResult], first_layer: str = "") -> str:
     """One sentence: the runs' inertial number at the moving wall against the quasi-static
-    bound :data:`QUASI_STATIC_I` of the models (empty without runs)."""
+    bound :data:`QUASI_STATIC_I` of the models (empty without runs); ``first_layer``, said
+    right after it (the spin verdicts': the first layer's own I from the wall slip,
+    ``rate.slip_text``; referee 10, point 5)."""
     if not results:
         return ""
     known = [(r.run.name, r.inertial_number) for r in results if r.inertial_number is not None]
@@ -983,7 +985,7 @@ def regime(results: Sequence[RunResult]) -> str:
         )
     else:
         text += f", within the quasi-static bound I <= {QUASI_STATIC_I:g}."
-    return f"{text}{_p_source_text(results)}{wall_bins_text(results)}"
+    return f"{text}{first_layer}{_p_source_text(results)}{wall_bins_text(results)}"
 
 
 def _p_source_text(results: Sequence[RunResult]) -> str:

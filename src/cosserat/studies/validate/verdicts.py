@@ -614,10 +614,10 @@ def _replicates_text(runs: Sequence[str], info: Mapping[str, SpinRun]) -> str:
     for members in groups.values():
         if len(members) < 2:
             continue
-        speeds = [info[m].wall_speed if m in info else None for m in members]
+        speeds = [v for m in members if m in info and (v := info[m].wall_speed) is not None]
         at = (
-            " at V = " + " and ".join(f"{v:.3g}" for v in speeds)  # type: ignore[union-attr]
-            if all(v is not None for v in speeds) and len(set(speeds)) == len(speeds)
+            " at V = " + " and ".join(f"{v:.3g}" for v in speeds)
+            if len(speeds) == len(members) and len(set(speeds)) == len(speeds)
             else ""
         )
         parts.append(f"{' and '.join(members)} are one cell{at}")
