@@ -300,3 +300,25 @@ def test_the_spin_figures_legends_sit_just_under_the_x_labels():
         legend = ax.get_legend().get_window_extent(renderer)
         gap_in = (label.y0 - legend.y1) / fig.dpi
         assert 0.0 <= gap_in < 0.3, gap_in
+
+
+def test_the_spin_verdicts_run_facts_come_from_the_sidecars():
+    """study.spin_runs on the stored sidecars: rough H10 at V/2 is the rough H10 cell, seed
+    1, V = 0.00125, under gravity; a failing steadiness record is named with its numbers."""
+    from cosserat.studies.validate.study import spin_runs
+
+    names = ["plane_rough_H10_qs", "plane_rough_H10_qs_half", "plane_smooth_H20_qs"]
+    runs = [replace(read_run(DATA / n / "profile.csv"), name=n) for n in names]
+    bad = runs[2].meta["steadiness"]
+    dilation = {"first_half": 10.08, "second_half": 9.98, "z": -5.77, "steady": False}
+    record = {**bad, "steady": False, "observables": {**bad["observables"], "dilation": dilation}}
+    runs[2] = replace(runs[2], meta={**runs[2].meta, "steadiness": record})
+    results = [SimpleNamespace(run=r, inertial_number=4e-4, layer=None) for r in runs]
+    info = spin_runs(results)
+    half = info["plane_rough_H10_qs_half"]
+    facts = (half.cell, half.seed, half.wall_speed, half.gravity)
+    assert facts == ("plane_rough_H10_qs", 1, 0.00125, True)
+    assert info["plane_rough_H10_qs"].unsteady == ""
+    assert info["plane_smooth_H20_qs"].unsteady.startswith(
+        "dilation: halves 10.1 / 9.98, z = -5.77"
+    )
