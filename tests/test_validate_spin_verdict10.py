@@ -146,6 +146,7 @@ def test_counts_name_cells_where_runs_are_replicates():
     assert count_text(["a", "c"], runs, info) == f"1 of 3 cells {tail}"
     assert count_text(["c"], ["c", "d"], info) == "1 of 2 runs"
     assert count_text(["a"], ["a", "b"], {}) == "1 of 2 runs"
+    assert count_text(["a", "b", "c"], runs, info, named=False) == "2 of 3 cells"
 
 
 def test_the_verdict_counts_cells_compares_two_speeds_and_names_unsteady_runs():
@@ -180,8 +181,9 @@ def test_the_verdict_counts_cells_compares_two_speeds_and_names_unsteady_runs():
         "departure beyond the null -0.111 +- 0.029 and -0.148 +- 0.026 (z = +0.95, the same " \
         "within 2 se)." in e  # fmt: skip
     assert "1 of the 3 bins with |z| >= 3 sits in a run that is not steady: c (" + bad + ")." in e
+    # run a: chi^2 = 14.65 + 1 = 15.6 on 3 bins, p = 0.0014: its cell departs at 0.05 only
     assert "2 of 2 cells (3 runs; a and b are one cell at V = 0.0025 and 0.00125) depart at " \
-        "p < 0.05" in e  # fmt: skip
+        "p < 0.05 (1 of 2 cells at p < 0.001)" in e  # fmt: skip
     assert DECIDING_RUNS_TWO_SPEEDS in v.would_change and DECIDING_RUNS not in v.would_change
     assert "a second wall speed" not in v.would_change
 

@@ -624,16 +624,21 @@ def _replicates_text(runs: Sequence[str], info: Mapping[str, SpinRun]) -> str:
     return "; ".join(parts)
 
 
-def count_text(selected: Sequence[str], runs: Sequence[str], info: Mapping[str, SpinRun]) -> str:
+def count_text(
+    selected: Sequence[str], runs: Sequence[str], info: Mapping[str, SpinRun], named: bool = True
+) -> str:
     """ "n of N runs", or, where some runs are replicates of one cell (``SpinRun.cell``),
     "n of M cells (N runs; a and b are one cell at V = ... and ...)", a cell counted where
-    every run of it is in ``selected`` (referee 10, point 3)."""
+    every run of it is in ``selected`` (referee 10, point 3); ``named`` False: without the
+    parenthesis (said already)."""
     cells = _cells(runs, info)
     labels = sorted(set(cells.values()))
     if len(labels) == len(runs):
         return f"{len(selected)} of {len(runs)} runs"
     chosen = set(selected)
     n = sum(1 for c in labels if all(r in chosen for r in runs if cells[r] == c))
+    if not named:
+        return f"{n} of {len(labels)} cells"
     return f"{n} of {len(labels)} cells ({len(runs)} runs; {_replicates_text(runs, info)})"
 
 
@@ -1069,7 +1074,7 @@ def spin_verdict(
     head = (
         f"{_carry_text(tested, weak)}. In detail: {pooled}. "
         f"{count_text(showing, runs, info)} depart at p < {P_CONSISTENT:g} "
-        f"({count_text(significant, runs, info)} at p < {P_SIGNIFICANT:g}) "
+        f"({count_text(significant, runs, info, named=False)} at p < {P_SIGNIFICANT:g}) "
         f"under every stencil{too_noisy}{counted_text}.{rests}{power} {detail}.{unjudged} "
         f"{SPIN_METHOD}"
     )
