@@ -70,7 +70,7 @@ from .nulls import (
     velocity_null,
     with_null,
 )
-from .rate import slip_text
+from .rate import replicate_cells, slip_text
 from .spin_scan import COARSE, Scan, scan_or_skip, scan_verdict, shared_fits, spin_scans
 from .verdicts import (
     MIN_GAPS,
@@ -1202,8 +1202,6 @@ def spin_runs(results: Sequence[RunResult]) -> dict[str, SpinRun]:
     cell for counting (runs differing only in wall speed are one cell,
     ``rate.replicate_cells``), gap, seed, wall speed, gravity, the moving wall's inertial
     number and what its sidecar's steadiness test finds not steady."""
-    from .rate import replicate_cells
-
     cells = replicate_cells([r.run for r in results])
     out = {}
     for r in results:
