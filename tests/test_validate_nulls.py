@@ -284,10 +284,21 @@ def test_support_that_needs_the_first_layers_is_given_a_smooth_velocity():
     assert n["blocks"] == 10 and n["pooled_p_t"] < P_SIGNIFICANT
     assert n["pooled_p_t_without_first_layer"] > P_SIGNIFICANT
     assert n["supported_given_smooth_velocity"] is True
+    # the condition stands in the verdict field (referee 10, point 3), its reason in the
+    # evidence, which opens with where the spin departs and what carries it
+    assert v.qualifier == "given a velocity smooth on the grain scale"
+    assert v.to_dict()["qualifier"] == v.qualifier
     assert v.evidence.startswith(
-        "Supported, given a velocity smooth on the grain scale (the support needs the first "
-        "layers, whose null is the velocity inside a first bin the bins do not resolve;"
+        "Beyond the null of the joint fit's velocity, the spin departs from half the vorticity "
+        "within 2.5 d of the sheared moving walls of 2 runs. Pooled chi^2 = 152/6 under the "
+        "weakest stencil (analysis), p = "
     )
+    assert "carried by rough's first layer (z = -8.7), smooth's first layer (z = -8.7)" in (
+        v.evidence
+    )
+    assert "It holds given a velocity smooth on the grain scale: the support needs the first " \
+        "layers, whose null is the velocity inside a first bin the bins do not resolve;" in \
+        v.evidence  # fmt: skip
     assert "; read with each bin's z under t(9), as the bins' p are" in v.evidence
     # the same walls without blocks: no t reading, the chi^2 one alone
     bare = spin_verdict([replace(w, blocks=0) for w in walls])

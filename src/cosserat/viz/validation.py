@@ -322,12 +322,17 @@ def spin_claim_figure(
             ax.set_title(title, fontsize=8)
         if not rows:
             ax.text(0.5, 0.5, "no spin measured", ha="center", transform=ax.transAxes)
+        # fixed margins in inches: the legends' tops sit just under the x labels (referee
+        # 10, point 9: anchored in axes fractions they fell far below, past an empty band)
+        h = fig.get_figheight()
+        bottom, top = LABEL_BAND_IN / h, 1.0 - 0.35 / h
+        fig.subplots_adjust(left=0.2, right=0.98, wspace=0.3, bottom=bottom, top=top)
+        under = (0.0, -LABEL_BAND_IN / ((top - bottom) * h))  # axes fraction
         handles, labels = ax.get_legend_handles_labels()
         uniq = dict(zip(labels, handles, strict=True))
         if uniq:
-            ax.legend(uniq.values(), uniq.keys(), loc="upper left",
-                      bbox_to_anchor=(0.0, -0.18 - 0.9 / fig.get_figheight()), fontsize=7,
-                      frameon=False)  # fmt: skip
+            ax.legend(uniq.values(), uniq.keys(), loc="upper left", bbox_to_anchor=under,
+                      fontsize=7, frameon=False)  # fmt: skip
         colors = [f"C{i}" for i in range(10)]
         k = 0
         for r in rows:
@@ -356,12 +361,13 @@ def spin_claim_figure(
         bx.set_ylabel("departure beyond the null, +- 2 se [-]", fontsize=7)
         bx.set_title("the near-wall bins the verdict rests on (filled)", fontsize=8)
         if bx.get_legend_handles_labels()[0]:
-            bx.legend(fontsize=7, frameon=False, loc="upper left",
-                      bbox_to_anchor=(0.0, -0.18 - 0.9 / fig.get_figheight()))  # fmt: skip
-        fig.subplots_adjust(left=0.2, right=0.98, wspace=0.3,
-                            bottom=min(0.6, 0.25 + 1.6 / fig.get_figheight() * 0.3),
-                            top=1.0 - 0.35 / fig.get_figheight())  # fmt: skip
+            bx.legend(fontsize=7, frameon=False, loc="upper left", bbox_to_anchor=under)
     return fig
+
+
+LABEL_BAND_IN = 0.55
+"""The height under an axes its tick labels and x label take in :func:`spin_claim_figure`,
+where its legend starts [in]."""
 
 
 STATUS_CODES = {

@@ -66,7 +66,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.stats import chi2 as chi2_dist
 
-from ...analysis.corpus import COORDINATE, Run, usable
+from ...analysis.corpus import COORDINATE, Run, usable, wall_inertial_number
 from ...calibration.noise import RHO_MAX, whiten
 from ...config import DEFAULT_F
 from ...dem.analyse import MIN_TRAVEL_D, TRUNCATED_FRACTION
@@ -463,6 +463,11 @@ class WallSpin:
     joint : array or None
         The joint u + omega + stress-ratio fit's departure beyond its own null at the same
         bins (``spin_model``'s prediction), where the null is that fit's [-].
+    null_every : (array, array) or None
+        The smallest and largest null at the same bins over every velocity the run has (the
+        joint fit's, the u-only fits', the measured velocity's reconstructions; under the
+        analysis' stencil), reported beside the test, not tested against (None: not formed;
+        the null's own interval or value stands for it) [-].
     """
 
     run: str
@@ -488,6 +493,7 @@ class WallSpin:
     null_stencils_range: dict[str, tuple[float, float]] = field(default_factory=dict)
     null_source: str = ""
     joint: FloatArray | None = None
+    null_every: tuple[FloatArray, FloatArray] | None = None
 
     @property
     def beyond(self) -> FloatArray:
@@ -989,6 +995,53 @@ def moving_wall_inertial_number(run: Run, bins: int = 3) -> float | None:
     near = values[:bins]
     near = near[np.isfinite(near)]
     return float(np.max(near)) if near.size else None
+
+
+@dataclass(frozen=True)
+class SlipInertial:
+    """The first layer's inertial number from the moving wall's slip (referee 10, point 5).
+
+    Attributes
+    ----------
+    run : str
+        The run's name.
+    value : float
+        I = |1 - u_1| / s_1 (V / d) d / sqrt(p_w / rho_s) [-].
+    slip : float
+        1 - u_1: the moving wall's velocity less the first bin's, over V [-].
+    distance_d : float
+        s_1, the first bin's centre from the moving wall's surface [d].
+    """
+
+    run: str
+    value: float
+    slip: float
+    distance_d: float
+
+
+def slip_inertial_number(run: Run) -> SlipInertial | None:
+    """The first layer's inertial number from the moving wall's slip: the shear rate
+    |1 - u_1| / s_1 (V/d) across the layer between the wall (u = 1 in units of its speed V)
+    and the first bin's centre (u_1, at s_1 from the wall), in the nondimensionalisation of
+    the wall inertial number (:func:`cosserat.analysis.corpus.wall_inertial_number`: V from
+    ``wall_speed``, p_w the moving wall's measured normal stress, rho_s the grains'
+    density), I = |1 - u_1| / s_1 * V / sqrt(p_w / rho_s) [-].
+
+    The bin-to-bin gradient (:func:`moving_wall_inertial_number`) does not see the slip, which
+    lies inside the first bin: this is the rate the first layer itself is sheared at. None for
+    a channel, without a wall speed or a u column, or with the first bin at the wall.
+    """
+    if run.cell == "channel" or "u" not in run.columns:
+        return None
+    nominal = wall_inertial_number(run.meta, run.gap_d)  # V d / (H sqrt(p_w / rho_s))
+    if nominal is None:
+        return None
+    k = int(np.argmin(run.distance_d))
+    s1 = float(run.distance_d[k])
+    if not s1 > 0.0:
+        return None
+    slip = 1.0 - float(run.quantity("u")[0][k])
+    return SlipInertial(run.name, nominal * run.gap_d * abs(slip) / s1, slip, s1)
 
 
 HEXAGONAL_NU = math.pi / (2.0 * math.sqrt(3.0))

@@ -18,6 +18,7 @@ from typing import Any
 
 from ...dem.checks import RateCheck, rate_independence
 from ...errors import InputError
+from .measures import slip_inertial_number
 
 GAP_TOLERANCE = 0.02
 """Two runs are one cell when their gaps differ by at most this fraction [-]."""
@@ -126,6 +127,137 @@ def _delta(result: Any) -> tuple[float, float] | None:
     if t is None or t.value is None or t.stderr is None:
         return None
     return float(t.value), float(t.stderr)
+
+
+def replicate_cells(runs: Sequence[Any]) -> dict[str, str]:
+    """Each run's cell for counting (referee 10, point 3): runs of one cell (cell, walls, gap
+    within :data:`GAP_TOLERANCE`, B within :data:`B_TOLERANCE`) with the same ``seed`` in
+    their sidecars differ only in wall speed, and are replicates of one cell, not independent
+    runs. Run name -> the cell's label (the name of its first run by name); a run without a
+    recorded seed is a cell of its own."""
+    ordered = sorted(runs, key=lambda r: r.name)
+    label: dict[str, str] = {}
+    for i, a in enumerate(ordered):
+        if a.name in label:
+            continue
+        label[a.name] = a.name
+        seed = a.meta.get("seed")
+        if seed is None:
+            continue
+        for b in ordered[i + 1 :]:
+            if b.name not in label and b.meta.get("seed") == seed and _same_cell(a, b):
+                label[b.name] = a.name
+    return label
+
+
+AGREE_SIGMAS = 2.0
+"""Two departures agree when they differ by at most this many standard errors of the
+difference (the rate check's bin rule) [-]."""
+
+
+@dataclass(frozen=True)
+class FirstLayerRate:
+    """One cell's first-layer departure beyond the null at two wall speeds (referee 10,
+    point 5): ``fast`` and ``slow`` run names, each departure and its se [-]."""
+
+    fast: str
+    slow: str
+    speeds: tuple[float, float]
+    departures: tuple[tuple[float, float], tuple[float, float]]
+
+    @property
+    def z(self) -> float | None:
+        """(fast - slow) over the combined error (the two runs independent) [-]."""
+        (a, sa), (b, sb) = self.departures
+        se = math.hypot(sa, sb)
+        return (a - b) / se if se > 0.0 else None
+
+    @property
+    def agrees(self) -> bool:
+        """The two departures agree within :data:`AGREE_SIGMAS`."""
+        z = self.z
+        return z is not None and abs(z) <= AGREE_SIGMAS
+
+
+def first_layers_at_two_speeds(
+    pairs: Sequence[RatePair], walls: Sequence[Any]
+) -> list[FirstLayerRate]:
+    """For each pair of :func:`rate_pairs`, the moving walls' first-layer departure beyond the
+    null under the analysis' stencil (``WallSpin.beyond_first``) at both speeds; a pair
+    whose runs lack a moving wall with a null is left out."""
+    moving = {w.run: w for w in walls if w.wall == "moving" and w.null is not None and w.dof}
+    out = []
+    for p in pairs:
+        a, b = moving.get(p.fast), moving.get(p.slow)
+        if a is None or b is None:
+            continue
+        out.append(FirstLayerRate(p.fast, p.slow, p.speeds, (a.beyond_first(), b.beyond_first())))
+    return out
+
+
+def slip_text(results: Sequence[Any], bound: float) -> str:
+    """One sentence for the spin verdicts' regime line (referee 10, point 5): the first
+    layer's inertial number from the moving wall's slip
+    (:func:`~.measures.slip_inertial_number`) against the quasi-static ``bound``, and whether
+    one cell's first-layer departure agrees at two wall speeds (:func:`first_layers_at_two_speeds`),
+    the evidence that a slip layer's I above the bound does not matter. Empty without a run
+    that gives it. ``results``: validate's run results (``run``, ``spin.walls``)."""
+    slips = [s for r in results if (s := slip_inertial_number(r.run)) is not None]
+    if not slips:
+        return ""
+    lo, hi = min(slips, key=lambda s: s.value), max(slips, key=lambda s: s.value)
+    above = [s for s in slips if s.value > bound]
+    text = (
+        f" The first layers lie in the moving wall's slip, where the shear rate (1 - u_1)/s_1 "
+        f"(s_1 the first bin's distance from the wall) gives I = {lo.value:.2g} ({lo.run}) "
+        f"to {hi.value:.2g} ({hi.run}) in the same units"
+        + (
+            f": {len(above)} of {len(slips)} runs above the bound I <= {bound:g}, which the "
+            "bin gradient does not show"
+            if above
+            else f", within the bound I <= {bound:g}"
+        )
+    )
+    walls = [w for r in results for w in getattr(r.spin, "walls", [])]
+    agree = first_layers_at_two_speeds(rate_pairs(results), walls)
+    if not above:
+        return text + "."
+    if not agree:
+        return text + (
+            "; no cell's first layer is measured at two wall speeds, so whether the slip "
+            "layer's rate matters is not shown."
+        )
+    by_run = {s.run: s.value for s in slips}
+    parts = []
+    for f in agree:
+        (a, sa), (b, sb) = f.departures
+        i_fast, i_slow = by_run.get(f.fast), by_run.get(f.slow)
+        slip_i = (
+            f", slip I {i_fast:.2g} against {i_slow:.2g}"
+            if i_fast is not None and i_slow is not None
+            else ""
+        )
+        z = f.z
+        parts.append(
+            f"{f.fast} at V = {f.speeds[0]:.3g} and {f.slow} at V = {f.speeds[1]:.3g}: "
+            f"{a:+.3g} +- {sa:.2g} against {b:+.3g} +- {sb:.2g}, z = "
+            + ("-" if z is None else f"{z:+.2g}")
+            + slip_i
+        )
+    good = [f for f in agree if f.agrees]
+    if len(good) == len(agree):
+        tail = (
+            f"; the first layer's departure beyond the null agrees within {AGREE_SIGMAS:g} se "
+            f"where one cell is run at two speeds ({'; '.join(parts)}): that is the evidence "
+            "that the slip layer's rate does not matter"
+        )
+    else:
+        tail = (
+            f"; the first layer's departure beyond the null differs by more than "
+            f"{AGREE_SIGMAS:g} se where one cell is run at two speeds ({'; '.join(parts)}): "
+            "it depends on the rate, so the slip layer's I above the bound matters"
+        )
+    return text + tail + "."
 
 
 def rate_pairs(results: Sequence[Any]) -> list[RatePair]:

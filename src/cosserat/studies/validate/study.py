@@ -71,6 +71,7 @@ from .nulls import (
     velocity_null,
     with_null,
 )
+from .rate import replicate_cells, slip_text
 from .spin_scan import COARSE, Scan, scan_or_skip, scan_verdict, shared_fits, spin_scans
 from .verdicts import (
     MIN_GAPS,
@@ -78,6 +79,7 @@ from .verdicts import (
     DeltaPoint,
     DeltaSeries,
     ModelDelta,
+    SpinRun,
     Verdict,
     delta_law_verdict,
     spin_model_verdict,
@@ -354,6 +356,19 @@ def _joint_nulls(
         if env is None:
             continue
         every = envelope([joint, env], "every velocity")
+        a = "analysis"  # the interval beside the test (bin 2's envelope, referee 10 point 3)
+        spin.walls = [
+            replace(
+                w,
+                null_every=(
+                    np.asarray(every.lo[a], dtype=float)[spin_rows[spin.index[w.wall]]],
+                    np.asarray(every.hi[a], dtype=float)[spin_rows[spin.index[w.wall]]],
+                ),
+            )
+            if w.null is not None and w.wall in spin.index
+            else w
+            for w in spin.walls
+        ]
         for w in spin.walls:
             if not (w.sheared and w.dof and not w.no_null):
                 continue
@@ -860,7 +875,7 @@ def judge(
         systematic = _joint_nulls(results, scans, scanned.nulls)
     _joint_curves(results, scans)
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
-    spin = spin_verdict(walls, unfit=_spin_model_inputs(results)[2])
+    spin = spin_verdict(walls, unfit=_spin_model_inputs(results)[2], runs_info=spin_runs(results))
     if systematic:
         spin = replace(
             spin,
@@ -885,12 +900,19 @@ def judge(
         )
         for v in verdicts
     ]
+    spin_keys = ("spin", "spin_model")  # the first layers' own rate, the blocks' tau
     verdicts = [
         replace(
             v,
             evidence=(
-                f"{v.evidence} {regime([by_name[n] for n in v.runs])} "
-                f"{steadiness_text([by_name[n] for n in v.runs])}"
+                f"{v.evidence} "
+                + regime(
+                    [by_name[n] for n in v.runs],
+                    slip_text([by_name[n] for n in v.runs], QUASI_STATIC_I)
+                    if v.key in spin_keys
+                    else "",
+                )
+                + f" {steadiness_text([by_name[n] for n in v.runs])}"
             ).rstrip(),
         )
         for v in verdicts
@@ -929,9 +951,11 @@ def rate_text(results: Sequence[RunResult]) -> str:
     )
 
 
-def regime(results: Sequence[RunResult]) -> str:
+def regime(results: Sequence[RunResult], first_layer: str = "") -> str:
     """One sentence: the runs' inertial number at the moving wall against the quasi-static
-    bound :data:`QUASI_STATIC_I` of the models (empty without runs)."""
+    bound :data:`QUASI_STATIC_I` of the models (empty without runs); ``first_layer``, said
+    right after it (the spin verdicts': the first layer's own I from the wall slip,
+    ``rate.slip_text``; referee 10, point 5)."""
     if not results:
         return ""
     known = [(r.run.name, r.inertial_number) for r in results if r.inertial_number is not None]
@@ -961,7 +985,7 @@ def regime(results: Sequence[RunResult]) -> str:
         )
     else:
         text += f", within the quasi-static bound I <= {QUASI_STATIC_I:g}."
-    return f"{text}{_p_source_text(results)}{wall_bins_text(results)}"
+    return f"{text}{first_layer}{_p_source_text(results)}{wall_bins_text(results)}"
 
 
 def _p_source_text(results: Sequence[RunResult]) -> str:
@@ -1114,6 +1138,34 @@ def steadiness_text(results: Sequence[RunResult]) -> str:
         + autocorrelation_text([r.run for r in results])
         + _window_text(results)
     )
+
+
+def spin_runs(results: Sequence[RunResult]) -> dict[str, SpinRun]:
+    """What the spin verdict says of each run beyond its walls (``verdicts.SpinRun``): its
+    cell for counting (runs differing only in wall speed are one cell,
+    ``rate.replicate_cells``), gap, seed, wall speed, gravity, the moving wall's inertial
+    number and what its sidecar's steadiness test finds not steady."""
+    cells = replicate_cells([r.run for r in results])
+    out = {}
+    for r in results:
+        meta = r.run.meta
+        record = meta.get("steadiness")
+        bad = (
+            _unsteady(record, meta.get("block_autocorrelation"))
+            if isinstance(record, Mapping)
+            else []
+        )
+        speed = meta.get("wall_speed")
+        out[r.run.name] = SpinRun(
+            cells.get(r.run.name, r.run.name),
+            r.run.gap_d,
+            meta.get("seed"),
+            float(speed) if isinstance(speed, int | float) else None,
+            r.run.cell == "plane" and r.run.B > 0.0,
+            r.inertial_number if r.layer is None else None,
+            "; ".join(bad),
+        )
+    return out
 
 
 def _window_text(results: Sequence[RunResult]) -> str:
