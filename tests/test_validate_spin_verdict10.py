@@ -293,5 +293,5 @@ def test_the_spin_verdicts_run_facts_come_from_the_sidecars():
     assert facts == ("plane_rough_H10_qs", 1, 0.00125, True)
     assert info["plane_rough_H10_qs"].unsteady == ""
     assert info["plane_smooth_H20_qs"].unsteady.startswith(
-        "dilation: halves 10.1 / 9.98, z = -5.77"
+        "dilation: halves 10.08 / 9.98, z = -5.77"
     )

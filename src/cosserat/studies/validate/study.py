@@ -1150,11 +1150,7 @@ def spin_runs(results: Sequence[RunResult]) -> dict[str, SpinRun]:
     for r in results:
         meta = r.run.meta
         record = meta.get("steadiness")
-        bad = (
-            _unsteady(record, meta.get("block_autocorrelation"))
-            if isinstance(record, Mapping)
-            else []
-        )
+        bad = _unsteady(record) if isinstance(record, Mapping) else []
         speed = meta.get("wall_speed")
         out[r.run.name] = SpinRun(
             cells.get(r.run.name, r.run.name),
