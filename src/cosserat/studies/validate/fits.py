@@ -112,10 +112,17 @@ class StressFix:
     sources : mapping of str to str
         Where phi and delta come from.
     T, T_se : float
-        The run's shear stress over the moving wall's normal stress from its band bins [-]
-        (:func:`~cosserat.studies.validate.spin_scan.shear_stress`), and its error [-].
+        The run's T = |sigma_yx| / N from its band bins (the cross-check,
+        :func:`~cosserat.studies.validate.stresses.shear_stress`) and its error [-].
     reason : str
         Why nothing is fixed ("" when phi is).
+    wall, wall_se : float
+        The run's T measured on its moving wall (its contacts' |shear|/normal, the estimator,
+        :func:`~cosserat.studies.validate.stresses.wall_ratio`) and its error [-]; NaN where
+        the run does not give it.
+    model_se : float
+        The error of the fixed model's T (:attr:`tan_delta`): the pooled sin phi's or the wall
+        kind's pooled tan delta's [-].
     """
 
     phi: float | None = None
@@ -124,6 +131,9 @@ class StressFix:
     T: float = math.nan
     T_se: float = math.nan
     reason: str = ""
+    wall: float = math.nan
+    wall_se: float = math.nan
+    model_se: float = 0.0
 
     @property
     def tan_delta(self) -> float:
@@ -160,7 +170,8 @@ def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
     (phi from its material's fully rough runs); the run itself must carry its band's stresses.
     Never raises: where the stresses fix nothing, the result's ``reason`` says why."""
     from .measures import band_stress_ratio
-    from .spin_scan import angles, shear_stress
+    from .spin_scan import angles
+    from .stresses import shear_stress, wall_ratio
 
     if run.cell != "plane":
         return StressFix(
@@ -176,7 +187,11 @@ def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
     moving = a.roughness["moving"]
     delta: float | str = "fully-rough" if moving >= 1.0 else a.delta("moving")
     sources = {"phi": a.phi_source, "delta": a.delta_source["moving"]}
-    return StressFix(a.phi, delta, sources, t.value, t.stderr)
+    model_se = a.tan_delta_se.get("moving")
+    if model_se is None:  # fully rough: sin phi's error
+        model_se = math.radians(a.phi_se) * math.cos(math.radians(a.phi))
+    w, w_se = wall_ratio(run) or (math.nan, math.nan)
+    return StressFix(a.phi, delta, sources, t.value, t.stderr, "", w, w_se, model_se)
 
 
 @dataclass
@@ -247,7 +262,8 @@ class FitSummary:
         if self.contradiction:
             what = self.band_ratio[0] if self.band_ratio else "its stress ratio"
             ratio = f" = {self.band_ratio[1]:.3g}" if self.band_ratio else ""
-            why.append(f"its {what}{ratio} contradicts the measured band stress ratio")
+            where = "T" if what == "T = tan delta" else "band stress ratio"
+            why.append(f"its {what}{ratio} contradicts the measured {where}")
         if self.at_bound:
             why.append(
                 "wall parameter at a bound ("
@@ -605,16 +621,23 @@ def _stress_contradiction(
 
 
 def _shear_contradiction(fix: StressFix) -> str:
-    """The fixed Cosserat model's T against the run's (module docstring): "" when they agree
-    within :data:`STRESS_SIGMAS` errors of the run's T or :data:`STRESS_RELATIVE` of it."""
+    """The fixed Cosserat model's T against the run's own, measured as the fixed T is (module
+    docstring): the run's moving-wall ratio where it gives one (the estimator the angles are
+    fixed from, :mod:`~cosserat.studies.validate.stresses`), else its band's T; "" when they
+    agree within :data:`STRESS_SIGMAS` errors (the run's and the fixed T's in quadrature) or
+    :data:`STRESS_RELATIVE` of the run's T."""
     model = fix.tan_delta
-    diff = abs(model - fix.T)
-    if diff <= STRESS_SIGMAS * fix.T_se or diff <= STRESS_RELATIVE * fix.T:
+    on_wall = math.isfinite(fix.wall)
+    t, t_se = (fix.wall, fix.wall_se) if on_wall else (fix.T, fix.T_se)
+    se = math.hypot(t_se, fix.model_se)
+    diff = abs(model - t)
+    if diff <= STRESS_SIGMAS * se or diff <= STRESS_RELATIVE * t:
         return ""
+    where = "moving wall's contacts give" if on_wall else "band gives"
     return (
         f"contradicts the measured stress: the fixed angles give T = tan delta = {model:.3g} "
-        f"(the shear stress over the moving wall's normal stress), but the run's band gives "
-        f"T = {fix.T:.3g} +- {fix.T_se:.2g}, {diff / fix.T_se:.1f} errors away"
+        f"+- {fix.model_se:.2g} (the shear stress over the moving wall's normal stress), but "
+        f"the run's {where} T = {t:.3g} +- {t_se:.2g}, {diff / se:.1f} errors away"
     )
 
 
@@ -743,28 +766,38 @@ def _rate(runs: Sequence[Any]) -> Callable[[float], float | None]:
 
 
 def material_fix(model: str, runs: Sequence[Run]) -> tuple[dict[str, float], str]:
-    """What the stresses fix in a material's joint calibration of ``model``, and a note: the
-    Cosserat model's phi on a plane material, sin phi = T of its runs with both walls fully
-    rough (:func:`~cosserat.studies.validate.spin_scan.material_phi`, the phi that the per-run
-    fits and the spin scan fix: one material, one phi); nothing otherwise, the note saying why
-    where the model is the Cosserat one. The walls' roughness stays fitted per wall kind (one
-    value for all the runs of a kind, where the runs' measured wall ratios differ)."""
-    from ...calibration.data import _material_label
-    from .spin_scan import material_phi
+    """What the stresses fix in a material's joint calibration of ``model``, and a note: for
+    the Cosserat model on a plane material, phi (sin phi = T of its runs with both walls fully
+    rough, pooled with a consistency test) and every wall kind's roughness (1 for the fully
+    rough kind, the pooled tan delta over sin phi for a smoother one):
+    :func:`~cosserat.studies.validate.stresses.material_angles`, the function the spin scan's
+    shared calibration fixes them with (one material, one phi, one delta per wall kind).
+    Nothing otherwise, the note saying why where the model is the Cosserat one."""
+    fix, note, _ = _material_fix(model, runs)
+    return fix, note
+
+
+def _material_fix(model: str, runs: Sequence[Run]) -> tuple[dict[str, float], str, dict[str, Any]]:
+    """:func:`material_fix` and the pooling's numbers (``results.json``)."""
+    from .stresses import material_angles
 
     if model != "cosserat":
-        return {}, ""
+        return {}, "", {}
     if runs[0].cell != "plane":
         return {}, (
             f"phi fitted: a {runs[0].cell} material (the relation sin phi = T is plane shear's)"
-        )
+        ), {}  # fmt: skip
     try:
-        phi, phi_se, source = material_phi(runs, _material_label(runs[0].meta))
+        fix, note, numbers = material_angles(runs)
     except CosseratError as exc:
-        return {}, "phi fitted: " + " ".join(str(exc).split())
-    return {"phi": phi}, (
-        f"phi = {phi:.4g} +- {phi_se:.2g} deg fixed from the stresses ({source}); its error is "
-        "not propagated into Delta's"
+        return {}, "phi fitted: " + " ".join(str(exc).split()), {}
+    return (
+        fix,
+        (
+            f"fixed from the stresses (not fitted): {note}; their errors are not propagated into "
+            "Delta's"
+        ),
+        numbers,
     )
 
 
@@ -814,12 +847,13 @@ def calibrate_material(
     CosseratError
         A run the calibration cannot take (:func:`cosserat.calibration.data.from_run`).
     """
-    from ...calibration.data import from_run, with_correlations
     from ...calibration.joint import calibrate_model
     from ...calibration.models import Model
     from ...calibration.models import models as make_models
+    from .spin_scan import material_data
 
-    data = with_correlations([from_run(r) for r in runs], None)
+    runs = sorted(runs, key=lambda r: r.name)  # the spin scan's shared calibration's order
+    data = material_data(runs)
     by_name = {rd.name: rd for rd in data}
     cell = runs[0].cell
     chosen = [m for m in make_models(None) if cell in m.cells()]
@@ -833,7 +867,7 @@ def calibrate_material(
     for m in chosen:
         keys = {p.key for p in m.parameters()}
         start = _series_start(m.name, keys, fits) if use_fits else None
-        fix, fix_note = material_fix(m.name, runs) if fix_phi else ({}, "")
+        fix, fix_note, fix_numbers = _material_fix(m.name, runs) if fix_phi else ({}, "", {})
         if start is not None:
             start = {k: v for k, v in start.items() if k not in fix}
         mc = calibrate_model(
@@ -876,6 +910,7 @@ def calibrate_material(
             "wall_kinds": {k: list(v) for k, v in kinds.items()},
             "fixed": dict(fix),
             "fixed_note": fix_note,
+            "stresses": fix_numbers,
         }
         for key, members, f in series:
             rds = [by_name[r.name] for r in members]
