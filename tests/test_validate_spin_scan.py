@@ -69,8 +69,10 @@ def test_phi_and_delta_come_back_from_the_runs_stresses(pair):
         ss.shear_stress(smooth)
     ang = ss.angles(smooth, [rough, smooth])
     assert abs(ang.phi - PHI) <= 3.0 * ang.phi_se
-    assert "from the fully rough run(s) rough" in ang.phi_source
-    assert "the moving wall's measured ratio" in ang.delta_source["moving"]
+    assert "pooled over rough (one run, no consistency test)" in ang.phi_source
+    assert ang.delta_source["moving"].startswith("tan delta = ")
+    source = ang.delta_source["moving"]
+    assert "the moving walls' T = |sigma_yx|/N from their contacts, pooled over smooth" in source
     assert abs(ang.delta("moving") - SMOOTH) < 0.3
     assert ss.angles(rough, [rough, smooth]).roughness == {"moving": 1.0}
 

@@ -158,9 +158,15 @@ class StressFix:
             if self.delta == "fully-rough"
             else f"delta = {float(self.delta):.4g} deg"
         )
+        own = []
+        if math.isfinite(self.wall):
+            own.append(f"{self.wall:.3g} +- {self.wall_se:.2g} on its moving wall")
+        if math.isfinite(self.T):
+            own.append(f"{self.T:.3g} +- {self.T_se:.2g} from its band (the cross-check)")
+        mine = f"; this run's T = |sigma_yx|/N: {', '.join(own)}" if own else ""
         return (
             f"fixed from the run's stresses (not fitted): phi = {self.phi:.4g} deg "
-            f"({self.sources.get('phi', '')}); {delta} ({self.sources.get('delta', '')})"
+            f"({self.sources.get('phi', '')}); {delta} ({self.sources.get('delta', '')})" + mine
         )
 
 

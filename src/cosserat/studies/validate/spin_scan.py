@@ -2067,7 +2067,9 @@ def _material_text(scans: Sequence[Scan]) -> str:
         elif sh:
             p = sh["p"]
             out += (
-                f"; that calibration (first layers held out): L = {sh['L']:.3g} d, chi^2 = "
+                "; that calibration (the material's one Cosserat calibration, which the Delta "
+                "curves read too: first layers held out, phi and each wall kind's delta fixed "
+                f"from the walls' stresses): L = {sh['L']:.3g} d, chi^2 = "
                 f"{sh['chi2']:.4g} for {sh['dof']} dof (p = {'-' if p is None else f'{p:.2g}'}"
                 + (", WARNING: p < 0.001" if p is not None and p < 1e-3 else "")
                 + "); "
@@ -2232,7 +2234,6 @@ __all__ = [
     "JointFit",
     "Predictor",
     "Scan",
-    "ShearStress",
     "angle_errors",
     "angles",
     "bin_means",
@@ -2241,9 +2242,7 @@ __all__ = [
     "first_bin",
     "joint_fit",
     "material_data",
-    "material_phi",
     "misfit_reading",
-    "normal_stress",
     "point_departure",
     "region_profiles",
     "scan",
@@ -2251,7 +2250,6 @@ __all__ = [
     "scan_run",
     "scan_verdict",
     "shared_fits",
-    "shear_stress",
     "size_p",
     "size_se",
     "size_z",
