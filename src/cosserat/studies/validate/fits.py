@@ -801,7 +801,8 @@ def _material_fix(model: str, runs: Sequence[Run]) -> tuple[dict[str, float], st
         fix,
         (
             f"fixed from the stresses (not fitted): {note}; their errors are not propagated into "
-            "Delta's"
+            "Delta's; the spin scan's shared calibration is this same call (same data, same "
+            "angles) on the runs it scans"
         ),
         numbers,
     )
