@@ -126,13 +126,15 @@ def test_a_run_without_stresses_keeps_the_fits_of_one_profile(tmp_path):
     plane_run(tmp_path, "bare", "glued-grains", B=1.0, stresses=False)
     (run,) = read_corpus(tmp_path).runs
     fix = cosserat_fix(run, [run])
-    assert fix.phi is None and fix.reason == "the run does not carry its band's stresses"
+    assert fix.phi is None and fix.reason == (
+        "the run carries neither its moving wall's stress ratio nor its band's stresses"
+    )
     (s,) = fit_run(run, ["cosserat"], 0, None, fix=fix).summaries
     (plain,) = fit_run(run, ["cosserat"], 0, None).summaries
     assert s.fixed == {} and s.pinned == plain.pinned and s.pinned["phi"] == 28.5
     assert set(s.parameters) == set(plain.parameters) == {"delta", "K", "roughness"}
     assert s.chi2 == pytest.approx(plain.chi2, rel=1e-9)
-    assert any(w.startswith("phi and delta not fixed from the stresses: the run does not carry")
+    assert any(w.startswith("phi and delta not fixed from the stresses: the run carries neither")
                for w in s.warnings)  # fmt: skip
 
 

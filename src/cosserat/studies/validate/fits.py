@@ -26,12 +26,12 @@ as validate fitted before it took the correlation into account). The warnings:
   run that carries its stresses, the Cosserat fit does not search phi or the moving wall's
   delta, which the stresses measure, but fixes them as the spin scan does
   (:func:`~cosserat.studies.validate.spin_scan.angles`): the model's shear stress over the
-  moving wall's normal stress is uniform, ``T`` (eqn-nd_xmom), and equals ``sin phi`` at a fully
-  rough wall (eqn-nd_bc2, eqn-bc_fullyrough), so sin phi is ``T`` of the material's runs whose
-  two walls are fully rough (their band bins through ``T / sigma_yy(s)``, not the band's mean
-  ratio, which gravity lowers below sin phi: by 10-22 per cent on the v2 runs at B = 1); a wall
-  that slips has ``tan delta`` = its measured ratio ``|wall shear|/normal`` (the sidecar's
-  ``wall_stress``), a fully rough one ``tan delta = sin phi``. K and the material length L,
+  moving wall's normal stress is uniform, ``T = |sigma_yx|/N`` (eqn-nd_xmom), and equals
+  ``sin phi`` at a fully rough wall (eqn-nd_bc2, eqn-bc_fullyrough), so sin phi is ``T`` of the
+  material's runs whose two walls are fully rough, pooled, and a smoother wall's ``tan delta``
+  its wall kind's ``T``, pooled (:mod:`~cosserat.studies.validate.stresses`: ``T`` measured by
+  the moving wall's contact ratio, the band's ``T`` the cross-check; a consistency test and the
+  PDG scale factor); a fully rough wall has ``tan delta = sin phi``. K and the material length L,
   which the stresses do not give, are fitted (as in the spin scan's joint calibration). The
   band's stress ratio is not a fair estimate of mu(I)'s or NGF's mu_s, and they are not fixed
   from it: mu_s is the ratio where the flow stops (I -> 0), while the band (u >= BAND_U) spans
@@ -48,8 +48,9 @@ as validate fitted before it took the correlation into account). The warnings:
   ratio and more than :data:`STRESS_RELATIVE` of it (the model's ratio in the band is only
   about its yield value: the relative margin allows for that). Where the stresses fixed the
   Cosserat fit's angles, the comparison is of like with like: the model's ``T`` (the moving
-  wall's tan delta, sin phi when fully rough) against the run's ``T`` from its band bins
-  (:func:`~cosserat.studies.validate.spin_scan.shear_stress`).
+  wall's tan delta, sin phi when fully rough) against the run's own ``T`` measured as the fixed
+  one is, on its moving wall (``_shear_contradiction``; its band's ``T`` only where the run
+  gives no wall ratio).
 """
 
 from __future__ import annotations
@@ -173,20 +174,28 @@ class StressFix:
 def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
     """phi and the moving wall's delta of ``run``'s Cosserat fit from the stresses (module
     docstring): :func:`~cosserat.studies.validate.spin_scan.angles` with ``runs``, the corpus
-    (phi from its material's fully rough runs); the run itself must carry its band's stresses.
-    Never raises: where the stresses fix nothing, the result's ``reason`` says why."""
-    from .measures import band_stress_ratio
+    (phi from its material's fully rough runs); the run itself must measure its T, on its
+    moving wall (the estimator) or in its band (the cross-check; NaN where it has no band
+    stress bins). Never raises: where the stresses fix nothing, the result's ``reason`` says
+    why."""
     from .spin_scan import angles
-    from .stresses import shear_stress, wall_ratio
+    from .stresses import ShearStress, shear_stress, wall_ratio
 
     if run.cell != "plane":
         return StressFix(
             reason=f"a {run.cell} run (the relations T = sin phi, tan delta are plane shear's)"
         )
-    if band_stress_ratio(run) is None:
-        return StressFix(reason="the run does not carry its band's stresses")
+    w, w_se = wall_ratio(run) or (math.nan, math.nan)
     try:
         t = shear_stress(run)
+    except CosseratError:
+        if not math.isfinite(w):
+            return StressFix(
+                reason="the run carries neither its moving wall's stress ratio nor its band's "
+                "stresses"
+            )
+        t = ShearStress(math.nan, math.nan, 0, math.nan)
+    try:
         a = angles(run, runs)
     except CosseratError as exc:
         return StressFix(reason=" ".join(str(exc).split()))
@@ -196,7 +205,6 @@ def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
     model_se = a.tan_delta_se.get("moving")
     if model_se is None:  # fully rough: sin phi's error
         model_se = math.radians(a.phi_se) * math.cos(math.radians(a.phi))
-    w, w_se = wall_ratio(run) or (math.nan, math.nan)
     return StressFix(a.phi, delta, sources, t.value, t.stderr, "", w, w_se, model_se)
 
 
