@@ -465,3 +465,33 @@ def test_the_outside_note_compares_departures_beyond_their_nulls(pair):
         "At rough some (K, L) of the declared ranges outside the 95% region gives the sign of "
         "the measured departure beyond the null."
     ) in ss.scan_verdict([bare]).evidence
+
+
+def test_the_shared_calibration_is_the_material_calibration_the_delta_curves_read(pair):
+    """Referee 10, point 6: one Cosserat calibration of a material. The spin scan's shared
+    calibration and the Delta verdicts' material calibration are one call on the same data
+    (spin_scan.material_data) with the same angles (stresses.material_angles): the same L,
+    chi^2 and dof to the last digit, phi and each wall kind's roughness fixed, not fitted."""
+    from cosserat.studies.validate.fits import calibrate_material
+    from cosserat.studies.validate.stresses import material_angles
+
+    rough, smooth = pair
+    scans, _ = ss.spin_scans([rough, smooth], [rough, smooth], points=2)
+    out = calibrate_material([smooth, rough], ["cosserat"], [("all", [rough, smooth], 0.05)],
+                             curve=False)  # fmt: skip
+    (cal,) = out["all"]
+    assert cal.status == "ok"
+    shared = scans[0].shared
+    assert shared["L"] == cal.summary["parameters"]["L"]["value"]
+    assert shared["chi2"] == cal.summary["chi2"] and shared["dof"] == cal.summary["dof"]
+    fix, _, _ = material_angles([rough, smooth])
+    assert cal.summary["fixed"] == fix and len(fix) == 3
+    (glued,) = [k for k in fix if k.startswith("roughness[glued-grains")]
+    (smooth_kind,) = [k for k in fix if k.startswith("roughness[smooth-frictional")]
+    assert fix[glued] == 1.0 and 0.0 < fix[smooth_kind] < 1.0
+    # the calibration holds out each run's first-layer omega and compares u, omega as bin means
+    for rd in ss.material_data([rough, smooth]):
+        run = rough if rd.name == "rough" else smooth
+        first = float(np.asarray(run.distance_d)[ss.first_bin(run)])
+        assert first not in rd.fields["omega"].s
+        assert rd.fields["u"].bins is not None and rd.fields["omega"].bins is not None
