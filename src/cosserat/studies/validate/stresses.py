@@ -30,7 +30,7 @@ rough) or of one wall kind (tan delta: the runs whose moving wall is of that kin
 combined as their inverse-variance weighted mean. Their consistency is tested by chi^2 of the
 values about that mean (n - 1 dof); where p < :data:`CONSISTENCY_P` the mean's error is
 scaled by ``S = sqrt(chi^2 / (n - 1))``, the Particle Data Group's scale factor (PDG, Review of
-Particle Physics, "Introduction: Procedures", section 5.2.2, "Unconstrained averaging"; the PDG
+Particle Physics, Introduction, "Procedures: averages and fits, unconstrained averaging"; the PDG
 scales whenever S > 1, this rule only when the values are inconsistent at 5%), and the value
 furthest from the mean in its own errors is named as the outlier.
 """
