@@ -13,7 +13,13 @@ import numpy as np
 import pytest
 
 from cosserat.analysis.corpus import read_corpus, write_run
-from cosserat.studies.validate.fits import FIT_ANGLES_FREE, cosserat_fix, fit_run
+from cosserat.studies.validate.fits import (
+    FIT_ANGLES_FREE,
+    StressFix,
+    _shear_contradiction,
+    cosserat_fix,
+    fit_run,
+)
 from cosserat.studies.validate.measures import band_stress_ratio
 
 GAP = 12.0
@@ -56,7 +62,8 @@ def test_a_fully_rough_run_fixes_sin_phi_at_the_wall_ratio_not_the_band_mean(tmp
     (s,) = fits.summaries
     assert s.ok
     assert s.fixed["phi"][0] == pytest.approx(math.degrees(math.asin(T0)), rel=1e-9)
-    assert "sin phi = 0.3 from the fully rough run(s) rough" in s.fixed["phi"][1]
+    # no wall stress in this run: the band's T is the estimator (stresses.pooled_T)
+    assert "sin phi = 0.3 +- 0.0014: the bands' T, pooled over rough" in s.fixed["phi"][1]
     assert s.fixed["delta"][0] == "fully-rough"
     assert set(s.parameters) == set(FIT_ANGLES_FREE)
     assert "phi" not in s.pinned and "delta" not in s.pinned
@@ -79,7 +86,11 @@ def test_a_smooth_run_takes_phi_from_the_material_and_delta_from_its_wall(tmp_pa
     fix = cosserat_fix(smooth, runs)
     assert fix.phi == pytest.approx(math.degrees(math.asin(T0)), rel=1e-9)
     assert fix.delta == pytest.approx(math.degrees(math.atan(0.29)), rel=1e-9)
-    assert "the moving wall's measured ratio 0.29" in fix.sources["delta"]
+    assert fix.sources["delta"].startswith(
+        "tan delta = 0.29 +- 0.005: the moving walls' T = |sigma_yx|/N from their contacts, "
+        "pooled over smooth (one run, no consistency test); cross-check, the bands' T: 0.3 +- "
+    )
+    assert fix.wall == pytest.approx(0.29, rel=1e-9) and fix.T == pytest.approx(T0, rel=1e-9)
     # the model's T (tan delta = 0.29) against the band's (0.3): within 10 per cent
     fits = fit_run(smooth, ["cosserat"], 0, band_stress_ratio(smooth), fix=fix)
     (s,) = fits.summaries
@@ -88,32 +99,42 @@ def test_a_smooth_run_takes_phi_from_the_material_and_delta_from_its_wall(tmp_pa
     assert fits.ranking.fits[0].problem.values()["delta"] == pytest.approx(fix.delta, rel=1e-9)
 
 
-def test_a_wall_ratio_far_from_the_band_is_a_contradiction(tmp_path):
-    """The fixed model's T = tan delta = 0.2 against the band's T = 0.3 +- 0.0017."""
-    plane_run(tmp_path, "rough", "glued-grains", B=0.0)
-    plane_run(tmp_path, "smooth", "smooth-frictional", B=0.0, wall_ratio=0.2)
-    runs = read_corpus(tmp_path).runs
-    smooth = next(r for r in runs if r.name == "smooth")
-    fix = cosserat_fix(smooth, runs)
-    (s,) = fit_run(smooth, ["cosserat"], 0, band_stress_ratio(smooth), fix=fix).summaries
-    assert s.contradiction.startswith(
-        "contradicts the measured stress: the fixed angles give T = tan delta = 0.2 (the shear "
-        "stress over the moving wall's normal stress), but the run's band gives T = 0.3 +- "
+def test_the_contradiction_compares_the_fixed_T_with_the_runs_wall_not_its_band():
+    """Like with like (referee 10, point 2): the fixed T (sin phi = 0.3 +- 0.003) against the
+    run's moving-wall ratio 0.2 +- 0.005: 0.1 / hypot(0.005, 0.003) = 17.1 errors; the band's
+    T (the cross-check) does not enter, and a wall that agrees is no contradiction whatever
+    the band says."""
+    phi = math.degrees(math.asin(0.3))
+    fix = StressFix(phi, "fully-rough", {}, T=0.3, T_se=0.001, wall=0.2, wall_se=0.005,
+                    model_se=0.003)  # fmt: skip
+    assert _shear_contradiction(fix) == (
+        "contradicts the measured stress: the fixed angles give T = tan delta = 0.3 +- 0.003 "
+        "(the shear stress over the moving wall's normal stress), but the run's moving wall's "
+        "contacts give T = 0.2 +- 0.005, 17.1 errors away"
     )
-    assert "its T = tan delta = 0.2 contradicts the measured band stress ratio" in s.unfit_reason
+    agrees = StressFix(phi, "fully-rough", {}, T=0.2, T_se=0.001, wall=0.29, wall_se=0.005,
+                       model_se=0.003)  # fmt: skip
+    assert _shear_contradiction(agrees) == ""
+    # without the wall's ratio the band's T is compared: 0.1 / hypot(0.004, 0.003) = 20
+    band = StressFix(phi, "fully-rough", {}, T=0.2, T_se=0.004, model_se=0.003)
+    assert _shear_contradiction(band).endswith(
+        "the run's band gives T = 0.2 +- 0.004, 20.0 errors away"
+    )
 
 
 def test_a_run_without_stresses_keeps_the_fits_of_one_profile(tmp_path):
     plane_run(tmp_path, "bare", "glued-grains", B=1.0, stresses=False)
     (run,) = read_corpus(tmp_path).runs
     fix = cosserat_fix(run, [run])
-    assert fix.phi is None and fix.reason == "the run does not carry its band's stresses"
+    assert fix.phi is None and fix.reason == (
+        "the run carries neither its moving wall's stress ratio nor its band's stresses"
+    )
     (s,) = fit_run(run, ["cosserat"], 0, None, fix=fix).summaries
     (plain,) = fit_run(run, ["cosserat"], 0, None).summaries
     assert s.fixed == {} and s.pinned == plain.pinned and s.pinned["phi"] == 28.5
     assert set(s.parameters) == set(plain.parameters) == {"delta", "K", "roughness"}
     assert s.chi2 == pytest.approx(plain.chi2, rel=1e-9)
-    assert any(w.startswith("phi and delta not fixed from the stresses: the run does not carry")
+    assert any(w.startswith("phi and delta not fixed from the stresses: the run carries neither")
                for w in s.warnings)  # fmt: skip
 
 

@@ -26,12 +26,12 @@ as validate fitted before it took the correlation into account). The warnings:
   run that carries its stresses, the Cosserat fit does not search phi or the moving wall's
   delta, which the stresses measure, but fixes them as the spin scan does
   (:func:`~cosserat.studies.validate.spin_scan.angles`): the model's shear stress over the
-  moving wall's normal stress is uniform, ``T`` (eqn-nd_xmom), and equals ``sin phi`` at a fully
-  rough wall (eqn-nd_bc2, eqn-bc_fullyrough), so sin phi is ``T`` of the material's runs whose
-  two walls are fully rough (their band bins through ``T / sigma_yy(s)``, not the band's mean
-  ratio, which gravity lowers below sin phi: by 10-22 per cent on the v2 runs at B = 1); a wall
-  that slips has ``tan delta`` = its measured ratio ``|wall shear|/normal`` (the sidecar's
-  ``wall_stress``), a fully rough one ``tan delta = sin phi``. K and the material length L,
+  moving wall's normal stress is uniform, ``T = |sigma_yx|/N`` (eqn-nd_xmom), and equals
+  ``sin phi`` at a fully rough wall (eqn-nd_bc2, eqn-bc_fullyrough), so sin phi is ``T`` of the
+  material's runs whose two walls are fully rough, pooled, and a smoother wall's ``tan delta``
+  its wall kind's ``T``, pooled (:mod:`~cosserat.studies.validate.stresses`: ``T`` measured by
+  the moving wall's contact ratio, the band's ``T`` the cross-check; a consistency test and the
+  PDG scale factor); a fully rough wall has ``tan delta = sin phi``. K and the material length L,
   which the stresses do not give, are fitted (as in the spin scan's joint calibration). The
   band's stress ratio is not a fair estimate of mu(I)'s or NGF's mu_s, and they are not fixed
   from it: mu_s is the ratio where the flow stops (I -> 0), while the band (u >= BAND_U) spans
@@ -48,8 +48,9 @@ as validate fitted before it took the correlation into account). The warnings:
   ratio and more than :data:`STRESS_RELATIVE` of it (the model's ratio in the band is only
   about its yield value: the relative margin allows for that). Where the stresses fixed the
   Cosserat fit's angles, the comparison is of like with like: the model's ``T`` (the moving
-  wall's tan delta, sin phi when fully rough) against the run's ``T`` from its band bins
-  (:func:`~cosserat.studies.validate.spin_scan.shear_stress`).
+  wall's tan delta, sin phi when fully rough) against the run's own ``T`` measured as the fixed
+  one is, on its moving wall (``_shear_contradiction``; its band's ``T`` only where the run
+  gives no wall ratio).
 """
 
 from __future__ import annotations
@@ -112,10 +113,17 @@ class StressFix:
     sources : mapping of str to str
         Where phi and delta come from.
     T, T_se : float
-        The run's shear stress over the moving wall's normal stress from its band bins [-]
-        (:func:`~cosserat.studies.validate.spin_scan.shear_stress`), and its error [-].
+        The run's T = |sigma_yx| / N from its band bins (the cross-check,
+        :func:`~cosserat.studies.validate.stresses.shear_stress`) and its error [-].
     reason : str
         Why nothing is fixed ("" when phi is).
+    wall, wall_se : float
+        The run's T measured on its moving wall (its contacts' |shear|/normal, the estimator,
+        :func:`~cosserat.studies.validate.stresses.wall_ratio`) and its error [-]; NaN where
+        the run does not give it.
+    model_se : float
+        The error of the fixed model's T (:attr:`tan_delta`): the pooled sin phi's or the wall
+        kind's pooled tan delta's [-].
     """
 
     phi: float | None = None
@@ -124,6 +132,9 @@ class StressFix:
     T: float = math.nan
     T_se: float = math.nan
     reason: str = ""
+    wall: float = math.nan
+    wall_se: float = math.nan
+    model_se: float = 0.0
 
     @property
     def tan_delta(self) -> float:
@@ -148,35 +159,53 @@ class StressFix:
             if self.delta == "fully-rough"
             else f"delta = {float(self.delta):.4g} deg"
         )
+        own = []
+        if math.isfinite(self.wall):
+            own.append(f"{self.wall:.3g} +- {self.wall_se:.2g} on its moving wall")
+        if math.isfinite(self.T):
+            own.append(f"{self.T:.3g} +- {self.T_se:.2g} from its band (the cross-check)")
+        mine = f"; this run's T = |sigma_yx|/N: {', '.join(own)}" if own else ""
         return (
             f"fixed from the run's stresses (not fitted): phi = {self.phi:.4g} deg "
-            f"({self.sources.get('phi', '')}); {delta} ({self.sources.get('delta', '')})"
+            f"({self.sources.get('phi', '')}); {delta} ({self.sources.get('delta', '')})" + mine
         )
 
 
 def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
     """phi and the moving wall's delta of ``run``'s Cosserat fit from the stresses (module
     docstring): :func:`~cosserat.studies.validate.spin_scan.angles` with ``runs``, the corpus
-    (phi from its material's fully rough runs); the run itself must carry its band's stresses.
-    Never raises: where the stresses fix nothing, the result's ``reason`` says why."""
-    from .measures import band_stress_ratio
-    from .spin_scan import angles, shear_stress
+    (phi from its material's fully rough runs); the run itself must measure its T, on its
+    moving wall (the estimator) or in its band (the cross-check; NaN where it has no band
+    stress bins). Never raises: where the stresses fix nothing, the result's ``reason`` says
+    why."""
+    from .spin_scan import angles
+    from .stresses import ShearStress, shear_stress, wall_ratio
 
     if run.cell != "plane":
         return StressFix(
             reason=f"a {run.cell} run (the relations T = sin phi, tan delta are plane shear's)"
         )
-    if band_stress_ratio(run) is None:
-        return StressFix(reason="the run does not carry its band's stresses")
+    w, w_se = wall_ratio(run) or (math.nan, math.nan)
     try:
         t = shear_stress(run)
+    except CosseratError:
+        if not math.isfinite(w):
+            return StressFix(
+                reason="the run carries neither its moving wall's stress ratio nor its band's "
+                "stresses"
+            )
+        t = ShearStress(math.nan, math.nan, 0, math.nan)
+    try:
         a = angles(run, runs)
     except CosseratError as exc:
         return StressFix(reason=" ".join(str(exc).split()))
     moving = a.roughness["moving"]
     delta: float | str = "fully-rough" if moving >= 1.0 else a.delta("moving")
     sources = {"phi": a.phi_source, "delta": a.delta_source["moving"]}
-    return StressFix(a.phi, delta, sources, t.value, t.stderr)
+    model_se = a.tan_delta_se.get("moving")
+    if model_se is None:  # fully rough: sin phi's error
+        model_se = math.radians(a.phi_se) * math.cos(math.radians(a.phi))
+    return StressFix(a.phi, delta, sources, t.value, t.stderr, "", w, w_se, model_se)
 
 
 @dataclass
@@ -247,7 +276,8 @@ class FitSummary:
         if self.contradiction:
             what = self.band_ratio[0] if self.band_ratio else "its stress ratio"
             ratio = f" = {self.band_ratio[1]:.3g}" if self.band_ratio else ""
-            why.append(f"its {what}{ratio} contradicts the measured band stress ratio")
+            where = "T" if what == "T = tan delta" else "band stress ratio"
+            why.append(f"its {what}{ratio} contradicts the measured {where}")
         if self.at_bound:
             why.append(
                 "wall parameter at a bound ("
@@ -605,16 +635,23 @@ def _stress_contradiction(
 
 
 def _shear_contradiction(fix: StressFix) -> str:
-    """The fixed Cosserat model's T against the run's (module docstring): "" when they agree
-    within :data:`STRESS_SIGMAS` errors of the run's T or :data:`STRESS_RELATIVE` of it."""
+    """The fixed Cosserat model's T against the run's own, measured as the fixed T is (module
+    docstring): the run's moving-wall ratio where it gives one (the estimator the angles are
+    fixed from, :mod:`~cosserat.studies.validate.stresses`), else its band's T; "" when they
+    agree within :data:`STRESS_SIGMAS` errors (the run's and the fixed T's in quadrature) or
+    :data:`STRESS_RELATIVE` of the run's T."""
     model = fix.tan_delta
-    diff = abs(model - fix.T)
-    if diff <= STRESS_SIGMAS * fix.T_se or diff <= STRESS_RELATIVE * fix.T:
+    on_wall = math.isfinite(fix.wall)
+    t, t_se = (fix.wall, fix.wall_se) if on_wall else (fix.T, fix.T_se)
+    se = math.hypot(t_se, fix.model_se)
+    diff = abs(model - t)
+    if diff <= STRESS_SIGMAS * se or diff <= STRESS_RELATIVE * t:
         return ""
+    where = "moving wall's contacts give" if on_wall else "band gives"
     return (
         f"contradicts the measured stress: the fixed angles give T = tan delta = {model:.3g} "
-        f"(the shear stress over the moving wall's normal stress), but the run's band gives "
-        f"T = {fix.T:.3g} +- {fix.T_se:.2g}, {diff / fix.T_se:.1f} errors away"
+        f"+- {fix.model_se:.2g} (the shear stress over the moving wall's normal stress), but "
+        f"the run's {where} T = {t:.3g} +- {t_se:.2g}, {diff / se:.1f} errors away"
     )
 
 
@@ -743,28 +780,39 @@ def _rate(runs: Sequence[Any]) -> Callable[[float], float | None]:
 
 
 def material_fix(model: str, runs: Sequence[Run]) -> tuple[dict[str, float], str]:
-    """What the stresses fix in a material's joint calibration of ``model``, and a note: the
-    Cosserat model's phi on a plane material, sin phi = T of its runs with both walls fully
-    rough (:func:`~cosserat.studies.validate.spin_scan.material_phi`, the phi that the per-run
-    fits and the spin scan fix: one material, one phi); nothing otherwise, the note saying why
-    where the model is the Cosserat one. The walls' roughness stays fitted per wall kind (one
-    value for all the runs of a kind, where the runs' measured wall ratios differ)."""
-    from ...calibration.data import _material_label
-    from .spin_scan import material_phi
+    """What the stresses fix in a material's joint calibration of ``model``, and a note: for
+    the Cosserat model on a plane material, phi (sin phi = T of its runs with both walls fully
+    rough, pooled with a consistency test) and every wall kind's roughness (1 for the fully
+    rough kind, the pooled tan delta over sin phi for a smoother one):
+    :func:`~cosserat.studies.validate.stresses.material_angles`, the function the spin scan's
+    shared calibration fixes them with (one material, one phi, one delta per wall kind).
+    Nothing otherwise, the note saying why where the model is the Cosserat one."""
+    fix, note, _ = _material_fix(model, runs)
+    return fix, note
+
+
+def _material_fix(model: str, runs: Sequence[Run]) -> tuple[dict[str, float], str, dict[str, Any]]:
+    """:func:`material_fix` and the pooling's numbers (``results.json``)."""
+    from .stresses import material_angles
 
     if model != "cosserat":
-        return {}, ""
+        return {}, "", {}
     if runs[0].cell != "plane":
         return {}, (
             f"phi fitted: a {runs[0].cell} material (the relation sin phi = T is plane shear's)"
-        )
+        ), {}  # fmt: skip
     try:
-        phi, phi_se, source = material_phi(runs, _material_label(runs[0].meta))
+        fix, note, numbers = material_angles(runs)
     except CosseratError as exc:
-        return {}, "phi fitted: " + " ".join(str(exc).split())
-    return {"phi": phi}, (
-        f"phi = {phi:.4g} +- {phi_se:.2g} deg fixed from the stresses ({source}); its error is "
-        "not propagated into Delta's"
+        return {}, "phi fitted: " + " ".join(str(exc).split()), {}
+    return (
+        fix,
+        (
+            f"fixed from the stresses (not fitted): {note}; their errors are not propagated into "
+            "Delta's; the spin scan's shared calibration is this same call (same data, same "
+            "angles) on the runs it scans"
+        ),
+        numbers,
     )
 
 
@@ -814,12 +862,13 @@ def calibrate_material(
     CosseratError
         A run the calibration cannot take (:func:`cosserat.calibration.data.from_run`).
     """
-    from ...calibration.data import from_run, with_correlations
     from ...calibration.joint import calibrate_model
     from ...calibration.models import Model
     from ...calibration.models import models as make_models
+    from .spin_scan import material_data
 
-    data = with_correlations([from_run(r) for r in runs], None)
+    runs = sorted(runs, key=lambda r: r.name)  # the spin scan's shared calibration's order
+    data = material_data(runs)
     by_name = {rd.name: rd for rd in data}
     cell = runs[0].cell
     chosen = [m for m in make_models(None) if cell in m.cells()]
@@ -833,7 +882,7 @@ def calibrate_material(
     for m in chosen:
         keys = {p.key for p in m.parameters()}
         start = _series_start(m.name, keys, fits) if use_fits else None
-        fix, fix_note = material_fix(m.name, runs) if fix_phi else ({}, "")
+        fix, fix_note, fix_numbers = _material_fix(m.name, runs) if fix_phi else ({}, "", {})
         if start is not None:
             start = {k: v for k, v in start.items() if k not in fix}
         mc = calibrate_model(
@@ -876,6 +925,7 @@ def calibrate_material(
             "wall_kinds": {k: list(v) for k, v in kinds.items()},
             "fixed": dict(fix),
             "fixed_note": fix_note,
+            "stresses": fix_numbers,
         }
         for key, members, f in series:
             rds = [by_name[r.name] for r in members]

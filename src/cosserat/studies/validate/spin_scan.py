@@ -6,19 +6,14 @@ departure they predict tests those fits, not the model (referee 5, V3 and reques
 module asks the model itself, for one run at a time (``docs/validation.md``, "The model's
 first-layer spin: a scan"):
 
-1. **The angles from the stresses** (:func:`shear_stress`, :func:`angles`). In plane shear the
-   model's shear stress is uniform (eqn-nd_xmom) and its normal stress grows linearly away from
-   the upper plate (eqn-nd_ymom, eqn-nd_bc1), so at a distance s [d] from the moving wall the
-   stress ratio is ``|sigma_yx|/sigma_yy = T / sigma_yy(s)``, ``sigma_yy(s) = 1 + B nu eps s``
-   (upper plate moving; ``1 + B nu (1 - eps s)`` for the lower one). ``T`` is set by the wall
-   where friction is fully mobilised (eqn-nd_bc2): ``T = tan delta`` of that wall, times its
-   sigma_yy; a fully rough wall has ``tan delta = sin phi`` (eqn-bc_fullyrough). So a run whose
-   two walls are fully rough gives ``sin phi = T`` (``T`` fitted to the band's stress-ratio bins
-   through that relation, not their mean: the band's mean ratio is below sin phi under
-   gravity); a run with a smoother wall gives only that wall's ``tan delta`` and takes phi from
-   the fully rough runs of the same material. The smoother wall's delta is fixed from its
-   measured wall stress ratio (``tan delta`` = the moving wall's contact ratio) where the run
-   gives it, else from ``T``.
+1. **The angles from the stresses** (:mod:`.stresses`, :func:`angles`). In plane shear the
+   model's shear stress is uniform (eqn-nd_xmom): ``T = |sigma_yx| / N``, the shear over the
+   normal stress on the moving wall, which is ``tan delta`` of the wall where friction is fully
+   mobilised (eqn-nd_bc2), ``sin phi`` at a fully rough one (eqn-bc_fullyrough). sin phi is
+   the fully rough runs' T pooled (:func:`~.stresses.material_sin_phi`: the moving walls'
+   measured ratios, with a consistency test and the PDG scale factor; the band's T as the
+   cross-check), a smoother wall's tan delta its wall kind's T pooled the same way
+   (:func:`~.stresses.wall_tan_delta`), one value per wall kind.
 2. **The joint calibration** (:func:`joint_fit`): ``cosserat calibrate``'s engine
    (:func:`cosserat.calibration.joint.calibrate_model`) on the run's u, omega and stress ratio
    with phi and every wall's roughness fixed as above; K (per wall kind) and L free; u and
@@ -74,6 +69,14 @@ from ...analysis.corpus import Run
 from ...errors import InputError, ParameterError
 from ...model.constitutive import FloatArray
 from .measures import INDEPENDENT, departure_se, omega_half_correlation
+from .stresses import (
+    ShearStress,
+    material_phi,
+    normal_stress,
+    shear_stress,
+    wall_ratio,
+    wall_tan_delta,
+)
 
 Predictor = Callable[[Any, Run], FloatArray]
 """``predictor(profile, run)``: a solved model profile's omega - half vorticity at every bin of
@@ -91,70 +94,6 @@ SIZE_SIGMAS = 2.0
 
 
 # --------------------------------------------------------------------------- the angles
-@dataclass(frozen=True)
-class ShearStress:
-    """The uniform shear stress over the upper plate's normal stress, T = |sigma_yx| / N [-],
-    fitted to a run's band stress-ratio bins, with its error and the fit's chi^2."""
-
-    value: float
-    stderr: float
-    bins: int
-    chi2: float
-
-
-def normal_stress(run: Run, s: FloatArray) -> FloatArray:
-    """The model's sigma_yy / N at distances ``s`` [d] from the moving wall (eqn-nd_ymom,
-    eqn-nd_bc1; the model takes B nu uniform) [-]."""
-    p = run.cell_parameters()
-    bnu = float(p.get("B", 0.0)) * float(p.get("nu", 1.0))
-    eps = float(p["eps"])
-    s = np.asarray(s, dtype=float)
-    if run.moving_wall == "lower":
-        return 1.0 + bnu * (1.0 - eps * s)
-    return 1.0 + bnu * eps * s
-
-
-def shear_stress(run: Run) -> ShearStress:
-    """T of the run's band (module docstring, item 1): the weighted least-squares T of
-    ``ratio_i = T / sigma_yy(s_i)`` over the band's stress-ratio bins (those of
-    :func:`cosserat.calibration.data.from_run`); its error scaled up by sqrt(chi^2/dof) where
-    the bins scatter more than their errors.
-
-    Raises
-    ------
-    InputError
-        Not a plane-shear run, or fewer than two usable stress-ratio bins.
-    """
-    from ...calibration.data import from_run
-
-    if run.cell != "plane":
-        raise InputError(
-            f"run {run.name}: the spin scan takes plane shear only (a {run.cell} cell's stress "
-            "ratio is not T / sigma_yy)"
-        )
-    f = from_run(run).fields.get("stress_ratio")
-    if f is None or f.n < 2:
-        raise InputError(
-            f"run {run.name}: fewer than two band bins with sigma_yx and sigma_yy, so the "
-            "stress ratio cannot fix phi or delta"
-        )
-    g = 1.0 / normal_stress(run, f.s)
-    w = 1.0 / f.se**2
-    t = float(np.sum(w * g * f.value) / np.sum(w * g * g))
-    chi2 = float(np.sum(w * (f.value - t * g) ** 2))
-    se = 1.0 / math.sqrt(float(np.sum(w * g * g)))
-    if f.n > 1:
-        se *= max(1.0, math.sqrt(chi2 / (f.n - 1)))
-    return ShearStress(t, se, f.n, chi2)
-
-
-def fully_rough(run: Run) -> bool:
-    """Both walls of the run are fully rough (the corpus' wall roughness)."""
-    from .grouping import walls_differ
-
-    return run.roughness == "fully-rough" and not walls_differ(run)
-
-
 @dataclass(frozen=True)
 class Angles:
     """phi and each wall's roughness tan(delta)/sin(phi) for one run's scan.
@@ -211,58 +150,6 @@ class Angles:
         return f"phi = {self.phi:.3g} +- {self.phi_se:.2g} deg ({self.phi_source}); {walls}"
 
 
-def material_phi(runs: Sequence[Run], material: str) -> tuple[float, float, str]:
-    """phi of a material [deg], its error [deg] and its source: sin phi = T of its runs with
-    both walls fully rough (eqn-nd_bc2 with eqn-bc_fullyrough), their weighted mean.
-
-    Raises
-    ------
-    InputError
-        No run of the material has both walls fully rough and a band stress ratio.
-    """
-    from ...calibration.data import _material_label
-
-    vals, names = [], []
-    for r in runs:
-        if r.cell != "plane" or not fully_rough(r) or _material_label(r.meta) != material:
-            continue
-        try:
-            t = shear_stress(r)
-        except InputError:
-            continue
-        vals.append(t)
-        names.append(r.name)
-    if not vals:
-        raise InputError(
-            f"material {material}: no plane run with both walls fully rough and a band stress "
-            "ratio, so phi (sin phi = |sigma_yx|/sigma_yy at a fully rough wall) is not measured"
-        )
-    w = np.array([1.0 / v.stderr**2 for v in vals])
-    sin_phi = float(np.sum(w * [v.value for v in vals]) / np.sum(w))
-    se = 1.0 / math.sqrt(float(np.sum(w)))
-    if not 0.0 < sin_phi < 1.0:
-        raise InputError(f"material {material}: sin phi = {sin_phi:.3g} from the stresses")
-    phi = math.degrees(math.asin(sin_phi))
-    phi_se = math.degrees(se / math.sqrt(1.0 - sin_phi**2))
-    what = ", ".join(
-        f"{n}: T = {v.value:.3g} +- {v.stderr:.2g}" for n, v in zip(names, vals, strict=True)
-    )
-    return phi, phi_se, f"sin phi = {sin_phi:.3g} from the fully rough run(s) {what}"
-
-
-def _wall_ratio(run: Run) -> tuple[float, str, float] | None:
-    from ...calibration.data import from_run
-
-    f = from_run(run).fields.get("wall_ratio")
-    if f is None:
-        return None
-    return (
-        float(f.value[0]),
-        f"tan delta = the moving wall's measured ratio {f.value[0]:.3g}",
-        float(f.se[0]),
-    )
-
-
 def angles(run: Run, runs: Sequence[Run]) -> Angles:
     """phi and the walls' roughness of ``run`` (module docstring, item 1); ``runs``: the corpus,
     for phi from the fully rough runs of the run's material.
@@ -285,22 +172,27 @@ def angles(run: Run, runs: Sequence[Run]) -> Angles:
     tan_se: dict[str, float] = {}
     if rough_moving:
         roughness["moving"], sources["moving"] = 1.0, "fully rough, eqn-bc_fullyrough"
-    else:
-        got = _wall_ratio(run)
-        if got is None:
-            t = shear_stress(run)
-            got = (t.value, f"tan delta = T = {t.value:.3g} from the band (eqn-nd_bc2)", t.stderr)
-        roughness["moving"], sources["moving"] = got[0] / sin_phi, got[1]
-        tan_se["moving"] = got[2]
+    else:  # the wall kind's T pooled over its runs (stresses.wall_tan_delta)
+        pooled = wall_tan_delta(runs, run)
+        if pooled is None:
+            raise InputError(
+                f"run {run.name}: neither its moving wall's ratio nor its band's stresses give "
+                "the wall's tan delta"
+            )
+        roughness["moving"] = pooled.pooled.value / sin_phi
+        sources["moving"] = pooled.short()
+        tan_se["moving"] = pooled.pooled.stderr
     if differ:
         if rough_moving:  # the smoother fixed wall slips: T = tan delta_L sigma_yy there
-            t = shear_stress(run)
+            ratio = wall_ratio(run)
+            t = shear_stress(run) if ratio is None else ShearStress(ratio[0], ratio[1], 1, 0.0)
+            where = "the band" if ratio is None else "the moving wall's contacts"
             at = float(normal_stress(run, np.array([run.gap_d]))[0])
             roughness["fixed"] = t.value / at / sin_phi
             tan_se["fixed"] = t.stderr / at
             sources["fixed"] = (
-                f"tan delta = T / sigma_yy = {t.value / at:.3g} from the band (eqn-nd_bc2 at the "
-                "fixed wall)"
+                f"tan delta = T / sigma_yy = {t.value / at:.3g}, T from {where} (eqn-nd_bc2 at "
+                "the fixed wall)"
             )
         else:
             roughness["fixed"], sources["fixed"] = 1.0, "fully rough, eqn-bc_fullyrough"
@@ -511,6 +403,29 @@ def joint_fit(
     if not mc.ok:
         raise ParameterError(f"run {run.name}: the joint calibration failed: {mc.message}")
     return JointFit(run.name, ang, mc, held_out)
+
+
+def material_data(runs: Sequence[Run]) -> list[Any]:
+    """The calibration data of a material's ``runs`` as its one Cosserat calibration takes
+    them, in the Delta calibration (``fits.calibrate_material``) and here
+    (:func:`shared_fits`) alike: every field of :func:`cosserat.calibration.data.from_run`, one
+    bin correlation per field pooled over the runs where their metadata do not give it (as
+    ``cosserat calibrate`` does), u and omega as bin means (:func:`bin_means`), and each run's
+    first-layer omega held out (:func:`first_bin`; the first layer is then a prediction, as
+    in the single-run joint fit)."""
+    from ...calibration.data import from_run, with_correlations
+
+    out = []
+    for run, rd in zip(runs, with_correlations([from_run(r) for r in runs], None), strict=True):
+        if "omega" in rd.fields and run.has("half_vorticity"):
+            try:
+                s0 = float(np.asarray(run.distance_d)[first_bin(run)])
+            except InputError:
+                s0 = None
+            if s0 is not None:
+                rd, _ = _without_first_layer(rd, s0)
+        out.append(bin_means(rd, run))
+    return out
 
 
 def bin_means(rd: Any, run: Run) -> Any:
@@ -2764,7 +2679,9 @@ def _material_text(scans: Sequence[Scan]) -> str:
         elif sh:
             p = sh["p"]
             out += (
-                f"; that calibration (first layers held out): L = {sh['L']:.3g} d, chi^2 = "
+                "; that calibration (the material's one Cosserat calibration, which the Delta "
+                "curves read too: first layers held out, phi and each wall kind's delta fixed "
+                f"from the walls' stresses): L = {sh['L']:.3g} d, chi^2 = "
                 f"{sh['chi2']:.4g} for {sh['dof']} dof (p = {'-' if p is None else f'{p:.2g}'}"
                 + (", WARNING: p < 0.001" if p is not None and p < 1e-3 else "")
                 + "); "
@@ -2856,13 +2773,17 @@ def scan_or_skip(
 def shared_fits(
     scans: Sequence[Scan], runs: Sequence[Run], predictor: Predictor | str = DEFAULT_PREDICTOR
 ) -> None:
-    """One joint calibration per material over its scanned runs (referee 7, point 7): phi and
-    every wall's roughness fixed as in each run's scan, L shared, K per wall kind, each run's
-    first-layer omega held out; sets each scan's ``Scan.shared`` (its prediction beyond
-    its null there)."""
-    from ...calibration.data import from_run, with_correlations
+    """One joint calibration per material over its scanned runs (referee 7, point 7), the
+    material's one Cosserat calibration: the data of :func:`material_data` (every field, u
+    and omega as bin means, each run's first-layer omega held out), phi and every wall kind's
+    roughness fixed by :func:`~.stresses.material_angles` (one value per wall kind, pooled over
+    its runs), L shared, K per wall kind. It is the call the Delta calibration makes
+    (``fits.calibrate_material``), so on the same runs it gives the same L and K. Sets each
+    scan's ``Scan.shared`` (its prediction beyond its null there)."""
     from ...calibration.joint import calibrate_model
     from ...calibration.models import SOLVE_ERRORS, Model
+    from ...errors import CosseratError
+    from .stresses import material_angles
 
     by_name = {r.name: r for r in runs}
     groups: dict[str, list[Scan]] = {}
@@ -2871,17 +2792,17 @@ def shared_fits(
     for group in groups.values():
         if len(group) < 2 or any(sc.run not in by_name for sc in group):
             continue
-        rds, fix = [], {"phi": group[0].fit.angles.phi}
-        for sc in group:
-            run = by_name[sc.run]
-            (rd,) = with_correlations([from_run(run)], None)
-            rd, _ = _without_first_layer(rd, sc.distance_d)
-            rd = bin_means(rd, run)
-            rds.append(rd)
-            for wall, r in sc.fit.angles.roughness.items():
-                fix[f"roughness[{rd.walls[wall]}]"] = r
+        group = sorted(group, key=lambda sc: sc.run)  # the Delta calibration's order
         names = [sc.run for sc in group]
-        mc = calibrate_model(Model("cosserat"), rds, ("u", "omega", "stress_ratio"), fix=fix)
+        members = [by_name[n] for n in names]
+        rds = material_data(members)
+        try:
+            fix, _, _ = material_angles(members)
+        except CosseratError as exc:
+            for sc in group:
+                sc.shared = {"runs": names, "failed": " ".join(str(exc).split())}
+            continue
+        mc = calibrate_model(Model("cosserat"), rds, None, fix=fix)
         if not mc.ok:
             for sc in group:
                 sc.shared = {"runs": names, "failed": " ".join(mc.message.split())}
@@ -2929,7 +2850,6 @@ __all__ = [
     "JointFit",
     "Predictor",
     "Scan",
-    "ShearStress",
     "angle_errors",
     "angles",
     "below_optimum",
@@ -2941,9 +2861,8 @@ __all__ = [
     "first_bin",
     "joint_fit",
     "lead_text",
-    "material_phi",
+    "material_data",
     "misfit_reading",
-    "normal_stress",
     "null_sign_rules",
     "point_departure",
     "prediction_se_at",
@@ -2959,7 +2878,6 @@ __all__ = [
     "scan_run",
     "scan_verdict",
     "shared_fits",
-    "shear_stress",
     "size_holds",
     "size_p",
     "size_se",
