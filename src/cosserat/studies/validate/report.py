@@ -415,8 +415,10 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
 
     files: dict[str, str] = {}
     for r in report.results:
-        # drawn again where judge() added the joint fit after the worker drew the figure
-        if not (r.figure and (out / r.figure).is_file()) or r.joint is not None:
+        # drawn here where no worker drew it, or drew it before judge() added the joint fit
+        if not (r.figure and (out / r.figure).is_file()) or (
+            r.joint is not None and not r.figure_joint
+        ):
             r.figure = write_run_figure(r, out)
         files[r.run.name] = r.figure
     rows = spin_rows(report)

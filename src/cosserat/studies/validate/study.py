@@ -121,6 +121,9 @@ class RunResult:
     """The spin scan's joint u + omega + stress-ratio fit for the run's figure
     (``forward.figure_curves``; None where the run was not scanned): the velocity of both
     spin verdicts' null."""
+    figure_joint: bool = False
+    """True when :attr:`figure` was drawn with :attr:`joint` (by :func:`figure_job`), so the
+    report need not draw it again."""
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -294,6 +297,17 @@ def scan_job(run: Run, corpus: Sequence[Run], points: int) -> ScanOutcome:
         return ScanOutcome(run.name, skipped=got or "")
     check_scans([got], corpus)
     return ScanOutcome(run.name, got, null=joint_null(got, run))
+
+
+def figure_job(result: RunResult, scan: Scan | None, out: Path) -> tuple[str, Any]:
+    """Draw a run's figure once its scan is made (in a worker process): the scan's joint fit
+    (``_joint_curves``, None without a scan) set on ``result`` and drawn with the run's own
+    fits; returns (the figure's file name, the joint fit's curves)."""
+    from .report import write_run_figure
+
+    if scan is not None:
+        _joint_curves([result], [scan])
+    return write_run_figure(result, out), result.joint
 
 
 def shared_job(scans: Sequence[Scan], scanned_runs: Sequence[Run]) -> dict[str, dict[str, Any]]:
@@ -619,12 +633,20 @@ def _analyse_all(
     left to :func:`judge` (None)."""
     workers = 1 if workers is None else min(workers, len(runs) + len(jobs))
     cals: dict[str, list[SeriesCalibration]] = {}
+    # a run that is scanned is drawn once its scan is in (with the joint fit): not by
+    # analyse_run, but by a figure job (with workers) or by the report (in one process)
+    to_scan = list(scan_runs) if points > 0 else []
+    scanned_names = {r.name for r in to_scan}
+
+    def draw_to(run: Run) -> Path | None:
+        return None if run.name in scanned_names else figures_to
+
     if workers <= 1:
         out = []
         for i, run in enumerate(runs):
             out.append(
                 analyse_run(
-                    run, models, f, near_wall_d, grid, figures_to, independent_bins,
+                    run, models, f, near_wall_d, grid, draw_to(run), independent_bins,
                     (fixes or {}).get(run.name),
                 )
             )  # fmt: skip
@@ -642,8 +664,10 @@ def _analyse_all(
     # shared spin fit goes first in the queue once its scans are in
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k].model != "mui", -len(jobs[k].runs)))
-    to_scan = list(scan_runs) if points > 0 else []
     everyone = list(runs)
+    run_of_scan = {j: next(i for i, r in enumerate(runs) if r.name == sc.name)
+                   for j, sc in enumerate(to_scan)}  # fmt: skip
+    scan_of_run = {i: j for j, i in run_of_scan.items()}
     queue: list[tuple[str, int, Callable[..., Any], tuple[Any, ...]]] = [
         *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model == "mui"),
         *(
@@ -654,7 +678,7 @@ def _analyse_all(
         *(
             (
                 "run", i, analyse_run,
-                (runs[i], models, f, near_wall_d, grid, figures_to, independent_bins,
+                (runs[i], models, f, near_wall_d, grid, draw_to(runs[i]), independent_bins,
                  (fixes or {}).get(runs[i].name)),
             )
             for i in order
@@ -664,6 +688,14 @@ def _analyse_all(
     got: dict[int, dict[str, SeriesCalibration]] = {}
     outcomes: dict[int, ScanOutcome] = {}
     shared: dict[str, dict[str, Any]] | None = None if to_scan else {}
+
+    def figure(i: int) -> None:
+        """Queue run i's figure, first, once its analysis and its scan are both in."""
+        j = scan_of_run.get(i)
+        if figures_to is None or j is None or i not in done or j not in outcomes:
+            return
+        queue.insert(0, ("figure", i, figure_job, (done[i], outcomes[j].scan, figures_to)))
+
     with worker_processes(workers) as pool:
         running: dict[Future[Any], tuple[str, int]] = {}
         while queue or running:
@@ -679,6 +711,7 @@ def _analyse_all(
                     done[i] = fut.result()
                     if progress:
                         progress("runs", len(done), len(runs))
+                    figure(i)
                 elif kind == "job":
                     got[i] = fut.result()
                 elif kind == "scan":
@@ -686,6 +719,10 @@ def _analyse_all(
                     if len(outcomes) == len(to_scan):
                         scans = [o.scan for _, o in sorted(outcomes.items()) if o.scan]
                         queue.insert(0, ("shared", 0, shared_job, (scans, to_scan)))
+                    figure(run_of_scan[i])
+                elif kind == "figure":
+                    done[i].figure, done[i].joint = fut.result()
+                    done[i].figure_joint = done[i].joint is not None
                 else:
                     shared = fut.result()
     for k in range(len(jobs)):  # in the jobs' order, whichever ended first
