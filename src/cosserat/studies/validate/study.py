@@ -122,7 +122,7 @@ class RunResult:
     (``forward.figure_curves``; None where the run was not scanned): the velocity of both
     spin verdicts' null."""
     figure_joint: bool = False
-    """True when :attr:`figure` was drawn with :attr:`joint` (by :func:`figure_job`), so the
+    """True when ``figure`` was drawn with ``joint`` (by :func:`figure_job`), so the
     report need not draw it again."""
 
     def to_dict(self) -> dict[str, Any]:
@@ -286,7 +286,7 @@ class Scanned:
     nulls: dict[str, Null]
     figure_of: bytes | None = None
     """The scans' ``to_dict`` (pickled) from which the spin scan's figure was drawn already,
-    in the pool, while the other jobs ran (:func:`_analyse_all`); the report draws it again
+    in the pool, while the other jobs ran (``_analyse_all``); the report draws it again
     only if the verdict's scans differ (``report.write_figures``). None: not drawn."""
 
 
@@ -771,7 +771,7 @@ def _analyse_all(
 
 
 def pool_size(workers: int | None, runs: Sequence[Run], jobs: Sequence[MaterialJob]) -> int:
-    """The worker processes :func:`_analyse_all` uses: ``workers`` (None: one), at most one
+    """The worker processes ``_analyse_all`` uses: ``workers`` (None: one), at most one
     per run or job; 1 means no pool."""
     return 1 if workers is None else min(workers, len(runs) + len(jobs))
 
