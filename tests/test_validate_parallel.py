@@ -95,3 +95,32 @@ def test_a_scanned_runs_figure_drawn_by_its_job_is_the_one_the_report_drew(pair,
     for key, value in before.joint.items():
         assert list(map(float, np.ravel(joint[key]))) == list(map(float, np.ravel(value)))
     assert (tmp_path / "job" / name).read_bytes() == (tmp_path / "parent" / name).read_bytes()
+
+
+def test_two_workers_write_the_report_one_process_writes(pair, tmp_path):
+    """validate with a pool (the runs, the scans, each scanned run's figure job, the spin
+    scan's figure drawn as soon as the scans are in, the claim figures drawn in the pool)
+    writes the files one process writes, byte for byte (results.json but for the fits'
+    seconds)."""
+    from cosserat.analysis.corpus import read_corpus
+    from cosserat.studies.validate import validate
+
+    corpus = read_corpus(pair[0].path.parent)
+    one, two = tmp_path / "one", tmp_path / "two"
+    validate(corpus, one, models=["cosserat"], workers=1, spin_scan=2)
+    validate(corpus, two, models=["cosserat"], workers=2, spin_scan=2)
+
+    def timeless(x):
+        if isinstance(x, dict):
+            return {k: timeless(v) for k, v in x.items() if k != "seconds"}
+        return [timeless(v) for v in x] if isinstance(x, list) else x
+
+    names = sorted(p.name for p in one.iterdir())
+    assert names == sorted(p.name for p in two.iterdir())
+    assert {"claim_spin_scan.png", "run_rough.png", "run_smooth.png"} <= set(names)
+    for name in names:
+        a, b = (one / name).read_bytes(), (two / name).read_bytes()
+        if name == "results.json":
+            assert timeless(json.loads(a)) == timeless(json.loads(b))
+        else:
+            assert a == b, name
