@@ -97,6 +97,7 @@ def test_a_scanned_runs_figure_drawn_by_its_job_is_the_one_the_report_drew(pair,
     assert (tmp_path / "job" / name).read_bytes() == (tmp_path / "parent" / name).read_bytes()
 
 
+@pytest.mark.slow
 def test_two_workers_write_the_report_one_process_writes(pair, tmp_path):
     """validate with a pool (the runs, the scans, each scanned run's figure job, the spin
     scan's figure drawn as soon as the scans are in, the claim figures drawn in the pool)
