@@ -670,10 +670,11 @@ def _analyse_all(
                 runs, models, f, near_wall_d, grid, progress, workers, figures_to, jobs,
                 independent_bins, fixes, scan_runs, points, own,
             )  # fmt: skip
-    # the longest first, so that the workers end together: mu(I)'s material calibrations (a
-    # quadrature per solve), then the spin scans (a joint fit, two grids and the refits of
-    # each), then the other calibrations, then the runs with the most bins; the material's
-    # shared spin fit goes first in the queue once its scans are in
+    # the spin scans first (a joint fit, two grids and the refits of each): the material's
+    # shared spin fit and then the spin scan's figure (the longest job, ~25 s of drawing)
+    # wait for all of them, and go first in the queue once they can; then the longest
+    # first, so that the workers end together: mu(I)'s material calibrations, the other
+    # calibrations, the runs with the most bins
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k].model != "mui", -len(jobs[k].runs)))
     everyone = list(runs)
@@ -681,11 +682,11 @@ def _analyse_all(
                    for j, sc in enumerate(to_scan)}  # fmt: skip
     scan_of_run = {i: j for j, i in run_of_scan.items()}
     queue: list[tuple[str, int, Callable[..., Any], tuple[Any, ...]]] = [
-        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model == "mui"),
         *(
             ("scan", i, scan_job, (to_scan[i], everyone, points))
             for i in sorted(range(len(to_scan)), key=lambda i: -to_scan[i].measured().n)
         ),
+        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model == "mui"),
         *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model != "mui"),
         *(
             (
