@@ -316,3 +316,42 @@ def test_profiles_pickle_with_their_evaluator(method):
         np.testing.assert_array_equal(back.evaluate(x).u, p.evaluate(x).u)
         assert shear_layer_thickness(back) == shear_layer_thickness(p)
         np.testing.assert_array_equal(plug_mask(back), plug_mask(p))
+
+
+def test_compiled_plane_quadrature_is_quad_vec_to_the_last_bit():
+    """The plane cell's velocity quadrature is compiled (``numerics.mui.plane_pieces``): the
+    same algorithm as SciPy's ``quad_vec``, so the integrals are equal bit for bit, over
+    stress levels from near mu_2 to near mu_s, gravity from weak to strong, plugs and
+    tolerances."""
+    from scipy.integrate import quad_vec
+
+    from cosserat.model.rheologies.base import equations_of
+    from cosserat.model.rheologies.mui import MuIFlow
+    from cosserat.routes import mui as route
+
+    rng = np.random.default_rng(18)
+    for trial in range(120):
+        law = MuI(mu_s=rng.uniform(0.1, 0.55), I_0=10 ** rng.uniform(-2, 0))
+        eq = equations_of(Problem(Plane(eps=0.025, B=10 ** rng.uniform(-3, 1.5), I_w=0.01), law),
+                          MuIFlow)  # fmt: skip
+        gap = (law.mu_2 - law.mu_s) * 10 ** rng.uniform(-12, -1e-4)
+        rtol = (1e-8, 1e-12, 1e-6)[trial % 3]
+        t = eq.cell.distance(np.sort(rng.uniform(0.0, 1.0, rng.integers(1, 60))))
+        nodes = np.unique(np.concatenate([route._breakpoints(eq, gap), t, [0.0]]))
+        got = route._quad_intervals(eq, gap, nodes, rtol)
+        a, b = nodes[:-1], nodes[1:]
+        live = b > a
+        t_plug = route._plug_distance(eq, gap)
+        if t_plug is not None:
+            live &= a < t_plug
+        want = np.zeros(nodes.size - 1)
+        if np.any(live):
+            lo, width = a[live], (b - a)[live]
+            value, _, info = quad_vec(
+                lambda s, lo=lo, w=width, eq=eq, g=gap: eq.integrand_at(lo + s * w, g) * w,
+                0.0, 1.0, epsabs=np.finfo(float).tiny, epsrel=rtol, norm="max", limit=400,
+                full_output=True,
+            )  # fmt: skip
+            assert info.success
+            want[live] = value
+        assert np.array_equal(got, want), (trial, gap, rtol)

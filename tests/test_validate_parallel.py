@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
 import pytest
 
 from cosserat.analysis.corpus import read_run
@@ -68,3 +69,59 @@ def test_a_run_without_a_spin_is_dropped_and_a_run_left_out_keeps_why():
     assert none.scans == [] and none.skipped == [] and none.nulls == {}
     left = study.gather_scans([study.ScanOutcome("y", skipped="y (its walls differ)")], [])
     assert left.skipped == ["y (its walls differ)"]
+
+
+def test_a_scanned_runs_figure_drawn_by_its_job_is_the_one_the_report_drew(pair, tmp_path):
+    """A scanned run's figure is drawn once, by ``study.figure_job`` once its scan is in (in
+    a worker), where the worker drew it before the joint fit and the report drew it again:
+    the same joint fit and the same PNG, byte for byte."""
+    import copy
+
+    from cosserat.studies.validate.measures import NEAR_WALL_D
+    from cosserat.studies.validate.report import write_run_figure
+
+    run = pair[0]
+    result = study.analyse_run(run, ["cosserat"], 0.05, NEAR_WALL_D, 2)
+    scan = study.scan_job(run, list(pair), 2).scan
+    assert scan is not None
+    before = copy.deepcopy(result)
+    study._joint_curves([before], [scan])  # judge's way, then the report's drawing
+    (tmp_path / "parent").mkdir()
+    (tmp_path / "job").mkdir()
+    old = write_run_figure(before, tmp_path / "parent")
+    name, joint = study.figure_job(result, scan, tmp_path / "job")
+    assert name == old == f"run_{run.name}.png"
+    assert before.joint is not None and joint is not None and set(joint) == set(before.joint)
+    for key, value in before.joint.items():
+        assert list(map(float, np.ravel(joint[key]))) == list(map(float, np.ravel(value)))
+    assert (tmp_path / "job" / name).read_bytes() == (tmp_path / "parent" / name).read_bytes()
+
+
+@pytest.mark.slow
+def test_two_workers_write_the_report_one_process_writes(pair, tmp_path):
+    """validate with a pool (the runs, the scans, each scanned run's figure job, the spin
+    scan's figure drawn as soon as the scans are in, the claim figures drawn in the pool)
+    writes the files one process writes, byte for byte (results.json but for the fits'
+    seconds)."""
+    from cosserat.analysis.corpus import read_corpus
+    from cosserat.studies.validate import validate
+
+    corpus = read_corpus(pair[0].path.parent)
+    one, two = tmp_path / "one", tmp_path / "two"
+    validate(corpus, one, models=["cosserat"], workers=1, spin_scan=2)
+    validate(corpus, two, models=["cosserat"], workers=2, spin_scan=2)
+
+    def timeless(x):
+        if isinstance(x, dict):
+            return {k: timeless(v) for k, v in x.items() if k != "seconds"}
+        return [timeless(v) for v in x] if isinstance(x, list) else x
+
+    names = sorted(p.name for p in one.iterdir())
+    assert names == sorted(p.name for p in two.iterdir())
+    assert {"claim_spin_scan.png", "run_rough.png", "run_smooth.png"} <= set(names)
+    for name in names:
+        a, b = (one / name).read_bytes(), (two / name).read_bytes()
+        if name == "results.json":
+            assert timeless(json.loads(a)) == timeless(json.loads(b))
+        else:
+            assert a == b, name

@@ -12,6 +12,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -94,10 +95,12 @@ def _span(x: FloatArray, fmt: str = ".3g") -> str:
     return f"{lo:{fmt}}" if f"{lo:{fmt}}" == f"{hi:{fmt}}" else f"{lo:{fmt}}-{hi:{fmt}}"
 
 
+@functools.lru_cache(maxsize=4096)
 def stretch_p_value(n: int, rho: float, length: int, sims: int = 4000, seed: int = 0) -> float:
     """P(the longest stretch of same-sign residuals among ``n`` bins is at least ``length``)
     when the residuals are AR(1) noise with lag-1 correlation ``rho`` (Monte Carlo, ``sims``
-    draws, seeded: the same answer every time)."""
+    draws, seeded: the same answer every time, so each answer is kept: a calibration asks
+    again at every fit of the same data, ~30 ms a time)."""
     if length <= 1 or n < length:
         return 1.0 if length <= 1 else 0.0
     rng = np.random.default_rng(seed)

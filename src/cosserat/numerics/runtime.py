@@ -60,6 +60,9 @@ def warm_up() -> None:
     p[kernel.P_GEOMETRY], p[kernel.P_CASE] = kernel.PLANE, kernel.UPPER
     kernel.solve_case(p, 1e-6, 1e-8, 0.05, 100)
     kernel.solve_batch(p[None, :], 1e-6, 1e-8, 0.05, 100)
+    from .mui import plane_pieces  # mu(I)'s plane quadrature (validate's fits)
+
+    plane_pieces(np.zeros(1), np.ones(1), 1.0, 0.64, 0.38, 0.28, 0.1, 1e-8, 400)
 
 
 class _SpawnWithoutInterrupt(multiprocessing.context.SpawnProcess):

@@ -40,11 +40,14 @@ from ..model.constitutive import BoolArray, FloatArray
 from ..model.rheologies import ANY_CELL
 from ..model.rheologies.base import equations_of
 from ..model.rheologies.mui import GAP_MIN, REFERENCE, MuIFlow
+from ..numerics.mui import CONVERGED, plane_pieces
 from ..results.profile import Diagnostics, Fields, Profile
 from .assemble import given_grid
 from .registry import register_route
 
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(12)
+_QUAD_LIMIT = 400
+"""Most subintervals of the velocity quadrature (``quad_vec``'s ``limit``)."""
 
 
 # ----------------------------------------------------------------- where the velocity is fixed
@@ -110,6 +113,18 @@ def _quad_intervals(eq: MuIFlow, gap: float, nodes: FloatArray, rtol: float) -> 
     if not np.any(live):
         return out
     a, width = a[live], (b - a)[live]
+    cell = eq.cell
+    if isinstance(cell, Plane) and cell.straight:
+        # the same quadrature compiled (numerics.mui): quad_vec's integrals to the last bit
+        law = eq.rheology
+        value, status = plane_pieces(
+            a, width, float(cell.B_nu), float(law.mu_2), float(law.mu_s), float(law.I_0),
+            float(gap), float(rtol), _QUAD_LIMIT,
+        )  # fmt: skip
+        if status == CONVERGED:
+            out[live] = value
+            return out
+        # anything else as quad_vec itself does it (the same status, then its fallback)
 
     def pieces(s: float) -> FloatArray:
         return integrand(a + s * width, gap) * width
@@ -121,7 +136,7 @@ def _quad_intervals(eq: MuIFlow, gap: float, nodes: FloatArray, rtol: float) -> 
         epsabs=np.finfo(float).tiny,  # an integrand that is exactly 0 (no flow) converges
         epsrel=rtol,
         norm="max",
-        limit=400,
+        limit=_QUAD_LIMIT,
         full_output=True,
     )
     if not info.success:

@@ -46,7 +46,7 @@ from ...analysis.bins import Bins, bin_edges, half_vorticity_method
 from ...analysis.bins import distance_from_moving as _distance_from_moving
 from ...analysis.corpus import Run
 from ...analysis.fitting import moving_wall
-from ...calibration.data import BIN_NODES
+from ...calibration.data import BIN_NODES, gauss_legendre
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
 
@@ -79,7 +79,7 @@ def _check_stencil(stencil: str) -> None:
 def bin_average(bins: Bins, f: Callable[[FloatArray], FloatArray]) -> FloatArray:
     """The average of ``f`` (a function of the coordinate [d]) over each bin, weighted by r
     in Couette flow [unit of f]."""
-    x, wq = np.polynomial.legendre.leggauss(NODES)
+    x, wq = gauss_legendre(NODES)
     half = 0.5 * (bins.hi - bins.lo)
     pts = 0.5 * (bins.hi + bins.lo)[:, None] + half[:, None] * x[None, :]
     weight = wq[None, :] * (pts if bins.polar else np.ones_like(pts))

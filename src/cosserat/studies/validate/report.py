@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import pickle
 import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -419,34 +420,64 @@ def write_run_figure(r: RunResult, out: Path) -> str:
     return name
 
 
-def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
-    """Every figure: each run's (unless drawn already, :func:`write_run_figure`) and each
-    claim's."""
+def draw_figure(kind: str, args: tuple[Any, ...], path: Path) -> None:
+    """Draw ``cosserat.viz.validation``'s figure ``kind`` of ``args`` in the package's style
+    and write it to ``path`` (a job of :func:`write_figures`, in a worker process when
+    there is a pool)."""
     from ...viz import validation as fig
     from ...viz.plotting import style
 
+    with style():
+        save_figure(getattr(fig, kind)(*args), path)
+
+
+def write_figures(
+    report: ValidationReport, out: Path, pool: Any = None, scan_figure_of: bytes | None = None
+) -> dict[str, str]:
+    """Every figure: each run's (unless drawn already, :func:`write_run_figure`) and each
+    claim's; with ``pool`` (a process pool, ``validate``'s), drawn there in parallel. The
+    spin scan's figure is not drawn again where it was drawn from these very scans
+    (``scan_figure_of``: their ``to_dict``, pickled; ``study.Scanned.figure_of``)."""
+    futures = []
+
+    def draw(fn: Any, *args: Any) -> None:
+        if pool is None:
+            fn(*args)
+        else:
+            futures.append(pool.submit(fn, *args))
+
     files: dict[str, str] = {}
     for r in report.results:
-        # drawn again where judge() added the joint fit after the worker drew the figure
-        if not (r.figure and (out / r.figure).is_file()) or r.joint is not None:
-            r.figure = write_run_figure(r, out)
+        # drawn here where no worker drew it, or drew it before judge() added the joint fit
+        if not (r.figure and (out / r.figure).is_file()) or (
+            r.joint is not None and not r.figure_joint
+        ):
+            r.figure = f"run_{r.run.name}.png"
+            draw(write_run_figure, r, out)
         files[r.run.name] = r.figure
     rows = spin_rows(report)
     scans = next(
         (list(v.numbers.get("scans", [])) for v in report.verdicts if v.key == "spin_model"), []
     )
-    with style():
-        save_figure(
-            fig.spin_claim_figure(rows, [], "does the spin depart from half the vorticity?"),
-            out / CLAIM_FIGURES["spin"],
+    draw(
+        draw_figure,
+        "spin_claim_figure",
+        (rows, [], "does the spin depart from half the vorticity?"),
+        out / CLAIM_FIGURES["spin"],
+    )
+    # the verdict's own fits, the joint calibrations, where it has them (referee 7, 10)
+    if scans:
+        draw(
+            draw_figure,
+            "spin_model_joint_figure",
+            (scans, "the first-layer departure beyond its null: data and the joint fits"),
+            out / CLAIM_FIGURES["spin_model"],
         )
-        # the verdict's own fits, the joint calibrations, where it has them (referee 7, 10)
-        save_figure(
-            fig.spin_model_joint_figure(
-                scans, "the first-layer departure beyond its null: data and the joint fits"
-            )
-            if scans
-            else fig.spin_model_figure(
+    else:
+        draw(
+            draw_figure,
+            "spin_model_figure",
+            (
                 spin_model_rows(report, [r for r in rows if r["sheared"]]),
                 report.models,
                 [m for m in report.models if not Model(m).has_spin],
@@ -455,19 +486,26 @@ def write_figures(report: ValidationReport, out: Path) -> dict[str, str]:
             out / CLAIM_FIGURES["spin_model"],
         )
     if scans:
-        with style():
-            save_figure(fig.spin_scan_figure(scans), out / SPIN_SCAN_FIGURE)
+        if not (
+            scan_figure_of is not None
+            and (out / SPIN_SCAN_FIGURE).is_file()
+            and pickle.dumps(scans) == scan_figure_of
+        ):
+            draw(draw_figure, "spin_scan_figure", (scans,), out / SPIN_SCAN_FIGURE)
         files["claim_spin_scan"] = SPIN_SCAN_FIGURE
     slopes = {f"slope {v:.3g} ({k})": v for k, v in PAPER_SLOPES.items()}
     for which, title in (
         ("smoother", "walls smoother than the material"),
         ("rough", "fully rough walls, under gravity or in Couette flow"),
     ):
-        with style():
-            save_figure(
-                fig.delta_claim_figure(delta_entries(report, which), slopes, title),
-                out / CLAIM_FIGURES[which],
-            )
+        draw(
+            draw_figure,
+            "delta_claim_figure",
+            (delta_entries(report, which), slopes, title),
+            out / CLAIM_FIGURES[which],
+        )
+    for fut in futures:
+        fut.result()
     files.update({f"claim_{k}": v for k, v in CLAIM_FIGURES.items()})
     return files
 
@@ -718,11 +756,18 @@ def finite(obj: Any) -> Any:
     return obj
 
 
-def write_report(report: ValidationReport, out: str | Path) -> dict[str, str]:
-    """Write the figures, ``report.md``, ``index.html`` and ``results.json`` into ``out``."""
+def write_report(
+    report: ValidationReport,
+    out: str | Path,
+    pool: Any = None,
+    scan_figure_of: bytes | None = None,
+) -> dict[str, str]:
+    """Write the figures (in ``pool``'s worker processes, if given: :func:`write_figures`,
+    which says what ``scan_figure_of`` is), ``report.md``, ``index.html`` and
+    ``results.json`` into ``out``."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    report.files = write_figures(report, out)
+    report.files = write_figures(report, out, pool, scan_figure_of)
     write_templates(out, "validate", context(report))
     write_text(out / "results.json", json.dumps(finite(report.to_dict()), indent=1) + "\n")
     return report.files

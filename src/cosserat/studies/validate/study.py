@@ -124,6 +124,9 @@ class RunResult:
     """The spin scan's joint u + omega + stress-ratio fit for the run's figure
     (``forward.figure_curves``; None where the run was not scanned): the velocity of both
     spin verdicts' null."""
+    figure_joint: bool = False
+    """True when ``figure`` was drawn with ``joint`` (by :func:`figure_job`), so the
+    report need not draw it again."""
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -284,6 +287,10 @@ class Scanned:
     scans: list[Scan]
     skipped: list[str]
     nulls: dict[str, Null]
+    figure_of: bytes | None = None
+    """The scans' ``to_dict`` (pickled) from which the spin scan's figure was drawn already,
+    in the pool, while the other jobs ran (``_analyse_all``); the report draws it again
+    only if the verdict's scans differ (``report.write_figures``). None: not drawn."""
 
 
 def scan_job(run: Run, corpus: Sequence[Run], points: int) -> ScanOutcome:
@@ -297,6 +304,17 @@ def scan_job(run: Run, corpus: Sequence[Run], points: int) -> ScanOutcome:
         return ScanOutcome(run.name, skipped=got or "")
     check_scans([got], corpus)
     return ScanOutcome(run.name, got, null=joint_null(got, run))
+
+
+def figure_job(result: RunResult, scan: Scan | None, out: Path) -> tuple[str, Any]:
+    """Draw a run's figure once its scan is made (in a worker process): the scan's joint fit
+    (``_joint_curves``, None without a scan) set on ``result`` and drawn with the run's own
+    fits; returns (the figure's file name, the joint fit's curves)."""
+    from .report import write_run_figure
+
+    if scan is not None:
+        _joint_curves([result], [scan])
+    return write_run_figure(result, out), result.joint
 
 
 def shared_job(scans: Sequence[Scan], scanned_runs: Sequence[Run]) -> dict[str, dict[str, Any]]:
@@ -626,21 +644,31 @@ def _analyse_all(
     fixes: Mapping[str, StressFix] | None = None,
     scan_runs: Sequence[Run] = (),
     points: int = COARSE,
+    pool: Any = None,
 ) -> tuple[list[RunResult], dict[str, list[SeriesCalibration]], Scanned | None]:
     """:func:`analyse_run` of every run and :func:`.fits.material_job` of every job, in worker
     processes when worth it (``validate``): (the runs' results, series key -> calibrations,
     one per model, and the spin scans). With workers, the spin scans of ``scan_runs`` (the
     runs with a measured spin; ``points`` per parameter) are made there too (:func:`scan_job`,
     :func:`gather_scans`); in one process (and without ``scan_runs`` or ``points``) they are
-    left to :func:`judge` (None)."""
-    workers = 1 if workers is None else min(workers, len(runs) + len(jobs))
+    left to :func:`judge` (None). ``pool``: the process pool to use (``workers`` of them,
+    :func:`pool_size`), else one is made here and shut down after."""
+    workers = pool_size(workers, runs, jobs)
     cals: dict[str, list[SeriesCalibration]] = {}
+    # a run that is scanned is drawn once its scan is in (with the joint fit): not by
+    # analyse_run, but by a figure job (with workers) or by the report (in one process)
+    to_scan = list(scan_runs) if points > 0 else []
+    scanned_names = {r.name for r in to_scan}
+
+    def draw_to(run: Run) -> Path | None:
+        return None if run.name in scanned_names else figures_to
+
     if workers <= 1:
         out = []
         for i, run in enumerate(runs):
             out.append(
                 analyse_run(
-                    run, models, f, near_wall_d, grid, figures_to, independent_bins,
+                    run, models, f, near_wall_d, grid, draw_to(run), independent_bins,
                     (fixes or {}).get(run.name),
                 )
             )  # fmt: skip
@@ -650,27 +678,36 @@ def _analyse_all(
             for key, cal in material_job(job).items():
                 cals.setdefault(key, []).append(cal)
         return out, cals, None
-    from ...numerics.runtime import worker_processes
+    if pool is None:
+        from ...numerics.runtime import worker_processes
 
-    # the longest first, so that the workers end together: mu(I)'s material calibrations (a
-    # quadrature per solve), then the spin scans (a joint fit, two grids and the refits of
-    # each), then the other calibrations, then the runs with the most bins; the material's
-    # shared spin fit goes first in the queue once its scans are in
+        with worker_processes(workers) as own:
+            return _analyse_all(
+                runs, models, f, near_wall_d, grid, progress, workers, figures_to, jobs,
+                independent_bins, fixes, scan_runs, points, own,
+            )  # fmt: skip
+    # the spin scans first (a joint fit, two grids and the refits of each): the material's
+    # shared spin fit and then the spin scan's figure (the longest job, ~25 s of drawing)
+    # wait for all of them, and go first in the queue once they can; then the longest
+    # first, so that the workers end together: mu(I)'s material calibrations, the other
+    # calibrations, the runs with the most bins
     order = sorted(range(len(runs)), key=lambda i: -runs[i].measured().n)
     ranked = sorted(range(len(jobs)), key=lambda k: (jobs[k].model != "mui", -len(jobs[k].runs)))
-    to_scan = list(scan_runs) if points > 0 else []
     everyone = list(runs)
+    run_of_scan = {j: next(i for i, r in enumerate(runs) if r.name == sc.name)
+                   for j, sc in enumerate(to_scan)}  # fmt: skip
+    scan_of_run = {i: j for j, i in run_of_scan.items()}
     queue: list[tuple[str, int, Callable[..., Any], tuple[Any, ...]]] = [
-        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model == "mui"),
         *(
             ("scan", i, scan_job, (to_scan[i], everyone, points))
             for i in sorted(range(len(to_scan)), key=lambda i: -to_scan[i].measured().n)
         ),
+        *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model == "mui"),
         *(("job", k, material_job, (jobs[k],)) for k in ranked if jobs[k].model != "mui"),
         *(
             (
                 "run", i, analyse_run,
-                (runs[i], models, f, near_wall_d, grid, figures_to, independent_bins,
+                (runs[i], models, f, near_wall_d, grid, draw_to(runs[i]), independent_bins,
                  (fixes or {}).get(runs[i].name)),
             )
             for i in order
@@ -680,39 +717,80 @@ def _analyse_all(
     got: dict[int, dict[str, SeriesCalibration]] = {}
     outcomes: dict[int, ScanOutcome] = {}
     shared: dict[str, dict[str, Any]] | None = None if to_scan else {}
-    with worker_processes(workers) as pool:
-        running: dict[Future[Any], tuple[str, int]] = {}
-        while queue or running:
-            # at most one job waiting per worker: a job queued later (the shared fit) can
-            # still go before the runs not yet handed out
-            while queue and len(running) < 2 * workers:
-                kind, i, fn, fn_args = queue.pop(0)
-                running[pool.submit(fn, *fn_args)] = (kind, i)
-            finished, _ = wait(running, return_when=FIRST_COMPLETED)
-            for fut in finished:
-                kind, i = running.pop(fut)
-                if kind == "run":
-                    done[i] = fut.result()
-                    if progress:
-                        progress("runs", len(done), len(runs))
-                elif kind == "job":
-                    got[i] = fut.result()
-                elif kind == "scan":
-                    outcomes[i] = fut.result()
-                    if len(outcomes) == len(to_scan):
-                        scans = [o.scan for _, o in sorted(outcomes.items()) if o.scan]
-                        queue.insert(0, ("shared", 0, shared_job, (scans, to_scan)))
-                else:
-                    shared = fut.result()
+
+    early: list[Scanned] = []
+
+    def scan_figure() -> None:
+        """Once every scan and the shared fit are in: the scans as judge() will take them,
+        and their figure drawn first in the pool (it takes the longest of the figures)."""
+        if early or not to_scan or shared is None or len(outcomes) < len(to_scan):
+            return
+        early.append(gather_scans([outcomes[i] for i in range(len(to_scan))], to_scan, shared))
+        if figures_to is not None and early[0].scans:
+            import pickle
+
+            from .report import SPIN_SCAN_FIGURE, draw_figure
+
+            dicts = [sc.to_dict() for sc in early[0].scans]
+            early[0].figure_of = pickle.dumps(dicts)
+            args = ("spin_scan_figure", (dicts,), figures_to / SPIN_SCAN_FIGURE)
+            queue.insert(0, ("drawn", 0, draw_figure, args))
+
+    def figure(i: int) -> None:
+        """Queue run i's figure, first, once its analysis and its scan are both in."""
+        j = scan_of_run.get(i)
+        if figures_to is None or j is None or i not in done or j not in outcomes:
+            return
+        queue.insert(0, ("figure", i, figure_job, (done[i], outcomes[j].scan, figures_to)))
+
+    running: dict[Future[Any], tuple[str, int]] = {}
+    while queue or running:
+        # at most one job waiting per worker: a job queued later (the shared fit) can
+        # still go before the runs not yet handed out
+        while queue and len(running) < 2 * workers:
+            kind, i, fn, fn_args = queue.pop(0)
+            running[pool.submit(fn, *fn_args)] = (kind, i)
+        finished, _ = wait(running, return_when=FIRST_COMPLETED)
+        for fut in finished:
+            kind, i = running.pop(fut)
+            if kind == "run":
+                done[i] = fut.result()
+                if progress:
+                    progress("runs", len(done), len(runs))
+                figure(i)
+            elif kind == "job":
+                got[i] = fut.result()
+            elif kind == "scan":
+                outcomes[i] = fut.result()
+                if len(outcomes) == len(to_scan):
+                    scans = [o.scan for _, o in sorted(outcomes.items()) if o.scan]
+                    queue.insert(0, ("shared", 0, shared_job, (scans, to_scan)))
+                figure(run_of_scan[i])
+            elif kind == "figure":
+                done[i].figure, done[i].joint = fut.result()
+                done[i].figure_joint = done[i].joint is not None
+            elif kind == "drawn":
+                fut.result()
+            else:
+                shared = fut.result()
+                scan_figure()
     for k in range(len(jobs)):  # in the jobs' order, whichever ended first
         for key, cal in got[k].items():
             cals.setdefault(key, []).append(cal)
     scanned = (
-        gather_scans([outcomes[i] for i in range(len(to_scan))], to_scan, shared)
+        early[0]
+        if early
+        else gather_scans([outcomes[i] for i in range(len(to_scan))], to_scan, shared)
         if to_scan
         else None
     )
     return [done[i] for i in range(len(runs))], cals, scanned
+
+
+def pool_size(workers: int | None, runs: Sequence[Run], jobs: Sequence[MaterialJob]) -> int:
+    """The worker processes ``_analyse_all`` uses: ``workers`` (None: one), at most one
+    per run or job; 1 means no pool."""
+    return 1 if workers is None else min(workers, len(runs) + len(jobs))
 
 
 def sensitivity_fs(f: float) -> tuple[float, ...]:
@@ -1265,17 +1343,24 @@ def validate(
     fixes = None if fit_angles else {r.name: cosserat_fix(r, data.runs) for r in data.runs}
     # the runs with a measured spin, which the spin scans take (as judge's _scans)
     spin_runs = [r for r in data.runs if measure_spin(r, near_wall_d).available]
-    results, cals, scanned = _analyse_all(
-        data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs,
-        independent_bins, fixes, spin_runs, spin_scan,
-    )  # fmt: skip
-    series, verdicts, notes = judge(
-        results, models, f, calibrations=cals, spin_scan=spin_scan, scanned=scanned
-    )
-    used = sorted({m for r in results if r.fits for m in r.fits.models})
-    report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
-    if out is not None:
-        from .report import write_report
+    from contextlib import nullcontext
 
-        write_report(report, out)
+    from ...numerics.runtime import worker_processes
+
+    size = pool_size(workers, data.runs, jobs)
+    # one pool for the runs, scans and calibrations and then for the report's figures
+    with worker_processes(size) if size > 1 else nullcontext() as pool:
+        results, cals, scanned = _analyse_all(
+            data.runs, models, f, near_wall_d, grid, progress, workers, folder, jobs,
+            independent_bins, fixes, spin_runs, spin_scan, pool,
+        )  # fmt: skip
+        series, verdicts, notes = judge(
+            results, models, f, calibrations=cals, spin_scan=spin_scan, scanned=scanned
+        )
+        used = sorted({m for r in results if r.fits for m in r.fits.models})
+        report = ValidationReport(data.path, used, results, series, verdicts, f, near_wall_d, notes)
+        if out is not None:
+            from .report import write_report
+
+            write_report(report, out, pool, None if scanned is None else scanned.figure_of)
     return report
