@@ -1,0 +1,153 @@
+"""The spin verdict after referee round 11, point 1: the qualifier names the null it holds
+beyond, each bin it rests on is set against its own null envelope, the joint fit whose velocity
+is the null is named where it misfits u or omega, and results.json says which pooled p is the
+headline. Every input is small and every expected number is worked by hand in the test's
+docstring."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from scipy.stats import t as student_t
+
+from cosserat.studies.validate import WallSpin, spin_verdict
+from cosserat.studies.validate.measures import JOINT_NULL_SOURCE
+from cosserat.studies.validate.verdicts import (
+    SpinRun,
+    carrying_bins,
+    null_misfits,
+    null_qualifier,
+)
+
+DIST = np.array([0.5, 1.5, 2.5])
+
+
+def moving(run, dep, se, null, *, every=None, source=JOINT_NULL_SOURCE, blocks=10):
+    """A sheared moving wall: departures ``dep`` +- ``se`` against the point null ``null``
+    from ``source``, with every velocity's null interval ``every`` ((lo, hi)) where given."""
+    return WallSpin(run, "moving", True, DIST, np.asarray(dep, float), np.asarray(se, float),
+                    null=np.asarray(null, float), null_model="", null_source=source,
+                    blocks=blocks,
+                    null_every=None if every is None else tuple(np.asarray(a, float)
+                                                                for a in every))  # fmt: skip
+
+
+# first layer -0.30 +- 0.03 against a null of -0.04 (z = -8.67); bin 2 +0.048 +- 0.008
+# against +0.008 (z = +5); bin 3 0 against 0. Every velocity's nulls: -0.34 to +0.02 in the
+# first layer, -0.01 to +0.076 in bin 2 (+0.048 inside both), -0.01 to +0.01 in bin 3.
+DEP, SE, NULL = [-0.30, 0.048, 0.0], [0.03, 0.008, 0.01], [-0.04, 0.008, 0.0]
+EVERY = ([-0.34, -0.01, -0.01], [0.02, 0.076, 0.01])
+
+
+def test_the_qualifier_names_the_null():
+    """The joint fit's null is "the joint Cosserat fit's velocity"; "(smooth on the grain
+    scale)" is added where the support needs the first layers; two nulls are both named,
+    sorted; without any null the round-10 wording stands."""
+    a = moving("a", DEP, SE, NULL)
+    assert null_qualifier([a, a], True) == (
+        "beyond the null of the joint Cosserat fit's velocity (smooth on the grain scale)"
+    )
+    assert null_qualifier([a], False) == "beyond the null of the joint Cosserat fit's velocity"
+    b = moving("b", DEP, SE, NULL, source="the measured velocity")
+    assert null_qualifier([a, b], False) == (
+        "beyond the null of the joint Cosserat fit's velocity or the measured velocity"
+    )
+    assert null_qualifier([replace(a, null=None)], True) == (
+        "given a velocity smooth on the grain scale"
+    )
+
+
+def test_the_verdict_carries_the_named_null_in_its_qualifier():
+    """Two runs as above without bins 2-3 departing (bin 2 at +0.008, on its null): the
+    pooled test rests on the first layers (z = -8.67 each) and without them chi^2 = 0: the
+    support needs them, so "(smooth on the grain scale)" follows the null's name."""
+    walls = [moving(r, [-0.30, 0.008, 0.0], SE, NULL) for r in "ab"]
+    v = spin_verdict(walls)
+    assert v.verdict == "supported"
+    assert v.qualifier == (
+        "beyond the null of the joint Cosserat fit's velocity (smooth on the grain scale)"
+    )
+    assert v.to_dict()["qualifier"] == v.qualifier == v.numbers["qualifier"]
+
+
+def test_a_carrying_bin_inside_its_own_null_envelope_is_said_to_be():
+    """Bin 2 departs by 0.048 - 0.008 = 0.04 = 5 se beyond the verdict's null, yet +0.048 lies
+    inside its envelope over every velocity (-0.01 to +0.076); the first layer (-0.30 beyond
+    -0.04 by -0.26, z = -8.67) lies inside -0.34 to +0.02 too. Both are named with their
+    envelope, and the evidence says in words that they hold beyond the verdict's null only.
+    With bin 2 at +0.096 (outside by 0.02), it is named as outside."""
+    w = moving("a", DEP, SE, NULL, every=EVERY)
+    bins = carrying_bins(w)
+    assert [b["distance_d"] for b in bins] == [0.5, 1.5]
+    assert bins[1]["z"] == pytest.approx(5.0)
+    assert (bins[1]["null_lo"], bins[1]["null_hi"]) == (-0.01, 0.076)
+    assert bins[1]["inside_null_envelope"] is True and bins[0]["inside_null_envelope"] is True
+    v = spin_verdict([w, replace(w, run="b")])
+    assert (
+        "a's bin at 1.5 d (z = +5), which lies inside its own null envelope (-0.01 to +0.076, "
+        "data +0.048)"
+    ) in v.evidence
+    assert (
+        "1.5 d from a's moving wall (+0.04 +- 0.008, z = 5, p = "
+        f"{2 * student_t.sf(5.0, 9):.2g} under t(9)), which lies inside its "
+        "own null envelope (-0.01 to +0.076, data +0.048)"
+    ) in v.evidence
+    assert (
+        "4 of the 4 bins the verdict rests on lie inside their own null envelope over every "
+        "velocity the run has (a's first layer, a's bin at 1.5 d, b's first layer, b's bin at "
+        "1.5 d): their departure holds beyond the verdict's null, not beyond every smooth "
+        "velocity the run has."
+    ) in v.evidence
+    out = moving("a", [-0.30, 0.096, 0.0], SE, NULL, every=EVERY)
+    b2 = carrying_bins(out)[1]
+    assert b2["inside_null_envelope"] is False
+    assert "which lies outside its own null envelope (-0.01 to +0.076, data +0.096)" in (
+        spin_verdict([out, replace(out, run="b")]).evidence
+    )
+    # a point null (one velocity's, no envelope): nothing said
+    assert carrying_bins(moving("a", DEP, SE, NULL))[1]["inside_null_envelope"] is None
+
+
+def test_the_nulls_own_misfit_is_named():
+    """The joint fit misfits omega with chi^2 = 35 on 10 bins: p = exp(-17.5) (1 + 17.5 +
+    17.5^2/2 + 17.5^3/6 + 17.5^4/24) = 1.25e-4 < 1e-3; u under AR(1) errors (12/10, p = 0.29)
+    fits; the stress ratio (40/5) misfits but is not u or omega; u under diagonal errors
+    (75.7/10) misfits. A run whose null is not the joint fit's is not named."""
+    x = 17.5
+    p_omega = math.exp(-x) * sum(x**k / math.factorial(k) for k in range(5))
+    assert p_omega == pytest.approx(1.2487e-4, rel=1e-3)
+    fit = (("u", 12.0, 10), ("omega", 35.0, 10), ("stress_ratio", 40.0, 5),
+           ("u, diagonal errors", 75.7, 10))  # fmt: skip
+    info = {r: SpinRun(joint_fit=fit) for r in "abc"}
+    walls = [moving(r, DEP, SE, NULL) for r in "ab"]
+    walls.append(moving("c", DEP, SE, NULL, source="the measured velocity"))
+    bad = null_misfits(walls, info)
+    assert sorted(bad) == ["a", "b"]
+    assert [b["field"] for b in bad["a"]] == ["omega", "u, diagonal errors"]
+    assert bad["a"][0]["p"] == pytest.approx(p_omega, rel=1e-9)
+    v = spin_verdict(walls[:2], runs_info={r: info[r] for r in "ab"})
+    assert v.numbers["null_fit_misfits"] == bad
+    assert (
+        "The null's own quality: the joint fit whose velocity is the null misfits (p < 0.001) "
+        "at 2 runs: at a it misfits omega (chi^2 = 35/10, p = 0.00012) and u, diagonal errors "
+        "(chi^2 = 75.7/10, p = "
+    ) in v.evidence
+    clean = {r: SpinRun(joint_fit=(("u", 12.0, 10), ("omega", 9.0, 10))) for r in "ab"}
+    w = spin_verdict(walls[:2], runs_info=clean)
+    assert w.numbers["null_fit_misfits"] == {} and "The null's own quality" not in w.evidence
+
+
+def test_the_headline_p_is_the_one_the_verdict_states():
+    """With 10 blocks the verdict reads each z under t(9): pooled_p_headline is pooled_p_t,
+    labelled t(9); without blocks (0) there is no t reading and the headline is the normal
+    pooled_p."""
+    walls = [moving(r, DEP, SE, NULL) for r in "ab"]
+    n = spin_verdict(walls).numbers
+    assert n["pooled_p_headline"] == n["pooled_p_t"] and n["pooled_p_headline_reading"] == "t(9)"
+    assert n["pooled_p_t"] > n["pooled_p"]
+    m = spin_verdict([replace(w, blocks=0) for w in walls]).numbers
+    assert m["pooled_p_t"] is None
+    assert m["pooled_p_headline"] == m["pooled_p"] and m["pooled_p_headline_reading"] == "normal"
