@@ -151,3 +151,17 @@ def test_the_headline_p_is_the_one_the_verdict_states():
     m = spin_verdict([replace(w, blocks=0) for w in walls]).numbers
     assert m["pooled_p_t"] is None
     assert m["pooled_p_headline"] == m["pooled_p"] and m["pooled_p_headline_reading"] == "normal"
+
+
+def test_the_joint_fits_chi2_by_field_for_the_verdict():
+    """study's reading of a scan's joint fit: its fields' (chi^2, bins), then u under diagonal
+    errors; a common-mode chi^2 of None (a negative rho) is left out."""
+    from types import SimpleNamespace as Ns
+
+    from cosserat.studies.validate.study import _joint_fit_chi2
+
+    fields = [Ns(field="u", chi2=12.0, n=10), Ns(field="omega", chi2=35.0, n=10)]
+    sc = Ns(run="r", fit=Ns(calibration=Ns(fields=fields)),
+            _error_models={"u": {"n": 10, "diagonal": 75.7, "common-mode": None}})  # fmt: skip
+    assert _joint_fit_chi2(sc) == (("u", 12.0, 10), ("omega", 35.0, 10),
+                                   ("u, diagonal errors", 75.7, 10))  # fmt: skip
