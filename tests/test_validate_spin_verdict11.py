@@ -225,13 +225,13 @@ def test_the_spin_figure_says_what_a_wall_not_judged_is_plotted_against_and_the_
     fig = spin_claim_figure(_figure_rows("beyond the reconstructions' null"), [], "t",
                             "wall-first")  # fmt: skip
     texts = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
-    assert "b: fixed (not judged; beyond the reconstructions' null)" in texts
+    assert "b: fixed (not judged: beyond the reconstructions' null)" in texts
     assert fig.axes[1].get_title() == (
         "the near-wall bins the verdict rests on (filled)\nthe analysis stencil's first layers "
         "(the verdict's test: wall-first)"
     )
     bare = spin_claim_figure(_figure_rows(), [], "t", "analysis")
-    assert "b: fixed (not judged; against 0)" in [
+    assert "b: fixed (not judged: no null; against 0)" in [
         t.get_text() for t in bare.axes[1].get_legend().get_texts()
     ]
     assert bare.axes[1].get_title().endswith("the analysis stencil's first layers")

@@ -357,7 +357,9 @@ def spin_claim_figure(
                 lab = f"{r['label']}" + ("" if used.all() else " (open: left out)")
             else:
                 c = "0.6"
-                lab = f"{r['label']} (not judged; {b.get('against') or 'against 0'})"
+                against = b.get("against") or "against 0"
+                why = "no null; against 0" if against == "against 0" else against
+                lab = f"{r['label']} (not judged: {why})"
             for sel, face in ((used, c), (~used, "none")):
                 if sel.any():
                     named = face != "none" or not used.any()
