@@ -132,8 +132,8 @@ def test_the_nulls_own_misfit_is_named():
     assert v.numbers["null_fit_misfits"] == bad
     assert (
         "The null's own quality: the joint fit whose velocity is the null misfits (p < 0.001) "
-        "at 2 runs: at a it misfits omega (chi^2 = 35/10, p = 0.00012) and u, diagonal errors "
-        "(chi^2 = 75.7/10, p = "
+        "at 2 runs: at a it misfits omega (chi^2 = 35/10, p = 0.00012) and u (under diagonal "
+        "errors chi^2 = 75.7/10, p = "
     ) in v.evidence
     clean = {r: SpinRun(joint_fit=(("u", 12.0, 10), ("omega", 9.0, 10))) for r in "ab"}
     w = spin_verdict(walls[:2], runs_info=clean)
@@ -252,3 +252,20 @@ def test_what_a_walls_bins_are_plotted_against():
     assert _against(replace(w, null_source="", null_model="mui")) == (
         "beyond the null of the mui fit's velocity"
     )
+
+
+def test_the_null_misfit_line_groups_us_error_models():
+    """u as fitted (AR(1): 36.1/10) and under diagonal errors (61/10) are one field in the
+    line, omega another."""
+    from cosserat.studies.validate.verdicts import _null_misfit_text
+
+    bad = {"r": [{"field": "u", "chi2": 36.1, "n": 10, "p": 8e-05},
+                 {"field": "omega", "chi2": 34.9, "n": 9, "p": 6.3e-05},
+                 {"field": "u, diagonal errors", "chi2": 61.0, "n": 10, "p": 2.3e-09}]}  # fmt: skip
+    assert (
+        "at 1 run: at r it misfits u (chi^2 = 36.1/10, p = 8e-05; under diagonal errors "
+        "chi^2 = 61/10, p = 2.3e-09) and omega (chi^2 = 34.9/9, p = 6.3e-05); there the "
+        "departure is measured beyond a velocity that does not describe the run's own u and "
+        "omega."
+    ) in _null_misfit_text(bad)
+    assert _null_misfit_text({}) == ""

@@ -567,13 +567,18 @@ def _null_misfit_text(bad: Mapping[str, Sequence[Mapping[str, Any]]]) -> str:
     describes u and omega)."""
     if not bad:
         return ""
-    parts = [
-        f"at {r} it misfits "
-        + " and ".join(
-            f"{b['field']} (chi^2 = {b['chi2']:.3g}/{b['n']}, p = {b['p']:.2g})" for b in rows
+    parts = []
+    for r, rows in bad.items():
+        fields: dict[str, list[str]] = {}  # u's error models grouped under u
+        for b in rows:
+            name, _, model = b["field"].partition(", ")
+            fields.setdefault(name, []).append(
+                (f"under {model} " if model else "")
+                + f"chi^2 = {b['chi2']:.3g}/{b['n']}, p = {b['p']:.2g}"
+            )
+        parts.append(
+            f"at {r} it misfits " + " and ".join(f"{f} ({'; '.join(t)})" for f, t in fields.items())
         )
-        for r, rows in bad.items()
-    ]
     return (
         f" The null's own quality: the joint fit whose velocity is the null misfits "
         f"(p < {NULL_MISFIT_P:g}) at {len(bad)} run{'s' if len(bad) != 1 else ''}: "
