@@ -286,14 +286,15 @@ def test_support_that_needs_the_first_layers_is_given_a_smooth_velocity():
     assert n["supported_given_smooth_velocity"] is True
     # the condition stands in the verdict field (referee 10, point 3), its reason in the
     # evidence, which opens with where the spin departs and what carries it
-    assert v.qualifier == "given a velocity smooth on the grain scale"
+    # referee 11, point 1: the qualifier names the null
+    assert v.qualifier == "beyond the null of the joint fit's velocity (smooth on the grain scale)"
     assert v.to_dict()["qualifier"] == v.qualifier
     assert v.evidence.startswith(
         "Beyond the null of the joint fit's velocity, the spin departs from half the vorticity "
         "within 2.5 d of the sheared moving walls of 2 runs. Pooled chi^2 = 152/6 under the "
         "weakest stencil (analysis), p = "
     )
-    assert "carried by rough's first layer (z = -8.7), smooth's first layer (z = -8.7)" in (
+    assert "carried by rough's first layer (z = -8.7); smooth's first layer (z = -8.7)" in (
         v.evidence
     )
     assert "It holds given a velocity smooth on the grain scale: the support needs the first " \

@@ -265,7 +265,10 @@ def _layer_x_label(layer: Mapping[str, Any]) -> str:
 
 
 def spin_claim_figure(
-    rows: Sequence[Mapping[str, Any]], models: Sequence[str] = (), title: str = ""
+    rows: Sequence[Mapping[str, Any]],
+    models: Sequence[str] = (),
+    title: str = "",
+    verdict_stencil: str = "",
 ) -> Figure:
     """Left: the measured departure of the spin in the first layer at each wall of each run,
     with its error bar (2 se), beside each model's prediction there (one row per run and
@@ -280,12 +283,17 @@ def spin_claim_figure(
         optional ``stencil_range`` ((low, high): the measured first-layer departure's range
         over the difference stencils, drawn as a grey bar), ``null`` (what the measurement
         reports for grains turning with the material, drawn as a grey cross) and ``bins``
-        (``distance_d`` [d], ``beyond``, ``se`` [-], ``used`` and ``judged`` (bool): the
-        right panel).
+        (``distance_d`` [d], ``beyond``, ``se`` [-], ``used`` and ``judged`` (bool), and
+        ``against``: what a wall not judged is plotted against, in words, e.g. "beyond the
+        reconstructions' null" (default "against 0"): the right panel).
     models : sequence of str
         The models to draw, in order.
     title : str
         Above the axes.
+    verdict_stencil : str
+        The stencil the verdict's test is taken under (where it is weakest); the right panel's
+        bins are under the analysis' stencil, and its title says so and names this one where it
+        differs (referee 11, point 7).
     """
     import numpy as np
 
@@ -332,7 +340,7 @@ def spin_claim_figure(
         uniq = dict(zip(labels, handles, strict=True))
         if uniq:
             ax.legend(uniq.values(), uniq.keys(), loc="upper left", bbox_to_anchor=under,
-                      fontsize=7, frameon=False)  # fmt: skip
+                      fontsize=7, frameon=False, borderpad=0.0, borderaxespad=0.0)  # fmt: skip
         colors = [f"C{i}" for i in range(10)]
         k = 0
         for r in rows:
@@ -349,7 +357,9 @@ def spin_claim_figure(
                 lab = f"{r['label']}" + ("" if used.all() else " (open: left out)")
             else:
                 c = "0.6"
-                lab = f"{r['label']} (not judged: no null; against 0)"
+                against = b.get("against") or "against 0"
+                why = "no null; against 0" if against == "against 0" else against
+                lab = f"{r['label']} (not judged: {why})"
             for sel, face in ((used, c), (~used, "none")):
                 if sel.any():
                     named = face != "none" or not used.any()
@@ -359,10 +369,46 @@ def spin_claim_figure(
         bx.axhline(0.0, color="0.5", linewidth=0.6)
         bx.set_xlabel("distance from the wall [d]")
         bx.set_ylabel("departure beyond the null, +- 2 se [-]", fontsize=7)
-        bx.set_title("the near-wall bins the verdict rests on (filled)", fontsize=8)
+        which = (
+            f" (the verdict's test: {verdict_stencil})"
+            if verdict_stencil and verdict_stencil != "analysis"
+            else ""
+        )
+        bx.set_title(
+            "the near-wall bins the verdict rests on (filled)\nthe analysis stencil's first "
+            f"layers{which}",
+            fontsize=8,
+        )
         if bx.get_legend_handles_labels()[0]:
-            bx.legend(fontsize=7, frameon=False, loc="upper left", bbox_to_anchor=under)
+            bx.legend(fontsize=7, frameon=False, loc="upper left", bbox_to_anchor=under,
+                      borderpad=0.0, borderaxespad=0.0)  # fmt: skip
+        _legends_under_labels(fig, (ax, bx))
     return fig
+
+
+LEGEND_GAP_IN = 0.06
+"""The gap between an axes' x label and the top of its legend in :func:`spin_claim_figure`
+[in]."""
+
+
+def _legends_under_labels(fig: Figure, axes: Sequence[Any]) -> None:
+    """Move each axes' legend (anchored at its upper left) to just under the axes' drawn
+    extent, tick labels and x label included, :data:`LEGEND_GAP_IN` below it (referee 11,
+    point 7: an anchor at a fixed band left an empty band under the labels)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    if not isinstance(fig.canvas, FigureCanvasAgg):
+        FigureCanvasAgg(fig)
+    renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]
+    for a in axes:
+        legend = a.get_legend()
+        if legend is None:
+            continue
+        legend.set_visible(False)  # the axes' extent without its own legend
+        bottom = a.get_tightbbox(renderer).y0 - LEGEND_GAP_IN * fig.dpi
+        legend.set_visible(True)
+        y = a.transAxes.inverted().transform((0.0, bottom))[1]
+        legend.set_bbox_to_anchor((0.0, y), transform=a.transAxes)
 
 
 LABEL_BAND_IN = 0.55

@@ -402,6 +402,13 @@ def _sign(x: float) -> int:
     return 0 if abs(x) <= 1e-9 else (1 if x > 0 else -1)
 
 
+JOINT_NULL_SOURCE = "the joint u + omega + stress-ratio fit's velocity"
+"""``WallSpin.null_source`` of the joint fit's null (``nulls.joint_null``)."""
+JOINT_NULL_NAME = "the joint Cosserat fit's velocity"
+"""That null in the spin verdict's qualifier (referee 11, point 1: the spin scan's joint fit is
+the Cosserat model's)."""
+
+
 @dataclass(frozen=True)
 class WallSpin:
     """The spin's departure from half the vorticity in one run's bins near one wall.

@@ -50,7 +50,7 @@ from .forward import (
     null_departure,
     wall_velocities,
 )
-from .measures import WallSpin
+from .measures import JOINT_NULL_SOURCE, WallSpin
 
 RECONSTRUCTIONS = ("pchip", "spline", "natural", "akima")
 """The interpolants of u's cumulative integral behind :func:`velocity_null`."""
@@ -123,7 +123,7 @@ def joint_null(scan: Any, run: Run) -> Null:
         value[s] = each[0]
         se[s] = (np.max(each, axis=0) - np.min(each, axis=0)) / width
         joint[s] = forward_departure(best, run, s) - each[0]
-    out = point_null("the joint u + omega + stress-ratio fit's velocity", value, se)
+    out = point_null(JOINT_NULL_SOURCE, value, se)
     return replace(out, joint=joint)
 
 

@@ -335,8 +335,10 @@ def _spin_bins(w: WallSpin) -> dict[str, Any]:
     """A wall's near-wall bins as the spin verdict uses them: distance [d], departure beyond
     the null (against 0 without one) and se (the null's in quadrature) [-], whether the
     verdict's test uses each bin (the first layer is left out where its departure beyond the
-    null changes sign between stencils), and whether the
-    wall is judged at all (sheared, with the null it needs)."""
+    null changes sign between stencils), whether the
+    wall is judged at all (sheared, with the null it needs), and what a wall not judged is
+    plotted against (``against``: its null's source, e.g. the measured velocity's
+    reconstructions, else 0; referee 11, point 7)."""
     order = np.argsort(w.distance_d)
     used = np.ones(order.size, dtype=bool)
     if w.beyond_dependent():
@@ -347,7 +349,20 @@ def _spin_bins(w: WallSpin) -> dict[str, Any]:
         "se": [float(x) for x in np.asarray(w.se_beyond, dtype=float)[order]],
         "used": [bool(x) for x in used],
         "judged": bool(w.sheared and not w.no_null),
+        "against": _against(w),
     }
+
+
+def _against(w: WallSpin) -> str:
+    """What a wall's bins are plotted against, in a legend's words: "against 0" without a
+    null, "beyond the reconstructions' null" for the measured velocity's reconstructions
+    (``nulls.measured_null``), else "beyond the null of" its source's name."""
+    if w.null is None:
+        return "against 0"
+    source = w.null_source or f"the {w.null_model} fit's velocity"
+    if source.startswith("the measured velocity") and "reconstructed" in source:
+        return "beyond the reconstructions' null"
+    return f"beyond the null of {source.split(' (')[0]}"
 
 
 def fit_status(s: FitSummary | None) -> tuple[str, bool]:
@@ -459,10 +474,14 @@ def write_figures(
     scans = next(
         (list(v.numbers.get("scans", [])) for v in report.verdicts if v.key == "spin_model"), []
     )
+    weakest = next(
+        (str(v.numbers.get("pooled_stencil") or "") for v in report.verdicts if v.key == "spin"),
+        "",
+    )
     draw(
         draw_figure,
         "spin_claim_figure",
-        (rows, [], "does the spin depart from half the vorticity?"),
+        (rows, [], "does the spin depart from half the vorticity?", weakest),
         out / CLAIM_FIGURES["spin"],
     )
     # the verdict's own fits, the joint calibrations, where it has them (referee 7, 10)

@@ -953,7 +953,9 @@ def judge(
         systematic = _joint_nulls(results, scans, scanned.nulls)
     _joint_curves(results, scans)
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
-    spin = spin_verdict(walls, unfit=_spin_model_inputs(results)[2], runs_info=spin_runs(results))
+    spin = spin_verdict(
+        walls, unfit=_spin_model_inputs(results)[2], runs_info=spin_runs(results, scans)
+    )
     if systematic:
         spin = replace(
             spin,
@@ -1218,12 +1220,15 @@ def steadiness_text(results: Sequence[RunResult]) -> str:
     )
 
 
-def spin_runs(results: Sequence[RunResult]) -> dict[str, SpinRun]:
+def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[str, SpinRun]:
     """What the spin verdict says of each run beyond its walls (``verdicts.SpinRun``): its
     cell for counting (runs differing only in wall speed are one cell,
     ``rate.replicate_cells``), gap, seed, wall speed, gravity, the moving wall's inertial
-    number and what its sidecar's steadiness test finds not steady."""
+    number, what its sidecar's steadiness test finds not steady, and, where the run is
+    scanned (``scans``), its joint fit's chi^2 by field, u also under diagonal and
+    common-mode errors (the null's own quality, referee 11, point 1)."""
     cells = replicate_cells([r.run for r in results])
+    fits = {sc.run: _joint_fit_chi2(sc) for sc in scans}
     out = {}
     for r in results:
         meta = r.run.meta
@@ -1238,8 +1243,23 @@ def spin_runs(results: Sequence[RunResult]) -> dict[str, SpinRun]:
             r.run.cell == "plane" and r.run.B > 0.0,
             r.inertial_number if r.layer is None else None,
             "; ".join(bad),
+            fits.get(r.run.name, ()),
         )
     return out
+
+
+def _joint_fit_chi2(sc: Scan) -> tuple[tuple[str, float, int], ...]:
+    """A scan's joint fit by field: (field, chi^2, bins), then u under diagonal and
+    common-mode errors where :func:`.spin_scan.error_models` gives them."""
+    from .spin_scan import error_models
+
+    out = [(f.field, float(f.chi2), int(f.n)) for f in sc.fit.calibration.fields]
+    u = error_models(sc).get("u")
+    if u is not None:
+        for em in ("diagonal", "common-mode"):
+            if u.get(em) is not None:
+                out.append((f"u, {em} errors", float(u[em]), int(u["n"])))
+    return tuple(out)
 
 
 def _window_text(results: Sequence[RunResult]) -> str:

@@ -86,7 +86,7 @@ from ...calibration.noise import whiten
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
 from .forward import STENCILS
-from .measures import P_SIGNIFICANT, WallSpin, chi2_p
+from .measures import JOINT_NULL_NAME, JOINT_NULL_SOURCE, P_SIGNIFICANT, WallSpin, chi2_p
 
 P_CONSISTENT = 0.05
 """A test with p at or above this shows no departure [-]."""
@@ -377,9 +377,13 @@ def carrying_bins(w: WallSpin, stencil: str = "analysis") -> list[dict[str, floa
     """The bins of a wall's test (every near-wall bin, or all but the first layer where its
     departure beyond the null changes sign between stencils), the first layer under
     ``stencil``, with |z| >= :data:`CARRY_Z`: distance from the wall [d], departure beyond the
-    null and its se (the null's in quadrature) [-], whitened z [-], and p of z under
-    t(blocks - 1) (None when the blocks are not recorded)."""
-    order = np.argsort(w.distance_d)
+    null and its se (the null's in quadrature) [-], whitened z [-], p of z under
+    t(blocks - 1) (None when the blocks are not recorded), and the bin against its own null
+    envelope over every velocity the run has (:func:`bin_null_envelope`, the analysis'
+    stencil; referee 11, point 1): ``null_lo``, ``null_hi`` [-] and ``inside_null_envelope``
+    (None where the null is one velocity's, without an envelope)."""
+    full = np.argsort(w.distance_d)
+    order = full
     beyond = np.array(w.beyond, dtype=float)
     se = np.array(w.se_beyond, dtype=float)
     beyond[w.nearest], se[w.nearest] = w.beyond_first(stencil)
@@ -387,17 +391,39 @@ def carrying_bins(w: WallSpin, stencil: str = "analysis") -> list[dict[str, floa
         order = order[1:]
     z = _decisive(w, stencil)
     dist = np.asarray(w.distance_d, dtype=float)[order]
-    return [
-        {
-            "distance_d": float(dist[i]),
-            "departure": float(beyond[order][i]),
-            "se": float(se[order][i]),
-            "z": float(z[i]),
-            "p_t": t_p(float(z[i]), w.blocks),
-        }
-        for i in range(z.size)
-        if abs(float(z[i])) >= CARRY_Z
-    ]
+    enveloped = w.null_every is not None or w.null_range is not None
+    out = []
+    for i in range(z.size):
+        if abs(float(z[i])) < CARRY_Z:
+            continue
+        e = bin_null_envelope(w, int(np.flatnonzero(full == order[i])[0])) if enveloped else None
+        out.append(
+            {
+                "distance_d": float(dist[i]),
+                "departure": float(beyond[order][i]),
+                "se": float(se[order][i]),
+                "z": float(z[i]),
+                "p_t": t_p(float(z[i]), w.blocks),
+                "null_lo": None if e is None else e["null_lo"],
+                "null_hi": None if e is None else e["null_hi"],
+                "inside_null_envelope": None if e is None else not e["outside"],
+                "data": None if e is None else e["departure"],
+            }
+        )
+    return out
+
+
+def envelope_text(b: Mapping[str, Any]) -> str:
+    """A carrying bin (:func:`carrying_bins`) against its own null envelope, in words: ", which
+    lies inside its own null envelope (lo to hi, data d)" or "..., outside ..." ("" without an
+    envelope)."""
+    if b.get("inside_null_envelope") is None:
+        return ""
+    where = "inside" if b["inside_null_envelope"] else "outside"
+    return (
+        f", which lies {where} its own null envelope ({b['null_lo']:+.3g} to "
+        f"{b['null_hi']:+.3g}, data {b['data']:+.3g})"
+    )
 
 
 def _carry_text(tested: Sequence[WallSpin], stencil: str = "analysis") -> str:
@@ -410,7 +436,7 @@ def _carry_text(tested: Sequence[WallSpin], stencil: str = "analysis") -> str:
             )
             parts.append(
                 f"{b['distance_d']:.2g} d from {w.run}'s {w.wall} wall ({b['departure']:+.3g} "
-                f"+- {b['se']:.2g}, z = {b['z']:.3g}{under_t})"
+                f"+- {b['se']:.2g}, z = {b['z']:.3g}{under_t}){envelope_text(b)}"
             )
     # which se (referee 9, point 8): the first layer's under this stencil, with the null's
     which = (
@@ -486,8 +512,80 @@ DECIDING_RUNS_TWO_SPEEDS = (
 """:data:`DECIDING_RUNS` where a cell is already run at two wall speeds (referee 10, point 2:
 the stale request for a second wall speed dropped)."""
 SMOOTH_VELOCITY = "given a velocity smooth on the grain scale"
-"""The spin verdict's qualifier where its support needs the first layers (referee 10, point 3;
-:func:`needs_first_layers`)."""
+"""What the spin's support holds under where it needs the first layers (referee 10, point 3;
+:func:`needs_first_layers`); the qualifier says it as "(smooth on the grain scale)" after the
+null's name (:func:`null_qualifier`)."""
+NULL_MISFIT_P = 1e-3
+"""The joint fit whose velocity is the null misfits a field (u or omega) whose chi^2 p is
+below this (REFEREE.md's warning; ``spin_scan.MISFIT_P``)."""
+
+
+def null_name(w: WallSpin) -> str:
+    """The null a wall is tested against, in the qualifier's words: the joint fit's is "the
+    joint Cosserat fit's velocity" (:data:`~.measures.JOINT_NULL_NAME`), any other its
+    source."""
+    if w.null_source == JOINT_NULL_SOURCE:
+        return JOINT_NULL_NAME
+    return w.null_source or f"the {w.null_model} fit's velocity"
+
+
+def null_qualifier(tested: Sequence[WallSpin], smooth: bool) -> str:
+    """The spin verdict's qualifier (referee 11, point 1): "beyond the null of" the nulls the
+    tested walls used, each named once (:func:`null_name`), with "(smooth on the grain scale)"
+    where the support needs the first layers (``smooth``, :func:`needs_first_layers`)."""
+    names = sorted({null_name(w) for w in tested if w.null is not None})
+    if not names:
+        return SMOOTH_VELOCITY if smooth else ""
+    return f"beyond the null of {' or '.join(names)}" + (
+        " (smooth on the grain scale)" if smooth else ""
+    )
+
+
+def null_misfits(
+    tested: Sequence[WallSpin], info: Mapping[str, SpinRun]
+) -> dict[str, list[dict[str, Any]]]:
+    """Run -> the fields, u or omega, whose chi^2 p is below :data:`NULL_MISFIT_P` in the
+    joint fit whose velocity is that run's null (``SpinRun.joint_fit``; referee 11, point 1):
+    ``field``, ``chi2``, ``n``, ``p``; runs whose fit describes both, or whose null is not the
+    joint fit's, are left out."""
+    out: dict[str, list[dict[str, Any]]] = {}
+    for r in sorted({w.run for w in tested if w.null_source == JOINT_NULL_SOURCE}):
+        bad = []
+        for name, chi2, n in info[r].joint_fit if r in info else ():
+            if n < 1 or not (name == "omega" or name == "u" or name.startswith("u,")):
+                continue
+            p = float(chi2_dist.sf(chi2, n))
+            if p < NULL_MISFIT_P:
+                bad.append({"field": name, "chi2": float(chi2), "n": int(n), "p": p})
+        if bad:
+            out[r] = bad
+    return out
+
+
+def _null_misfit_text(bad: Mapping[str, Sequence[Mapping[str, Any]]]) -> str:
+    """The line on the null's own quality ("" where every joint fit whose velocity is a null
+    describes u and omega)."""
+    if not bad:
+        return ""
+    parts = []
+    for r, rows in bad.items():
+        fields: dict[str, list[str]] = {}  # u's error models grouped under u
+        for b in rows:
+            name, _, model = b["field"].partition(", ")
+            fields.setdefault(name, []).append(
+                (f"under {model} " if model else "")
+                + f"chi^2 = {b['chi2']:.3g}/{b['n']}, p = {b['p']:.2g}"
+            )
+        parts.append(
+            f"at {r} it misfits " + " and ".join(f"{f} ({'; '.join(t)})" for f, t in fields.items())
+        )
+    return (
+        f" The null's own quality: the joint fit whose velocity is the null misfits "
+        f"(p < {NULL_MISFIT_P:g}) at {len(bad)} run{'s' if len(bad) != 1 else ''}: "
+        + "; ".join(parts)
+        + "; there the departure is measured beyond a velocity that does not describe the "
+        "run's own u and omega."
+    )
 
 
 @dataclass(frozen=True)
@@ -513,6 +611,10 @@ class SpinRun:
     unsteady : str
         What the sidecar's steadiness test finds not steady ("" where steady or not
         recorded).
+    joint_fit : tuple of (str, float, int)
+        The joint fit whose velocity is the run's null, by field: (field, chi^2, bins), u
+        also under other error models ("u, diagonal errors"); empty where not recorded
+        (referee 11, point 1: the null's own quality).
     """
 
     cell: str = ""
@@ -522,6 +624,7 @@ class SpinRun:
     gravity: bool = False
     inertial_number: float | None = None
     unsteady: str = ""
+    joint_fit: tuple[tuple[str, float, int], ...] = ()
 
 
 def needs_first_layers(p_rest: float | None) -> bool:
@@ -751,18 +854,32 @@ def _lead(
     carrying = {f"{w.run}:{w.wall}": carrying_bins(w, weak) for w in tested}
     named = []
     first_runs = []
+    inside = []
     for w in tested:
         for b in carrying[f"{w.run}:{w.wall}"]:
             first = b["distance_d"] == float(np.min(w.distance_d))
             if first:
                 first_runs.append(w)
             where = "first layer" if first else f"bin at {b['distance_d']:.2g} d"
-            named.append(f"{w.run}'s {where} (z = {b['z']:+.2g})")
+            named.append(f"{w.run}'s {where} (z = {b['z']:+.2g}){envelope_text(b)}")
+            if b.get("inside_null_envelope"):
+                inside.append(f"{w.run}'s {where}")
     text += (
         f". Pooled chi^2 = {chi2:.3g}/{dof} under the weakest stencil ({weak}), {reading}"
-        + (f", carried by {', '.join(named)}" if named else "")
+        + (f", carried by {'; '.join(named)}" if named else "")
         + "."
     )
+    if inside:  # referee 11, point 1: a carrying bin inside its envelope, said in words
+        n_in, n_all = len(inside), len(named)
+        text += (
+            f" {n_in} of the {n_all} bins the verdict rests on "
+            + ("lies" if n_in == 1 else "lie")
+            + f" inside {'its' if n_in == 1 else 'their'} own null envelope over every "
+            f"velocity the run has ({', '.join(inside)}): "
+            + ("its" if n_in == 1 else "their")
+            + " departure holds beyond the verdict's null, not beyond every smooth velocity "
+            "the run has."
+        )
     if first_runs:
         spans = []
         for w in first_runs:
@@ -840,9 +957,13 @@ def spin_verdict(
 
     Notes
     -----
-    "supported" carries the qualifier :data:`SMOOTH_VELOCITY` (``Verdict.qualifier``) where
-    its support needs the first layers (:func:`needs_first_layers`): their null is the
-    velocity inside a first bin, which the bins do not resolve.
+    "supported" carries the qualifier (``Verdict.qualifier``, :func:`null_qualifier`) naming
+    the null it holds beyond, e.g. "beyond the null of the joint Cosserat fit's velocity", with
+    "(smooth on the grain scale)" where its support needs the first layers
+    (:func:`needs_first_layers`): their null is the velocity inside a first bin, which the
+    bins do not resolve. Each bin it rests on is set against its own null envelope over every
+    velocity the run has, and a joint fit whose velocity is a null and misfits u or omega
+    (p < :data:`NULL_MISFIT_P`, ``SpinRun.joint_fit``) is named (referee 11, point 1).
     """
     unfit = dict(unfit or {})
     info = dict(runs_info or {})
@@ -1084,6 +1205,13 @@ def spin_verdict(
     numbers["pooled_p_t"] = p_t
     numbers["pooled_p_t_without_first_layer"] = p_t_rest
     numbers["blocks"] = blocks
+    # referee 11, point 1: pooled_p reads each z as normal, pooled_p_t under t(blocks - 1);
+    # the headline is the one the verdict states (t where the blocks are recorded)
+    numbers["pooled_p_headline"] = p_t if p_t is not None else p
+    numbers["pooled_p_headline_reading"] = f"t({blocks - 1})" if p_t is not None else "normal"
+    misfits = null_misfits(tested, info)
+    numbers["null_fit_misfits"] = misfits
+    misfit_line = _null_misfit_text(misfits)
     if p_t is not None:
         head = (
             f"read with each bin's z under t({blocks - 1}), as the bins' p are (the se come "
@@ -1104,7 +1232,7 @@ def spin_verdict(
     cells_blind = [c for c in cells if all(r in blind for r in runs if cell_of[r] == c)]
     if p < P_SIGNIFICANT and (p_t is None or p_t < P_SIGNIFICANT):
         lead = _lead(tested, info, weak, (chi2, dof, p, p_t), (*rest, p_t_rest), blocks)
-        lead += f"{bin2}{unsteady}"
+        lead += f"{bin2}{misfit_line}{unsteady}"
         if 2 * len(cells_showing) >= len(cells) - len(cells_blind):
             given = (
                 f" It holds {SMOOTH_VELOCITY}: the support needs the first layers, whose null "
@@ -1115,7 +1243,8 @@ def spin_verdict(
                 if needs_first
                 else ""
             )
-            numbers["qualifier"] = SMOOTH_VELOCITY if needs_first else ""
+            qualifier = null_qualifier(tested, needs_first)
+            numbers["qualifier"] = qualifier
             return Verdict(
                 key,
                 "supported",
@@ -1129,7 +1258,7 @@ def spin_verdict(
                 f"{deciding}.",
                 tuple(runs),
                 numbers,
-                qualifier=SMOOTH_VELOCITY if needs_first else "",
+                qualifier=qualifier,
             )
         return Verdict(
             key,
@@ -1137,13 +1266,13 @@ def spin_verdict(
             f"Mixed: the pooled test departs, but only {len(cells_showing)} of "
             f"{len(cells) - len(cells_blind)} "
             f"{'runs' if len(cells) == len(runs) else 'cells'} that could show it do; the "
-            f"pooled result rests on them. {lead} {head}",
+            f"pooled result rests on them. {lead}{misfit_line} {head}",
             "more runs at the conditions of those that do not depart, to tell a real "
             f"difference between runs from scatter; {deciding}.",
             tuple(runs),
             numbers,
         )
-    head = f"{head}{bin2}{unsteady}" if bin2 or unsteady else head
+    head = f"{head}{bin2}{misfit_line}{unsteady}"
     if p >= P_CONSISTENT and p_seen is not None and p_seen < P_SIGNIFICANT:
         return Verdict(
             key,
