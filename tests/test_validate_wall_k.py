@@ -198,6 +198,31 @@ def test_a_misfit_with_a_fitting_stress_ratio_is_read_as_inadequacy(made):
     assert "is read as the model's inadequacy, not understated errors" in v.evidence
     assert "The held-out first layer: rough supported" in v.evidence
     assert v.would_change.startswith("at rough: a calibration that describes u and omega")
+    # referee 11, point 2: the cell run at half the speed differs from it beyond 3 se where
+    # the material barely moves: part of the misfit may be understated block errors
+    from types import SimpleNamespace
+
+    from cosserat.studies.validate.rate import StaticMiss
+
+    pair = SimpleNamespace(fast="rough", slow="rough_half",
+                           static=(StaticMiss("omega", 6.3377, -3.16),
+                                   StaticMiss("nu", 8.3377, -4.94)))  # fmt: skip
+    reading, why = ss.misfit_reading([bad], [pair])
+    assert reading == "inadequacy"
+    assert "is read mainly as the model's inadequacy: the model" in why
+    assert "not understated errors" not in why
+    assert why.endswith(
+        " Part of the misfit may be understated block errors, though (scatter between runs that "
+        "the block errors do not carry): where one cell is run at two speeds, the two runs "
+        "differ beyond 3 se where the material barely moves (I < 0.0001 in both, no rate effect "
+        "plausible there) at rough against rough_half: omega at 6.3 d (z = -3.2), nu at 8.3 d "
+        "(z = -4.9), the zone that carries part of the misfit at rough; a second seed would "
+        "settle the error scale."
+    )
+    assert ss.scan_verdict([bad], pairs=[pair]).verdict == "refuted"
+    # a pair without static misses changes nothing
+    quiet = SimpleNamespace(fast="rough", slow="rough_half", static=())
+    assert ss.misfit_reading([bad], [quiet]) == ss.misfit_reading([bad])
     # a stress ratio that misfits too: the errors may be understated, the rules stand
     fields = [
         dataclasses.replace(f, chi2=10.0 * f.n) if f.field == "stress_ratio" else f
