@@ -204,8 +204,12 @@ def test_a_misfit_with_a_fitting_stress_ratio_is_read_as_inadequacy(made):
 
     from cosserat.studies.validate.rate import StaticMiss
 
+    # omega's misfit bin of this fit: its AR(1) chi^2 share is named
+    om = ss.error_models(bad)["omega"]
+    top = max(om["bins"], key=lambda b: b["chi2"])
+    d = round(top["distance_d"], 4)
     pair = SimpleNamespace(fast="rough", slow="rough_half",
-                           static=(StaticMiss("omega", 6.3377, -3.16),
+                           static=(StaticMiss("omega", d, -3.16, d + 0.5),
                                    StaticMiss("nu", 8.3377, -4.94)))  # fmt: skip
     reading, why = ss.misfit_reading([bad], [pair])
     assert reading == "inadequacy"
@@ -215,10 +219,13 @@ def test_a_misfit_with_a_fitting_stress_ratio_is_read_as_inadequacy(made):
         " Part of the misfit may be understated block errors, though (scatter between runs that "
         "the block errors do not carry): where one cell is run at two speeds, the two runs "
         "differ beyond 3 se where the material barely moves (I < 0.0001 in both, no rate effect "
-        "plausible there) at rough against rough_half: omega at 6.3 d (z = -3.2), nu at 8.3 d "
-        "(z = -4.9), the zone that carries part of the misfit at rough; a second seed would "
-        "settle the error scale."
+        f"plausible there) at rough against rough_half: omega at {d:.2g} d (z = -3.2), nu at "
+        f"8.3 d (z = -4.9); those omega bins carry omega's AR(1) chi^2 {top['chi2']:.3g} of "
+        f"{om['ar1']:.3g} at rough; a second seed would settle the error scale."
     )
+    # as the slower run of the pair, its own distance (0.5 d further here) is matched: no bin
+    slow = SimpleNamespace(fast="rough_fast", slow="rough", static=pair.static)
+    assert "those omega bins carry" not in ss.misfit_reading([bad], [slow])[1]
     assert ss.scan_verdict([bad], pairs=[pair]).verdict == "refuted"
     # a pair without static misses changes nothing
     quiet = SimpleNamespace(fast="rough", slow="rough_half", static=())

@@ -46,6 +46,8 @@ class StaticMiss:
     """From the faster run's moving wall [d]."""
     z: float
     """(fast - slow) / hypot(se_fast, se_slow) [-]."""
+    distance_slow_d: float | None = None
+    """The same bin from the slower run's moving wall [d]."""
 
 
 def static_misses(fast: Any, slow: Any) -> list[StaticMiss]:
@@ -65,6 +67,7 @@ def static_misses(fast: Any, slow: Any) -> list[StaticMiss]:
         static = same & (np.asarray(a["inertial_number"], float) < STATIC_I)
         static &= np.asarray(b["inertial_number"], float) < STATIC_I
     dist = np.asarray(fast.distance_d, float)
+    dist_slow = np.asarray(slow.distance_d, float)
     out = []
     for column in STATIC_COLUMNS:
         if not all(k in c for c in (a, b) for k in (column, f"{column}_se")):
@@ -73,7 +76,14 @@ def static_misses(fast: Any, slow: Any) -> list[StaticMiss]:
         with np.errstate(invalid="ignore", divide="ignore"):
             z = (np.asarray(a[column], float) - np.asarray(b[column], float)) / se
         for row in np.flatnonzero(static & np.isfinite(z) & (np.abs(z) > STATIC_SIGMAS)):
-            out.append(StaticMiss(column, round(float(dist[row]), 4), float(z[row])))
+            out.append(
+                StaticMiss(
+                    column,
+                    round(float(dist[row]), 4),
+                    float(z[row]),
+                    round(float(dist_slow[row]), 4),
+                )
+            )
     return out
 
 

@@ -2256,13 +2256,36 @@ def misfit_reading(scans: Sequence[Scan], pairs: Sequence[Any] = ()) -> tuple[st
         from .rate import STATIC_I, STATIC_SIGMAS, static_text
 
         cells = "; ".join(f"{p.fast} against {p.slow}: {static_text(p.static)}" for p in scatter)
-        own = [r for r in (sc.run for sc in bad) if any(r in (p.fast, p.slow) for p in scatter)]
+        shares = []  # omega's AR(1) chi^2 in the misfitting runs' own static-zone omega bins
+        for sc in bad:
+            at = [
+                m.distance_d if sc.run == p.fast else m.distance_slow_d
+                for p in scatter
+                if sc.run in (p.fast, p.slow)
+                for m in p.static
+                if m.column == "omega"
+            ]
+            om = error_models(sc).get("omega") if at else None
+            if not om or not om["ar1"] > 0.0:
+                continue
+            part = [
+                b for b in om["bins"] if any(d is not None and abs(b["distance_d"] - d) < 0.25
+                                             for d in at)
+            ]  # fmt: skip
+            if part:
+                shares.append(
+                    f"{sum(b['chi2'] for b in part):.3g} of {om['ar1']:.3g} at {sc.run}"
+                )
         scatter_text = (
             " Part of the misfit may be understated block errors, though (scatter between runs "
             "that the block errors do not carry): where one cell is run at two speeds, the two "
             f"runs differ beyond {STATIC_SIGMAS:g} se where the material barely moves (I < "
             f"{STATIC_I:g} in both, no rate effect plausible there) at {cells}"
-            + (f", the zone that carries part of the misfit at {', '.join(own)}" if own else "")
+            + (
+                f"; those omega bins carry omega's AR(1) chi^2 {'; '.join(shares)}"
+                if shares
+                else ""
+            )
             + "; a second seed would settle the error scale."
         )
     if len(ok) < len(bad):
