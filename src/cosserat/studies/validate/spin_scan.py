@@ -2278,7 +2278,12 @@ def misfit_reading(scans: Sequence[Scan], pairs: Sequence[Any] = ()) -> tuple[st
                 )
         scatter_text = (
             " Part of the misfit may be understated block errors, though (scatter between runs "
-            "that the block errors do not carry): where one cell is run at two speeds, the two "
+            "that the block errors do not carry)"
+            if len(ok) == len(bad)
+            else " Such errors are seen directly (scatter between runs that the block errors "
+            "do not carry)"
+        ) + (
+            ": where one cell is run at two speeds, the two "
             f"runs differ beyond {STATIC_SIGMAS:g} se where the material barely moves (I < "
             f"{STATIC_I:g} in both, no rate effect plausible there) at {cells}"
             + (
