@@ -167,3 +167,48 @@ def test_no_record_no_autocorrelation_text(tmp_path):
         " Autocorrelation times not recorded for plane_layer_H10_qs."
     )
     assert autocorrelation_text([]) == ""
+
+
+def test_omega_u_nu_times_named_like_the_stresses(tmp_path):
+    # referee 11, point 2: the rough H = 10 d run, omega's bin 6.3 d from the moving wall set
+    # to 2 blocks (a lower bound), the others 0.2; u 0.5 everywhere; nu not recorded
+    def edit(meta):
+        prof = meta["block_autocorrelation"]["profiles"]
+        prof["omega"].update(per_bin=[0.2, 0.2, 0.2, 2.0] + [0.2] * 6, unreliable_bins=1)
+        prof["u"].update(per_bin=[0.5] * 10, unreliable_bins=0)
+        prof.pop("nu")
+
+    run = _run(tmp_path, "plane_rough_H10_qs", edit)
+    text = autocorrelation_text([run])
+    f2, f_half = block_se_factor(2.0, 10), block_se_factor(0.5, 10)
+    assert (f"{f2:.2g}", f"{f_half:.2g}") == ("1.7", "1.2")
+    assert text.endswith(
+        " omega, u and nu's per-bin autocorrelation times (the same record): omega one block or "
+        "more in 1 of 10 bins of 1 run(s) (largest 2 blocks, plane_rough_H10_qs at 6.3 d: its "
+        "block se too small by about 1.7), 1 of its bins' times lower bounds (Sokal's window "
+        "open); u under one block in every bin of 1 run(s) (largest 0.5 blocks, "
+        "plane_rough_H10_qs at 9.3 d: block se too small by 1.2 at most)."
+    )
+    # the stresses' sentence and the long series do not take these columns in
+    assert "The stresses' per-bin autocorrelation times" in text
+    assert all(x.observable.startswith("sigma_") or x.distance_d is None for x in long_taus(run))
+
+    # a sidecar recording only the stresses' times (before referee 11): no such sentence
+    def old(meta):
+        for k in ("omega", "u", "nu"):
+            meta["block_autocorrelation"]["profiles"].pop(k)
+
+    stress_only = _run(tmp_path, "plane_rough_H10_qs", old)
+    assert "omega, u and nu's" not in autocorrelation_text([stress_only])
+
+
+def test_the_stored_runs_nu_times(tmp_path):
+    # the seven stored sidecars: nu reaches one block in 4 of smooth H = 20 d's 20 bins, every
+    # one a lower bound; omega and u stay far under a block
+    run = _run(tmp_path, "plane_smooth_H20_qs")
+    prof = run.meta["block_autocorrelation"]["profiles"]
+    assert prof["omega"]["max"] < 0.1 and prof["u"]["max"] < 0.1
+    long = [x for x in prof["nu"]["per_bin"] if x is not None and x >= 1.0]
+    assert len(long) == 4 == prof["nu"]["unreliable_bins"]
+    text = autocorrelation_text([run])
+    assert "nu one block or more in 4 of 20 bins of 1 run(s) (largest 2.5 blocks" in text

@@ -198,6 +198,38 @@ def test_a_misfit_with_a_fitting_stress_ratio_is_read_as_inadequacy(made):
     assert "is read as the model's inadequacy, not understated errors" in v.evidence
     assert "The held-out first layer: rough supported" in v.evidence
     assert v.would_change.startswith("at rough: a calibration that describes u and omega")
+    # referee 11, point 2: the cell run at half the speed differs from it beyond 3 se where
+    # the material barely moves: part of the misfit may be understated block errors
+    from types import SimpleNamespace
+
+    from cosserat.studies.validate.rate import StaticMiss
+
+    # omega's misfit bin of this fit: its AR(1) chi^2 share is named
+    om = ss.error_models(bad)["omega"]
+    top = max(om["bins"], key=lambda b: b["chi2"])
+    d = round(top["distance_d"], 4)
+    pair = SimpleNamespace(fast="rough", slow="rough_half",
+                           static=(StaticMiss("omega", d, -3.16, d + 0.5),
+                                   StaticMiss("nu", 8.3377, -4.94)))  # fmt: skip
+    reading, why = ss.misfit_reading([bad], [pair])
+    assert reading == "inadequacy"
+    assert "is read mainly as the model's inadequacy: the model" in why
+    assert "not understated errors" not in why
+    assert why.endswith(
+        " Part of the misfit may be understated block errors, though (scatter between runs that "
+        "the block errors do not carry): where one cell is run at two speeds, the two runs "
+        "differ beyond 3 se where the material barely moves (I < 0.0001 in both, no rate effect "
+        f"plausible there) at rough against rough_half: omega at {d:.2g} d (z = -3.2), nu at "
+        f"8.3 d (z = -4.9); those omega bins carry omega's AR(1) chi^2 {top['chi2']:.3g} of "
+        f"{om['ar1']:.3g} at rough; a second seed would settle the error scale."
+    )
+    # as the slower run of the pair, its own distance (0.5 d further here) is matched: no bin
+    slow = SimpleNamespace(fast="rough_fast", slow="rough", static=pair.static)
+    assert "those omega bins carry" not in ss.misfit_reading([bad], [slow])[1]
+    assert ss.scan_verdict([bad], pairs=[pair]).verdict == "refuted"
+    # a pair without static misses changes nothing
+    quiet = SimpleNamespace(fast="rough", slow="rough_half", static=())
+    assert ss.misfit_reading([bad], [quiet]) == ss.misfit_reading([bad])
     # a stress ratio that misfits too: the errors may be understated, the rules stand
     fields = [
         dataclasses.replace(f, chi2=10.0 * f.n) if f.field == "stress_ratio" else f
@@ -210,4 +242,8 @@ def test_a_misfit_with_a_fitting_stress_ratio_is_read_as_inadequacy(made):
         ),
     )
     assert ss.misfit_reading([worse])[0] == "errors"
+    reading, why = ss.misfit_reading([worse], [pair])
+    assert reading == "errors" and "sqrt(chi^2/dof) and the 95% region is scaled alike. Such " \
+        "errors are seen directly (scatter between runs that the block errors do not carry): " \
+        "where one cell is run at two speeds, the two runs differ beyond 3 se" in why
     assert ss.scan_verdict([worse]).verdict == "supported"

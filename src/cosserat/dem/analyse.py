@@ -575,10 +575,20 @@ def steady_profile(
     if moving is not None:  # the spin the spin verdicts rest on: the moving wall's first bin
         series["moving_wall_spin"] = moving_bin_spin(samples, moving)
     sidecar["block_autocorrelation"] = block_autocorrelation(series, first, blocks, every)
-    # the stresses' per-bin times (referee 10, point 8: their block errors may be too small)
-    stresses = sample_fields(samples, first, ("sigma_nt", "sigma_nn"))
+    # the per-bin times of the stresses (referee 10, point 8) and of the spin, velocity and
+    # solids fraction (referee 11, point 2: where the material barely moves, their block errors
+    # may understate the scatter between runs)
+    fields = sample_fields(samples, first, ("sigma_nt", "sigma_nn", "omega", "u", "nu"))
     sidecar["block_autocorrelation"]["profiles"] = profile_autocorrelation(
-        {f"sigma_{n}{t}": stresses["sigma_nt"], f"sigma_{n}{n}": stresses["sigma_nn"]}, 0, blocks
+        {
+            f"sigma_{n}{t}": fields["sigma_nt"],
+            f"sigma_{n}{n}": fields["sigma_nn"],
+            "omega": fields["omega"],
+            "u": fields["u"],
+            "nu": fields["nu"],
+        },
+        0,
+        blocks,
     )
     sidecar["omega_half_vorticity_correlation"] = {
         "per_bin": block_correlation(

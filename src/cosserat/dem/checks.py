@@ -191,8 +191,9 @@ def block_autocorrelation(
 
 PROFILE_NOTE = (
     "per bin (the profile's rows), the integrated autocorrelation time of the per-sample "
-    "stress of that bin over the steady window (as for 'observables'), in blocks "
-    "(tau_blocks = tau_samples / block_samples): per_bin (null where a bin's series is "
+    "field (the stresses; omega, u and nu) of that bin over the steady window (as for "
+    "'observables'), in blocks (tau_blocks = tau_samples / block_samples): per_bin (null "
+    "where a bin's series is "
     "constant or too short), its largest (max, at row max_row) and median over the bins, the "
     "bins whose estimate is a lower bound (unreliable_bins) and 'short' (any bin's block shorter "
     "than 2 tau). A series whose tau is one block or more gives about blocks / tau_blocks "
@@ -204,7 +205,8 @@ PROFILE_NOTE = (
 
 def profile_autocorrelation(profiles: dict[str, np.ndarray], first: int, blocks: int) -> dict:
     """Per-bin integrated autocorrelation times of per-sample profiles, in blocks (the
-    sidecar's ``block_autocorrelation.profiles``; referee 10, point 8: the stresses').
+    sidecar's ``block_autocorrelation.profiles``; referee 10, point 8: the stresses'; referee
+    11, point 2: omega, u and nu).
 
     Parameters
     ----------

@@ -1286,9 +1286,14 @@ def series_taus(run: Run) -> dict[str, tuple[float, bool]]:
     return out
 
 
-def stress_taus(run: Run) -> dict[str, list[float | None]] | None:
-    """The stresses' per-bin autocorrelation times in blocks, column -> per row (the
-    sidecar's ``block_autocorrelation.profiles``; None where the run does not record them)."""
+FIELD_COLUMNS = ("omega", "u", "nu")
+"""The kinematic and packing columns whose per-bin autocorrelation times the sidecar records
+beside the stresses' (referee 11, point 2; :func:`field_taus`)."""
+
+
+def _profile_taus(run: Run, keep: Any) -> dict[str, list[float | None]] | None:
+    """``block_autocorrelation.profiles``' per-bin times of the columns ``keep(name)`` accepts
+    (None where the run records no profiles)."""
     rec = run.meta.get("block_autocorrelation")
     prof = rec.get("profiles") if isinstance(rec, dict) else None
     if not isinstance(prof, dict):
@@ -1296,8 +1301,22 @@ def stress_taus(run: Run) -> dict[str, list[float | None]] | None:
     return {
         k: [None if x is None else float(x) for x in v["per_bin"]]
         for k, v in prof.items()
-        if isinstance(v, dict) and isinstance(v.get("per_bin"), list)
+        if keep(k) and isinstance(v, dict) and isinstance(v.get("per_bin"), list)
     }
+
+
+def stress_taus(run: Run) -> dict[str, list[float | None]] | None:
+    """The stresses' per-bin autocorrelation times in blocks, column -> per row (the
+    sidecar's ``block_autocorrelation.profiles``' ``sigma_*``; None where the run does not
+    record them)."""
+    return _profile_taus(run, lambda k: k.startswith("sigma_"))
+
+
+def field_taus(run: Run) -> dict[str, list[float | None]] | None:
+    """omega, u and nu's per-bin autocorrelation times in blocks (:data:`FIELD_COLUMNS` in
+    the sidecar's ``block_autocorrelation.profiles``), column -> per row; None where the run
+    records no profiles, {} where it records only the stresses'."""
+    return _profile_taus(run, lambda k: k in FIELD_COLUMNS)
 
 
 def long_taus(run: Run) -> list[LongTau]:
@@ -1404,16 +1423,45 @@ def autocorrelation_text(runs: Sequence[Run]) -> str:
     missing = sorted(r.name for r in runs if not series_taus(r))
     if missing:
         text += f" Autocorrelation times not recorded for {', '.join(missing)}."
-    return text + _stress_tau_text(runs)
+    return text + _stress_tau_text(runs) + _field_tau_text(runs)
 
 
-def _stress_tau_text(runs: Sequence[Run]) -> str:
-    """The stresses' part of :func:`autocorrelation_text`."""
-    records = {r.name: (r, t) for r in runs if (t := stress_taus(r))}
+def _field_tau_text(runs: Sequence[Run]) -> str:
+    """omega, u and nu's part of :func:`autocorrelation_text` (referee 11, point 2): per
+    column, as the stresses', the bins of one block or more, the largest and how much too
+    small its block se is, and how many bins' times are lower bounds."""
+    records = {r.name: (r, t) for r in runs if (t := field_taus(r))}
     if not records:
         return ""
-    columns = sorted({c for _, t in records.values() for c in t})
-    parts = []
+    columns = [c for c in FIELD_COLUMNS if any(c in t for _, t in records.values())]
+    parts = _tau_parts(records, columns)
+    if not parts:
+        return ""
+    for c in parts:
+        lower = sum(_unreliable_bins(r, c) for r, _ in records.values())
+        if lower:
+            parts[c] += f", {lower} of its bins' times lower bounds (Sokal's window open)"
+    return (
+        " omega, u and nu's per-bin autocorrelation times (the same record): "
+        + "; ".join(parts.values())
+        + "."
+    )
+
+
+def _unreliable_bins(run: Run, column: str) -> int:
+    """The column's bins whose time is a lower bound (the profile record's
+    ``unreliable_bins``; 0 without it)."""
+    prof = (run.meta.get("block_autocorrelation") or {}).get("profiles") or {}
+    v = prof.get(column)
+    n = v.get("unreliable_bins") if isinstance(v, dict) else None
+    return int(n) if isinstance(n, int | float) else 0
+
+
+def _tau_parts(records: dict[str, tuple[Run, dict]], columns: Sequence[str]) -> dict[str, str]:
+    """Per column with a time in some bin (column -> one clause, in order): its bins of one
+    block or more (count, runs, the largest with its run and distance from the moving wall,
+    and how much too small that bin's block se is), or that every bin is under one block."""
+    parts: dict[str, str] = {}
     for c in columns:
         rows = [
             (n, tau, float(r.distance_d[k]), _blocks(r))
@@ -1428,17 +1476,27 @@ def _stress_tau_text(runs: Sequence[Run]) -> str:
         factor = block_se_factor(top[1], top[3])
         where = f"{top[0]} at {top[2]:.2g} d"
         if long:
-            parts.append(
+            parts[c] = (
                 f"{c} one block or more in {len(long)} of {len(rows)} bins of "
                 f"{len({x[0] for x in long})} run(s) (largest {top[1]:.2g} blocks, {where}: "
                 f"its block se too small by about {factor:.2g})"
             )
         else:
-            parts.append(
+            parts[c] = (
                 f"{c} under one block in every bin of {len({x[0] for x in rows})} run(s) "
                 f"(largest {top[1]:.2g} blocks, {where}: block se too small by {factor:.2g} "
                 "at most)"
             )
+    return parts
+
+
+def _stress_tau_text(runs: Sequence[Run]) -> str:
+    """The stresses' part of :func:`autocorrelation_text`."""
+    records = {r.name: (r, t) for r in runs if (t := stress_taus(r))}
+    if not records:
+        return ""
+    columns = sorted({c for _, t in records.values() for c in t})
+    parts = list(_tau_parts(records, columns).values())
     text = (
         " The stresses' per-bin autocorrelation times (block_autocorrelation.profiles; "
         "distance from the moving wall): " + "; ".join(parts) + "."

@@ -2221,7 +2221,7 @@ def _misfits(sc: Scan) -> bool:
     return p is not None and p < MISFIT_P
 
 
-def misfit_reading(scans: Sequence[Scan]) -> tuple[str, str]:
+def misfit_reading(scans: Sequence[Scan], pairs: Sequence[Any] = ()) -> tuple[str, str]:
     """How the joint fits' misfit is read (referee 8, point 3), and the sentence saying so:
     ``("", "")`` where no joint fit misfits (p >= :data:`MISFIT_P`); ``"inadequacy"`` (the
     model with this wall condition does not describe u and omega: the verdict rests on the
@@ -2229,7 +2229,11 @@ def misfit_reading(scans: Sequence[Scan]) -> tuple[str, str]:
     the same blocks, fits (p >= :data:`FITS_P`): block errors understated enough to explain
     the misfit would show there too, and errors from n blocks raise chi^2/dof by only about
     (n - 1)/(n - 3) on average (t with n - 1 dof); ``"errors"`` otherwise (the errors may be
-    understated: the rules' scaling by chi^2/dof is what applies)."""
+    understated: the rules' scaling by chi^2/dof is what applies). ``pairs``: one cell at two
+    wall speeds (``rate.rate_pairs``); where one's two runs differ beyond their block errors
+    in the zone that barely moves (their ``static`` bins; referee 11, point 2), the sentence
+    says part of the misfit may be understated block errors (scatter between runs), naming
+    the bins, and the reading is "mainly" the model's inadequacy."""
     from ...calibration import diagnostics as dg
 
     bad = [sc for sc in scans if _misfits(sc)]
@@ -2246,11 +2250,54 @@ def misfit_reading(scans: Sequence[Scan]) -> tuple[str, str]:
     ok = [r for r, v in ratios.items() if v is not None and v[2] >= FITS_P]
     per_dof = ", ".join(f"{sc.chi2_min / sc.fit.calibration.dof:.3g}" for sc in bad)
     names = ", ".join(sc.run for sc in bad)
+    scatter = [p for p in pairs if getattr(p, "static", ())]
+    scatter_text = ""
+    if scatter:
+        from .rate import STATIC_I, STATIC_SIGMAS, static_text
+
+        cells = "; ".join(f"{p.fast} against {p.slow}: {static_text(p.static)}" for p in scatter)
+        shares = []  # omega's AR(1) chi^2 in the misfitting runs' own static-zone omega bins
+        for sc in bad:
+            at = [
+                m.distance_d if sc.run == p.fast else m.distance_slow_d
+                for p in scatter
+                if sc.run in (p.fast, p.slow)
+                for m in p.static
+                if m.column == "omega"
+            ]
+            om = error_models(sc).get("omega") if at else None
+            if not om or not om["ar1"] > 0.0:
+                continue
+            part = [
+                b for b in om["bins"] if any(d is not None and abs(b["distance_d"] - d) < 0.25
+                                             for d in at)
+            ]  # fmt: skip
+            if part:
+                shares.append(
+                    f"{sum(b['chi2'] for b in part):.3g} of {om['ar1']:.3g} at {sc.run}"
+                )
+        scatter_text = (
+            " Part of the misfit may be understated block errors, though (scatter between runs "
+            "that the block errors do not carry)"
+            if len(ok) == len(bad)
+            else " Such errors are seen directly (scatter between runs that the block errors "
+            "do not carry)"
+        ) + (
+            ": where one cell is run at two speeds, the two "
+            f"runs differ beyond {STATIC_SIGMAS:g} se where the material barely moves (I < "
+            f"{STATIC_I:g} in both, no rate effect plausible there) at {cells}"
+            + (
+                f"; those omega bins carry omega's AR(1) chi^2 {'; '.join(shares)}"
+                if shares
+                else ""
+            )
+            + "; a second seed would settle the error scale."
+        )
     if len(ok) < len(bad):
         return "errors", (
             f"The misfit at {names} is read as understated errors (the stress ratio, from the "
             "same blocks, does not fit everywhere), so the rules take the data's se times "
-            "sqrt(chi^2/dof) and the 95% region is scaled alike."
+            "sqrt(chi^2/dof) and the 95% region is scaled alike." + scatter_text
         )
     blocks = {sc.wall_k.get("blocks") for sc in bad}
     n = blocks.pop() if len(blocks) == 1 else None
@@ -2264,14 +2311,19 @@ def misfit_reading(scans: Sequence[Scan]) -> tuple[str, str]:
     # the K WARNING is the held-out first layer's miss restated: counted once, in the rules,
     # not again as a reason for this reading (referee 9, point 4)
     k_text = ""
+    lead = (
+        "mainly as the model's inadequacy"
+        if scatter
+        else "as the model's inadequacy, not understated errors"
+    )
     return "inadequacy", (
-        f"The misfit at {names} (p < {MISFIT_P:g}) is read as the model's inadequacy, not "
-        "understated errors: the model with this wall condition does not describe u and omega "
+        f"The misfit at {names} (p < {MISFIT_P:g}) is read {lead}: the model with this wall "
+        "condition does not describe u and omega "
         "here, so the verdict rests on the misfit, the held-out first layer as corroboration, "
         "because "
         f"{t_factor}the stress ratio from the same blocks fits ({stress}){k_text}; the rules' "
         "se and 95% region scaled by chi^2/dof are then a conservative widening, not a "
-        "confidence region."
+        "confidence region." + scatter_text
     )
 
 
@@ -2420,11 +2472,12 @@ def _stencil_text(sc: Scan) -> str:
     return f" (best fit - data under each stencil, in se of {how}: " + ", ".join(parts) + ")"
 
 
-def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
+def scan_verdict(scans: Sequence[Scan], u_only: Any = None, pairs: Sequence[Any] = ()) -> Any:
     """The ``spin_model`` verdict from the runs' scans (module docstring, item 4): "refuted"
     where every run of determined sign is refuted, "supported" where every one is supported,
     "mixed" where some are refuted and some supported, "undecided" otherwise. ``u_only``: the
-    verdict on the u-only fits (:func:`~.verdicts.spin_model_verdict`), kept in its numbers.
+    verdict on the u-only fits (:func:`~.verdicts.spin_model_verdict`), kept in its numbers;
+    ``pairs``: ``rate.rate_pairs`` of the runs, for :func:`misfit_reading`.
     """
     from .verdicts import SIGN_SIGMAS, Verdict
 
@@ -2465,7 +2518,7 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None) -> Any:
         f"admissible point departs beyond its null by more than {SIGN_SIGMAS:g} se from it. The "
         "95% region is Delta chi^2 <= chi2.ppf(0.95, k) times chi^2/dof where that exceeds 1."
     )
-    reading, why = misfit_reading(scans)
+    reading, why = misfit_reading(scans, pairs)
     misfit = [sc.run for sc in scans if _misfits(sc)]
     numbers["reading"] = reading or None
     numbers["misfit_runs"] = misfit

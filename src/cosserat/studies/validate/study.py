@@ -439,7 +439,9 @@ def _spin_model(
         if not skipped:
             return u_only
         return replace(u_only, evidence=f"{u_only.evidence} Not scanned: {'; '.join(skipped)}.")
-    v = scan_verdict(scans, u_only)
+    from .rate import rate_pairs
+
+    v = scan_verdict(scans, u_only, rate_pairs(results))
     if skipped:
         v = replace(v, evidence=f"{v.evidence} Not scanned: {'; '.join(skipped)}.")
     return v
