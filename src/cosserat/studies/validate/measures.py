@@ -59,7 +59,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -93,22 +93,99 @@ by at least this, in units of the velocity scale [-]."""
 
 
 # --------------------------------------------------------------------------- Delta
+FAR_SLIP_SIGMAS = 2.0
+"""The fixed far wall slips when the velocity of the bin nearest to it differs from the
+wall's by more than this many of its standard errors [-]."""
+
+
+@dataclass(frozen=True)
+class FarWall:
+    """The bin nearest the fixed (far) wall: its velocity and standard error [V], the wall's
+    velocity u_0 of Delta [V] and whether the wall slips (:data:`FAR_SLIP_SIGMAS`)."""
+
+    u: float
+    se: float
+    wall_u: float
+    fixed: bool = True
+
+    @property
+    def z(self) -> float | None:
+        """(u - wall_u) / se, None without an error [-]."""
+        return (self.u - self.wall_u) / self.se if self.se > 0.0 else None
+
+    @property
+    def slips(self) -> bool:
+        """Whether the far wall slips: a fixed wall whose nearest bin moves by more than
+        :data:`FAR_SLIP_SIGMAS` standard errors."""
+        z = self.z
+        return self.fixed and z is not None and abs(z) > FAR_SLIP_SIGMAS
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"u": self.u, "se": self.se, "wall_u": self.wall_u, "z": self.z, "slips": self.slips}
+
+
+def far_wall(run: Run) -> FarWall:
+    """The far wall of a run's Delta (:class:`FarWall`): the bin farthest from the moving
+    wall. Plane shear without gravity has no fixed far wall in this sense (u_0 = 1/2 is the
+    symmetric profile's centre), so it never slips here."""
+    m = run.measured()
+    assert m.u_err is not None
+    i = int(np.argmax(m.distance_d))
+    u0 = reference_velocity(run)
+    return FarWall(float(m.u_over_uw[i]), float(m.u_err[i]), u0, fixed=u0 == 0.0)
+
+
 @dataclass
 class Thickness:
-    """Delta of a run's data [d] and its standard error, or why there is none."""
+    """Delta of a run's data [d] and its standard error, or why there is none.
+
+    ``value``/``stderr`` are measured relative to ``u0`` [V]: the fixed wall's velocity 0, or
+    the far bin's velocity where that wall slips (:func:`measured_thickness`); ``far`` is the
+    far bin, and ``value_wall``/``stderr_wall`` the Delta relative to the wall's velocity,
+    reported beside the used one where the two differ (a slipping far wall)."""
 
     value: float | None
     stderr: float | None
     reason: str = ""
     gap_d: float | None = None
+    u0: float = 0.0
+    far: FarWall | None = None
+    value_wall: float | None = None
+    stderr_wall: float | None = None
 
     @property
     def fills_gap(self) -> bool:
-        """Delta > :data:`FILLS_GAP` of the gap: the band fills its gap."""
+        """Delta > :data:`FILLS_GAP` of the gap: the band fills its gap (the used Delta, the
+        far bin's u_0 where the far wall slips)."""
         return (
             self.value is not None
             and self.gap_d is not None
             and self.value > FILLS_GAP * self.gap_d
+        )
+
+    @property
+    def far_slip(self) -> bool:
+        return self.far is not None and self.far.slips
+
+    def far_text(self) -> str:
+        """The slipping far wall and both Deltas ("" where the far wall does not slip)."""
+        if not self.far_slip or self.far is None:
+            return ""
+        both = (
+            "-"
+            if self.value is None
+            else f"{self.value:.3g}" + ("" if self.stderr is None else f" +- {self.stderr:.2g}")
+        )
+        wall = (
+            "-"
+            if self.value_wall is None
+            else f"{self.value_wall:.3g}"
+            + ("" if self.stderr_wall is None else f" +- {self.stderr_wall:.2g}")
+        )
+        return (
+            f"the fixed wall slips (far bin u = {self.far.u:.2g} +- {self.far.se:.2g} V, "
+            f"{abs(self.far.z or 0.0):.2g} se): Delta = {both} d relative to the far bin's "
+            f"velocity (used), {wall} d relative to the wall's"
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -117,6 +194,10 @@ class Thickness:
             "stderr": self.stderr,
             "reason": self.reason,
             "fills_gap": self.fills_gap,
+            "u0": self.u0,
+            "far_wall": None if self.far is None else self.far.to_dict(),
+            "value_wall_u0": self.value_wall,
+            "stderr_wall_u0": self.stderr_wall,
         }
 
 
@@ -161,17 +242,59 @@ def correlated_normal(se: FloatArray, rho: float, rng: np.random.Generator) -> F
     return se * x
 
 
-def measured_thickness(run: Run, f: float = DEFAULT_F, seed: int = 0) -> Thickness:
-    """Delta of the run's data with its standard error (module docstring)."""
+def _u0_of(u: FloatArray, distance_d: FloatArray, far: FarWall) -> float:
+    """u_0 of Delta for the velocities ``u``: the far bin's velocity where the far wall
+    slips (in a redraw, the redrawn far bin: its error propagates), else the wall's [V]."""
+    return float(u[int(np.argmax(distance_d))]) if far.slips else far.wall_u
+
+
+def _delta_draws(
+    run: Run, f: float, seed: int, far: FarWall, slip_u0: bool
+) -> tuple[float | None, list[float]]:
+    """Delta of the data and of :data:`DRAWS` redraws, u_0 the far bin's velocity when
+    ``slip_u0`` and the far wall slips, else the wall's."""
     m = run.measured()
-    u0 = reference_velocity(run)
-    value = thickness_of(m.distance_d, m.u_over_uw, u0, f)
+    assert m.u_err is not None
+    use = far if slip_u0 else replace(far, fixed=False)
+    value = thickness_of(m.distance_d, m.u_over_uw, _u0_of(m.u_over_uw, m.distance_d, use), f)
+    rng = np.random.default_rng(seed)
+    rho = velocity_correlation(run)
+    draws = []
+    for _ in range(DRAWS):
+        noisy = m.u_over_uw + correlated_normal(m.u_err, rho, rng)
+        d = thickness_of(m.distance_d, noisy, _u0_of(noisy, m.distance_d, use), f)
+        if d is not None:
+            draws.append(d)
+    return value, draws
+
+
+def measured_thickness(run: Run, f: float = DEFAULT_F, seed: int = 0) -> Thickness:
+    """Delta of the run's data with its standard error (module docstring).
+
+    Where the fixed far wall slips (:func:`far_wall`), u_0 is the far bin's velocity (redrawn
+    with the velocities, so its error enters Delta's), and Delta relative to the wall's
+    velocity is reported beside it (``value_wall``, same redraws): with the creeping zone
+    carried along by the slip, Delta relative to the wall measures where the creep tail meets
+    the slip velocity, not the band. The used Delta is the one the "fills its gap" rule and
+    the gap series use."""
+    m = run.measured()
+    far = far_wall(run)
+    value, draws = _delta_draws(run, f, seed, far, True)
+    u0 = _u0_of(m.u_over_uw, m.distance_d, far)
+    common = {"u0": u0, "far": far}
+    if far.slips:
+        wall, wall_draws = _delta_draws(run, f, seed, far, False)
+        common["value_wall"] = wall
+        if wall is not None and len(wall_draws) >= 0.9 * DRAWS:
+            common["stderr_wall"] = float(np.std(wall_draws, ddof=1))
+    rel = "" if not far.slips else f" (relative to the slipping far wall's bin, u0 = {u0:.2g})"
     if value is None:
         return Thickness(
             None,
             None,
-            f"the measured velocity does not fall to {f:g} of its wall value within the gap",
+            f"the measured velocity does not fall to {f:g} of its wall value within the gap{rel}",
             run.gap_d,
+            **common,  # type: ignore[arg-type]
         )
     if value <= m.distance_d[1]:
         return Thickness(
@@ -181,25 +304,21 @@ def measured_thickness(run: Run, f: float = DEFAULT_F, seed: int = 0) -> Thickne
             f"within one bin of the nearest (Delta < {m.distance_d[1]:.3g} d; bins of "
             f"{m.distance_d[1] - m.distance_d[0]:.3g} d)",
             run.gap_d,
+            **common,  # type: ignore[arg-type]
         )
-    rng = np.random.default_rng(seed)
-    assert m.u_err is not None
-    rho = velocity_correlation(run)
-    draws = []
-    for _ in range(DRAWS):
-        noise = correlated_normal(m.u_err, rho, rng)
-        d = thickness_of(m.distance_d, m.u_over_uw + noise, u0, f)
-        if d is not None:
-            draws.append(d)
     if len(draws) < 0.9 * DRAWS:
         return Thickness(
-            value, None, "in over 10% of redraws within the errors Delta is undefined", run.gap_d
+            value,
+            None,
+            "in over 10% of redraws within the errors Delta is undefined",
+            run.gap_d,
+            **common,  # type: ignore[arg-type]
         )
-    t = Thickness(value, float(np.std(draws, ddof=1)), "", run.gap_d)
+    t = Thickness(value, float(np.std(draws, ddof=1)), "", run.gap_d, **common)  # type: ignore[arg-type]
     if t.fills_gap:
         t.reason = (
             f"the band fills its gap (Delta = {value:.3g} d > {FILLS_GAP:g} H = "
-            f"{FILLS_GAP * run.gap_d:.3g} d)"
+            f"{FILLS_GAP * run.gap_d:.3g} d{rel})"
         )
     return t
 
@@ -278,7 +397,8 @@ def thickness_sensitivity(
     if not (len(fs) >= 2 and all(0.0 < a < b < 1.0 for a, b in itertools.pairwise(fs))):
         raise ParameterError(f"fs must be increasing fractions in (0, 1), two at least; got {fs}")
     m = run.measured()
-    u0 = reference_velocity(run)
+    far = far_wall(run)
+    u0 = _u0_of(m.u_over_uw, m.distance_d, far)
     base = [thickness_of(m.distance_d, m.u_over_uw, u0, f) for f in fs]
     assert m.u_err is not None
     rho = velocity_correlation(run)
@@ -286,8 +406,9 @@ def thickness_sensitivity(
     draws = np.full((DRAWS, len(fs)), np.nan)
     for k in range(DRAWS):
         noisy = m.u_over_uw + correlated_normal(m.u_err, rho, rng)
+        u0_k = _u0_of(noisy, m.distance_d, far)
         for j, f in enumerate(fs):
-            d = thickness_of(m.distance_d, noisy, u0, f)
+            d = thickness_of(m.distance_d, noisy, u0_k, f)
             if d is not None:
                 draws[k, j] = d
     scale = np.log(1.0 / np.asarray(fs))
