@@ -86,7 +86,7 @@ from ...calibration.noise import whiten
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
 from .forward import STENCILS
-from .measures import P_SIGNIFICANT, WallSpin, chi2_p
+from .measures import FAR_SLIP_SIGMAS, P_SIGNIFICANT, WallSpin, chi2_p
 
 P_CONSISTENT = 0.05
 """A test with p at or above this shows no departure [-]."""
@@ -1455,6 +1455,9 @@ class DeltaPoint:
     stderr: float | None
     fills_gap: bool = False
     reason: str = ""
+    far: str = ""
+    """Where the fixed far wall slips: its velocity and both Deltas
+    (``measures.Thickness.far_text``), "" where it does not."""
 
     @property
     def usable(self) -> bool:
@@ -1776,7 +1779,10 @@ class DeltaSeries:
             out += (
                 ("; " if out else "")
                 + "left out: "
-                + ", ".join(f"{p.run} ({p.reason})" for p in self.left_out)
+                + ", ".join(
+                    f"{p.run} ({p.reason}" + (f"; {p.far}" if p.far else "") + ")"
+                    for p in self.left_out
+                )
             )
         return out
 
@@ -1792,6 +1798,7 @@ class DeltaSeries:
             "Delta": self.Delta,
             "stderr": self.stderr,
             "fills_gap": [p.fills_gap for p in self.points],
+            "far_wall": [p.far for p in self.points],
             "slope": None if s is None else s.to_dict(),
             "reason": self.reason,
             "model_slopes": {
@@ -1865,7 +1872,9 @@ def _exponent_call(s: DeltaSeries, target: float, other: float) -> tuple[str, st
         + ", ".join(f"{x:g}" for x in gaps)
     )
     text += "".join(
-        f" ({p.run}: Delta = {_g(p.value, '.3g')} +- {_g(p.stderr, '.2g')} d)"
+        f" ({p.run}: Delta = {_g(p.value, '.3g')} +- {_g(p.stderr, '.2g')} d"
+        + (f"; {p.far}" if p.far else "")
+        + ")"
         for p in s.points
         if p.usable
     )
@@ -2009,7 +2018,7 @@ def _curve_call(
         preds = ", ".join(_predicted_text(m, c, p.run) for m, c in s.curves.items() if c.ok)
         rows.append(
             f"{p.run} (H/d = {p.gap_d:.3g}): measured {_g(p.value, '.3g')} +- "
-            f"{_g(p.stderr, '.2g')} d; {preds}"
+            f"{_g(p.stderr, '.2g')} d" + (f" ({p.far})" if p.far else "") + f"; {preds}"
         )
     calib = "; ".join(
         f"{m}: {scope_text(c)}: {calibration_text(c)}" for m, c in s.curves.items() if c.ok
@@ -2122,7 +2131,13 @@ def delta_law_verdict(
         f"sqrt(reduced chi^2) when above 1, at least {MIN_GAPS} gaps) is judged only where "
         f"the {model} curve's own slope over the series' gaps is within {EXPONENT_TOL:g} of "
         f"the limit {target:.3g}: supported within 2 se when {other:.3g} is outside 2 se. "
-        "Runs whose band fills its gap are left out."
+        "Runs whose band fills its gap are left out. Delta is measured relative to the fixed "
+        "wall's velocity 0, or, where that wall slips (its nearest bin moves by more than "
+        f"{FAR_SLIP_SIGMAS:g} se), relative to the far bin's velocity, whose error enters "
+        "Delta's: the slip carries the creeping zone along, so Delta relative to the wall "
+        "would measure where the creep tail meets the slip velocity, not the band. That Delta "
+        "is the point and the one the fills-its-gap rule reads; the wall-relative one is given "
+        "beside it. The models' Delta stays relative to the fixed wall's velocity."
     )
     if not rel:
         return Verdict(
