@@ -11,7 +11,12 @@ Functions of a :class:`~cosserat.analysis.corpus.Run` (or of arrays): no model e
   band whose velocity falls to f within one bin of the nearest is not resolved by the bins: it
   has no Delta (the value would be the bins' width, whatever the band). A band with
   Delta > :data:`FILLS_GAP` H fills its gap: the fixed wall shapes it, so it cannot test a law
-  of Delta against the gap.
+  of Delta against the gap. Where the fixed far wall slips (its nearest bin moves by more than
+  :data:`FAR_SLIP_SIGMAS` standard errors, :func:`far_wall`), u_0 is that bin's velocity
+  (redrawn with the others): the slip carries the creeping zone along, and Delta relative to
+  the wall would measure where the creep tail meets the slip velocity. That Delta is the one
+  used (gap series, "fills its gap", the f sensitivity); the one relative to the wall is
+  reported beside it.
 * **Delta's sensitivity to f** (:func:`thickness_sensitivity`, referee 5, request 7): Delta at
   each f of :data:`SENSITIVITY_F` from one set of redraws, and the decay length it implies,
   ``w_f = (Delta_f - s_1) / ln(1/f)`` with ``s_1`` the distance of the bin nearest the moving
