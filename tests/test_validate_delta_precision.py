@@ -90,6 +90,10 @@ def test_the_level_miss_gives_the_ratio_range_when_every_run_is_below():
         "(b left out for filling its gap): cosserat / measured = 0.5-0.75 (a level miss of the "
         "creep tail)"
     )
+    two = [*pts, DeltaPoint("c", 7.5, 5.0, 0.5, True, "fills")]
+    both = level_text(_series(two, {"a": (3.0, 0.2), "b": (3.0, None), "c": (2.0, None)}))
+    assert "in all 3 runs of this series (b, c left out for filling their gaps)" in both
+    assert both.endswith("cosserat / measured = 0.4-0.75 (a level miss of the creep tail)")
     # one run above: no level miss
     assert level_miss(_series(pts, {"a": (3.0, 0.2), "b": (5.0, None)})) is None
     assert level_text(_series(pts)) == ""  # no curve

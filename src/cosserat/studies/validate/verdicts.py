@@ -2009,8 +2009,13 @@ def level_text(s: DeltaSeries, model: str = "cosserat") -> str:
     if miss is None:
         return ""
     n = len(miss["runs"])
+    out = miss["left_out"]
     left = (
-        f" ({', '.join(miss['left_out'])} left out for filling its gap)" if miss["left_out"] else ""
+        ""
+        if not out
+        else f" ({out[0]} left out for filling its gap)"
+        if len(out) == 1
+        else f" ({', '.join(out)} left out for filling their gaps)"
     )
     what = "a level miss of the creep tail" if miss["side"] == "below" else "a level miss"
     return (
