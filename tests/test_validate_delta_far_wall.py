@@ -1,6 +1,6 @@
-"""Delta where the fixed (far) wall slips (referee 11, point 5): u_0 is then the far bin's
-velocity, Delta relative to the wall's velocity is reported beside it, and the "fills its
-gap" rule reads the used one."""
+"""Delta where the fixed (far) wall slips (referee 11, point 5): Delta relative to the far
+bin's velocity is reported beside the used one (relative to the wall's), with whether the
+"fills its gap" call, which reads the used one, would change."""
 
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ def _linear(far_u: float) -> np.ndarray:
     return np.where(S <= 5.5, 1.0 - 0.18 * (S - 0.5), far_u)
 
 
-def test_a_slipping_far_wall_moves_u0_to_the_far_bin(tmp_path):
+def test_a_slipping_far_wall_gives_delta_relative_to_the_far_bin_beside(tmp_path):
     # far bin u = 0.1 +- 0.001: 100 se from the wall's 0, so it slips. Relative to u_0 = 0.1
     # the target is 0.1 + 0.05 (1 - 0.1) = 0.145, reached at s = 0.5 + 0.855/0.18 = 5.25 d;
     # relative to 0 the target is 0.05, which u (never below 0.1) does not reach: no Delta
@@ -38,30 +38,36 @@ def test_a_slipping_far_wall_moves_u0_to_the_far_bin(tmp_path):
     far = far_wall(run)
     assert far.u == pytest.approx(0.1) and far.z == pytest.approx(100.0) and far.slips
     t = measured_thickness(run)
-    assert t.u0 == pytest.approx(0.1)
-    assert t.value == pytest.approx(0.5 + 0.855 / 0.18)  # 5.25 d
-    assert t.value_wall is None  # u never falls to 0.05 of its wall value relative to 0
-    assert t.fills_gap is True  # 5.25 > H/2 = 5: the rule reads the used Delta
-    assert "relative to the slipping far wall's bin, u0 = 0.1" in t.reason
+    assert t.u0 == 0.0 and t.value is None
+    assert t.reason.startswith("the measured velocity does not fall to 0.05")
+    assert t.value_far == pytest.approx(0.5 + 0.855 / 0.18)  # 5.25 d
+    assert t.fills_gap is False and t.fills_gap_far is True  # 5.25 > H/2 = 5
     d = t.to_dict()
-    assert d["u0"] == pytest.approx(0.1) and d["far_wall"]["slips"] is True
-    # the sensitivity reads the same u_0
-    assert thickness_sensitivity(run).value[0] == pytest.approx(t.value)
+    assert d["value_far_u0"] == pytest.approx(5.25) and d["far_wall"]["slips"] is True
+    # the sensitivity reads the used Delta (relative to the wall)
+    assert thickness_sensitivity(run).value[0] is None
 
 
-def test_both_deltas_are_reported_when_the_far_wall_slips(tmp_path):
-    # u = 1 - 0.18 (s - 0.5) down to 0.1 at 5.5 d, then 0.02 from 6.5 d: far bin 0.02 +- 0.005
-    # (4 se). Used: target 0.02 + 0.05 x 0.98 = 0.069, between 5.5 d (0.1) and 6.5 d (0.02):
-    # 5.5 + 0.031/0.08 = 5.8875 d. Wall's: target 0.05, 5.5 + 0.05/0.08 = 6.125 d
-    run = _write(tmp_path, "both", _linear(0.02), np.full(S.size, 0.005))
+def test_both_deltas_are_reported_and_the_exclusion_said_to_rest_on_the_slip(tmp_path):
+    # u = 1, 0.75, 0.5, 0.25, 0.07, 0.06, 0.04, then 0.03 to the far bin (0.03 +- 0.005: 6 se).
+    # Relative to the wall (used): target 0.05 between 5.5 d (0.06) and 6.5 d (0.04): 6.0 d,
+    # over H/2 = 5 d. Relative to the far bin: target 0.03 + 0.05 x 0.97 = 0.0785 between
+    # 3.5 d (0.25) and 4.5 d (0.07): 3.5 + 0.1715/0.18 = 4.4528 d, under H/2
+    u = np.array([1.0, 0.75, 0.5, 0.25, 0.07, 0.06, 0.04, 0.03, 0.03, 0.03])
+    run = _write(tmp_path, "both", u, np.full(S.size, 0.005))
     t = measured_thickness(run)
-    assert t.far_slip and t.far is not None and t.far.z == pytest.approx(4.0)
-    assert t.value == pytest.approx(5.5 + 0.031 / 0.08)
-    assert t.value_wall == pytest.approx(5.5 + 0.05 / 0.08)
-    assert t.stderr is not None and t.stderr_wall is not None
+    assert t.far_slip and t.far is not None and t.far.z == pytest.approx(6.0)
+    assert t.value == pytest.approx(6.0)
+    assert t.value_far == pytest.approx(3.5 + 0.1715 / 0.18)
+    assert t.stderr is not None and t.stderr_far is not None
+    assert t.fills_gap and t.fills_gap_far is False
     text = t.far_text()
-    assert text.startswith("the fixed wall slips (far bin u = 0.02 +- 0.005 V, 4 se): Delta = 5.89")
-    assert "relative to the far bin's velocity (used), 6.12" in text
+    assert text.startswith(
+        "the fixed wall slips (far bin u = 0.03 +- 0.005 V, 6 se): Delta = 6 +- "
+    )
+    assert "d relative to the wall's velocity (used), 4.45 +- " in text
+    assert text.endswith("relative to the far bin it would not fill its gap (under 0.5 H = 5 d): "
+                         "its exclusion rests on the slip")  # fmt: skip
 
 
 def test_a_far_bin_within_two_se_of_the_wall_keeps_u0_zero(tmp_path):
@@ -72,7 +78,7 @@ def test_a_far_bin_within_two_se_of_the_wall_keeps_u0_zero(tmp_path):
     assert abs(far.z) < FAR_SLIP_SIGMAS and not far.slips
     t = measured_thickness(run)
     assert t.u0 == 0.0 and t.value == pytest.approx(6.125)
-    assert t.value_wall is None and t.far_text() == ""
+    assert t.value_far is None and t.fills_gap_far is None and t.far_text() == ""
 
 
 def test_plane_shear_without_gravity_has_no_slipping_far_wall(tmp_path):

@@ -107,7 +107,7 @@ def test_the_delta_verdict_carries_both(tmp_path):
     assert v.verdict == "undecided"
     assert "cosserat / measured = 0.6-0.7 (a level miss of the creep tail)" in v.evidence
     assert "measured 7.95 +- 1.1 d (the fixed wall slips (far bin u = 0.0014))" in v.evidence
-    assert "relative to the far bin's velocity" in v.evidence  # the method's u0 rule
+    assert "relative to the far bin's velocity is given beside it" in v.evidence  # the rule
     assert "the precision needed in plane, glued-grains" in v.would_change
     assert "2 se between the exponents 0 and 0.333 needs sigma <= 0.167" in v.would_change
     entry = v.numbers[s.key]

@@ -25,9 +25,6 @@ S = np.arange(0.5, 20.0, 1.0)  # distances from the moving wall [d]
 
 def _write(folder, name, floor, gap=20.0, se=0.002):
     u = np.exp(-S / 2.0) + floor
-    # the floor is a creep tail that stops falling, not a slipping fixed wall: the far bin is
-    # at rest (a slipping far wall moves u_0 instead, test_validate_delta_far_wall.py)
-    u[-1] = 0.0
     meta = {"cell": "plane", "gap_d": gap, "B": 1.0, "wall": {"kind": "glued-grains"}}
     write_run(folder, name, meta, {"y": gap - S, "u": u, "u_se": np.full(S.size, se)})
     return read_run(folder / f"{name}.csv")
