@@ -648,6 +648,8 @@ def context(report: ValidationReport) -> dict[str, Any]:
         delta += "" if t.stderr is None else f" +- {t.stderr:.2g}"
         if t.fills_gap:
             delta += " (fills the gap)"
+        if t.far_slip and t.value_far is not None:
+            delta += f" (far wall slips; {t.value_far:.4g} relative to its bin)"
         if r.sensitivity is not None and r.sensitivity.ill:
             delta += " (ill-conditioned at f = " + ", ".join(f"{x:g}" for x in r.sensitivity.ill)
             delta += ")"

@@ -931,6 +931,7 @@ def judge(
                 thick[r.run.name].stderr,
                 thick[r.run.name].fills_gap,
                 thick[r.run.name].reason,
+                thick[r.run.name].far_text(),
             )
             for r in members
         )

@@ -86,7 +86,15 @@ from ...calibration.noise import whiten
 from ...errors import ParameterError
 from ...model.constitutive import FloatArray
 from .forward import STENCILS
-from .measures import JOINT_NULL_NAME, JOINT_NULL_SOURCE, P_SIGNIFICANT, WallSpin, chi2_p
+from .measures import (
+    FAR_SLIP_SIGMAS,
+    FILLS_GAP,
+    JOINT_NULL_NAME,
+    JOINT_NULL_SOURCE,
+    P_SIGNIFICANT,
+    WallSpin,
+    chi2_p,
+)
 
 P_CONSISTENT = 0.05
 """A test with p at or above this shows no departure [-]."""
@@ -102,6 +110,13 @@ SAME_GAP = 0.05
 EXPONENT_TOL = 0.05
 """The measured exponent is judged only where the Cosserat model's own curve, calibrated on
 the series, has a log-log slope within this of the claimed limit over the series' gaps [-]."""
+PRECISION_DESIGNS: tuple[tuple[tuple[float, ...], int], ...] = (
+    ((20.0, 40.0, 80.0), 1),
+    ((20.0, 40.0, 80.0, 160.0), 1),
+    ((20.0, 40.0, 80.0), 3),
+)
+"""Gap designs (H/d values, runs per gap) whose slope error :func:`precision_needed` gives:
+three gaps a factor 2 apart, four up to 160 d, three with three seeds each."""
 
 CLAIMS = {
     "spin": "The grain spin departs from half the vorticity near the walls.",
@@ -1584,6 +1599,9 @@ class DeltaPoint:
     stderr: float | None
     fills_gap: bool = False
     reason: str = ""
+    far: str = ""
+    """Where the fixed far wall slips: its velocity and both Deltas
+    (``measures.Thickness.far_text``), "" where it does not."""
 
     @property
     def usable(self) -> bool:
@@ -1905,7 +1923,10 @@ class DeltaSeries:
             out += (
                 ("; " if out else "")
                 + "left out: "
-                + ", ".join(f"{p.run} ({p.reason})" for p in self.left_out)
+                + ", ".join(
+                    f"{p.run} ({p.reason}" + (f"; {p.far}" if p.far else "") + ")"
+                    for p in self.left_out
+                )
             )
         return out
 
@@ -1921,6 +1942,7 @@ class DeltaSeries:
             "Delta": self.Delta,
             "stderr": self.stderr,
             "fills_gap": [p.fills_gap for p in self.points],
+            "far_wall": [p.far for p in self.points],
             "slope": None if s is None else s.to_dict(),
             "reason": self.reason,
             "model_slopes": {
@@ -1977,6 +1999,175 @@ def _gaps_needed(s: DeltaSeries, se: float, target: float, other: float) -> str:
     )
 
 
+def slope_sigma(rel_se: float, gaps: Sequence[float], seeds: int = 1) -> float:
+    """The standard error of the least-squares slope of ln Delta on ln(H/d) when every run's
+    Delta has the relative error ``rel_se`` (the error of ln Delta) and each gap has ``seeds``
+    runs: ``rel_se / sqrt(seeds sum_i (x_i - mean x)^2)``, x = ln(H/d) [-]."""
+    x = np.log(np.asarray(gaps, dtype=float))
+    if rel_se <= 0.0 or seeds < 1 or x.size < 2 or np.ptp(x) == 0.0:
+        raise ParameterError(
+            f"slope_sigma needs rel_se > 0, seeds >= 1 and two distinct gaps; got {rel_se}, "
+            f"{seeds}, {list(gaps)}"
+        )
+    return float(rel_se / math.sqrt(seeds * float(np.sum((x - x.mean()) ** 2))))
+
+
+def precision_needed(
+    s: DeltaSeries,
+    target: float,
+    other: float,
+    designs: Sequence[tuple[Sequence[float], int]] = PRECISION_DESIGNS,
+) -> dict[str, Any] | None:
+    """The slope error each gap design would give at the series' measured precision of Delta,
+    and whether it tells ``target`` from ``other`` (referee 11, point 5); None without a run
+    with a Delta and an error.
+
+    The relative error of Delta is the largest of the series' runs' se/Delta (those left out
+    for filling their gap included: their errors come from the same redraws); it is the block
+    error, which run-to-run scatter may exceed. "2 se between the exponents" needs
+    sigma <= |target - other| / 2; the slope rule's margin (a slope at ``target`` within 2 se
+    of it and more than 2 se from ``other``) needs sigma <= |target - other| / 4. A design's
+    smallest gap clears the fills-its-gap cut when its H/2 exceeds the largest measured Delta
+    (bands no thicker than the measured)."""
+    rel = [
+        p.stderr / p.value
+        for p in s.points
+        if p.value is not None and p.value > 0.0 and p.stderr is not None and p.stderr > 0.0
+    ]
+    if not rel:
+        return None
+    worst = max(rel)
+    biggest = max(p.value for p in s.points if p.value is not None)
+    two, four = abs(target - other) / 2.0, abs(target - other) / 4.0
+    rows = []
+    for gaps, seeds in designs:
+        sigma = slope_sigma(worst, gaps, seeds)
+        rows.append(
+            {
+                "gaps": [float(g) for g in gaps],
+                "seeds": int(seeds),
+                "sigma": sigma,
+                "two_se": sigma <= two,
+                "margin": sigma <= four,
+                "clears_cut": FILLS_GAP * min(gaps) > biggest,
+            }
+        )
+    return {
+        "relative_se": worst,
+        "relative_se_range": [min(rel), worst],
+        "sigma_two_se": two,
+        "sigma_margin": four,
+        "largest_Delta": biggest,
+        "designs": rows,
+    }
+
+
+def _design_text(row: Mapping[str, Any]) -> str:
+    gaps = "/".join(f"{g:g}" for g in row["gaps"])
+    seeds = "" if row["seeds"] == 1 else f" with {row['seeds']} seeds each"
+    return f"{gaps} d{seeds}: sigma = {row['sigma']:.2g}"
+
+
+def precision_text(s: DeltaSeries, target: float, other: float) -> str:
+    """:func:`precision_needed` in words ("" without a measured Delta)."""
+    need = precision_needed(s, target, other)
+    if need is None:
+        return ""
+    lo, hi = need["relative_se_range"]
+    rows = need["designs"]
+    two = [_design_text(r) for r in rows if r["two_se"]]
+    short_ = [_design_text(r) for r in rows if not r["two_se"]]
+    margin = [_design_text(r) for r in rows if r["margin"]]
+    cut = [r for r in rows if not r["clears_cut"]]
+    text = (
+        f"the precision needed in {short(s.key)}: at the runs' Delta errors "
+        f"({100 * lo:.0f}-{100 * hi:.0f}% of Delta; the largest, {100 * hi:.0f}%, taken for "
+        f"every run; block errors, which a second seed would check) the slope's error is "
+        f"rel/sqrt(seeds sum (ln H - mean)^2); 2 se between the exponents {other:.3g} and "
+        f"{target:.3g} needs sigma <= {need['sigma_two_se']:.3g}: "
+        + ("reached by " + "; ".join(two) if two else "reached by none of the designs")
+        + ("" if not short_ else "; not by " + "; ".join(short_))
+        + f". A slope at {target:.3g} that is also more than 2 se from {other:.3g} needs "
+        f"sigma <= {need['sigma_margin']:.3g}: "
+        + ("reached by " + "; ".join(margin) if margin else "reached by none of them")
+    )
+    if cut:
+        text += (
+            "; the smallest gap of "
+            + ", ".join("/".join(f"{g:g}" for g in r["gaps"]) for r in cut)
+            + f" is not above {1 / FILLS_GAP:g} x the largest measured Delta "
+            f"({need['largest_Delta']:.3g} d)"
+        )
+    else:
+        text += (
+            f"; every design's smallest gap is above {1 / FILLS_GAP:g} x the largest measured "
+            f"Delta "
+            f"({need['largest_Delta']:.3g} d), so bands like the measured would not fill it"
+        )
+    return text
+
+
+def level_miss(s: DeltaSeries, model: str = "cosserat") -> dict[str, Any] | None:
+    """Where ``model``'s one-calibration Delta is below (or above) the measured Delta in every
+    run of the series that has both (those left out for filling their gap included): the
+    ratios model / measured and the runs; None where it is not on one side at every run, or
+    fewer than one run has both."""
+    c = s.curves.get(model)
+    if c is None or not c.ok:
+        return None
+    pairs = [
+        (p.run, float(c.predicted[p.run][0]) / p.value, p.usable)
+        for p in s.points
+        if p.value is not None
+        and p.value > 0.0
+        and c.predicted.get(p.run, (None, None))[0] is not None
+    ]
+    if not pairs:
+        return None
+    ratios = [r for _, r, _ in pairs]
+    if all(r < 1.0 for r in ratios):
+        side = "below"
+    elif all(r > 1.0 for r in ratios):
+        side = "above"
+    else:
+        return None
+    return {
+        "side": side,
+        "ratio_min": min(ratios),
+        "ratio_max": max(ratios),
+        "runs": {run: r for run, r, _ in pairs},
+        "left_out": [run for run, _, ok in pairs if not ok],
+    }
+
+
+def level_text(s: DeltaSeries, model: str = "cosserat") -> str:
+    """:func:`level_miss` in words ("" where there is none)."""
+    miss = level_miss(s, model)
+    if miss is None:
+        return ""
+    n = len(miss["runs"])
+    out = miss["left_out"]
+    left = (
+        ""
+        if not out
+        else f" ({out[0]} left out for filling its gap)"
+        if len(out) == 1
+        else f" ({', '.join(out)} left out for filling their gaps)"
+    )
+    what = "a level miss of the creep tail" if miss["side"] == "below" else "a level miss"
+    return (
+        f"the one-calibration {model} Delta is {miss['side']} the measured in "
+        + ("the one run" if n == 1 else f"all {n} runs")
+        + f" of this series{left}: {model} / measured = "
+        + (
+            f"{miss['ratio_min']:.2g}"
+            if n == 1
+            else f"{miss['ratio_min']:.2g}-{miss['ratio_max']:.2g}"
+        )
+        + f" ({what})"
+    )
+
+
 def _exponent_call(s: DeltaSeries, target: float, other: float) -> tuple[str, str, str]:
     """The slope rule on one series (module docstring): (call, evidence, what would change
     it)."""
@@ -1994,7 +2185,9 @@ def _exponent_call(s: DeltaSeries, target: float, other: float) -> tuple[str, st
         + ", ".join(f"{x:g}" for x in gaps)
     )
     text += "".join(
-        f" ({p.run}: Delta = {_g(p.value, '.3g')} +- {_g(p.stderr, '.2g')} d)"
+        f" ({p.run}: Delta = {_g(p.value, '.3g')} +- {_g(p.stderr, '.2g')} d"
+        + (f"; {p.far}" if p.far else "")
+        + ")"
         for p in s.points
         if p.usable
     )
@@ -2138,7 +2331,7 @@ def _curve_call(
         preds = ", ".join(_predicted_text(m, c, p.run) for m, c in s.curves.items() if c.ok)
         rows.append(
             f"{p.run} (H/d = {p.gap_d:.3g}): measured {_g(p.value, '.3g')} +- "
-            f"{_g(p.stderr, '.2g')} d; {preds}"
+            f"{_g(p.stderr, '.2g')} d" + (f" ({p.far})" if p.far else "") + f"; {preds}"
         )
     calib = "; ".join(
         f"{m}: {scope_text(c)}: {calibration_text(c)}" for m, c in s.curves.items() if c.ok
@@ -2251,7 +2444,12 @@ def delta_law_verdict(
         f"sqrt(reduced chi^2) when above 1, at least {MIN_GAPS} gaps) is judged only where "
         f"the {model} curve's own slope over the series' gaps is within {EXPONENT_TOL:g} of "
         f"the limit {target:.3g}: supported within 2 se when {other:.3g} is outside 2 se. "
-        "Runs whose band fills its gap are left out."
+        "Runs whose band fills its gap are left out. Delta is measured relative to the fixed "
+        "wall's velocity 0, as the models' is; where that wall slips (its nearest bin moves by "
+        f"more than {FAR_SLIP_SIGMAS:g} se), Delta relative to the far bin's velocity is given "
+        "beside it, with whether the fills-its-gap call would change, but not used: a one-bin "
+        "test at 2 se passes a still wall in about 5% of runs by chance and then moves Delta "
+        "by as much as that noise."
     )
     if not rel:
         return Verdict(
@@ -2265,10 +2463,16 @@ def delta_law_verdict(
     calls: list[tuple[str, str, str]] = []
     runs: list[str] = []
     numbers: dict[str, Any] = {}
+    precision: list[tuple[int, str]] = []
     for s in rel:
         runs += [p.run for p in s.points]
         numbers[s.key] = s.to_dict()
+        numbers[s.key]["precision_needed"] = precision_needed(s, target, other)
+        numbers[s.key]["level_miss"] = level_miss(s, model)
+        level = level_text(s, model)
         notes = "".join(f"; note: {n}" for n in (*s.notes, *s.replicates()))
+        notes = (f"; {level}" if level else "") + notes
+        precision.append((len(calls), precision_text(s, target, other)))
         curve = _curve_call(s, target, other, model)
         cos = s.curves.get(model)
         usable = sorted({p.gap_d for p in s.points if p.usable})
@@ -2311,6 +2515,10 @@ def delta_law_verdict(
             )
         )
 
+    for i, need in precision:  # the precision needed, with the series' first call's change
+        if need and i < len(calls):
+            c, t, ch = calls[i]
+            calls[i] = (c, t, f"{ch}; {need}" if ch else need)
     decided = {c for c, _, _ in calls if c != "undecided"}
     detail = "; ".join(t for _, t, _ in calls)
     change = "; ".join(f"{c}" for _, _, c in calls if c)
