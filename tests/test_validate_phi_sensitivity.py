@@ -1,0 +1,133 @@
+"""spin_model's grid-sign argument at the ends of the plausible phi range (referee 11, point 3):
+:func:`~cosserat.studies.validate.spin_scan.phi_ends`, ``phi_sensitivity`` and its sentence."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from cosserat.analysis.corpus import read_run
+from cosserat.studies.validate import spin_scan as ss
+from cosserat.studies.validate import stresses
+from cosserat.studies.validate.synthetic import synthetic_run
+
+
+def _asin_deg(x: float) -> float:
+    return math.degrees(math.asin(x))
+
+
+def test_the_phi_ends_are_the_scaled_pooled_range_and_the_runs_extremes(monkeypatch):
+    # 0.30 and 0.34 +- 0.01: mean 0.32, chi^2 = 8 on 1 dof (p = 0.0047 < 0.05), so the error
+    # 0.01/sqrt(2) is scaled by sqrt(8): 0.02, and +- 2 se is 0.28 to 0.36
+    pooled = stresses.pool([0.30, 0.34], [0.01, 0.01], ["a", "b"])
+    assert pooled.stderr == pytest.approx(0.02, rel=1e-12)
+    got = stresses.StressPool("sin phi", "wall", pooled, None)
+    monkeypatch.setattr(
+        stresses, "material_sin_phi", lambda runs, material: SimpleNamespace(sin_phi=got)
+    )
+    ends = ss.phi_ends([], "m")
+    assert [lab for lab, _ in ends] == [
+        "pooled sin phi - 2 se", "lowest run's T (a)", "highest run's T (b)",
+        "pooled sin phi + 2 se",
+    ]  # fmt: skip
+    np.testing.assert_allclose(
+        [phi for _, phi in ends], [_asin_deg(x) for x in (0.28, 0.30, 0.34, 0.36)], rtol=1e-12
+    )
+
+
+def test_one_run_gives_only_the_pooled_ends_and_an_end_beyond_one_is_left_out(monkeypatch):
+    pooled = stresses.pool([0.95], [0.03], ["a"])  # 0.95 +- 0.06: 0.89 and 1.01
+    got = stresses.StressPool("sin phi", "wall", pooled, None)
+    monkeypatch.setattr(
+        stresses, "material_sin_phi", lambda runs, material: SimpleNamespace(sin_phi=got)
+    )
+    ends = ss.phi_ends([], "m")
+    assert len(ends) == 1
+    assert ends[0][0] == "pooled sin phi - 2 se"
+    assert ends[0][1] == pytest.approx(_asin_deg(0.89), rel=1e-12)
+
+
+def test_a_measured_wall_keeps_its_tan_delta_when_phi_moves_a_rough_one_stays_rough():
+    ang = ss.Angles(20.0, 0.5, "", {"moving": 0.5}, {"moving": ""}, {"moving": 0.01})
+    values = {"phi": 20.0, "L": 3.0, ("roughness", "moving"): 0.5, ("roughness", "fixed"): 0.5}
+    new = ss._values_at_phi(values, ang, 25.0)
+    r = 0.5 * math.sin(math.radians(20.0)) / math.sin(math.radians(25.0))
+    assert new == {"phi": 25.0, "L": 3.0, ("roughness", "moving"): pytest.approx(r, rel=1e-12),
+                   ("roughness", "fixed"): pytest.approx(r, rel=1e-12)}  # fmt: skip
+    rough = ss.Angles(20.0, 0.5, "", {"moving": 1.0}, {"moving": ""})
+    assert ss._values_at_phi({"phi": 20.0, ("roughness", "moving"): 1.0}, rough, 15.0) == {
+        "phi": 15.0, ("roughness", "moving"): 1.0,
+    }  # fmt: skip
+
+
+def _row(phi, lo, hi):
+    return {"label": "x", "phi": phi, "lo": lo, "hi": hi, "solved": 1, "points": 1}
+
+
+def test_the_sign_over_the_phi_rows():
+    assert ss._one_sign([_row(16.0, 0.01, 0.3), _row(19.0, 0.002, 0.4)]) == "positive"
+    assert ss._one_sign([_row(16.0, -0.3, -0.01), _row(19.0, None, None)]) == "negative"
+    assert ss._one_sign([_row(16.0, 0.01, 0.3), _row(19.0, -0.002, 0.4)]) == "mixed"
+    assert ss._one_sign([_row(16.0, None, None)]) == "none solved"
+
+
+def _scan(name, grid, data, rows, seconds=0.5):
+    return SimpleNamespace(
+        run=name, whole_beyond_span=grid, measured_beyond=data,
+        phi_sensitivity={"rows": rows, "sign": ss._one_sign(rows), "seconds": seconds},
+    )  # fmt: skip
+
+
+def test_the_sentence_says_the_refutation_does_not_depend_on_phi():
+    a = _scan("a", (0.001, 0.3), -0.1, [_row(16.7, 0.0005, 0.2), _row(19.3, 0.002, 0.38)])
+    b = _scan("b", (0.01, 0.2), -0.2, [_row(16.7, 0.004, 0.1), _row(19.3, 0.02, 0.25)])
+    # a run whose data share the grid's sign is not part of the argument
+    c = _scan("c", (0.01, 0.2), +0.05, [_row(16.7, -0.5, 0.1), _row(19.3, -0.5, 0.1)])
+    text = ss.phi_sensitivity_text([a, b, c])
+    assert "spans +0.0005 to +0.38: positive over the grid at phi = 16.7-19.3 deg in all 2 " in text
+    assert text.endswith("the refutation does not depend on phi (2 runs x 2 phi, 1 s).")
+
+
+def test_the_sentence_names_the_run_where_the_sign_turns():
+    a = _scan("a", (0.001, 0.3), -0.1, [_row(16.7, -0.0005, 0.2), _row(19.3, 0.002, 0.38)])
+    b = _scan("b", (0.01, 0.2), -0.2, [_row(16.7, 0.004, 0.1), _row(19.3, 0.02, 0.25)])
+    text = ss.phi_sensitivity_text([a, b])
+    assert "it is not positive over the whole grid at some phi of 16.7-19.3 deg in a: " in text
+    assert "there the refutation depends on phi" in text
+    assert ss.phi_sensitivity_text([_scan("c", (0.01, 0.2), 0.05, [_row(16.7, 0.1, 0.2)])]) == ""
+
+
+@pytest.fixture(scope="module")
+def pair(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("phisens")
+    phi = 20.0
+    rough = math.degrees(math.atan(math.sin(math.radians(phi))))
+
+    def run(name, wall, delta, seed):
+        return read_run(synthetic_run(
+            folder, name, "cosserat", "plane", 10.0,
+            parameters={"phi": phi, "L": 3.0, "K": 0.5, "delta": delta}, wall=wall, B=1.0,
+            noise=0.005, stress_noise=0.005, seed=seed,
+        ))  # fmt: skip
+
+    return run("rough", "rough", rough, 0), run("smooth", "smooth", 15.0, 1)
+
+
+def test_at_the_fitted_phi_the_rows_are_the_scans_own_range_grid(pair):
+    """phi_sensitivity at the joint fit's own phi recomputes the range grid: its min and max
+    beyond the null are the scan's, to the last digit; and scan_run fills it at the ends."""
+    rough, smooth = pair
+    sc = ss.scan_run(smooth, [rough, smooth], points=4)
+    got = ss.phi_sensitivity(sc, smooth, [("fitted", sc.fit.angles.phi)])
+    diff = sc.departure - sc.null
+    fin = diff[np.isfinite(diff)]
+    (row,) = got["rows"]
+    assert row["solved"] == fin.size and row["points"] == 16
+    assert row["lo"] == float(fin.min()) and row["hi"] == float(fin.max())
+    assert got["seconds"] > 0.0
+    ends = sc.phi_sensitivity["rows"]
+    assert [r["label"] for r in ends] == ["pooled sin phi - 2 se", "pooled sin phi + 2 se"]
+    assert sc.to_dict()["phi_sensitivity"]["sign"] in ("positive", "negative", "mixed")
