@@ -1636,8 +1636,8 @@ def phi_sensitivity(
 
 
 def _one_sign(rows: Sequence[Mapping[str, Any]]) -> str:
-    """Sign: "positive" / "negative" where every row's (lo, hi) has that one sign, "mixed" where not,
-    "none solved" where no row has a solved point."""
+    """The rows' sign: "positive" / "negative" where every row's (lo, hi) has that one sign,
+    "mixed" where not, "none solved" where no row has a solved point."""
     got = [r for r in rows if r["lo"] is not None]
     if not got:
         return "none solved"
