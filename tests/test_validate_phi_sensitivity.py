@@ -131,3 +131,65 @@ def test_at_the_fitted_phi_the_rows_are_the_scans_own_range_grid(pair):
     ends = sc.phi_sensitivity["rows"]
     assert [r["label"] for r in ends] == ["pooled sin phi - 2 se", "pooled sin phi + 2 se"]
     assert sc.to_dict()["phi_sensitivity"]["sign"] in ("positive", "negative", "mixed")
+
+
+# --------------------------------------------------------------------------- point 4
+def _fitted(fields, u_p=None):
+    sc = SimpleNamespace(
+        fit=SimpleNamespace(calibration=SimpleNamespace(
+            fields=[SimpleNamespace(field=n, chi2=c, n=k) for n, c, k in fields]
+        )),
+    )  # fmt: skip
+    sc._error_models = {} if u_p is None else {"u": {"p": u_p}}
+    return sc
+
+
+def test_the_missed_fields_are_the_calibrations_and_us_under_the_other_error_models():
+    from scipy.stats import chi2 as chi2_dist
+
+    # omega 40 on 10 bins: p = 1.7e-5 < 1e-3; u 12 on 10 (p = 0.28) fits under AR(1) but not
+    # under the diagonal and common-mode models given; the stress ratio fits
+    sc = _fitted([("u", 12.0, 10), ("omega", 40.0, 10), ("stress_ratio", 5.0, 8)],
+                 {"ar1": 0.28, "diagonal": 2.0e-11, "common-mode": 5.0e-4})  # fmt: skip
+    p = chi2_dist.sf(40.0, 10)
+    assert ss.missed_fields(sc) == [
+        f"omega (p = {p:.2g})", "u (diagonal p = 2e-11; common-mode p = 0.0005)",
+    ]  # fmt: skip
+    fine = _fitted([("u", 12.0, 10), ("omega", 9.0, 10)], {"diagonal": 0.01, "common-mode": None})
+    assert ss.missed_fields(fine) == []
+
+
+def _grid_scan(wall_k):
+    # departures over K x L; the measured -0.1 +- 0.01: within 2 se are -0.12..-0.08
+    dep = np.array([[-0.10, -0.09, 0.05], [-0.30, 0.02, 0.20]])
+    return SimpleNamespace(
+        K=np.array([0.2, 2.0]), L=np.array([0.5, 0.8, 5.0]), departure=dep,
+        K_near=np.array([1.0]), L_near=np.array([0.7, 3.0]),
+        departure_near=np.array([[-0.11, 0.1]]),
+        measured=-0.1, measured_se=0.01, wall_k=wall_k,
+    )  # fmt: skip
+
+
+def test_the_physical_reading_is_the_largest_matching_L_and_the_ks():
+    wall_k = {
+        "matching_point": {"matched": True, "L": 0.5, "K": 0.2, "delta_chi2": 58.64},
+        "model": {"K": 6.59}, "fitted_K": 2.67,
+    }  # fmt: skip
+    text = ss.matching_reading(_grid_scan(wall_k))
+    assert text == (
+        "the model reaches the measured first layer (within 2 se) only with L <= 0.8 d "
+        "(K = 0.2-1 at the scan's points); its best first-layer-matching point, L = 0.5 d and "
+        "K = 0.2, costs Delta chi^2 = +58.6 on the rest of the profile. Measured like the data "
+        "the joint fit's K is 6.59 against the fitted 2.67, so its first-bin spin lies about "
+        "2.5 times below its wall spin: the miss lies in a spin boundary layer thinner than a "
+        "grain, where the continuum is at its limit"
+    )
+    far = _grid_scan({})
+    far.measured = 0.5
+    assert ss.matching_reading(far) == ""
+
+
+def test_the_reading_band_is_wall_ks_match_band():
+    from cosserat.studies.validate import wall_k
+
+    assert wall_k.MATCH_SIGMAS == 2.0  # matching_reading's default sigmas

@@ -2180,6 +2180,72 @@ def _misfit_fields(sc: Scan) -> str:
     return " and ".join(bad) if bad else "its fields together"
 
 
+def missed_fields(sc: Scan) -> list[str]:
+    """The fields the joint fit misses (referee 11, point 4), each ``"name (p = ...)"``: a
+    calibration field whose chi^2 p is below :data:`MISFIT_P`, and u where its chi^2 under the
+    diagonal or common-mode error model (:func:`error_models`) has p below it."""
+    from ...calibration import diagnostics as dg
+
+    out: dict[str, str] = {}
+    for f in sc.fit.calibration.fields:
+        q = dg.chi2_p_value(f.chi2, f.n)
+        if q is not None and q < MISFIT_P:
+            out[f.field] = f"p = {q:.2g}"
+    u = error_models(sc).get("u")
+    if u is not None:
+        low = [f"{m} p = {q:.2g}" for m in ("diagonal", "common-mode")
+               if (q := u["p"].get(m)) is not None and q < MISFIT_P]  # fmt: skip
+        if low:
+            out["u"] = "; ".join([*([out["u"]] if "u" in out else []), *low])
+    return [f"{k} ({v})" for k, v in out.items()]
+
+
+def matching_reading(sc: Scan, sigmas: float = 2.0) -> str:
+    """The physical reading of a refutation (referee 11, point 4), computed from the scan:
+    the largest L of the grid points (both grids) whose first-layer departure lies within
+    ``sigmas`` data se of the measured one (``wall_k.MATCH_SIGMAS``'s band, the hatched one of
+    the scan figure), with the best first-layer-matching
+    point (``wall_k``'s ``matching_point``), and the joint fit's K measured like the data
+    against the fitted K (the ratio is about how far the first-bin spin lies below the wall
+    spin at one slip); "" where no grid point matches."""
+    Ls, Ks = [], []
+    for K, L, dep in ((sc.K, sc.L, sc.departure), (sc.K_near, sc.L_near, sc.departure_near)):
+        if np.shape(dep) != (np.size(K), np.size(L)):
+            continue
+        ok = np.abs(np.asarray(dep) - sc.measured) <= sigmas * sc.measured_se
+        for a, b in zip(*np.nonzero(ok), strict=True):
+            Ls.append(float(L[b]))
+            Ks.append(float(K[a]))
+    if not Ls:
+        return ""
+    top = max(Ls)
+    out = (
+        f"the model reaches the measured first layer (within {sigmas:g} se) only with "
+        f"L <= {top:.2g} d (K = {min(Ks):.2g}-{max(Ks):.2g} at the scan's points)"
+    )
+    mt = sc.wall_k.get("matching_point") if sc.wall_k else None
+    if mt and mt.get("matched"):
+        out += (
+            f"; its best first-layer-matching point, L = {mt['L']:.2g} d and K = {mt['K']:.2g}, "
+            f"costs Delta chi^2 = {mt['delta_chi2']:+.3g} on the rest of the profile"
+        )
+    model = (sc.wall_k or {}).get("model") or {}
+    fitted = (sc.wall_k or {}).get("fitted_K")
+    km = model.get("K")
+    if km is not None and fitted:
+        out += (
+            f". Measured like the data the joint fit's K is {km:.3g} against the fitted "
+            f"{fitted:.3g}, so its first-bin spin lies about {km / fitted:.2g} times below its "
+            "wall spin"
+        )
+    if top < 1.0:
+        out += (
+            ": the miss lies in a spin boundary layer thinner than a grain, where the "
+            "continuum is at its limit"
+        )
+    return out
+
+
 def lead_text(scans: Sequence[Scan]) -> str:
     """The verdict's first paragraph in the form referee 10 accepts ("Verdicts I would
     accept", (2)), every number computed: at each firm run the joint fit's p with u's chi^2
@@ -2223,7 +2289,17 @@ def lead_text(scans: Sequence[Scan]) -> str:
                 if k in held and held[k].get("delta_chi2") is not None
             ]
             cost = "; ".join(costs)
-            parts.append(text + (f". {cost[:1].upper()}{cost[1:]}" if cost else ""))
+            text += f". {cost[:1].upper()}{cost[1:]}" if cost else ""
+            missed = missed_fields(sc)
+            if missed:  # referee 11, point 4
+                text += (
+                    f". {sc.run} is refuted against a calibration that misses its "
+                    f"{' and '.join(missed)}"
+                )
+            reading = matching_reading(sc)
+            if reading:
+                text += f". Read physically, {reading}"
+            parts.append(text)
             continue
         call, rule = wall_rule(sc)
         why = []
@@ -3020,8 +3096,10 @@ __all__ = [
     "first_bin",
     "joint_fit",
     "lead_text",
+    "matching_reading",
     "material_data",
     "misfit_reading",
+    "missed_fields",
     "null_sign_rules",
     "phi_ends",
     "phi_sensitivity",
