@@ -193,3 +193,58 @@ def test_the_reading_band_is_wall_ks_match_band():
     from cosserat.studies.validate import wall_k
 
     assert wall_k.MATCH_SIGMAS == 2.0  # matching_reading's default sigmas
+
+
+# --------------------------------------------------------------------------- point 7
+def _ridge():
+    """Delta chi^2 10 on K = 0..4, ln L = 0..4 except a diagonal ridge (1, 1) 0, (2, 2) 1 and
+    an isolated point (4, 4) 1: threshold 3."""
+    K, L = np.arange(5.0), np.exp(np.arange(5.0))
+    d = np.full((5, 5), 10.0)
+    d[1, 1], d[2, 2], d[4, 4] = 0.0, 1.0, 1.0
+    return K, L, d
+
+
+def test_the_optimums_piece_follows_a_diagonal_ridge_and_leaves_an_isolated_point_out():
+    K, L, d = _ridge()
+    masks, others, joined = ss.region_pieces([(K, L, d, "range")], 3.0, (1.0, math.e))
+    assert np.argwhere(masks[0]).tolist() == [[1, 1], [2, 2]]
+    assert others == [{"K": [4.0, 4.0], "L": [L[4], L[4]], "points": 1}] and joined == 0
+    ext = {"K": [0.7, 2.2], "L": [2.0, 9.0], "K_bounds": ["data", "data"],
+           "L_bounds": ["data", "box"], "pieces": others, "joined": 0}  # fmt: skip
+    assert ss.region_text(ext) == (
+        "K 0.7-2.2, L 2-9 d (L's upper limit is the finer grid's edge; another piece of the "
+        "region, 1 grid point at K 4, L 54.6 d, is joined to the optimum's by no straight path "
+        "inside the region and is left out)"
+    )
+
+
+def test_a_straight_path_inside_the_region_joins_the_pieces():
+    K, L, d = _ridge()
+    seen = []
+
+    def inside(k, ll):
+        seen.append((k, np.log(ll)))
+        return np.ones(k.size, bool)
+
+    masks, others, joined = ss.region_pieces([(K, L, d, "range")], 3.0, (1.0, math.e), inside)
+    assert others == [] and joined == 1 and masks[0].sum() == 3
+    # the segment from (4, 4) to the nearest point of the optimum's piece, (2, 2), in K, ln L
+    k, lnl = seen[0]
+    np.testing.assert_allclose(k, np.linspace(4.0, 2.0, ss.PATH_POINTS + 2)[1:-1])
+    np.testing.assert_allclose(lnl, k)
+    _, others, joined = ss.region_pieces(
+        [(K, L, d, "range")], 3.0, (1.0, math.e), lambda k, ll: k > 3.0
+    )
+    assert joined == 0 and len(others) == 1
+
+
+def test_a_range_point_inside_the_finer_box_joins_the_finer_grids_piece():
+    K, L, d = _ridge()
+    d[2, 2] = 10.0  # the range grid: (1, 1) and (4, 4) apart
+    Kf, Lf = np.array([3.0, 3.5, 4.0]), np.exp(np.array([3.0, 3.5, 4.0]))
+    df = np.zeros((3, 3))  # the finer box around (4, 4) is all inside
+    grids = [(K, L, d, "range"), (Kf, Lf, df, "box")]
+    masks, others, _ = ss.region_pieces(grids, 3.0, (3.5, math.exp(3.5)))
+    assert np.argwhere(masks[0]).tolist() == [[4, 4]] and masks[1].all()
+    assert others == [{"K": [1.0, 1.0], "L": [L[1], L[1]], "points": 1}]
