@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from cosserat.analysis.corpus import read_run
+from cosserat.errors import ParameterError
 from cosserat.studies.validate import spin_scan as ss
 from cosserat.studies.validate import stresses
 from cosserat.studies.validate.synthetic import synthetic_run
@@ -86,9 +87,13 @@ def test_the_sentence_says_the_refutation_does_not_depend_on_phi():
     b = _scan("b", (0.01, 0.2), -0.2, [_row(16.7, 0.004, 0.1), _row(19.3, 0.02, 0.25)])
     # a run whose data share the grid's sign is not part of the argument
     c = _scan("c", (0.01, 0.2), +0.05, [_row(16.7, -0.5, 0.1), _row(19.3, -0.5, 0.1)])
+    for sc in (a, b, c):
+        sc.phi_sensitivity["grid"] = [6, 6]
     text = ss.phi_sensitivity_text([a, b, c])
     assert "spans +0.0005 to +0.38: positive over the grid at phi = 16.7-19.3 deg in all 2 " in text
-    assert text.endswith("the refutation does not depend on phi (2 runs x 2 phi, 1 s).")
+    assert text.endswith(
+        "the refutation does not depend on phi (a 6 x 6 K-L grid, 2 runs x 2 phi, 1 s)."
+    )
 
 
 def test_the_sentence_names_the_run_where_the_sign_turns():
@@ -121,13 +126,20 @@ def test_at_the_fitted_phi_the_rows_are_the_scans_own_range_grid(pair):
     beyond the null are the scan's, to the last digit; and scan_run fills it at the ends."""
     rough, smooth = pair
     sc = ss.scan_run(smooth, [rough, smooth], points=4)
-    got = ss.phi_sensitivity(sc, smooth, [("fitted", sc.fit.angles.phi)])
+    got = ss.phi_sensitivity(sc, smooth, [("fitted", sc.fit.angles.phi)], stride=1)
     diff = sc.departure - sc.null
     fin = diff[np.isfinite(diff)]
     (row,) = got["rows"]
-    assert row["solved"] == fin.size and row["points"] == 16
+    assert row["solved"] == fin.size and row["points"] == 16 and got["grid"] == [4, 4]
     assert row["lo"] == float(fin.min()) and row["hi"] == float(fin.max())
     assert got["seconds"] > 0.0
+    # the default takes every other K and L: the grid's points (0, 2) x (0, 2)
+    half = ss.phi_sensitivity(sc, smooth, [("fitted", sc.fit.angles.phi)])
+    sub = diff[::2, ::2][np.isfinite(diff[::2, ::2])]
+    assert half["grid"] == [2, 2] and half["rows"][0]["solved"] == sub.size
+    assert half["rows"][0]["lo"] == float(sub.min()) and half["rows"][0]["hi"] == float(sub.max())
+    with pytest.raises(ParameterError, match="the phi sensitivity's stride must be >= 1; got 0"):
+        ss.phi_sensitivity(sc, smooth, [], stride=0)
     ends = sc.phi_sensitivity["rows"]
     assert [r["label"] for r in ends] == ["pooled sin phi - 2 se", "pooled sin phi + 2 se"]
     assert sc.to_dict()["phi_sensitivity"]["sign"] in ("positive", "negative", "mixed")
@@ -214,12 +226,12 @@ def test_the_optimums_piece_follows_a_diagonal_ridge_and_leaves_an_isolated_poin
            "L_bounds": ["data", "box"], "pieces": others, "joined": 0}  # fmt: skip
     assert ss.region_text(ext) == (
         "K 0.7-2.2, L 2-9 d (L's upper limit is the finer grid's edge; another piece of the "
-        "region, 1 grid point at K 4, L 54.6 d, is joined to the optimum's by no straight path "
-        "inside the region and is left out)"
+        "region, 1 grid point at K 4, L 54.6 d, is joined to the optimum's by no path along the "
+        "valley inside the region and is left out)"
     )
 
 
-def test_a_straight_path_inside_the_region_joins_the_pieces():
+def test_a_path_along_the_valley_joins_the_pieces():
     K, L, d = _ridge()
     seen = []
 
@@ -229,13 +241,25 @@ def test_a_straight_path_inside_the_region_joins_the_pieces():
 
     masks, others, joined = ss.region_pieces([(K, L, d, "range")], 3.0, (1.0, math.e), inside)
     assert others == [] and joined == 1 and masks[0].sum() == 3
-    # the segment from (4, 4) to the nearest point of the optimum's piece, (2, 2), in K, ln L
+    # slices of the segment from (4, 4) to the nearest point of the optimum's piece, (2, 2),
+    # in K and ln L; each slice K = the line's +- 2 (the segment's K extent) on 19 points,
+    # clipped to the grid's K 0..4
     k, lnl = seen[0]
-    np.testing.assert_allclose(k, np.linspace(4.0, 2.0, ss.PATH_POINTS + 2)[1:-1])
-    np.testing.assert_allclose(lnl, k)
+    t = np.linspace(0.0, 1.0, ss.PATH_POINTS + 2)[1:-1]
+    np.testing.assert_allclose(np.unique(np.round(lnl, 12)), np.sort(4.0 - 2.0 * t))
+    line = 4.0 - 2.0 * t[0]
+    want = np.clip(line + np.linspace(-2.0, 2.0, 2 * ss.PATH_POINTS + 1), 0.0, 4.0)
+    np.testing.assert_allclose(k[: want.size], want)
+    # a valley 1.5 below the straight line in K joins them; a barrier across ln L = 3 does not
     _, others, joined = ss.region_pieces(
-        [(K, L, d, "range")], 3.0, (1.0, math.e), lambda k, ll: k > 3.0
-    )
+        [(K, L, d, "range")], 3.0, (1.0, math.e),
+        lambda k, ll: np.abs(k - (np.log(ll) - 1.5)) < 0.3,
+    )  # fmt: skip
+    assert joined == 1 and others == []
+    _, others, joined = ss.region_pieces(
+        [(K, L, d, "range")], 3.0, (1.0, math.e),
+        lambda k, ll: np.abs(np.log(ll) - 3.0) > 0.1,
+    )  # fmt: skip
     assert joined == 0 and len(others) == 1
 
 
