@@ -1062,10 +1062,11 @@ def region_text(extent: Mapping[str, Any] | None) -> str:
         where = f"K {k[0]:.3g}" + (f"-{k[1]:.3g}" if k[1] != k[0] else "")
         where += f", L {l_[0]:.3g}" + (f"-{l_[1]:.3g}" if l_[1] != l_[0] else "") + " d"
         n = piece["points"]
+        least = f" (least Delta chi^2 {piece['delta_chi2']:+.2g})" if "delta_chi2" in piece else ""
         notes.append(
-            f"another piece of the region, {n} grid point{'s' if n > 1 else ''} at {where}, "
-            "is joined to the optimum's by no path along the valley inside the region and is "
-            "left out"
+            f"another piece of the region, {n} grid point{'s' if n > 1 else ''} at {where}"
+            f"{least}, is joined to the optimum's by no path along the valley inside the "
+            "region and is left out"
         )
     if extent.get("joined"):
         notes.append(
@@ -1133,7 +1134,8 @@ def region_pieces(
     masks : list of bool arrays
         Per grid, its points in the optimum's piece.
     others : list of dict
-        The other pieces: ``K``, ``L`` ([low, high]) and ``points``.
+        The other pieces: ``K``, ``L`` ([low, high]), ``points`` and their least Delta
+        chi^2 ``delta_chi2``.
     joined : int
         Pieces joined to the optimum's along a valley.
     """
@@ -1233,7 +1235,11 @@ def region_pieces(
     for members in others.values():
         ks = [float(np.asarray(grids[nodes[i][0]][0])[nodes[i][1]]) for i in members]
         ls = [float(np.asarray(grids[nodes[i][0]][1])[nodes[i][2]]) for i in members]
-        pieces.append({"K": [min(ks), max(ks)], "L": [min(ls), max(ls)], "points": len(members)})
+        dc = [float(np.asarray(grids[nodes[i][0]][2])[nodes[i][1], nodes[i][2]]) for i in members]
+        pieces.append({
+            "K": [min(ks), max(ks)], "L": [min(ls), max(ls)], "points": len(members),
+            "delta_chi2": min(dc),
+        })  # fmt: skip
     return masks, pieces, joined
 
 
