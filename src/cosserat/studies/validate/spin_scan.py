@@ -552,6 +552,11 @@ class Scan:
     steadiness: str = ""
     """"steady", "not steady" or "not recorded": the sidecar's steadiness test (referee 10,
     point 1: an unsteady run does not make a refutation firm on its own)."""
+    phi_sensitivity: dict[str, Any] = field(default_factory=dict)
+    """The model's first-layer departure beyond its own null over the range grid at the ends
+    of the plausible phi range (:func:`phi_sensitivity`, referee 11, point 3): ``rows`` (one
+    per phi: ``label``, ``phi`` [deg], ``lo``, ``hi`` [-], ``solved`` points), ``sign`` and
+    ``seconds`` (its cost); empty where not computed."""
 
     @property
     def scale(self) -> float:
@@ -760,6 +765,7 @@ class Scan:
             "rules_summary": rules_summary(self),
             "steadiness": self.steadiness,
             "unsteady": list(self.unsteady),
+            "phi_sensitivity": dict(self.phi_sensitivity),
         }
 
 
@@ -1051,6 +1057,22 @@ def region_text(extent: Mapping[str, Any] | None) -> str:
         for end, why in zip(("lower", "upper"), extent[f"{name}_bounds"], strict=True):
             if why not in ("data", "point"):
                 notes.append(f"{name}'s {end} limit is {BOUND_WORDS[why]}")
+    for piece in extent.get("pieces", []):
+        k, l_ = piece["K"], piece["L"]
+        where = f"K {k[0]:.3g}" + (f"-{k[1]:.3g}" if k[1] != k[0] else "")
+        where += f", L {l_[0]:.3g}" + (f"-{l_[1]:.3g}" if l_[1] != l_[0] else "") + " d"
+        n = piece["points"]
+        least = f" (least Delta chi^2 {piece['delta_chi2']:+.2g})" if "delta_chi2" in piece else ""
+        notes.append(
+            f"another piece of the region, {n} grid point{'s' if n > 1 else ''} at {where}"
+            f"{least}, is joined to the optimum's by no path along the valley inside the "
+            "region and is left out"
+        )
+    if extent.get("joined"):
+        notes.append(
+            f"{extent['joined']} piece(s) joined to the optimum's along the valley inside the "
+            "region"
+        )
     return text + (f" ({'; '.join(notes)})" if notes else "")
 
 
@@ -1075,18 +1097,205 @@ def below_optimum(sc: Scan) -> dict[str, float] | None:
     return best
 
 
+PATH_POINTS = 9
+"""Slices of the segment between two pieces that :func:`region_pieces`' valley test takes."""
+
+
+def region_pieces(
+    grids: Sequence[tuple[Any, Any, Any, str]],
+    threshold: float,
+    optimum: tuple[float, float],
+    inside_at: Callable[[FloatArray, FloatArray], NDArray[np.bool_]] | None = None,
+) -> tuple[list[NDArray[np.bool_]], list[dict[str, Any]], int]:
+    """The connected piece of the 95% region that holds the optimum (referee 11, point 7).
+
+    The region's points (Delta chi^2 <= ``threshold``) of each grid join their 8 neighbours
+    on the grid (a ridge along the diagonal stays one piece); a point of one grid inside the
+    box of another joins that grid's nearest point when it is inside (the finer grid resolves
+    it there); and where ``inside_at`` (vectorised: K [-], L [d] -> inside) is given, a piece
+    joins the optimum's along the valley between them: at each of :data:`PATH_POINTS` points
+    of the segment (in K and log L) between their nearest points, some K within the
+    segment's K extent (at least one grid step) either side, on
+    ``2 PATH_POINTS + 1`` points clipped to the first grid's K range, is inside (a path that
+    may bend off the straight line, as a K-L ridge does). Distances in grid steps of the
+    first grid.
+
+    Parameters
+    ----------
+    grids, threshold
+        As :func:`region_extent`.
+    optimum : (K, L)
+        The joint fit's optimum ([-], [d]).
+    inside_at : callable, optional
+        The valley test's region membership.
+
+    Returns
+    -------
+    masks : list of bool arrays
+        Per grid, its points in the optimum's piece.
+    others : list of dict
+        The other pieces: ``K``, ``L`` ([low, high]), ``points`` and their least Delta
+        chi^2 ``delta_chi2``.
+    joined : int
+        Pieces joined to the optimum's along a valley.
+    """
+    nodes: list[tuple[int, int, int]] = []
+    coords: list[tuple[float, float]] = []
+    K0, L0 = np.asarray(grids[0][0], dtype=float), np.asarray(grids[0][1], dtype=float)
+    dk = float(np.ptp(K0)) / max(K0.size - 1, 1) or 1.0
+    dl = float(np.ptp(np.log(L0))) / max(L0.size - 1, 1) or 1.0
+
+    def xy(k: float, ll: float) -> tuple[float, float]:
+        return k / dk, math.log(ll) / dl
+
+    inside = []
+    for g, (K, L, d, _) in enumerate(grids):
+        K, L = np.asarray(K, dtype=float), np.asarray(L, dtype=float)
+        d = np.asarray(d, dtype=float)
+        m = np.isfinite(d) & (d <= threshold) if d.size else np.zeros((K.size, L.size), bool)
+        inside.append(m)
+        for a, b in zip(*np.nonzero(m), strict=True):
+            nodes.append((g, int(a), int(b)))
+            coords.append(xy(float(K[a]), float(L[b])))
+    index = {n: i for i, n in enumerate(nodes)}
+    parent = list(range(len(nodes)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    def unite(i: int, j: int) -> None:
+        parent[find(i)] = find(j)
+
+    for (g, a, b), i in index.items():
+        for da in (-1, 0, 1):
+            for db in (-1, 0, 1):
+                j = index.get((g, a + da, b + db))
+                if j is not None:
+                    unite(i, j)
+    for g, (K, L, _, _) in enumerate(grids):  # a point inside another grid's box
+        K, L = np.asarray(K, dtype=float), np.asarray(L, dtype=float)
+        if K.size == 0 or L.size == 0:
+            continue
+        for (h, a, b), i in index.items():
+            if h == g:
+                continue
+            k, ll = float(np.asarray(grids[h][0])[a]), float(np.asarray(grids[h][1])[b])
+            if not (K[0] <= k <= K[-1] and L[0] <= ll <= L[-1]):
+                continue
+            a2 = int(np.argmin(np.abs(K - k)))
+            b2 = int(np.argmin(np.abs(np.log(L) - math.log(ll))))
+            j = index.get((g, a2, b2))
+            if j is not None:
+                unite(i, j)
+    if not nodes:
+        return inside, [], 0
+    c = np.array(coords)
+    o = np.array(xy(*optimum))
+
+    def main_root() -> int:
+        return find(int(np.argmin(np.sum((c - o) ** 2, axis=1))))
+
+    joined = 0
+    if inside_at is not None:
+        tested: set[int] = set()
+        while True:
+            root = main_root()
+            roots = {find(i) for i in range(len(nodes))} - {root} - tested
+            if not roots:
+                break
+            r = min(roots)
+            tested.add(r)
+            mine = [i for i in range(len(nodes)) if find(i) == r]
+            main = [i for i in range(len(nodes)) if find(i) == root]
+            dist = ((c[mine][:, None, :] - c[main][None, :, :]) ** 2).sum(axis=2)
+            x, y = np.unravel_index(int(np.argmin(dist)), dist.shape)
+            p, q = c[mine[x]], c[main[y]]
+            t = np.linspace(0.0, 1.0, PATH_POINTS + 2)[1:-1, None]
+            seg = p + t * (q - p)
+            w = max(abs(float(q[0] - p[0])), 1.0)
+            ks = seg[:, :1] + np.linspace(-w, w, 2 * PATH_POINTS + 1)[None, :]
+            ks = np.clip(ks * dk, float(K0[0]), float(K0[-1]))
+            ls = np.broadcast_to(np.exp(seg[:, 1:] * dl), ks.shape)
+            ok = np.asarray(inside_at(ks.ravel(), ls.ravel()), dtype=bool).reshape(ks.shape)
+            if bool(np.all(ok.any(axis=1))):
+                unite(mine[x], main[y])
+                joined += 1
+    root = main_root()
+    masks = [np.zeros_like(m) for m in inside]
+    others: dict[int, list[int]] = {}
+    for i, (g, a, b) in enumerate(nodes):
+        if find(i) == root:
+            masks[g][a, b] = True
+        else:
+            others.setdefault(find(i), []).append(i)
+    pieces = []
+    for members in others.values():
+        ks = [float(np.asarray(grids[nodes[i][0]][0])[nodes[i][1]]) for i in members]
+        ls = [float(np.asarray(grids[nodes[i][0]][1])[nodes[i][2]]) for i in members]
+        dc = [float(np.asarray(grids[nodes[i][0]][2])[nodes[i][1], nodes[i][2]]) for i in members]
+        pieces.append({
+            "K": [min(ks), max(ks)], "L": [min(ls), max(ls)], "points": len(members),
+            "delta_chi2": min(dc),
+        })  # fmt: skip
+    return masks, pieces, joined
+
+
+def _inside_at(sc: Scan) -> Callable[[FloatArray, FloatArray], NDArray[np.bool_]] | None:
+    """Region membership at any (K, L) of ``sc`` (the joint fit's other parameters at the
+    optimum, as the grids hold them); None where the scan has no engine (a test's stand-in)."""
+    fit = sc.fit
+    if not isinstance(fit, JointFit):
+        return None
+    s = fit.setup
+    k_slot, l_slot = fit._slot("K"), fit._slot("L")
+    free = [sl.name for sl in s.free]
+    ik, il = free.index(k_slot.name), free.index(l_slot.name)
+
+    def inside(K: FloatArray, L: FloatArray) -> NDArray[np.bool_]:
+        thetas = []
+        for kv, lv in zip(K, L, strict=True):
+            th = fit.theta.copy()
+            th[ik], th[il] = k_slot.internal(float(kv)), l_slot.internal(float(lv))
+            thetas.append(th)
+        lnl = np.asarray(s.log_likelihood_many(np.array(thetas)), dtype=float)
+        d = -2.0 * (lnl - s.log_norm) - sc.chi2_min
+        return np.isfinite(d) & (d <= sc.threshold)
+
+    return inside
+
+
 def scan_region(sc: Scan) -> dict[str, Any] | None:
-    """:func:`region_extent` of a scan's two grids at its threshold (the finer grid's edge
-    counted as the declared range's where the range clips it)."""
-    ext = region_extent(
-        [
-            (sc.K, sc.L, sc.chi2 - sc.chi2_min, "range"),
-            (sc.K_near, sc.L_near, sc.chi2_near - sc.chi2_min, "box"),
-        ],
-        sc.threshold,
-    )
+    """:func:`region_extent` of the piece of a scan's 95% region that holds the optimum
+    (:func:`region_pieces`, the valley between pieces tested on the fit), the finer grid's
+    edge counted as the declared range's where the range clips it; ``pieces``: the other
+    pieces, ``joined``: how many the valley test joined (referee 11, point 7)."""
+    cached = sc.__dict__.get("_region")
+    if cached is not None:
+        return cached or None
+    grids = [
+        (sc.K, sc.L, sc.chi2 - sc.chi2_min, "range"),
+        (sc.K_near, sc.L_near, sc.chi2_near - sc.chi2_min, "box"),
+    ]
+    if isinstance(sc.fit, JointFit):
+        optimum = (sc.fit.value("K"), sc.fit.value("L"))
+    else:  # a test's stand-in fit: its grid's least chi^2
+        a, b = np.unravel_index(int(np.argmin(sc.chi2)), sc.chi2.shape)
+        optimum = (float(sc.K[a]), float(sc.L[b]))
+    masks, pieces, joined = region_pieces(grids, sc.threshold, optimum, _inside_at(sc))
+    kept = [
+        (K, L, np.where(m | (np.asarray(d) > sc.threshold) | ~np.isfinite(d), d,
+                        2.0 * sc.threshold), edge)
+        for (K, L, d, edge), m in zip(grids, masks, strict=True)
+    ]  # fmt: skip
+    ext = region_extent(kept, sc.threshold)
+    sc.__dict__["_region"] = ext or {}
     if ext is None:
         return None
+    ext["pieces"] = pieces
+    ext["joined"] = joined
     for name, grid in (("K", sc.K), ("L", sc.L)):
         ends = (float(grid[0]), float(grid[-1]))
         ext[f"{name}_bounds"] = [
@@ -1534,6 +1743,166 @@ def grid_sign_text(scans: Sequence[Scan]) -> str:
         f"fit's null is {other} ({dlo:+.3g} to {dhi:+.3g}): the model reaches a first-layer "
         "departure of the measured sign only through its null, i.e. through a steep wall "
         "velocity."
+    )
+
+
+# --------------------------------------------------------------------------- phi sensitivity
+def phi_ends(runs: Sequence[Run], material: str, sigmas: float = 2.0) -> list[tuple[str, float]]:
+    """The ends of the plausible phi range of ``material`` (referee 11, point 3), as (label,
+    phi [deg]), in increasing phi: the pooled sin phi (:func:`~.stresses.material_sin_phi`)
+    -+ ``sigmas`` of its (scaled) se, and the asin of the lowest and highest of the runs'
+    individual T; an end outside (0, 1) in sin phi is left out.
+
+    Raises
+    ------
+    InputError
+        phi is not measured (:func:`~.stresses.material_sin_phi`).
+    """
+    from .stresses import material_sin_phi
+
+    pool = material_sin_phi(runs, material).sin_phi.pooled
+    ends = [
+        (f"pooled sin phi - {sigmas:g} se", pool.value - sigmas * pool.stderr),
+        (f"pooled sin phi + {sigmas:g} se", pool.value + sigmas * pool.stderr),
+    ]
+    if len(pool.values) > 1:
+        lo, hi = int(np.argmin(pool.values)), int(np.argmax(pool.values))
+        ends += [
+            (f"lowest run's T ({pool.names[lo]})", pool.values[lo]),
+            (f"highest run's T ({pool.names[hi]})", pool.values[hi]),
+        ]
+    out = [(lab, math.degrees(math.asin(v))) for lab, v in ends if 0.0 < v < 1.0]
+    return sorted(out, key=lambda x: x[1])
+
+
+def _values_at_phi(values: Mapping[Any, float], ang: Angles, phi: float) -> dict[Any, float]:
+    """A run's model values with phi set to ``phi`` [deg]: each measured wall keeps its tan
+    delta (its roughness tan(delta)/sin(phi) moves, :meth:`Angles.shifted`), a fully rough one
+    stays fully rough."""
+    new = ang.shifted(phi=phi - ang.phi)
+    out = dict(values)
+    out["phi"] = phi
+    for key in values:
+        if isinstance(key, tuple) and key[0] == "roughness":
+            wall = key[1] if key[1] in new.roughness else "moving"
+            out[key] = new.roughness[wall]
+    return out
+
+
+def phi_sensitivity(
+    sc: Scan,
+    run: Run,
+    ends: Sequence[tuple[str, float]],
+    predictor: Predictor | str = DEFAULT_PREDICTOR,
+    stride: int = 2,
+) -> dict[str, Any]:
+    """The model's first-layer departure beyond its own null over the scan's range grid, every
+    ``stride``-th K and L of it (the ends kept where the grid has an odd number of points;
+    the joint fit's other parameters at the optimum, as the scan holds them) with phi
+    moved to each of ``ends`` ((label, phi [deg]), :func:`phi_ends`), a measured wall's tan
+    delta kept: per phi its min ``lo`` and max ``hi`` over the solved points [-]; ``sign``
+    "positive" / "negative" where every phi's grid has one sign (the same), else "mixed"
+    (or "none solved"); ``seconds``, its cost."""
+    import time
+
+    from ...calibration.models import SOLVE_ERRORS
+
+    t0 = time.perf_counter()
+    pred, how = _predictor(predictor, run)
+    null_of = _null_of(how)
+    i0 = first_bin(run)
+    fit = sc.fit
+    s = fit.setup
+    rd = s.runs[0]
+    k_slot, l_slot = fit._slot("K"), fit._slot("L")
+    free = [sl.name for sl in s.free]
+    ik, il = free.index(k_slot.name), free.index(l_slot.name)
+    if stride < 1:
+        raise ParameterError(f"the phi sensitivity's stride must be >= 1; got {stride}")
+    Ks, Ls = sc.K[::stride], sc.L[::stride]
+    rows = []
+    for label, phi in ends:
+        vals: list[float] = []
+        for kv in Ks:
+            for lv in Ls:
+                th = fit.theta.copy()
+                th[ik], th[il] = k_slot.internal(kv), l_slot.internal(lv)
+                values = _values_at_phi(s.run_values(rd, th), fit.angles, phi)
+                try:
+                    prof = _profile(s.model, rd, values)
+                    v = float(pred(prof, run)[i0]) - float(null_of(prof, run)[i0])
+                except SOLVE_ERRORS:
+                    continue
+                if math.isfinite(v):
+                    vals.append(v)
+        rows.append({
+            "label": label, "phi": float(phi),
+            "lo": min(vals) if vals else None, "hi": max(vals) if vals else None,
+            "solved": len(vals), "points": int(Ks.size * Ls.size),
+        })  # fmt: skip
+    return {
+        "rows": rows, "sign": _one_sign(rows), "seconds": time.perf_counter() - t0,
+        "grid": [int(Ks.size), int(Ls.size)],
+    }  # fmt: skip
+
+
+def _one_sign(rows: Sequence[Mapping[str, Any]]) -> str:
+    """The rows' sign: "positive" / "negative" where every row's (lo, hi) has that one sign,
+    "mixed" where not, "none solved" where no row has a solved point."""
+    got = [r for r in rows if r["lo"] is not None]
+    if not got:
+        return "none solved"
+    if all(r["lo"] > 0.0 for r in got):
+        return "positive"
+    if all(r["hi"] < 0.0 for r in got):
+        return "negative"
+    return "mixed"
+
+
+def phi_sensitivity_text(scans: Sequence[Scan]) -> str:
+    """One sentence (referee 11, point 3): over the runs whose model departure beyond its null
+    has one sign over the scan's whole grid and the data's the other (``opposite`` of
+    :func:`grid_beyond_signs`: the grid-sign argument of the refutation), whether it keeps that
+    sign over the grid at the ends of the plausible phi range (:func:`phi_sensitivity`), with
+    the span and the cost; "" where no such run has it computed."""
+    signs = grid_beyond_signs(scans)
+    got = {}
+    for sc in scans:
+        g = signs.get(sc.run)
+        if sc.phi_sensitivity.get("rows") and g is not None and g["opposite"]:
+            got[sc.run] = (sc, "positive" if g["lo"] > 0.0 else "negative")
+    if not got:
+        return ""
+    rows = [r for sc, _ in got.values() for r in sc.phi_sensitivity["rows"]]
+    phis = [r["phi"] for r in rows]
+    solved = [r for r in rows if r["lo"] is not None]
+    lo = min(r["lo"] for r in solved) if solved else math.nan
+    hi = max(r["hi"] for r in solved) if solved else math.nan
+    secs = sum(sc.phi_sensitivity.get("seconds", 0.0) for sc, _ in got.values())
+    lost = [n for n, (sc, sign) in got.items() if sc.phi_sensitivity["sign"] != sign]
+    fitted = {sign for _, sign in got.values()}
+    word = next(iter(fitted)) if len(fitted) == 1 else "of the fitted phi's sign"
+    head = (
+        f"At the ends of the plausible phi range (the pooled sin phi +- 2 se and the runs' "
+        f"extreme wall ratios; each wall's tan delta held), the model's first-layer departure "
+        f"beyond its null over the (K, L) grid spans {lo:+.2g} to {hi:+.2g}"
+    )
+    grids = {tuple(sc.phi_sensitivity.get("grid", ())) for sc, _ in got.values()}
+    grid = (
+        f"a {' x '.join(map(str, grids.pop()))} K-L grid, "
+        if len(grids) == 1 and () not in grids
+        else ""
+    )
+    cost = f"{grid}{len(got)} runs x {len(rows) // len(got)} phi, {secs:.2g} s"
+    if not lost:
+        return (
+            f"{head}: {word} over the grid at phi = {min(phis):.3g}-{max(phis):.3g} deg in "
+            f"all {len(got)} runs, as at the fitted phi: the refutation does not depend on phi "
+            f"({cost})."
+        )
+    return (
+        f"{head}: it is not {word} over the whole grid at some phi of {min(phis):.3g}-"
+        f"{max(phis):.3g} deg in {_names(lost)}: there the refutation depends on phi ({cost})."
     )
 
 
@@ -2028,6 +2397,78 @@ def _misfit_fields(sc: Scan) -> str:
     return " and ".join(bad) if bad else "its fields together"
 
 
+def missed_fields(sc: Scan) -> list[str]:
+    """The fields the joint fit misses (referee 11, point 4), each ``"name (p = ...)"``: a
+    calibration field whose chi^2 p is below :data:`MISFIT_P`, and u where its chi^2 under the
+    diagonal or common-mode error model (:func:`error_models`) has p below it."""
+    from ...calibration import diagnostics as dg
+
+    out: dict[str, str] = {}
+    for f in sc.fit.calibration.fields:
+        q = dg.chi2_p_value(f.chi2, f.n)
+        if q is not None and q < MISFIT_P:
+            out[f.field] = f"p = {q:.2g}"
+    u = error_models(sc).get("u")
+    if u is not None:
+        low = [f"{m} p = {q:.2g}" for m in ("diagonal", "common-mode")
+               if (q := u["p"].get(m)) is not None and q < MISFIT_P]  # fmt: skip
+        if low:
+            out["u"] = "; ".join([*([out["u"]] if "u" in out else []), *low])
+    return [f"{k} ({v})" for k, v in out.items()]
+
+
+def _span_text(name: str, lo: float, hi: float) -> str:
+    """``name = lo-hi``, or ``name = lo`` where the two agree to 2 digits."""
+    a, b = f"{lo:.2g}", f"{hi:.2g}"
+    return f"{name} = {a}" if a == b else f"{name} = {a}-{b}"
+
+
+def matching_reading(sc: Scan, sigmas: float = 2.0) -> str:
+    """The physical reading of a refutation (referee 11, point 4), computed from the scan:
+    the largest L of the grid points (both grids) whose first-layer departure lies within
+    ``sigmas`` data se of the measured one (``wall_k.MATCH_SIGMAS``'s band, the hatched one of
+    the scan figure), with the best first-layer-matching
+    point (``wall_k``'s ``matching_point``), and the joint fit's K measured like the data
+    against the fitted K (the ratio is about how far the first-bin spin lies below the wall
+    spin at one slip); "" where no grid point matches."""
+    Ls, Ks = [], []
+    for K, L, dep in ((sc.K, sc.L, sc.departure), (sc.K_near, sc.L_near, sc.departure_near)):
+        if np.shape(dep) != (np.size(K), np.size(L)):
+            continue
+        ok = np.abs(np.asarray(dep) - sc.measured) <= sigmas * sc.measured_se
+        for a, b in zip(*np.nonzero(ok), strict=True):
+            Ls.append(float(L[b]))
+            Ks.append(float(K[a]))
+    if not Ls:
+        return ""
+    top = max(Ls)
+    out = (
+        f"the model reaches the measured first layer (within {sigmas:g} se) only with "
+        f"L <= {top:.2g} d ({_span_text('K', min(Ks), max(Ks))} at the scan's points)"
+    )
+    mt = sc.wall_k.get("matching_point") if sc.wall_k else None
+    if mt and mt.get("matched"):
+        out += (
+            f"; its best first-layer-matching point, L = {mt['L']:.2g} d and K = {mt['K']:.2g}, "
+            f"costs Delta chi^2 = {mt['delta_chi2']:+.3g} on the rest of the profile"
+        )
+    model = (sc.wall_k or {}).get("model") or {}
+    fitted = (sc.wall_k or {}).get("fitted_K")
+    km = model.get("K")
+    if km is not None and fitted:
+        out += (
+            f". Measured like the data the joint fit's K is {km:.3g} against the fitted "
+            f"{fitted:.3g}, so its first-bin spin lies about {km / fitted:.2g} times below its "
+            "wall spin"
+        )
+    if top < 1.0:
+        out += (
+            ": the miss lies in a spin boundary layer thinner than a grain, where the "
+            "continuum is at its limit"
+        )
+    return out
+
+
 def lead_text(scans: Sequence[Scan]) -> str:
     """The verdict's first paragraph in the form referee 10 accepts ("Verdicts I would
     accept", (2)), every number computed: at each firm run the joint fit's p with u's chi^2
@@ -2071,7 +2512,17 @@ def lead_text(scans: Sequence[Scan]) -> str:
                 if k in held and held[k].get("delta_chi2") is not None
             ]
             cost = "; ".join(costs)
-            parts.append(text + (f". {cost[:1].upper()}{cost[1:]}" if cost else ""))
+            text += f". {cost[:1].upper()}{cost[1:]}" if cost else ""
+            missed = missed_fields(sc)
+            if missed:  # referee 11, point 4
+                text += (
+                    f". {sc.run} is refuted against a calibration that misses its "
+                    f"{' and '.join(missed)}"
+                )
+            reading = matching_reading(sc)
+            if reading:
+                text += f". Read physically, {reading}"
+            parts.append(text)
             continue
         call, rule = wall_rule(sc)
         why = []
@@ -2659,11 +3110,13 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, pairs: Sequence[Any]
     if why and not head.count(why):
         head = f"{head} {why}"
     extra = " ".join(t for t in (error_models_text(scans), grid_sign_text(scans),
-                                  near_bins_text(scans)) if t)  # fmt: skip
+                                  phi_sensitivity_text(scans), near_bins_text(scans))
+                     if t)  # fmt: skip
     if extra:
         head = f"{head} {extra}"
     numbers["solid_runs"] = solid_runs(scans)
     numbers["grid_beyond_null"] = grid_beyond_signs(scans)
+    numbers["phi_sensitivity"] = {sc.run: dict(sc.phi_sensitivity) for sc in scans}
     numbers["near_bins"] = {sc.run: [dict(b) for b in sc.near_bins] for sc in scans}
     numbers["error_models"] = {sc.run: error_models(sc) for sc in scans}
     table = near_bins_table(scans)
@@ -2769,9 +3222,14 @@ def scan_run(
     starts: int | None = None,
 ) -> Scan:
     """:func:`angles`, :func:`joint_fit` and :func:`scan` of one run."""
+    from ...calibration.data import _material_label
+
     first_bin(run)
     fit = joint_fit(run, angles(run, runs), starts=starts)
-    return scan(run, fit, points, predictor)
+    sc = scan(run, fit, points, predictor)
+    ends = phi_ends(runs, _material_label(run.meta))
+    sc.phi_sensitivity = phi_sensitivity(sc, run, ends, predictor)
+    return sc
 
 
 def spin_scans(
@@ -2914,12 +3372,18 @@ __all__ = [
     "first_bin",
     "joint_fit",
     "lead_text",
+    "matching_reading",
     "material_data",
     "misfit_reading",
+    "missed_fields",
     "null_sign_rules",
+    "phi_ends",
+    "phi_sensitivity",
+    "phi_sensitivity_text",
     "point_departure",
     "prediction_se_at",
     "region_extent",
+    "region_pieces",
     "region_profiles",
     "region_text",
     "rules_line",
