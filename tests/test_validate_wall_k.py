@@ -243,7 +243,11 @@ def test_a_misfit_with_a_fitting_stress_ratio_is_read_as_inadequacy(made):
     )
     assert ss.misfit_reading([worse])[0] == "errors"
     reading, why = ss.misfit_reading([worse], [pair])
-    assert reading == "errors" and "sqrt(chi^2/dof) and the 95% region is scaled alike. Such " \
-        "errors are seen directly (scatter between runs that the block errors do not carry): " \
-        "where one cell is run at two speeds, the two runs differ beyond 3 se" in why
+    assert (
+        reading == "errors"
+        and "sqrt(chi^2/dof) and the 95% region is scaled alike. Such "
+        "errors are seen directly (scatter between runs that the block errors do not carry): "
+        "where one cell is run at two speeds, the two runs differ beyond 3 se"
+        in why
+    )
     assert ss.scan_verdict([worse]).verdict == "supported"

@@ -2724,9 +2724,7 @@ def misfit_reading(scans: Sequence[Scan], pairs: Sequence[Any] = ()) -> tuple[st
                                              for d in at)
             ]  # fmt: skip
             if part:
-                shares.append(
-                    f"{sum(b['chi2'] for b in part):.3g} of {om['ar1']:.3g} at {sc.run}"
-                )
+                shares.append(f"{sum(b['chi2'] for b in part):.3g} of {om['ar1']:.3g} at {sc.run}")
         scatter_text = (
             " Part of the misfit may be understated block errors, though (scatter between runs "
             "that the block errors do not carry)"
