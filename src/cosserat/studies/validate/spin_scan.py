@@ -1233,11 +1233,11 @@ def region_pieces(
             others.setdefault(find(i), []).append(i)
     pieces = []
     for members in others.values():
-        ks = [float(np.asarray(grids[nodes[i][0]][0])[nodes[i][1]]) for i in members]
-        ls = [float(np.asarray(grids[nodes[i][0]][1])[nodes[i][2]]) for i in members]
+        k_at = [float(np.asarray(grids[nodes[i][0]][0])[nodes[i][1]]) for i in members]
+        l_at = [float(np.asarray(grids[nodes[i][0]][1])[nodes[i][2]]) for i in members]
         dc = [float(np.asarray(grids[nodes[i][0]][2])[nodes[i][1], nodes[i][2]]) for i in members]
         pieces.append({
-            "K": [min(ks), max(ks)], "L": [min(ls), max(ls)], "points": len(members),
+            "K": [min(k_at), max(k_at)], "L": [min(l_at), max(l_at)], "points": len(members),
             "delta_chi2": min(dc),
         })  # fmt: skip
     return masks, pieces, joined

@@ -2116,11 +2116,11 @@ def level_miss(s: DeltaSeries, model: str = "cosserat") -> dict[str, Any] | None
     if c is None or not c.ok:
         return None
     pairs = [
-        (p.run, float(c.predicted[p.run][0]) / p.value, p.usable)
+        (p.run, float(v) / p.value, p.usable)
         for p in s.points
         if p.value is not None
         and p.value > 0.0
-        and c.predicted.get(p.run, (None, None))[0] is not None
+        and (v := c.predicted.get(p.run, (None, None))[0]) is not None
     ]
     if not pairs:
         return None
