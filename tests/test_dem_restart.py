@@ -261,6 +261,7 @@ def test_corpus_v2_regenerates_the_kept_runs_decks():
         "plane_smooth_H20_qs",
         "plane_layer_H10_qs_s2",
         "plane_rough_H10_qs_half",
+        "plane_rough_H10_qs_s2",
     } <= set(checked)
 
 
