@@ -790,6 +790,13 @@ def _grid(
     }
 
 
+def _kl_slots(fit: Any) -> tuple[Any, Any, int, int]:
+    """A joint fit's K and L slots and their indices among its free parameters (``theta``)."""
+    k_slot, l_slot = fit._slot("K"), fit._slot("L")
+    free = [sl.name for sl in fit.setup.free]
+    return k_slot, l_slot, free.index(k_slot.name), free.index(l_slot.name)
+
+
 def _profile(model: Any, rd: Any, values: Mapping[Any, float]) -> Any:
     from ...analysis.ranking import model_solve
 
@@ -829,9 +836,7 @@ def scan(
     measured_se = float(departure_se(sw[i0], sh[i0], r0))
     s = fit.setup
     rd = s.runs[0]
-    k_slot, l_slot = fit._slot("K"), fit._slot("L")
-    free = [sl.name for sl in s.free]
-    ik, il = free.index(k_slot.name), free.index(l_slot.name)
+    k_slot, l_slot, ik, il = _kl_slots(fit)
     klo, khi = k_slot.range
     llo, lhi = l_slot.range
     K = np.linspace(k_slot.natural(klo), k_slot.natural(khi), points)
@@ -1250,9 +1255,7 @@ def _inside_at(sc: Scan) -> Callable[[FloatArray, FloatArray], NDArray[np.bool_]
     if not isinstance(fit, JointFit):
         return None
     s = fit.setup
-    k_slot, l_slot = fit._slot("K"), fit._slot("L")
-    free = [sl.name for sl in s.free]
-    ik, il = free.index(k_slot.name), free.index(l_slot.name)
+    k_slot, l_slot, ik, il = _kl_slots(fit)
 
     def inside(K: FloatArray, L: FloatArray) -> NDArray[np.bool_]:
         thetas = []
@@ -1321,9 +1324,7 @@ def region_profiles(sc: Scan) -> list[Any]:
     fit = sc.fit
     s = fit.setup
     rd = s.runs[0]
-    k_slot, l_slot = fit._slot("K"), fit._slot("L")
-    free = [sl.name for sl in s.free]
-    ik, il = free.index(k_slot.name), free.index(l_slot.name)
+    k_slot, l_slot, ik, il = _kl_slots(fit)
     theta0 = fit.theta
     out = [_profile(s.model, rd, s.run_values(rd, theta0))]
     for kk, ll, ok in ((sc.K, sc.L, sc.admissible), (sc.K_near, sc.L_near, sc.admissible_near)):
@@ -1814,9 +1815,7 @@ def phi_sensitivity(
     fit = sc.fit
     s = fit.setup
     rd = s.runs[0]
-    k_slot, l_slot = fit._slot("K"), fit._slot("L")
-    free = [sl.name for sl in s.free]
-    ik, il = free.index(k_slot.name), free.index(l_slot.name)
+    k_slot, l_slot, ik, il = _kl_slots(fit)
     if stride < 1:
         raise ParameterError(f"the phi sensitivity's stride must be >= 1; got {stride}")
     Ks, Ls = sc.K[::stride], sc.L[::stride]
