@@ -243,9 +243,7 @@ def cosserat_fix(run: Run, runs: Sequence[Run]) -> StressFix:
     if model_se is None:  # fully rough: sin phi's error
         model_se = math.radians(a.phi_se) * math.cos(math.radians(a.phi))
     slip, slip_se = moving_wall_slip(run)
-    return StressFix(
-        a.phi, delta, sources, t.value, t.stderr, "", w, w_se, model_se, slip, slip_se
-    )
+    return StressFix(a.phi, delta, sources, t.value, t.stderr, "", w, w_se, model_se, slip, slip_se)
 
 
 def moving_wall_slip(run: Run) -> tuple[float, float]:
