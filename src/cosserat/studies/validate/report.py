@@ -42,6 +42,7 @@ from .verdicts import (
 if TYPE_CHECKING:
     from .fits import FitSummary
     from .study import RunResult, ValidationReport
+    from .verdicts import DeltaSeries
 
 RUN_FIGURE_DPI = 150
 """Resolution of the run figures [dots per inch] (the claim figures have the package's)."""
@@ -136,7 +137,69 @@ def delta_caption(report: ValidationReport, which: str) -> str:
     )
     if gaps:
         text += " Where a model gives no Delta: " + "; ".join(gaps) + "."
-    return text
+    level = " ".join(x for s in relevant(report.groups, which) if (x := level_caption(s)))
+    return text + (f" {level}" if level else "")
+
+
+def level_caption(s: DeltaSeries, model: str = "cosserat") -> str:
+    """The one calibration's ``model`` Delta against the measured in a series, for its claim
+    figure's caption (referee 12, point 4): the ratio range model / measured over the runs
+    (``verdicts.level_miss``: "a level miss of the creep tail" where the model is below at
+    every run), and each run where the model's Delta and the data's lie on opposite sides of
+    :data:`~.measures.FILLS_GAP` H (one fills the gap, the other does not: a discrepancy of
+    its own); "" where the series has neither."""
+    from .verdicts import level_miss, short
+
+    c = s.curves.get(model)
+    if c is None or not c.ok:
+        return ""
+    parts = []
+    miss = level_miss(s, model)
+    if miss is not None:
+        n = len(miss["runs"])
+        what = "a level miss of the creep tail" if miss["side"] == "below" else "a level miss"
+        ratio = (
+            f"{miss['ratio_min']:.2g}"
+            if n == 1
+            else f"{miss['ratio_min']:.2g}-{miss['ratio_max']:.2g}"
+        )
+        parts.append(
+            f"{short(s.key)}: the one calibration's {model} Delta is {miss['side']} the measured "
+            + ("in its one run" if n == 1 else f"in all {n} runs")
+            + f", {model} / measured = {ratio} ({what})"
+        )
+    opposite = []
+    for p in s.points:
+        v = c.predicted.get(p.run, (None, None))[0]
+        if p.value is None or v is None:
+            continue
+        half = FILLS_GAP * p.gap_d
+        if (p.value > half) != (v > half):
+            opposite.append((p.run, float(v), p.value, half))
+    if opposite:
+        under = [x for x in opposite if x[1] <= x[3]]
+        over = [x for x in opposite if x[1] > x[3]]
+        for group, model_side, data_side, reading in (
+            (under, "under", "over", "the data fill the gap and the model does not"),
+            (over, "over", "under", "the model fills the gap and the data do not"),
+        ):
+            if not group:
+                continue
+            why = (
+                " (those runs are left out of the gap law for the data's filling, not the model's)"
+                if data_side == "over"
+                else ""
+            )
+            parts.append(
+                f"the {model} Delta lies {model_side} H/2 while the measured lies {data_side} it "
+                "at "
+                + ", ".join(
+                    f"{run} ({model} {v:.3g} d, measured {d:.3g} d, H/2 = {h:.3g} d)"
+                    for run, v, d, h in group
+                )
+                + f": {reading}, a discrepancy of its own{why}"
+            )
+    return "; ".join(parts) + "." if parts else ""
 
 
 def run_caption(r: RunResult) -> str:
