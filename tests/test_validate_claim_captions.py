@@ -56,3 +56,43 @@ def test_the_delta_caption_the_other_way_and_without_either():
     )
     assert level_caption(mixed) == ""
     assert level_caption(DeltaSeries("k", "plane", "fully-rough", True, ())) == ""
+
+
+def _row(label, kind, lo, hi, beyond, judged=True, sheared=True):
+    return {
+        "label": label,
+        "sheared": sheared,
+        "stencil_range": (lo, hi),
+        "beyond_stencils": beyond,
+        "bins": {"beyond": [beyond["analysis"]], "judged": judged},
+        "kind": kind,
+    }
+
+
+def test_the_spin_caption_sets_the_raw_stencil_range_against_the_beyond_null_sign():
+    """Referee 12, point 8: the raw range crosses 0 at both sheared walls (up to +0.21 and
+    +0.47); beyond the null the smooth wall keeps its sign under all 3 stencils, the rough
+    one under 2 of 3 (then its first layer is left out)."""
+    from cosserat.studies.validate.report import spin_caption
+
+    rows = [
+        _row("rough: moving", "glued-grains", -0.15, 0.21,
+             {"analysis": -0.11, "wall": -0.05, "wall-first": 0.02}),
+        _row("smooth: moving", "smooth-frictional", -0.33, 0.47,
+             {"analysis": -0.29, "wall": -0.2, "wall-first": -0.1}),
+        _row("smooth: fixed", "smooth-frictional", -0.01, 0.01, {"analysis": 0.0},
+             judged=False, sheared=False),
+    ]  # fmt: skip
+    text = spin_caption(rows)
+    assert (
+        " At 2 of the 2 sheared walls it crosses 0 (reaching +0.21 to +0.47): the raw "
+        "first-layer sign depends on the stencil there, and the verdicts do not use it. What "
+        "the spin verdicts use is the departure beyond the null (right panel): its first-layer "
+        "sign is the same under every stencil at 1 of the 2 judged walls (at the "
+        "smooth-frictional walls: 3/3 stencil-wall pairs); where it is not, the first layer is "
+        "left out of the verdict's test (open markers, right)."
+    ) in text
+    assert text.startswith("Left: the first layer's departure omega - half vorticity (d/V)")
+    assert text.endswith("filled: the bins the verdict's test uses.")
+    # no sheared wall: the panels only
+    assert "crosses 0" not in spin_caption(rows[2:])

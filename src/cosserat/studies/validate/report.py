@@ -8,6 +8,7 @@ import json
 import math
 import pickle
 import re
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -389,9 +390,83 @@ def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
                     if w.stencils
                     else None,
                     "bins": _spin_bins(w),
+                    # the first layer's departure beyond the null under each stencil (None
+                    # without a null): its sign is what the verdicts use (referee 12, point 8)
+                    "beyond_stencils": {st: w.beyond_first(st)[0] for st in w.stencils}
+                    if w.stencils and w.null is not None
+                    else None,
+                    "kind": _wall_kind(r.run.meta, w.wall),
                 }
             )
     return rows
+
+
+def _wall_kind(meta: Mapping[str, Any], wall: str) -> str:
+    """The kind of a run's ``wall`` ("moving" or "fixed"; the fixed one is the moving one's
+    kind unless ``wall_fixed`` says otherwise), "" where the metadata do not say."""
+    side = meta.get("wall_fixed") if wall == "fixed" else None
+    side = side if isinstance(side, Mapping) else meta.get("wall")
+    return str(side.get("kind", "")) if isinstance(side, Mapping) else ""
+
+
+def spin_caption(rows: list[dict[str, Any]]) -> str:
+    """The caption of ``claim_spin.png`` (referee 12, point 8): what each panel draws, and,
+    computed from ``rows`` (:func:`spin_rows`), the grey range of the RAW first-layer
+    departure over the stencils at the sheared walls (its sign depends on the stencil where
+    the range crosses 0) against the departure beyond the null the verdicts use (its sign
+    over the stencils at each judged wall, and at the smoother walls' as the sign rule's
+    n/m)."""
+    sheared = [r for r in rows if r["sheared"] and r.get("stencil_range") is not None]
+    text = (
+        "Left: the first layer's departure omega - half vorticity (d/V) at each wall, "
+        "measured with the analysis' stencil (black, +- 2 se; open: a wall not sheared) and "
+        "what grains turning with the material give, measured so (x). Grey: the range of the "
+        "RAW measured departure over the difference stencils."
+    )
+    if sheared:
+        crosses = [r for r in sheared if r["stencil_range"][0] < 0.0 < r["stencil_range"][1]]
+        highs = [r["stencil_range"][1] for r in crosses]
+        text += (
+            f" At {len(crosses)} of the {len(sheared)} sheared walls it crosses 0"
+            + (f" (reaching +{min(highs):.2g} to +{max(highs):.2g})" if highs else "")
+            + (
+                ": the raw first-layer sign depends on the stencil there, and the verdicts do "
+                "not use it."
+                if crosses
+                else "."
+            )
+        )
+    judged = [r for r in sheared if r.get("beyond_stencils") and r["bins"]["judged"]]
+    if judged:
+
+        def same(r: dict[str, Any]) -> tuple[int, int]:
+            signs = [_sign_of(v) for v in r["beyond_stencils"].values()]
+            ref = _sign_of(r["bins"]["beyond"][0])
+            return sum(x == ref != 0 for x in signs), len(signs)
+
+        robust = [r for r in judged if same(r)[0] == same(r)[1]]
+        pairs = [same(r) for r in judged if r["kind"] == "smooth-frictional"]
+        text += (
+            " What the spin verdicts use is the departure beyond the null (right panel): its "
+            f"first-layer sign is the same under every stencil at {len(robust)} of the "
+            f"{len(judged)} judged walls"
+            + (
+                f" (at the smooth-frictional walls: {sum(n for n, _ in pairs)}/"
+                f"{sum(m for _, m in pairs)} stencil-wall pairs)"
+                if pairs
+                else ""
+            )
+            + "; where it is not, the first layer is left out of the verdict's test (open "
+            "markers, right)."
+        )
+    return text + (
+        " Right: the near-wall bins' departure beyond each wall's null (+- 2 se), under the "
+        "analysis' stencil; filled: the bins the verdict's test uses."
+    )
+
+
+def _sign_of(x: float) -> int:
+    return 0 if abs(x) <= 1e-9 else (1 if x > 0 else -1)
 
 
 def _spin_bins(w: WallSpin) -> dict[str, Any]:
@@ -811,7 +886,11 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 # a claim without a figure of its own (the layer's) shows its first run's
                 "figure": CLAIM_FIGURES.get(v.key)
                 or next(iter(figures.get(n, "") for n in v.runs), ""),
-                "caption": delta_caption(report, v.key) if v.key in ("smoother", "rough") else "",
+                "caption": delta_caption(report, v.key)
+                if v.key in ("smoother", "rough")
+                else spin_caption(spin_rows(report))
+                if v.key == "spin"
+                else "",
                 "extra_figures": extra_figures(report, v.key),
                 # a verdict's table (spin_model's per-bin sign and size: caption, header, rows)
                 "table": v.numbers.get("table"),
