@@ -96,3 +96,29 @@ def test_the_spin_caption_sets_the_raw_stencil_range_against_the_beyond_null_sig
     assert text.endswith("filled: the bins the verdict's test uses.")
     # no sheared wall: the panels only
     assert "crosses 0" not in spin_caption(rows[2:])
+
+
+def test_a_run_figures_title_gives_the_slip_I_beside_the_bin_gradient_I():
+    """Referee 12, point 8: I = V d / (H sqrt(p_w)) x H |1 - u_1| / s_1 = 0.0025 x 0.5 / 0.5
+    = 0.0025 from the slip (u_1 = 0.5 at s_1 = 0.5 d), beside the bins' 5e-4."""
+    from pathlib import Path
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from cosserat.analysis.corpus import Run
+    from cosserat.studies.validate.report import run_title
+
+    y = np.arange(0.5, 10.0, 1.0)
+    u = np.where(y > 9.0, 0.5, 0.0)  # the upper wall moves; its first bin at s = 0.5 d
+    meta = {"cell": "plane", "gap_d": 10.0, "B": 1.0, "wall_speed": 0.0025,
+            "wall": {"kind": "glued-grains"}}  # fmt: skip
+    run = Run("r", Path("r.csv"), meta, {"y": y, "u": u, "u_se": np.full(y.size, 0.01)})
+    title = run_title(SimpleNamespace(run=run, inertial_number=5e-4))
+    assert title == (
+        "r: plane, H/d = 10, I at the moving wall = 0.0005 from the bin gradient, 0.0025 from "
+        "the wall's slip (0.5 V over 0.5 d)"
+    )
+    bare = run_title(SimpleNamespace(run=Run("r", Path("r.csv"), {**meta, "wall_speed": None},
+                                             run.columns), inertial_number=None))  # fmt: skip
+    assert bare == "r: plane, H/d = 10"
