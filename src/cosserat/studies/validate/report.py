@@ -19,7 +19,7 @@ from ..._text import significance
 from ...analysis.gap import PAPER_SLOPES
 from ...calibration.models import Model
 from ...viz.report import write_report as write_templates
-from .fits import curve_key
+from .fits import HOLDS_SIGMAS, curve_key
 from .grouping import wall_label
 from .layer import rate_between_bins
 from .measures import (
@@ -712,7 +712,10 @@ def rules() -> str:
         f"p(chi^2) < {P_SIGNIFICANT:g} is a misfit; parameters held at their defaults are "
         "named; a model's band stress ratio (sin phi, mu_s) that contradicts the run's "
         f"measured |shear|/normal stress (where u >= {BAND_U:g}, bins farther than "
-        f"{WALL_EXCLUSION_D:g} d from the walls) is flagged."
+        f"{WALL_EXCLUSION_D:g} d from the walls) is flagged; where the stresses fix the "
+        "Cosserat fit's angles, its T = tan delta against the run's moving-wall T, except a "
+        "lower T at a moving wall that holds the material (its first bin's slip within "
+        f"{HOLDS_SIGMAS:g} se of 0: T = tan delta is a yielding wall's condition)."
     )
 
 
