@@ -449,3 +449,60 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     assert ys[int(np.argmin(xs))] < ys[int(np.argmax(xs))]
     assert len(lin.patches) >= 2  # the two 3 d windows
     assert len(rate.lines) >= 5  # the decaying alternatives' rates, and the local one's
+
+
+def _cosserat_layer_run(L: float) -> Run:
+    """A layer run (smooth fixed lower wall, rough moving upper, no gravity) whose u is the
+    Cosserat layer profile (c) at ``L`` [d], the wall's stress ratio 0.21."""
+    from cosserat.studies.validate.layer_alternatives import LayerData, cosserat_velocity
+
+    run = _run()
+    run.meta["wall_stress"] = {"normal": 1.0, "shear": -0.21}
+    s = run.gap_d - run.columns["y"]  # distance from the moving (upper) wall
+    se = run.columns["u_se"]
+    data = LayerData.from_run(s, np.zeros(s.size), se, run.gap_d, "fixed", 0.0, 0.21)
+    u_at_y = np.interp(run.columns["y"], data.y, data.to_u(cosserat_velocity(data, L)))
+    run.columns["u"] = u_at_y
+    return run
+
+
+def test_the_layer_shape_at_the_materials_L():
+    """Referee 12, point 6: the Cosserat layer profile at the material's L against the run's
+    velocities. A run that is the profile at L = 4 d: chi^2 = 0 at the material's L = 4 and the
+    fitted L = 4, 0 se below; the same run against L = 8 +- 1 d is rejected under every error
+    model, its fitted L 4 se below, and the verdict's evidence says so, not judged."""
+    from cosserat.studies.validate.layer import material_length, material_length_text
+
+    run = _cosserat_layer_run(4.0)
+    p = measure_layer(run)
+    assert p is not None and p.stress_ratio == pytest.approx(0.21)
+    same = material_length(run, p, 4.0, 0.5)
+    assert same is not None
+    assert all(c == pytest.approx(0.0, abs=1e-12) for c in same.chi2.values())
+    assert set(same.chi2) == {"ar1", "diagonal", "common-mode"} and same.dof == 10
+    assert same.L_fit == pytest.approx(4.0, rel=2e-3)
+    assert same.below_se == pytest.approx(0.0, abs=0.02)
+    other = material_length(run, p, 8.0, 1.0)
+    assert other is not None and max(other.p.values()) < 1e-3
+    assert other.below_se == pytest.approx(4.0, abs=0.01)
+    text = material_length_text([other])
+    assert text.startswith(
+        " The material's L (the one Cosserat calibration of the material's runs under gravity, "
+        "L = 8 +- 1 d) in the Cosserat layer profile (c) (its own phi, delta and K; only L set, "
+        "nothing fitted; chi^2 under the ar1, diagonal, common-mode error models, dof = bins): "
+        "layer: chi^2 = "
+    )
+    assert text.endswith(
+        "is 4.0 se of the material's L below it. With one material and one L, the layer's shape "
+        "is not fitted by the material's calibration (p < 0.001 under AR(1) rejects); not "
+        "judged: the verdict is the band's side."
+    )
+    assert "the material's calibration fits the layer's shape" in material_length_text([same])
+    assert material_length_text([]) == ""
+    with pytest.raises(ParameterError, match=r"the material's L must be finite and > 0 \[d\]"):
+        material_length(run, p, -1.0, 0.5)
+    (v,) = layer_verdicts([run], material_L=(8.0, 1.0))
+    assert v.verdict == "supported" and text in v.evidence
+    assert v.numbers["material_length"][0]["L_fit_below_se"] == pytest.approx(4.0, abs=0.01)
+    (plain,) = layer_verdicts([run])
+    assert "The material's L" not in plain.evidence and plain.numbers["material_length"] == []

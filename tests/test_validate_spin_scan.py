@@ -211,6 +211,12 @@ def test_one_run_supported_and_one_missed_in_size_is_mixed(pair):
     assert ss.wall_call(far) == "undecided"
     v = ss.scan_verdict([good, far])
     assert v.verdict == "mixed", v.evidence
+    # the error models are written once, in scans[]; numbers.error_models points there
+    assert v.numbers["error_models"] == {
+        "rough": "scans[0].error_models",
+        "far": "scans[1].error_models",
+    }
+    assert v.numbers["scans"][1]["run"] == "far" and "u" in v.numbers["scans"][1]["error_models"]
     assert v.evidence.startswith("Mixed: supported at rough; at far the admissible set gives")
     assert v.would_change.startswith("at far: a best fit whose first-layer departure")
     alone = ss.scan_verdict([far])

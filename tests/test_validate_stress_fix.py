@@ -152,3 +152,52 @@ def test_the_command_line_offers_to_fit_the_angles():
     out = subprocess.run([sys.executable, "-m", "cosserat", "validate", "--help"],
                          capture_output=True, text=True, check=True)  # fmt: skip
     assert "--fit-angles" in out.stdout
+
+
+def test_a_lower_T_at_a_moving_wall_that_holds_is_not_a_contradiction():
+    """Referee 12, point 6: T = tan delta holds where the material at the wall yields; a wall
+    whose first bin moves with it (slip within 2 se of 0) carries any T up to tan delta. The
+    layer run's numbers: sin phi = 0.311 +- 0.0046 against T = 0.214 +- 0.0082, 10.3 errors,
+    first-bin slip 0.0091 +- 0.0063 (1.4 se): no flag; the same T at a slipping wall (slip
+    0.47 +- 0.03, 15.7 se, the gravity runs') is flagged, and so is a T above tan delta at a
+    wall that holds."""
+    phi = math.degrees(math.asin(0.311))
+    held = StressFix(phi, "fully-rough", {}, wall=0.214, wall_se=0.0082, model_se=0.0046,
+                     slip=0.0091, slip_se=0.0063)  # fmt: skip
+    assert held.holds and _shear_contradiction(held) == ""
+    assert held.text().endswith(
+        "; the moving wall holds the material (its first bin's slip 0.0091 +- 0.0063 of the "
+        "wall speed, within 2 se of 0), so T = 0.214 below tan delta = 0.311 is what the wall "
+        "condition allows (T = tan delta only where the material at the wall yields), not a "
+        "contradiction"
+    )
+    slipping = StressFix(phi, "fully-rough", {}, wall=0.214, wall_se=0.0082, model_se=0.0046,
+                         slip=0.47, slip_se=0.03)  # fmt: skip
+    assert not slipping.holds
+    assert _shear_contradiction(slipping).endswith("T = 0.214 +- 0.0082, 10.3 errors away")
+    assert "holds the material" not in slipping.text()
+    # just beyond the rule: slip 2.01 se from 0 slips
+    edge = StressFix(phi, "fully-rough", {}, wall=0.214, wall_se=0.0082, model_se=0.0046,
+                     slip=0.0201, slip_se=0.01)  # fmt: skip
+    assert not edge.holds and _shear_contradiction(edge) != ""
+    # a T above tan delta contradicts even where the wall holds
+    above = StressFix(phi, "fully-rough", {}, wall=0.40, wall_se=0.0082, model_se=0.0046,
+                      slip=0.0, slip_se=0.0063)  # fmt: skip
+    assert above.holds
+    assert _shear_contradiction(above).endswith("T = 0.4 +- 0.0082, 9.5 errors away")
+    # no slip measured: the flag stands (the wall is not shown to hold)
+    unknown = StressFix(phi, "fully-rough", {}, wall=0.214, wall_se=0.0082, model_se=0.0046)
+    assert not unknown.holds and _shear_contradiction(unknown) != ""
+
+
+def test_cosserat_fix_measures_the_moving_walls_slip_from_its_first_bin(tmp_path):
+    """The fixture's u = exp(-s/2) + noise at s = 0.5 d: slip 1 - u ~ 0.22 +- 0.002, so the
+    moving wall slips and the rough run with T0 at its wall is no contradiction either way."""
+    plane_run(tmp_path, "rough", "glued-grains", B=0.0)
+    (run,) = read_corpus(tmp_path).runs
+    fix = cosserat_fix(run, [run])
+    m = run.measured()
+    i = int(np.argmin(m.distance_d))
+    assert fix.slip == pytest.approx(1.0 - m.u_over_uw[i], rel=1e-12)
+    assert fix.slip_se == pytest.approx(2e-3, rel=1e-12)
+    assert fix.slip == pytest.approx(1.0 - math.exp(-0.25), abs=0.01) and not fix.holds

@@ -66,6 +66,7 @@ from ...calibration.noise import whiten
 from ...errors import CosseratError, ParameterError
 from .forward import forward_departure
 from .layer_alternatives import (
+    COVARIANCES,
     REFERENCES,
     LayerAlternative,
     LayerData,
@@ -1155,12 +1156,150 @@ def shape_text(positions: Sequence[LayerPosition]) -> str:
     )
 
 
+@dataclass(frozen=True)
+class MaterialLength:
+    """The Cosserat layer profile (c) of one layer run at the material's L, the one Cosserat
+    calibration of the material's other runs (referee 12, point 6): the profile's own phi
+    (:data:`~.layer_alternatives.COSSERAT_PHI`), delta and K, only L set to the material's,
+    nothing fitted.
+
+    Parameters
+    ----------
+    run : str
+        The layer run.
+    L, L_se : float
+        The material's L and its error (the calibration's, scaled) [d].
+    chi2 : mapping of str to float
+        chi^2 of the run's velocities against the profile at ``L``, per error model of
+        :data:`~.layer_alternatives.COVARIANCES` [-]; dof = the bins (nothing fitted).
+    dof : int
+        The bins.
+    L_fit, chi2_fit, dof_fit : float, float, int
+        The run's best-fitting L [d] and its chi^2 under AR(1) (NaN, NaN, 0 without it).
+    """
+
+    run: str
+    L: float
+    L_se: float
+    chi2: Mapping[str, float]
+    dof: int
+    L_fit: float = math.nan
+    chi2_fit: float = math.nan
+    dof_fit: int = 0
+
+    @property
+    def p(self) -> dict[str, float]:
+        """P(chi^2 >= the measured) per error model [-]."""
+        return {k: float(chi2_dist.sf(v, self.dof)) for k, v in self.chi2.items()}
+
+    @property
+    def below_se(self) -> float:
+        """(L - L_fit) / L_se: the run's fitted L below the material's in the material's se
+        [-] (NaN without a fitted L)."""
+        return (self.L - self.L_fit) / self.L_se if self.L_se > 0.0 else math.nan
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "run": self.run,
+            "L": self.L,
+            "L_se": self.L_se,
+            "chi2": dict(self.chi2),
+            "dof": self.dof,
+            "p": self.p,
+            "L_fit": self.L_fit,
+            "chi2_fit": self.chi2_fit,
+            "dof_fit": self.dof_fit,
+            "L_fit_below_se": self.below_se,
+        }
+
+
+def layer_data(run: Run, smoother: str, ratio: float) -> LayerData:
+    """The run's velocities in the smoother wall's frame, as :func:`measure_layer` fits the
+    alternatives to them (the bins with a finite u and a positive error; the sidecar's lag-1
+    correlation)."""
+    u, se = run.quantity("u")
+    ok = np.isfinite(u) & np.isfinite(se) & (se > 0.0)
+    return LayerData.from_run(
+        run.distance_d[ok], u[ok], se[ok], run.gap_d, smoother, velocity_correlation(run), ratio
+    )
+
+
+def material_length(run: Run, p: LayerPosition, L: float, L_se: float) -> MaterialLength | None:
+    """:class:`MaterialLength` of one layer run at the material's ``L`` +- ``L_se`` [d];
+    None where the run has no alternatives (no stress ratio) or the profile has no
+    solution."""
+    if p.stress_ratio is None or not p.alternatives:
+        return None
+    if not (math.isfinite(L) and L > 0.0 and math.isfinite(L_se) and L_se >= 0.0):
+        raise ParameterError(f"the material's L must be finite and > 0 [d]; got {L} +- {L_se}")
+    data = layer_data(run, p.smoother, p.stress_ratio)
+    try:
+        v = cosserat_velocity(data, L)
+    except CosseratError:
+        return None
+    chi2 = {kind: data.under(kind).chi2(v) for kind in COVARIANCES}
+    fit = next((x for x in p.alternatives if x.key == "cosserat-Lfit"), None)
+    return MaterialLength(
+        p.run,
+        float(L),
+        float(L_se),
+        chi2,
+        int(data.v.size),
+        math.nan if fit is None else float(fit.parameters["L_d"]),
+        math.nan if fit is None else fit.chi2,
+        0 if fit is None else fit.dof,
+    )
+
+
+def material_length_text(rows: Sequence[MaterialLength]) -> str:
+    """The layer runs' shape at the material's L in words ("" without rows): per run the
+    chi^2 under each error model and the fitted L against the material's, and whether the
+    material's calibration fits the layer's shape (p >= :data:`~.measures.P_SIGNIFICANT`
+    under AR(1)); not judged."""
+    if not rows:
+        return ""
+    L, L_se = rows[0].L, rows[0].L_se
+    parts = []
+    for m in rows:
+        chis = ", ".join(f"{m.chi2[k]:.3g}/{m.dof}" for k in COVARIANCES if k in m.chi2)
+        fitted = (
+            f"; its own best L = {m.L_fit:.3g} d (chi^2 = {m.chi2_fit:.3g}/{m.dof_fit}) is "
+            f"{m.below_se:.1f} se of the material's L below it"
+            if math.isfinite(m.L_fit)
+            else ""
+        )
+        parts.append(f"{m.run}: chi^2 = {chis} (p = {m.p['ar1']:.2g} under AR(1)){fitted}")
+    rejected = [m.run for m in rows if m.p["ar1"] < P_SIGNIFICANT]
+    if len(rejected) == len(rows):
+        call = "the layer's shape is not fitted by the material's calibration"
+    elif rejected:
+        call = (
+            f"the material's calibration does not fit the layer's shape in {', '.join(rejected)}"
+            " and does in the other run(s)"
+        )
+    else:
+        call = "the material's calibration fits the layer's shape"
+    return (
+        f" The material's L (the one Cosserat calibration of the material's runs under gravity, "
+        f"L = {L:.3g} +- {L_se:.2g} d) in the Cosserat layer profile (c) (its own phi, delta "
+        "and K; only L set, nothing fitted; chi^2 under the "
+        + ", ".join(COVARIANCES)
+        + " error models, dof = bins): "
+        + "; ".join(parts)
+        + f". With one material and one L, {call} (p < {P_SIGNIFICANT:g} under AR(1) rejects); "
+        "not judged: the verdict is the band's side."
+    )
+
+
 def layer_position_verdict(
-    positions: Sequence[LayerPosition], references: Sequence[WallReference] = ()
+    positions: Sequence[LayerPosition],
+    references: Sequence[WallReference] = (),
+    material: Sequence[MaterialLength] = (),
 ) -> LayerVerdict:
     """The verdict on :data:`LAYER_CLAIM` from the runs' :class:`LayerPosition` (module
     docstring: the rule), with ``references`` (other runs' walls of the smoother kind) in the
-    premise's warning."""
+    premise's warning and ``material`` (the runs' shape at the material's L,
+    :func:`material_length`) in the evidence, not judged."""
     runs = tuple(p.run for p in positions)
     if not positions:
         return LayerVerdict(
@@ -1212,6 +1351,7 @@ def layer_position_verdict(
         + "."
         + steady_text
         + shape_text(positions)
+        + material_length_text(material)
         + reading
         + " "
         + method
@@ -1266,6 +1406,7 @@ def layer_position_verdict(
             for r in references
         ],
         "runs": [p.to_dict() for p in positions],
+        "material_length": [m.to_dict() for m in material],
     }
     known = [p.wall_inertial_number for p in positions if p.wall_inertial_number is not None]
     if verdict != "undecided" and len(known) == len(positions) and min(known) > QUASI_STATIC_I:
@@ -1291,18 +1432,28 @@ def layer_verdicts(
     runs: Sequence[Run],
     fits: Mapping[str, RunFits | None] | None = None,
     measured: Mapping[str, LayerPosition] | None = None,
+    material_L: tuple[float, float] | None = None,
 ) -> list[Verdict]:
     """``[layer_position_verdict(...)]`` on the runs :func:`measure_layer` measures (or the
     positions ``measured`` already, by run name), or ``[]`` when a corpus has none (the
-    claim is then not judged)."""
+    claim is then not judged); ``material_L``, the material's L and its error [d] (the one
+    Cosserat calibration), adds the runs' shape at it (:func:`material_length`)."""
     fits, measured = fits or {}, measured or {}
+    by_name = {r.name: r for r in runs}
     positions = [
         p
         for r in runs
         if (p := measured.get(r.name) or measure_layer(r, fits.get(r.name))) is not None
     ]
+    material = (
+        [m for p in positions if (m := material_length(by_name[p.run], p, *material_L))]
+        if material_L is not None
+        else []
+    )
     return (
-        [layer_position_verdict(positions, wall_references(runs, positions))] if positions else []
+        [layer_position_verdict(positions, wall_references(runs, positions), material)]
+        if positions
+        else []
     )
 
 
@@ -1344,16 +1495,20 @@ __all__ = [
     "LayerPosition",
     "LayerSpin",
     "LayerVerdict",
+    "MaterialLength",
     "WallReference",
     "band_inertial_number",
     "design_asymmetry",
     "jump_covariance",
     "jump_fractions",
+    "layer_data",
     "layer_invariants",
     "layer_position_verdict",
     "layer_spin",
     "layer_stress_ratio",
     "layer_verdicts",
+    "material_length",
+    "material_length_text",
     "measure_layer",
     "monotonic_violation",
     "shear_rates",

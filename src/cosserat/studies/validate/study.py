@@ -9,6 +9,7 @@ series (:mod:`.grouping`) and the verdicts (:mod:`.verdicts`). Writing is
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass, field, replace
@@ -33,7 +34,7 @@ from .fits import (
     try_fit_run,
 )
 from .forward import STENCILS
-from .grouping import couette_note, group_materials, group_runs, walls_differ
+from .grouping import couette_note, group_materials, group_runs, material_of, walls_differ
 from .layer import LayerPosition, band_inertial_number, layer_verdicts, measure_layer
 from .measures import (
     BALANCE_SIGMAS,
@@ -975,6 +976,7 @@ def judge(
             [r.run for r in results],
             {r.run.name: r.fits for r in results},
             {r.run.name: r.layer for r in results if r.layer is not None},
+            material_length(series, [r.run for r in results if r.layer is not None]),
         ),
     ]
     verdicts = [
@@ -1007,6 +1009,27 @@ def judge(
         for v in verdicts
     ]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))
+
+
+def material_length(
+    series: Sequence[DeltaSeries], layer_runs: Sequence[Run]
+) -> tuple[float, float] | None:
+    """The layer runs' material's L and its error [d], from the one Cosserat calibration of
+    that material's gap series (every series of a material reads the same one), for the
+    layer runs' shape at it (``layer.material_length``); None without layer runs, with
+    layer runs of several materials, or without a calibration of theirs."""
+    wanted = {material_of(r) for r in layer_runs}
+    if len(wanted) != 1:
+        return None
+    for s in series:
+        c = s.curves.get("cosserat")
+        if c is None or not c.ok or c.calibration.get("material") not in wanted:
+            continue
+        e = c.calibration.get("parameters", {}).get("L", {})
+        v, se = e.get("value"), e.get("stderr")
+        if isinstance(v, int | float) and isinstance(se, int | float) and math.isfinite(v):
+            return float(v), float(se)
+    return None
 
 
 def rate_text(results: Sequence[RunResult]) -> str:
