@@ -6,6 +6,7 @@ and draws (point 7). Every input is small and every expected number is worked by
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -89,6 +90,22 @@ def test_the_grain_scale_departures_beyond_the_null_and_their_counts():
     assert text.endswith("at 1 of 2 walls the first layer lies beyond the null with opposite "
                          "signs under two measures: its sign at the grain scale is the "
                          "measure's.")  # fmt: skip
+
+
+def test_a_first_layer_below_the_null_under_every_measure():
+    """Run c: -0.10, -0.20, 0.00 against the nulls +0.006, -0.059, +0.136: beyond them by
+    -0.106, -0.141, -0.136 (-5.3, -7.05, -6.8 se), below under all three; the null's layer
+    velocities are named."""
+    walls = [moving("c", DEP, SE, BIN_NULL)]
+    null = {**NULL, "u_1": 0.64, "u_2": 0.31}
+    rows = grain_rows(walls, {"c": SpinRun(grains=grains(-0.10, -0.20, 0.0), grains_null=null)})
+    assert rows["c"]["null_u"] == [0.64, 0.31]
+    text, counts = grain_text(rows)
+    assert counts["walls_one_sign_under_every_measure"] == {"below": 1, "above": 0}
+    assert counts["walls_where_the_sign_follows_the_measure"] == 0
+    assert "rolling fraction +0.206 +- 0.022, the null's layers u_1 +0.64, u_2 +0.31)" in text
+    assert text.endswith("; the first layer lies below the null under all three measures (by "
+                         "at least 2 se each) at 1 of 1 walls.")  # fmt: skip
 
 
 def test_without_a_record_or_a_null():
@@ -181,7 +198,11 @@ def test_the_verdict_states_the_grain_scale_evidence_and_the_mc_counts():
     assert set(n["u_only_mui_reproduces"]) == {"a", "b"}
     assert "Model-free at the grain scale" in v.evidence
     assert "The u-only mu(I) velocity" in v.evidence
-    assert "draws at or above, MC error +-" in v.evidence
+    assert re.search(
+        r"p = \S+ \(\d+ of 200,000 draws at or above, MC error \+-\S+%\) with bins read "
+        r"under t\(9\)",
+        v.evidence,
+    )
     assert v.would_change.startswith(GRAIN_WOULD_CHANGE)
     assert v.would_change.index("grain-scale") < v.would_change.index("more seeds")
     # without records: no paragraph, and "What would change it" as before

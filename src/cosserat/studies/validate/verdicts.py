@@ -810,6 +810,9 @@ def grain_rows(tested: Sequence[WallSpin], info: Mapping[str, SpinRun]) -> dict[
             keys = ("d_1", "grains_1", "u_1", "u_1_se", "omega_1", "omega_1_se", "rolling",
                     "rolling_se")  # fmt: skip
             rows[w.run] = {k: g.get(k) for k in keys}
+            rows[w.run]["null_u"] = (
+                [float(nul["u_1"]), float(nul["u_2"])] if "u_1" in nul and "u_2" in nul else None
+            )
             rows[w.run]["measures"] = per
     return rows
 
@@ -848,6 +851,8 @@ def grain_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
         for k, label in (("u_1", "u_1"), ("omega_1", "omega_1"), ("rolling", "rolling fraction")):
             if r.get(k) is not None and r.get(f"{k}_se") is not None:
                 layer.append(f"{label} {r[k]:+.3g} +- {r[f'{k}_se']:.2g}")
+        if r.get("null_u") is not None:
+            layer.append(f"the null's layers u_1 {r['null_u'][0]:+.3g}, u_2 {r['null_u'][1]:+.3g}")
         parts.append(f"{run} ({', '.join(layer)}): " + "; ".join(ms))
     counts: dict[str, Any] = {}
     for key in GRAIN_MEASURES:
@@ -874,10 +879,23 @@ def grain_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
             f"(within {GRAIN_SE:g} se of the null) at {c['turns_with_the_material']} of "
             f"{c['walls']} moving walls" + (f", departs {' and '.join(off)}" if off else "")
         )
-    signs = [{_grain_call(m) for m in r["measures"].values()} - {0} for r in rows.values()]
-    mixed = sum(1 for x in signs if len(x) > 1)
+    calls = [[_grain_call(m) for m in r["measures"].values()] for r in rows.values()]
+    mixed = sum(1 for c in calls if len(set(c) - {0}) > 1)
+    one = {k: sum(1 for c in calls if set(c) == {k}) for k in (-1, 1)}
     counts = {"per_measure": counts, "smallest_null": order[0] if with_null else None,
-              "walls_where_the_sign_follows_the_measure": mixed}  # fmt: skip
+              "walls_where_the_sign_follows_the_measure": mixed,
+              "walls_one_sign_under_every_measure": {"below": one[-1],
+                                                     "above": one[1]}}  # fmt: skip
+    if one[-1] or one[1]:
+        said.append(
+            "the first layer lies "
+            + " and ".join(
+                f"{'below' if k < 0 else 'above'} the null under all three measures (by at "
+                f"least {GRAIN_SE:g} se each) at {one[k]} of {len(rows)} walls"
+                for k in (-1, 1)
+                if one[k]
+            )
+        )
     text = (
         " Model-free at the grain scale (the sidecars' first_layer: the grains whose centres lie "
         "within 1 d of the moving wall, grain by grain, no bins; omega_1 - W with W = -(1/2) "
@@ -1087,6 +1105,7 @@ def _lead(
     pooled: tuple[float, int, float, float | None],
     rest: tuple[float | None, int, float | None, float | None],
     blocks: int,
+    counts: tuple[tuple[int, int] | None, tuple[int, int] | None] = (None, None),
 ) -> str:
     """The verdict's first sentences, in the form referee 10 accepts ("Verdicts I would
     accept", (1)), every number computed: where the spin departs and in which runs, the
@@ -1130,7 +1149,8 @@ def _lead(
         text += ". These are " + ", ".join(facts)
     chi2, dof, p, p_t = pooled
     reading = (
-        f"p = {p_t:.2g} with bins read under t({blocks - 1})"
+        (mc_p_text(p_t, *counts[0]) if counts[0] is not None else f"p = {p_t:.2g}")
+        + f" with bins read under t({blocks - 1})"
         if p_t is not None
         else p_text(chi2, dof, p)
     )
@@ -1191,7 +1211,8 @@ def _lead(
         neg = [w.run for w in signs if float(w.beyond[int(np.argsort(w.distance_d)[1])]) < 0.0]
         major, sign = (pos, "positive") if len(pos) >= len(neg) else (neg, "negative")
         reading_rest = (
-            f"p = {p_t_rest:.2g} under t({blocks - 1})"
+            (mc_p_text(p_t_rest, *counts[1]) if counts[1] is not None else f"p = {p_t_rest:.2g}")
+            + f" under t({blocks - 1})"
             if p_t_rest is not None
             else p_text(c_rest, n_rest, p_rest)
         )
@@ -1539,7 +1560,9 @@ def spin_verdict(
     cells_showing = [c for c in cells if all(r in showing for r in runs if cell_of[r] == c)]
     cells_blind = [c for c in cells if all(r in blind for r in runs if cell_of[r] == c)]
     if p < P_SIGNIFICANT and (p_t is None or p_t < P_SIGNIFICANT):
-        lead = _lead(tested, info, weak, (chi2, dof, p, p_t), (*rest, p_t_rest), blocks)
+        lead = _lead(
+            tested, info, weak, (chi2, dof, p, p_t), (*rest, p_t_rest), blocks, (c_t, c_t_rest)
+        )
         lead += f"{bin2}{misfit_line}{unsteady}{grain_line}"
         if 2 * len(cells_showing) >= len(cells) - len(cells_blind):
             given = (
