@@ -42,8 +42,9 @@ def moving(run, dep, se, null, mui=None):
 
 def grains(wall_second, layers, wall_first, se=0.02):
     """A sidecar record at the moving wall: the three departures with one se."""
-    out = {"d_1": 0.56, "grains_1": 27.8, "u_1": 0.489, "u_1_se": 0.032, "omega_1": -0.216,
-           "omega_1_se": 0.026, "rolling": 0.206, "rolling_se": 0.022}  # fmt: skip
+    out = {"d_1": 0.56, "grains_1": 27.8, "u_1": 0.489, "u_1_se": 0.032, "u_2": 0.301,
+           "u_2_se": 0.029, "omega_1": -0.216, "omega_1_se": 0.026, "rolling": 0.206,
+           "rolling_se": 0.022}  # fmt: skip
     for key, v in (("W_wall_second", wall_second), ("W_layers", layers),
                    ("W_wall_first", wall_first)):  # fmt: skip
         out[f"departure_{key}"] = v
@@ -79,7 +80,7 @@ def test_the_grain_scale_departures_beyond_the_null_and_their_counts():
     assert (per["W_layers"]["below"], per["W_layers"]["turns_with_the_material"]) == (1, 1)
     assert counts["walls_where_the_sign_follows_the_measure"] == 1
     assert text.startswith(" Model-free at the grain scale (the sidecars' first_layer")
-    assert "a (layer 1 at 0.56 d, 28 grains, u_1 +0.489 +- 0.032" in text
+    assert "a (layer 1 at 0.56 d, 28 grains, u_1 +0.489 +- 0.032, u_2 +0.301 +- 0.029" in text
     assert "wall-to-layer-2 +0.016 +- 0.02 (null +0.006, +0.5 se)" in text
     assert (
         "So against the wall-to-layer-2 chord (the measure whose null is smallest) the first "

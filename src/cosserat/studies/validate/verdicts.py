@@ -786,8 +786,9 @@ GRAIN_WOULD_CHANGE = (
 
 def grain_rows(tested: Sequence[WallSpin], info: Mapping[str, SpinRun]) -> dict[str, Any]:
     """Per run with the sidecar's grain-scale record at its tested moving wall
-    (``SpinRun.grains``): layer 1's ``d_1`` [d], ``grains_1``, ``u_1``, ``omega_1``,
-    ``rolling`` (each with ``_se``) and per measure of :data:`GRAIN_MEASURES` the
+    (``SpinRun.grains``): layer 1's ``d_1`` [d], ``grains_1``, ``u_1``, ``u_2`` (layer 2's),
+    ``omega_1``, ``rolling`` (each with ``_se``), the null's layer velocities ``null_u``
+    ([u_1, u_2]; None: not given) and per measure of :data:`GRAIN_MEASURES` the
     ``departure`` and its ``se``, the ``null`` (the joint fit's velocity turning with the
     material, ``SpinRun.grains_null``; None without one: then the departure is taken against
     0), ``beyond`` = departure - null and ``z`` = beyond / se [-]."""
@@ -807,8 +808,8 @@ def grain_rows(tested: Sequence[WallSpin], info: Mapping[str, SpinRun]) -> dict[
             per[key] = {"departure": float(d), "se": float(se), "null": n, "beyond": beyond,
                         "z": beyond / float(se) if se > 0.0 else None}  # fmt: skip
         if per:
-            keys = ("d_1", "grains_1", "u_1", "u_1_se", "omega_1", "omega_1_se", "rolling",
-                    "rolling_se")  # fmt: skip
+            keys = ("d_1", "grains_1", "u_1", "u_1_se", "u_2", "u_2_se", "omega_1", "omega_1_se",
+                    "rolling", "rolling_se")  # fmt: skip
             rows[w.run] = {k: g.get(k) for k in keys}
             rows[w.run]["null_u"] = (
                 [float(nul["u_1"]), float(nul["u_2"])] if "u_1" in nul and "u_2" in nul else None
@@ -848,7 +849,8 @@ def grain_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
             layer.append(f"layer 1 at {r['d_1']:.2g} d")
         if r.get("grains_1") is not None:
             layer.append(f"{r['grains_1']:.0f} grains")
-        for k, label in (("u_1", "u_1"), ("omega_1", "omega_1"), ("rolling", "rolling fraction")):
+        for k, label in (("u_1", "u_1"), ("u_2", "u_2"), ("omega_1", "omega_1"),
+                         ("rolling", "rolling fraction")):  # fmt: skip
             if r.get(k) is not None and r.get(f"{k}_se") is not None:
                 layer.append(f"{label} {r[k]:+.3g} +- {r[f'{k}_se']:.2g}")
         if r.get("null_u") is not None:
