@@ -251,6 +251,21 @@ def test_read_layers_from_a_made_up_dump(tmp_path):
     low = first_layer(layers, 0, 10, "lower", V)
     assert low["d_1"][0] == pytest.approx(0.6, abs=1e-9)
     assert low["W_layers"][0] == pytest.approx(-0.5 * 0.1 / 0.9, rel=1e-9)
+    # read_samples takes the same layer sums in its pass over the dumps (with the contacts;
+    # a listed neighbour that does not touch carries no force), for the sidecar's record
+    from cosserat.dem.analyse import read_samples
+    from cosserat.dem.decks import CONTACT_COLUMNS
+
+    with (tmp_path / "contacts.dump").open("w") as fh:
+        for step in range(0, 21_000, 1_000):
+            fh.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ENTRIES\n1\n")
+            fh.write("ITEM: BOX BOUNDS pp fm pp\n0 30\n-1 16\n-0.5 0.5\n")
+            fh.write(f"ITEM: ENTRIES {' '.join(CONTACT_COLUMNS)}\n1 2 0 0 0 0 0 0\n")
+    run = read_samples(tmp_path, DECK)
+    same = run.extra["layers"]
+    np.testing.assert_array_equal(same.steps, layers.steps)
+    np.testing.assert_array_equal(same.sums, layers.sums)
+    np.testing.assert_array_equal(same.u_wall, layers.u_wall)
 
 
 def _two_wall_layers(samples: int, lower_u1: float) -> LayerSamples:
