@@ -21,8 +21,11 @@ from cosserat.dem.analyse import (
 from cosserat.dem.coarse import SUMS, Grains2D, Samples, bin_sums
 from cosserat.dem.first_layer import (
     LAYER_SUMS,
+    RECORD_NOTE,
+    SHEARED_SLIP,
     LayerSamples,
     first_layer,
+    first_layer_record,
     layer_measures,
     layer_sums,
 )
@@ -248,3 +251,69 @@ def test_read_layers_from_a_made_up_dump(tmp_path):
     low = first_layer(layers, 0, 10, "lower", V)
     assert low["d_1"][0] == pytest.approx(0.6, abs=1e-9)
     assert low["W_layers"][0] == pytest.approx(-0.5 * 0.1 / 0.9, rel=1e-9)
+    # read_samples takes the same layer sums in its pass over the dumps (with the contacts;
+    # a listed neighbour that does not touch carries no force), for the sidecar's record
+    from cosserat.dem.analyse import read_samples
+    from cosserat.dem.decks import CONTACT_COLUMNS
+
+    with (tmp_path / "contacts.dump").open("w") as fh:
+        for step in range(0, 21_000, 1_000):
+            fh.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ENTRIES\n1\n")
+            fh.write("ITEM: BOX BOUNDS pp fm pp\n0 30\n-1 16\n-0.5 0.5\n")
+            fh.write(f"ITEM: ENTRIES {' '.join(CONTACT_COLUMNS)}\n1 2 0 0 0 0 0 0\n")
+    run = read_samples(tmp_path, DECK)
+    same = run.extra["layers"]
+    np.testing.assert_array_equal(same.steps, layers.steps)
+    np.testing.assert_array_equal(same.sums, layers.sums)
+    np.testing.assert_array_equal(same.u_wall, layers.u_wall)
+
+
+def _two_wall_layers(samples: int, lower_u1: float) -> LayerSamples:
+    """:func:`_layer_samples` at the upper wall, and at the (fixed) lower wall one grain at
+    0.5 d moving at ``lower_u1`` V, one at 1.5 d at 2 ``lower_u1`` V, both without spin."""
+    sums = _layer_samples(samples).sums.copy()
+    for t in range(samples):
+        u = np.array([lower_u1 * V, 2.0 * lower_u1 * V])
+        sums[t, 0] = layer_sums(np.array([0.5, 1.5]), u, np.zeros(2), np.full(2, 2.0),
+                                np.full(2, 0.4))  # fmt: skip
+    return LayerSamples(np.arange(samples) * 1000, sums, np.tile([0.0, V], (samples, 1)))
+
+
+def test_the_sidecar_record_is_first_layer_over_the_profiles_window():
+    """steady_profile adds ``first_layer``: the moving wall's measures of :func:`first_layer`
+    over the same window and blocks, each with its se; a fixed wall only where layer 1 moves
+    relative to it by at least SHEARED_SLIP V."""
+    run = _run(samples=20)
+    layers = _two_wall_layers(20, 0.01)
+    run.extra["layers"] = layers
+    prof = steady_profile(run, DECK, lammps_version="test", first=4, blocks=4)
+    rec = prof.sidecar["first_layer"]
+    assert set(rec["walls"]) == {"upper"} and rec["blocks"] == 4 and rec["note"] == RECORD_NOTE
+    up = rec["walls"]["upper"]
+    want = first_layer(layers, 4, 4, "upper", V)
+    for name, (value, se) in want.items():
+        assert up[name] == pytest.approx(value, rel=1e-12, abs=1e-15)
+        assert up[f"{name}_se"] == pytest.approx(se, abs=1e-15)
+    assert up["moving"] is True and up["u_1"] == pytest.approx(0.6, rel=1e-12)
+    assert up["departure_W_wall_second"] == pytest.approx(-0.3 + 0.5 * 0.6 / 1.5, rel=1e-9)
+    assert up["r_1"] == 0.5 and up["grains_1"] == 1.0 and up["grains_2"] == 1.0
+    # the profile itself does not change with the record
+    bare = steady_profile(_run(samples=20), DECK, lammps_version="test", first=4, blocks=4)
+    assert "first_layer" not in bare.sidecar
+    assert {k: v for k, v in prof.sidecar.items() if k != "first_layer"} == bare.sidecar
+    for k, v in bare.columns.items():
+        np.testing.assert_array_equal(prof.columns[k], v)
+
+
+def test_a_fixed_wall_whose_first_layer_slips_is_recorded():
+    slipping = first_layer_record(_two_wall_layers(6, SHEARED_SLIP + 1e-3), 0, 3, V)
+    assert set(slipping["walls"]) == {"lower", "upper"}
+    low = slipping["walls"]["lower"]
+    assert low["moving"] is False and low["r_1"] == pytest.approx(0.4)
+    # no spin, u = 0.051 at 0.5 d and 0.102 at 1.5 d above a wall at rest
+    assert low["W_layers"] == pytest.approx(-0.5 * (SHEARED_SLIP + 1e-3), rel=1e-9)
+    assert low["departure_W_wall_first"] == pytest.approx((SHEARED_SLIP + 1e-3), rel=1e-9)
+    resting = first_layer_record(_two_wall_layers(6, SHEARED_SLIP - 1e-3), 0, 3, V)
+    assert set(resting["walls"]) == {"upper"}
+    with pytest.raises(ParameterError, match=r"^moving must be one of lower, upper; got 'top'"):
+        first_layer_record(_two_wall_layers(6, 0.0), 0, 3, V, moving="top")

@@ -63,6 +63,7 @@ EXTRA_KEYS = (
     "bin_correlation_note", "segments", "extended_from_steps", "wall_fixed", "walls",
     "half_vorticity_method",
     "block_autocorrelation", "omega_half_vorticity_correlation", "window_rule", "truncated_bins",
+    "first_layer",
 )  # fmt: skip
 """Keys this reader also understands: which wall moves; the model a synthetic run came from;
 and what ``cosserat.dem`` records of a run (how B was set, the settling and dump intervals,
@@ -75,7 +76,8 @@ run and the steps of its deck if it was continued for longer; how the half_vorti
 was made, ``np.gradient`` over the binned u by default or ``bin-average``, the bin's mean of
 the point value (synthetic runs); the per-bin correlation of omega's and half_vorticity's
 errors; the window rule (wall travel discarded before averaging) and the truncated end bins;
-``docs/dem.md``)."""
+the first layers of grains at each sheared wall, grain by grain (``first_layer``,
+``cosserat.dem.first_layer``); ``docs/dem.md``)."""
 WALL_KINDS = ("glued-grains", "smooth-frictional")
 ROUGHNESS = ("fully-rough", "smoother")
 

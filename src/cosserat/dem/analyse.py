@@ -35,6 +35,7 @@ from .coarse import (
 )
 from .decks import Deck, dimension
 from .dumps import iter_frames
+from .first_layer import LayerSamples, first_layer_record, sample_layers
 from .geometry import FREE, LOWER_WALL, UPPER_WALL
 from .params import BLOCKS, MIN_SAMPLES, ChannelDEM, CouetteDEM, PlaneShearDEM
 
@@ -148,6 +149,8 @@ def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
         length = info["length"]
     fine = lo + FINE_BIN * np.arange(math.ceil((hi - lo) / FINE_BIN) + 1)
     steps, sums, flow, gap, wn, ws, wv = [], [], [], [], [], [], []
+    plane = isinstance(cell, PlaneShearDEM)
+    layer_sums, layer_u_wall = [], []  # the first layers, grain by grain (plane cells)
     n_free = 0
     for step, atoms, contacts in iter_frames(folder):
         kind = atoms[:, 1].astype(int)
@@ -185,12 +188,18 @@ def read_samples(folder: str | Path, deck: Deck) -> RunSamples:
             wn.append(force[upper, 1].sum() / length)
             ws.append(force[upper, 0].sum() / length)
             wv.append(vx[upper].mean())
+            if plane:
+                one, walls = sample_layers(atoms, info, density)
+                layer_sums.append(one)
+                layer_u_wall.append(walls)
     if len(steps) < MIN_SAMPLES:
         raise InputError(f"{folder}: {len(steps)} samples; at least {MIN_SAMPLES} are needed")
     area_fine = math.pi * (fine[1:] ** 2 - fine[:-1] ** 2) if polar else np.diff(fine) * length
     samples = Samples(np.array(steps), np.array(sums), fine, area_fine)
+    extra = {"layers": LayerSamples(np.array(steps), np.array(layer_sums),
+                                    np.array(layer_u_wall))} if plane else {}  # fmt: skip
     return RunSamples(samples, np.array(flow), np.array(gap), np.array(wn), np.array(ws),
-                      np.array(wv), n_free)  # fmt: skip
+                      np.array(wv), n_free, extra)  # fmt: skip
 
 
 def _read_samples_3d(folder: str | Path, deck: Deck) -> RunSamples:
@@ -605,6 +614,10 @@ def steady_profile(
     }
     if three:
         sidecar.update(_three_d(cell, info, run, first, blocks))
+    layers = run.extra.get("layers")
+    if isinstance(cell, PlaneShearDEM) and not three and isinstance(layers, LayerSamples):
+        # the first layers grain by grain over the same window (referee 12, point 1)
+        sidecar["first_layer"] = first_layer_record(layers, first, blocks, V)
     if bin_width != BIN_WIDTH:
         sidecar["bin_width_d"] = bin_width
     if anchor != "lower":

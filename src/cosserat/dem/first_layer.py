@@ -77,6 +77,27 @@ def layer_sums(
     return np.stack([np.bincount(k, weights=c, minlength=layers) for c in cols], axis=1)
 
 
+def sample_layers(
+    atoms: np.ndarray, info: dict, density: float, layers: int = LAYERS
+) -> tuple[np.ndarray, list[float]]:
+    """One sample's layer sums at both walls, shape (2 walls (lower, upper), layers,
+    len(LAYER_SUMS)), and the walls' mean velocity along the flow [velocity], from the rows
+    of a 2-D plane cell's ``atoms.dump`` (:data:`~cosserat.dem.decks.ATOM_COLUMNS`) and its
+    layout's ``info`` (the walls' surface offsets) [simulation units]."""
+    off = info["surface_offset"]
+    top = off + info["upper_offset"] if "upper_offset" in info else 2.0 * off
+    kind = atoms[:, 1].astype(int)
+    free = kind == FREE
+    upper, lower = kind == UPPER_WALL, kind == LOWER_WALL
+    rad, y, vx, om = atoms[:, 2], atoms[:, 4], atoms[:, 5], atoms[:, 7]
+    gap = y[upper].mean() - top
+    s = y[free] - off
+    mass = density * math.pi * rad[free] ** 2
+    per = [layer_sums(d, vx[free], om[free], mass, rad[free], layers) for d in (s, gap - s)]
+    return np.stack(per), [float(vx[lower].mean()) if lower.any() else 0.0,
+                           float(vx[upper].mean())]  # fmt: skip
+
+
 @dataclass(frozen=True)
 class LayerSamples:
     """Per-sample layer sums of a run: ``sums`` of shape (samples, 2 walls (lower, upper),
@@ -102,22 +123,12 @@ def read_layers(folder: str | Path, deck: Deck, layers: int = LAYERS) -> LayerSa
     path = Path(folder) / "atoms.dump"
     if not path.is_file():
         raise InputError(f"{path} is missing: did the run keep its dumps?")
-    off = info["surface_offset"]
-    top = off + info["upper_offset"] if "upper_offset" in info else 2.0 * off
-    density = cell.grains.density
     steps, sums, u_wall = [], [], []
     for step, atoms in iter_dump(path):
-        kind = atoms[:, 1].astype(int)
-        free = kind == FREE
-        upper, lower = kind == UPPER_WALL, kind == LOWER_WALL
-        rad, y, vx, om = atoms[:, 2], atoms[:, 4], atoms[:, 5], atoms[:, 7]
-        gap = y[upper].mean() - top
-        s = y[free] - off
-        mass = density * math.pi * rad[free] ** 2
-        per = [layer_sums(d, vx[free], om[free], mass, rad[free], layers) for d in (s, gap - s)]
+        one, walls = sample_layers(atoms, info, cell.grains.density, layers)
         steps.append(step)
-        sums.append(np.stack(per))
-        u_wall.append([vx[lower].mean() if lower.any() else 0.0, vx[upper].mean()])
+        sums.append(one)
+        u_wall.append(walls)
     if len(steps) < MIN_SAMPLES:
         raise InputError(f"{path}: {len(steps)} samples; at least {MIN_SAMPLES} are needed")
     return LayerSamples(np.array(steps), np.array(sums), np.array(u_wall))
@@ -223,5 +234,77 @@ def first_layer(
     return out
 
 
-__all__ = ["LAYER_SUMS", "LayerSamples", "first_layer", "layer_blocks", "layer_measures",
-           "layer_sums", "read_layers"]  # fmt: skip
+SHEARED_SLIP = 0.05
+"""A fixed wall shears (its record is kept) where layer 1 moves relative to it by at least
+this fraction of the moving wall's speed, |u_1 - u_wall| >= 0.05 V [-]: the spin verdict's
+rule for a sheared wall (its first bin against the wall), at grain scale."""
+RECORD_NOTE = (
+    "the first layers of grains at each wall that shears (the moving wall, and a fixed wall "
+    "where layer 1 moves relative to it by |u_1 - u_wall| >= 0.05 V), grain by grain, no bins "
+    "(cosserat.dem.first_layer): layer 1 the free grains whose centres lie within [0, 1) d of "
+    "the wall's surface, layer 2 within [1, 2) d; over the profile's steady window and blocks, "
+    "each measure the mean of its per-block values with '<name>_se' = std(ddof=1)/sqrt(blocks) "
+    "(so omega_1 and W's correlation is in a departure's se): u_wall, u_1, u_2 velocities "
+    "along the flow / V; d_1, d_2 the layers' mass-weighted mean distance of the centres from "
+    "the wall's surface [d]; omega_1 layer 1's mass-weighted mean spin [V/d], "
+    "counter-clockwise positive as the profile's omega; three half vorticities W = -(1/2) "
+    "du/dy across one layer: W_layers = -(s/2)(u_2 - u_1)/(d_2 - d_1), W_wall_second = "
+    "-(s/2)(u_2 - u_wall)/d_2 (the wall-to-layer-2 chord, centred near layer 1), W_wall_first "
+    "= -(s/2)(u_1 - u_wall)/d_1, s = +1 at the lower wall, -1 at the upper; departure_<W> = "
+    "omega_1 - W; omega_roll = s (u_wall - u_1)/r_1 (a layer-1 grain rolling on the wall "
+    "without sliding) and rolling = omega_1/omega_roll; r_1 layer 1's mean radius over the "
+    "window [d]; grains_1, grains_2 the mean number of grains in each layer per sample"
+)
+"""The sidecar's ``first_layer.note``."""
+
+
+def first_layer_record(
+    layers: LayerSamples, first: int, blocks: int, scale: float, moving: str = "upper"
+) -> dict:
+    """The sidecar's ``first_layer`` record (:data:`RECORD_NOTE`): per wall that shears, the
+    measures of :func:`first_layer` over the samples from ``first`` in ``blocks`` blocks,
+    velocities over ``scale`` (V), each as ``<name>`` and ``<name>_se``, with ``moving``,
+    ``r_1`` [d], ``grains_1`` and ``grains_2`` [-].
+
+    Raises
+    ------
+    ParameterError
+        An unknown ``moving`` wall (see also :func:`first_layer`).
+    """
+    if moving not in WALL_SIGN:
+        raise ParameterError(f"moving must be one of {', '.join(WALLS)}; got {moving!r}")
+    count, radius = LAYER_SUMS.index("count"), LAYER_SUMS.index("radius")
+    walls = {}
+    for k, wall in enumerate(WALLS):
+        m = first_layer(layers, first, blocks, wall, scale)
+        if wall != moving and abs(m["u_1"][0] - m["u_wall"][0]) < SHEARED_SLIP:
+            continue
+        kept = layers.sums[first:, k]
+        row: dict = {"moving": wall == moving}
+        for name, (v, se) in m.items():
+            row[name] = _finite(v)
+            row[f"{name}_se"] = _finite(se)
+        row["r_1"] = float(kept[:, 0, radius].sum() / kept[:, 0, count].sum())
+        row["grains_1"] = float(kept[:, 0, count].mean())
+        row["grains_2"] = float(kept[:, 1, count].mean())
+        walls[wall] = row
+    return {"walls": walls, "blocks": int(blocks), "note": RECORD_NOTE}
+
+
+def _finite(x: float) -> float | None:
+    """``x``, or None where it is not finite (JSON has no NaN)."""
+    return float(x) if math.isfinite(x) else None
+
+
+__all__ = [
+    "LAYER_SUMS",
+    "SHEARED_SLIP",
+    "LayerSamples",
+    "first_layer",
+    "first_layer_record",
+    "layer_blocks",
+    "layer_measures",
+    "layer_sums",
+    "read_layers",
+    "sample_layers",
+]  # fmt: skip

@@ -452,3 +452,35 @@ def figure_curves(profile: Any, run: Run, points: int = 300) -> dict[str, FloatA
         "departure": forward_fields(fields, run)["departure"],
         "null": forward_fields(turning_with_the_material(fields), run)["departure"],
     }
+
+
+GRAIN_LAYER_NODES = 24
+"""Gauss-Legendre points of :func:`grain_layers`' layer averages."""
+
+
+def grain_layers(fields: ModelFields, run: Run, r_1: float) -> dict[str, float] | None:
+    """A model's first-layer measures at a plane run's moving wall, as the grain-by-grain
+    measure of ``cosserat.dem.first_layer`` takes them from the grains: u and omega averaged
+    uniformly over [0, 1) and [1, 2) d from the wall (layer 1 and 2), at their mid-distances
+    0.5 and 1.5 d, through ``cosserat.dem.first_layer.layer_measures`` (the three half
+    vorticities W, ``departure_<W>`` = omega_1 - W, the rolling fraction with the layer's
+    measured mean radius ``r_1`` [d]) [-]. Made on the velocity turning with the material
+    (:func:`turning_with_the_material`) it is that measure's null. None for a cell that is
+    not plane shear."""
+    from ...dem.first_layer import layer_measures
+
+    if run.cell != "plane":
+        return None
+    upper = run.moving_wall == "upper"
+    t, w = gauss_legendre(GRAIN_LAYER_NODES)
+
+    def layer(f: Callable[[FloatArray], FloatArray], k: int) -> float:
+        d = k + 0.5 * (np.asarray(t, dtype=float) + 1.0)
+        x = run.gap_d - d if upper else d
+        return float(np.sum(w * np.asarray(f(x), dtype=float)) / np.sum(w))
+
+    u_1, u_2 = layer(fields.u, 0), layer(fields.u, 1)
+    om_1 = layer(fields.omega, 0)
+    u_wall = wall_velocities(run)[1 if upper else 0]
+    wall = "upper" if upper else "lower"
+    return layer_measures(wall, u_wall, u_1, u_2, 0.5, 1.5, om_1, r_1)

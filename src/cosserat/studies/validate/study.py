@@ -253,7 +253,13 @@ def _scans(results: Sequence[RunResult], points: int) -> tuple[list[Scan], list[
 def _joint_curves(results: Sequence[RunResult], scans: Sequence[Scan]) -> None:
     """Each scanned run's joint fit for its figure (:attr:`RunResult.joint`)."""
     from ...calibration.models import SOLVE_ERRORS
-    from .forward import calibration_profile, figure_curves
+    from .forward import (
+        calibration_profile,
+        figure_curves,
+        grain_layers,
+        model_fields,
+        turning_with_the_material,
+    )
 
     by_name = {r.run.name: r for r in results}
     for sc in scans:
@@ -264,8 +270,25 @@ def _joint_curves(results: Sequence[RunResult], scans: Sequence[Scan]) -> None:
             profile = calibration_profile(sc.fit.setup, sc.fit.theta)
             r.joint = {**figure_curves(profile, r.run), "K": sc.fit.value("K"),
                        "L": sc.fit.value("L")}  # fmt: skip
+            grains = _moving_grains(r.run)
+            if grains is not None and grains.get("r_1"):  # the grain-scale null (referee 12)
+                fields = model_fields(profile, r.run)
+                r.joint["grain_null"] = grain_layers(
+                    turning_with_the_material(fields), r.run, float(grains["r_1"])
+                )
+                r.joint["grain_model"] = grain_layers(fields, r.run, float(grains["r_1"]))
         except SOLVE_ERRORS:
             r.joint = None
+
+
+def _moving_grains(run: Run) -> Mapping[str, Any] | None:
+    """The sidecar's grain-by-grain first-layer record (``first_layer``,
+    ``cosserat.dem.first_layer``) at a plane run's moving wall; None where not recorded."""
+    record = run.meta.get("first_layer")
+    if run.cell != "plane" or not isinstance(record, Mapping):
+        return None
+    wall = (record.get("walls") or {}).get(run.moving_wall)
+    return wall if isinstance(wall, Mapping) else None
 
 
 @dataclass
@@ -1261,6 +1284,14 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
         record = meta.get("steadiness")
         bad = _unsteady(record) if isinstance(record, Mapping) else []
         speed = meta.get("wall_speed")
+        joint = getattr(r, "joint", None) or {}
+        fitted = getattr(r, "fits", None)
+        u_only = tuple(
+            (m, float(f.chi2), int(f.dof))
+            for m in ("mui", "ngf", "cosserat")
+            if fitted is not None and (f := fitted.summary(m)) is not None and f.ok
+            and f.chi2 is not None
+        )  # fmt: skip
         out[r.run.name] = SpinRun(
             cells.get(r.run.name, r.run.name),
             r.run.gap_d,
@@ -1270,6 +1301,9 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
             r.inertial_number if r.layer is None else None,
             "; ".join(bad),
             fits.get(r.run.name, ()),
+            _moving_grains(r.run),
+            joint.get("grain_null"),
+            u_only,
         )
     return out
 
