@@ -150,3 +150,21 @@ def test_curve_test_of_a_flat_straw_man_rejects_its_shape():
     """The shape test (a free level) rejects a prediction flat in H against data that grow."""
     t = curve_test("x", [(4.0, 0.1), (6.0, 0.1), (8.0, 0.1)], [(1.45, 0.0)] * 3)
     assert t is not None and t.p_shape is not None and t.p_shape < 1e-6
+
+
+def test_the_claim_figure_draws_an_alternatives_best_fit_beside_its_material_curve():
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import delta_claim_figure
+
+    gaps = [10.0, 20.0, 40.0]
+    material = {"gaps": gaps, "Delta": [1.2, 1.0, 1.5], "points": [(20.0, 1.0, 0.0)]}
+    best = {"gaps": gaps, "Delta": [5.8, 10.7, 20.9], "points": [(20.0, 10.7, 0.49)]}
+    two = {"label": "plane", "gaps": [10.0, 20.0], "Delta": [6.6, 7.95], "stderr": [0.7, 1.1],
+           "usable": [False, True], "curves": {"mui": material | {"best": best}}}  # fmt: skip
+    fig = delta_claim_figure([two], {}, "Delta")
+    lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
+    drawn = lines["mui, best fit to this series' u"]
+    assert list(drawn.get_ydata()) == [5.8, 10.7, 20.9]
+    assert "mui, one calibration of the material" in lines
+    plt.close(fig)
