@@ -168,3 +168,25 @@ def test_the_claim_figure_draws_an_alternatives_best_fit_beside_its_material_cur
     assert list(drawn.get_ydata()) == [5.8, 10.7, 20.9]
     assert "mui, one calibration of the material" in lines
     plt.close(fig)
+
+
+def test_a_best_fit_parameter_at_a_bound_is_flagged_with_the_bound():
+    """The shipped rough series' mu(I) best fit: I_0 at the lower end of its range 1e-4."""
+    from cosserat.studies.validate.verdicts import calibration_text
+
+    params = {
+        "mu_s": {"value": 0.3336, "stderr": 0.0079, "free": True},
+        "I_0": {
+            "value": 1e-4,
+            "stderr": None,
+            "free": True,
+            "at_bound": "lower",
+            "fit_range": [1e-4, 10.0],
+            "reason": "at the lower end",
+        },
+    }
+    c = ModelDelta("mui", calibration={"chi2": 206.3, "dof": 48, "parameters": params})
+    assert calibration_text(c) == (
+        "chi^2 = 206.3 for 48 dof, z = 9.5, chi^2/dof = 206/48; mu_s = 0.3336 +- 0.0079, "
+        "I_0 = 0.0001 (at the lower end of its search range 0.0001-10)"
+    )

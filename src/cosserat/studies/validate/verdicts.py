@@ -2304,7 +2304,10 @@ def calibration_text(c: ModelDelta) -> str:
             continue
         v, se = e.get("value"), e.get("stderr")
         text = f"{name} = {_g(v, '.4g')}" + ("" if se is None else f" +- {se:.2g}")
-        if se is None and e.get("reason"):
+        at, rng = e.get("at_bound"), e.get("fit_range")
+        if se is None and at and rng:  # the bound said with its value, to 3 digits
+            text += f" (at the {at} end of its search range {rng[0]:.3g}-{rng[1]:.3g})"
+        elif se is None and e.get("reason"):
             text += f" ({e['reason']})"
         rows.append(text)
     chi2, dof, p = (c.calibration.get(k) for k in ("chi2", "dof", "p_value"))
