@@ -1011,7 +1011,7 @@ def solver_edges(
     NGF's solver needs the stress level's excess over mu_s to keep
     :data:`~cosserat.model.rheologies.ngf.NGF_EXCESS_RTOL` of mu_s (``I_w >= 1e-7 mu_s/b``):
     at the slowest rate the series needs (its runs' I_w and, with ``curve``, the curve's largest
-    gap, :func:`_rate`) and mu_s at the top of its search range, b's search range starts
+    gap, ``_rate``) and mu_s at the top of its search range, b's search range starts
     :data:`EDGE_MARGIN` times above that edge. The model itself has a flow at every b > 0; b
     -> 0 is its rate-independent limit (T - mu_s -> 0), which the profile approaches as
     b I_w -> 0 (on the shipped rough runs u moves by at most 0.0025 V from b = 0.0151 to
@@ -1055,7 +1055,7 @@ def calibrate_best(
     alone (``members``, their calibration data ``data``), on the velocity
     (:data:`BEST_FIELDS`) with every parameter the calibration frees free (mu(I)'s I_0 and
     mu_s, NGF's mu_s, b and A), NGF's b kept off the solver's edge (:func:`solver_edges`), and
-    its Delta at the runs and on the curve (:func:`_series_delta`). The Delta claims judge
+    its Delta at the runs and on the curve (``_series_delta``). The Delta claims judge
     an alternative's rejection at this fit, not at the material's joint calibration, which
     describes every field of both wall kinds and so can be a straw man for one series'
     Delta."""
