@@ -190,3 +190,19 @@ def test_a_best_fit_parameter_at_a_bound_is_flagged_with_the_bound():
         "chi^2 = 206.3 for 48 dof, z = 9.5, chi^2/dof = 206/48; mu_s = 0.3336 +- 0.0079, "
         "I_0 = 0.0001 (at the lower end of its search range 0.0001-10)"
     )
+
+
+def test_ngfs_best_fit_has_a_delta_at_every_gap_of_its_curve(made_by_mui):
+    """With b kept twice above the solver's edge at the curve's slowest rate, NGF's per-series
+    best fit gives a Delta at every gap out to twice the largest (160 d, its slowest rate),
+    where the material calibration's b at the edge gave none beyond H/d = 21.4 on the DEM
+    corpus."""
+    runs, data = made_by_mui
+    best = fits.calibrate_best("ngf", runs, data, 0.05)
+    assert best.status == "ok", best.message
+    gaps, values = best.curve
+    assert max(gaps) == pytest.approx(GAPS[-1] * fits.CURVE_SPAN[1])
+    assert all(v is not None and v > 0.0 for v in values), best.why
+    b = best.summary["parameters"]["b"]["value"]
+    assert b >= fits.EDGE_MARGIN * best.summary["edges"]["b_edge"] * (1 - 1e-9)
+    assert "the model itself flows at every b > 0" in best.summary["edge_note"]
