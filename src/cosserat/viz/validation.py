@@ -629,7 +629,8 @@ def delta_claim_figure(
     series : sequence of mapping
         ``label``, ``gaps``, ``Delta``, ``stderr``, ``usable`` (per point), ``curves``
         (model -> ``gaps``, ``Delta`` of the curve and ``points``: (H/d, Delta, se) at the
-        runs).
+        runs; ``best``: the same of an alternative's per-series best fit, drawn thin and
+        dashed with + at the runs).
     exponents : mapping
         Label -> exponent of the reference lines (drawn through the geometric mean of the
         usable points; not drawn, and the panel says so, when every band fills its gap or
@@ -681,6 +682,24 @@ def delta_claim_figure(
                     ax.errorbar([p[0] for p in cp], [p[1] for p in cp],
                                 yerr=[p[2] or 0.0 for p in cp], fmt="x", color=st["color"],
                                 capsize=2, markersize=5)  # fmt: skip
+                b = c.get("best")  # an alternative's per-series best fit, thin and dashed
+                bg = (
+                    []
+                    if not b
+                    else [(g, d) for g, d in zip(b["gaps"], b["Delta"], strict=True) if d]
+                )
+                if bg:
+                    ax.plot(b["gaps"], [d if d else np.nan for d in b["Delta"]],
+                            color=st["color"], linestyle=(0, (4, 1.5)), linewidth=0.8,
+                            label=f"{model}, best fit to this series' u")  # fmt: skip
+                    all_g += [g for g, _ in bg]
+                    all_d += [d for _, d in bg]
+                    bp = [p for p in b.get("points", []) if p[1]]
+                    all_d += [p[1] for p in bp]
+                    if bp:
+                        ax.errorbar([p[0] for p in bp], [p[1] for p in bp],
+                                    yerr=[p[2] or 0.0 for p in bp], fmt="+", color=st["color"],
+                                    capsize=2, markersize=6)  # fmt: skip
                 gap_note = none_ranges(c["gaps"], c["Delta"], c.get("why", []))
                 if gap_note:  # said in the legend, off the data, in the model's style
                     ax.plot([], [], color=st["color"], linestyle=":", linewidth=1.2,

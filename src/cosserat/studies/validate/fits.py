@@ -74,7 +74,7 @@ from ..._text import significance
 from ...analysis.corpus import Run
 from ...calibration.noise import RHO_MAX, Correlation, effective_bins, estimate_rho
 from ...calibration.single import Ranking, rank_models
-from ...errors import CosseratError
+from ...errors import CosseratError, ParameterError
 from ...model.constitutive import FloatArray
 from .measures import BAND_U, FAR_SLIP_SIGMAS, P_SIGNIFICANT, StressRatio
 
@@ -715,6 +715,17 @@ SERIES_STARTS: int | None = None
 the engine's default design (``4 k + 4``), so that it is the calibration ``cosserat calibrate
 RUNS --models MODEL`` gives. One start is not enough: on the shipped smooth-wall series mu(I)
 then ends in a local minimum (chi^2 7851 against 5213)."""
+CLAIMED_MODEL = "cosserat"
+"""The model the Delta claims are about; the others are its alternatives, which also get a
+per-series best fit (:func:`calibrate_best`)."""
+BEST_FIELDS = ("u",)
+"""The fields of an alternative's per-series best fit (:func:`calibrate_best`): the velocity,
+which Delta is read from (as the per-run u-only fits)."""
+EDGE_MARGIN = 2.0
+"""How many times above the solver's double-precision edge a per-series best fit starts NGF's
+b (:func:`solver_edges`) [-]: at the edge the profile is still good to about 1e-9
+(:data:`~cosserat.model.rheologies.ngf.NGF_EXCESS_RTOL`), but a finite-difference step of the
+fit's Jacobian or of Delta's error must not cross it."""
 CURVE_POINTS = 9
 """Points of each model's Delta curve across the series' gaps (for the figure)."""
 CURVE_SPAN = (1.25, 2.0)
@@ -759,6 +770,9 @@ class SeriesCalibration:
     curve: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
     why: dict[str, str] = field(default_factory=dict)
     resolved_above: dict[str, float] = field(default_factory=dict)
+    best: SeriesCalibration | None = None
+    """An alternative's per-series best fit (:func:`calibrate_best`), None for the claims'
+    model or where it was not made."""
 
 
 def _series_start(model: str, keys: set[str], fits: Sequence[RunFits | None]) -> dict[str, float]:
@@ -797,7 +811,15 @@ def _delta(model: Any, probe: Any, values: Any, u0: float, f: float) -> tuple[fl
     try:
         u = model.predict(probe, values, ["u"])["u"]
     except SOLVE_ERRORS as exc:
-        return None, "no solution: " + " ".join(str(exc).split())
+        text = " ".join(str(exc).split())
+        if isinstance(exc, ParameterError) and "double precision" in text:
+            # the solver refuses a rate whose driving excess it cannot resolve: the model's
+            # flow exists (NGF and mu(I) flow at every I_w > 0), the solver cannot compute it
+            return None, (
+                "not computed: the solver's double-precision limit, not the model's (which "
+                "flows at every I_w > 0): " + text
+            )
+        return None, "no solution: " + text
     if not np.all(np.isfinite(u)):
         return None, "no solution: a non-finite velocity"
     u = np.asarray(u, dtype=float)
@@ -878,6 +900,7 @@ def calibrate_material(
     curve: bool = True,
     use_fits: bool = False,
     fix_phi: bool = True,
+    best: bool = True,
 ) -> dict[str, list[SeriesCalibration]]:
     """Each model calibrated jointly on every run of one material (``cosserat calibrate``'s
     engine, :func:`cosserat.calibration.joint.calibrate_model`: material parameters shared by
@@ -904,6 +927,9 @@ def calibrate_material(
         Fix what the stresses measure (:func:`material_fix`: the Cosserat model's phi on a
         plane material), as the per-run fits and the spin scan do; False fits it (``cosserat
         validate --fit-angles``).
+    best : bool
+        Also make each alternative's per-series best fit (:func:`calibrate_best`; every model
+        but :data:`CLAIMED_MODEL`), the ``best`` of its calibrations.
 
     Returns
     -------
@@ -948,32 +974,9 @@ def calibrate_material(
             continue
         s, opt = mc.internal
         theta = opt.theta
-        scale = max((e.scale for e in mc.parameters.values()), default=1.0)
-        cov = (
-            np.asarray(mc.covariance, dtype=float) * scale**2
-            if mc.covariance is not None
-            else np.zeros((theta.size, theta.size))
-        )
+        cov = _covariance(mc)
         summary = {
-            "parameters": {
-                n: {
-                    "value": e.value,
-                    "stderr": e.stderr_scaled,
-                    "free": e.free,
-                    "derived": e.derived,
-                    "shared": e.shared,
-                    "unit": e.unit,
-                    "reason": e.reason,
-                }
-                for n, e in mc.parameters.items()
-            },
-            "fields": list(mc.fields_used),
-            "chi2": mc.chi2,
-            "dof": mc.dof,
-            "p_value": mc.p_value,
-            "log10_p_value": mc.log10_p_value,
-            "unidentified": [d.describe() for d in mc.flat],
-            "warnings": list(mc.warnings),
+            **_summary(mc),
             "material": data[0].material,
             "runs": [r.name for r in runs],
             "wall_kinds": {k: list(v) for k, v in kinds.items()},
@@ -984,10 +987,153 @@ def calibrate_material(
         for key, members, f in series:
             rds = [by_name[r.name] for r in members]
             predicted, grid, why, floor = _series_delta(s, theta, cov, members, rds, f, curve)
-            out[key].append(
-                SeriesCalibration(m.name, "ok", "", dict(summary), predicted, grid, why, floor)
-            )
+            cal = SeriesCalibration(m.name, "ok", "", dict(summary), predicted, grid, why, floor)
+            if best and m.name != CLAIMED_MODEL:
+                try:
+                    cal.best = calibrate_best(m.name, members, rds, f, curve)
+                except CosseratError as exc:
+                    cal.best = SeriesCalibration(m.name, "failed", " ".join(str(exc).split()))
+            out[key].append(cal)
     return out
+
+
+def _summary(mc: Any) -> dict[str, Any]:
+    """What a calibration gave (:class:`SeriesCalibration`'s ``summary``, without what it was
+    made on)."""
+    return {
+        "parameters": {
+            n: {
+                "value": e.value,
+                "stderr": e.stderr_scaled,
+                "free": e.free,
+                "derived": e.derived,
+                "shared": e.shared,
+                "unit": e.unit,
+                "reason": e.reason,
+                "at_bound": e.at_bound,
+                "fit_range": None if e.fit_range is None else list(e.fit_range),
+            }
+            for n, e in mc.parameters.items()
+        },
+        "fields": list(mc.fields_used),
+        "chi2": mc.chi2,
+        "dof": mc.dof,
+        "p_value": mc.p_value,
+        "log10_p_value": mc.log10_p_value,
+        "unidentified": [d.describe() for d in mc.flat],
+        "warnings": list(mc.warnings),
+    }
+
+
+def _covariance(mc: Any) -> FloatArray:
+    """A calibration's parameter covariance in the fit's coordinates, scaled by sqrt(chi^2/dof)
+    where it misfits (zeros without one)."""
+    _, opt = mc.internal
+    scale = max((e.scale for e in mc.parameters.values()), default=1.0)
+    if mc.covariance is None:
+        return np.zeros((opt.theta.size, opt.theta.size))
+    return np.asarray(mc.covariance, dtype=float) * scale**2
+
+
+def _ranged_model(name: str, ranges: dict[str, tuple[float, float]]) -> Any:
+    """The calibration model ``name`` (:class:`cosserat.calibration.models.Model`) with the
+    search ranges of the parameters in ``ranges`` (key -> (lo, hi)) replaced."""
+    import dataclasses
+
+    from ...calibration.models import Model
+
+    class Ranged(Model):
+        def parameters(self) -> tuple[Any, ...]:
+            return tuple(
+                dataclasses.replace(
+                    p, declared=dataclasses.replace(p.declared, fit_range=ranges[p.key])
+                )
+                if p.key in ranges
+                else p
+                for p in super().parameters()
+            )
+
+    return Ranged(name)
+
+
+def solver_edges(
+    model: str, data: Sequence[Any], runs: Sequence[Run], curve: bool = True
+) -> tuple[dict[str, tuple[float, float]], str, dict[str, Any]]:
+    """The search ranges a per-series best fit (:func:`calibrate_best`) takes away from the
+    solver's numerical edge, with a note saying why, and the numbers (``results.json``).
+
+    NGF's solver needs the stress level's excess over mu_s to keep
+    :data:`~cosserat.model.rheologies.ngf.NGF_EXCESS_RTOL` of mu_s (``I_w >= 1e-7 mu_s/b``):
+    at the slowest rate the series needs (its runs' I_w and, with ``curve``, the curve's largest
+    gap, ``_rate``) and mu_s at the top of its search range, b's search range starts
+    :data:`EDGE_MARGIN` times above that edge. The model itself has a flow at every b > 0; b
+    -> 0 is its rate-independent limit (T - mu_s -> 0), which the profile approaches as
+    b I_w -> 0 (on the shipped rough runs u moves by at most 0.0025 V from b = 0.0151 to
+    0.00151, mu_s = 1.2, A = 1.54). Nothing for mu(I), whose
+    edge (``I_w >= 1e-7 mu_s I_0/(mu_2 - mu_s)``) lies outside its search ranges at these rates.
+    """
+    from ...calibration.models import Model
+    from ...model.rheologies.ngf import NGF_EXCESS_RTOL
+
+    if model != "ngf":
+        return {}, "", {}
+    rates = [float(rd.I_w) for rd in data if rd.I_w is not None and rd.I_w > 0.0]
+    if curve and runs:
+        top = _rate(data)(max(r.gap_d for r in runs) * CURVE_SPAN[1])
+        if top is not None:
+            rates.append(top)
+    if not rates:
+        return {}, "", {}
+    declared = {p.key: p.declared for p in Model(model).parameters()}
+    mu_s_hi = float(declared["mu_s"].fit_range[1])
+    b_lo, b_hi = (float(x) for x in declared["b"].fit_range)
+    slowest = min(rates)
+    edge = NGF_EXCESS_RTOL * mu_s_hi / slowest
+    lo = max(b_lo, EDGE_MARGIN * edge)
+    note = (
+        f"b's search range starts at {lo:.3g}, {EDGE_MARGIN:g} times the solver's "
+        f"double-precision edge {NGF_EXCESS_RTOL:g} mu_s/I_w = {edge:.3g} (mu_s at its search "
+        f"range's top, {mu_s_hi:g}; I_w = {slowest:.3g}, the slowest rate of the series' runs "
+        "and curve): below the edge the excess T - mu_s that drives the flow has too few "
+        "significant digits for the solver; the model itself flows at every b > 0, b -> 0 "
+        "being its rate-independent limit, which the profile approaches as b I_w -> 0"
+    )
+    numbers = {"b_edge": edge, "b_lower": lo, "I_w_slowest": slowest, "mu_s_top": mu_s_hi}
+    return {"b": (lo, b_hi)}, note, numbers
+
+
+def calibrate_best(
+    model: str, members: Sequence[Run], data: Sequence[Any], f: float, curve: bool = True
+) -> SeriesCalibration:
+    """An alternative's per-series best fit: ``model`` calibrated on one gap series' runs
+    alone (``members``, their calibration data ``data``), on the velocity
+    (:data:`BEST_FIELDS`) with every parameter the calibration frees free (mu(I)'s I_0 and
+    mu_s, NGF's mu_s, b and A), NGF's b kept off the solver's edge (:func:`solver_edges`), and
+    its Delta at the runs and on the curve (``_series_delta``). The Delta claims judge
+    an alternative's rejection at this fit, not at the material's joint calibration, which
+    describes every field of both wall kinds and so can be a straw man for one series'
+    Delta."""
+    from ...calibration.joint import calibrate_model
+    from ...calibration.models import Model
+
+    ranges, note, numbers = solver_edges(model, data, members, curve)
+    m = _ranged_model(model, ranges) if ranges else Model(model)
+    mc = calibrate_model(m, data, BEST_FIELDS, starts=SERIES_STARTS)
+    if not mc.ok:
+        return SeriesCalibration(model, "failed", " ".join(mc.message.split()))
+    s, opt = mc.internal
+    predicted, grid, why, floor = _series_delta(
+        s, opt.theta, _covariance(mc), members, data, f, curve
+    )
+    summary = {
+        **_summary(mc),
+        "material": data[0].material,
+        "runs": [r.name for r in members],
+        "per_series": True,
+        "edge_note": note,
+        "edges": numbers,
+    }
+    return SeriesCalibration(model, "ok", "", summary, predicted, grid, why, floor)
 
 
 def _series_delta(

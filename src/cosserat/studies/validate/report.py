@@ -139,6 +139,13 @@ def delta_caption(report: ValidationReport, which: str) -> str:
     )
     if gaps:
         text += " Where a model gives no Delta: " + "; ".join(gaps) + "."
+    if any(c.best is not None and c.best.ok for s in relevant(report.groups, which)
+           for c in s.curves.values()):  # fmt: skip
+        text += (
+            " Thin dashed (+ at the runs): each alternative's per-series best fit (the series' "
+            "runs alone, u, every parameter free, NGF's b off the solver's edge), at which the "
+            "verdict judges its rejection; the material's calibration is the joint story."
+        )
     level = " ".join(x for s in relevant(report.groups, which) if (x := level_caption(s)))
     return text + (f" {level}" if level else "")
 
@@ -571,6 +578,16 @@ def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
                         "points": [
                             (p.gap_d, *c.predicted.get(p.run, (None, None))) for p in s.points
                         ],
+                        "best": None
+                        if c.best is None or not c.best.ok
+                        else {
+                            "gaps": list(c.best.curve[0]),
+                            "Delta": list(c.best.curve[1]),
+                            "points": [
+                                (p.gap_d, *c.best.predicted.get(p.run, (None, None)))
+                                for p in s.points
+                            ],
+                        },
                     }
                     for m, c in s.curves.items()
                     if c.ok

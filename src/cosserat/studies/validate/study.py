@@ -895,20 +895,22 @@ def _distinct_gaps(runs: Sequence[Run]) -> int:
     return len(gaps)
 
 
+def _curve(c: SeriesCalibration) -> ModelDelta:
+    return ModelDelta(
+        c.model,
+        c.predicted,
+        c.curve,  # type: ignore[arg-type]
+        c.summary,
+        c.status,
+        c.message,
+        c.why,
+        c.resolved_above,
+        None if c.best is None else _curve(c.best),
+    )
+
+
 def _curves(cals: Sequence[SeriesCalibration]) -> dict[str, ModelDelta]:
-    return {
-        c.model: ModelDelta(
-            c.model,
-            c.predicted,
-            c.curve,  # type: ignore[arg-type]
-            c.summary,
-            c.status,
-            c.message,
-            c.why,
-            c.resolved_above,
-        )
-        for c in cals
-    }
+    return {c.model: _curve(c) for c in cals}
 
 
 def judge(

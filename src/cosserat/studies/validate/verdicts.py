@@ -1956,6 +1956,10 @@ class ModelDelta:
     resolved_above : mapping of str to float
         The second bin's distance from the moving wall at each run and curve gap [d]: a Delta
         at or below it is not resolved by the bins (:meth:`resolved`).
+    best : ModelDelta or None
+        An alternative's per-series best fit (``fits.calibrate_best``: the series' runs alone,
+        the velocity, every parameter free, NGF's b off the solver's edge), at which the
+        claims judge its rejection; None for the claims' model or where it was not made.
     """
 
     model: str
@@ -1966,6 +1970,7 @@ class ModelDelta:
     message: str = ""
     why: Mapping[str, str] = field(default_factory=dict)
     resolved_above: Mapping[str, float] = field(default_factory=dict)
+    best: ModelDelta | None = None
 
     def resolved(self, key: str, value: float | None) -> bool:
         """Whether ``value`` (the model's Delta at run or curve gap ``key``) is above the second
@@ -2131,11 +2136,14 @@ class DeltaSeries:
     curves: Mapping[str, ModelDelta] = field(default_factory=dict)
     speeds: Mapping[str, float | None] = field(default_factory=dict)
 
-    def tests(self) -> dict[str, CurveTest]:
-        """Each calibrated model's :func:`curve_test` over the usable points it predicts."""
+    def tests(self, best: bool = False) -> dict[str, CurveTest]:
+        """Each calibrated model's :func:`curve_test` over the usable points it predicts; with
+        ``best``, each alternative's per-series best fit's (``ModelDelta.best``; models
+        without one left out)."""
         out = {}
-        for name, c in self.curves.items():
-            if not c.ok:
+        for name, cal in self.curves.items():
+            c = cal.best if best else cal
+            if c is None or not c.ok:
                 continue
             pairs = [
                 ((p.value, p.stderr), (c.predicted[p.run][0], c.predicted[p.run][1] or 0.0))
@@ -2251,6 +2259,7 @@ class DeltaSeries:
     def to_dict(self) -> dict[str, Any]:
         s = self.slope
         tests = self.tests()
+        best = self.tests(best=True)
         return {
             "key": self.key,
             "cell": self.cell,
@@ -2281,10 +2290,25 @@ class DeltaSeries:
                     "why": dict(c.why),
                     "resolved_above": dict(c.resolved_above),
                     "test": None if (t := tests.get(c.model)) is None else t.to_dict(),
+                    "best": None if c.best is None else _best_dict(c.best, best.get(c.model)),
                 }
                 for c in self.curves.values()
             ],
         }
+
+
+def _best_dict(c: ModelDelta, test: CurveTest | None) -> dict[str, Any]:
+    """An alternative's per-series best fit in ``results.json``."""
+    return {
+        "status": c.status,
+        "message": c.message,
+        **dict(c.calibration),
+        "Delta": {run: {"value": v, "stderr": e} for run, (v, e) in c.predicted.items()},
+        "curve": {"gaps": list(c.curve[0]), "Delta": list(c.curve[1])},
+        "why": dict(c.why),
+        "resolved_above": dict(c.resolved_above),
+        "test": None if test is None else test.to_dict(),
+    }
 
 
 def short(key: str) -> str:
@@ -2598,14 +2622,55 @@ def calibration_text(c: ModelDelta) -> str:
             continue
         v, se = e.get("value"), e.get("stderr")
         text = f"{name} = {_g(v, '.4g')}" + ("" if se is None else f" +- {se:.2g}")
-        if se is None and e.get("reason"):
+        at, rng = e.get("at_bound"), e.get("fit_range")
+        if se is None and at and rng:  # the bound said with its value, to 3 digits
+            text += f" (at the {at} end of its search range {rng[0]:.3g}-{rng[1]:.3g})"
+        elif se is None and e.get("reason"):
             text += f" ({e['reason']})"
         rows.append(text)
     chi2, dof, p = (c.calibration.get(k) for k in ("chi2", "dof", "p_value"))
     sig = significance(chi2, dof) if chi2 is not None and dof and dof > 0 else f"p = {_g(p)}"
     fit = f"chi^2 = {_g(chi2, '.4g')} for {dof} dof, {sig}" if chi2 is not None else ""
-    # what the stresses fixed (fits.material_fix), or why they did not
-    return "; ".join(x for x in (fit, ", ".join(rows), c.calibration.get("fixed_note", "")) if x)
+    # what the stresses fixed (fits.material_fix), or why they did not; a per-series best
+    # fit's search range kept off the solver's edge (fits.solver_edges)
+    notes = (c.calibration.get("fixed_note", ""), c.calibration.get("edge_note", ""))
+    return "; ".join(x for x in (fit, ", ".join(rows), *notes) if x)
+
+
+def best_text(s: DeltaSeries, model: str) -> str:
+    """The alternatives' per-series best fits in words: each one's fit (chi^2, parameters, any
+    at a bound with the bound or at the solver's edge), its Delta at the series' usable runs
+    and its test against the measured Delta ("" without an alternative)."""
+    tests = s.tests(best=True)
+    rows = []
+    for m, cal in s.curves.items():
+        if m == model or not cal.ok:
+            continue
+        c = cal.best
+        if c is None:
+            rows.append(f"{m}: none made (its rejection is not counted)")
+            continue
+        if not c.ok:
+            rows.append(f"{m}: failed ({c.message}; its rejection is not counted)")
+            continue
+        preds = ", ".join(
+            f"{p.run} " + _predicted_text("", c, p.run).strip() for p in s.points if p.usable
+        )
+        t = tests.get(m)
+        rows.append(
+            f"{m}: {calibration_text(c)}; Delta at the runs: {preds or 'none'}; "
+            + (
+                replace(t, label="against the measured Delta").text()
+                if t is not None
+                else "no Delta at a usable run: no test"
+            )
+        )
+    if not rows:
+        return ""
+    return (
+        "each alternative at its per-series best fit (this series' runs alone, the velocity u, "
+        "every parameter free; the rule judges its rejection here): " + "; ".join(rows)
+    )
 
 
 def _predicted_text(model: str, c: ModelDelta, run: str) -> str:
@@ -2642,6 +2707,11 @@ def _curve_call(
     rival = power_law_test(other, pts)
     claimed = power_law_test(target, pts)
     others = [tt for m, tt in tests.items() if m != model] + ([rival] if rival else [])
+    # an alternative's rejection is judged at its per-series best fit, not at the material's
+    # joint calibration (a straw man for one series' Delta: referee 11, point 6)
+    best = s.tests(best=True)
+    judged = [replace(tt, label=f"{m} (per-series best fit)") for m, tt in best.items()]
+    judged += [rival] if rival else []
     rows = []
     for p in s.points:
         if not p.usable:
@@ -2655,10 +2725,20 @@ def _curve_call(
         f"{m}: {scope_text(c)}: {calibration_text(c)}" for m, c in s.curves.items() if c.ok
     )
     failed = "; ".join(f"{m}: {c.message}" for m, c in s.curves.items() if not c.ok)
+    alts = [m for m, c in s.curves.items() if m != model and c.ok]
+    bests = best_text(s, model)
     text = (
         f"{s.key}: Delta against each model's curve from one calibration of the material "
         f"(this series' wall) ({'; '.join(rows)}); {t.text()}; "
         + "; ".join(tt.text() for tt in others)
+        + (
+            f" ({', '.join(alts)} as calibrated on the whole material, every field of both "
+            "wall kinds: the joint material story, not the alternatives' best description of "
+            "this series, so their rejections here do not count for the verdict)"
+            if alts
+            else ""
+        )
+        + (f"; {bests}" if bests else "")
         + f". Calibrations: {calib}"
         + (f"; failed: {failed}" if failed else "")
     )
@@ -2674,9 +2754,9 @@ def _curve_call(
             text + "; one usable gap: no test of the dependence on H/d",
             f"Delta at {MIN_GAPS} or more gaps (not filling them) in {short(s.key)}",
         )
-    rejected = [tt.label for tt in others if tt.p_shape is not None and tt.p_shape < P_SIGNIFICANT]
+    rejected = [tt.label for tt in judged if tt.p_shape is not None and tt.p_shape < P_SIGNIFICANT]
     consistent = [
-        tt.label for tt in others if tt.p_shape is not None and tt.p_shape >= P_CONSISTENT
+        tt.label for tt in judged if tt.p_shape is not None and tt.p_shape >= P_CONSISTENT
     ]
     if (
         t.p_shape < P_SIGNIFICANT
@@ -2754,7 +2834,12 @@ def delta_law_verdict(
         f"Delta) and times its best common factor (dof = points - 1: the dependence on H/d "
         f"apart from the level, which is what the claim is about). Supported when the {model} "
         f"curve's shape is consistent (p >= {P_CONSISTENT:g}) and an alternative (another "
-        f"model's curve, or Delta ~ (H/d)^{other:.3g}) is rejected (p < {P_SIGNIFICANT:g}); "
+        f"model's curve at its per-series best fit: the series' runs alone, the velocity, every "
+        f"parameter free, NGF's b kept off the solver's double-precision edge; or "
+        f"Delta ~ (H/d)^{other:.3g} with a free level) is rejected (p < "
+        f"{P_SIGNIFICANT:g}); the alternatives' material-level curves are tested too, but a "
+        "calibration made for every field of both wall kinds can be a straw man for one "
+        "series' Delta, so their rejections do not count; "
         f"refuted when the {model} curve's shape is rejected (p < {P_SIGNIFICANT:g}), mixed "
         f"when it is but the claimed law Delta ~ (H/d)^{target:.3g} with a free level is not "
         f"(p >= {P_CONSISTENT:g}: the law without the model's approach to it). The "
