@@ -46,7 +46,8 @@ def _plane(tmp_path, name, *, seed=1, speed=0.0025, shift=None, inertial=STATIC,
     cols = {"y": y, "u": np.linspace(0.0, 0.9, 10), "omega": np.zeros(10),
             "half_vorticity": np.zeros(10), "nu": np.full(10, 0.8),
             "sigma_yy": np.full(10, 1.0), "sigma_xx": np.full(10, 1.0),
-            "sigma_yx": np.full(10, -0.3), "inertial_number": np.asarray(inertial, float)}  # fmt: skip
+            "sigma_yx": np.full(10, -0.3),
+            "inertial_number": np.asarray(inertial, float)}  # fmt: skip
     for k, v in (shift or {}).items():
         cols[k] = cols[k] + np.asarray(v, float)
     for k in list(cols):
@@ -151,8 +152,8 @@ def test_the_shipped_twins_give_the_referees_check_e():
     assert (chi2["nu"], chi2["sigma_yy"], chi2["sigma_xx"]) == (88.5, 92.5, 141.7)
     # seed 1 against seed 2, as the referee quotes them
     assert [(d, round(z, 1)) for d, z in p.fields["nu"].beyond] == [(0.5, -5.7), (1.5, -5.8)]
-    assert [(d, round(z, 1)) for d, z in p.fields["sigma_xx"].beyond] == [(0.5, -10.3),
-                                                                            (1.5, -5.2)]  # fmt: skip
+    xx = [(d, round(z, 1)) for d, z in p.fields["sigma_xx"].beyond]
+    assert xx == [(0.5, -10.3), (1.5, -5.2)]
     assert round(p.fields["sigma_yy"].beyond[0][1], 1) == -7.0
     assert round(p.fields["omega"].largest[1], 1) == 2.1
     assert round(p.delta_z, 1) == 1.7 and round(p.wall_ratio_z, 1) == 0.8
@@ -184,8 +185,8 @@ def test_momentum_balance_misses_rescaled_by_the_shear_factor(tmp_path):
     wall's shear by 5 se (z = -5 against se hypot(0.01, 0.01)) stays beyond 3 se at -2.5?
     no: -5 / 2 = -2.5, within."""
     step = np.r_[np.full(5, -2.0 * math.hypot(SE, SE)), np.zeros(5)]
-    twins = twin_pairs([_result(_plane(tmp_path, "a")),
-                        _result(_plane(tmp_path, "b", seed=2, shift={"sigma_yx": step}))])  # fmt: skip
+    b = _plane(tmp_path, "b", seed=2, shift={"sigma_yx": step})
+    twins = twin_pairs([_result(_plane(tmp_path, "a")), _result(b)])
     assert twins[0].fields["sigma_yx"].factor("static") == pytest.approx(2.0)
     off = np.zeros(10)
     off[1] = -5.0 * math.hypot(SE, 0.01)
@@ -250,8 +251,8 @@ def test_the_design_at_the_seed_scatter_from_the_closed_form():
     assert "The 14% is a block error that a second seed already questions: the same-" \
         "conditions replicates (one cell, one wall speed, two seeds; a and b: 6.61 +- 0.67 " \
         "against 5.15 +- 0.53 d, 1.46 d apart (z = +1.7)) give a per-run scatter of Delta of " \
-        "|ln(Delta_a / Delta_b)| / sqrt(2) = 18% from 1 pair(s) (1 degree(s) of freedom: 95% range 8-561%, so one pair barely " \
-        "bounds it)" in text  # fmt: skip
+        "|ln(Delta_a / Delta_b)| / sqrt(2) = 18% from 1 pair(s) (1 degree(s) of freedom: " \
+        "95% range 8-561%, so one pair barely bounds it)" in text  # fmt: skip
     assert "At 18% per run, 2 se between the exponents (sigma <= 0.167) is reached by " \
         "20/40/80 d with 2 seeds each: sigma = 0.13; 20/40/80 d with 3 seeds each: sigma = " \
         "0.1; not by 20/40/80 d: sigma = 0.18; the slope rule's margin (sigma <= 0.0833) by " \
