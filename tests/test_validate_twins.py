@@ -276,3 +276,24 @@ def test_twin_field_factor_zones():
     assert f.factor("static") == 3.0 and f.factor("flowing") == 1.0
     assert f.factor() == pytest.approx(math.sqrt(5.0))
     assert TwinField("nu", (1.0,), (0.5,), (False,)).factor("static") is None
+
+
+def test_the_replicates_word_follows_the_misfit_reading(tmp_path):
+    """spin_model's evidence gets the replicates' sentence right after "a second seed would
+    settle the error scale.", not at its end; without a misfit, nothing."""
+    from cosserat.studies.validate.study import _misfit_twins
+    from cosserat.studies.validate.verdicts import Verdict
+
+    twins = twin_pairs([_result(_plane(tmp_path, "a")), _result(_plane(tmp_path, "b", seed=2))])
+    em = {"r": {"u": {"ar1": 20.0, "n": 10}, "omega": {"ar1": 18.0, "n": 9}}}
+    v = Verdict("spin_model", "refuted", "Read as understated errors; a second seed would "
+                "settle the error scale. Refuted at x.", "", ("r",),
+                {"misfit_runs": ["r"], "reading": "errors", "error_models": em})  # fmt: skip
+    got = _misfit_twins(v, twins).evidence
+    assert got.startswith("Read as understated errors; a second seed would settle the error "
+                          "scale. The same-conditions replicates (one cell, one V, two seeds) "
+                          "measure that error scale: a against b: u sum z^2 = 0")  # fmt: skip
+    assert got.endswith(" Refuted at x.")
+    assert _misfit_twins(replace(v, numbers={"misfit_runs": []}), twins) == replace(
+        v, numbers={"misfit_runs": []}
+    )

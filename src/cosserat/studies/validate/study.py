@@ -1052,12 +1052,28 @@ def twins_text(twins: Sequence[Any], results: Sequence[RunResult]) -> str:
 
 def _misfit_twins(v: Verdict, twins: Sequence[Any]) -> Verdict:
     """spin_model's verdict with the replicates' word on its misfit reading
-    (``rate.misfit_twin_text``) after it, where the joint fits misfit."""
+    (``rate.misfit_twin_text``) right after it (:data:`MISFIT_ANCHORS`), where the joint fits
+    misfit."""
     runs = v.numbers.get("misfit_runs") or []
     if not twins or not runs or not v.numbers.get("reading"):
         return v
     extra = misfit_twin_text(twins, v.numbers.get("error_models") or {}, runs)
-    return replace(v, evidence=f"{v.evidence}{extra}") if extra else v
+    if not extra:
+        return v
+    for anchor in MISFIT_ANCHORS:  # right after the reading's sentence, where it is found
+        at = v.evidence.find(anchor)
+        if at >= 0:
+            cut = at + len(anchor)
+            return replace(v, evidence=f"{v.evidence[:cut]}{extra}{v.evidence[cut:]}")
+    return replace(v, evidence=f"{v.evidence}{extra}")
+
+
+MISFIT_ANCHORS = (
+    "a second seed would settle the error scale.",
+    "and the 95% region is scaled alike.",
+)
+"""The ends of spin_model's misfit-reading sentence (``spin_scan.misfit_reading``), after
+which the replicates' word on it goes (at the end of the evidence where neither is found)."""
 
 
 def rate_text(results: Sequence[RunResult]) -> str:
