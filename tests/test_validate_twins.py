@@ -169,7 +169,7 @@ def test_static_misses_between_speeds_rescaled_by_the_twins_factor(tmp_path):
     pair = RatePair("f", "s", (2.0, 1.0), {}, (None, None), (None, None),
                     (StaticMiss("nu", 9.3, -9.9), StaticMiss("sigma_yy", 8.3, 4.0)))  # fmt: skip
     text = static_rescaled_text([pair], twins)
-    assert "(a against b: nu 3, sigma_yy 1)" in text
+    assert "(a against b: nu 3, sigma_yy 1; from the run's own cell's replicates where" in text
     assert "2 stay beyond 3 se (nu at 9.3 d of f against s (z = -9.9 -> -3.3); sigma_yy at " \
         "8.3 d of f against s (z = +4 -> +4))" in text  # fmt: skip
     small = replace(pair, static=(StaticMiss("nu", 9.3, -6.0),))
@@ -297,3 +297,30 @@ def test_the_replicates_word_follows_the_misfit_reading(tmp_path):
     assert _misfit_twins(replace(v, numbers={"misfit_runs": []}), twins) == replace(
         v, numbers={"misfit_runs": []}
     )
+
+
+def test_a_runs_factor_comes_from_its_own_cell_first(tmp_path):
+    """Two pairs: the rough cell's (nu factor 3) and a layer cell's (other fixed wall, nu
+    factor 5). A rough run at another gap takes the rough pair's (its walls); a rough run at
+    the pair's gap too; a run of walls no pair has takes both."""
+    from cosserat.studies.validate.rate import twins_for
+
+    def nu(k):
+        return {"nu": np.full(10, k * math.hypot(SE, SE))}
+
+    smooth = {"wall_fixed": {"kind": "smooth-frictional"}}
+    rough = twin_pairs([_result(_plane(tmp_path, "a")),
+                        _result(_plane(tmp_path, "b", seed=2, shift=nu(3)))])  # fmt: skip
+    d = _plane(tmp_path, "d", seed=2, shift=nu(5), extra=smooth)
+    layer = twin_pairs([_result(_plane(tmp_path, "c", extra=smooth)), _result(d)])
+    both = rough + layer
+    assert twins_for(_plane(tmp_path, "e", seed=3), both) == rough
+    wide = _plane(tmp_path, "f", extra={"gap_d": 20.0})
+    assert twins_for(wide, both) == rough
+    assert twin_factor(twins_for(wide, both), "nu") == pytest.approx(3.0)
+    other = _plane(tmp_path, "g", extra={"wall": {"kind": "smooth-frictional"}})
+    assert twins_for(other, both) == both
+    pair = RatePair("e", "s", (2.0, 1.0), {}, (None, None), (None, None),
+                    (StaticMiss("nu", 9.3, -12.0),))  # fmt: skip
+    text = static_rescaled_text([pair], both, {"e": _plane(tmp_path, "e", seed=3)})
+    assert "(a against b: nu 3; from" in text and "z = -12 -> -4" in text

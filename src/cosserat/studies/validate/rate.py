@@ -12,8 +12,8 @@ moving wall's measured stress ratio |shear| / normal from its contacts (the side
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -512,6 +512,8 @@ class TwinPair:
     fields: dict[str, TwinField]
     delta: tuple[tuple[float, float] | None, tuple[float, float] | None]
     wall_ratio: tuple[tuple[float, float] | None, tuple[float, float] | None]
+    runs: tuple[Any, ...] = field(default=(), compare=False, repr=False)
+    """The two corpus runs (``a``'s, ``b``'s), to tell which cell the pair measures."""
 
     @property
     def delta_z(self) -> float | None:
@@ -788,9 +790,38 @@ def twin_pairs(results: Sequence[Any]) -> list[TwinPair]:
                     fields,
                     (_delta(a), _delta(b)),
                     (_wall_ratio(a.run), _wall_ratio(b.run)),
+                    (a.run, b.run),
                 )
             )
     return out
+
+
+def _same_walls(a: Any, b: Any) -> bool:
+    """One cell kind with the same walls (the sidecars' ``wall`` and ``wall_fixed``), at any
+    gap."""
+    ma, mb = a.meta, b.meta
+    return (
+        a.cell == b.cell
+        and ma.get("wall") == mb.get("wall")
+        and ma.get("wall_fixed", ma.get("wall")) == mb.get("wall_fixed", mb.get("wall"))
+    )
+
+
+def twins_for(run: Any, twins: Sequence[TwinPair]) -> list[TwinPair]:
+    """The replicate pairs whose factors apply to ``run``: those of its own cell
+    (:func:`_same_cell`), else those with its walls at another gap, else every pair."""
+    own = [t for t in twins if t.runs and _same_cell(run, t.runs[0])]
+    if own:
+        return own
+    walls = [t for t in twins if t.runs and _same_walls(run, t.runs[0])]
+    return walls or list(twins)
+
+
+FACTOR_SOURCE = (
+    "from the run's own cell's replicates where it has them, else those with its walls at "
+    "another gap, else every pair"
+)
+"""How :func:`twins_for` picks the factor's replicates, in words."""
 
 
 def twins_text(results: Sequence[Any]) -> str:
@@ -811,27 +842,42 @@ def twin_factor(pairs: Sequence[TwinPair], column: str, zone: str = "static") ->
     return max(1.0, *got) if got else None
 
 
-def static_rescaled_text(rate: Sequence[RatePair], twins: Sequence[TwinPair]) -> str:
+def static_rescaled_text(
+    rate: Sequence[RatePair], twins: Sequence[TwinPair], runs: Mapping[str, Any] | None = None
+) -> str:
     """The rate pairs' static-zone misses (:func:`static_misses`) with each z divided by its
-    column's static-zone seed-scatter factor (:func:`twin_factor`): how many stay beyond
-    :data:`STATIC_SIGMAS` (referee 12, point 2); "" without misses or twins."""
-    rows = [(p, m) for p in rate for m in p.static]
-    factors = {m.column: twin_factor(twins, m.column) for _, m in rows}
-    rows = [(p, m) for p, m in rows if factors[m.column] is not None]
-    if not rows or not twins:
+    column's static-zone seed-scatter factor (:func:`twin_factor`) from the replicates that
+    apply to the pair's cell (:func:`twins_for`, ``runs``: name -> corpus run; every pair
+    without it): how many stay beyond :data:`STATIC_SIGMAS` (referee 12, point 2); "" without
+    misses or twins."""
+    if not twins:
+        return ""
+    rows = []
+    used: dict[str, dict[str, float]] = {}
+    for p in rate:
+        pick = twins_for(runs[p.fast], twins) if runs and p.fast in runs else list(twins)
+        names = "; ".join(f"{t.a} against {t.b}" for t in pick)
+        for m in p.static:
+            f = twin_factor(pick, m.column)
+            if f is not None:
+                rows.append((p, m, f))
+                used.setdefault(names, {})[m.column] = f
+    if not rows:
         return ""
     still = [
         f"{m.column} at {m.distance_d:.2g} d of {p.fast} against {p.slow} "
-        f"(z = {m.z:+.2g} -> {m.z / factors[m.column]:+.2g})"
-        for p, m in rows
-        if abs(m.z / factors[m.column]) > STATIC_SIGMAS  # type: ignore[operator]
+        f"(z = {m.z:+.2g} -> {m.z / f:+.2g})"
+        for p, m, f in rows
+        if abs(m.z / f) > STATIC_SIGMAS
     ]
-    used = ", ".join(f"{c} {f:.2g}" for c, f in factors.items() if f is not None)
-    names = "; ".join(f"{t.a} against {t.b}" for t in twins)
+    sources = "; ".join(
+        f"{names}: " + ", ".join(f"{c} {f:.2g}" for c, f in fs.items())
+        for names, fs in used.items()
+    )
     return (
         f" The {len(rows)} static-zone misses between the two speeds, each z divided by its "
         f"field's static-zone seed-scatter factor from the same-conditions replicates "
-        f"({names}: {used}): "
+        f"({sources}; {FACTOR_SOURCE}): "
         + (
             f"{len(still)} stay beyond {STATIC_SIGMAS:g} se ({'; '.join(still)}), more than "
             "the seed scatter the replicates show"
@@ -862,7 +908,7 @@ def balance_rescaled_text(runs: Sequence[Any], twins: Sequence[TwinPair]) -> str
             if row in cut:
                 continue
             static = i_col is not None and float(i_col[row]) < STATIC_I
-            f = twin_factor(twins, shear, "static" if static else "flowing")
+            f = twin_factor(twins_for(run, twins), shear, "static" if static else "flowing")
             if f is not None:
                 rows.append((run.name, d, z, z / f, f))
     if not rows:
@@ -873,7 +919,7 @@ def balance_rescaled_text(runs: Sequence[Any], twins: Sequence[TwinPair]) -> str
     return (
         f" The {len(rows)} momentum-balance misses outside the truncated bins, each z divided "
         f"by the shear stress's seed-scatter factor in its zone from the same-conditions "
-        f"replicates ({names}; measured at that one cell, applied to every run): {listed}: "
+        f"replicates ({names}; {FACTOR_SOURCE}): {listed}: "
         + (
             f"{len(still)} stay beyond {BALANCE_SIGMAS:g} se, so the seed scatter does not "
             "explain them."
@@ -918,14 +964,14 @@ def misfit_twin_text(
     rescaled = []
     for name in runs:
         em = error_models.get(name) or {}
-        for field, f in (("u", fu), ("omega", fo)):
-            rec = em.get(field)
+        for column, f in (("u", fu), ("omega", fo)):
+            rec = em.get(column)
             if not isinstance(rec, dict) or not isinstance(rec.get("ar1"), int | float):
                 continue
             chi2, n = float(rec["ar1"]) / f**2, int(rec["n"])
             p = dg.chi2_p_value(chi2, n)
             rescaled.append(
-                f"{name} {field} {float(rec['ar1']):.3g} -> {chi2:.3g} on {n}"
+                f"{name} {column} {float(rec['ar1']):.3g} -> {chi2:.3g} on {n}"
                 + ("" if p is None else f" (p = {p:.2g})")
             )
     return (

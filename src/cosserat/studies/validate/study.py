@@ -1057,6 +1057,8 @@ def _misfit_twins(v: Verdict, twins: Sequence[Any]) -> Verdict:
     runs = v.numbers.get("misfit_runs") or []
     if not twins or not runs or not v.numbers.get("reading"):
         return v
+    own = [t for t in twins if {t.a, t.b} <= set(v.runs)]
+    twins = own or twins  # the verdict's own replicates where it has them
     extra = misfit_twin_text(twins, v.numbers.get("error_models") or {}, runs)
     if not extra:
         return v
@@ -1098,7 +1100,7 @@ def rate_text(results: Sequence[RunResult]) -> str:
         "(bins compared at equal y, block errors, the two runs independent): "
         + "; ".join(p.text() for p in pairs)
         + "."
-        + static_rescaled_text(pairs, twin_pairs(results))
+        + static_rescaled_text(pairs, twin_pairs(results), {r.run.name: r.run for r in results})
     )
 
 
