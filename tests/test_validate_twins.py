@@ -324,3 +324,20 @@ def test_a_runs_factor_comes_from_its_own_cell_first(tmp_path):
                     (StaticMiss("nu", 9.3, -12.0),))  # fmt: skip
     text = static_rescaled_text([pair], both, {"e": _plane(tmp_path, "e", seed=3)})
     assert "(a against b: nu 3; from" in text and "z = -12 -> -4" in text
+
+
+def test_every_regime_block_names_the_replicates_own_first(tmp_path):
+    """The verdict's own pair first, the corpus's other pair marked; none: said so."""
+    from cosserat.studies.validate.study import twins_text
+
+    smooth = {"wall_fixed": {"kind": "smooth-frictional"}}
+    cells = (("a", 1, None), ("b", 2, None), ("c", 1, smooth), ("d", 2, smooth))
+    rs = [_result(_plane(tmp_path, n, seed=k, extra=e)) for n, k, e in cells]
+    twins = twin_pairs(rs)
+    assert [(t.a, t.b) for t in twins] == [("a", "b"), ("c", "d")]
+    text = twins_text(twins, rs[2:])
+    assert text.startswith("Same-conditions replicates: c against d (")
+    assert "Same-conditions replicates (the corpus's, not among this verdict's runs): a against " \
+        "b (" in text  # fmt: skip
+    assert twins_text([], rs).startswith("Same-conditions replicates: none (no cell run twice")
+    assert twins_text(twins, []) == ""

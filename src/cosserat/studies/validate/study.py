@@ -1043,9 +1043,10 @@ def twins_text(twins: Sequence[Any], results: Sequence[RunResult]) -> str:
             "realisations."
         )
     used = {r.run.name for r in results}
+    own = [p for p in twins if {p.a, p.b} <= used]  # the verdict's own pairs first
     text = " ".join(
-        p.text("" if {p.a, p.b} <= used else " (the corpus's, not among this verdict's runs)")
-        for p in twins
+        [p.text() for p in own]
+        + [p.text(" (the corpus's, not among this verdict's runs)") for p in twins if p not in own]
     )
     return text + balance_rescaled_text([r.run for r in results], twins)
 
