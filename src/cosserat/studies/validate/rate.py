@@ -7,6 +7,13 @@ compared: u and omega bin by bin at equal y (:func:`cosserat.dem.checks.rate_ind
 |z| <= 2 in at least the fraction a normal law puts there less 10 points, 85%), Delta, and the
 moving wall's measured stress ratio |shear| / normal from its contacts (the sidecar's
 ``wall_stress``). Errors are the runs' block errors, the two runs' taken as independent.
+
+**Same-conditions replicates** (referee 12, point 2): two runs of one cell at one wall speed
+with two seeds (:func:`twin_pairs`) are compared the same way on every field (u, omega, nu and
+the stresses, bins paired by row), and their seed-scatter factor sqrt(sum z^2 / n) -- what the
+block errors must be multiplied by to carry the scatter between realisations, overall and in
+the static zone -- rescales the static-zone checks beside their block-error z
+(:func:`static_rescaled_text`, :func:`balance_rescaled_text`, :func:`misfit_twin_text`).
 """
 
 from __future__ import annotations
