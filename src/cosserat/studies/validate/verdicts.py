@@ -2035,7 +2035,7 @@ def seed_scatter(s: DeltaSeries) -> dict[str, Any] | None:
     scatter between realisations together. ``interval``: its 95% range from the chi^2 law of
     the variance with ``dof`` degrees of freedom (one pair: 0.45x to 32x)."""
     by = {p.run: p for p in s.points}
-    rows = []
+    rows: list[dict[str, Any]] = []
     for a, b in s.twins:
         pa, pb = by.get(a), by.get(b)
         if pa is None or pb is None or pa.value is None or pb.value is None:
