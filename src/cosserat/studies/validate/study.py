@@ -72,7 +72,15 @@ from .nulls import (
     velocity_null,
     with_null,
 )
-from .rate import replicate_cells, slip_text
+from .rate import (
+    balance_rescaled_text,
+    misfit_twin_text,
+    replicate_cells,
+    slip_text,
+    static_rescaled_text,
+    twin_names,
+    twin_pairs,
+)
 from .spin_scan import COARSE, Scan, scan_or_skip, scan_verdict, shared_fits, spin_scans
 from .verdicts import (
     MIN_GAPS,
@@ -183,6 +191,7 @@ class ValidationReport:
             "verdicts": [v.to_dict() for v in self.verdicts],
             "runs": [r.to_dict() for r in self.results],
             "gap_series": [g.to_dict() for g in self.groups],
+            "twins": [p.to_dict() for p in twin_pairs(self.results)],
             "notes": self.notes,
             "files": self.files,
         }
@@ -972,6 +981,7 @@ def judge(
                 (f_note,) if f_note else (),
                 curves,
                 {r.run.name: r.run.meta.get("wall_speed") for r in members},
+                twins=twin_names([r.run for r in members]),
             )
         )
     if scanned is None or spin_scan <= 0:
@@ -1033,6 +1043,15 @@ def judge(
         else v
         for v in verdicts
     ]
+    twins = twin_pairs(results)
+    verdicts = [
+        replace(
+            v,
+            evidence=(f"{v.evidence} {twins_text(twins, [by_name[n] for n in v.runs])}").rstrip(),
+        )
+        for v in verdicts
+    ]
+    verdicts = [_misfit_twins(v, twins) if v.key == "spin_model" else v for v in verdicts]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))
 
 
@@ -1057,6 +1076,57 @@ def material_length(
     return None
 
 
+def twins_text(twins: Sequence[Any], results: Sequence[RunResult]) -> str:
+    """The regime block's sentences on the corpus's same-conditions replicates (one cell, one
+    wall speed, two seeds: ``rate.twin_pairs``; referee 12, point 2), every verdict's: each
+    pair compared bin by bin, and the momentum-balance misses of the verdict's runs rescaled
+    by the replicates' seed-scatter factor (``rate.balance_rescaled_text``); where none: that
+    no run is replicated at the same conditions. Empty without runs."""
+    if not results:
+        return ""
+    if not twins:
+        return (
+            "Same-conditions replicates: none (no cell run twice at one wall speed with two "
+            "seeds), so the block errors are not checked against the scatter between "
+            "realisations."
+        )
+    used = {r.run.name for r in results}
+    own = [p for p in twins if {p.a, p.b} <= used]  # the verdict's own pairs first
+    text = " ".join(
+        [p.text() for p in own]
+        + [p.text(" (the corpus's, not among this verdict's runs)") for p in twins if p not in own]
+    )
+    return text + balance_rescaled_text([r.run for r in results], twins)
+
+
+def _misfit_twins(v: Verdict, twins: Sequence[Any]) -> Verdict:
+    """spin_model's verdict with the replicates' word on its misfit reading
+    (``rate.misfit_twin_text``) right after it (:data:`MISFIT_ANCHORS`), where the joint fits
+    misfit."""
+    runs = v.numbers.get("misfit_runs") or []
+    if not twins or not runs or not v.numbers.get("reading"):
+        return v
+    own = [t for t in twins if {t.a, t.b} <= set(v.runs)]
+    twins = own or twins  # the verdict's own replicates where it has them
+    extra = misfit_twin_text(twins, v.numbers.get("error_models") or {}, runs)
+    if not extra:
+        return v
+    for anchor in MISFIT_ANCHORS:  # right after the reading's sentence, where it is found
+        at = v.evidence.find(anchor)
+        if at >= 0:
+            cut = at + len(anchor)
+            return replace(v, evidence=f"{v.evidence[:cut]}{extra}{v.evidence[cut:]}")
+    return replace(v, evidence=f"{v.evidence}{extra}")
+
+
+MISFIT_ANCHORS = (
+    "a second seed would settle the error scale.",
+    "and the 95% region is scaled alike.",
+)
+"""The ends of spin_model's misfit-reading sentence (``spin_scan.misfit_reading``), after
+which the replicates' word on it goes (at the end of the evidence where neither is found)."""
+
+
 def rate_text(results: Sequence[RunResult]) -> str:
     """One sentence for the spin and spin_model verdicts (referee 8, point 7): the runs' wall
     speeds (the sidecar's ``wall_speed``), and, for one cell run at two speeds, what its
@@ -1079,6 +1149,7 @@ def rate_text(results: Sequence[RunResult]) -> str:
         "(bins compared at equal y, block errors, the two runs independent): "
         + "; ".join(p.text() for p in pairs)
         + "."
+        + static_rescaled_text(pairs, twin_pairs(results), {r.run.name: r.run for r in results})
     )
 
 

@@ -117,6 +117,14 @@ PRECISION_DESIGNS: tuple[tuple[tuple[float, ...], int], ...] = (
 )
 """Gap designs (H/d values, runs per gap) whose slope error :func:`precision_needed` gives:
 three gaps a factor 2 apart, four up to 160 d, three with three seeds each."""
+SEED_DESIGNS: tuple[tuple[tuple[float, ...], int], ...] = (
+    ((20.0, 40.0, 80.0), 1),
+    ((20.0, 40.0, 80.0), 2),
+    ((20.0, 40.0, 80.0), 3),
+)
+"""Gap designs whose slope error :func:`precision_needed` also gives at the run-to-run
+scatter of Delta the same-conditions replicates show (:func:`seed_scatter`; referee 12,
+point 3): three gaps a factor 2 apart with one, two and three seeds each."""
 
 CLAIMS = {
     "spin": "The grain spin departs from half the vorticity near the walls.",
@@ -2135,6 +2143,10 @@ class DeltaSeries:
     notes: tuple[str, ...] = ()
     curves: Mapping[str, ModelDelta] = field(default_factory=dict)
     speeds: Mapping[str, float | None] = field(default_factory=dict)
+    twins: tuple[tuple[str, str], ...] = ()
+    """(a, b) run names of same-conditions replicates (one cell, one wall speed, two seeds:
+    ``rate.twin_names``) among the points: the run-to-run scatter of Delta
+    (:func:`seed_scatter`)."""
 
     def tests(self, best: bool = False) -> dict[str, CurveTest]:
         """Each calibrated model's :func:`curve_test` over the usable points it predicts; with
@@ -2354,11 +2366,51 @@ def slope_sigma(rel_se: float, gaps: Sequence[float], seeds: int = 1) -> float:
     return float(rel_se / math.sqrt(seeds * float(np.sum((x - x.mean()) ** 2))))
 
 
+def seed_scatter(s: DeltaSeries) -> dict[str, Any] | None:
+    """The run-to-run relative scatter of Delta from the series' same-conditions replicates
+    (``s.twins``; referee 12, point 3); None without a pair whose two runs both have a Delta
+    and an error.
+
+    Each pair gives the sample variance of ln Delta with one degree of freedom,
+    (ln Delta_a - ln Delta_b)^2 / 2; pairs are pooled by the mean of those variances
+    (``relative`` = its square root, ``dof`` = pairs). It carries the block errors and the
+    scatter between realisations together. ``interval``: its 95% range from the chi^2 law of
+    the variance with ``dof`` degrees of freedom (one pair: 0.45x to 32x)."""
+    by = {p.run: p for p in s.points}
+    rows: list[dict[str, Any]] = []
+    for a, b in s.twins:
+        pa, pb = by.get(a), by.get(b)
+        if pa is None or pb is None or pa.value is None or pb.value is None:
+            continue
+        if not (pa.value > 0.0 and pb.value > 0.0 and pa.stderr and pb.stderr):
+            continue
+        z = (pa.value - pb.value) / math.hypot(pa.stderr, pb.stderr)
+        rows.append(
+            {
+                "a": a,
+                "b": b,
+                "Delta": [pa.value, pb.value],
+                "stderr": [pa.stderr, pb.stderr],
+                "difference": pa.value - pb.value,
+                "z": z,
+                "relative": abs(math.log(pa.value / pb.value)) / math.sqrt(2.0),
+            }
+        )
+    if not rows:
+        return None
+    n = len(rows)
+    rel = math.sqrt(sum(r["relative"] ** 2 for r in rows) / n)
+    lo = rel * math.sqrt(n / float(chi2_dist.ppf(0.975, n)))
+    hi = rel * math.sqrt(n / float(chi2_dist.ppf(0.025, n)))
+    return {"pairs": rows, "relative": rel, "dof": n, "interval": [lo, hi]}
+
+
 def precision_needed(
     s: DeltaSeries,
     target: float,
     other: float,
     designs: Sequence[tuple[Sequence[float], int]] = PRECISION_DESIGNS,
+    seed_designs: Sequence[tuple[Sequence[float], int]] = SEED_DESIGNS,
 ) -> dict[str, Any] | None:
     """The slope error each gap design would give at the series' measured precision of Delta,
     and whether it tells ``target`` from ``other`` (referee 11, point 5); None without a run
@@ -2370,7 +2422,12 @@ def precision_needed(
     sigma <= |target - other| / 2; the slope rule's margin (a slope at ``target`` within 2 se
     of it and more than 2 se from ``other``) needs sigma <= |target - other| / 4. A design's
     smallest gap clears the fills-its-gap cut when its H/2 exceeds the largest measured Delta
-    (bands no thicker than the measured)."""
+    (bands no thicker than the measured).
+
+    Where the series holds same-conditions replicates (:func:`seed_scatter`), ``seeds`` gives
+    the run-to-run scatter and ``seed_designs[]`` the slope error of ``seed_designs`` at the
+    larger of it and the block error (the scatter of one pair may fall below the block error
+    by chance; the design is not made better than the block errors allow)."""
     rel = [
         p.stderr / p.value
         for p in s.points
@@ -2381,26 +2438,36 @@ def precision_needed(
     worst = max(rel)
     biggest = max(p.value for p in s.points if p.value is not None)
     two, four = abs(target - other) / 2.0, abs(target - other) / 4.0
-    rows = []
-    for gaps, seeds in designs:
-        sigma = slope_sigma(worst, gaps, seeds)
-        rows.append(
-            {
-                "gaps": [float(g) for g in gaps],
-                "seeds": int(seeds),
-                "sigma": sigma,
-                "two_se": sigma <= two,
-                "margin": sigma <= four,
-                "clears_cut": FILLS_GAP * min(gaps) > biggest,
-            }
-        )
+
+    def rows_at(level: float, which: Sequence[tuple[Sequence[float], int]]) -> list[dict]:
+        out = []
+        for gaps, seeds in which:
+            sigma = slope_sigma(level, gaps, seeds)
+            out.append(
+                {
+                    "gaps": [float(g) for g in gaps],
+                    "seeds": int(seeds),
+                    "sigma": sigma,
+                    "two_se": sigma <= two,
+                    "margin": sigma <= four,
+                    "clears_cut": FILLS_GAP * min(gaps) > biggest,
+                }
+            )
+        return out
+
+    scatter = seed_scatter(s)
     return {
         "relative_se": worst,
         "relative_se_range": [min(rel), worst],
         "sigma_two_se": two,
         "sigma_margin": four,
         "largest_Delta": biggest,
-        "designs": rows,
+        "designs": rows_at(worst, designs),
+        "seeds": scatter,
+        "seed_level": None if scatter is None else max(scatter["relative"], worst),
+        "seed_designs": []
+        if scatter is None
+        else rows_at(max(scatter["relative"], worst), seed_designs),
     }
 
 
@@ -2421,10 +2488,17 @@ def precision_text(s: DeltaSeries, target: float, other: float) -> str:
     short_ = [_design_text(r) for r in rows if not r["two_se"]]
     margin = [_design_text(r) for r in rows if r["margin"]]
     cut = [r for r in rows if not r["clears_cut"]]
+    scatter = need["seeds"]
     text = (
         f"the precision needed in {short(s.key)}: at the runs' Delta errors "
         f"({100 * lo:.0f}-{100 * hi:.0f}% of Delta; the largest, {100 * hi:.0f}%, taken for "
-        f"every run; block errors, which a second seed would check) the slope's error is "
+        "every run; "
+        + (
+            "block errors, which a second seed would check"
+            if scatter is None
+            else "block errors, which a second seed already questions"
+        )
+        + ") the slope's error is "
         f"rel/sqrt(seeds sum (ln H - mean)^2); 2 se between the exponents {other:.3g} and "
         f"{target:.3g} needs sigma <= {need['sigma_two_se']:.3g}: "
         + ("reached by " + "; ".join(two) if two else "reached by none of the designs")
@@ -2446,7 +2520,47 @@ def precision_text(s: DeltaSeries, target: float, other: float) -> str:
             f"Delta "
             f"({need['largest_Delta']:.3g} d), so bands like the measured would not fill it"
         )
-    return text
+    return text + _seed_text(need)
+
+
+def _seed_text(need: Mapping[str, Any]) -> str:
+    """:func:`precision_needed`'s design at the replicates' scatter in words ("" without
+    replicates)."""
+    scatter = need.get("seeds")
+    if not scatter:
+        return ""
+    pairs = "; ".join(
+        f"{r['a']} and {r['b']}: {r['Delta'][0]:.3g} +- {r['stderr'][0]:.2g} against "
+        f"{r['Delta'][1]:.3g} +- {r['stderr'][1]:.2g} d, {abs(r['difference']):.3g} d apart "
+        f"(z = {r['z']:+.2g})"
+        for r in scatter["pairs"]
+    )
+    rows = need["seed_designs"]
+    two = [_design_text(r) for r in rows if r["two_se"]]
+    short_ = [_design_text(r) for r in rows if not r["two_se"]]
+    margin = [_design_text(r) for r in rows if r["margin"]]
+    lo, hi = scatter["interval"]
+    level = need["seed_level"]
+    return (
+        f". The {100 * need['relative_se']:.0f}% is a block error that a second seed already "
+        f"questions: the same-conditions replicates (one cell, one wall speed, two seeds; "
+        f"{pairs}) give a per-run scatter of Delta of |ln(Delta_a / Delta_b)| / sqrt(2) = "
+        f"{100 * scatter['relative']:.0f}% from {scatter['dof']} pair(s) ({scatter['dof']} "
+        f"degree(s) of freedom: 95% range {100 * lo:.0f}-{100 * hi:.0f}%, so "
+        + ("one pair barely bounds it" if scatter["dof"] == 1 else "a rough estimate")
+        + "). At "
+        f"{100 * level:.0f}% per run"
+        + (
+            " (the block error: the replicates' scatter is below it)"
+            if level > scatter["relative"]
+            else ""
+        )
+        + f", 2 se between the exponents (sigma <= {need['sigma_two_se']:.3g}) is "
+        + ("reached by " + "; ".join(two) if two else "reached by none of the designs")
+        + ("" if not short_ else "; not by " + "; ".join(short_))
+        + f"; the slope rule's margin (sigma <= {need['sigma_margin']:.3g}) "
+        + ("by " + "; ".join(margin) if margin else "by none of them")
+    )
 
 
 def level_miss(s: DeltaSeries, model: str = "cosserat") -> dict[str, Any] | None:
