@@ -886,7 +886,9 @@ SCAN_KEY = (
     "of the joint u + omega + stress-ratio fit, Delta chi^2 <= chi2.ppf(0.95, k) x chi^2/dof "
     "on both grids (thin: the declared ranges' grid; thick: the finer grid), the text's "
     "region; star: its optimum; dotted box: the extent of the finer grid around it (its top "
-    "and bottom edges are the horizontal dotted lines); grey: the model has no solution (the "
+    "and bottom edges are the horizontal dotted lines); small black dots and medium contour: the "
+    "declared ranges' cells along the region refined 4 times finer (the region followed along its "
+    "valley); grey: the model has no solution (the "
     "couple stress reaches its yield bound inside the gap), where the region meets it L's "
     "limit is the model's existence bound, not the data's"
 )
@@ -993,6 +995,14 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                 if name == "near":
                     ax.plot([L[0], L[-1], L[-1], L[0], L[0]], [K[0], K[0], K[-1], K[-1], K[0]],
                             color="0.3", linewidth=0.7, linestyle=":")  # fmt: skip
+            for g in sc.get("refined", ()):  # the range grid's cells refined along the region
+                K, L, dc = np.array(g["K"]), np.array(g["L"]), arr(g, "delta_chi2")
+                LL, KK = np.meshgrid(L, K)
+                inside = np.isfinite(dc) & (dc <= sc["threshold"])
+                ax.plot(LL[inside], KK[inside], linestyle="none", marker=".", markersize=2.0,
+                        color="k", zorder=4)  # fmt: skip
+                if np.isfinite(dc).any() and K.size > 1 and L.size > 1:
+                    _region_lines(ax, L, K, dc, sc["threshold"], 1.0)
             ax.plot([sc["best_L"]], [sc["best_K"]], marker="*", color="k", markersize=10,
                     linestyle="none", zorder=5)  # fmt: skip
             ax.set_facecolor("0.85")

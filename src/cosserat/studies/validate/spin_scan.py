@@ -766,10 +766,9 @@ class Scan:
     @property
     def admissible_count(self) -> int:
         """Grid points inside the 95% region: both grids' and the patches'."""
-        return (
-            int(np.count_nonzero(self.admissible) + np.count_nonzero(self.admissible_near))
-            + len(self._patch_values(False, True))
-        )
+        return int(
+            np.count_nonzero(self.admissible) + np.count_nonzero(self.admissible_near)
+        ) + len(self._patch_values(False, True))
 
     @property
     def admissible_span(self) -> tuple[float, float]:
