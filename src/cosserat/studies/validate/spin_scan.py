@@ -96,7 +96,7 @@ REFINE = 4
 many intervals per parameter (:func:`refine_cells`, referee 12, point 5(ii)) [-]."""
 RESTARTS = 2
 """At most this many restarts of the joint fit from a grid point of lower chi^2
-(:func:`scan_run`, :func:`restart_point`)."""
+(:func:`scan_run`, :func:`restart_from_grid`)."""
 
 
 # --------------------------------------------------------------------------- the angles
@@ -3512,7 +3512,7 @@ def restart_from_grid(
     tol: float = BELOW_OPTIMUM,
     restarts: int = RESTARTS,
 ) -> tuple[Any, list[dict[str, float]]]:
-    """The joint fit made global by its scan (referee 12, item 3 of the round's brief): while
+    """The joint fit made global by its scan (referee 12: smooth_H20's was a local one): while
     the scan of ``fit`` has a grid point whose chi^2 lies more than ``tol`` below the fit's
     (``lowest(fit)``: that point's ``K``, ``L`` [d] and ``chi2``, or None), the optimiser is
     restarted from it (``refit(fit, point)``: a fit, or None where it fails), and the refit
@@ -3724,18 +3724,25 @@ def shared_fits(
 __all__ = [
     "BELOW_OPTIMUM",
     "COARSE",
+    "CROSS_CHECK_END",
     "DEFAULT_PREDICTOR",
     "ERROR_MODELS",
     "ERROR_MODEL_NAMES",
+    "FINER",
     "FITS_P",
     "LEVEL",
     "LOCAL_SPAN",
     "PREDICTORS",
+    "PROFILE_STRIDE",
     "QUALIFIER_SCOPE",
+    "REFINE",
+    "RESTARTS",
     "SIZE_RULE_SIGMAS",
     "SIZE_SIGMAS",
+    "SUB_GRAIN",
     "Angles",
     "JointFit",
+    "Patch",
     "Predictor",
     "Scan",
     "angle_errors",
@@ -3743,12 +3750,15 @@ __all__ = [
     "below_optimum",
     "bin_means",
     "binned_departure",
+    "cell_axes",
     "covariance_text",
     "error_model_scales",
     "firm_runs",
     "first_bin",
     "joint_fit",
     "lead_text",
+    "match_zone",
+    "match_zone_text",
     "matching_reading",
     "material_data",
     "misfit_reading",
@@ -3759,10 +3769,13 @@ __all__ = [
     "phi_sensitivity_text",
     "point_departure",
     "prediction_se_at",
+    "refine_cells",
     "region_extent",
     "region_pieces",
     "region_profiles",
     "region_text",
+    "restart_from_grid",
+    "restarts_text",
     "rules_line",
     "rules_summary",
     "run_steadiness",
