@@ -644,8 +644,7 @@ class Scan:
     """The range grid refined along the 95% region (:func:`refine_cells`): each cell with a
     corner inside (not wholly in a finer grid's box) gridded :data:`REFINE` times finer in K
     and in log L, so the region is followed along its valley to where the data or the model's
-    existence end it (referee 12, point 5(ii)); the departure and null at the region's points
-    only (NaN elsewhere: the range grid's points hold the rest)."""
+    existence end it (referee 12, point 5(ii))."""
     restarts: list[dict[str, float]] = field(default_factory=list)
     """The joint fit's restarts from a grid point of lower chi^2 (:func:`scan_run`): each the
     point (``K``, ``L`` [d], ``chi2``), the fit it left (``K_from``, ``L_from``,
@@ -983,10 +982,7 @@ def scan(
     L = np.geomspace(l_slot.natural(llo), l_slot.natural(lhi), points)
     theta0 = fit.theta
 
-    def grid(
-        kk: FloatArray, ll: FloatArray, below: float = math.inf
-    ) -> tuple[FloatArray, FloatArray, FloatArray]:
-        # the departure and null where chi^2 <= below (every solved point by default)
+    def grid(kk: FloatArray, ll: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         dep = np.full((kk.size, ll.size), np.nan)
         nul = np.full((kk.size, ll.size), np.nan)
         chi2 = np.full((kk.size, ll.size), np.inf)
@@ -1002,8 +998,6 @@ def scan(
             if not math.isfinite(lnl[n]):
                 continue
             chi2[a, b] = -2.0 * (float(lnl[n]) - s.log_norm)
-            if chi2[a, b] > below:
-                continue
             try:
                 prof = _profile(s.model, rd, s.run_values(rd, th))
             except SOLVE_ERRORS:
@@ -1035,7 +1029,7 @@ def scan(
     patches = []
     for a, b in refine_cells(K, L, chi2 - float(fit.calibration.chi2), threshold, box):
         kk, ll = cell_axes(K, L, a, b)
-        pd, pc, pn = grid(kk, ll, float(fit.calibration.chi2) + threshold)
+        pd, pc, pn = grid(kk, ll)
         patches.append(Patch(kk, ll, pd, pc, pn))
     best_profile = _profile(s.model, rd, s.run_values(rd, theta0))
     best = float(predictor(best_profile, run)[i0])
