@@ -982,29 +982,34 @@ def scan(
     L = np.geomspace(l_slot.natural(llo), l_slot.natural(lhi), points)
     theta0 = fit.theta
 
+    # every point computed once: the refined cells share their edges with each other and
+    # their corners with the range grid
+    done: dict[tuple[float, float], tuple[float, float, float]] = {}
+
     def grid(kk: FloatArray, ll: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        dep = np.full((kk.size, ll.size), np.nan)
-        nul = np.full((kk.size, ll.size), np.nan)
-        chi2 = np.full((kk.size, ll.size), np.inf)
-        thetas = []
+        todo, thetas = [], []
         for kv in kk:
             for lv in ll:
+                if (float(kv), float(lv)) in done:
+                    continue
                 th = theta0.copy()
                 th[ik], th[il] = k_slot.internal(kv), l_slot.internal(lv)
+                todo.append((float(kv), float(lv)))
                 thetas.append(th)
-        lnl = s.log_likelihood_many(np.array(thetas))
-        for n, th in enumerate(thetas):
-            a, b = divmod(n, ll.size)
-            if not math.isfinite(lnl[n]):
-                continue
-            chi2[a, b] = -2.0 * (float(lnl[n]) - s.log_norm)
-            try:
-                prof = _profile(s.model, rd, s.run_values(rd, th))
-            except SOLVE_ERRORS:
-                continue
-            dep[a, b] = float(predictor(prof, run)[i0])
-            nul[a, b] = float(null_of(prof, run)[i0])
-        return dep, chi2, nul
+        lnl = s.log_likelihood_many(np.array(thetas)) if thetas else []
+        for key, th, ln in zip(todo, thetas, lnl, strict=True):
+            got = (math.nan, math.inf, math.nan)
+            if math.isfinite(ln):
+                c2 = -2.0 * (float(ln) - s.log_norm)
+                got = (math.nan, c2, math.nan)
+                try:
+                    prof = _profile(s.model, rd, s.run_values(rd, th))
+                    got = (float(predictor(prof, run)[i0]), c2, float(null_of(prof, run)[i0]))
+                except SOLVE_ERRORS:
+                    pass
+            done[key] = got
+        out = np.array([[done[(float(kv), float(lv))] for lv in ll] for kv in kk], dtype=float)
+        return out[..., 0], out[..., 1], out[..., 2]
 
     dep, chi2, nul = grid(K, L)
     # the 95% region is small against the declared ranges: a grid of the same size around the
