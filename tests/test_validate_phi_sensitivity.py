@@ -193,6 +193,16 @@ def test_at_the_fitted_phi_the_rows_are_the_scans_own_range_grid(pair):
         if r not in own:
             assert not own[0]["phi"] <= r["phi"] <= own[1]["phi"]
     assert sc.to_dict()["phi_sensitivity"]["sign"] in ("positive", "negative", "mixed")
+    # the joint fit is the grid's minimum (or a restart from a lower point is recorded), and
+    # every refined cell is a range-grid cell with a corner inside the 95% region
+    assert ss.below_optimum(sc) is None or any(m["kept"] == 0.0 for m in sc.restarts)
+    d = sc.chi2 - sc.chi2_min
+    for p in sc.patches:
+        a, b = int(np.flatnonzero(sc.K == p.K[0])[0]), int(np.flatnonzero(sc.L == p.L[0])[0])
+        assert (p.K[-1], p.L[-1]) == (sc.K[a + 1], sc.L[b + 1])
+        assert (d[a : a + 2, b : b + 2] <= sc.threshold).any()
+    record = sc.to_dict()
+    assert len(record["refined"]) == len(sc.patches) and record["restarts"] == sc.restarts
 
 
 # --------------------------------------------------------------------------- point 4
