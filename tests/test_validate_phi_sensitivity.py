@@ -39,6 +39,51 @@ def test_the_phi_ends_are_the_scaled_pooled_range_and_the_runs_extremes(monkeypa
     )
 
 
+def test_the_cross_checks_extreme_enters_where_it_lies_beyond_the_walls_range(monkeypatch):
+    # referee 12, point 5(i): walls 0.30 and 0.34 (range 0.28-0.36 as above); the bands' T
+    # 0.29 (inside: left out) and 0.37 (beyond: added as the cross-check's highest)
+    walls = stresses.pool([0.30, 0.34], [0.01, 0.01], ["a", "b"])
+    bands = stresses.pool([0.29, 0.37], [0.01, 0.01], ["a", "b"])
+    got = stresses.StressPool("sin phi", "wall", walls, bands)
+    monkeypatch.setattr(
+        stresses, "material_sin_phi", lambda runs, material: SimpleNamespace(sin_phi=got)
+    )
+    ends = ss.phi_ends([], "m")
+    assert ends[-1] == ("cross-check: highest run's band T (b)", pytest.approx(_asin_deg(0.37)))
+    assert [lab for lab, _ in ends[:-1]] == [
+        "pooled sin phi - 2 se", "lowest run's T (a)", "highest run's T (b)",
+        "pooled sin phi + 2 se",
+    ]  # fmt: skip
+    # the v2 runs' band T 0.331 is 19.3 deg, beyond the walls' 16.6-18.7
+    assert _asin_deg(0.3306862716376498) == pytest.approx(19.31, abs=0.005)
+
+
+def test_the_sentence_gives_the_sign_at_the_cross_checks_phi():
+    """From a hand record: the cross-check's row at 19.3 deg keeps the positive sign in one run
+    and turns it in the other."""
+    top = "cross-check: highest run's band T (a)"
+    rows_a = [_row(16.7, 0.0005, 0.2), {**_row(19.3, 0.002, 0.38), "label": top}]
+    rows_b = [_row(16.7, 0.004, 0.1), {**_row(19.3, 0.02, 0.25), "label": top}]
+    a = _scan("a", (0.001, 0.3), -0.1, rows_a)
+    b = _scan("b", (0.01, 0.2), -0.2, rows_b)
+    text = ss.phi_sensitivity_text([a, b])
+    assert (
+        "(the pooled sin phi +- 2 se, the runs' extreme wall ratios and the cross-check's highest "
+        f"band T = {math.sin(math.radians(19.3)):.3g} (a); each wall's tan delta held)" in text
+    )
+    assert (
+        "spans +0.0005 to +0.38 (+0.002 to +0.38 at the cross-check's phi = 19.3 deg: positive, "
+        "the fitted phi's sign in 2 of 2 runs): positive over the grid at phi = 16.7-19.3 deg "
+        "in all 2 runs" in text
+    )
+    rows_b[1] = {**_row(19.3, -0.01, 0.25), "label": top}
+    b = _scan("b", (0.01, 0.2), -0.2, rows_b)
+    text = ss.phi_sensitivity_text([a, b])
+    assert "(-0.01 to +0.38 at the cross-check's phi = 19.3 deg: mixed, the fitted phi's sign " \
+        "in 1 of 2 runs)" in text  # fmt: skip
+    assert "in b: there the refutation depends on phi" in text
+
+
 def test_one_run_gives_only_the_pooled_ends_and_an_end_beyond_one_is_left_out(monkeypatch):
     pooled = stresses.pool([0.95], [0.03], ["a"])  # 0.95 +- 0.06: 0.89 and 1.01
     got = stresses.StressPool("sin phi", "wall", pooled, None)
@@ -141,8 +186,23 @@ def test_at_the_fitted_phi_the_rows_are_the_scans_own_range_grid(pair):
     with pytest.raises(ParameterError, match="the phi sensitivity's stride must be >= 1; got 0"):
         ss.phi_sensitivity(sc, smooth, [], stride=0)
     ends = sc.phi_sensitivity["rows"]
-    assert [r["label"] for r in ends] == ["pooled sin phi - 2 se", "pooled sin phi + 2 se"]
+    own = [r for r in ends if not r["label"].startswith(ss.CROSS_CHECK_END)]
+    assert [r["label"] for r in own] == ["pooled sin phi - 2 se", "pooled sin phi + 2 se"]
+    # the band's T (the cross-check) enters only beyond the walls' range
+    for r in ends:
+        if r not in own:
+            assert not own[0]["phi"] <= r["phi"] <= own[1]["phi"]
     assert sc.to_dict()["phi_sensitivity"]["sign"] in ("positive", "negative", "mixed")
+    # the joint fit is the grid's minimum (or a restart from a lower point is recorded), and
+    # every refined cell is a range-grid cell with a corner inside the 95% region
+    assert ss.below_optimum(sc) is None or any(m["kept"] == 0.0 for m in sc.restarts)
+    d = sc.chi2 - sc.chi2_min
+    for p in sc.patches:
+        a, b = int(np.flatnonzero(sc.K == p.K[0])[0]), int(np.flatnonzero(sc.L == p.L[0])[0])
+        assert (p.K[-1], p.L[-1]) == (sc.K[a + 1], sc.L[b + 1])
+        assert (d[a : a + 2, b : b + 2] <= sc.threshold).any()
+    record = sc.to_dict()
+    assert len(record["refined"]) == len(sc.patches) and record["restarts"] == sc.restarts
 
 
 # --------------------------------------------------------------------------- point 4

@@ -905,7 +905,9 @@ SCAN_KEY = (
     "of the joint u + omega + stress-ratio fit, Delta chi^2 <= chi2.ppf(0.95, k) x chi^2/dof "
     "on both grids (thin: the declared ranges' grid; thick: the finer grid), the text's "
     "region; star: its optimum; dotted box: the extent of the finer grid around it (its top "
-    "and bottom edges are the horizontal dotted lines); grey: the model has no solution (the "
+    "and bottom edges are the horizontal dotted lines); small black dots and medium contour: the "
+    "declared ranges' cells along the region refined 4 times finer, coloured and hatched alike "
+    "(the region followed along its valley); grey: the model has no solution (the "
     "couple stress reaches its yield bound inside the gap), where the region meets it L's "
     "limit is the model's existence bound, not the data's"
 )
@@ -977,8 +979,10 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
             m, se = sc["measured_beyond_null"], sc["measured_beyond_null_se"]
             reach = beyond_range(sc)
             hatched = False
-            for name in ("range", "near"):
-                g = sc["grids"][name]
+            layers = [("range", sc["grids"]["range"]), ("near", sc["grids"]["near"])]
+            # the range grid's cells refined along the region, drawn over both
+            layers += [("refined", g) for g in sc.get("refined", ())]
+            for name, g in layers:
                 K, L = np.array(g["K"]), np.array(g["L"])
                 d, dc = beyond(g), arr(g, "delta_chi2")
                 if K.size < 2 or L.size < 2:
@@ -1003,12 +1007,15 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                     hatch.set_edgecolor("0.15")
                 LL, KK = np.meshgrid(L, K)
                 inside = np.isfinite(dc) & (dc <= sc["threshold"])
-                ax.plot(LL[np.isfinite(d) & ~inside], KK[np.isfinite(d) & ~inside],
-                        linestyle="none", marker=".", markersize=1.5, color="0.35")  # fmt: skip
-                ax.plot(LL[inside], KK[inside], linestyle="none", marker=".", markersize=3.5,
-                        color="k", zorder=4)  # fmt: skip
+                fine = name == "refined"
+                if not fine:
+                    ax.plot(LL[np.isfinite(d) & ~inside], KK[np.isfinite(d) & ~inside],
+                            linestyle="none", marker=".", markersize=1.5, color="0.35")  # fmt: skip
+                ax.plot(LL[inside], KK[inside], linestyle="none", marker=".",
+                        markersize=2.0 if fine else 3.5, color="k", zorder=4)  # fmt: skip
                 if np.isfinite(dc).any():
-                    _region_lines(ax, L, K, dc, sc["threshold"], 1.3 if name == "near" else 0.6)
+                    width = {"near": 1.3, "refined": 1.0}.get(name, 0.6)
+                    _region_lines(ax, L, K, dc, sc["threshold"], width)
                 if name == "near":
                     ax.plot([L[0], L[-1], L[-1], L[0], L[0]], [K[0], K[0], K[-1], K[-1], K[0]],
                             color="0.3", linewidth=0.7, linestyle=":")  # fmt: skip

@@ -91,6 +91,12 @@ LOCAL_SPAN = 4.0
 """The local grid spans this many of the calibration's standard errors each way [-]."""
 SIZE_SIGMAS = 2.0
 """"supported" needs the best fit's first-layer departure within this many se of the data's."""
+REFINE = 4
+"""The scan refines each cell of the range grid with a corner inside the 95% region into this
+many intervals per parameter (:func:`refine_cells`, referee 12, point 5(ii)) [-]."""
+RESTARTS = 2
+"""At most this many restarts of the joint fit from a grid point of lower chi^2
+(:func:`scan_run`, :func:`restart_from_grid`)."""
 
 
 # --------------------------------------------------------------------------- the angles
@@ -456,6 +462,88 @@ def _without_first_layer(rd: Any, s0: float) -> tuple[Any, float | None]:
 
 
 # --------------------------------------------------------------------------- the scan
+@dataclass(frozen=True)
+class Patch:
+    """One cell of a scan's range grid refined (:func:`refine_cells`): the same arrays as the
+    range grid's, K [-] and L [d] from the cell's corners, departure, chi^2 and null over
+    (K, L)."""
+
+    K: FloatArray
+    L: FloatArray
+    departure: FloatArray
+    chi2: FloatArray
+    null: FloatArray
+
+
+def refine_cells(
+    K: FloatArray,
+    L: FloatArray,
+    dchi2: FloatArray,
+    threshold: float,
+    box: tuple[float, float, float, float] | None = None,
+) -> list[tuple[int, int]]:
+    """The cells (a, b) of a (K, L) grid (between K[a], K[a+1] and L[b], L[b+1]) to refine
+    (referee 12, point 5(ii)): those with a corner whose Delta chi^2 ``dchi2[a', b']`` is at
+    most ``threshold`` (a corner without a solution, NaN or inf, does not count, but does not
+    stop a cell: the region's edge against the model's existence bound is refined too), less
+    those wholly inside ``box`` = (K lo, K hi, L lo, L hi), which a finer grid covers.
+
+    Raises
+    ------
+    ParameterError
+        ``dchi2`` is not (K size, L size).
+    """
+    K, L = np.asarray(K, dtype=float), np.asarray(L, dtype=float)
+    d = np.asarray(dchi2, dtype=float)
+    if d.shape != (K.size, L.size):
+        raise ParameterError(f"Delta chi^2 must be (K, L) = ({K.size}, {L.size}); got {d.shape}")
+    inside = np.isfinite(d) & (d <= threshold)
+    out = []
+    for a in range(K.size - 1):
+        for b in range(L.size - 1):
+            if not inside[a : a + 2, b : b + 2].any():
+                continue
+            if box is not None and (
+                box[0] <= K[a] and K[a + 1] <= box[1] and box[2] <= L[b] and L[b + 1] <= box[3]
+            ):
+                continue
+            out.append((a, b))
+    return out
+
+
+FINER = 2.0
+"""The finer grid covers a cell of the range grid (:func:`refine_cells` leaves it) where its
+steps are at least this many times smaller in K and in log L [-]."""
+
+
+def _finer_box(
+    K: FloatArray, L: FloatArray, K_near: FloatArray, L_near: FloatArray
+) -> tuple[float, float, float, float] | None:
+    """The finer grid's box (K lo, K hi, L lo, L hi) where it resolves the range grid
+    :data:`FINER` times finer in both directions, else None (where the 95% region is as wide
+    as the ranges, the finer grid is no finer)."""
+    if min(K.size, L.size, K_near.size, L_near.size) < 2:
+        return None
+    step = np.ptp(K) / (K.size - 1), np.ptp(np.log(L)) / (L.size - 1)
+    near = np.ptp(K_near) / (K_near.size - 1), np.ptp(np.log(L_near)) / (L_near.size - 1)
+    if near[0] * FINER > step[0] or near[1] * FINER > step[1]:
+        return None
+    return float(K_near[0]), float(K_near[-1]), float(L_near[0]), float(L_near[-1])
+
+
+def cell_axes(
+    K: FloatArray, L: FloatArray, a: int, b: int, n: int = REFINE
+) -> tuple[FloatArray, FloatArray]:
+    """The K [-] and L [d] of cell (a, b) of a grid refined ``n`` times: ``n + 1`` points each,
+    K evenly and L evenly in log, the cell's corners at the ends (exactly the grid's)."""
+    if n < 1:
+        raise ParameterError(f"a cell is refined into >= 1 intervals; got {n}")
+    k = np.linspace(float(K[a]), float(K[a + 1]), n + 1)
+    ll = np.exp(np.linspace(math.log(float(L[b])), math.log(float(L[b + 1])), n + 1))
+    ll[0], ll[-1] = float(L[b]), float(L[b + 1])
+    return k, ll
+
+
 @dataclass
 class Scan:
     """The first-layer departure and the joint fit's chi^2 over a (K, L) grid of one run.
@@ -552,11 +640,50 @@ class Scan:
     steadiness: str = ""
     """"steady", "not steady" or "not recorded": the sidecar's steadiness test (referee 10,
     point 1: an unsteady run does not make a refutation firm on its own)."""
+    patches: list[Patch] = field(default_factory=list)
+    """The range grid refined along the 95% region (:func:`refine_cells`): each cell with a
+    corner inside (not wholly in a finer grid's box) gridded :data:`REFINE` times finer in K
+    and in log L, so the region is followed along its valley to where the data or the model's
+    existence end it (referee 12, point 5(ii))."""
+    restarts: list[dict[str, float]] = field(default_factory=list)
+    """The joint fit's restarts from a grid point of lower chi^2 (:func:`scan_run`): each the
+    point (``K``, ``L`` [d], ``chi2``), the fit it left (``K_from``, ``L_from``,
+    ``chi2_from``) and the refit (``K_to``, ``L_to``, ``chi2_to``); empty where the fit was
+    the grid's minimum."""
     phi_sensitivity: dict[str, Any] = field(default_factory=dict)
     """The model's first-layer departure beyond its own null over the range grid at the ends
     of the plausible phi range (:func:`phi_sensitivity`, referee 11, point 3): ``rows`` (one
     per phi: ``label``, ``phi`` [deg], ``lo``, ``hi`` [-], ``solved`` points), ``sign`` and
     ``seconds`` (its cost); empty where not computed."""
+
+    def grids(self) -> list[tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, str]]:
+        """Every grid of the scan: (K, L, departure, chi^2, null, edge) of the range grid
+        (``"range"``), the finer one (``"box"``) and each refinement patch (``"refined"``)."""
+        out = [
+            (self.K, self.L, self.departure, self.chi2, self.null, "range"),
+            (self.K_near, self.L_near, self.departure_near, self.chi2_near, self.null_near, "box"),
+        ]
+        out += [(p.K, p.L, p.departure, p.chi2, p.null, "refined") for p in self.patches]
+        return out
+
+    def _patch_values(self, beyond: bool, admissible: bool) -> list[float]:
+        """The patches' departures (beyond their null where ``beyond``), at their admissible
+        points where ``admissible``, else at every solved one."""
+        vals: list[float] = []
+        for p in self.patches:
+            d = p.departure - p.null if beyond else p.departure
+            ok = np.isfinite(d)
+            if admissible:
+                ok &= p.chi2 - self.chi2_min <= self.threshold
+            vals += [float(x) for x in d[ok]]
+        return vals
+
+    def _patch_null(self) -> list[float]:
+        return [
+            float(x)
+            for p in self.patches
+            for x in p.null[np.isfinite(p.departure) & (p.chi2 - self.chi2_min <= self.threshold)]
+        ]
 
     @property
     def scale(self) -> float:
@@ -584,7 +711,7 @@ class Scan:
     def null_se(self) -> float:
         """The null's standard error from its spread over the 95% region, as
         ``prediction_se`` [-]."""
-        lo, hi = self._span(self.null, self.null_near, self.null_best)
+        lo, hi = self._span(self.null, self.null_near, self.null_best, self._patch_null())
         return (hi - lo) / (2.0 * math.sqrt(self.threshold / self.scale))
 
     @property
@@ -601,7 +728,7 @@ class Scan:
         near = self.departure_near - (
             self.null_near if self.null_near.shape == self.departure_near.shape else 0.0
         )
-        return self._span(far, near, self.beyond_best)
+        return self._span(far, near, self.beyond_best, self._patch_values(True, True))
 
     @property
     def beyond_se(self) -> float:
@@ -614,8 +741,10 @@ class Scan:
     def _angle_terms(self, which: int) -> list[float]:
         return [v[which] for v in self.angle_se.values() if math.isfinite(v[which])]
 
-    def _span(self, far: Any, near: Any, best: float) -> tuple[float, float]:
-        vals = [best]
+    def _span(
+        self, far: Any, near: Any, best: float, patches: Sequence[float] = ()
+    ) -> tuple[float, float]:
+        vals = [best, *patches]
         if np.shape(far) == self.departure.shape:
             vals += list(np.asarray(far)[self.admissible])
         if np.shape(near) == self.departure_near.shape:
@@ -635,7 +764,10 @@ class Scan:
 
     @property
     def admissible_count(self) -> int:
-        return int(np.count_nonzero(self.admissible) + np.count_nonzero(self.admissible_near))
+        """Grid points inside the 95% region: both grids' and the patches'."""
+        return int(
+            np.count_nonzero(self.admissible) + np.count_nonzero(self.admissible_near)
+        ) + len(self._patch_values(False, True))
 
     @property
     def admissible_span(self) -> tuple[float, float]:
@@ -645,6 +777,7 @@ class Scan:
             self.best,
             *self.departure[self.admissible],
             *self.departure_near[self.admissible_near],
+            *self._patch_values(False, True),
         ]
         return float(min(vals)), float(max(vals))
 
@@ -665,6 +798,7 @@ class Scan:
             self.best,
             *self.departure[np.isfinite(self.departure)],
             *self.departure_near[np.isfinite(self.departure_near)],
+            *self._patch_values(False, False),
         ]
         return float(min(vals)), float(max(vals))
 
@@ -679,6 +813,7 @@ class Scan:
                 return None
             diff = dep - null
             vals += list(diff[np.isfinite(diff)])
+        vals += self._patch_values(True, False)
         vals = [v for v in vals if math.isfinite(v)]
         return (float(min(vals)), float(max(vals))) if vals else None
 
@@ -754,6 +889,10 @@ class Scan:
                     self.null_near,
                 ),
             },
+            "refined": [
+                _grid(p.K, p.L, p.departure, p.chi2 - self.chi2_min, p.null) for p in self.patches
+            ],
+            "restarts": [dict(r) for r in self.restarts],
             "notes": list(self.notes),
             "region": scan_region(self),
             "region_text": region_text(scan_region(self)),
@@ -843,29 +982,34 @@ def scan(
     L = np.geomspace(l_slot.natural(llo), l_slot.natural(lhi), points)
     theta0 = fit.theta
 
+    # every point computed once: the refined cells share their edges with each other and
+    # their corners with the range grid
+    done: dict[tuple[float, float], tuple[float, float, float]] = {}
+
     def grid(kk: FloatArray, ll: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        dep = np.full((kk.size, ll.size), np.nan)
-        nul = np.full((kk.size, ll.size), np.nan)
-        chi2 = np.full((kk.size, ll.size), np.inf)
-        thetas = []
+        todo, thetas = [], []
         for kv in kk:
             for lv in ll:
+                if (float(kv), float(lv)) in done:
+                    continue
                 th = theta0.copy()
                 th[ik], th[il] = k_slot.internal(kv), l_slot.internal(lv)
+                todo.append((float(kv), float(lv)))
                 thetas.append(th)
-        lnl = s.log_likelihood_many(np.array(thetas))
-        for n, th in enumerate(thetas):
-            a, b = divmod(n, ll.size)
-            if not math.isfinite(lnl[n]):
-                continue
-            chi2[a, b] = -2.0 * (float(lnl[n]) - s.log_norm)
-            try:
-                prof = _profile(s.model, rd, s.run_values(rd, th))
-            except SOLVE_ERRORS:
-                continue
-            dep[a, b] = float(predictor(prof, run)[i0])
-            nul[a, b] = float(null_of(prof, run)[i0])
-        return dep, chi2, nul
+        lnl = s.log_likelihood_many(np.array(thetas)) if thetas else []
+        for key, th, ln in zip(todo, thetas, lnl, strict=True):
+            got = (math.nan, math.inf, math.nan)
+            if math.isfinite(ln):
+                c2 = -2.0 * (float(ln) - s.log_norm)
+                got = (math.nan, c2, math.nan)
+                try:
+                    prof = _profile(s.model, rd, s.run_values(rd, th))
+                    got = (float(predictor(prof, run)[i0]), c2, float(null_of(prof, run)[i0]))
+                except SOLVE_ERRORS:
+                    pass
+            done[key] = got
+        out = np.array([[done[(float(kv), float(lv))] for lv in ll] for kv in kk], dtype=float)
+        return out[..., 0], out[..., 1], out[..., 2]
 
     dep, chi2, nul = grid(K, L)
     # the 95% region is small against the declared ranges: a grid of the same size around the
@@ -883,6 +1027,15 @@ def scan(
                                                 points)]
     )  # fmt: skip
     dep_near, chi2_near, nul_near = grid(K_near, L_near)
+    # the range grid refined along the 95% region (referee 12, point 5(ii)): a valley that
+    # runs out of the finer grid's box is followed to where the data or the model end it
+    threshold = float(chi2_dist.ppf(LEVEL, int(fit.calibration.k))) * scale
+    box = _finer_box(K, L, K_near, L_near)
+    patches = []
+    for a, b in refine_cells(K, L, chi2 - float(fit.calibration.chi2), threshold, box):
+        kk, ll = cell_axes(K, L, a, b)
+        pd, pc, pn = grid(kk, ll)
+        patches.append(Patch(kk, ll, pd, pc, pn))
     best_profile = _profile(s.model, rd, s.run_values(rd, theta0))
     best = float(predictor(best_profile, run)[i0])
     null_best = float(null_of(best_profile, run)[i0])
@@ -928,6 +1081,7 @@ def scan(
         notes=notes,
         steadiness=run_steadiness(run)[0],
         unsteady=run_steadiness(run)[1],
+        patches=patches,
     )
 
 
@@ -959,11 +1113,12 @@ BOUND_WORDS = {
     "existence": "the model's existence bound (no solution beyond it on the grid), not the data's",
     "range": "the declared range's bound",
     "box": "the finer grid's edge",
+    "refined": "the refined cells' edge",
 }
 """What limits the 95% region in a direction (:func:`region_extent`): the data (Delta chi^2
 crosses the threshold between two solved points), the model's existence (the next point has
 no solution), the declared fit range, or the finer grid's box."""
-_PRIORITY = {"existence": 0, "range": 1, "box": 2, "data": 3, "point": 4}
+_PRIORITY = {"existence": 0, "range": 1, "box": 2, "data": 3, "point": 4, "refined": 5}
 
 
 def region_extent(
@@ -1087,12 +1242,15 @@ BELOW_OPTIMUM = 0.01
 
 
 def below_optimum(sc: Scan) -> dict[str, float] | None:
-    """The grid point (either grid) of lowest chi^2 where it lies more than
+    """The grid point (any grid, the refinement patches' too) of lowest chi^2 where it lies
+    more than
     :data:`BELOW_OPTIMUM` below the joint fit's optimum (``K``, ``L`` [d], ``delta_chi2`` < 0):
     the optimiser stopped short of a lower chi^2 (on the 7 v2 runs: next to the model's
     no-solution edge), so the "best fit" is a local one; None otherwise."""
     best: dict[str, float] | None = None
-    for K, L, chi2 in ((sc.K, sc.L, sc.chi2), (sc.K_near, sc.L_near, sc.chi2_near)):
+    grids = [(sc.K, sc.L, sc.chi2), (sc.K_near, sc.L_near, sc.chi2_near)]
+    grids += [(p.K, p.L, p.chi2) for p in getattr(sc, "patches", ())]
+    for K, L, chi2 in grids:
         d = np.asarray(chi2, dtype=float) - sc.chi2_min
         if d.size == 0 or not np.isfinite(d).any():
             continue
@@ -1282,6 +1440,7 @@ def scan_region(sc: Scan) -> dict[str, Any] | None:
         (sc.K, sc.L, sc.chi2 - sc.chi2_min, "range"),
         (sc.K_near, sc.L_near, sc.chi2_near - sc.chi2_min, "box"),
     ]
+    grids += [(p.K, p.L, p.chi2 - sc.chi2_min, "refined") for p in getattr(sc, "patches", ())]
     if isinstance(sc.fit, JointFit):
         optimum = (sc.fit.value("K"), sc.fit.value("L"))
     else:  # a test's stand-in fit: its grid's least chi^2
@@ -1315,10 +1474,16 @@ def _blocks(run: Run) -> int:
     return int(b) if isinstance(b, int) and not isinstance(b, bool) and b >= 2 else 0
 
 
+PROFILE_STRIDE = 2
+""":func:`region_profiles` takes every this-many-th point of a refinement patch in K and in L
+(the patch's corners and midlines at :data:`REFINE` = 4)."""
+
+
 def region_profiles(sc: Scan) -> list[Any]:
     """The joint fit's solved profiles: its optimum first, then every admissible point of both
-    grids (the 95% region), for quantities other than the first-layer departure over the
-    region (``validate.nulls``: the null at every bin under every stencil)."""
+    grids and every :data:`PROFILE_STRIDE`-th one of the refinement patches (the 95% region),
+    for quantities other than the first-layer departure over the region (``validate.nulls``:
+    the null at every bin under every stencil)."""
     from ...calibration.models import SOLVE_ERRORS
 
     fit = sc.fit
@@ -1327,7 +1492,13 @@ def region_profiles(sc: Scan) -> list[Any]:
     k_slot, l_slot, ik, il = _kl_slots(fit)
     theta0 = fit.theta
     out = [_profile(s.model, rd, s.run_values(rd, theta0))]
-    for kk, ll, ok in ((sc.K, sc.L, sc.admissible), (sc.K_near, sc.L_near, sc.admissible_near)):
+    grids = [(sc.K, sc.L, sc.admissible), (sc.K_near, sc.L_near, sc.admissible_near)]
+    for p in sc.patches:  # every PROFILE_STRIDE-th point: the nulls' spread, at less cost
+        ok = np.isfinite(p.departure) & (p.chi2 - sc.chi2_min <= sc.threshold)
+        ok[np.arange(p.K.size) % PROFILE_STRIDE != 0, :] = False
+        ok[:, np.arange(p.L.size) % PROFILE_STRIDE != 0] = False
+        grids.append((p.K, p.L, ok))
+    for kk, ll, ok in grids:
         for a, b in zip(*np.nonzero(ok), strict=True):
             th = theta0.copy()
             th[ik], th[il] = k_slot.internal(kk[a]), l_slot.internal(ll[b])
@@ -1748,11 +1919,18 @@ def grid_sign_text(scans: Sequence[Scan]) -> str:
 
 
 # --------------------------------------------------------------------------- phi sensitivity
+CROSS_CHECK_END = "cross-check:"
+"""How :func:`phi_ends` labels an end set by the cross-check's T (the bands' T)."""
+
+
 def phi_ends(runs: Sequence[Run], material: str, sigmas: float = 2.0) -> list[tuple[str, float]]:
     """The ends of the plausible phi range of ``material`` (referee 11, point 3), as (label,
     phi [deg]), in increasing phi: the pooled sin phi (:func:`~.stresses.material_sin_phi`)
-    -+ ``sigmas`` of its (scaled) se, and the asin of the lowest and highest of the runs'
-    individual T; an end outside (0, 1) in sin phi is left out.
+    -+ ``sigmas`` of its (scaled) se, the asin of the lowest and highest of the runs'
+    individual T, and the cross-check's (the bands' T where the walls' ratios are the
+    estimator) lowest and highest run's T where they lie beyond those (referee 12, point
+    5(i): the bands' highest T, 0.331 on the v2 runs, is 19.3 deg); an end outside (0, 1) in
+    sin phi is left out. A cross-check end's label starts with :data:`CROSS_CHECK_END`.
 
     Raises
     ------
@@ -1761,7 +1939,8 @@ def phi_ends(runs: Sequence[Run], material: str, sigmas: float = 2.0) -> list[tu
     """
     from .stresses import material_sin_phi
 
-    pool = material_sin_phi(runs, material).sin_phi.pooled
+    got = material_sin_phi(runs, material).sin_phi
+    pool = got.pooled
     ends = [
         (f"pooled sin phi - {sigmas:g} se", pool.value - sigmas * pool.stderr),
         (f"pooled sin phi + {sigmas:g} se", pool.value + sigmas * pool.stderr),
@@ -1772,6 +1951,17 @@ def phi_ends(runs: Sequence[Run], material: str, sigmas: float = 2.0) -> list[tu
             (f"lowest run's T ({pool.names[lo]})", pool.values[lo]),
             (f"highest run's T ({pool.names[hi]})", pool.values[hi]),
         ]
+    cross = got.cross_check
+    if cross is not None and cross.values:
+        what = "band" if got.estimator == "wall" else "wall"
+        low, high = min(v for _, v in ends), max(v for _, v in ends)
+        lo, hi = int(np.argmin(cross.values)), int(np.argmax(cross.values))
+        if cross.values[lo] < low:
+            ends.append((f"{CROSS_CHECK_END} lowest run's {what} T ({cross.names[lo]})",
+                         cross.values[lo]))  # fmt: skip
+        if cross.values[hi] > high:
+            ends.append((f"{CROSS_CHECK_END} highest run's {what} T ({cross.names[hi]})",
+                         cross.values[hi]))  # fmt: skip
     out = [(lab, math.degrees(math.asin(v))) for lab, v in ends if 0.0 < v < 1.0]
     return sorted(out, key=lambda x: x[1])
 
@@ -1881,10 +2071,12 @@ def phi_sensitivity_text(scans: Sequence[Scan]) -> str:
     lost = [n for n, (sc, sign) in got.items() if sc.phi_sensitivity["sign"] != sign]
     fitted = {sign for _, sign in got.values()}
     word = next(iter(fitted)) if len(fitted) == 1 else "of the fitted phi's sign"
+    cross = _cross_check_rows(got)
     head = (
-        f"At the ends of the plausible phi range (the pooled sin phi +- 2 se and the runs' "
-        f"extreme wall ratios; each wall's tan delta held), the model's first-layer departure "
-        f"beyond its null over the (K, L) grid spans {lo:+.2g} to {hi:+.2g}"
+        f"At the ends of the plausible phi range (the pooled sin phi +- 2 se"
+        f"{',' if cross[0] else ' and'} the runs' extreme wall ratios{cross[0]}; each wall's "
+        "tan delta held), the model's first-layer departure beyond its null over the (K, L) "
+        f"grid spans {lo:+.2g} to {hi:+.2g}{cross[1]}"
     )
     grids = {tuple(sc.phi_sensitivity.get("grid", ())) for sc, _ in got.values()}
     grid = (
@@ -1903,6 +2095,36 @@ def phi_sensitivity_text(scans: Sequence[Scan]) -> str:
         f"{head}: it is not {word} over the whole grid at some phi of {min(phis):.3g}-"
         f"{max(phis):.3g} deg in {_names(lost)}: there the refutation depends on phi ({cost})."
     )
+
+
+def _cross_check_rows(got: Mapping[str, tuple[Any, str]]) -> tuple[str, str]:
+    """Where :func:`phi_ends` added the cross-check's ends (referee 12, point 5(i)): the
+    clause naming them in the range and one on the departure's sign there, each run's row of
+    that end (its label without the run-specific part shared), ("", "") where none did."""
+    by_label: dict[str, list[tuple[Mapping[str, Any], str]]] = {}
+    for sc, sign in got.values():
+        for r in sc.phi_sensitivity["rows"]:
+            if str(r["label"]).startswith(CROSS_CHECK_END):
+                by_label.setdefault(str(r["label"]), []).append((r, sign))
+    if not by_label:
+        return "", ""
+    names, signs = [], []
+    for label, rows in by_label.items():
+        phi = float(rows[0][0]["phi"])
+        what, _, run = label[len(CROSS_CHECK_END) :].strip().replace("run's ", "").partition(" (")
+        names.append(f"{what} = {math.sin(math.radians(phi)):.3g}" + (f" ({run}" if run else ""))
+        solved = [r for r, _ in rows if r["lo"] is not None]
+        if not solved:
+            signs.append(f"at the cross-check's phi = {phi:.3g} deg no point solved")
+            continue
+        lo = min(r["lo"] for r in solved)
+        hi = max(r["hi"] for r in solved)
+        kept = sum(1 for r, sign in rows if r["lo"] is not None and _one_sign([r]) == sign)
+        signs.append(
+            f"{lo:+.2g} to {hi:+.2g} at the cross-check's phi = {phi:.3g} deg: "
+            f"{_one_sign(solved)}, the fitted phi's sign in {kept} of {len(rows)} runs"
+        )
+    return f" and the cross-check's {' and '.join(names)}", f" ({'; '.join(signs)})"
 
 
 # --------------------------------------------------------------------------- error models
@@ -2468,6 +2690,74 @@ def matching_reading(sc: Scan, sigmas: float = 2.0) -> str:
     return out
 
 
+def match_zone(sc: Scan, sigmas: float = 2.0) -> dict[str, Any] | None:
+    """Where the model's first-layer departure beyond its own null lies within ``sigmas`` of
+    the data's beyond the joint fit's null (``measured_beyond`` +- ``sigmas``
+    ``measured_beyond_se``: the scan figure's hatched zone), over every grid of the scan
+    (:meth:`Scan.grids`): :func:`region_extent` of ``|beyond - data| / (sigmas se)`` <= 1, so
+    its ends are interpolated between grid points as the region's are (``K``, ``L`` [d],
+    ``K_bounds``, ``L_bounds``, ``points``), and ``in_region``: whether a matching point lies
+    inside the joint fit's 95% region; None where no grid point matches (referee 12, point
+    5(iii))."""
+    se = sigmas * sc.measured_beyond_se
+    if not (math.isfinite(se) and se > 0.0):
+        return None
+    grids = []
+    in_region = False
+    for K, L, dep, chi2, null, edge in sc.grids():
+        if np.size(K) == 0 or np.size(L) == 0 or np.shape(null) != np.shape(dep):
+            continue
+        q = np.abs(np.asarray(dep) - np.asarray(null) - sc.measured_beyond) / se
+        grids.append((K, L, q, edge))
+        hit = np.isfinite(q) & (q <= 1.0) & (np.asarray(chi2) - sc.chi2_min <= sc.threshold)
+        in_region = in_region or bool(hit.any())
+    ext = region_extent(grids, 1.0) if grids else None
+    if ext is None:
+        return None
+    ext["in_region"] = in_region
+    return ext
+
+
+SUB_GRAIN = 1.0
+"""An L below this [d] is "sub-grain" (:func:`match_zone_text`)."""
+
+
+def match_zone_text(scans: Sequence[Scan]) -> str:
+    """One sentence naming, per run whose :func:`match_zone` lies wholly outside its 95%
+    region, where the model matches the data's first layer beyond the null (the scan figure's
+    hatched zone), its L called sub-grain below :data:`SUB_GRAIN`; "" where no run has such a
+    zone (referee 12, point 5(iii))."""
+    parts = []
+    for sc in scans:
+        z = match_zone(sc)
+        if z is None or z["in_region"]:
+            continue
+        (k0, k1), (l0, l1) = z["K"], z["L"]
+        kr = sc.K[0], sc.K[-1]
+        lr = sc.L[0], sc.L[-1]
+        if k1 >= kr[1] and k0 > kr[0]:
+            ks = f"K >= {k0:.2g}"
+        elif k0 <= kr[0] and k1 < kr[1]:
+            ks = f"K <= {k1:.2g}"
+        else:
+            ks = _span_text("K", k0, k1)
+        if l0 <= lr[0] and l1 < lr[1]:
+            ls = f"L < {l1:.2g} d"
+        elif l1 >= lr[1] and l0 > lr[0]:
+            ls = f"L > {l0:.2g} d"
+        else:
+            ls = f"L {l0:.2g}-{l1:.2g} d"
+        where = f"a sub-grain L ({ls.removeprefix('L ')})" if l1 < SUB_GRAIN else ls
+        parts.append(f"{sc.run}'s only match is at {where}, {ks}")
+    if not parts:
+        return ""
+    return (
+        "Outside the 95% region, where the model's first-layer departure beyond its null comes "
+        "within 2 se of the data's (the scan figure's hatched zone, interpolated between grid "
+        "points as the region is): " + "; ".join(parts) + "."
+    )
+
+
 def lead_text(scans: Sequence[Scan]) -> str:
     """The verdict's first paragraph in the form referee 10 accepts ("Verdicts I would
     accept", (2)), every number computed: at each firm run the joint fit's p with u's chi^2
@@ -2879,7 +3169,8 @@ def _describe(sc: Scan) -> str:
         f"{sc.K_near[0]:.3g}-"
         f"{sc.K_near[-1]:.3g}, L {sc.L_near[0]:.3g}-{sc.L_near[-1]:.3g} d around the optimum) "
         f"{adm}; over K in [{sc.K[0]:g}, {sc.K[-1]:g}] and L in [{sc.L[0]:.3g}, "
-        f"{sc.L[-1]:.3g}] d ({sc.K.size} x {sc.L.size} grid) {rng}; beyond the null "
+        f"{sc.L[-1]:.3g}] d ({sc.K.size} x {sc.L.size} grid"
+        f"{f', {len(sc.patches)} cells refined' if sc.patches else ''}) {rng}; beyond the null "
         f"(grains turning with the material in the joint fit's velocity: {sc.null_best:+.3g}): "
         f"data {sc.measured_beyond:+.3g} +- {sc.measured_beyond_se:.2g}, best fit "
         f"{sc.beyond_best:+.3g} +- {sc.beyond_se:.2g} (95% region "
@@ -3106,8 +3397,9 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, pairs: Sequence[Any]
     )
     if why and not head.count(why):
         head = f"{head} {why}"
-    extra = " ".join(t for t in (error_models_text(scans), grid_sign_text(scans),
-                                  phi_sensitivity_text(scans), near_bins_text(scans))
+    extra = " ".join(t for t in (restarts_text(scans), error_models_text(scans),
+                                  grid_sign_text(scans), phi_sensitivity_text(scans),
+                                  match_zone_text(scans), near_bins_text(scans))
                      if t)  # fmt: skip
     if extra:
         head = f"{head} {extra}"
@@ -3212,6 +3504,72 @@ def _material_text(scans: Sequence[Scan]) -> str:
     return out
 
 
+def restart_from_grid(
+    fit: Any,
+    lowest: Callable[[Any], Mapping[str, float] | None],
+    refit: Callable[[Any, Mapping[str, float]], Any],
+    chi2_of: Callable[[Any], float],
+    where: Callable[[Any], tuple[float, float]],
+    tol: float = BELOW_OPTIMUM,
+    restarts: int = RESTARTS,
+) -> tuple[Any, list[dict[str, float]]]:
+    """The joint fit made global by its scan (referee 12: smooth_H20's was a local one): while
+    the scan of ``fit`` has a grid point whose chi^2 lies more than ``tol`` below the fit's
+    (``lowest(fit)``: that point's ``K``, ``L`` [d] and ``chi2``, or None), the optimiser is
+    restarted from it (``refit(fit, point)``: a fit, or None where it fails), and the refit
+    replaces the fit where its chi^2 (``chi2_of``) is lower by more than ``tol``; at most
+    ``restarts`` times. Returns the fit kept and the moves: each the point and the fit's (K,
+    L) (``where``) and chi^2 before (``*_from``) and after (``*_to``); a refit that does not
+    improve is recorded with ``kept`` 0 and ends the loop."""
+    moves: list[dict[str, float]] = []
+    for _ in range(restarts):
+        point = lowest(fit)
+        if point is None or not point["chi2"] < chi2_of(fit) - tol:
+            break
+        new = refit(fit, point)
+        k0, l0 = where(fit)
+        move = {"K": float(point["K"]), "L": float(point["L"]), "chi2": float(point["chi2"]),
+                "K_from": k0, "L_from": l0, "chi2_from": chi2_of(fit)}  # fmt: skip
+        better = new is not None and chi2_of(new) < chi2_of(fit) - tol
+        if new is not None:
+            k1, l1 = where(new)
+            move.update(K_to=k1, L_to=l1, chi2_to=chi2_of(new))
+        move["kept"] = 1.0 if better else 0.0
+        moves.append(move)
+        if not better:
+            break
+        fit = new
+    return fit, moves
+
+
+def restarts_text(scans: Sequence[Scan]) -> str:
+    """One sentence on the joint fits the scan moved (:func:`restart_from_grid`): per run the
+    grid point it restarted from and the fit before and after; "" where none moved."""
+    parts = []
+    for sc in scans:
+        for m in getattr(sc, "restarts", ()):
+            head = (
+                f"{sc.run} from K = {m['K_from']:.3g}, L = {m['L_from']:.3g} d (chi^2 = "
+                f"{m['chi2_from']:.4g}) via the grid point K = {m['K']:.3g}, L = {m['L']:.3g} d "
+                f"(chi^2 = {m['chi2']:.4g})"
+            )
+            if m.get("kept"):
+                parts.append(
+                    f"{head} to K = {m['K_to']:.3g}, L = {m['L_to']:.3g} d (chi^2 = "
+                    f"{m['chi2_to']:.4g}, {m['chi2_to'] - m['chi2_from']:+.3g})"
+                )
+            else:
+                parts.append(f"{head}: the refit did not improve on the fit, which is kept")
+    if not parts:
+        return ""
+    return (
+        "The joint fits are global over the scan: where a grid point's chi^2 lay more than "
+        f"{BELOW_OPTIMUM:g} below the fit's, the optimiser was restarted from it: "
+        + "; ".join(parts)
+        + "."
+    )
+
+
 def scan_run(
     run: Run,
     runs: Sequence[Run],
@@ -3223,8 +3581,30 @@ def scan_run(
     from ...calibration.data import _material_label
 
     first_bin(run)
-    fit = joint_fit(run, angles(run, runs), starts=starts)
-    sc = scan(run, fit, points, predictor)
+    ang = angles(run, runs)
+    scans: dict[int, Scan] = {}
+
+    def lowest(fit: JointFit) -> dict[str, float] | None:
+        if id(fit) not in scans:
+            scans[id(fit)] = scan(run, fit, points, predictor)
+        sc = scans[id(fit)]
+        low = below_optimum(sc)
+        return None if low is None else {**low, "chi2": sc.chi2_min + low["delta_chi2"]}
+
+    def refit(fit: JointFit, point: Mapping[str, float]) -> JointFit | None:
+        start = {n: float(e.value) for n, e in fit.calibration.parameters.items() if e.free}
+        start[fit._slot("K").name], start[fit._slot("L").name] = point["K"], point["L"]
+        try:
+            return joint_fit(run, ang, starts=starts, start=start)
+        except ParameterError:
+            return None
+
+    fit, moves = restart_from_grid(
+        joint_fit(run, ang, starts=starts), lowest, refit,
+        lambda f: float(f.calibration.chi2), lambda f: (f.value("K"), f.value("L")),
+    )  # fmt: skip
+    sc = scans.get(id(fit)) or scan(run, fit, points, predictor)
+    sc.restarts = moves
     ends = phi_ends(runs, _material_label(run.meta))
     sc.phi_sensitivity = phi_sensitivity(sc, run, ends, predictor)
     return sc
@@ -3345,18 +3725,25 @@ def shared_fits(
 __all__ = [
     "BELOW_OPTIMUM",
     "COARSE",
+    "CROSS_CHECK_END",
     "DEFAULT_PREDICTOR",
     "ERROR_MODELS",
     "ERROR_MODEL_NAMES",
+    "FINER",
     "FITS_P",
     "LEVEL",
     "LOCAL_SPAN",
     "PREDICTORS",
+    "PROFILE_STRIDE",
     "QUALIFIER_SCOPE",
+    "REFINE",
+    "RESTARTS",
     "SIZE_RULE_SIGMAS",
     "SIZE_SIGMAS",
+    "SUB_GRAIN",
     "Angles",
     "JointFit",
+    "Patch",
     "Predictor",
     "Scan",
     "angle_errors",
@@ -3364,12 +3751,15 @@ __all__ = [
     "below_optimum",
     "bin_means",
     "binned_departure",
+    "cell_axes",
     "covariance_text",
     "error_model_scales",
     "firm_runs",
     "first_bin",
     "joint_fit",
     "lead_text",
+    "match_zone",
+    "match_zone_text",
     "matching_reading",
     "material_data",
     "misfit_reading",
@@ -3380,10 +3770,13 @@ __all__ = [
     "phi_sensitivity_text",
     "point_departure",
     "prediction_se_at",
+    "refine_cells",
     "region_extent",
     "region_pieces",
     "region_profiles",
     "region_text",
+    "restart_from_grid",
+    "restarts_text",
     "rules_line",
     "rules_summary",
     "run_steadiness",

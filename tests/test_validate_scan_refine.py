@@ -1,0 +1,175 @@
+"""The spin scan's refinement along its 95% region, the joint fit's restart from a lower grid
+point and the match zone (referee 12, point 5(ii)-(iii); the per-run joint fit's local optimum
+at plane_smooth_H20_qs): :func:`~cosserat.studies.validate.spin_scan.refine_cells`,
+``cell_axes``, ``restart_from_grid``, ``match_zone`` and their sentences."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize
+
+from cosserat.errors import ParameterError
+from cosserat.studies.validate import spin_scan as ss
+
+K = np.linspace(0.0, 4.0, 9)
+L = np.geomspace(0.5, 100.0, 11)
+L_EXIST = 20.0  # no solution beyond
+
+
+def _valley(k, ll):
+    """Delta chi^2 0 along K = 1 + ln(L)/2 (a flat valley), rising across it with width 0.1;
+    no solution (NaN) beyond L = 20 d."""
+    kk, lg = np.meshgrid(k, ll, indexing="ij")
+    d = ((kk - 1.0 - 0.5 * np.log(lg)) / 0.1) ** 2
+    return np.where(lg > L_EXIST, np.nan, d)
+
+
+def test_the_refinement_follows_a_flat_valley_to_the_existence_bound():
+    d, thr = _valley(K, L), 6.0
+    cells = ss.refine_cells(K, L, d, thr)
+    inside = np.isfinite(d) & (d <= thr)
+    # exactly the cells with a corner inside
+    want = [(a, b) for a in range(K.size - 1) for b in range(L.size - 1)
+            if inside[a : a + 2, b : b + 2].any()]  # fmt: skip
+    assert cells == want
+    patches = []
+    for a, b in cells:
+        kk, ll = ss.cell_axes(K, L, a, b)
+        # the cell's corners exactly, K even and L even in log in between
+        assert (kk[0], kk[-1], ll[0], ll[-1]) == (K[a], K[a + 1], L[b], L[b + 1])
+        assert kk.size == ll.size == ss.REFINE + 1
+        np.testing.assert_allclose(np.diff(np.log(ll)), np.log(L[b + 1] / L[b]) / ss.REFINE)
+        patches.append((kk, ll, _valley(kk, ll), "refined"))
+    coarse = ss.region_extent([(K, L, d, "range")], thr)
+    fine = ss.region_extent([(K, L, d, "range"), *patches], thr)
+    # the coarse grid stops at its last solved L, 12 d; the refined one at the last solved
+    # point of the patch below 20 d, one patch step (in log L) short of the bound
+    assert coarse["L"][1] == pytest.approx(L[6]) and coarse["L_bounds"][1] == "existence"
+    step = (L[7] / L[6]) ** (1.0 / ss.REFINE)
+    assert fine["L"][1] == pytest.approx(L[7] / step, rel=1e-12)
+    assert fine["L"][1] < L_EXIST < fine["L"][1] * step
+    assert fine["L_bounds"][1] == "existence"
+    # the valley's K there, 1 + ln(17.9)/2 = 2.44: the region reaches it
+    assert fine["K"][1] >= 1.0 + 0.5 * math.log(fine["L"][1]) - 1e-12
+    masks, others, _ = ss.region_pieces([(K, L, d, "range"), *patches], thr, (1.0, 1.0))
+    assert others == [] and all(m.any() for m in masks[1:])
+
+
+def test_a_finer_box_keeps_its_cells_and_a_box_no_finer_is_none():
+    d = _valley(K, L)
+    all_cells = ss.refine_cells(K, L, d, 6.0)
+    box = (0.0, 1.5, 0.5, 1.5)  # K 0-1.5, L 0.5-1.5 d: the cells between L 0.5, 0.85, 1.44
+    kept = ss.refine_cells(K, L, d, 6.0, box)
+    assert set(all_cells) - set(kept) == {(0, 0), (1, 0), (2, 0), (1, 1), (2, 1)}
+    assert all(K[a + 1] <= 1.5 and L[b + 1] <= 1.5 for a, b in set(all_cells) - set(kept))
+    with pytest.raises(ParameterError, match=r"Delta chi\^2 must be \(K, L\) = \(9, 11\)"):
+        ss.refine_cells(K, L, d[:, :3], 6.0)
+    with pytest.raises(ParameterError, match="a cell is refined into >= 1 intervals; got 0"):
+        ss.cell_axes(K, L, 0, 0, 0)
+    # a finer grid twice as fine in K and in log L covers its box; one as coarse does not
+    fine_k, fine_l = np.linspace(1.0, 2.0, 5), np.geomspace(2.0, 4.0, 5)
+    assert ss._finer_box(K, L, fine_k, fine_l) == (1.0, 2.0, 2.0, 4.0)
+    assert ss._finer_box(K, L, np.linspace(0.0, 3.6, 9), fine_l) is None
+
+
+def _two_minima(x):
+    """Two minima: chi^2 0 at x = 1 and -1 at x = 4."""
+    return float(min((x - 1.0) ** 2, (x - 4.0) ** 2 - 1.0))
+
+
+GRID = np.linspace(0.0, 5.0, 11)
+
+
+def _lowest(x):
+    i = int(np.argmin([_two_minima(g) for g in GRID]))
+    return {"K": float(GRID[i]), "L": 1.0, "chi2": _two_minima(GRID[i])}
+
+
+def _local(x0):
+    return float(minimize(lambda v: _two_minima(v[0]), [x0], method="Nelder-Mead",
+                          options={"xatol": 1e-10, "fatol": 1e-12}).x[0])  # fmt: skip
+
+
+def test_the_restart_rule_moves_a_local_optimum_to_the_global_one():
+    x = _local(0.5)
+    assert x == pytest.approx(1.0, abs=1e-6)  # the optimiser's local optimum
+    fit, moves = ss.restart_from_grid(
+        x, _lowest, lambda f, p: _local(p["K"]), _two_minima, lambda f: (f, 1.0)
+    )
+    assert fit == pytest.approx(4.0, abs=1e-6) and _two_minima(fit) == pytest.approx(-1.0)
+    (m,) = moves  # one restart: from the grid point x = 4, then the grid has nothing lower
+    assert (m["K"], m["chi2"], m["kept"]) == (4.0, -1.0, 1.0)
+    assert m["K_from"] == pytest.approx(1.0, abs=1e-6) and m["chi2_from"] == pytest.approx(0.0)
+    assert m["K_to"] == pytest.approx(4.0, abs=1e-6) and m["chi2_to"] == pytest.approx(-1.0)
+    # at the global optimum nothing moves; a refit that does not improve is kept out
+    assert ss.restart_from_grid(4.0, _lowest, None, _two_minima, lambda f: (f, 1.0)) == (4.0, [])
+    fit, moves = ss.restart_from_grid(x, _lowest, lambda f, p: f, _two_minima, lambda f: (f, 1.0))
+    assert fit == x and len(moves) == 1 and moves[0]["kept"] == 0.0
+    # a grid point within the tolerance does not restart
+    fit, moves = ss.restart_from_grid(
+        1.0, lambda f: {"K": 1.2, "L": 1.0, "chi2": -0.005}, None, _two_minima,
+        lambda f: (f, 1.0),
+    )  # fmt: skip
+    assert (fit, moves) == (1.0, [])
+
+
+def test_the_restart_sentence_names_the_moved_fits():
+    moves = [
+        {
+            "K": 5.25,
+            "L": 13.7,
+            "chi2": 40.6,
+            "K_from": 2.89,
+            "L_from": 3.77,
+            "chi2_from": 45.77,
+            "K_to": 5.32,
+            "L_to": 14.1,
+            "chi2_to": 40.21,
+            "kept": 1.0,
+        }
+    ]
+    text = ss.restarts_text([SimpleNamespace(run="b", restarts=moves),
+                             SimpleNamespace(run="a", restarts=[])])  # fmt: skip
+    assert text == (
+        "The joint fits are global over the scan: where a grid point's chi^2 lay more than 0.01 "
+        "below the fit's, the optimiser was restarted from it: b from K = 2.89, L = 3.77 d "
+        "(chi^2 = 45.77) via the grid point K = 5.25, L = 13.7 d (chi^2 = 40.6) to K = 5.32, "
+        "L = 14.1 d (chi^2 = 40.21, -5.56)."
+    )
+    assert ss.restarts_text([SimpleNamespace(run="a", restarts=[])]) == ""
+
+
+def _zone_scan(measured_beyond):
+    """A scan whose departure beyond the null is 0.05 ln(L/0.5) + 0.02 (1 - K/10): lowest at
+    small L and large K; its 95% region at K 2-3, L 3-6 d."""
+    k, ll = np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11)
+    kk, lg = np.meshgrid(k, ll, indexing="ij")
+    beyond = 0.05 * np.log(lg / 0.5) + 0.02 * (1.0 - kk / 10.0)
+    chi2 = np.where((kk >= 2) & (kk <= 3) & (lg >= 3) & (lg <= 6), 10.0, 100.0)
+    grid = (k, ll, beyond + 0.01, chi2, np.full(beyond.shape, 0.01), "range")
+    return SimpleNamespace(
+        run="r", grids=lambda: [grid], measured_beyond=measured_beyond, measured_beyond_se=0.005,
+        chi2_min=10.0, threshold=6.0, K=k, L=ll,
+    )  # fmt: skip
+
+
+def test_the_match_zone_is_the_hatched_zone_and_its_sentence_calls_a_sub_grain_l():
+    sc = _zone_scan(0.0)  # matches where beyond <= 0.01: K >= 5 at L = 0.5 d only
+    z = ss.match_zone(sc)
+    assert z["in_region"] is False and z["L"][0] == 0.5 and z["L_bounds"][0] == "range"
+    # |beyond| / 0.01 = 1 between L = 0.5 and 0.85 d at K = 10: 0.05 ln(L/0.5) = 0.01
+    assert z["L"][1] == pytest.approx(0.5 * math.exp(0.2), rel=1e-9)
+    assert z["K"] == [pytest.approx(5.0), 10.0] and z["K_bounds"] == ["data", "range"]
+    assert ss.match_zone_text([sc]) == (
+        "Outside the 95% region, where the model's first-layer departure beyond its null comes "
+        "within 2 se of the data's (the scan figure's hatched zone, interpolated between grid "
+        "points as the region is): r's only match is at a sub-grain L (< 0.61 d), K >= 5."
+    )
+    assert ss.match_zone(_zone_scan(-1.0)) is None  # nowhere within 2 se
+    inside = _zone_scan(0.05 * math.log(8.0) + 0.02 * 0.75)  # the region's point (2.5, 4)
+    assert ss.match_zone(inside)["in_region"] is True
+    assert ss.match_zone_text([inside]) == ""
