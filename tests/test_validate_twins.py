@@ -288,8 +288,12 @@ def test_the_replicates_word_follows_the_misfit_reading(tmp_path):
     em = {"r": {"u": {"ar1": 20.0, "n": 10}, "omega": {"ar1": 18.0, "n": 9}}}
     v = Verdict("spin_model", "refuted", "Read as understated errors; a second seed would "
                 "settle the error scale. Refuted at x.", "", ("r",),
-                {"misfit_runs": ["r"], "reading": "errors", "error_models": em})  # fmt: skip
+                {"misfit_runs": ["r"], "reading": "errors",
+                 "error_models": {"r": "scans[0].error_models"},
+                 "scans": [{"run": "r", "error_models": em["r"]}]})  # fmt: skip
     got = _misfit_twins(v, twins).evidence
+    # the joint fit's AR(1) chi^2 read from scans[0] (numbers.error_models is a pointer)
+    assert "r u 20 -> 20 on 10" in got and "r omega 18 -> 18 on 9" in got
     assert got.startswith("Read as understated errors; a second seed would settle the error "
                           "scale. The same-conditions replicates (one cell, one V, two seeds) "
                           "measure that error scale: a against b: u sum z^2 = 0")  # fmt: skip

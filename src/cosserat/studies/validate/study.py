@@ -1108,7 +1108,13 @@ def _misfit_twins(v: Verdict, twins: Sequence[Any]) -> Verdict:
         return v
     own = [t for t in twins if {t.a, t.b} <= set(v.runs)]
     twins = own or twins  # the verdict's own replicates where it has them
-    extra = misfit_twin_text(twins, v.numbers.get("error_models") or {}, runs)
+    # numbers.error_models points to scans[i].error_models (one record per scan, not repeated)
+    models = {
+        rec["run"]: rec.get("error_models") or {}
+        for rec in v.numbers.get("scans") or []
+        if isinstance(rec, dict) and "run" in rec
+    }
+    extra = misfit_twin_text(twins, models, runs)
     if not extra:
         return v
     for anchor in MISFIT_ANCHORS:  # right after the reading's sentence, where it is found
