@@ -341,7 +341,9 @@ def test_every_regime_block_names_the_replicates_own_first(tmp_path):
     assert [(t.a, t.b) for t in twins] == [("a", "b"), ("c", "d")]
     text = twins_text(twins, rs[2:])
     assert text.startswith("Same-conditions replicates: c against d (")
-    assert "Same-conditions replicates (the corpus's, not among this verdict's runs): a against " \
-        "b (" in text  # fmt: skip
+    # the other pair in one clause: each field's sum z^2 over its bins, not the full comparison
+    other = text.split("Same-conditions replicates elsewhere in the corpus")[1]
+    assert "a against b (seed 1 against 2): u 0/10" in other
+    assert "bins paired by row" not in other and "seed-scatter factor sqrt" not in other
     assert twins_text([], rs).startswith("Same-conditions replicates: none (no cell run twice")
     assert twins_text(twins, []) == ""

@@ -632,6 +632,21 @@ class TwinPair:
             text += " " + self.omega_text()
         return text
 
+    def brief(self) -> str:
+        """One clause for a verdict that does not use the pair: each field's sum z^2 over its
+        bins and, where measured, its static-zone factor (the full comparison is
+        :meth:`text`, in the verdicts whose runs the pair is)."""
+        parts = []
+        for f in self.fields.values():
+            static = f.factor("static")
+            parts.append(
+                f"{f.column} {f.chi2:.3g}/{f.n}"
+                + (f" (static zone x{static:.2g})" if static is not None and static > 1 else "")
+            )
+        return f"{self.a} against {self.b} (seed {self.seeds[0]} against {self.seeds[1]}): " + (
+            ", ".join(parts)
+        )
+
     def omega_text(self) -> str:
         """Whether omega agrees between the seeds (:attr:`TwinField.agrees`), and what that
         means for the spin verdicts; "" without omega."""

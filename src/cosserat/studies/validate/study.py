@@ -1092,9 +1092,19 @@ def twins_text(twins: Sequence[Any], results: Sequence[RunResult]) -> str:
         )
     used = {r.run.name for r in results}
     own = [p for p in twins if {p.a, p.b} <= used]  # the verdict's own pairs first
+    others = [p.brief() for p in twins if p not in own]  # in full where their runs are judged
     text = " ".join(
         [p.text() for p in own]
-        + [p.text(" (the corpus's, not among this verdict's runs)") for p in twins if p not in own]
+        + (
+            [
+                "Same-conditions replicates elsewhere in the corpus (sum z^2 per field over its "
+                "bins; in full in the verdicts that use them and in results.json twins[]): "
+                + "; ".join(others)
+                + "."
+            ]
+            if others
+            else []
+        )
     )
     return text + balance_rescaled_text([r.run for r in results], twins)
 
