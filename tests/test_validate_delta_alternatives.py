@@ -170,7 +170,7 @@ def test_the_claim_figure_draws_an_alternatives_best_fit_beside_its_material_cur
            "usable": [False, True], "curves": {"mui": material | {"best": best}}}  # fmt: skip
     fig = delta_claim_figure([two], {}, "Delta")
     lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
-    drawn = lines["mui, best fit to this series' u"]
+    drawn = lines["mui, best fit to this series' u and wall T"]
     assert list(drawn.get_ydata()) == [5.8, 10.7, 20.9]
     assert "mui, one calibration of the material" in lines
     plt.close(fig)
@@ -303,9 +303,13 @@ def test_a_best_fit_whose_wall_t_still_misses_the_measured_one_says_so_with_the_
     )
     c = ModelDelta("ngf", calibration={"wall_T": wall_T, "stress_contradiction": text})
     assert wall_T_text(c) == (
-        "the fit's T at the moving wall against the measured: smooth_H10 0.294 against 0.235 "
-        "+- 0.01 (+5.9 se), smooth_H20 0.24 against 0.235 +- 0.011 (+0.5 se), no_wall not "
-        "held (no measured wall ratio): " + text
+        text + "; the other runs: smooth_H20 0.24 against 0.235 +- 0.011 (+0.5 se), no_wall not "
+        "held (no measured wall ratio)"
+    )
+    ok = ModelDelta("ngf", calibration={"wall_T": {"smooth_H20": wall_T["smooth_H20"]}})
+    assert wall_T_text(ok) == (
+        "the fit's T at the moving wall against the measured: smooth_H20 0.24 against 0.235 "
+        "+- 0.011 (+0.5 se): agrees with the measured stresses"
     )
     # a fit made on u alone (results.json of an older run) is said not to hold T
     assert wall_T_text(ModelDelta("ngf")) == (

@@ -2683,14 +2683,20 @@ def wall_T_text(c: ModelDelta) -> str:
     wall = c.calibration.get("wall_T")
     if not isinstance(wall, Mapping):
         return "T at the moving wall not held to the measured T (fitted on u alone)"
+    contradiction = str(c.calibration.get("stress_contradiction") or "")
     rows = [
         f"{run} {e['model']:.3g} against {e['measured']:.3g} +- {e['se']:.2g} ({e['z']:+.1f} se)"
         if isinstance(e, Mapping)
         else f"{run} not held (no measured wall ratio)"
         for run, e in wall.items()
+        if f"{run}: T = " not in contradiction  # the contradiction gives its runs' numbers
     ]
-    verdict = c.calibration.get("stress_contradiction") or "agrees with the measured stresses"
-    return f"the fit's T at the moving wall against the measured: {', '.join(rows)}: {verdict}"
+    if not contradiction:
+        return (
+            f"the fit's T at the moving wall against the measured: {', '.join(rows)}: agrees "
+            "with the measured stresses"
+        )
+    return contradiction + (f"; the other runs: {', '.join(rows)}" if rows else "")
 
 
 def _predicted_text(model: str, c: ModelDelta, run: str) -> str:
