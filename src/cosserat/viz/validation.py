@@ -691,7 +691,7 @@ def delta_claim_figure(
                 if bg:
                     ax.plot(b["gaps"], [d if d else np.nan for d in b["Delta"]],
                             color=st["color"], linestyle=(0, (4, 1.5)), linewidth=0.8,
-                            label=f"{model}, best fit to this series' u")  # fmt: skip
+                            label=f"{model}, best fit to this series' u and wall T")  # fmt: skip
                     all_g += [g for g, _ in bg]
                     all_d += [d for _, d in bg]
                     bp = [p for p in b.get("points", []) if p[1]]

@@ -143,8 +143,9 @@ def delta_caption(report: ValidationReport, which: str) -> str:
            for c in s.curves.values()):  # fmt: skip
         text += (
             " Thin dashed (+ at the runs): each alternative's per-series best fit (the series' "
-            "runs alone, u, every parameter free, NGF's b off the solver's edge), at which the "
-            "verdict judges its rejection; the material's calibration is the joint story."
+            "runs alone, u and the moving wall's measured T, every parameter free, NGF's b off "
+            "the solver's edge), at which the verdict judges its rejection; the material's "
+            "calibration is the joint story."
         )
     level = " ".join(x for s in relevant(report.groups, which) if (x := level_caption(s)))
     return text + (f" {level}" if level else "")

@@ -1966,7 +1966,8 @@ class ModelDelta:
         at or below it is not resolved by the bins (:meth:`resolved`).
     best : ModelDelta or None
         An alternative's per-series best fit (``fits.calibrate_best``: the series' runs alone,
-        the velocity, every parameter free, NGF's b off the solver's edge), at which the
+        the velocity and the moving wall's measured T, every parameter free, NGF's b off the
+        solver's edge), at which the
         claims judge its rejection; None for the claims' model or where it was not made.
     """
 
@@ -2772,7 +2773,8 @@ def best_text(s: DeltaSeries, model: str) -> str:
         )
         t = tests.get(m)
         rows.append(
-            f"{m}: {calibration_text(c)}; Delta at the runs: {preds or 'none'}; "
+            f"{m}: {calibration_text(c)}; {wall_T_text(c)}; Delta at the runs: "
+            f"{preds or 'none'}; "
             + (
                 replace(t, label="against the measured Delta").text()
                 if t is not None
@@ -2782,9 +2784,33 @@ def best_text(s: DeltaSeries, model: str) -> str:
     if not rows:
         return ""
     return (
-        "each alternative at its per-series best fit (this series' runs alone, the velocity u, "
-        "every parameter free; the rule judges its rejection here): " + "; ".join(rows)
+        "each alternative at its per-series best fit (this series' runs alone, the velocity u "
+        "and the moving wall's measured T = |sigma_yx|/N, every parameter free; the rule "
+        "judges its rejection here): " + "; ".join(rows)
     )
+
+
+def wall_T_text(c: ModelDelta) -> str:
+    """A per-series best fit's T at each run's moving wall against the measured T
+    (``fits.wall_stress_check``: the summary's ``wall_T`` and ``stress_contradiction``), or
+    that the fit did not hold T (a fit made before it did, or runs without a wall ratio)."""
+    wall = c.calibration.get("wall_T")
+    if not isinstance(wall, Mapping):
+        return "T at the moving wall not held to the measured T (fitted on u alone)"
+    contradiction = str(c.calibration.get("stress_contradiction") or "")
+    rows = [
+        f"{run} {e['model']:.3g} against {e['measured']:.3g} +- {e['se']:.2g} ({e['z']:+.1f} se)"
+        if isinstance(e, Mapping)
+        else f"{run} not held (no measured wall ratio)"
+        for run, e in wall.items()
+        if f"{run}: T = " not in contradiction  # the contradiction gives its runs' numbers
+    ]
+    if not contradiction:
+        return (
+            f"the fit's T at the moving wall against the measured: {', '.join(rows)}: agrees "
+            "with the measured stresses"
+        )
+    return contradiction + (f"; the other runs: {', '.join(rows)}" if rows else "")
 
 
 def _predicted_text(model: str, c: ModelDelta, run: str) -> str:
@@ -2948,8 +2974,10 @@ def delta_law_verdict(
         f"Delta) and times its best common factor (dof = points - 1: the dependence on H/d "
         f"apart from the level, which is what the claim is about). Supported when the {model} "
         f"curve's shape is consistent (p >= {P_CONSISTENT:g}) and an alternative (another "
-        f"model's curve at its per-series best fit: the series' runs alone, the velocity, every "
-        f"parameter free, NGF's b kept off the solver's double-precision edge; or "
+        f"model's curve at its per-series best fit: the series' runs alone, the velocity and the "
+        f"moving wall's measured T (the model's own T at the wall held to it: a fit on u alone "
+        f"put T wherever the velocity does not see it), every parameter free, NGF's b kept off "
+        f"the solver's double-precision edge; or "
         f"Delta ~ (H/d)^{other:.3g} with a free level) is rejected (p < "
         f"{P_SIGNIFICANT:g}); the alternatives' material-level curves are tested too, but a "
         "calibration made for every field of both wall kinds can be a straw man for one "
