@@ -1098,8 +1098,11 @@ def solver_edges(
     if not rates:
         return {}, "", {}
     declared = {p.key: p.declared for p in Model(model).parameters()}
-    mu_s_hi = float(declared["mu_s"].fit_range[1])
-    b_lo, b_hi = (float(x) for x in declared["b"].fit_range)
+    mu_s_range, b_range = declared["mu_s"].fit_range, declared["b"].fit_range
+    if mu_s_range is None or b_range is None:  # NGF declares both; a model without them has no edge
+        return {}, "", {}
+    mu_s_hi = float(mu_s_range[1])
+    b_lo, b_hi = (float(x) for x in b_range)
     slowest = min(rates)
     edge = NGF_EXCESS_RTOL * mu_s_hi / slowest
     lo = max(b_lo, EDGE_MARGIN * edge)

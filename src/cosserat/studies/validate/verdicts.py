@@ -889,9 +889,9 @@ def grain_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
             f"(within {GRAIN_SE:g} se of the null) at {c['turns_with_the_material']} of "
             f"{c['walls']} moving walls" + (f", departs {' and '.join(off)}" if off else "")
         )
-    calls = [[_grain_call(m) for m in r["measures"].values()] for r in rows.values()]
-    mixed = sum(1 for c in calls if len(set(c) - {0}) > 1)
-    one = {k: sum(1 for c in calls if set(c) == {k}) for k in (-1, 1)}
+    by_wall = [[_grain_call(m) for m in r["measures"].values()] for r in rows.values()]
+    mixed = sum(1 for c in by_wall if len(set(c) - {0}) > 1)
+    one = {k: sum(1 for c in by_wall if set(c) == {k}) for k in (-1, 1)}
     counts = {"per_measure": counts, "smallest_null": order[0] if with_null else None,
               "walls_where_the_sign_follows_the_measure": mixed,
               "walls_one_sign_under_every_measure": {"below": one[-1],
