@@ -215,3 +215,40 @@ def test_a_solved_point_in_a_second_basin_makes_the_region_two_islands():
     # outside the threshold the point is no island
     far = ss.scan_region(_basin_scan([{**start, "chi2": 46.1}]))
     assert len(far["islands"]) == 1 and far["L"] == alone["L"]
+
+
+def test_the_grey_is_where_no_grid_has_a_solution():
+    from cosserat.viz.validation import no_solution_cells, region_short
+
+    # the range grid solves to L[6] = 12 d; a refined patch of the cell L[6]-L[7] solves to
+    # 17.9 d at K 4-5 (the referee's smooth_H20)
+    d = _valley(K, L)
+    kk, ll = ss.cell_axes(K, L, 4, 6)
+    none, bound = no_solution_cells(K, L, d, [(kk, ll, _valley(kk, ll))])
+    assert none.shape == bound.shape == (K.size - 1, L.size - 1)
+    # cells with every corner beyond 20 d: no grid has a solution
+    assert none[:, 7:].all() and not none[:, :7].any()
+    # the cell column 12-20 d holds the existence bound: some corners solve, some do not,
+    # the patch's solutions inside one of them; no cell is both
+    assert bound[:, 6].all() and not bound[:, :6].any() and not (none & bound).any()
+    # a cell whose range-grid corners all fail but a finer grid solves inside is not grey
+    d2 = d.copy()
+    d2[4:6, 6] = np.nan
+    none2, _ = no_solution_cells(K, L, d2, [(kk, ll, _valley(kk, ll))])
+    assert not none2[4, 6]
+    assert none_solved_only_by_range(K, L, d2)[4, 6]
+    # the title names the islands
+    reg = {
+        "K": [2.9, 6.0],
+        "L": [3.8, 15.3],
+        "K_bounds": ["point", "data"],
+        "L_bounds": ["point", "data"],
+        "islands": [{"K": [4.7, 6.0], "L": [11.9, 15.3]}, {"K": [2.9, 2.9], "L": [3.8, 3.8]}],
+    }
+    assert region_short({"region": reg}) == "95% region: 2 islands, L ~3.8 and 11.9-15.3 d"
+
+
+def none_solved_only_by_range(k, ll, d):
+    from cosserat.viz.validation import no_solution_cells
+
+    return no_solution_cells(k, ll, d)[0]
