@@ -1033,7 +1033,8 @@ def refine_around(
     b0 = min(int(np.searchsorted(sc.L, l0, side="right")) - 1, sc.L.size - 2)
     done: dict[tuple[float, float], tuple[float, float, float]] = {}
     base = f"the fit at K = {k0:.3g}, L = {l0:.3g} d (chi^2 = {float(fit.calibration.chi2):.4g})"
-    todo, seen, out = [(a0, b0)], {(a0, b0)}, []
+    todo, seen = [(a0, b0)], {(a0, b0)}
+    out: list[Patch] = []
     while todo and len(out) < cells:
         a, b = todo.pop(0)
         kk, ll = cell_axes(sc.K, sc.L, a, b)
