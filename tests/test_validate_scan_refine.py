@@ -212,6 +212,16 @@ def test_a_solved_point_in_a_second_basin_makes_the_region_two_islands():
     text = ss.region_text(reg)
     assert text.startswith("two islands: K 2.9, L ~3.8 d and K ")
     assert f"; L unidentified: 3.8-{alone['L'][1]:.3g} d, two basins" in text
+    # the cell refined around it (refine_around's patch) joins it: still two islands
+    kk, ll = ss.cell_axes(np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11), 2, 3)
+    sc = _basin_scan([start])
+    sc.patches = [SimpleNamespace(K=kk, L=ll, chi2=40.0 + _two_basins(kk, ll))]
+    two = ss.scan_region(sc)
+    assert len(two["islands"]) == 2
+    low = min(two["islands"], key=lambda i: i["L"][0])
+    inside = int(np.count_nonzero(_two_basins(kk, ll) <= 6.02))
+    assert inside >= 1 and low["points"] == 1 + inside
+    assert low["K"][1] == 3.0 and low["L"][0] < 3.8
     # outside the threshold the point is no island
     far = ss.scan_region(_basin_scan([{**start, "chi2": 46.1}]))
     assert len(far["islands"]) == 1 and far["L"] == alone["L"]

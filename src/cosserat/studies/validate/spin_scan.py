@@ -1357,8 +1357,9 @@ def region_pieces(
 
     The region's points (Delta chi^2 <= ``threshold``) of each grid join their 8 neighbours
     on the grid (a ridge along the diagonal stays one piece); a point of one grid inside the
-    box of another joins that grid's nearest point when it is inside (the finer grid resolves
-    it there); and where ``inside_at`` (vectorised: K [-], L [d] -> inside) is given, a piece
+    box of another joins that grid's nearest point and its 8 neighbours where they are inside
+    (the finer grid resolves it there; a restart's fit off the grids joins the patch refined
+    around it); and where ``inside_at`` (vectorised: K [-], L [d] -> inside) is given, a piece
     joins the optimum's along the valley between them: at each of :data:`PATH_POINTS` points
     of the segment (in K and log L) between their nearest points, some K within the
     segment's K extent (at least one grid step) either side, on
@@ -1433,9 +1434,11 @@ def region_pieces(
                 continue
             a2 = int(np.argmin(np.abs(K - k)))
             b2 = int(np.argmin(np.abs(np.log(L) - math.log(ll))))
-            j = index.get((g, a2, b2))
-            if j is not None:
-                unite(i, j)
+            for da in (-1, 0, 1):  # its nearest point or that point's 8 neighbours
+                for db in (-1, 0, 1):
+                    j = index.get((g, a2 + da, b2 + db))
+                    if j is not None:
+                        unite(i, j)
     if not nodes:
         return inside, [], 0
     c = np.array(coords)
