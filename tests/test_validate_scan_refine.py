@@ -173,3 +173,92 @@ def test_the_match_zone_is_the_hatched_zone_and_its_sentence_calls_a_sub_grain_l
     inside = _zone_scan(0.05 * math.log(8.0) + 0.02 * 0.75)  # the region's point (2.5, 4)
     assert ss.match_zone(inside)["in_region"] is True
     assert ss.match_zone_text([inside]) == ""
+
+
+def _two_basins(k, ll):
+    """Two basins of Delta chi^2: 0 at (K 5.3, L 14 d) and 5.56 at (K 2.9, L 3.8 d), each
+    rising as a paraboloid of width 0.3 in K and 0.1 in ln L; a ridge between them."""
+    kk, lg = np.meshgrid(k, ll, indexing="ij")
+    a = ((kk - 5.3) / 0.3) ** 2 + (np.log(lg / 14.0) / 0.1) ** 2
+    b = 5.56 + ((kk - 2.9) / 0.3) ** 2 + (np.log(lg / 3.8) / 0.1) ** 2
+    return np.minimum(a, b)
+
+
+def _basin_scan(extra):
+    k, ll = np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11)
+    kn, ln = np.linspace(4.5, 6.0, 11), np.geomspace(11.0, 17.0, 11)
+    return SimpleNamespace(
+        run="r", fit=None, K=k, L=ll, chi2=40.0 + _two_basins(k, ll), chi2_min=40.0,
+        K_near=kn, L_near=ln, chi2_near=40.0 + _two_basins(kn, ln), patches=[], extra=extra,
+        threshold=6.02,
+    )  # fmt: skip
+
+
+def test_a_solved_point_in_a_second_basin_makes_the_region_two_islands():
+    # the grid alone: the second basin's grid point (K 3, L 4.2 d) is above the threshold
+    # (the referee's 6.14), so the region is one island
+    alone = ss.scan_region(_basin_scan([]))
+    assert [len(alone["islands"])] == [1] and alone["L"][0] > 10.0
+    assert not ss.islands_disjoint_in_l(alone)
+    assert "islands" not in ss.region_text(alone)
+    # a restart's start at the old optimum, Delta chi^2 5.56 < 6.02, is a point of the region
+    start = {"K": 2.9, "L": 3.8, "chi2": 45.56, "source": "the first fit (a restart's start)"}
+    reg = ss.scan_region(_basin_scan([start]))
+    assert len(reg["islands"]) == 2 and ss.islands_disjoint_in_l(reg)
+    low = min(reg["islands"], key=lambda i: i["L"][0])
+    assert low["K"] == [2.9, 2.9] and low["L"] == [3.8, 3.8] and low["points"] == 1
+    assert low["delta_chi2"] == pytest.approx(5.56)
+    assert reg["L"][0] == 3.8 and reg["L"][1] == alone["L"][1] and reg["K"][0] == 2.9
+    text = ss.region_text(reg)
+    assert text.startswith("two islands: K 2.9, L ~3.8 d and K ")
+    assert f"; L unidentified: 3.8-{alone['L'][1]:.3g} d, two basins" in text
+    # the cell refined around it (refine_around's patch) joins it: still two islands
+    kk, ll = ss.cell_axes(np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11), 2, 3)
+    sc = _basin_scan([start])
+    sc.patches = [SimpleNamespace(K=kk, L=ll, chi2=40.0 + _two_basins(kk, ll))]
+    two = ss.scan_region(sc)
+    assert len(two["islands"]) == 2
+    low = min(two["islands"], key=lambda i: i["L"][0])
+    inside = int(np.count_nonzero(_two_basins(kk, ll) <= 6.02))
+    assert inside >= 1 and low["points"] == 1 + inside
+    assert low["K"][1] == 3.0 and low["L"][0] < 3.8
+    # outside the threshold the point is no island
+    far = ss.scan_region(_basin_scan([{**start, "chi2": 46.1}]))
+    assert len(far["islands"]) == 1 and far["L"] == alone["L"]
+
+
+def test_the_grey_is_where_no_grid_has_a_solution():
+    from cosserat.viz.validation import no_solution_cells, region_short
+
+    # the range grid solves to L[6] = 12 d; a refined patch of the cell L[6]-L[7] solves to
+    # 17.9 d at K 4-5 (the referee's smooth_H20)
+    d = _valley(K, L)
+    kk, ll = ss.cell_axes(K, L, 4, 6)
+    none, bound = no_solution_cells(K, L, d, [(kk, ll, _valley(kk, ll))])
+    assert none.shape == bound.shape == (K.size - 1, L.size - 1)
+    # cells with every corner beyond 20 d: no grid has a solution
+    assert none[:, 7:].all() and not none[:, :7].any()
+    # the cell column 12-20 d holds the existence bound: some corners solve, some do not,
+    # the patch's solutions inside one of them; no cell is both
+    assert bound[:, 6].all() and not bound[:, :6].any() and not (none & bound).any()
+    # a cell whose range-grid corners all fail but a finer grid solves inside is not grey
+    d2 = d.copy()
+    d2[4:6, 6] = np.nan
+    none2, _ = no_solution_cells(K, L, d2, [(kk, ll, _valley(kk, ll))])
+    assert not none2[4, 6]
+    assert none_solved_only_by_range(K, L, d2)[4, 6]
+    # the title names the islands
+    reg = {
+        "K": [2.9, 6.0],
+        "L": [3.8, 15.3],
+        "K_bounds": ["point", "data"],
+        "L_bounds": ["point", "data"],
+        "islands": [{"K": [4.7, 6.0], "L": [11.9, 15.3]}, {"K": [2.9, 2.9], "L": [3.8, 3.8]}],
+    }
+    assert region_short({"region": reg}) == "95% region: 2 islands, L ~3.8 and 11.9-15.3 d"
+
+
+def none_solved_only_by_range(k, ll, d):
+    from cosserat.viz.validation import no_solution_cells
+
+    return no_solution_cells(k, ll, d)[0]

@@ -56,6 +56,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -473,6 +474,9 @@ class Patch:
     departure: FloatArray
     chi2: FloatArray
     null: FloatArray
+    base: str = ""
+    """Where the other free parameters are held: "" at the joint fit's optimum, else the
+    solved fit the patch refines around (:func:`refine_around`, e.g. a restart's start)."""
 
 
 def refine_cells(
@@ -650,6 +654,10 @@ class Scan:
     point (``K``, ``L`` [d], ``chi2``), the fit it left (``K_from``, ``L_from``,
     ``chi2_from``) and the refit (``K_to``, ``L_to``, ``chi2_to``); empty where the fit was
     the grid's minimum."""
+    extra: list[dict[str, Any]] = field(default_factory=list)
+    """Solved fits off the grids (the joint fit's restarts' start and end, :func:`scan_run`):
+    each ``K``, ``L`` [d], ``chi2`` and ``source``; those inside the threshold are points of
+    the 95% region (:func:`scan_region`, referee 13, point 2)."""
     phi_sensitivity: dict[str, Any] = field(default_factory=dict)
     """The model's first-layer departure beyond its own null over the range grid at the ends
     of the plausible phi range (:func:`phi_sensitivity`, referee 11, point 3): ``rows`` (one
@@ -890,8 +898,13 @@ class Scan:
                 ),
             },
             "refined": [
-                _grid(p.K, p.L, p.departure, p.chi2 - self.chi2_min, p.null) for p in self.patches
+                {
+                    **_grid(p.K, p.L, p.departure, p.chi2 - self.chi2_min, p.null),
+                    **({"base": p.base} if p.base else {}),
+                }
+                for p in self.patches
             ],
+            "extra": [{**e, "delta_chi2": float(e["chi2"]) - self.chi2_min} for e in self.extra],
             "restarts": [dict(r) for r in self.restarts],
             "notes": list(self.notes),
             "region": scan_region(self),
@@ -942,6 +955,102 @@ def _profile(model: Any, rd: Any, values: Mapping[Any, float]) -> Any:
     return model_solve(model.problem(rd, values))
 
 
+def _grid_values(
+    run: Run,
+    fit: Any,
+    theta: FloatArray,
+    kk: FloatArray,
+    ll: FloatArray,
+    predictor: Predictor,
+    null_of: Predictor,
+    i0: int,
+    done: dict[tuple[float, float], tuple[float, float, float]],
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The first-layer departure, chi^2 and null over the grid ``kk`` x ``ll`` with the other
+    free parameters at ``theta`` (NaN, inf, NaN where the model has no solution); ``done``
+    caches the points already computed at that ``theta``."""
+    from ...calibration.models import SOLVE_ERRORS
+
+    s = fit.setup
+    rd = s.runs[0]
+    k_slot, l_slot, ik, il = _kl_slots(fit)
+    todo, thetas = [], []
+    for kv in kk:
+        for lv in ll:
+            if (float(kv), float(lv)) in done:
+                continue
+            th = np.array(theta, dtype=float)
+            th[ik], th[il] = k_slot.internal(kv), l_slot.internal(lv)
+            todo.append((float(kv), float(lv)))
+            thetas.append(th)
+    lnl = s.log_likelihood_many(np.array(thetas)) if thetas else []
+    for key, th, ln in zip(todo, thetas, lnl, strict=True):
+        got = (math.nan, math.inf, math.nan)
+        if math.isfinite(ln):
+            c2 = -2.0 * (float(ln) - s.log_norm)
+            got = (math.nan, c2, math.nan)
+            try:
+                prof = _profile(s.model, rd, s.run_values(rd, th))
+                got = (float(predictor(prof, run)[i0]), c2, float(null_of(prof, run)[i0]))
+            except SOLVE_ERRORS:
+                pass
+        done[key] = got
+    out = np.array([[done[(float(kv), float(lv))] for lv in ll] for kv in kk], dtype=float)
+    return out[..., 0], out[..., 1], out[..., 2]
+
+
+ISLAND_CELLS = 9
+"""At most this many cells of the range grid refined around one solved point off the refined
+grids (:func:`refine_around`) [-]."""
+
+
+def refine_around(
+    sc: Scan,
+    run: Run,
+    fit: Any,
+    predictor: Predictor | str = DEFAULT_PREDICTOR,
+    cells: int = ISLAND_CELLS,
+) -> list[Patch]:
+    """Patches around a solved fit ``fit`` inside the 95% region but on no refined grid
+    (referee 13, point 2: a restart's start in a second basin): the range grid's cell holding
+    its (K, L) refined :data:`REFINE` times as the valley's cells are, the other free parameters
+    held at ``fit``'s, and followed into a neighbouring cell across an edge with a point inside
+    the region, at most ``cells`` cells. [] where the point lies in the finer grid's box or a
+    patch, or outside the range grid."""
+    k0, l0 = float(fit.value("K")), float(fit.value("L"))
+
+    def covered(K: FloatArray, L: FloatArray) -> bool:
+        return bool(K.size and L.size and K[0] <= k0 <= K[-1] and L[0] <= l0 <= L[-1])
+
+    if covered(sc.K_near, sc.L_near) or any(covered(p.K, p.L) for p in sc.patches):
+        return []
+    if not (sc.K[0] <= k0 <= sc.K[-1] and sc.L[0] <= l0 <= sc.L[-1]):
+        return []
+    pred, how = _predictor(predictor, run)
+    null_of = _null_of(how)
+    i0 = first_bin(run)
+    a0 = min(int(np.searchsorted(sc.K, k0, side="right")) - 1, sc.K.size - 2)
+    b0 = min(int(np.searchsorted(sc.L, l0, side="right")) - 1, sc.L.size - 2)
+    done: dict[tuple[float, float], tuple[float, float, float]] = {}
+    base = f"the fit at K = {k0:.3g}, L = {l0:.3g} d (chi^2 = {float(fit.calibration.chi2):.4g})"
+    todo, seen = [(a0, b0)], {(a0, b0)}
+    out: list[Patch] = []
+    while todo and len(out) < cells:
+        a, b = todo.pop(0)
+        kk, ll = cell_axes(sc.K, sc.L, a, b)
+        pd, pc, pn = _grid_values(run, fit, fit.theta, kk, ll, pred, null_of, i0, done)
+        out.append(Patch(kk, ll, pd, pc, pn, base))
+        inside = np.isfinite(pc) & (pc - sc.chi2_min <= sc.threshold)
+        for edge, (da, db) in ((inside[0, :], (-1, 0)), (inside[-1, :], (1, 0)),
+                               (inside[:, 0], (0, -1)), (inside[:, -1], (0, 1))):  # fmt: skip
+            nxt = (a + da, b + db)
+            if (edge.any() and nxt not in seen and 0 <= nxt[0] < sc.K.size - 1
+                    and 0 <= nxt[1] < sc.L.size - 1):  # fmt: skip
+                seen.add(nxt)
+                todo.append(nxt)
+    return out
+
+
 def scan(
     run: Run,
     fit: JointFit,
@@ -959,7 +1068,6 @@ def scan(
         The run has no omega or half vorticity.
     """
     from ...analysis.corpus import usable
-    from ...calibration.models import SOLVE_ERRORS
 
     if points < 2:
         raise ParameterError(f"the spin scan needs at least 2 points per parameter; got {points}")
@@ -987,29 +1095,7 @@ def scan(
     done: dict[tuple[float, float], tuple[float, float, float]] = {}
 
     def grid(kk: FloatArray, ll: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        todo, thetas = [], []
-        for kv in kk:
-            for lv in ll:
-                if (float(kv), float(lv)) in done:
-                    continue
-                th = theta0.copy()
-                th[ik], th[il] = k_slot.internal(kv), l_slot.internal(lv)
-                todo.append((float(kv), float(lv)))
-                thetas.append(th)
-        lnl = s.log_likelihood_many(np.array(thetas)) if thetas else []
-        for key, th, ln in zip(todo, thetas, lnl, strict=True):
-            got = (math.nan, math.inf, math.nan)
-            if math.isfinite(ln):
-                c2 = -2.0 * (float(ln) - s.log_norm)
-                got = (math.nan, c2, math.nan)
-                try:
-                    prof = _profile(s.model, rd, s.run_values(rd, th))
-                    got = (float(predictor(prof, run)[i0]), c2, float(null_of(prof, run)[i0]))
-                except SOLVE_ERRORS:
-                    pass
-            done[key] = got
-        out = np.array([[done[(float(kv), float(lv))] for lv in ll] for kv in kk], dtype=float)
-        return out[..., 0], out[..., 1], out[..., 2]
+        return _grid_values(run, fit, theta0, kk, ll, predictor, null_of, i0, done)
 
     dep, chi2, nul = grid(K, L)
     # the 95% region is small against the declared ranges: a grid of the same size around the
@@ -1207,27 +1293,24 @@ def region_extent(
 def region_text(extent: Mapping[str, Any] | None) -> str:
     """The 95% region's extent in words (:func:`region_extent`): ``K a-b, L c-d d``, and what
     limits an end where the data do not (the model's existence, the declared range, the finer
-    grid's edge)."""
+    grid's edge); where the region is more than one island (:func:`scan_region`), each island
+    (e.g. "two islands: K 2.89, L ~3.8 d and K 4.68-6.04, L 11.9-15.3 d") and, where they are
+    disjoint in L, L as unidentified over their span."""
     if extent is None:
         return "no grid point inside"
     k, l_ = extent["K"], extent["L"]
     text = f"K {k[0]:.3g}-{k[1]:.3g}, L {l_[0]:.3g}-{l_[1]:.3g} d"
+    islands = sorted(extent.get("islands", []), key=lambda i: i["L"][0])
+    if len(islands) > 1:
+        n = len(islands)
+        text = f"{_COUNT.get(n, str(n))} islands: " + " and ".join(_piece_text(i) for i in islands)
+        if islands_disjoint_in_l(extent):
+            text += f"; L unidentified: {l_[0]:.2g}-{l_[1]:.3g} d, {_COUNT.get(n, str(n))} basins"
     notes = []
     for name in ("K", "L"):
         for end, why in zip(("lower", "upper"), extent[f"{name}_bounds"], strict=True):
             if why not in ("data", "point"):
                 notes.append(f"{name}'s {end} limit is {BOUND_WORDS[why]}")
-    for piece in extent.get("pieces", []):
-        k, l_ = piece["K"], piece["L"]
-        where = f"K {k[0]:.3g}" + (f"-{k[1]:.3g}" if k[1] != k[0] else "")
-        where += f", L {l_[0]:.3g}" + (f"-{l_[1]:.3g}" if l_[1] != l_[0] else "") + " d"
-        n = piece["points"]
-        least = f" (least Delta chi^2 {piece['delta_chi2']:+.2g})" if "delta_chi2" in piece else ""
-        notes.append(
-            f"another piece of the region, {n} grid point{'s' if n > 1 else ''} at {where}"
-            f"{least}, is joined to the optimum's by no path along the valley inside the "
-            "region and is left out"
-        )
     if extent.get("joined"):
         notes.append(
             f"{extent['joined']} piece(s) joined to the optimum's along the valley inside the "
@@ -1274,8 +1357,9 @@ def region_pieces(
 
     The region's points (Delta chi^2 <= ``threshold``) of each grid join their 8 neighbours
     on the grid (a ridge along the diagonal stays one piece); a point of one grid inside the
-    box of another joins that grid's nearest point when it is inside (the finer grid resolves
-    it there); and where ``inside_at`` (vectorised: K [-], L [d] -> inside) is given, a piece
+    box of another joins that grid's nearest point and its 8 neighbours where they are inside
+    (the finer grid resolves it there; a restart's fit off the grids joins the patch refined
+    around it); and where ``inside_at`` (vectorised: K [-], L [d] -> inside) is given, a piece
     joins the optimum's along the valley between them: at each of :data:`PATH_POINTS` points
     of the segment (in K and log L) between their nearest points, some K within the
     segment's K extent (at least one grid step) either side, on
@@ -1297,8 +1381,8 @@ def region_pieces(
     masks : list of bool arrays
         Per grid, its points in the optimum's piece.
     others : list of dict
-        The other pieces: ``K``, ``L`` ([low, high]), ``points`` and their least Delta
-        chi^2 ``delta_chi2``.
+        The other pieces: ``K``, ``L`` ([low, high]), ``points``, their least Delta
+        chi^2 ``delta_chi2`` and ``masks`` (per grid, the piece's points).
     joined : int
         Pieces joined to the optimum's along a valley.
     """
@@ -1350,9 +1434,11 @@ def region_pieces(
                 continue
             a2 = int(np.argmin(np.abs(K - k)))
             b2 = int(np.argmin(np.abs(np.log(L) - math.log(ll))))
-            j = index.get((g, a2, b2))
-            if j is not None:
-                unite(i, j)
+            for da in (-1, 0, 1):  # its nearest point or that point's 8 neighbours
+                for db in (-1, 0, 1):
+                    j = index.get((g, a2 + da, b2 + db))
+                    if j is not None:
+                        unite(i, j)
     if not nodes:
         return inside, [], 0
     c = np.array(coords)
@@ -1399,9 +1485,12 @@ def region_pieces(
         k_at = [float(np.asarray(grids[nodes[i][0]][0])[nodes[i][1]]) for i in members]
         l_at = [float(np.asarray(grids[nodes[i][0]][1])[nodes[i][2]]) for i in members]
         dc = [float(np.asarray(grids[nodes[i][0]][2])[nodes[i][1], nodes[i][2]]) for i in members]
+        own = [np.zeros_like(m) for m in inside]
+        for i in members:
+            own[nodes[i][0]][nodes[i][1], nodes[i][2]] = True
         pieces.append({
             "K": [min(k_at), max(k_at)], "L": [min(l_at), max(l_at)], "points": len(members),
-            "delta_chi2": min(dc),
+            "delta_chi2": min(dc), "masks": own,
         })  # fmt: skip
     return masks, pieces, joined
 
@@ -1429,10 +1518,13 @@ def _inside_at(sc: Scan) -> Callable[[FloatArray, FloatArray], NDArray[np.bool_]
 
 
 def scan_region(sc: Scan) -> dict[str, Any] | None:
-    """:func:`region_extent` of the piece of a scan's 95% region that holds the optimum
-    (:func:`region_pieces`, the valley between pieces tested on the fit), the finer grid's
-    edge counted as the declared range's where the range clips it; ``pieces``: the other
-    pieces, ``joined``: how many the valley test joined (referee 11, point 7)."""
+    """:func:`region_extent` of a scan's 95% region: every solved point inside the threshold,
+    on any grid (the range grid, the finer one, the refinement patches) or off them (the joint
+    fit's restarts, ``Scan.extra``: solved points too, referee 13, point 2), the finer grid's
+    edge counted as the declared range's where the range clips it. ``islands``: the region's
+    connected pieces (:func:`region_pieces`, the valley between pieces tested on the fit), the
+    optimum's first, each its own extent (``K``, ``L``, ``points``, least ``delta_chi2``);
+    ``joined``: how many pieces the valley test joined (referee 11, point 7)."""
     cached = sc.__dict__.get("_region")
     if cached is not None:
         return cached or None
@@ -1441,31 +1533,73 @@ def scan_region(sc: Scan) -> dict[str, Any] | None:
         (sc.K_near, sc.L_near, sc.chi2_near - sc.chi2_min, "box"),
     ]
     grids += [(p.K, p.L, p.chi2 - sc.chi2_min, "refined") for p in getattr(sc, "patches", ())]
+    grids += [
+        (np.array([e["K"]]), np.array([e["L"]]), np.array([[e["chi2"] - sc.chi2_min]]), "point")
+        for e in getattr(sc, "extra", ())
+    ]
     if isinstance(sc.fit, JointFit):
         optimum = (sc.fit.value("K"), sc.fit.value("L"))
     else:  # a test's stand-in fit: its grid's least chi^2
         a, b = np.unravel_index(int(np.argmin(sc.chi2)), sc.chi2.shape)
         optimum = (float(sc.K[a]), float(sc.L[b]))
     masks, pieces, joined = region_pieces(grids, sc.threshold, optimum, _inside_at(sc))
-    kept = [
-        (K, L, np.where(m | (np.asarray(d) > sc.threshold) | ~np.isfinite(d), d,
-                        2.0 * sc.threshold), edge)
-        for (K, L, d, edge), m in zip(grids, masks, strict=True)
-    ]  # fmt: skip
-    ext = region_extent(kept, sc.threshold)
+
+    def extent(piece_masks: Sequence[NDArray[np.bool_]]) -> dict[str, Any] | None:
+        kept = [
+            (K, L, np.where(m | (np.asarray(d) > sc.threshold) | ~np.isfinite(d), d,
+                            2.0 * sc.threshold), edge)
+            for (K, L, d, edge), m in zip(grids, piece_masks, strict=True)
+        ]  # fmt: skip
+        got = region_extent(kept, sc.threshold)
+        if got is None:
+            return None
+        for name, grid in (("K", sc.K), ("L", sc.L)):
+            ends = (float(grid[0]), float(grid[-1]))
+            got[f"{name}_bounds"] = [
+                "range" if why == "box" and any(math.isclose(v, e, rel_tol=1e-9) for e in ends)
+                else why
+                for v, why in zip(got[name], got[f"{name}_bounds"], strict=True)
+            ]  # fmt: skip
+        return got
+
+    union = [m.copy() for m in masks]
+    for piece in pieces:
+        union = [u | m for u, m in zip(union, piece["masks"], strict=True)]
+    ext = extent(union)
     sc.__dict__["_region"] = ext or {}
     if ext is None:
         return None
-    ext["pieces"] = pieces
+    islands = []
+    for piece_masks in [masks, *(p["masks"] for p in pieces)]:
+        one = extent(piece_masks)
+        if one is None:
+            continue
+        one["delta_chi2"] = min(
+            float(np.min(np.asarray(d)[m])) for (_, _, d, _), m in zip(grids, piece_masks,
+                                                                      strict=True) if m.any()
+        )  # fmt: skip
+        islands.append(one)
+    ext["islands"] = islands
     ext["joined"] = joined
-    for name, grid in (("K", sc.K), ("L", sc.L)):
-        ends = (float(grid[0]), float(grid[-1]))
-        ext[f"{name}_bounds"] = [
-            "range" if why == "box" and any(math.isclose(v, e, rel_tol=1e-9) for e in ends)
-            else why
-            for v, why in zip(ext[name], ext[f"{name}_bounds"], strict=True)
-        ]  # fmt: skip
     return ext
+
+
+def islands_disjoint_in_l(extent: Mapping[str, Any] | None) -> bool:
+    """Whether the region's islands (:func:`scan_region`) leave a gap in L between them: L is
+    then unidentified over their span (referee 13, point 2: "3.8-15.3 d, two basins")."""
+    islands = sorted((extent or {}).get("islands", []), key=lambda i: i["L"][0])
+    return any(b["L"][0] > a["L"][1] for a, b in itertools.pairwise(islands))
+
+
+_COUNT = {2: "two", 3: "three", 4: "four"}
+
+
+def _piece_text(piece: Mapping[str, Any]) -> str:
+    k, l_ = piece["K"], piece["L"]
+    where = f"K {k[0]:.3g}" + (f"-{k[1]:.3g}" if f"{k[1]:.3g}" != f"{k[0]:.3g}" else "")
+    if f"{l_[1]:.3g}" == f"{l_[0]:.3g}":
+        return where + f", L ~{l_[0]:.2g} d"
+    return where + f", L {l_[0]:.3g}-{l_[1]:.3g} d"
 
 
 def _blocks(run: Run) -> int:
@@ -3591,20 +3725,37 @@ def scan_run(
         low = below_optimum(sc)
         return None if low is None else {**low, "chi2": sc.chi2_min + low["delta_chi2"]}
 
+    tried: list[tuple[JointFit, str]] = []
+
     def refit(fit: JointFit, point: Mapping[str, float]) -> JointFit | None:
         start = {n: float(e.value) for n, e in fit.calibration.parameters.items() if e.free}
         start[fit._slot("K").name], start[fit._slot("L").name] = point["K"], point["L"]
         try:
-            return joint_fit(run, ang, starts=starts, start=start)
+            new = joint_fit(run, ang, starts=starts, start=start)
         except ParameterError:
             return None
+        tried.append((new, "a restart's end"))
+        return new
 
+    first = joint_fit(run, ang, starts=starts)
+    tried.append((first, "the first fit (a restart's start)"))
     fit, moves = restart_from_grid(
-        joint_fit(run, ang, starts=starts), lowest, refit,
+        first, lowest, refit,
         lambda f: float(f.calibration.chi2), lambda f: (f.value("K"), f.value("L")),
     )  # fmt: skip
     sc = scans.get(id(fit)) or scan(run, fit, points, predictor)
     sc.restarts = moves
+    # the restarts' fits are solved points: inside the threshold they are the 95% region's,
+    # and one on no refined grid is refined around (referee 13, point 2: a second basin)
+    for other, source in tried if moves else ():
+        if other is fit:
+            continue
+        c2 = float(other.calibration.chi2)
+        sc.extra.append({"K": other.value("K"), "L": other.value("L"), "chi2": c2,
+                         "source": source})  # fmt: skip
+        if c2 - sc.chi2_min <= sc.threshold:
+            sc.patches += refine_around(sc, run, other, predictor)
+    sc.__dict__.pop("_region", None)
     ends = phi_ends(runs, _material_label(run.meta))
     sc.phi_sensitivity = phi_sensitivity(sc, run, ends, predictor)
     return sc
@@ -3731,6 +3882,7 @@ __all__ = [
     "ERROR_MODEL_NAMES",
     "FINER",
     "FITS_P",
+    "ISLAND_CELLS",
     "LEVEL",
     "LOCAL_SPAN",
     "PREDICTORS",
@@ -3756,6 +3908,7 @@ __all__ = [
     "error_model_scales",
     "firm_runs",
     "first_bin",
+    "islands_disjoint_in_l",
     "joint_fit",
     "lead_text",
     "match_zone",
@@ -3770,6 +3923,7 @@ __all__ = [
     "phi_sensitivity_text",
     "point_departure",
     "prediction_se_at",
+    "refine_around",
     "refine_cells",
     "region_extent",
     "region_pieces",
