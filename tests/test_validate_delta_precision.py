@@ -176,27 +176,58 @@ def test_the_slope_window_of_a_power_law_with_an_offset():
         slope_window((gaps, vals), 0.0, span=1.0)
 
 
-def test_the_reach_text_says_the_window_lies_beyond_the_curve():
-    """The rough claim on a curve of slope 0.58 to 39 d: the window is beyond 39 d, and the
-    proposed gaps test the finite-H curve; the verdict's numbers carry the window."""
-    gaps = [9.8, 19.6, 39.2]
-    curve = (tuple(gaps), (4.0, 6.0, 9.0))
+def _reached(reach):
     pts = [DeltaPoint("a", 9.8, 6.6, 0.7), DeltaPoint("c", 19.6, 7.95, 1.1)]
     s = _series(pts, rough=True)
-    s = DeltaSeries(s.key, s.cell, s.roughness, s.gravity, s.points,
-                    curves={"cosserat": ModelDelta("cosserat", {"a": (4.0, 0.2), "c": (6.0, 0.3)},
-                                                   curve)})  # fmt: skip
+    md = ModelDelta("cosserat", {"a": (4.0, 0.2), "c": (6.0, 0.3)},
+                    ((9.8, 19.6, 39.2), (4.0, 6.0, 9.0)), reach=reach)  # fmt: skip
+    return DeltaSeries(s.key, s.cell, s.roughness, s.gravity, s.points, curves={"cosserat": md})
+
+
+def test_the_reach_text_says_the_window_lies_beyond_the_curve():
+    """The rough claim on a curve (with its reach beyond the figure's) whose slope over a
+    factor 4 is 0.58 to 39.2 d and 0.40 over 39.2-156.8 d: the window is beyond 156.8 d, and
+    20/40/80 d (slope 0.50 there) tests the finite-H curve; the verdict carries the window."""
+    s = _reached(((78.4, 156.8), (12.0, 15.6)))
+    md = s.curves["cosserat"]
+    assert md.full_curve() == ((9.8, 19.6, 39.2, 78.4, 156.8), (4.0, 6.0, 9.0, 12.0, 15.6))
+    at_design = math.log(12.0 / 6.0) / math.log(78.4 / 19.6)  # 20 and 80 d interpolated
+    last = math.log(15.6 / 9.0) / math.log(4.0)
     text = reach_text(s, 1 / 3)
-    slope = math.log(9.0 / 4.0) / math.log(4.0)
     assert text == (
         "where the slope rule could judge the exponent: the cosserat curve's own slope over a "
         "factor-4 window of gaps (as 20/40/80 d) must be within 0.05 of 0.333; the curve is "
-        f"computed to H/d = 39.2 (its slope over H/d = 9.8-39.2 is {slope:.2f}), so that window "
-        "lies beyond H/d = 39.2, the largest gap computed: at feasible gaps (20/40/80 d) DEM "
-        "tests the finite-H curve (the shape test with a common factor), not the claimed H/d "
-        "-> infinity exponent 0.333"
+        f"computed to H/d = 156.8, with a Delta at every gap; its slope over H/d = 39.2-156.8 is "
+        f"{last:.2f}, so that window lies beyond H/d = 156.8, the largest gap computed: at "
+        "20/40/80 d (the curve's slope there 0.50) DEM tests the finite-H curve (the shape test "
+        "with a common factor), not the claimed H/d -> infinity exponent 0.333"
     )
+    assert abs(md.slope_between(20.0, 80.0) - at_design) < 0.01  # 0.50 either way
     v = delta_law_verdict([s], "rough")
     assert text in v.would_change
     assert v.numbers[s.key]["slope_window"]["start"] is None
-    assert reach_text(_series(pts, rough=True), 1 / 3) == ""  # no curve
+    assert v.numbers[s.key]["slope_window"]["last"] == 156.8
+    assert reach_text(_series(s.points, rough=True), 1 / 3) == ""  # no curve
+
+
+def test_the_reach_text_names_the_window_where_the_slope_reaches_the_limit():
+    """A reach whose slope over 39.2-156.8 d is exactly 1/3 (Delta x 4^(1/3)): the falling slope
+    (0.58 over 9.8-39.2 d) enters the band at its upper edge, 1/3 + 0.05, inside a segment
+    where the log-log-linear slope is linear in ln g; and a curve that stops says where and
+    why."""
+    s = _reached(((78.4, 156.8), (9.0 * 2 ** (1 / 3) * 1.02, 9.0 * 4 ** (1 / 3))))
+    w = slope_window(s.curves["cosserat"].full_curve(), 1 / 3)
+    assert w["start"] is not None and 19.6 < w["start"] <= 39.2 and w["end"] == 4 * w["start"]
+    assert abs(s.curves["cosserat"].slope_between(w["start"], w["end"]) - (1 / 3 + 0.05)) < 1e-9
+    text = reach_text(s, 1 / 3)
+    assert f"its slope first comes within 0.05 of 0.333 over H/d = {w['start']:.4g}-" in text
+    assert text.endswith(
+        "gaps from there could judge the exponent; at 20/40/80 d (the curve's slope there "
+        f"{s.curves['cosserat'].slope_between(20.0, 80.0):.2f}) DEM tests the finite-H curve "
+        "(the shape test with a common factor), not the claimed H/d -> infinity exponent"
+    )
+    stops = _reached(((78.4, 156.8), (None, 15.6)))
+    stops.curves["cosserat"].why["78.4"] = "no solution: the solver failed"
+    assert "computed to H/d = 39.2, where it stops: no value at H/d = 78.4 (no solution)" in (
+        reach_text(stops, 1 / 3)
+    )

@@ -1980,6 +1980,15 @@ class ModelDelta:
     why: Mapping[str, str] = field(default_factory=dict)
     resolved_above: Mapping[str, float] = field(default_factory=dict)
     best: ModelDelta | None = None
+    reach: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
+    """The claims' model's Delta beyond ``curve`` (``fits.REACH_SPAN``; referee 13, point 3),
+    as ``curve``: where its own slope reaches the claimed limits (:meth:`full_curve`)."""
+
+    def full_curve(self) -> tuple[tuple[float, ...], tuple[float | None, ...]]:
+        """``curve`` and ``reach`` together, by gap."""
+        gaps, values = (*self.curve[0], *self.reach[0]), (*self.curve[1], *self.reach[1])
+        pts = sorted(zip(gaps, values, strict=True), key=lambda p: p[0])
+        return tuple(g for g, _ in pts), tuple(v for _, v in pts)
 
     def resolved(self, key: str, value: float | None) -> bool:
         """Whether ``value`` (the model's Delta at run or curve gap ``key``) is above the second
@@ -1993,8 +2002,8 @@ class ModelDelta:
 
     def slope_between(self, g0: float, g1: float) -> float | None:
         """The curve's own log-log slope between H/d = g0 and g1 (interpolated in log-log),
-        None without a curve spanning them."""
-        gaps, values = self.curve
+        None without a curve spanning them (``reach`` included)."""
+        gaps, values = self.full_curve()
         pts = [(g, v) for g, v in zip(gaps, values, strict=True) if v is not None and v > 0.0]
         if len(pts) < 2 or g1 <= g0 or pts[0][0] > g0 * (1 + 1e-9) or pts[-1][0] < g1 * (1 - 1e-9):
             return None
@@ -2300,6 +2309,7 @@ class DeltaSeries:
                         run: {"value": v, "stderr": e} for run, (v, e) in c.predicted.items()
                     },
                     "curve": {"gaps": list(c.curve[0]), "Delta": list(c.curve[1])},
+                    "reach": {"gaps": list(c.reach[0]), "Delta": list(c.reach[1])},
                     "why": dict(c.why),
                     "resolved_above": dict(c.resolved_above),
                     "test": None if (t := tests.get(c.model)) is None else t.to_dict(),
@@ -2673,44 +2683,57 @@ def _seed_text(need: Mapping[str, Any]) -> str:
 
 
 def reach_text(s: DeltaSeries, target: float, model: str = "cosserat") -> str:
-    """Where ``model``'s one-calibration curve (:func:`slope_window`, a factor-4 window like
-    20/40/80 d) has a slope within :data:`EXPONENT_TOL` of ``target``, in words: the gaps at
-    which the slope rule could judge the exponent, or that they lie beyond the largest gap
-    computed; either way what DEM at the proposed gaps tests (referee 13, point 3). "" without
+    """Where ``model``'s one-calibration curve, carried on beyond the figure's
+    (``ModelDelta.full_curve``), has a slope within :data:`EXPONENT_TOL` of ``target`` over a
+    factor-4 window like 20/40/80 d (:func:`slope_window`), in words: the gaps at which the
+    slope rule could judge the exponent, or that they lie beyond the largest gap computed; and
+    what DEM at 20/40/80 d tests, with the curve's slope there (referee 13, point 3). "" without
     a curve."""
     c = s.curves.get(model)
     if c is None or not c.ok:
         return ""
-    w = slope_window(c.curve, target)
+    w = slope_window(c.full_curve(), target)
     if w["last"] is None:
         return ""
-    stop = ""
     if w["stops"] is not None:
         reason = c.why.get(f"{w['stops']:.6g}", "")  # fits.curve_key
-        stop = f"; it has no value from H/d = {w['stops']:.3g}" + (
+        stop = f", where it stops: no value at H/d = {w['stops']:.3g}" + (
             f" ({reason.split(':')[0]})" if reason else ""
         )
+    else:
+        stop = ", with a Delta at every gap"
     head = (
         f"where the slope rule could judge the exponent: the {model} curve's own slope over a "
         f"factor-{w['span']:g} window of gaps (as 20/40/80 d) must be within {w['tol']:g} of "
-        f"{target:.3g}; the curve is computed to H/d = {w['last']:.3g}{stop}"
+        f"{target:.3g}; the curve is computed to H/d = {w['last']:.4g}{stop}"
+    )
+    design = c.slope_between(20.0, 80.0)
+    feasible = (
+        f"at 20/40/80 d (the curve's slope there {design:.2f}) DEM tests the finite-H curve "
+        "(the shape test with a common factor)"
+        if design is not None
+        else "at the gaps proposed DEM tests the finite-H curve (the shape test with a common "
+        "factor)"
     )
     if w["start"] is not None:
         return (
-            head + f", and its slope comes within {w['tol']:g} of {target:.3g} over H/d = "
-            f"{w['start']:.3g}-{w['end']:.3g}: gaps there judge the exponent, smaller gaps test "
-            "the finite-H curve (the shape test with a common factor)"
+            head + f", and its slope first comes within {w['tol']:g} of {target:.3g} over "
+            f"H/d = {w['start']:.4g}-{w['end']:.4g}: gaps from there could judge the exponent"
+            + (
+                f"; {feasible}, not the claimed H/d -> infinity exponent"
+                if w["start"] > 20.0
+                else ""
+            )
         )
     last = (
-        f" (its slope over H/d = {w['last'] / w['span']:.3g}-{w['last']:.3g} is "
-        f"{w['last_slope']:.2f})"
+        f"; its slope over H/d = {w['last'] / w['span']:.4g}-{w['last']:.4g} is "
+        f"{w['last_slope']:.2f}"
         if w["last_slope"] is not None
         else ""
     )
     return (
-        head + f"{last}, so that window lies beyond H/d = {w['last']:.3g}, the largest gap "
-        "computed: at feasible gaps (20/40/80 d) DEM tests the finite-H curve (the shape test "
-        f"with a common factor), not the claimed H/d -> infinity exponent {target:.3g}"
+        head + f"{last}, so that window lies beyond H/d = {w['last']:.4g}, the largest gap "
+        f"computed: {feasible}, not the claimed H/d -> infinity exponent {target:.3g}"
     )
 
 
@@ -3168,7 +3191,7 @@ def delta_law_verdict(
         notes = "".join(f"; note: {n}" for n in (*s.notes, *s.replicates()))
         notes = (f"; {level}" if level else "") + notes
         numbers[s.key]["slope_window"] = (
-            slope_window(s.curves[model].curve, target)
+            slope_window(s.curves[model].full_curve(), target)
             if model in s.curves and s.curves[model].ok
             else None
         )
