@@ -794,8 +794,8 @@ class SeriesCalibration:
     """An alternative's per-series best fit (:func:`calibrate_best`), None for the claims'
     model or where it was not made."""
     reach: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
-    """The claims' model's Delta beyond the curve (:func:`_series_reach`), as ``curve``; empty
-    for the other models."""
+    """The claims' model's Delta beyond the curve (``_series_reach``), as ``curve``; empty for
+    the other models."""
 
 
 def _series_start(model: str, keys: set[str], fits: Sequence[RunFits | None]) -> dict[str, float]:

@@ -1982,7 +1982,7 @@ class ModelDelta:
     best: ModelDelta | None = None
     reach: tuple[tuple[float, ...], tuple[float | None, ...]] = ((), ())
     """The claims' model's Delta beyond ``curve`` (``fits.REACH_SPAN``; referee 13, point 3),
-    as ``curve``: where its own slope reaches the claimed limits (:meth:`full_curve`)."""
+    as ``curve``: where its own slope reaches the claimed limits (``full_curve``)."""
 
     def full_curve(self) -> tuple[tuple[float, ...], tuple[float | None, ...]]:
         """``curve`` and ``reach`` together, by gap."""
