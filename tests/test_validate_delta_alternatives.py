@@ -176,6 +176,25 @@ def test_the_claim_figure_draws_an_alternatives_best_fit_beside_its_material_cur
     plt.close(fig)
 
 
+def test_the_claim_figure_names_the_one_calibration_curve_where_it_has_no_value():
+    """Referee 13, point 8: the "none at" legend line belongs to the one-calibration curve, not
+    to the best fit, which may run to the end of the gaps."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import delta_claim_figure
+
+    gaps = [10.0, 20.0, 40.0]
+    material = {"gaps": gaps, "Delta": [1.2, None, None], "why": ["", "no solution: x", ""]}
+    best = {"gaps": gaps, "Delta": [5.8, 10.7, 20.9]}
+    two = {"label": "plane", "gaps": [10.0, 20.0], "Delta": [6.6, 7.95], "stderr": [0.7, 1.1],
+           "usable": [False, True], "curves": {"ngf": material | {"best": best}}}  # fmt: skip
+    fig = delta_claim_figure([two], {}, "Delta")
+    labels = [ln.get_label() for ln in fig.axes[0].get_lines()]
+    assert "ngf, one calibration: none at H/d = 20-40 (no solution)" in labels
+    assert not any(lb.startswith("ngf: none") for lb in labels)
+    plt.close(fig)
+
+
 def test_a_best_fit_parameter_at_a_bound_is_flagged_with_the_bound():
     """The shipped rough series' mu(I) best fit: I_0 at the lower end of its range 1e-4."""
     from cosserat.studies.validate.verdicts import calibration_text

@@ -253,10 +253,16 @@ def test_the_design_at_the_seed_scatter_from_the_closed_form():
         "against 5.15 +- 0.53 d, 1.46 d apart (z = +1.7)) give a per-run scatter of Delta of " \
         "|ln(Delta_a / Delta_b)| / sqrt(2) = 18% from 1 pair(s) (1 degree(s) of freedom: " \
         "95% range 8-561%, so one pair barely bounds it)" in text  # fmt: skip
-    assert "At 18% per run, 2 se between the exponents (sigma <= 0.167) is reached by " \
-        "20/40/80 d with 2 seeds each: sigma = 0.13; 20/40/80 d with 3 seeds each: sigma = " \
-        "0.1; not by 20/40/80 d: sigma = 0.18; the slope rule's margin (sigma <= 0.0833) by " \
-        "none of them" in text  # fmt: skip
+    # the rule's margin (1/12) needs ceil(0.176^2 x 144 / (2 ln^2 2)) = 5 seeds per gap
+    exact = (rel * 12.0) ** 2 / (2.0 * math.log(2.0) ** 2)
+    assert need["seeds_for_margin"]["exact"] == pytest.approx(exact)
+    assert 4 < exact < 5 and need["seeds_for_margin"]["seeds"] == 5
+    assert "At 18% per run, the slope rule's sigma <= 0.0833 needs 5 seeds per gap at " \
+        "20/40/80 d ((17.6%/0.0833)^2 / sum (ln H - mean)^2 = 4.6, rounded up): reached by " \
+        "none of the designs; not by 20/40/80 d: sigma = 0.18; 20/40/80 d with 2 seeds each: " \
+        "sigma = 0.13; 20/40/80 d with 3 seeds each: sigma = 0.1 (as context: sigma <= 0.167 " \
+        "by 20/40/80 d with 2 seeds each: sigma = 0.13; 20/40/80 d with 3 seeds each: sigma = " \
+        "0.1)" in text  # fmt: skip
     v = delta_law_verdict([s], "rough")
     assert "a second seed already questions" in v.would_change
     assert v.numbers[s.key]["precision_needed"]["seeds"]["dof"] == 1

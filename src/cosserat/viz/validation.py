@@ -703,7 +703,7 @@ def delta_claim_figure(
                 gap_note = none_ranges(c["gaps"], c["Delta"], c.get("why", []))
                 if gap_note:  # said in the legend, off the data, in the model's style
                     ax.plot([], [], color=st["color"], linestyle=":", linewidth=1.2,
-                            label=f"{model}: {gap_note}")  # fmt: skip
+                            label=f"{model}, one calibration: {gap_note}")  # fmt: skip
             if not all_g:
                 ax.text(0.5, 0.5, "no usable Delta", ha="center", transform=ax.transAxes)
                 ax.set_title(s["label"], fontsize=7)

@@ -915,6 +915,7 @@ def _curve(c: SeriesCalibration) -> ModelDelta:
         c.why,
         c.resolved_above,
         None if c.best is None else _curve(c.best),
+        c.reach,
     )
 
 
