@@ -617,12 +617,11 @@ class TwinPair:
             text += (
                 " The seed-scatter factor sqrt(sum z^2 / n) (what each run's block se must be "
                 "multiplied by to carry the scatter between realisations; static zone: I < "
-                f"{STATIC_I:g} in both): {factors}{self.cut_text()}. There the packing is "
-                "frozen over the window, so the ten time blocks sample one quenched "
+                f"{STATIC_I:g} in both): {factors}{self.cut_text()}. In the static zone the "
+                "packing is frozen over the window, so the ten time blocks sample one quenched "
                 "configuration and their se is a within-realisation error: static-zone misses "
-                "of nu and the stresses "
-                "beyond their block errors are realisation noise at about these factors, not "
-                "model or rate effects."
+                "of nu and the stresses beyond their block errors are realisation noise at "
+                "about these factors, not model or rate effects."
             )
         ratio = self.fields.get("stress_ratio")
         if ratio is not None:
