@@ -448,6 +448,11 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     xs, ys = lin.containers[0].lines[0].get_data()
     assert ys[int(np.argmin(xs))] < ys[int(np.argmax(xs))]
     assert len(lin.patches) >= 2  # the two 3 d windows
+    # the windows' legend entry says what they are in full (referee 13, point 8: "3 d windows
+    # of a" read as cut off)
+    (legend,) = fig.legends
+    texts = [t.get_text() for t in legend.get_texts()]
+    assert "shaded: the 3 d at each wall over which the asymmetry a is measured" in texts
     assert len(rate.lines) >= 5  # the decaying alternatives' rates, and the local one's
 
 
@@ -488,10 +493,15 @@ def test_the_layer_shape_at_the_materials_L():
     text = material_length_text([other])
     assert text.startswith(
         " The material's L (the one Cosserat calibration of the material's runs under gravity, "
-        "L = 8 +- 1 d) in the Cosserat layer profile (c) (its own phi, delta and K; only L set, "
-        "nothing fitted; chi^2 under the ar1, diagonal, common-mode error models, dof = bins): "
-        "layer: chi^2 = "
+        "L = 8 +- 1 d) in the Cosserat layer profile (c) (phi = 19 deg (sin phi = 0.326; the "
+        "design's, not the material's: at B = 0 the layer's stress ratio is the smoother wall's "
+        "tan delta whatever phi is), delta = atan(the run's wall stress ratio) at the smoother "
+        "wall, the rougher wall fully rough, K = 0.5 there and A = 0.333 (their defaults); only "
+        "L set, nothing fitted; chi^2 under the ar1, diagonal, common-mode error models, dof = "
+        "bins): layer (delta = 11.9 deg at the smoother wall, chi^2 = "
     )
+    assert (other.phi, other.K, other.A) == (19.0, 0.5, pytest.approx(1 / 3))
+    assert other.delta == pytest.approx(math.degrees(math.atan(0.21)))
     assert text.endswith(
         "is 4.0 se of the material's L below it. With one material and one L, the layer's shape "
         "is not fitted by the material's calibration (p < 0.001 under AR(1) rejects); not "
@@ -506,3 +516,42 @@ def test_the_layer_shape_at_the_materials_L():
     assert v.numbers["material_length"][0]["L_fit_below_se"] == pytest.approx(4.0, abs=0.01)
     (plain,) = layer_verdicts([run])
     assert "The material's L" not in plain.evidence and plain.numbers["material_length"] == []
+
+
+def test_the_layers_flow_below_the_materials_sin_phi():
+    """Referee 13, point 4, from a hand record: band 0.2 +- 0.004 against phi = 30 +- 0.5 deg
+    (sin phi 0.5 +- cos 30 deg x 0.5 deg = 0.00756): 60% below, 0.3 / 0.00756 = 39.7 se of
+    sin phi, 0.3 / hypot(0.00756, 0.004) = 35.1 combined se; the bulk's rates 0.01-0.05."""
+    from cosserat.studies.validate.layer import BelowYield, below_yield, below_yield_text
+
+    b = BelowYield("r", 0.2, 0.004, 0.21, 30.0, 0.5, (0.05, 0.02, 0.01))
+    sp, sp_se = b.sin_phi
+    assert sp == pytest.approx(0.5) and sp_se == pytest.approx(0.8660254 * math.radians(0.5))
+    assert b.below == pytest.approx((0.3 / sp_se, 0.3 / math.hypot(sp_se, 0.004)))
+    assert below_yield_text([b]) == (
+        "one material, one phi: the layers flow at a band stress ratio (|shear| / normal, bins "
+        "with u >= 0.05 at least 1 d from the walls) below the material's sin phi = 0.500 +- "
+        "0.0076 (phi = 30 +- 0.5 deg, the one calibration's, from the rough moving walls' "
+        "contacts): r 0.200 +- 0.004 (60% below; 39.7 se of sin phi, 35.1 combined se), its bulk "
+        "shearing at du/dy = 0.01-0.05 V/d beyond the band's 3 d. That is creep below yield, "
+        "which the rigid-plastic model with the material's phi does not give (there the "
+        "smoother wall's tan delta = 0.210 < sin phi makes a rigid block sliding on the smoother "
+        "wall); the band's side is unaffected"
+    )
+    assert below_yield_text([]) == ""
+    # a run with uniform stresses (ratio 0.2) in the verdict's warnings, first
+    run = _cosserat_layer_run(4.0)
+    n = run.columns["y"].size
+    run.columns.update(sigma_yy=np.full(n, 1.0), sigma_yy_se=np.full(n, 0.01),
+                       sigma_yx=np.full(n, -0.2), sigma_yx_se=np.full(n, 0.004))  # fmt: skip
+    p = measure_layer(run)
+    got = below_yield(run, p, 30.0, 0.5)
+    assert got is not None and got.band == pytest.approx(0.2) and got.wall == pytest.approx(0.21)
+    assert got.creep and all(g > 0.0 for g in got.creep)
+    with pytest.raises(ParameterError, match=re_escape("the material's phi must be in (0, 90)")):
+        below_yield(run, p, 95.0, 0.5)
+    (v,) = layer_verdicts([run], material_phi=(30.0, 0.5))
+    assert v.numbers["warnings"][0].startswith("one material, one phi: the layers flow at")
+    assert v.numbers["below_yield"][0]["sin_phi"] == pytest.approx(0.5)
+    (plain,) = layer_verdicts([run])
+    assert plain.numbers["below_yield"] == [] and "one phi" not in plain.evidence

@@ -353,3 +353,42 @@ def test_every_regime_block_names_the_replicates_own_first(tmp_path):
     assert "bins paired by row" not in other and "seed-scatter factor sqrt" not in other
     assert twins_text([], rs).startswith("Same-conditions replicates: none (no cell run twice")
     assert twins_text(twins, []) == ""
+
+
+def test_a_truncated_outlier_bin_is_listed_but_left_out_of_the_factor(tmp_path):
+    """Referee 13, point 5: every bin static, nu of seed 2 higher by 2 sqrt(2) se in the nine
+    bulk bins (z = -2) and by 21 sqrt(2) se in the truncated top bin (z = -21): sum z^2 =
+    36 + 441 = 477 on 10 lists it, the factor is sqrt(36 / 9) = 2 without it (6.9 with it),
+    and a static miss z = -9 is rescaled by 2, not 6.9."""
+    trunc = {"truncated_bins": {"bins": [{"row": 9, "wall": "upper", "width_d": 0.8}]}}
+    shift = np.r_[np.full(9, 2.0), 21.0] * math.hypot(SE, SE)
+    static = np.full(10, 1e-5)
+    a = _plane(tmp_path, "a", inertial=static, extra=trunc)
+    b = _plane(tmp_path, "b", seed=2, inertial=static, shift={"nu": shift}, extra=trunc)
+    (p,) = twin_pairs([_result(a), _result(b)])
+    nu = p.fields["nu"]
+    assert nu.chi2 == pytest.approx(477.0) and nu.n == 10 and nu.n_truncated == 1
+    assert nu.factor("static") == pytest.approx(2.0) and nu.factor() == pytest.approx(2.0)
+    assert twin_factor([p], "nu") == pytest.approx(2.0)
+    assert "nu 477/10 (1 truncated bin; static zone x2 without it)" in p.brief()
+    assert "(beyond 3 se: -21 at 9.5 d (truncated bin))" in p.text()
+    assert "the truncated wall bins, counted in each sum z^2 above, are left out of every " \
+        "factor" in p.text()  # fmt: skip
+    pair = RatePair("f", "s", (2.0, 1.0), {}, (None, None), (None, None),
+                    (StaticMiss("nu", 5.0, -9.0),))  # fmt: skip
+    assert "(z = -9 -> -4.5)" in static_rescaled_text([pair], [p])  # every pair: still 2
+
+
+def test_the_shipped_layer_twins_factors_without_the_truncated_bin():
+    """Referee 13, check (d): the layer twins' sum z^2 nu 538, sigma_yy 565 (the truncated
+    top bin at 9.49 d included, z = -21 and -23). Without it the factors over the nine other
+    bins are the referee's 3.3 and 1.4; over the four static ones 3.9 and 1.8 (10 and 11 with
+    it)."""
+    runs = [replace(read_run(DATA / n / "profile.csv"), name=n)
+            for n in ("plane_layer_H10_qs", "plane_layer_H10_qs_s2")]  # fmt: skip
+    (p,) = twin_pairs([_result(r) for r in runs])
+    nu, syy = p.fields["nu"], p.fields["sigma_yy"]
+    assert (round(nu.chi2), round(syy.chi2)) == (538, 565)
+    assert nu.truncated[-1] and round(nu.z[-1]) == -21 and round(syy.z[-1]) == -23
+    assert round(nu.factor(), 1) == 3.3 and round(syy.factor(), 1) == 1.4
+    assert round(nu.factor("static"), 1) == 3.9 and round(syy.factor("static"), 1) == 1.8

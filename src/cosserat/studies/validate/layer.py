@@ -62,6 +62,7 @@ import numpy as np
 from scipy.stats import chi2 as chi2_dist
 
 from ..._text import significance
+from ...calibration.data import BAND_U, WALL_EXCLUSION_D
 from ...calibration.noise import whiten
 from ...errors import CosseratError, ParameterError
 from .forward import forward_departure
@@ -71,6 +72,7 @@ from .layer_alternatives import (
     LayerAlternative,
     LayerData,
     cosserat_profile,
+    cosserat_values,
     cosserat_velocity,
     layer_alternatives,
 )
@@ -1176,6 +1178,11 @@ class MaterialLength:
         The bins.
     L_fit, chi2_fit, dof_fit : float, float, int
         The run's best-fitting L [d] and its chi^2 under AR(1) (NaN, NaN, 0 without it).
+    phi, delta : float
+        The profile's friction angle and its smoother wall's delta [deg] (referee 13, point
+        4: stated; NaN where not given).
+    K, A : float
+        Its wall's K and its A [-] (their declared defaults; NaN where not given).
     """
 
     run: str
@@ -1186,6 +1193,10 @@ class MaterialLength:
     L_fit: float = math.nan
     chi2_fit: float = math.nan
     dof_fit: int = 0
+    phi: float = math.nan
+    delta: float = math.nan
+    K: float = math.nan
+    A: float = math.nan
 
     @property
     def p(self) -> dict[str, float]:
@@ -1210,6 +1221,10 @@ class MaterialLength:
             "chi2_fit": self.chi2_fit,
             "dof_fit": self.dof_fit,
             "L_fit_below_se": self.below_se,
+            "phi": self.phi,
+            "delta": self.delta,
+            "K": self.K,
+            "A": self.A,
         }
 
 
@@ -1239,6 +1254,9 @@ def material_length(run: Run, p: LayerPosition, L: float, L_se: float) -> Materi
         return None
     chi2 = {kind: data.under(kind).chi2(v) for kind in COVARIANCES}
     fit = next((x for x in p.alternatives if x.key == "cosserat-Lfit"), None)
+    given = cosserat_values(data, L)
+    wall = "delta_lower" if p.smoother == "fixed" else "delta"
+    k_wall = "K_lower" if p.smoother == "fixed" else "K"
     return MaterialLength(
         p.run,
         float(L),
@@ -1248,6 +1266,10 @@ def material_length(run: Run, p: LayerPosition, L: float, L_se: float) -> Materi
         math.nan if fit is None else float(fit.parameters["L_d"]),
         math.nan if fit is None else fit.chi2,
         0 if fit is None else fit.dof,
+        float(given["phi"]),
+        float(given[wall]),
+        float(given[k_wall]),
+        float(given["A"]),
     )
 
 
@@ -1268,7 +1290,10 @@ def material_length_text(rows: Sequence[MaterialLength]) -> str:
             if math.isfinite(m.L_fit)
             else ""
         )
-        parts.append(f"{m.run}: chi^2 = {chis} (p = {m.p['ar1']:.2g} under AR(1)){fitted}")
+        angles = (
+            f"delta = {m.delta:.3g} deg at the smoother wall, " if math.isfinite(m.delta) else ""
+        )
+        parts.append(f"{m.run} ({angles}chi^2 = {chis}, p = {m.p['ar1']:.2g} under AR(1)){fitted}")
     rejected = [m.run for m in rows if m.p["ar1"] < P_SIGNIFICANT]
     if len(rejected) == len(rows):
         call = "the layer's shape is not fitted by the material's calibration"
@@ -1281,8 +1306,9 @@ def material_length_text(rows: Sequence[MaterialLength]) -> str:
         call = "the material's calibration fits the layer's shape"
     return (
         f" The material's L (the one Cosserat calibration of the material's runs under gravity, "
-        f"L = {L:.3g} +- {L_se:.2g} d) in the Cosserat layer profile (c) (its own phi, delta "
-        "and K; only L set, nothing fitted; chi^2 under the "
+        f"L = {L:.3g} +- {L_se:.2g} d) in the Cosserat layer profile (c) ("
+        + _given_text(rows[0])
+        + "; only L set, nothing fitted; chi^2 under the "
         + ", ".join(COVARIANCES)
         + " error models, dof = bins): "
         + "; ".join(parts)
@@ -1291,15 +1317,147 @@ def material_length_text(rows: Sequence[MaterialLength]) -> str:
     )
 
 
+@dataclass(frozen=True)
+class BelowYield:
+    """One layer run's band stress ratio against the material's sin phi (referee 13, point 4).
+
+    Parameters
+    ----------
+    run : str
+        The layer run.
+    band, band_se : float
+        The band's |shear| / normal (``measures.band_stress_ratio``) and its error [-].
+    wall : float
+        The smoother wall's transmitted ratio, tan delta (:func:`layer_stress_ratio`) [-].
+    phi, phi_se : float
+        The material's friction angle and its error, the one calibration's (from the rough
+        moving walls' contacts) [deg].
+    creep : tuple of float
+        The shear rates between neighbouring bins beyond the band's window (at least
+        ``within_d`` from the smoother wall), from the smoother wall [V/d].
+    within_d : float
+        The band's window [d].
+    """
+
+    run: str
+    band: float
+    band_se: float
+    wall: float
+    phi: float
+    phi_se: float
+    creep: tuple[float, ...]
+    within_d: float = WITHIN_D
+
+    @property
+    def sin_phi(self) -> tuple[float, float]:
+        """sin phi and its error [-]."""
+        r = math.radians(self.phi)
+        return math.sin(r), math.cos(r) * math.radians(self.phi_se)
+
+    @property
+    def below(self) -> tuple[float, float]:
+        """(sin phi - band) in sin phi's se and in the two errors combined [-]."""
+        sp, sp_se = self.sin_phi
+        gap = sp - self.band
+        return (
+            gap / sp_se if sp_se > 0.0 else math.inf,
+            gap / math.hypot(sp_se, self.band_se),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        sp, sp_se = self.sin_phi
+        return {
+            "run": self.run,
+            "band": self.band,
+            "band_se": self.band_se,
+            "wall": self.wall,
+            "phi": self.phi,
+            "phi_se": self.phi_se,
+            "sin_phi": sp,
+            "sin_phi_se": sp_se,
+            "below_sin_phi_se": self.below[0],
+            "below_combined_se": self.below[1],
+            "creep": list(self.creep),
+        }
+
+
+def below_yield(run: Run, p: LayerPosition, phi: float, phi_se: float) -> BelowYield | None:
+    """:class:`BelowYield` of one layer run at the material's ``phi`` +- ``phi_se`` [deg];
+    None without the band's stress ratio or the smoother wall's."""
+    if not (math.isfinite(phi) and 0.0 < phi < 90.0 and math.isfinite(phi_se) and phi_se >= 0):
+        raise ParameterError(f"the material's phi must be in (0, 90) deg; got {phi} +- {phi_se}")
+    band = band_stress_ratio(run)
+    if band is None or p.stress_ratio is None:
+        return None
+    u, se = run.quantity("u")
+    ok = np.isfinite(u) & np.isfinite(se)
+    mids, rate, _ = rate_between_bins(run.distance_d[ok], u[ok])
+    from_smoother = run.gap_d - mids if p.smoother == "fixed" else mids
+    order = np.argsort(from_smoother)
+    creep = tuple(
+        float(g) for x, g in zip(from_smoother[order], rate[order], strict=True) if x >= p.within_d
+    )
+    return BelowYield(
+        p.run, band.value, band.stderr, p.stress_ratio, float(phi), float(phi_se), creep,
+        p.within_d,
+    )  # fmt: skip
+
+
+def below_yield_text(rows: Sequence[BelowYield]) -> str:
+    """The warning (referee 13, point 4): the layers flow at a band stress ratio below the
+    material's sin phi, which the rigid-plastic model with that phi does not give; "" without
+    rows."""
+    if not rows:
+        return ""
+    sp, sp_se = rows[0].sin_phi
+    parts = []
+    for b in rows:
+        own, both = b.below
+        lo, hi = (min(b.creep), max(b.creep)) if b.creep else (math.nan, math.nan)
+        parts.append(
+            f"{b.run} {b.band:.3f} +- {b.band_se:.2g} ({100 * (1 - b.band / sp):.0f}% below; "
+            f"{own:.1f} se of sin phi, {both:.1f} combined se), its bulk shearing at du/dy = "
+            f"{lo:.2g}-{hi:.2g} V/d beyond the band's {b.within_d:g} d"
+            + ("" if all(g > 0.0 for g in b.creep) else " (not everywhere positive)")
+        )
+    walls = ", ".join(f"{b.wall:.3f}" for b in rows)
+    return (
+        f"one material, one phi: the layers flow at a band stress ratio (|shear| / normal, "
+        f"bins with u >= {BAND_U:g} at least {WALL_EXCLUSION_D:g} d from the walls) below "
+        f"the material's sin phi = {sp:.3f} +- {sp_se:.2g} (phi = {rows[0].phi:.4g} +- "
+        f"{rows[0].phi_se:.2g} deg, the one calibration's, from the rough moving walls' "
+        "contacts): "
+        + "; ".join(parts)
+        + ". That is creep below yield, which the rigid-plastic model with the material's phi "
+        f"does not give (there the smoother wall's tan delta = {walls} < sin phi makes a rigid "
+        "block sliding on the smoother wall); the band's side is unaffected"
+    )
+
+
+def _given_text(m: MaterialLength) -> str:
+    """What (c) is solved with besides L (referee 13, point 4), "" where not recorded."""
+    if not math.isfinite(m.phi):
+        return "its own phi, delta and K"
+    return (
+        f"phi = {m.phi:.3g} deg (sin phi = {math.sin(math.radians(m.phi)):.3f}; the design's, "
+        "not the material's: at B = 0 the layer's stress ratio is the smoother wall's tan "
+        "delta whatever phi is), delta = atan(the run's wall stress ratio) at the smoother "
+        f"wall, the rougher wall fully rough, K = {m.K:.3g} there and A = {m.A:.3g} (their "
+        "defaults)"
+    )
+
+
 def layer_position_verdict(
     positions: Sequence[LayerPosition],
     references: Sequence[WallReference] = (),
     material: Sequence[MaterialLength] = (),
+    below: Sequence[BelowYield] = (),
 ) -> LayerVerdict:
     """The verdict on :data:`LAYER_CLAIM` from the runs' :class:`LayerPosition` (module
     docstring: the rule), with ``references`` (other runs' walls of the smoother kind) in the
     premise's warning and ``material`` (the runs' shape at the material's L,
-    :func:`material_length`) in the evidence, not judged."""
+    :func:`material_length`) in the evidence, not judged, and ``below`` (the runs' band
+    stress ratio against the material's sin phi, :func:`below_yield`) in the warnings."""
     runs = tuple(p.run for p in positions)
     if not positions:
         return LayerVerdict(
@@ -1344,6 +1502,8 @@ def layer_position_verdict(
         else " Both walls: not every run gives its inertial number next to both walls."
     )
     warnings = _warnings(positions, a, se, references)
+    if below:
+        warnings.insert(0, below_yield_text(below))
     steady_text, on_unsteady = steadiness_of_a(positions)
     evidence = (
         f"a = {a:+.3f} +- {se:.2g} ({z:+.1f} se) over {len(positions)} run(s): "
@@ -1407,6 +1567,7 @@ def layer_position_verdict(
         ],
         "runs": [p.to_dict() for p in positions],
         "material_length": [m.to_dict() for m in material],
+        "below_yield": [b.to_dict() for b in below],
     }
     known = [p.wall_inertial_number for p in positions if p.wall_inertial_number is not None]
     if verdict != "undecided" and len(known) == len(positions) and min(known) > QUASI_STATIC_I:
@@ -1433,11 +1594,14 @@ def layer_verdicts(
     fits: Mapping[str, RunFits | None] | None = None,
     measured: Mapping[str, LayerPosition] | None = None,
     material_L: tuple[float, float] | None = None,
+    material_phi: tuple[float, float] | None = None,
 ) -> list[Verdict]:
     """``[layer_position_verdict(...)]`` on the runs :func:`measure_layer` measures (or the
     positions ``measured`` already, by run name), or ``[]`` when a corpus has none (the
     claim is then not judged); ``material_L``, the material's L and its error [d] (the one
-    Cosserat calibration), adds the runs' shape at it (:func:`material_length`)."""
+    Cosserat calibration), adds the runs' shape at it (:func:`material_length`);
+    ``material_phi``, the material's phi and its error [deg] (the same calibration's), the
+    warning that the layers flow below it (:func:`below_yield`)."""
     fits, measured = fits or {}, measured or {}
     by_name = {r.name: r for r in runs}
     positions = [
@@ -1450,8 +1614,13 @@ def layer_verdicts(
         if material_L is not None
         else []
     )
+    below = (
+        [b for p in positions if (b := below_yield(by_name[p.run], p, *material_phi))]
+        if material_phi is not None
+        else []
+    )
     return (
-        [layer_position_verdict(positions, wall_references(runs, positions), material)]
+        [layer_position_verdict(positions, wall_references(runs, positions), material, below)]
         if positions
         else []
     )
@@ -1492,12 +1661,15 @@ __all__ = [
     "ROUGHNESS_RANK",
     "SIGMAS",
     "WITHIN_D",
+    "BelowYield",
     "LayerPosition",
     "LayerSpin",
     "LayerVerdict",
     "MaterialLength",
     "WallReference",
     "band_inertial_number",
+    "below_yield",
+    "below_yield_text",
     "design_asymmetry",
     "jump_covariance",
     "jump_fractions",

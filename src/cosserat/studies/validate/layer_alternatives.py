@@ -496,14 +496,27 @@ def cosserat_profile(data: LayerData, L_d: float) -> Any:
     from ...model import make_problem
     from ...routes import solve
 
+    return solve(make_problem("cosserat", "plane", _cosserat_input(data, L_d)))
+
+
+def cosserat_values(data: LayerData, L_d: float) -> dict[str, Any]:
+    """The parameters (c) is solved with (:func:`cosserat_profile`), defaults resolved: phi
+    [deg], delta [deg] at the smoother wall ("fully-rough" at the rougher), K and A [-], L [d]
+    (referee 13, point 4: the text states them)."""
+    from ...model import make_problem
+
+    return dict(make_problem("cosserat", "plane", _cosserat_input(data, L_d)).values())
+
+
+def _cosserat_input(data: LayerData, L_d: float) -> dict[str, Any]:
+    """(c)'s given parameters (the rest at their declared defaults)."""
     delta = math.degrees(math.atan(data.ratio))
     walls = (
         {"delta_lower": delta, "delta": "fully-rough"}
         if data.smoother == "fixed"
         else {"delta": delta, "delta_lower": "fully-rough"}
     )
-    values = {"phi": COSSERAT_PHI, "B": 0.0, "L": L_d, "eps": 1.0 / data.gap_d, **walls}
-    return solve(make_problem("cosserat", "plane", values))
+    return {"phi": COSSERAT_PHI, "B": 0.0, "L": L_d, "eps": 1.0 / data.gap_d, **walls}
 
 
 def cosserat_velocity(data: LayerData, L_d: float, y_d: np.ndarray | None = None) -> np.ndarray:
@@ -605,6 +618,7 @@ __all__ = [
     "LayerData",
     "cooperativity_amplitude",
     "cosserat_profile",
+    "cosserat_values",
     "cosserat_velocity",
     "error_covariance",
     "fit_cosserat",

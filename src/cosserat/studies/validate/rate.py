@@ -462,6 +462,12 @@ class TwinField:
         )
 
     @property
+    def n_truncated(self) -> int:
+        """How many of the paired bins are truncated wall bins (listed in :attr:`chi2`, left
+        out of :meth:`factor`)."""
+        return sum(self.truncated)
+
+    @property
     def largest(self) -> tuple[float, float]:
         """(distance from the fixed wall [d], z) of the bin with the largest |z|."""
         k = int(np.argmax(np.abs(self.z)))
@@ -469,16 +475,19 @@ class TwinField:
 
     def factor(self, zone: str = "all") -> float | None:
         """The seed-scatter factor sqrt(sum z^2 / n) over ``zone``'s bins ("all", "static"
-        or "flowing"; None without a bin there) [-].
+        or "flowing"), truncated wall bins left out (their values are not bulk values, and a
+        truncated bin has a different width in each run: referee 13, point 5); None without
+        such a bin there [-].
 
         If each run's true error is f times its block se, the difference has variance
         f^2 (se_a^2 + se_b^2), so E z^2 = f^2: f is what the block se must be multiplied by
         to carry the scatter between realisations (1 where they already do). From one pair
         it rests on n bins, with neighbouring bins' errors correlated."""
+        cut = self.truncated or (False,) * self.n
         pick = [
             v
-            for v, s in zip(self.z, self.static, strict=True)
-            if zone == "all" or (s if zone == "static" else not s)
+            for v, s, t in zip(self.z, self.static, cut, strict=True)
+            if not t and (zone == "all" or (s if zone == "static" else not s))
         ]
         if not pick:
             return None
@@ -497,6 +506,7 @@ class TwinField:
             "factor": self.factor("all"),
             "factor_static": self.factor("static"),
             "factor_flowing": self.factor("flowing"),
+            "factor_excludes_truncated": True,
         }
 
 
@@ -571,6 +581,16 @@ class TwinPair:
             )
         return ", ".join(parts)
 
+    def cut_text(self) -> str:
+        """Which fields' sum z^2 includes a truncated wall bin that the factors leave out
+        ("" where none does)."""
+        if not any(f.n_truncated for f in self.fields.values()):
+            return ""
+        return (
+            "; the truncated wall bins, counted in each sum z^2 above, are left out of every "
+            "factor: their values are not bulk values and their width differs between the runs"
+        )
+
     def text(self, note: str = "") -> str:
         """One sentence: every field's sum z^2, the bins beyond 3 se, Delta's and the wall
         ratio's z, the seed-scatter factors and what they mean for the checks that use the
@@ -597,11 +617,11 @@ class TwinPair:
             text += (
                 " The seed-scatter factor sqrt(sum z^2 / n) (what each run's block se must be "
                 "multiplied by to carry the scatter between realisations; static zone: I < "
-                f"{STATIC_I:g} in both): {factors}. There the packing is frozen over the "
-                "window, so the ten time blocks sample one quenched configuration and their se "
-                "is a within-realisation error: static-zone misses of nu and the stresses "
-                "beyond their block errors are realisation noise at about these factors, not "
-                "model or rate effects."
+                f"{STATIC_I:g} in both): {factors}{self.cut_text()}. In the static zone the "
+                "packing is frozen over the window, so the ten time blocks sample one quenched "
+                "configuration and their se is a within-realisation error: static-zone misses "
+                "of nu and the stresses beyond their block errors are realisation noise at "
+                "about these factors, not model or rate effects."
             )
         ratio = self.fields.get("stress_ratio")
         if ratio is not None:
@@ -634,14 +654,17 @@ class TwinPair:
 
     def brief(self) -> str:
         """One clause for a verdict that does not use the pair: each field's sum z^2 over its
-        bins and, where measured, its static-zone factor (the full comparison is
-        :meth:`text`, in the verdicts whose runs the pair is)."""
+        bins (truncated wall bins included and marked) and, where measured, its static-zone
+        factor without them (the full comparison is :meth:`text`, in the verdicts whose runs
+        the pair is)."""
         parts = []
         for f in self.fields.values():
             static = f.factor("static")
+            notes = [f"{f.n_truncated} truncated bin"] if f.n_truncated else []
+            if static is not None and static > 1:
+                notes.append(f"static zone x{static:.2g}" + (" without it" if notes else ""))
             parts.append(
-                f"{f.column} {f.chi2:.3g}/{f.n}"
-                + (f" (static zone x{static:.2g})" if static is not None and static > 1 else "")
+                f"{f.column} {f.chi2:.3g}/{f.n}" + (f" ({'; '.join(notes)})" if notes else "")
             )
         return f"{self.a} against {self.b} (seed {self.seeds[0]} against {self.seeds[1]}): " + (
             ", ".join(parts)

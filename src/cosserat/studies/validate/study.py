@@ -1013,6 +1013,7 @@ def judge(
             {r.run.name: r.fits for r in results},
             {r.run.name: r.layer for r in results if r.layer is not None},
             material_length(series, [r.run for r in results if r.layer is not None]),
+            material_phi(series, [r.run for r in results if r.layer is not None]),
         ),
     ]
     verdicts = [
@@ -1072,6 +1073,27 @@ def material_length(
             continue
         e = c.calibration.get("parameters", {}).get("L", {})
         v, se = e.get("value"), e.get("stderr")
+        if isinstance(v, int | float) and isinstance(se, int | float) and math.isfinite(v):
+            return float(v), float(se)
+    return None
+
+
+def material_phi(
+    series: Sequence[DeltaSeries], layer_runs: Sequence[Run]
+) -> tuple[float, float] | None:
+    """The layer runs' material's phi and its error [deg], fixed from the stresses in the one
+    Cosserat calibration of that material (as :func:`material_length`), for the warning that
+    the layers flow below it (``layer.below_yield``; referee 13, point 4); None as
+    :func:`material_length`, or where the calibration did not fix phi from the stresses."""
+    wanted = {material_of(r) for r in layer_runs}
+    if len(wanted) != 1:
+        return None
+    for s in series:
+        c = s.curves.get("cosserat")
+        if c is None or not c.ok or c.calibration.get("material") not in wanted:
+            continue
+        e = (c.calibration.get("stresses") or {}).get("phi") or {}
+        v, se = e.get("phi"), e.get("phi_se")
         if isinstance(v, int | float) and isinstance(se, int | float) and math.isfinite(v):
             return float(v), float(se)
     return None
