@@ -79,7 +79,8 @@ def test_the_grain_scale_departures_beyond_the_null_and_their_counts():
                                     "above": 1, "mean_abs_null": 0.006}  # fmt: skip
     assert (per["W_layers"]["below"], per["W_layers"]["turns_with_the_material"]) == (1, 1)
     assert counts["walls_where_the_sign_follows_the_measure"] == 1
-    assert text.startswith(" Model-free at the grain scale (the sidecars' first_layer")
+    assert text.startswith(" Against the joint fit's null, measured grain by grain (the sidecars' "
+                           "first_layer")  # fmt: skip
     assert "a (layer 1 at 0.56 d, 28 grains, u_1 +0.489 +- 0.032, u_2 +0.301 +- 0.029" in text
     assert "wall-to-layer-2 +0.016 +- 0.02 (null +0.006, +0.5 se)" in text
     assert (
@@ -148,7 +149,10 @@ def test_where_the_u_only_mui_velocity_reproduces_the_first_bins():
         "first-layer departure at a (-0.26; the velocity's -0.26) and the first two bins at b "
         "(-0.33, +0.084; the velocity's -0.3, +0.06); that velocity's fit to u there: chi^2 = "
         f"16/8 (p = {float(chi2.sf(16.0, 8)):.2g}) at a; chi^2 = 176/18 (p = {p_b:.2g}, "
-        "rejected) at b."
+        "rejected) at b. At a the first-layer departure is absorbed by a velocity u accepts "
+        f"(p = {float(chi2.sf(16.0, 8)):.2g}); it is not the verdict's null because the "
+        "verdict's null is the velocity of the joint fit to u, omega and the stress ratio "
+        "together."
     )
     assert u_only_text({}, 3).endswith("reproduces the first-layer departure at none of the 3 "
                                        "moving walls.")  # fmt: skip
@@ -169,8 +173,8 @@ def test_the_monte_carlo_p_carries_its_count_and_draws():
         "p = 0.00095 (189 of 200,000 draws at or above, MC error +-7.3%)"
     )
     assert mc_line(p, (189, 200_000), "Without the first layers") == (
-        " Without the first layers p = 0.00095 (189 of 200,000 draws at or above, MC error "
-        "+-7.3%), at the 0.001 line within twice its Monte Carlo error."
+        " Without the first layers p ~ 0.001 (0.00095: 189 of 200,000 draws at or above, MC "
+        "error +-7.3%), at the 0.001 line within twice its Monte Carlo error."
     )
     assert "below the 0.001 line beyond twice" in mc_line(1e-4, (19, 200_000), "X")
     assert mc_line(None, None, "X") == ""
@@ -197,7 +201,7 @@ def test_the_verdict_states_the_grain_scale_evidence_and_the_mc_counts():
     assert set(n["grain_scale"]["walls"]) == {"a", "b"}
     assert n["grain_scale"]["per_measure"]["W_wall_second"]["turns_with_the_material"] == 2
     assert set(n["u_only_mui_reproduces"]) == {"a", "b"}
-    assert "Model-free at the grain scale" in v.evidence
+    assert "Against the joint fit's null, measured grain by grain" in v.evidence
     assert "The u-only mu(I) velocity" in v.evidence
     assert re.search(
         r"p = \S+ \(\d+ of 200,000 draws at or above, MC error \+-\S+%\) with bins read "
@@ -208,7 +212,7 @@ def test_the_verdict_states_the_grain_scale_evidence_and_the_mc_counts():
     assert v.would_change.index("grain-scale") < v.would_change.index("more seeds")
     # without records: no paragraph, and "What would change it" as before
     bare = spin_verdict(walls)
-    assert "Model-free at the grain scale" not in bare.evidence
+    assert "Against the joint fit's null, measured grain by grain" not in bare.evidence
     assert bare.numbers["grain_scale"] is None
     assert not bare.would_change.startswith("the grain-scale")
 

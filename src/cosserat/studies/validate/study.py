@@ -1404,6 +1404,11 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
             if fitted is not None and (f := fitted.summary(m)) is not None and f.ok
             and f.chi2 is not None
         )  # fmt: skip
+        contradiction = tuple(
+            (m, f.contradiction)
+            for m in ("mui", "ngf", "cosserat")
+            if fitted is not None and (f := fitted.summary(m)) is not None and f.contradiction
+        )
         out[r.run.name] = SpinRun(
             cells.get(r.run.name, r.run.name),
             r.run.gap_d,
@@ -1416,6 +1421,7 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
             _moving_grains(r.run),
             joint.get("grain_null"),
             u_only,
+            contradiction,
         )
     return out
 

@@ -416,13 +416,25 @@ def mc_error(count: int, draws: int) -> float:
     return math.sqrt((1.0 - p) / (count + 1))
 
 
-def mc_p_text(p: float, count: int, draws: int) -> str:
+def at_the_line(p: float, count: int, draws: int) -> bool:
+    """A Monte Carlo p within its own Monte Carlo error of :data:`P_SIGNIFICANT`,
+    |p - P_SIGNIFICANT| <= :func:`mc_error` x p (referee 13, point 6): it is neither above
+    nor below the line."""
+    return abs(p - P_SIGNIFICANT) <= mc_error(count, draws) * p
+
+
+def mc_p_text(p: float, count: int, draws: int, line: bool = False) -> str:
     """A Monte Carlo p with its exceedances, draws and relative error, e.g. "p = 0.00095 (189
-    of 200,000 draws at or above, MC error +-7%)" (referee 12, point 7)."""
-    return (
-        f"p = {p:.2g} ({count:,} of {draws:,} draws at or above, MC error "
+    of 200,000 draws at or above, MC error +-7%)" (referee 12, point 7); with ``line``, a p
+    :func:`at_the_line` reads "p ~ 0.001 (0.00099: 197 of 200,000 draws ...)", not below or
+    above it (referee 13, point 6)."""
+    tail = (
+        f"{count:,} of {draws:,} draws at or above, MC error "
         f"+-{100.0 * mc_error(count, draws):.2g}%)"
     )
+    if line and at_the_line(p, count, draws):
+        return f"p ~ {P_SIGNIFICANT:g} ({p:.2g}: {tail}"
+    return f"p = {p:.2g} ({tail}"
 
 
 def carrying_bins(w: WallSpin, stencil: str = "analysis") -> list[dict[str, float | None]]:
@@ -677,6 +689,9 @@ class SpinRun:
         (``forward.grain_layers``): the grain-scale null (None: no joint fit or no record).
     u_only : tuple of (str, float, int)
         The u-only fits: (model, chi^2 on u, degrees of freedom).
+    u_only_contradiction : tuple of (str, str)
+        The u-only fits that contradict the run's measured stresses: (model, the fit's
+        sentence saying how, ``FitSummary.contradiction``); such a velocity is no null.
     """
 
     cell: str = ""
@@ -690,6 +705,7 @@ class SpinRun:
     grains: Mapping[str, Any] | None = None
     grains_null: Mapping[str, float] | None = None
     u_only: tuple[tuple[str, float, int], ...] = ()
+    u_only_contradiction: tuple[tuple[str, str], ...] = ()
 
 
 def needs_first_layers(p_rest: float | None) -> bool:
@@ -780,8 +796,8 @@ REPRODUCE_SE = 2.0
 """A velocity reproduces a bin's departure when the two differ by at most this many of the
 data's se [-]."""
 GRAIN_WOULD_CHANGE = (
-    "the grain-scale re-binning is done (the first layer grain by grain, the evidence's "
-    "'model-free at the grain scale'), and it leaves the first layer's sign to the measure: "
+    "the grain-scale re-binning is done (the first layer grain by grain, against the joint "
+    "fit's null and model-free), and it leaves the first layer's sign to the measure: "
     "what would still decide is a definition of the velocity jump between the wall and its "
     "first layer of grains (the wall-to-grain slip) as vorticity or not, which picks one of "
     "the three grain-scale chords, or a model whose wall condition is stated at layer 1 (its "
@@ -836,7 +852,8 @@ def _grain_call(m: Mapping[str, Any]) -> int:
 
 
 def grain_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
-    """The evidence's "model-free at the grain scale" paragraph (referee 12, point 1) from
+    """The evidence's "against the joint fit's null, measured grain by grain" paragraph
+    (referee 12, point 1; named so by referee 13, point 1: the null is a model's) from
     :func:`grain_rows`, and its counts per measure (``turns_with_the_material``,
     ``below``, ``above``, ``walls``; ``smallest_null``: the measure whose null is smallest
     over the walls, mean |null|)."""
@@ -907,8 +924,9 @@ def grain_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
             )
         )
     text = (
-        " Model-free at the grain scale (the sidecars' first_layer: the grains whose centres lie "
-        "within 1 d of the moving wall, grain by grain, no bins; omega_1 - W with W = -(1/2) "
+        " Against the joint fit's null, measured grain by grain (the sidecars' first_layer: the "
+        "grains whose centres lie "
+        "within 1 d of the moving wall, no bins; omega_1 - W with W = -(1/2) "
         "du/dy across one layer, se from the time blocks; the null is the same measure of the "
         "joint fit's velocity with grains turning with the material, its u and omega averaged "
         "uniformly over [0, 1) and [1, 2) d from the wall, without its error): "
@@ -926,6 +944,146 @@ def grain_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
     return text, counts
 
 
+MATCHED_NULL = (
+    "a velocity matched to the measured layer means with no model fit: u = A exp(-d/l) in "
+    "the distance d from the wall, l and A set so its uniform averages over [0, 1) and [1, 2) "
+    "d are u_1 and u_2 (l = -1/ln(u_2/u_1), A = u_1/(l (1 - u_2/u_1))), its grains turning "
+    "with it and measured as the joint fit's null is (layers at 0.5 and 1.5 d)"
+)
+"""The model-free null of :func:`matched_exponential`, in words (referee 13, point 1)."""
+
+
+def matched_exponential(u_1: float, u_2: float, s: float) -> dict[str, float] | None:
+    """The first layer's measures against the layer-1-to-2 chord for the exponential velocity
+    matched to the measured layer means (:data:`MATCHED_NULL`), grains turning with it.
+
+    Parameters
+    ----------
+    u_1, u_2 : float
+        Layers 1 and 2's mean velocities along the flow [V].
+    s : float
+        d(distance)/dy at the wall: +1 at the lower wall, -1 at the upper [-].
+
+    Returns
+    -------
+    dict or None
+        ``l`` [d], ``A`` [V], ``omega_1`` = (s/2) u_1/l (layer 1's mean of the spin -(s/2)
+        du/dd), ``W_layers`` = -(s/2)(u_2 - u_1) over the layers' 1 d spacing [V/d],
+        ``ratio`` = omega_1/W_layers = 1/(l (1 - u_2/u_1)) [-] and ``departure`` = omega_1 -
+        W_layers [V/d]. None where no decaying exponential matches (u_2/u_1 not in (0, 1)).
+    """
+    if u_1 == 0.0 or not 0.0 < u_2 / u_1 < 1.0:
+        return None
+    q = u_2 / u_1
+    ell = -1.0 / math.log(q)
+    omega = 0.5 * s * u_1 / ell
+    w = -0.5 * s * (u_2 - u_1)
+    return {"l": ell, "A": u_1 / (ell * (1.0 - q)), "omega_1": omega, "W_layers": w,
+            "ratio": omega / w, "departure": omega - w}  # fmt: skip
+
+
+def free_rows(rows: Mapping[str, Any]) -> dict[str, Any]:
+    """The model-free reading of the grain-scale record (referee 13, point 1), per run of
+    :func:`grain_rows` with the layer-1-to-2 measure: ``ratio`` = omega_1 / W_layers (W_layers
+    = omega_1 - its departure), the raw departure against the wall-to-layer-2 chord and its
+    se and z (against 0), ``matched`` (:func:`matched_exponential`; None: no match) and the
+    data's departure ``beyond`` the matched null with ``z`` = beyond / se [-]."""
+    out: dict[str, Any] = {}
+    for run, r in rows.items():
+        m = r["measures"].get("W_layers")
+        if m is None or r.get("omega_1") is None or r.get("u_1") is None or r.get("u_2") is None:
+            continue
+        om, u_1, u_2 = float(r["omega_1"]), float(r["u_1"]), float(r["u_2"])
+        w = om - m["departure"]
+        row: dict[str, Any] = {"ratio": om / w if w != 0.0 else None, "omega_1": om}
+        second = r["measures"].get("W_wall_second")
+        if second is not None:
+            row["wall_second"] = {"departure": second["departure"], "se": second["se"],
+                                  "z": second["departure"] / second["se"]
+                                  if second["se"] > 0.0 else None}  # fmt: skip
+        s = -math.copysign(1.0, w * (u_2 - u_1)) if w * (u_2 - u_1) != 0.0 else None
+        match = None if s is None else matched_exponential(u_1, u_2, s)
+        row["matched"] = match
+        if match is not None:
+            beyond = m["departure"] - match["departure"]
+            row["beyond"] = beyond
+            row["z"] = beyond / m["se"] if m["se"] > 0.0 else None
+        out[run] = row
+    return out
+
+
+def _span(values: Sequence[float], spec: str = ".2g") -> str:
+    """ "a-b" over ``values`` (one value where they print alike)."""
+    lo, hi = f"{min(values):{spec}}", f"{max(values):{spec}}"
+    return lo if lo == hi else f"{lo}-{hi}"
+
+
+def free_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
+    """The evidence's model-free sentences on the grain-scale record from :func:`free_rows`
+    (referee 13, point 1), and their counts: walls where the data lie beyond the matched
+    null by at least :data:`GRAIN_SE` se (``beyond``) and where the raw wall-to-layer-2
+    departure is within it of 0 (``wall_second_zero``)."""
+    if not rows:
+        return "", {}
+    per = []
+    for run, r in rows.items():
+        bits = [] if r["ratio"] is None else [f"omega_1/W_layers {r['ratio']:.3g}"]
+        if r.get("matched") is not None:
+            z = "" if r["z"] is None else f", {r['z']:+.2g} se"
+            bits.append(f"the matched velocity's {r['matched']['ratio']:.3g} (l = "
+                        f"{r['matched']['l']:.2g} d), the data beyond it by "
+                        f"{r['beyond']:+.3g}{z}")  # fmt: skip
+        if r.get("wall_second") is not None:
+            ws = r["wall_second"]
+            z = "" if ws["z"] is None else f", {ws['z']:+.2g} se"
+            bits.append(f"raw departure against the wall-to-layer-2 chord "
+                        f"{ws['departure']:+.3g} +- {ws['se']:.2g}{z}")  # fmt: skip
+        per.append(f"{run} {', '.join(bits)}")
+    beyond = [k for k, r in rows.items() if r.get("z") is not None and abs(r["z"]) >= GRAIN_SE]
+    others = [k for k, r in rows.items() if k not in beyond and r["ratio"] is not None]
+    seconds = [r["wall_second"] for r in rows.values() if r.get("wall_second") is not None
+               and r["wall_second"]["z"] is not None]  # fmt: skip
+    zero = [ws for ws in seconds if abs(ws["z"]) < GRAIN_SE]
+    matched = [r["matched"]["ratio"] for r in rows.values() if r.get("matched") is not None]
+    said = []
+    ratios = [rows[k]["ratio"] for k in beyond if rows[k]["ratio"] is not None]
+    if ratios:
+        said.append(
+            f"So layer 1 turns {_span(ratios, '.3g')} times faster than the half vorticity "
+            f"between layers 1 and 2 at {len(beyond)} of {len(rows)} moving walls"
+            + (
+                " (" + ", ".join(f"{rows[k]['ratio']:.3g} at {k}" for k in others) + ")"
+                if others
+                else ""
+            )
+        )
+    if matched:
+        said.append(
+            f"a velocity matched to the measured layer means gives {_span(matched, '.3g')}, "
+            f"and the data lie beyond it by at least {GRAIN_SE:g} se at {len(beyond)} of "
+            f"{len(matched)} walls: only a velocity varying within a fraction of the first "
+            "grain layer (a drop of about 2|omega_1| = "
+            + _span([2.0 * abs(r["omega_1"]) for r in rows.values()])
+            + " V across it) turns this into rotation with the material"
+        )
+    if seconds:
+        said.append(
+            f"against the wall-to-layer-2 chord the raw departure is 0 within {GRAIN_SE:g} se at "
+            f"{len(zero)} of {len(seconds)} walls (the largest |z| "
+            f"{max(abs(ws['z']) for ws in seconds):.2g})"
+        )
+    text = (
+        f" Model-free, grain by grain (the null: {MATCHED_NULL}): "
+        + "; ".join(per)
+        + ". "
+        + "; ".join(said)
+        + "."
+    )
+    counts = {"moving_walls": len(rows), "beyond": len(beyond), "wall_second_zero": len(zero),
+              "wall_second_walls": len(seconds)}  # fmt: skip
+    return text, counts
+
+
 def u_only_reproduces(
     tested: Sequence[WallSpin], info: Mapping[str, SpinRun], model: str = "mui"
 ) -> dict[str, Any]:
@@ -933,7 +1091,8 @@ def u_only_reproduces(
     as the data (``WallSpin.predicted``, the analysis' stencil), reproduces the moving wall's
     first-layer departure (within :data:`REPRODUCE_SE` of the data's se), and bin 2's too:
     run -> ``bins`` (1 or 2), ``data`` and ``model`` (the departures of those bins) [-], and
-    that fit's ``chi2`` and ``dof`` on u (None: not recorded)."""
+    that fit's ``chi2`` and ``dof`` on u (None: not recorded) and ``contradiction`` (how it
+    contradicts the run's measured stresses, ``SpinRun.u_only_contradiction``; "": not)."""
     out: dict[str, Any] = {}
     for w in tested:
         pred = w.predicted.get(model)
@@ -947,10 +1106,13 @@ def u_only_reproduces(
         n = 2 if len(ok) > 1 and ok[1] else 1
         fit = next((f for f in (info[w.run].u_only if w.run in info else ()) if f[0] == model),
                    None)  # fmt: skip
+        why = next((c[1] for c in (info[w.run].u_only_contradiction if w.run in info else ())
+                    if c[0] == model), "")  # fmt: skip
         out[w.run] = {"bins": n, "data": [float(d[i]) for i in order[:n]],
                       "model": [float(p[i]) for i in order[:n]],
                       "chi2": None if fit is None else fit[1],
-                      "dof": None if fit is None else fit[2]}  # fmt: skip
+                      "dof": None if fit is None else fit[2],
+                      "contradiction": why}  # fmt: skip
     return out
 
 
@@ -977,6 +1139,7 @@ def u_only_text(rows: Mapping[str, Any], walls: int, model: str = "mui") -> str:
         [f"the first two bins at {', '.join(two)}"] if two else []
     )
     fits = []
+    absorbed = []
     for r, v in rows.items():
         if v["chi2"] is None:
             continue
@@ -987,12 +1150,28 @@ def u_only_text(rows: Mapping[str, Any], walls: int, model: str = "mui") -> str:
             + (f" (p = {p:.2g}{verdict})" if p is not None else "")
             + f" at {r}"
         )
+        if p is not None and p >= P_SIGNIFICANT:  # referee 13, point 1: the consequence
+            why = v.get("contradiction") or ""
+            absorbed.append(
+                f" At {r} the first-layer departure is absorbed by a velocity u accepts "
+                f"(p = {p:.2g}); it is not the verdict's null because "
+                + (
+                    "its fit contradicts the measured stress ("
+                    + why.removeprefix("contradicts the measured stress: ")
+                    + ")"
+                    if why
+                    else "the verdict's null is the velocity of the joint fit to u, omega and "
+                    "the stress ratio together"
+                )
+                + "."
+            )
     return (
         lead
         + f"reproduces (within {REPRODUCE_SE:g} se) "
         + " and ".join(said)
         + (f"; that velocity's fit to u there: {'; '.join(fits)}" if fits else "")
         + "."
+        + "".join(absorbed)
     )
 
 
@@ -1009,7 +1188,7 @@ def mc_line(p: float | None, counted: tuple[int, int] | None, what: str) -> str:
         else f"{'below' if p < P_SIGNIFICANT else 'above'} the {P_SIGNIFICANT:g} line beyond "
         "twice its Monte Carlo error"
     )
-    return f" {what} {mc_p_text(p, *counted)}, {where}."
+    return f" {what} {mc_p_text(p, *counted, line=True)}, {where}."
 
 
 def _cells(runs: Sequence[str], info: Mapping[str, SpinRun]) -> dict[str, str]:
@@ -1221,7 +1400,11 @@ def _lead(
         neg = [w.run for w in signs if float(w.beyond[int(np.argsort(w.distance_d)[1])]) < 0.0]
         major, sign = (pos, "positive") if len(pos) >= len(neg) else (neg, "negative")
         reading_rest = (
-            (mc_p_text(p_t_rest, *counts[1]) if counts[1] is not None else f"p = {p_t_rest:.2g}")
+            (
+                mc_p_text(p_t_rest, *counts[1], line=True)
+                if counts[1] is not None
+                else f"p = {p_t_rest:.2g}"
+            )
             + f" under t({blocks - 1})"
             if p_t_rest is not None
             else p_text(c_rest, n_rest, p_rest)
@@ -1526,6 +1709,10 @@ def spin_verdict(
         numbers[f"{name}_draws"] = None if c is None else c[1]
         numbers[f"{name}_mc_error"] = None if c is None else mc_error(*c)
     numbers["blocks"] = blocks
+    # referee 13, point 6: a p within its MC error of the line is "p ~ 0.001", not "< 0.001"
+    numbers["pooled_p_t_without_first_layer_text"] = (
+        None if c_t_rest is None else mc_p_text(p_t_rest or 0.0, *c_t_rest, line=True)
+    )
     # referee 11, point 1: pooled_p reads each z as normal, pooled_p_t under t(blocks - 1);
     # the headline is the one the verdict states (t where the blocks are recorded)
     numbers["pooled_p_headline"] = p_t if p_t is not None else p
@@ -1541,6 +1728,11 @@ def spin_verdict(
     grains = grain_rows(tested, info)
     grain_line, grain_counts = grain_text(grains)
     numbers["grain_scale"] = {"walls": grains, **grain_counts} if grains else None
+    # referee 13, point 1: the model-free reading of the same record
+    grain_free = free_rows(grains)
+    free_line, free_counts = free_text(grain_free)
+    grain_line += free_line
+    numbers["grain_scale_model_free"] = {"walls": grain_free, **free_counts} if grain_free else None
     reproduced = u_only_reproduces(tested, info)
     numbers["u_only_mui_reproduces"] = reproduced
     moving = sum(1 for w in tested if w.wall == "moving" and "mui" in w.predicted)
@@ -1553,7 +1745,7 @@ def spin_verdict(
             f"from {blocks} time blocks; a seeded Monte Carlo of {T_SAMPLES:,} draws): the "
             f"pooled {mc_p_text(p_t, *c_t)}"
             + (
-                f", without any first layer {mc_p_text(p_t_rest, *c_t_rest)}"
+                f", without any first layer {mc_p_text(p_t_rest, *c_t_rest, line=True)}"
                 if p_t_rest is not None and c_t_rest is not None
                 else ""
             )
