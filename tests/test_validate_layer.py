@@ -534,7 +534,8 @@ def test_the_layers_flow_below_the_materials_sin_phi():
         "0.0076 (phi = 30 +- 0.5 deg, the one calibration's, from the rough moving walls' "
         "contacts): r 0.200 +- 0.004 (60% below; 39.7 se of sin phi, 35.1 combined se), its bulk "
         "shearing at du/dy = 0.01-0.05 V/d beyond the band's 3 d. That is creep below yield, "
-        "which the rigid-plastic model with the material's phi does not give (there the "
+        "which a local rigid-plastic model (no material length) with the material's phi does "
+        "not give (there the "
         "smoother wall's tan delta = 0.210 < sin phi makes a rigid block sliding on the smoother "
         "wall); the band's side is unaffected"
     )

@@ -201,3 +201,22 @@ def test_cosserat_fix_measures_the_moving_walls_slip_from_its_first_bin(tmp_path
     assert fix.slip == pytest.approx(1.0 - m.u_over_uw[i], rel=1e-12)
     assert fix.slip_se == pytest.approx(2e-3, rel=1e-12)
     assert fix.slip == pytest.approx(1.0 - math.exp(-0.25), abs=0.01) and not fix.holds
+
+
+def test_a_contradiction_of_mu_s_names_it_once():
+    """mu(I)'s and NGF's model ratio is mu_s itself: the flag says 'mu_s = 0.314 (fitted)',
+    not 'mu_s = 0.314 (fitted) gives mu_s = 0.314' (referee 14); the Cosserat model's phi still
+    says which ratio it gives."""
+    from cosserat.studies.validate.fits import _stress_contradiction
+    from cosserat.studies.validate.measures import StressRatio
+
+    band = StressRatio(0.244, 0.015, 4)
+    assert _stress_contradiction("mu_s", 0.314, "mu_s", 0.314, False, band) == (
+        "contradicts the measured stress: mu_s = 0.314 (fitted), but the run's |shear|/normal "
+        "stress ratio in the band is 0.244 +- 0.015 (4 bins), 4.7 errors away"
+    )
+    phi = _stress_contradiction("phi", 28.5, "sin phi", 0.477, True, band)
+    assert phi.startswith(
+        "contradicts the measured stress: phi = 28.5 (pinned) gives sin phi = 0.477, but"
+    )
+    assert _stress_contradiction("mu_s", 0.25, "mu_s", 0.25, False, band) == ""  # within 3 se

@@ -675,8 +675,9 @@ def _stress_contradiction(
         return ""
     how = "pinned" if pinned else "fitted"
     return (
-        f"contradicts the measured stress: {key} = {value:.4g} ({how}) gives {what} = "
-        f"{ratio:.3g}, but the run's |shear|/normal stress ratio in the band is "
+        f"contradicts the measured stress: {key} = {value:.4g} ({how})"
+        + (f" gives {what} = {ratio:.3g}" if what != key else "")
+        + ", but the run's |shear|/normal stress ratio in the band is "
         f"{stress.value:.3g} +- {stress.stderr:.2g} ({stress.bins} bins), "
         f"{diff / stress.stderr:.1f} errors away"
     )

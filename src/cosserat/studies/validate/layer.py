@@ -1428,9 +1428,10 @@ def below_yield_text(rows: Sequence[BelowYield]) -> str:
         f"{rows[0].phi_se:.2g} deg, the one calibration's, from the rough moving walls' "
         "contacts): "
         + "; ".join(parts)
-        + ". That is creep below yield, which the rigid-plastic model with the material's phi "
-        f"does not give (there the smoother wall's tan delta = {walls} < sin phi makes a rigid "
-        "block sliding on the smoother wall); the band's side is unaffected"
+        + ". That is creep below yield, which a local rigid-plastic model (no material "
+        "length) with the material's phi does not give (there the smoother wall's tan delta = "
+        f"{walls} < sin phi makes a rigid block sliding on the smoother wall); the band's side "
+        "is unaffected"
     )
 
 
