@@ -281,14 +281,19 @@ def test_the_optimums_piece_follows_a_diagonal_ridge_and_leaves_an_isolated_poin
     K, L, d = _ridge()
     masks, others, joined = ss.region_pieces([(K, L, d, "range")], 3.0, (1.0, math.e))
     assert np.argwhere(masks[0]).tolist() == [[1, 1], [2, 2]]
-    assert others == [{"K": [4.0, 4.0], "L": [L[4], L[4]], "points": 1, "delta_chi2": 1.0}]
+    # each other piece carries its masks (per grid), here the one range point (4, 4)
+    assert [{k: v for k, v in o.items() if k != "masks"} for o in others] == [
+        {"K": [4.0, 4.0], "L": [L[4], L[4]], "points": 1, "delta_chi2": 1.0}
+    ]
+    assert [np.argwhere(m).tolist() for m in others[0]["masks"]] == [[[4, 4]]]
     assert joined == 0
-    ext = {"K": [0.7, 2.2], "L": [2.0, 9.0], "K_bounds": ["data", "data"],
-           "L_bounds": ["data", "box"], "pieces": others, "joined": 0}  # fmt: skip
+    # the region is reported as its islands (referee 13, point 2), the other piece one of them
+    main = {"K": [0.7, 2.2], "L": [2.0, 9.0], "points": 2, "delta_chi2": 0.0}
+    ext = {"K": [0.7, 4.0], "L": [2.0, L[4]], "K_bounds": ["data", "data"],
+           "L_bounds": ["data", "box"], "islands": [main, others[0]], "joined": 0}  # fmt: skip
     assert ss.region_text(ext) == (
-        "K 0.7-2.2, L 2-9 d (L's upper limit is the finer grid's edge; another piece of the "
-        "region, 1 grid point at K 4, L 54.6 d (least Delta chi^2 +1), is joined to the "
-        "optimum's by no path along the valley inside the region and is left out)"
+        "two islands: K 0.7-2.2, L 2-9 d and K 4, L ~55 d; L unidentified: 2-54.6 d, two "
+        "basins (L's upper limit is the finer grid's edge)"
     )
 
 
@@ -332,4 +337,7 @@ def test_a_range_point_inside_the_finer_box_joins_the_finer_grids_piece():
     grids = [(K, L, d, "range"), (Kf, Lf, df, "box")]
     masks, others, _ = ss.region_pieces(grids, 3.0, (3.5, math.exp(3.5)))
     assert np.argwhere(masks[0]).tolist() == [[4, 4]] and masks[1].all()
-    assert others == [{"K": [1.0, 1.0], "L": [L[1], L[1]], "points": 1, "delta_chi2": 0.0}]
+    assert [{k: v for k, v in o.items() if k != "masks"} for o in others] == [
+        {"K": [1.0, 1.0], "L": [L[1], L[1]], "points": 1, "delta_chi2": 0.0}
+    ]
+    assert [np.argwhere(m).tolist() for m in others[0]["masks"]] == [[[1, 1]], []]
