@@ -1064,18 +1064,9 @@ def material_length(
     that material's gap series (every series of a material reads the same one), for the
     layer runs' shape at it (``layer.material_length``); None without layer runs, with
     layer runs of several materials, or without a calibration of theirs."""
-    wanted = {material_of(r) for r in layer_runs}
-    if len(wanted) != 1:
-        return None
-    for s in series:
-        c = s.curves.get("cosserat")
-        if c is None or not c.ok or c.calibration.get("material") not in wanted:
-            continue
-        e = c.calibration.get("parameters", {}).get("L", {})
-        v, se = e.get("value"), e.get("stderr")
-        if isinstance(v, int | float) and isinstance(se, int | float) and math.isfinite(v):
-            return float(v), float(se)
-    return None
+    cal = _layer_material_calibration(series, layer_runs)
+    e = (cal or {}).get("parameters", {}).get("L", {})
+    return _value_and_error(e.get("value"), e.get("stderr"))
 
 
 def material_phi(
@@ -1085,17 +1076,31 @@ def material_phi(
     Cosserat calibration of that material (as :func:`material_length`), for the warning that
     the layers flow below it (``layer.below_yield``; referee 13, point 4); None as
     :func:`material_length`, or where the calibration did not fix phi from the stresses."""
+    cal = _layer_material_calibration(series, layer_runs)
+    e = ((cal or {}).get("stresses") or {}).get("phi") or {}
+    return _value_and_error(e.get("phi"), e.get("phi_se"))
+
+
+def _layer_material_calibration(
+    series: Sequence[DeltaSeries], layer_runs: Sequence[Run]
+) -> Mapping[str, Any] | None:
+    """The one Cosserat calibration (its record) of the layer runs' material, read from the
+    first gap series of that material that has it; None without layer runs, with layer runs of
+    several materials, or without a calibration of theirs."""
     wanted = {material_of(r) for r in layer_runs}
     if len(wanted) != 1:
         return None
     for s in series:
         c = s.curves.get("cosserat")
-        if c is None or not c.ok or c.calibration.get("material") not in wanted:
-            continue
-        e = (c.calibration.get("stresses") or {}).get("phi") or {}
-        v, se = e.get("phi"), e.get("phi_se")
-        if isinstance(v, int | float) and isinstance(se, int | float) and math.isfinite(v):
-            return float(v), float(se)
+        if c is not None and c.ok and c.calibration.get("material") in wanted:
+            return c.calibration
+    return None
+
+
+def _value_and_error(v: Any, se: Any) -> tuple[float, float] | None:
+    """(value, error) where both are numbers and the value is finite, else None."""
+    if isinstance(v, int | float) and isinstance(se, int | float) and math.isfinite(v):
+        return float(v), float(se)
     return None
 
 
