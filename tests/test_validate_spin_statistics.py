@@ -29,7 +29,7 @@ from cosserat.studies.validate import measures
 from cosserat.studies.validate import spin_scan as ss
 from cosserat.studies.validate.synthetic import synthetic_run
 from cosserat.studies.validate.verdicts import t_p
-from cosserat.viz.validation import band_cells, refine_grid, spin_scan_figure
+from cosserat.viz.validation import band_cells, hatch_cells, refine_grid, spin_scan_figure
 
 PHI = 20.0
 ROUGH = math.degrees(math.atan(math.sin(math.radians(PHI))))
@@ -69,6 +69,33 @@ def test_the_band_between_two_grid_points_is_found():
     assert (mask == expected).all()
     # the old rule (grid points within the band) finds nothing here
     assert not np.any(np.abs(values - 0.5) <= 0.1)
+
+
+def test_the_band_is_hatched_as_one_patch_covering_exactly_its_cells():
+    """hatch_cells: one patch (Agg hatched each of pcolor's cells on its own: 30 s for the
+    shipped corpus's figure), one rectangle per run of a row's cells; the centre of every cell
+    of the mask is inside it, of every other cell outside, and its area is the cells'."""
+    from matplotlib.figure import Figure
+
+    xe = np.array([1.0, 2.0, 4.0, 8.0, 16.0])
+    ye = np.array([0.0, 0.5, 1.5, 2.0])
+    mask = np.array([[1, 1, 0, 1], [0, 0, 0, 0], [0, 1, 1, 1]], dtype=bool)
+    ax = Figure().subplots()
+    ax.set_xscale("log")
+    hatch_cells(ax, xe, ye, mask, "////", "0.15")
+    (patch,) = ax.patches
+    assert patch.get_hatch() == "////" and patch.get_facecolor()[3] == 0.0
+    path = patch.get_path()
+    rectangles = path.vertices.reshape(-1, 5, 2)
+    assert len(rectangles) == 3  # (0-1, 3) in row 0, (1-3) in row 2
+    area = sum((r[1, 0] - r[0, 0]) * (r[2, 1] - r[1, 1]) for r in rectangles)
+    widths, heights = np.diff(xe), np.diff(ye)
+    assert area == pytest.approx(float(np.sum(np.outer(heights, widths)[mask])))
+    for j, i in np.ndindex(*mask.shape):
+        centre = (0.5 * (xe[i] + xe[i + 1]), 0.5 * (ye[j] + ye[j + 1]))
+        assert path.contains_point(centre) == mask[j, i]
+    hatch_cells(ax, xe, ye, np.zeros_like(mask), "////", "0.15")  # nothing: no patch
+    assert len(ax.patches) == 1
 
 
 def test_a_log_axis_is_refined_geometrically_and_no_solution_is_never_hatched():
@@ -127,8 +154,8 @@ def _record(scan_record, dep, null, measured, se):
 
 def test_the_scan_figure_colours_beyond_the_null_and_hatches_the_band(scan, tmp_path):
     """The colours are departure - null (a null of -0.07 shifts every value by +0.07) and the
-    band is drawn as a hatched collection (one per grid)."""
-    from matplotlib.collections import PolyCollection, QuadMesh
+    band is drawn as one hatched patch per grid (:func:`hatch_cells`)."""
+    from matplotlib.collections import QuadMesh
 
     rec = json.loads(json.dumps(scan.to_dict()))
     assert set(rec["grids"]["range"]) == {"K", "L", "departure", "null", "delta_chi2"}
@@ -141,8 +168,8 @@ def test_the_scan_figure_colours_beyond_the_null_and_hatches_the_band(scan, tmp_
     values = np.ma.filled(meshes[0].get_array(), np.nan)
     assert np.nanmax(values) == pytest.approx(0.008 + 0.07, abs=0.01)  # a corner cell's mean
     assert np.nanmin(values) <= -0.355 + 0.07 + 0.05
-    hatched = [c for c in panel.collections if isinstance(c, PolyCollection) and c.get_hatch()]
-    assert len(hatched) == 2 and all(c.get_hatch() == "////" for c in hatched)
+    hatched = [p for p in panel.patches if p.get_hatch()]
+    assert len(hatched) == 2 and all(p.get_hatch() == "////" for p in hatched)
     assert "beyond the null: data -0.107 +- 0.021" in panel.get_title()
     assert "beyond its null" in fig.axes[1].get_ylabel()
     # plain tick labels on the log axis, and the legend text below the panels, off the data
