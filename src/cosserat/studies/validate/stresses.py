@@ -75,6 +75,11 @@ BAND_T_DEFINED = (
     "as the model's hydrostatic normal stress, so the wall's T read in the band)"
 )
 """The cross-check's name with its definition, where its values are quoted."""
+BANDS_T_SHORT = (
+    "the bands' |sigma_yx|/N (their bins' |sigma_yx|/sigma_yy times the model's hydrostatic "
+    "sigma_yy/N)"
+)
+"""The cross-check of several runs, named and defined in brief (the per-run notes)."""
 BAND_LOCAL = "the band's local |sigma_yx|/sigma_yy"
 """The other reading of the same bins (``measures.band_stress_ratio``: each bin's measured
 normal stress, inverse-variance mean), named apart from :data:`BAND_T`."""
@@ -353,7 +358,7 @@ class StressPool:
         how = (
             "the moving walls' T = |sigma_yx|/N from their contacts"
             if self.estimator == "wall"
-            else "the bands' |sigma_yx|/N"
+            else BANDS_T_SHORT
         )
         out = (
             f"{self.what} = {p.value:.3g} +- {p.stderr:.2g}: {how}, pooled over "
@@ -361,7 +366,7 @@ class StressPool:
         )
         if self.cross_check is not None:
             c = self.cross_check
-            other = "the bands' |sigma_yx|/N" if self.estimator == "wall" else "the walls' ratios"
+            other = BANDS_T_SHORT if self.estimator == "wall" else "the walls' ratios"
             verdict = "consistent" if c.consistent else f"inconsistent, outlier {c.outlier}"
             out += f"; cross-check, {other}: {c.value:.3g} +- {c.stderr:.2g} ({verdict})"
         return out
@@ -539,6 +544,7 @@ def material_angles(runs: Sequence[Run]) -> tuple[dict[str, float], str, dict[st
 
 
 __all__ = [
+    "BANDS_T_SHORT",
     "BAND_LOCAL",
     "BAND_T",
     "BAND_T_DEFINED",
