@@ -426,7 +426,7 @@ class MaterialPhi:
                 + ", ".join(f"{n} {v:.3f} +- {e:.2g}" for n, v, e in self.local)
                 + f", {min(pct):.0f}-{max(pct):.0f}% below sin phi = {sp:.3f} (under gravity "
                 "sigma_yy grows with depth under a uniform sigma_yx): creep below local yield, "
-                "as in the layers, which the Cosserat creep tail describes"
+                "as the layer warning finds in the layer runs; the Cosserat creep tail describes it"
             )
         return out
 
