@@ -6,6 +6,7 @@ wall moves; mu(I) and NGF shear the gap uniformly)."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -508,6 +509,25 @@ def test_the_layer_shape_at_the_materials_L():
         "judged: the verdict is the band's side."
     )
     assert "the material's calibration fits the layer's shape" in material_length_text([same])
+    # referee 14, point 4: at the material's phi (one material, one phi) the same one solve,
+    # stated as the material's; the run (the profile at 19 deg) then misses, and the shear
+    # decays faster (its couple stress m0 grows with sin phi, docs/derivation_plane.md sec. 5)
+    at_30 = material_length(run, p, 4.0, 0.5, 30.0)
+    assert at_30 is not None and at_30.phi == 30.0 and at_30.material_phi
+    assert not same.material_phi and same.phi == 19.0
+    assert at_30.chi2["ar1"] > 1.0
+    assert 0.0 < at_30.decay_d < same.decay_d < 4.0
+    said = material_length_text([at_30])
+    assert (
+        "(c) (phi = 30 deg (sin phi = 0.500; the material's, the same calibration's, from " in said
+    )
+    assert (
+        f"(chi^2 = {at_30.chi2_fit:.3g}/{at_30.dof_fit}; the alternatives' fit, at phi = 19 deg)"
+        in said
+    )
+    assert f"decaying from the smoother wall over {at_30.decay_d:.2g} d)" in said
+    with pytest.raises(ParameterError, match=re_escape("the material's phi must be in (0, 90)")):
+        material_length(run, p, 4.0, 0.5, 90.0)
     assert material_length_text([]) == ""
     with pytest.raises(ParameterError, match=r"the material's L must be finite and > 0 \[d\]"):
         material_length(run, p, -1.0, 0.5)
@@ -528,17 +548,43 @@ def test_the_layers_flow_below_the_materials_sin_phi():
     sp, sp_se = b.sin_phi
     assert sp == pytest.approx(0.5) and sp_se == pytest.approx(0.8660254 * math.radians(0.5))
     assert b.below == pytest.approx((0.3 / sp_se, 0.3 / math.hypot(sp_se, 0.004)))
-    assert below_yield_text([b]) == (
-        "one material, one phi: the layers flow at a band stress ratio (|shear| / normal, bins "
-        "with u >= 0.05 at least 1 d from the walls) below the material's sin phi = 0.500 +- "
+    head = (
+        "one material, one phi: the layers flow at a band stress ratio (the band's local |shear| "
+        "/ normal, each bin's measured sigma_yy; bins with u >= 0.05 at least 1 d from the "
+        "walls, inverse-variance mean) below the material's sin phi = 0.500 +- "
         "0.0076 (phi = 30 +- 0.5 deg, the one calibration's, from the rough moving walls' "
         "contacts): r 0.200 +- 0.004 (60% below; 39.7 se of sin phi, 35.1 combined se), its bulk "
         "shearing at du/dy = 0.01-0.05 V/d beyond the band's 3 d. That is creep below yield, "
-        "which a local rigid-plastic model (no material length) with the material's phi does "
-        "not give (there the "
+        "which a local rigid-plastic (Coulomb or mu(I)) model does not give (there the "
         "smoother wall's tan delta = 0.210 < sin phi makes a rigid block sliding on the smoother "
-        "wall); the band's side is unaffected"
+        "wall); the Cosserat layer profile (c) does"
     )
+    assert below_yield_text([b]) == (
+        head + ", through its couple stress near the wall; the band's side is unaffected"
+    )
+    # referee 14, points 3 and 4: (c) at the material's phi, its decay length, and the gravity
+    # runs' shearing bins by the same measure: 0.4 and 0.35 against sin phi 0.5, 20% and 30%
+    from cosserat.studies.validate.layer import MaterialLength
+
+    m = MaterialLength("r", 5.0, 0.5, {"ar1": 1.0}, 10, phi=30.0, material_phi=True, decay_d=2.5)
+    g = replace(b, gravity=(("g1", 0.4, 0.01), ("g2", 0.35, 0.02)))
+    assert below_yield_text([g], [m]) == (
+        head + " (above, at the material's phi and L = 5 d: its couple stress, uniform at m0 "
+        "without gravity, docs/derivation_plane.md section 5, lets the material shear at the "
+        "wall's tan delta < sin phi, the shear rate decaying from the smoother wall over 2.5-2.5 "
+        "d), and the gravity runs' creep tails are at the same sub-yield ratio: by this measure "
+        "their shearing bins sit at g1 0.400 +- 0.01, g2 0.350 +- 0.02 (20-30% below sin phi; "
+        "under gravity sigma_yy grows with depth under a uniform sigma_yx, so the bins' local "
+        "ratio falls below the wall's T = sin phi: the creep below local yield the Cosserat "
+        "creep tail describes), so the layers are not special in this; the band's side is "
+        "unaffected"
+    )
+    assert g.to_dict()["gravity"][1] == {
+        "run": "g2",
+        "band": 0.35,
+        "band_se": 0.02,
+        "below_sin_phi": pytest.approx(0.3),
+    }
     assert below_yield_text([]) == ""
     # a run with uniform stresses (ratio 0.2) in the verdict's warnings, first
     run = _cosserat_layer_run(4.0)

@@ -49,7 +49,10 @@ def test_the_cross_checks_extreme_enters_where_it_lies_beyond_the_walls_range(mo
         stresses, "material_sin_phi", lambda runs, material: SimpleNamespace(sin_phi=got)
     )
     ends = ss.phi_ends([], "m")
-    assert ends[-1] == ("cross-check: highest run's band T (b)", pytest.approx(_asin_deg(0.37)))
+    assert ends[-1] == (
+        "cross-check: highest run's band |sigma_yx|/N (b)",
+        pytest.approx(_asin_deg(0.37)),
+    )
     assert [lab for lab, _ in ends[:-1]] == [
         "pooled sin phi - 2 se", "lowest run's T (a)", "highest run's T (b)",
         "pooled sin phi + 2 se",
@@ -61,7 +64,7 @@ def test_the_cross_checks_extreme_enters_where_it_lies_beyond_the_walls_range(mo
 def test_the_sentence_gives_the_sign_at_the_cross_checks_phi():
     """From a hand record: the cross-check's row at 19.3 deg keeps the positive sign in one run
     and turns it in the other."""
-    top = "cross-check: highest run's band T (a)"
+    top = "cross-check: highest run's band |sigma_yx|/N (a)"
     rows_a = [_row(16.7, 0.0005, 0.2), {**_row(19.3, 0.002, 0.38), "label": top}]
     rows_b = [_row(16.7, 0.004, 0.1), {**_row(19.3, 0.02, 0.25), "label": top}]
     a = _scan("a", (0.001, 0.3), -0.1, rows_a)
@@ -69,7 +72,8 @@ def test_the_sentence_gives_the_sign_at_the_cross_checks_phi():
     text = ss.phi_sensitivity_text([a, b])
     assert (
         "(the pooled sin phi +- 2 se, the runs' extreme wall ratios and the cross-check's highest "
-        f"band T = {math.sin(math.radians(19.3)):.3g} (a); each wall's tan delta held)" in text
+        f"band |sigma_yx|/N = {math.sin(math.radians(19.3)):.3g} (a); each wall's tan delta held)"
+        in text
     )
     assert (
         "spans +0.0005 to +0.38 (+0.002 to +0.38 at the cross-check's phi = 19.3 deg: positive, "

@@ -62,8 +62,11 @@ def test_a_fully_rough_run_fixes_sin_phi_at_the_wall_ratio_not_the_band_mean(tmp
     (s,) = fits.summaries
     assert s.ok
     assert s.fixed["phi"][0] == pytest.approx(math.degrees(math.asin(T0)), rel=1e-9)
-    # no wall stress in this run: the band's T is the estimator (stresses.pooled_T)
-    assert "sin phi = 0.3 +- 0.0014: the bands' T, pooled over rough" in s.fixed["phi"][1]
+    # no wall stress in this run: the band's |sigma_yx|/N is the estimator (stresses.pooled_T)
+    assert (
+        "sin phi = 0.3 +- 0.0014: the bands' |sigma_yx|/N (their bins' |sigma_yx|/sigma_yy "
+        "times the model's hydrostatic sigma_yy/N), pooled over rough" in s.fixed["phi"][1]
+    )
     assert s.fixed["delta"][0] == "fully-rough"
     assert set(s.parameters) == set(FIT_ANGLES_FREE)
     assert "phi" not in s.pinned and "delta" not in s.pinned
@@ -88,7 +91,9 @@ def test_a_smooth_run_takes_phi_from_the_material_and_delta_from_its_wall(tmp_pa
     assert fix.delta == pytest.approx(math.degrees(math.atan(0.29)), rel=1e-9)
     assert fix.sources["delta"].startswith(
         "tan delta = 0.29 +- 0.005: the moving walls' T = |sigma_yx|/N from their contacts, "
-        "pooled over smooth (one run, no consistency test); cross-check, the bands' T: 0.3 +- "
+        "pooled over smooth (one run, no consistency test); cross-check, the bands' "
+        "|sigma_yx|/N (their bins' |sigma_yx|/sigma_yy times the model's hydrostatic "
+        "sigma_yy/N): 0.3 +- "
     )
     assert fix.wall == pytest.approx(0.29, rel=1e-9) and fix.T == pytest.approx(T0, rel=1e-9)
     # the model's T (tan delta = 0.29) against the band's (0.3): within 10 per cent

@@ -191,7 +191,9 @@ class StressFix:
         if math.isfinite(self.wall):
             own.append(f"{self.wall:.3g} +- {self.wall_se:.2g} on its moving wall")
         if math.isfinite(self.T):
-            own.append(f"{self.T:.3g} +- {self.T_se:.2g} from its band (the cross-check)")
+            own.append(
+                f"{self.T:.3g} +- {self.T_se:.2g} from its band's |sigma_yx|/N (the cross-check)"
+            )
         mine = f"; this run's T = |sigma_yx|/N: {', '.join(own)}" if own else ""
         t = self.wall if math.isfinite(self.wall) else self.T
         if self.holds and math.isfinite(t) and t < self.tan_delta:

@@ -67,6 +67,7 @@ from ...calibration.noise import whiten
 from ...errors import CosseratError, ParameterError
 from .forward import forward_departure
 from .layer_alternatives import (
+    COSSERAT_PHI,
     COVARIANCES,
     REFERENCES,
     LayerAlternative,
@@ -77,6 +78,7 @@ from .layer_alternatives import (
     layer_alternatives,
 )
 from .measures import P_SIGNIFICANT, band_stress_ratio, spin_correlation, velocity_correlation
+from .stresses import fully_rough
 from .verdicts import Verdict
 
 if TYPE_CHECKING:
@@ -1161,9 +1163,9 @@ def shape_text(positions: Sequence[LayerPosition]) -> str:
 @dataclass(frozen=True)
 class MaterialLength:
     """The Cosserat layer profile (c) of one layer run at the material's L, the one Cosserat
-    calibration of the material's other runs (referee 12, point 6): the profile's own phi
-    (:data:`~.layer_alternatives.COSSERAT_PHI`), delta and K, only L set to the material's,
-    nothing fitted.
+    calibration of the material's other runs (referee 12, point 6), and at that calibration's
+    phi where given (referee 14, point 4: one material, one phi; else the design's,
+    :data:`~.layer_alternatives.COSSERAT_PHI`): delta and K the profile's own, nothing fitted.
 
     Parameters
     ----------
@@ -1183,6 +1185,12 @@ class MaterialLength:
         4: stated; NaN where not given).
     K, A : float
         Its wall's K and its A [-] (their declared defaults; NaN where not given).
+    material_phi : bool
+        ``phi`` is the material's (the calibration's, from the rough moving walls' contacts),
+        not the design's.
+    decay_d : float
+        The e-folding length of the profile's shear rate from the smoother wall [d], from its
+        rates between the first bins (NaN where they do not decay).
     """
 
     run: str
@@ -1197,6 +1205,8 @@ class MaterialLength:
     delta: float = math.nan
     K: float = math.nan
     A: float = math.nan
+    material_phi: bool = False
+    decay_d: float = math.nan
 
     @property
     def p(self) -> dict[str, float]:
@@ -1225,6 +1235,8 @@ class MaterialLength:
             "delta": self.delta,
             "K": self.K,
             "A": self.A,
+            "material_phi": self.material_phi,
+            "decay_d": self.decay_d,
         }
 
 
@@ -1239,22 +1251,28 @@ def layer_data(run: Run, smoother: str, ratio: float) -> LayerData:
     )
 
 
-def material_length(run: Run, p: LayerPosition, L: float, L_se: float) -> MaterialLength | None:
-    """:class:`MaterialLength` of one layer run at the material's ``L`` +- ``L_se`` [d];
-    None where the run has no alternatives (no stress ratio) or the profile has no
+def material_length(
+    run: Run, p: LayerPosition, L: float, L_se: float, phi: float | None = None
+) -> MaterialLength | None:
+    """:class:`MaterialLength` of one layer run at the material's ``L`` +- ``L_se`` [d] and
+    its ``phi`` [deg] (None: the design's, :data:`~.layer_alternatives.COSSERAT_PHI`); one
+    solve. None where the run has no alternatives (no stress ratio) or the profile has no
     solution."""
     if p.stress_ratio is None or not p.alternatives:
         return None
     if not (math.isfinite(L) and L > 0.0 and math.isfinite(L_se) and L_se >= 0.0):
         raise ParameterError(f"the material's L must be finite and > 0 [d]; got {L} +- {L_se}")
+    if phi is not None and not (math.isfinite(phi) and 0.0 < phi < 90.0):
+        raise ParameterError(f"the material's phi must be in (0, 90) deg; got {phi}")
+    angle = COSSERAT_PHI if phi is None else float(phi)
     data = layer_data(run, p.smoother, p.stress_ratio)
     try:
-        v = cosserat_velocity(data, L)
+        v = cosserat_velocity(data, L, phi=angle)
     except CosseratError:
         return None
     chi2 = {kind: data.under(kind).chi2(v) for kind in COVARIANCES}
     fit = next((x for x in p.alternatives if x.key == "cosserat-Lfit"), None)
-    given = cosserat_values(data, L)
+    given = cosserat_values(data, L, angle)
     wall = "delta_lower" if p.smoother == "fixed" else "delta"
     k_wall = "K_lower" if p.smoother == "fixed" else "K"
     return MaterialLength(
@@ -1270,7 +1288,23 @@ def material_length(run: Run, p: LayerPosition, L: float, L_se: float) -> Materi
         float(given[wall]),
         float(given[k_wall]),
         float(given["A"]),
+        phi is not None,
+        _decay_length(data.y, v),
     )
+
+
+def _decay_length(y: np.ndarray, v: np.ndarray, bins: int = 4) -> float:
+    """The e-folding length [d] of a profile's shear rate from the smoother wall: the
+    log-linear slope of its rates between the first ``bins`` bins (``y`` from that wall [d]);
+    NaN where they are not all positive or do not decay."""
+    order = np.argsort(y)[:bins]
+    ys, vs = np.asarray(y, dtype=float)[order], np.asarray(v, dtype=float)[order]
+    rate = np.diff(vs) / np.diff(ys)
+    mids = 0.5 * (ys[1:] + ys[:-1])
+    if rate.size < 2 or not np.all(rate > 0.0):
+        return math.nan
+    slope = float(np.polyfit(mids, np.log(rate), 1)[0])
+    return -1.0 / slope if slope < 0.0 else math.nan
 
 
 def material_length_text(rows: Sequence[MaterialLength]) -> str:
@@ -1285,15 +1319,23 @@ def material_length_text(rows: Sequence[MaterialLength]) -> str:
     for m in rows:
         chis = ", ".join(f"{m.chi2[k]:.3g}/{m.dof}" for k in COVARIANCES if k in m.chi2)
         fitted = (
-            f"; its own best L = {m.L_fit:.3g} d (chi^2 = {m.chi2_fit:.3g}/{m.dof_fit}) is "
-            f"{m.below_se:.1f} se of the material's L below it"
+            f"; its own best L = {m.L_fit:.3g} d (chi^2 = {m.chi2_fit:.3g}/{m.dof_fit}"
+            + (f"; the alternatives' fit, at phi = {COSSERAT_PHI:g} deg" if m.material_phi else "")
+            + f") is {m.below_se:.1f} se of the material's L below it"
             if math.isfinite(m.L_fit)
             else ""
         )
         angles = (
             f"delta = {m.delta:.3g} deg at the smoother wall, " if math.isfinite(m.delta) else ""
         )
-        parts.append(f"{m.run} ({angles}chi^2 = {chis}, p = {m.p['ar1']:.2g} under AR(1)){fitted}")
+        decay = (
+            f", its shear rate decaying from the smoother wall over {m.decay_d:.2g} d"
+            if math.isfinite(m.decay_d)
+            else ""
+        )
+        parts.append(
+            f"{m.run} ({angles}chi^2 = {chis}, p = {m.p['ar1']:.2g} under AR(1){decay}){fitted}"
+        )
     rejected = [m.run for m in rows if m.p["ar1"] < P_SIGNIFICANT]
     if len(rejected) == len(rows):
         call = "the layer's shape is not fitted by the material's calibration"
@@ -1337,6 +1379,10 @@ class BelowYield:
         ``within_d`` from the smoother wall), from the smoother wall [V/d].
     within_d : float
         The band's window [d].
+    gravity : tuple of (str, float, float)
+        The material's runs under gravity with both walls fully rough (phi's runs): name and
+        their band's local |shear| / normal by the same measure, with its error [-] (referee
+        14, point 3: their shearing bins sit below sin phi too).
     """
 
     run: str
@@ -1347,6 +1393,7 @@ class BelowYield:
     phi_se: float
     creep: tuple[float, ...]
     within_d: float = WITHIN_D
+    gravity: tuple[tuple[str, float, float], ...] = ()
 
     @property
     def sin_phi(self) -> tuple[float, float]:
@@ -1378,6 +1425,10 @@ class BelowYield:
             "below_sin_phi_se": self.below[0],
             "below_combined_se": self.below[1],
             "creep": list(self.creep),
+            "gravity": [
+                {"run": n, "band": v, "band_se": e, "below_sin_phi": 1.0 - v / sp}
+                for n, v, e in self.gravity
+            ],
         }
 
 
@@ -1403,10 +1454,33 @@ def below_yield(run: Run, p: LayerPosition, phi: float, phi_se: float) -> BelowY
     )  # fmt: skip
 
 
-def below_yield_text(rows: Sequence[BelowYield]) -> str:
-    """The warning (referee 13, point 4): the layers flow at a band stress ratio below the
-    material's sin phi, which the rigid-plastic model with that phi does not give; "" without
-    rows."""
+def gravity_band_ratios(
+    runs: Sequence[Run], layer_runs: Sequence[Run]
+) -> tuple[tuple[str, float, float], ...]:
+    """The band's local |shear| / normal (``measures.band_stress_ratio``) of the layer runs'
+    material's plane runs with both walls fully rough (the runs sin phi is pooled over): name,
+    value, error [-]; () where the layer runs are of several materials. Reads the profiles
+    only (no solve)."""
+    from ...calibration.data import _material_label
+
+    materials = {_material_label(r.meta) for r in layer_runs}
+    if len(materials) != 1:
+        return ()
+    out = []
+    for r in runs:
+        if r.cell != "plane" or not fully_rough(r) or _material_label(r.meta) not in materials:
+            continue
+        b = band_stress_ratio(r)
+        if b is not None:
+            out.append((r.name, b.value, b.stderr))
+    return tuple(out)
+
+
+def below_yield_text(rows: Sequence[BelowYield], material: Sequence[MaterialLength] = ()) -> str:
+    """The warning (referee 13, point 4; referee 14, points 3 and 4): the layers flow at a band
+    stress ratio below the material's sin phi, which a local rigid-plastic model does not give
+    and the Cosserat layer profile (c) (``material``, its decay length) does, as the gravity
+    runs' shearing bins sit below it by the same measure; "" without rows."""
     if not rows:
         return ""
     sp, sp_se = rows[0].sin_phi
@@ -1421,17 +1495,39 @@ def below_yield_text(rows: Sequence[BelowYield]) -> str:
             + ("" if all(g > 0.0 for g in b.creep) else " (not everywhere positive)")
         )
     walls = ", ".join(f"{b.wall:.3f}" for b in rows)
+    decays = [m.decay_d for m in material if m.material_phi and math.isfinite(m.decay_d)]
+    cosserat = (
+        "; the Cosserat layer profile (c) does (above, at the material's phi and L = "
+        f"{material[0].L:.3g} d: its couple stress, uniform at m0 without gravity, "
+        "docs/derivation_plane.md section 5, lets the material shear at the wall's tan delta < "
+        "sin phi, the shear rate decaying from the smoother wall over "
+        f"{min(decays):.2g}-{max(decays):.2g} d)"
+        if decays
+        else "; the Cosserat layer profile (c) does, through its couple stress near the wall"
+    )
+    grav = rows[0].gravity
+    if grav:
+        pct = [100.0 * (1.0 - v / sp) for _, v, _ in grav]
+        cosserat += (
+            ", and the gravity runs' creep tails are at the same sub-yield ratio: by this "
+            "measure their shearing bins sit at "
+            + ", ".join(f"{n} {v:.3f} +- {e:.2g}" for n, v, e in grav)
+            + f" ({min(pct):.0f}-{max(pct):.0f}% below sin phi; under gravity sigma_yy grows "
+            "with depth under a uniform sigma_yx, so the bins' local ratio falls below the "
+            "wall's T = sin phi: the creep below local yield the Cosserat creep tail "
+            "describes), so the layers are not special in this"
+        )
     return (
-        f"one material, one phi: the layers flow at a band stress ratio (|shear| / normal, "
-        f"bins with u >= {BAND_U:g} at least {WALL_EXCLUSION_D:g} d from the walls) below "
+        f"one material, one phi: the layers flow at a band stress ratio (the band's local "
+        f"|shear| / normal, each bin's measured sigma_yy; bins with u >= {BAND_U:g} at least "
+        f"{WALL_EXCLUSION_D:g} d from the walls, inverse-variance mean) below "
         f"the material's sin phi = {sp:.3f} +- {sp_se:.2g} (phi = {rows[0].phi:.4g} +- "
         f"{rows[0].phi_se:.2g} deg, the one calibration's, from the rough moving walls' "
         "contacts): "
         + "; ".join(parts)
-        + ". That is creep below yield, which a local rigid-plastic model (no material "
-        "length) with the material's phi does not give (there the smoother wall's tan delta = "
-        f"{walls} < sin phi makes a rigid block sliding on the smoother wall); the band's side "
-        "is unaffected"
+        + ". That is creep below yield, which a local rigid-plastic (Coulomb or mu(I)) model "
+        f"does not give (there the smoother wall's tan delta = {walls} < sin phi makes a rigid "
+        "block sliding on the smoother wall)" + cosserat + "; the band's side is unaffected"
     )
 
 
@@ -1439,12 +1535,17 @@ def _given_text(m: MaterialLength) -> str:
     """What (c) is solved with besides L (referee 13, point 4), "" where not recorded."""
     if not math.isfinite(m.phi):
         return "its own phi, delta and K"
+    whose = (
+        "the material's, the same calibration's, from the rough moving walls' contacts: one "
+        "material, one phi"
+        if m.material_phi
+        else "the design's, not the material's: at B = 0 the layer's stress ratio is the "
+        "smoother wall's tan delta whatever phi is"
+    )
     return (
-        f"phi = {m.phi:.3g} deg (sin phi = {math.sin(math.radians(m.phi)):.3f}; the design's, "
-        "not the material's: at B = 0 the layer's stress ratio is the smoother wall's tan "
-        "delta whatever phi is), delta = atan(the run's wall stress ratio) at the smoother "
-        f"wall, the rougher wall fully rough, K = {m.K:.3g} there and A = {m.A:.3g} (their "
-        "defaults)"
+        f"phi = {m.phi:.4g} deg (sin phi = {math.sin(math.radians(m.phi)):.3f}; {whose}), "
+        "delta = atan(the run's wall stress ratio) at the smoother wall, the rougher wall fully "
+        f"rough, K = {m.K:.3g} there and A = {m.A:.3g} (their defaults)"
     )
 
 
@@ -1504,7 +1605,7 @@ def layer_position_verdict(
     )
     warnings = _warnings(positions, a, se, references)
     if below:
-        warnings.insert(0, below_yield_text(below))
+        warnings.insert(0, below_yield_text(below, material))
     steady_text, on_unsteady = steadiness_of_a(positions)
     evidence = (
         f"a = {a:+.3f} +- {se:.2g} ({z:+.1f} se) over {len(positions)} run(s): "
@@ -1611,12 +1712,28 @@ def layer_verdicts(
         if (p := measured.get(r.name) or measure_layer(r, fits.get(r.name))) is not None
     ]
     material = (
-        [m for p in positions if (m := material_length(by_name[p.run], p, *material_L))]
+        [
+            m
+            for p in positions
+            if (
+                m := material_length(
+                    by_name[p.run],
+                    p,
+                    *material_L,
+                    None if material_phi is None else material_phi[0],
+                )
+            )
+        ]
         if material_L is not None
         else []
     )
+    gravity = gravity_band_ratios(runs, [by_name[p.run] for p in positions])
     below = (
-        [b for p in positions if (b := below_yield(by_name[p.run], p, *material_phi))]
+        [
+            replace(b, gravity=gravity)
+            for p in positions
+            if (b := below_yield(by_name[p.run], p, *material_phi))
+        ]
         if material_phi is not None
         else []
     )
@@ -1672,6 +1789,7 @@ __all__ = [
     "below_yield",
     "below_yield_text",
     "design_asymmetry",
+    "gravity_band_ratios",
     "jump_covariance",
     "jump_fractions",
     "layer_data",

@@ -489,26 +489,27 @@ def fit_ngf(data: LayerData) -> list[LayerAlternative]:
     return out
 
 
-def cosserat_profile(data: LayerData, L_d: float) -> Any:
+def cosserat_profile(data: LayerData, L_d: float, phi: float = COSSERAT_PHI) -> Any:
     """(c): the Cosserat model's solution (a :class:`~cosserat.results.profile.Profile`, the
     moving wall at xi = 1) with the smoother wall at ``delta = atan(ratio)`` and the rougher
-    fully rough, ``phi`` = :data:`COSSERAT_PHI`, material length ``L_d`` [d]."""
+    fully rough, friction angle ``phi`` [deg] (default :data:`COSSERAT_PHI`), material length
+    ``L_d`` [d]."""
     from ...model import make_problem
     from ...routes import solve
 
-    return solve(make_problem("cosserat", "plane", _cosserat_input(data, L_d)))
+    return solve(make_problem("cosserat", "plane", _cosserat_input(data, L_d, phi)))
 
 
-def cosserat_values(data: LayerData, L_d: float) -> dict[str, Any]:
+def cosserat_values(data: LayerData, L_d: float, phi: float = COSSERAT_PHI) -> dict[str, Any]:
     """The parameters (c) is solved with (:func:`cosserat_profile`), defaults resolved: phi
     [deg], delta [deg] at the smoother wall ("fully-rough" at the rougher), K and A [-], L [d]
     (referee 13, point 4: the text states them)."""
     from ...model import make_problem
 
-    return dict(make_problem("cosserat", "plane", _cosserat_input(data, L_d)).values())
+    return dict(make_problem("cosserat", "plane", _cosserat_input(data, L_d, phi)).values())
 
 
-def _cosserat_input(data: LayerData, L_d: float) -> dict[str, Any]:
+def _cosserat_input(data: LayerData, L_d: float, phi: float = COSSERAT_PHI) -> dict[str, Any]:
     """(c)'s given parameters (the rest at their declared defaults)."""
     delta = math.degrees(math.atan(data.ratio))
     walls = (
@@ -516,14 +517,17 @@ def _cosserat_input(data: LayerData, L_d: float) -> dict[str, Any]:
         if data.smoother == "fixed"
         else {"delta": delta, "delta_lower": "fully-rough"}
     )
-    return {"phi": COSSERAT_PHI, "B": 0.0, "L": L_d, "eps": 1.0 / data.gap_d, **walls}
+    return {"phi": phi, "B": 0.0, "L": L_d, "eps": 1.0 / data.gap_d, **walls}
 
 
-def cosserat_velocity(data: LayerData, L_d: float, y_d: np.ndarray | None = None) -> np.ndarray:
+def cosserat_velocity(
+    data: LayerData, L_d: float, y_d: np.ndarray | None = None, phi: float = COSSERAT_PHI
+) -> np.ndarray:
     """(c): the Cosserat model's ``v`` at ``y_d`` (distances from the smoother wall [d]; the
     bins when None), the smoother wall at ``delta = atan(ratio)`` and the rougher fully rough,
-    ``phi`` = :data:`COSSERAT_PHI`, material length ``L_d`` [d] (:func:`cosserat_profile`)."""
-    sol = cosserat_profile(data, L_d)
+    friction angle ``phi`` [deg] (default :data:`COSSERAT_PHI`), material length ``L_d`` [d]
+    (:func:`cosserat_profile`)."""
+    sol = cosserat_profile(data, L_d, phi)
     xi, u = np.asarray(sol.xi, dtype=float), np.asarray(sol.u, dtype=float)
     y = data.y if y_d is None else np.asarray(y_d, dtype=float)
     y_fixed = y if data.smoother == "fixed" else data.gap_d - y

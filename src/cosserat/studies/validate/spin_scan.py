@@ -2087,14 +2087,14 @@ def phi_ends(runs: Sequence[Run], material: str, sigmas: float = 2.0) -> list[tu
         ]
     cross = got.cross_check
     if cross is not None and cross.values:
-        what = "band" if got.estimator == "wall" else "wall"
+        what = "band |sigma_yx|/N" if got.estimator == "wall" else "wall T"
         low, high = min(v for _, v in ends), max(v for _, v in ends)
         lo, hi = int(np.argmin(cross.values)), int(np.argmax(cross.values))
         if cross.values[lo] < low:
-            ends.append((f"{CROSS_CHECK_END} lowest run's {what} T ({cross.names[lo]})",
+            ends.append((f"{CROSS_CHECK_END} lowest run's {what} ({cross.names[lo]})",
                          cross.values[lo]))  # fmt: skip
         if cross.values[hi] > high:
-            ends.append((f"{CROSS_CHECK_END} highest run's {what} T ({cross.names[hi]})",
+            ends.append((f"{CROSS_CHECK_END} highest run's {what} ({cross.names[hi]})",
                          cross.values[hi]))  # fmt: skip
     out = [(lab, math.degrees(math.asin(v))) for lab, v in ends if 0.0 < v < 1.0]
     return sorted(out, key=lambda x: x[1])
