@@ -1485,7 +1485,9 @@ def spin_verdict(
         )
         wn = would.numbers
         n_dep = len(wn.get("runs_departing_p_0.05", []))
-        pooled_would = p_text(wn.get("pooled_chi2"), wn.get("pooled_dof", 0), wn.get("pooled_p"))
+        pooled_would = p_text(
+            wn.get("pooled_chi2"), wn.get("pooled_dof", 0), wn.get("pooled_p_normal")
+        )
         unjudged += (
             f" Were {', '.join(f'{w.run}:{w.wall}' for w in shown)} judged against the null "
             f"shown, {n_dep} of {len(would.runs)} runs would depart at p < {P_CONSISTENT:g} "
@@ -1573,7 +1575,9 @@ def spin_verdict(
     numbers: dict[str, Any] = {
         "pooled_chi2": chi2,
         "pooled_dof": dof,
-        "pooled_p": p,
+        # the normal reading's p, named so (referee 14, point 6): the verdict states
+        # pooled_p_headline (t(blocks - 1)); no tool should quote this one as the verdict's p
+        "pooled_p_normal": p,
         "pooled_stencil": weak,
         "pooled_by_stencil": {
             s: {"chi2": t[0], "dof": t[1], "p": t[2]} for s, t in by_stencil.items()
@@ -1583,7 +1587,7 @@ def spin_verdict(
         "pooled_p_every_bin": every[2],
         "pooled_chi2_without_first_layer": rest[0],
         "pooled_dof_without_first_layer": rest[1],
-        "pooled_p_without_first_layer": rest[2],
+        "pooled_p_without_first_layer_normal": rest[2],
         "pooled_chi2_bound": bound[0],
         "pooled_p_bound": bound[2],
         "pooled_chi2_against_zero": zero[0],
@@ -1713,7 +1717,7 @@ def spin_verdict(
     numbers["pooled_p_t_without_first_layer_text"] = (
         None if c_t_rest is None else mc_p_text(p_t_rest or 0.0, *c_t_rest, line=True)
     )
-    # referee 11, point 1: pooled_p reads each z as normal, pooled_p_t under t(blocks - 1);
+    # referee 11, point 1: pooled_p_normal reads each z as normal, pooled_p_t under t(blocks - 1);
     # the headline is the one the verdict states (t where the blocks are recorded)
     numbers["pooled_p_headline"] = p_t if p_t is not None else p
     numbers["pooled_p_headline_reading"] = f"t({blocks - 1})" if p_t is not None else "normal"
