@@ -103,7 +103,10 @@ def test_the_model_free_reading_of_a_hand_made_record():
     assert rows["b"]["z"] == pytest.approx((-0.01 + 0.2 * ln2 - 0.1) / 0.02, rel=1e-12)
     assert rows["b"]["beyond"] == pytest.approx(-0.01 - (-0.2 * ln2 + 0.1), rel=1e-12)
     text, counts = free_text(rows)
-    assert counts == {"moving_walls": 2, "beyond": 1, "wall_second_zero": 1, "wall_second_walls": 2}
+    assert counts == {"moving_walls": 2, "fixed_walls": 0, "beyond": 1, "beyond_3_se": 1,
+                      "beyond_independent": 0, "beyond_3_se_independent": 0,
+                      "walls_with_independent_bound": 0, "wall_second_zero": 1,
+                      "wall_second_walls": 2}  # fmt: skip
     assert text.startswith(" Model-free, grain by grain (the null: a velocity matched to the "
                            "measured layer means with no model fit")  # fmt: skip
     assert (
@@ -113,8 +116,9 @@ def test_the_model_free_reading_of_a_hand_made_record():
     ) in text
     assert (
         "So layer 1 turns 3 times faster than the half vorticity between layers 1 and 2 "
-        "at 1 of 2 moving walls (1.1 at b); a velocity matched to the measured layer means "
-        "gives 1.39, and the data lie beyond it by at least 2 se at 1 of 2 walls"
+        "at 1 of 2 sheared walls (1.1 at b); a velocity matched to the measured layer means "
+        "gives 1.39, and the data lie beyond it by at least 2 se at 1 of 2 walls (1 by at "
+        "least 3 se): only"
     ) in text
     assert text.endswith("against the wall-to-layer-2 chord the raw departure is 0 within 2 se "
                          "at 1 of 2 walls (the largest |z| 2.5).")  # fmt: skip

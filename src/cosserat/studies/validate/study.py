@@ -300,6 +300,21 @@ def _moving_grains(run: Run) -> Mapping[str, Any] | None:
     return wall if isinstance(wall, Mapping) else None
 
 
+def _fixed_grains(run: Run) -> Mapping[str, Any] | None:
+    """The sidecar's grain-by-grain first-layer record at a plane run's fixed wall, which
+    ``cosserat.dem.first_layer`` writes only where that wall shears (layer 1 moves relative
+    to it by at least 0.05 V: the layer runs' smooth fixed walls); None where not recorded
+    (referee 14, point 2: read model-free beside the moving walls')."""
+    record = run.meta.get("first_layer")
+    if run.cell != "plane" or not isinstance(record, Mapping):
+        return None
+    fixed = {"upper": "lower", "lower": "upper"}.get(run.moving_wall)
+    wall = (record.get("walls") or {}).get(fixed) if fixed else None
+    if not isinstance(wall, Mapping) or wall.get("moving", False):
+        return None
+    return wall
+
+
 @dataclass
 class ScanOutcome:
     """One run's part of ``_scans``, made alone (:func:`scan_job`, in a worker process
@@ -1427,6 +1442,7 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
             joint.get("grain_null"),
             u_only,
             contradiction,
+            _fixed_grains(r.run),
         )
     return out
 
