@@ -148,9 +148,9 @@ def test_a_u_only_velocity_that_absorbs_the_first_layer_and_u_accepts():
 
     walls = [moving(r, [-0.26, 0.087, 0.0], [0.045, 0.026, 0.01], [-0.04, 0.0, 0.0],
                     mui=[-0.261, -0.01, 0.0]) for r in "ab"]  # fmt: skip
-    why = ("contradicts the measured stress: mu_s = 0.314 (fitted), but the "
-           "run's |shear|/normal stress ratio in the band is 0.244 +- 0.015 (4 bins), 4.8 "
-           "errors away")  # fmt: skip
+    why = ("contradicts the measured stress: its fitted mu_s = 0.314 exceeds the band's "
+           "measured |shear|/normal stress ratio 0.244 +- 0.015 (4 bins) by 4.8 errors, "
+           "where mu(I) needs mu >= mu_s to flow")  # fmt: skip
     info = {"a": SpinRun(u_only=(("mui", 16.0, 8),), u_only_contradiction=(("mui", why),)),
             "b": SpinRun(u_only=(("mui", 176.0, 18),))}  # fmt: skip
     rows = u_only_reproduces(walls, info)
@@ -159,9 +159,9 @@ def test_a_u_only_velocity_that_absorbs_the_first_layer_and_u_accepts():
     p = float(chi2.sf(16.0, 8))
     assert text.endswith(
         f" At a the first-layer departure is absorbed by a velocity u accepts (p = {p:.2g}); it "
-        "is not the verdict's null because its fit contradicts the measured stress (mu_s = "
-        "0.314 (fitted), but the run's |shear|/normal stress ratio in the "
-        "band is 0.244 +- 0.015 (4 bins), 4.8 errors away)."
+        "is not the verdict's null because its fitted mu_s = 0.314 exceeds the band's "
+        "measured |shear|/normal stress ratio 0.244 +- 0.015 (4 bins) by 4.8 errors, where "
+        "mu(I) needs mu >= mu_s to flow."
     )
     assert "At b the first-layer departure is absorbed" not in text
 

@@ -133,3 +133,23 @@ def test_a_sheared_fixed_wall_is_read_model_free_and_the_sentence_leads():
     assert "plane" not in lead and "c's fixed wall omega_1/W_layers 2.5" in v.evidence
     # without records, nothing leads
     assert free_lead({}) == "" and spin_verdict(walls).evidence.startswith("Beyond the null")
+
+
+def test_the_headline_p_says_it_depends_on_the_joint_fits_basin():
+    """Where a run's joint fit has a 95% region of more than one island, the test's pooled p
+    carries one clause saying it depends on which basin the fit finds (SpinRun.joint_basins,
+    in words from the study); none where no run's has."""
+    from cosserat.studies.validate.verdicts import basins_text
+
+    walls = [wall(r, "moving", [-0.30, 0.048, 0.0], [0.03, 0.008, 0.01], [-0.04, 0.008, 0.0])
+             for r in "ab"]  # fmt: skip
+    where = "K 5.32, L 14.1 d, in one of its 95% region's two islands: K 2.74-2.89, L 3.61-3.77 d"
+    info = {"a": SpinRun(), "b": SpinRun(joint_basins=where)}
+    clause = (
+        "; the pooled p depends on which basin a joint fit with several finds, its velocity "
+        f"being the run's null: b's joint fit is at {where}"
+    )
+    assert basins_text(["a", "b"], info) == clause
+    assert clause + ";" in spin_verdict(walls, runs_info=info).evidence
+    assert basins_text(["a"], info) == ""
+    assert "depends on which basin" not in spin_verdict(walls, runs_info={"a": SpinRun()}).evidence

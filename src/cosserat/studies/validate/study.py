@@ -1410,6 +1410,7 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
     common-mode errors (the null's own quality, referee 11, point 1)."""
     cells = replicate_cells([r.run for r in results])
     fits = {sc.run: _joint_fit_chi2(sc) for sc in scans}
+    basins = {sc.run: _joint_basins(sc) for sc in scans}
     out = {}
     for r in results:
         meta = r.run.meta
@@ -1443,8 +1444,26 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
             u_only,
             contradiction,
             _fixed_grains(r.run),
+            basins.get(r.run.name, ""),
         )
     return out
+
+
+def _joint_basins(sc: Scan) -> str:
+    """Where the joint fit whose velocity is a run's null sits when its 95% region is more
+    than one island (``spin_scan.scan_region``; referee 14, point 2: the headline p depends
+    on which basin the fit finds), in words, e.g. "K 5.32, L 14.1 d, in one of its 95%
+    region's two islands (...)"; "" for one island or none. Reads the scan's cached region:
+    no solve."""
+    from .spin_scan import region_text, scan_region
+
+    region = scan_region(sc)
+    if not region or len(region.get("islands") or []) < 2:
+        return ""
+    return (
+        f"K {sc.fit.value('K'):.3g}, L {sc.fit.value('L'):.3g} d, in one of its 95% region's "
+        f"{region_text(region)}"
+    )
 
 
 def _joint_fit_chi2(sc: Scan) -> tuple[tuple[str, float, int], ...]:
