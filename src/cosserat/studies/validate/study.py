@@ -1452,17 +1452,17 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
 def _joint_basins(sc: Scan) -> str:
     """Where the joint fit whose velocity is a run's null sits when its 95% region is more
     than one island (``spin_scan.scan_region``; referee 14, point 2: the headline p depends
-    on which basin the fit finds), in words, e.g. "K 5.32, L 14.1 d, in one of its 95%
-    region's two islands (...)"; "" for one island or none. Reads the scan's cached region:
-    no solve."""
+    on which basin the fit finds), in words, e.g. "K 5.32, L 14.1 d, in one of the islands
+    of its 95% region (two islands: ...)"; "" for one island or none. Reads the scan's
+    cached region: no solve."""
     from .spin_scan import region_text, scan_region
 
     region = scan_region(sc)
     if not region or len(region.get("islands") or []) < 2:
         return ""
     return (
-        f"K {sc.fit.value('K'):.3g}, L {sc.fit.value('L'):.3g} d, in one of its 95% region's "
-        f"{region_text(region)}"
+        f"K {sc.fit.value('K'):.3g}, L {sc.fit.value('L'):.3g} d, in one of the islands of its "
+        f"95% region ({region_text(region)})"
     )
 
 
