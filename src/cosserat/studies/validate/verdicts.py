@@ -1122,10 +1122,12 @@ def free_lead(rows: Mapping[str, Any]) -> str:
     at the walls beyond the matched null by at least :data:`GRAIN_SE` se under independent
     errors, the matched ratios, and those walls' z under independent errors; "" without
     rows."""
-    ok = {k: r for k, r in rows.items() if r.get("matched") is not None and _bound_z(r) is not None}
+    zs = {k: z for k, r in rows.items() if r.get("matched") is not None
+          and (z := _bound_z(r)) is not None}  # fmt: skip
+    ok = {k: rows[k] for k in zs}
     if not ok:
         return ""
-    far = {k: r for k, r in ok.items() if abs(_bound_z(r)) >= GRAIN_SE}
+    far = {k: r for k, r in ok.items() if abs(zs[k]) >= GRAIN_SE}
     moving = {k: r for k, r in ok.items() if r["wall"] == "moving"}
     fixed = {k: r for k, r in ok.items() if r["wall"] == "fixed"}
     parts = []
@@ -1143,8 +1145,8 @@ def free_lead(rows: Mapping[str, Any]) -> str:
             text += " (" + ", ".join(f"{group[k]['ratio']:.3g} at {_wall_name(k)}"
                                      for k in miss) + ")"  # fmt: skip
         parts.append(text)
-    z_hit = [abs(_bound_z(far[k])) for k in far]
-    three = sum(1 for r in ok.values() if abs(_bound_z(r)) >= 3.0)
+    z_hit = [abs(zs[k]) for k in far]
+    three = sum(1 for k in ok if abs(zs[k]) >= 3.0)
     independent = all(r.get("z_independent") is not None for r in ok.values())
     kind = "under independent errors" if independent else "in the departure's se"
     return (
