@@ -78,7 +78,7 @@ def test_the_first_layer_is_tested_beyond_the_null_under_every_stencil():
         "stencils (the analysis' chi^2 = 31.43 for 6 bins (p = 2.1e-05)), not under every one "
         "(under wall: p = 0.017)"
     )
-    assert n["pooled_p"] == pytest.approx(float(chi2_dist.sf(2 * (0.111 / 0.04) ** 2, 6)))
+    assert n["pooled_p_normal"] == pytest.approx(float(chi2_dist.sf(2 * (0.111 / 0.04) ** 2, 6)))
     assert n["pooled_by_stencil"]["analysis"]["p"] < P_SIGNIFICANT
     assert "departs at p < 0.001 under 1 of 2 stencils (analysis), not under wall (p = 0.017)" in (
         v.evidence

@@ -239,8 +239,14 @@ def test_the_shipped_sidecars_carry_the_grain_record_the_verdict_reads():
     g = info["plane_rough_H10_qs"].grains
     assert g["departure_W_wall_second"] == pytest.approx(0.0165, abs=5e-5)
     assert g["departure_W_wall_second_se"] == pytest.approx(0.0208, abs=5e-5)
-    # the layer run's smooth fixed wall shears (layer 1 at 0.45 V): it is recorded too
+    # the layer run's smooth fixed wall shears (layer 1 at 0.45 V): it is recorded too, and
+    # is the run's SpinRun.fixed_grains (read model-free, referee 14, point 2); the gravity
+    # runs' fixed walls do not shear and have none
     assert set(runs[2].meta["first_layer"]["walls"]) == {"lower", "upper"}
+    assert info["plane_layer_H10_qs"].fixed_grains == runs[2].meta["first_layer"]["walls"]["lower"]
+    assert info["plane_layer_H10_qs"].fixed_grains["u_1"] == pytest.approx(0.45, abs=0.005)
+    assert info["plane_rough_H10_qs"].fixed_grains is None
+    assert info["plane_smooth_H20_qs"].joint_basins == ""  # not scanned here
 
 
 def test_the_grain_scale_null_of_a_model_velocity():

@@ -103,7 +103,10 @@ def test_the_model_free_reading_of_a_hand_made_record():
     assert rows["b"]["z"] == pytest.approx((-0.01 + 0.2 * ln2 - 0.1) / 0.02, rel=1e-12)
     assert rows["b"]["beyond"] == pytest.approx(-0.01 - (-0.2 * ln2 + 0.1), rel=1e-12)
     text, counts = free_text(rows)
-    assert counts == {"moving_walls": 2, "beyond": 1, "wall_second_zero": 1, "wall_second_walls": 2}
+    assert counts == {"moving_walls": 2, "fixed_walls": 0, "beyond": 1, "beyond_3_se": 1,
+                      "beyond_independent": 0, "beyond_3_se_independent": 0,
+                      "walls_with_independent_bound": 0, "wall_second_zero": 1,
+                      "wall_second_walls": 2}  # fmt: skip
     assert text.startswith(" Model-free, grain by grain (the null: a velocity matched to the "
                            "measured layer means with no model fit")  # fmt: skip
     assert (
@@ -113,8 +116,9 @@ def test_the_model_free_reading_of_a_hand_made_record():
     ) in text
     assert (
         "So layer 1 turns 3 times faster than the half vorticity between layers 1 and 2 "
-        "at 1 of 2 moving walls (1.1 at b); a velocity matched to the measured layer means "
-        "gives 1.39, and the data lie beyond it by at least 2 se at 1 of 2 walls"
+        "at 1 of 2 sheared walls (1.1 at b); a velocity matched to the measured layer means "
+        "gives 1.39, and the data lie beyond it by at least 2 se at 1 of 2 walls (1 by at "
+        "least 3 se): only"
     ) in text
     assert text.endswith("against the wall-to-layer-2 chord the raw departure is 0 within 2 se "
                          "at 1 of 2 walls (the largest |z| 2.5).")  # fmt: skip
@@ -144,9 +148,9 @@ def test_a_u_only_velocity_that_absorbs_the_first_layer_and_u_accepts():
 
     walls = [moving(r, [-0.26, 0.087, 0.0], [0.045, 0.026, 0.01], [-0.04, 0.0, 0.0],
                     mui=[-0.261, -0.01, 0.0]) for r in "ab"]  # fmt: skip
-    why = ("contradicts the measured stress: mu_s = 0.314 (fitted), but the "
-           "run's |shear|/normal stress ratio in the band is 0.244 +- 0.015 (4 bins), 4.8 "
-           "errors away")  # fmt: skip
+    why = ("contradicts the measured stress: its fitted mu_s = 0.314 exceeds the band's "
+           "measured |shear|/normal stress ratio 0.244 +- 0.015 (4 bins) by 4.8 errors, "
+           "where mu(I) needs mu >= mu_s to flow")  # fmt: skip
     info = {"a": SpinRun(u_only=(("mui", 16.0, 8),), u_only_contradiction=(("mui", why),)),
             "b": SpinRun(u_only=(("mui", 176.0, 18),))}  # fmt: skip
     rows = u_only_reproduces(walls, info)
@@ -155,9 +159,9 @@ def test_a_u_only_velocity_that_absorbs_the_first_layer_and_u_accepts():
     p = float(chi2.sf(16.0, 8))
     assert text.endswith(
         f" At a the first-layer departure is absorbed by a velocity u accepts (p = {p:.2g}); it "
-        "is not the verdict's null because its fit contradicts the measured stress (mu_s = "
-        "0.314 (fitted), but the run's |shear|/normal stress ratio in the "
-        "band is 0.244 +- 0.015 (4 bins), 4.8 errors away)."
+        "is not the verdict's null because its fitted mu_s = 0.314 exceeds the band's "
+        "measured |shear|/normal stress ratio 0.244 +- 0.015 (4 bins) by 4.8 errors, where "
+        "mu(I) needs mu >= mu_s to flow."
     )
     assert "At b the first-layer departure is absorbed" not in text
 

@@ -48,7 +48,7 @@ def test_a_departing_first_layer_is_supported_and_an_idle_fixed_wall_does_not_di
     assert v.verdict == "supported", v.text
     assert v.numbers["pooled_dof"] == 6
     assert v.numbers["pooled_chi2"] == pytest.approx(3.9**2 + 4.2**2)
-    assert v.numbers["pooled_p"] == pytest.approx(1.1e-5, rel=0.1)
+    assert v.numbers["pooled_p_normal"] == pytest.approx(1.1e-5, rel=0.1)
     assert "not judged (the material does not shear there" in v.evidence
     assert "Method:" in v.evidence and "What would change it" in v.text
     assert v.runs == ("a", "b")
@@ -428,7 +428,7 @@ def test_worker_processes_give_the_same_report_as_one_process(tmp_path):
 def test_a_departure_so_large_that_its_p_underflows_to_zero_still_counts():
     walls = [wall(r, [-50.0, -20.0, -5.0], 0.01) for r in ("a", "b")]
     v = spin_verdict(walls)
-    assert v.numbers["pooled_p"] == 0.0
+    assert v.numbers["pooled_p_normal"] == 0.0
     assert v.verdict == "supported" and v.numbers["runs_departing_p_significant"] == ["a", "b"]
 
 

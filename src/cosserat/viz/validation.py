@@ -370,7 +370,9 @@ def spin_claim_figure(
                                 label=lab if named else None)  # fmt: skip
         bx.axhline(0.0, color="0.5", linewidth=0.6)
         bx.set_xlabel("distance from the wall [d]")
-        bx.set_ylabel("departure beyond the null, +- 2 se [-]", fontsize=7)
+        # the stencil in the label as well as the title (referee 14, point 8): the verdict's
+        # test may be taken under another one
+        bx.set_ylabel("departure beyond the null, +- 2 se [-]\n(the analysis stencil)", fontsize=7)
         which = (
             f" (the verdict's test: {verdict_stencil})"
             if verdict_stencil and verdict_stencil != "analysis"

@@ -562,7 +562,7 @@ def fit_run(
             key, what, ratio = BAND_RATIO[f.model]
             band = (what, float(ratio(float(values[key]))), key in pinned)
             text = _stress_contradiction(
-                key, float(values[key]), what, band[1], key in pinned, stress
+                key, float(values[key]), what, band[1], key in pinned, stress, f.model
             )
             if text:
                 warnings.append(text)
@@ -667,8 +667,20 @@ def _misfit_text(fit: Any, measured: Any, dof: int, rho: float) -> str:
     )
 
 
+FLOWS_ABOVE = {"mui": "mu(I) needs mu >= mu_s to flow"}
+"""Why a model's mu_s above the band's measured stress ratio contradicts the run: a local
+rheology flows only at a stress ratio of at least mu_s (NGF flows below it through its
+nonlocal term, so it has no such clause)."""
+
+
 def _stress_contradiction(
-    key: str, value: float, what: str, ratio: float, pinned: bool, stress: StressRatio | None
+    key: str,
+    value: float,
+    what: str,
+    ratio: float,
+    pinned: bool,
+    stress: StressRatio | None,
+    model: str = "",
 ) -> str:
     if stress is None:
         return ""
@@ -676,6 +688,15 @@ def _stress_contradiction(
     if diff <= STRESS_SIGMAS * stress.stderr or diff <= STRESS_RELATIVE * stress.value:
         return ""
     how = "pinned" if pinned else "fitted"
+    if what == key:  # mu(I)'s and NGF's ratio is mu_s itself (referee 14, point 2 (iii))
+        above = ratio > stress.value
+        why = FLOWS_ABOVE.get(model, "") if above else ""
+        return (
+            f"contradicts the measured stress: its {how} {key} = {value:.4g} "
+            f"{'exceeds' if above else 'lies below'} the band's measured |shear|/normal stress "
+            f"ratio {stress.value:.3g} +- {stress.stderr:.2g} ({stress.bins} bins) by "
+            f"{diff / stress.stderr:.1f} errors" + (f", where {why}" if why else "")
+        )
     return (
         f"contradicts the measured stress: {key} = {value:.4g} ({how})"
         + (f" gives {what} = {ratio:.3g}" if what != key else "")

@@ -300,6 +300,21 @@ def _moving_grains(run: Run) -> Mapping[str, Any] | None:
     return wall if isinstance(wall, Mapping) else None
 
 
+def _fixed_grains(run: Run) -> Mapping[str, Any] | None:
+    """The sidecar's grain-by-grain first-layer record at a plane run's fixed wall, which
+    ``cosserat.dem.first_layer`` writes only where that wall shears (layer 1 moves relative
+    to it by at least 0.05 V: the layer runs' smooth fixed walls); None where not recorded
+    (referee 14, point 2: read model-free beside the moving walls')."""
+    record = run.meta.get("first_layer")
+    if run.cell != "plane" or not isinstance(record, Mapping):
+        return None
+    fixed = {"upper": "lower", "lower": "upper"}.get(run.moving_wall)
+    wall = (record.get("walls") or {}).get(fixed) if fixed else None
+    if not isinstance(wall, Mapping) or wall.get("moving", False):
+        return None
+    return wall
+
+
 @dataclass
 class ScanOutcome:
     """One run's part of ``_scans``, made alone (:func:`scan_job`, in a worker process
@@ -1395,6 +1410,7 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
     common-mode errors (the null's own quality, referee 11, point 1)."""
     cells = replicate_cells([r.run for r in results])
     fits = {sc.run: _joint_fit_chi2(sc) for sc in scans}
+    basins = {sc.run: _joint_basins(sc) for sc in scans}
     out = {}
     for r in results:
         meta = r.run.meta
@@ -1427,8 +1443,27 @@ def spin_runs(results: Sequence[RunResult], scans: Sequence[Scan] = ()) -> dict[
             joint.get("grain_null"),
             u_only,
             contradiction,
+            _fixed_grains(r.run),
+            basins.get(r.run.name, ""),
         )
     return out
+
+
+def _joint_basins(sc: Scan) -> str:
+    """Where the joint fit whose velocity is a run's null sits when its 95% region is more
+    than one island (``spin_scan.scan_region``; referee 14, point 2: the headline p depends
+    on which basin the fit finds), in words, e.g. "K 5.32, L 14.1 d, in one of the islands
+    of its 95% region (two islands: ...)"; "" for one island or none. Reads the scan's
+    cached region: no solve."""
+    from .spin_scan import region_text, scan_region
+
+    region = scan_region(sc)
+    if not region or len(region.get("islands") or []) < 2:
+        return ""
+    return (
+        f"K {sc.fit.value('K'):.3g}, L {sc.fit.value('L'):.3g} d, in one of the islands of its "
+        f"95% region ({region_text(region)})"
+    )
 
 
 def _joint_fit_chi2(sc: Scan) -> tuple[tuple[str, float, int], ...]:
