@@ -269,10 +269,10 @@ def test_the_smoother_reach_text_says_the_curve_has_the_rough_slope_at_feasible_
     assert "(rising at each of its 7 steps)" in text
     assert "(the curve's slope there 0.33)" in text
     assert (
-        "there the curve's slope is within 0.05 of the other claim's 0.333, so a DEM series of "
-        "these walls at 20/40/80 d with a slope near 0.333 would agree with the model and would "
-        "not refute the claim; only the ratio of the two wall kinds' Delta at equal H separates "
-        "them there" in text
+        "not the claimed H/d -> infinity exponent; at 20/40/80 d the curve's slope is within "
+        "0.05 of the other claim's 0.333, so a DEM series of these walls there with a slope near "
+        "0.333 would agree with the model and would not refute the claim; only the ratio of the "
+        "two wall kinds' Delta at equal H separates them there" in text
     )
     assert "there the curve saturates at Delta = 9-9 d = 1.8-1.8 L (L = 5 d, the " \
         "calibration's)" in text  # fmt: skip

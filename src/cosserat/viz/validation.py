@@ -800,12 +800,12 @@ def _reach_panel(ax: Axes, s: Mapping[str, Any], color: Any) -> None:
     data = [(g, d) for g, d, u in zip(s["gaps"], s["Delta"], s["usable"], strict=True) if d]
     if data:
         ax.plot([g for g, _ in data], [d for _, d in data], "o", color="k", markersize=3,
-                markerfacecolor="none")  # fmt: skip
+                markerfacecolor="none", label="DEM data")  # fmt: skip
     w = r.get("window")
     if w:
         ax.axvspan(w[0], w[1], color="tab:green", alpha=0.15, linewidth=0,
                    label=f"slope within 0.05 of {r['target']:.3g}: H/d = "
-                   f"{w[0]:.3g}-{w[1]:.3g} (where the rule could judge)")  # fmt: skip
+                   f"{w[0]:.4g}-{w[1]:.4g} (where the rule could judge)")  # fmt: skip
     else:
         ax.text(0.02, 0.95, f"no factor-4 window with slope within 0.05 of {r['target']:.3g}",
                 transform=ax.transAxes, fontsize=6, va="top")  # fmt: skip
@@ -816,13 +816,13 @@ def _reach_panel(ax: Axes, s: Mapping[str, Any], color: Any) -> None:
     g = [p[0] for p in pts] + [p[0] for p in data]
     v = [p[1] for p in pts] + [p[1] for p in data]
     ax.set_xlim(min(g) / 1.15, max(g) * 1.15)
-    lo, hi = min(v) / 1.3, max(v) * 1.3
+    lo, hi = min(v) / 1.3, max(v) * 2.2  # room for the legend above the curve
     ax.set_ylim(lo, hi)
     _plain(ax)
     ax.set_xticks(_nice_ticks(min(g) / 1.15, max(g) * 1.15, (10, 20, 40, 80, 160, 320, 640, 1280)))
     ax.set_yticks(_nice_ticks(lo, hi, (1, 2, 3, 5, 7, 10, 15, 20, 30, 50)))
     ax.set_xlabel(r"$H/d$ [-]")
-    ax.legend(loc="lower right", fontsize=6, frameon=False)
+    ax.legend(loc="upper left", fontsize=6, frameon=False)
     ax.set_title(f"the Cosserat curve to H/d = {max(p[0] for p in pts):.4g}", fontsize=7)
 
 

@@ -3022,12 +3022,13 @@ def reach_text(
         else "at the gaps proposed DEM tests the finite-H curve (the shape test with a common "
         "factor)"
     )
+    agree = ""
     if design is not None and other is not None and abs(design - other) <= EXPONENT_TOL:
         # referee 14, point 1: at feasible gaps the model's own curve has the other claim's
         # slope, so a series with that slope agrees with the model and refutes nothing
-        feasible += (
-            f"; there the curve's slope is within {EXPONENT_TOL:g} of the other claim's "
-            f"{other:.3g}, so a DEM series of these walls at 20/40/80 d with a slope near "
+        agree = (
+            f"; at 20/40/80 d the curve's slope is within {EXPONENT_TOL:g} of the other "
+            f"claim's {other:.3g}, so a DEM series of these walls there with a slope near "
             f"{other:.3g} would agree with the model and would not refute the claim; only the "
             "ratio of the two wall kinds' Delta at equal H separates them there"
         )
@@ -3037,7 +3038,7 @@ def reach_text(
             f"H/d = {w['start']:.4g}-{w['end']:.4g}: gaps from there could judge the exponent"
             + _window_level(c, w, target)
             + (
-                f"; {feasible}, not the claimed H/d -> infinity exponent"
+                f"; {feasible}, not the claimed H/d -> infinity exponent{agree}"
                 if w["start"] > 20.0
                 else ""
             )
@@ -3050,7 +3051,7 @@ def reach_text(
     )
     return (
         head + f"{last}, so that window lies beyond H/d = {w['last']:.4g}, the largest gap "
-        f"computed: {feasible}, not the claimed H/d -> infinity exponent {target:.3g}"
+        f"computed: {feasible}, not the claimed H/d -> infinity exponent {target:.3g}{agree}"
     )
 
 
