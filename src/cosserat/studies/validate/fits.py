@@ -1105,7 +1105,7 @@ def solver_edges(
         return {}, "", {}
     rates = [float(rd.I_w) for rd in data if rd.I_w is not None and rd.I_w > 0.0]
     if curve and runs:
-        top = _rate(data)(max(r.gap_d for r in runs) * CURVE_SPAN[1])
+        top = _rate(data)(float(np.max(curve_gaps(runs))))  # the curve's slowest rate
         if top is not None:
             rates.append(top)
     if not rates:
@@ -1270,15 +1270,7 @@ def _series_delta(
     if curve:
         # each gap measured as the analysis would bin a run there (the series' first run's
         # rule), and the series' runs themselves: the curve passes through their predictions
-        gaps = phased_gaps(  # one first-bin position along the curve (referee 14, point 1)
-            runs[0],
-            np.geomspace(
-                min(r.gap_d for r in runs) / CURVE_SPAN[0],
-                max(r.gap_d for r in runs) * CURVE_SPAN[1],
-                CURVE_POINTS,
-            ),
-            max(r.gap_d for r in runs),
-        )
+        gaps = curve_gaps(runs)
         values = s.run_values(data[0], theta)
         points: dict[float, float | None] = {}
         for g in gaps:
@@ -1298,6 +1290,22 @@ def _series_delta(
         order = sorted(points)
         grid = (tuple(order), tuple(points[g] for g in order))
     return predicted, grid, why, floor
+
+
+def curve_gaps(runs: Sequence[Run]) -> FloatArray:
+    """The gaps of a series' Delta curve [-]: :data:`CURVE_POINTS` from its smallest gap over
+    ``CURVE_SPAN[0]`` to its largest times ``CURVE_SPAN[1]``, :func:`phased_gaps` (one
+    first-bin position along the curve; referee 14, point 1), the series' first run the
+    binning's template."""
+    return phased_gaps(
+        runs[0],
+        np.geomspace(
+            min(r.gap_d for r in runs) / CURVE_SPAN[0],
+            max(r.gap_d for r in runs) * CURVE_SPAN[1],
+            CURVE_POINTS,
+        ),
+        max(r.gap_d for r in runs),
+    )
 
 
 def phased_gaps(template: Run, gaps: Any, phase_gap: float) -> FloatArray:
