@@ -360,3 +360,17 @@ def test_a_delta_panel_without_usable_points_draws_no_law_and_says_why():
     assert len(fig.axes[0].texts) == 0
     plt.close(fig)
     plt.close(fig)
+    # the Cosserat curve carried on, in a second row, its window shaded (referee 14, point 1)
+    curve = {"gaps": [8.0, 20.0, 40.0], "Delta": [4.0, 5.0, 6.0], "points": [(10.0, 4.5, 0.1)]}
+    reach = {"gaps": [8.0, 20.0, 40.0, 160.0, 640.0], "Delta": [4.0, 5.0, 6.0, 8.0, 8.2],
+             "window": [160.0, 640.0], "target": 0.0}  # fmt: skip
+    fig = delta_claim_figure([two | {"curves": {"cosserat": curve}, "reach": reach}], laws, "D")
+    low = fig.axes[1]
+    assert low.get_title() == "the Cosserat curve to H/d = 640"
+    labels = low.get_legend_handles_labels()[1]
+    assert "slope within 0.05 of 0: H/d = 160-640 (where the rule could judge)" in labels
+    assert "20-80 d: the finite-H curve only" in labels
+    assert [ln.get_label() for ln in fig.axes[0].get_lines()].count(
+        "cosserat, one calibration of the material"
+    ) == 1  # the helper draws the curve once, its run values as x
+    plt.close(fig)

@@ -634,7 +634,9 @@ def delta_claim_figure(
         ``label``, ``gaps``, ``Delta``, ``stderr``, ``usable`` (per point), ``curves``
         (model -> ``gaps``, ``Delta`` of the curve and ``points``: (H/d, Delta, se) at the
         runs; ``best``: the same of an alternative's per-series best fit, drawn thin and
-        dashed with + at the runs).
+        dashed with + at the runs); ``reach`` (optional): the Cosserat curve carried on
+        (``gaps``, ``Delta``), ``window`` (the slope rule's, or None) and ``target``, drawn in
+        a second row with the window shaded.
     exponents : mapping
         Label -> exponent of the reference lines (drawn through the geometric mean of the
         usable points; not drawn, and the panel says so, when every band fills its gap or
@@ -646,7 +648,10 @@ def delta_claim_figure(
     from .plotting import new_figure, style
 
     n = max(1, len(series))
-    fig, axes = new_figure(1, n, width=min(3.2 * n + 2.4, 11.0), height=4.0)
+    reach = any(s.get("reach") for s in series)  # a second row: the curve carried on
+    fig, axes = new_figure(
+        2 if reach else 1, n, width=min(3.2 * n + 2.4, 11.0), height=7.0 if reach else 4.0
+    )
     axs = [axes[0, k] for k in range(n)]
     order = sorted({m for s in series for m in s.get("curves", {})})
     with style():
@@ -673,37 +678,22 @@ def delta_claim_figure(
             all_d = [p[1] for p in pts]
             for model, c in s.get("curves", {}).items():
                 st = model_style(model, order)
-                cg = [(g, d) for g, d in zip(c["gaps"], c["Delta"], strict=True) if d]
-                if cg:  # broken where the model gives none (NaN), not drawn across
-                    ax.plot(c["gaps"], [d if d else np.nan for d in c["Delta"]], color=st["color"],
-                            linestyle=st.get("linestyle", "-"), linewidth=1.2,
-                            label=f"{model}, one calibration of the material")  # fmt: skip
-                    all_g += [g for g, _ in cg]
-                    all_d += [d for _, d in cg]
-                cp = [p for p in c.get("points", []) if p[1]]
-                all_d += [p[1] for p in cp]
-                if cp:
-                    ax.errorbar([p[0] for p in cp], [p[1] for p in cp],
-                                yerr=[p[2] or 0.0 for p in cp], fmt="x", color=st["color"],
-                                capsize=2, markersize=5)  # fmt: skip
-                b = c.get("best")  # an alternative's per-series best fit, thin and dashed
-                bg = (
-                    []
-                    if not b
-                    else [(g, d) for g, d in zip(b["gaps"], b["Delta"], strict=True) if d]
+                _draw_delta_curve(
+                    ax,
+                    c,
+                    st["color"],
+                    st.get("linestyle", "-"),
+                    1.2,
+                    "x",
+                    f"{model}, one calibration of the material",
+                    all_g,
+                    all_d,
                 )
-                if bg:
-                    ax.plot(b["gaps"], [d if d else np.nan for d in b["Delta"]],
-                            color=st["color"], linestyle=(0, (4, 1.5)), linewidth=0.8,
-                            label=f"{model}, best fit to this series' u and wall T")  # fmt: skip
-                    all_g += [g for g, _ in bg]
-                    all_d += [d for _, d in bg]
-                    bp = [p for p in b.get("points", []) if p[1]]
-                    all_d += [p[1] for p in bp]
-                    if bp:
-                        ax.errorbar([p[0] for p in bp], [p[1] for p in bp],
-                                    yerr=[p[2] or 0.0 for p in bp], fmt="+", color=st["color"],
-                                    capsize=2, markersize=6)  # fmt: skip
+                b = c.get("best")  # an alternative's per-series best fit, thin and dashed
+                if b:
+                    _draw_delta_curve(ax, b, st["color"], (0, (4, 1.5)), 0.8, "+",
+                                      f"{model}, best fit to this series' u and wall T",
+                                      all_g, all_d)  # fmt: skip
                 gap_note = none_ranges(c["gaps"], c["Delta"], c.get("why", []))
                 if gap_note:  # said in the legend, off the data, in the model's style
                     ax.plot([], [], color=st["color"], linestyle=":", linewidth=1.2,
@@ -754,9 +744,88 @@ def delta_claim_figure(
                       for p in c.get("points", []))  # fmt: skip
         fig.suptitle(title + ("  (x: each model at the runs, +- its calibration's error)"
                               if markers else ""), fontsize=8)  # fmt: skip
+        for k, s in enumerate(series if reach else []):
+            if s.get("reach"):
+                st = model_style("cosserat", order)
+                _reach_panel(axes[1, k], s, st["color"])
+            else:
+                axes[1, k].set_axis_off()
+        if reach:
+            axes[1, 0].set_ylabel(r"$\Delta$ [$d$]")
         _legend_below(fig, axs, ncol=2)
-        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.36, top=0.86, wspace=0.3)
+        if reach:
+            fig.subplots_adjust(left=0.09, right=0.98, bottom=0.22, top=0.92, wspace=0.3,
+                                hspace=0.38)  # fmt: skip
+        else:
+            fig.subplots_adjust(left=0.09, right=0.98, bottom=0.36, top=0.86, wspace=0.3)
     return fig
+
+
+def _draw_delta_curve(
+    ax: Axes,
+    c: Mapping[str, Any],
+    color: Any,
+    linestyle: Any,
+    linewidth: float,
+    marker: str,
+    label: str,
+    all_g: list[float],
+    all_d: list[float],
+) -> None:
+    """One Delta curve (``gaps``, ``Delta``; broken where the model gives none, not drawn
+    across) and its values at the runs (``points``: (H/d, Delta, se), ``marker`` with +- se),
+    the drawn gaps and values appended to ``all_g`` and ``all_d`` (for the axes' limits)."""
+    import numpy as np
+
+    cg = [(g, d) for g, d in zip(c["gaps"], c["Delta"], strict=True) if d]
+    if cg:
+        ax.plot(c["gaps"], [d if d else np.nan for d in c["Delta"]], color=color,
+                linestyle=linestyle, linewidth=linewidth, label=label)  # fmt: skip
+        all_g += [g for g, _ in cg]
+        all_d += [d for _, d in cg]
+    cp = [p for p in c.get("points", []) if p[1]]
+    all_d += [p[1] for p in cp]
+    if cp:
+        ax.errorbar([p[0] for p in cp], [p[1] for p in cp], yerr=[p[2] or 0.0 for p in cp],
+                    fmt=marker, color=color, capsize=2,
+                    markersize=6 if marker == "+" else 5)  # fmt: skip
+
+
+def _reach_panel(ax: Axes, s: Mapping[str, Any], color: Any) -> None:
+    """The Cosserat curve carried on to the largest gap computed (``s["reach"]``), the
+    measured Delta and the window where the slope rule could judge the exponent, shaded
+    (referee 14, point 1)."""
+    r = s["reach"]
+    pts = [(g, d) for g, d in zip(r["gaps"], r["Delta"], strict=True) if d]
+    ax.plot([g for g, _ in pts], [d for _, d in pts], color=color, linewidth=1.2,
+            label="cosserat, one calibration, carried on")  # fmt: skip
+    data = [(g, d) for g, d, u in zip(s["gaps"], s["Delta"], s["usable"], strict=True) if d]
+    if data:
+        ax.plot([g for g, _ in data], [d for _, d in data], "o", color="k", markersize=3,
+                markerfacecolor="none", label="DEM data")  # fmt: skip
+    w = r.get("window")
+    if w:
+        ax.axvspan(w[0], w[1], color="tab:green", alpha=0.15, linewidth=0,
+                   label=f"slope within 0.05 of {r['target']:.3g}: H/d = "
+                   f"{w[0]:.4g}-{w[1]:.4g} (where the rule could judge)")  # fmt: skip
+    else:
+        ax.text(0.02, 0.95, f"no factor-4 window with slope within 0.05 of {r['target']:.3g}",
+                transform=ax.transAxes, fontsize=6, va="top")  # fmt: skip
+    ax.axvspan(20.0, 80.0, color="0.85", alpha=0.6, linewidth=0,
+               label="20-80 d: the finite-H curve only")  # fmt: skip
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    g = [p[0] for p in pts] + [p[0] for p in data]
+    v = [p[1] for p in pts] + [p[1] for p in data]
+    ax.set_xlim(min(g) / 1.15, max(g) * 1.15)
+    lo, hi = min(v) / 1.3, max(v) * 2.2  # room for the legend above the curve
+    ax.set_ylim(lo, hi)
+    _plain(ax)
+    ax.set_xticks(_nice_ticks(min(g) / 1.15, max(g) * 1.15, (10, 20, 40, 80, 160, 320, 640, 1280)))
+    ax.set_yticks(_nice_ticks(lo, hi, (1, 2, 3, 5, 7, 10, 15, 20, 30, 50)))
+    ax.set_xlabel(r"$H/d$ [-]")
+    ax.legend(loc="upper left", fontsize=6, frameon=False)
+    ax.set_title(f"the Cosserat curve to H/d = {max(p[0] for p in pts):.4g}", fontsize=7)
 
 
 def none_ranges(gaps: Sequence[float], values: Sequence[float | None],

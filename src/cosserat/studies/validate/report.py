@@ -39,6 +39,7 @@ from .verdicts import (
     calibration_text,
     relevant,
     scope_text,
+    slope_window,
 )
 
 if TYPE_CHECKING:
@@ -558,11 +559,29 @@ def spin_model_rows(report: ValidationReport, rows: list[dict[str, Any]]) -> lis
 
 
 def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
+    """The claim figure's series of claim ``which`` ("smoother" or "rough"): the measured
+    Delta, each model's curve and, for the Cosserat calibration, ``reach``: its curve carried
+    on to the largest gap computed with the window where the slope rule could judge the
+    exponent (:func:`~.verdicts.slope_window`; None where the curve gives none; referee 14,
+    point 1)."""
     by_name = {r.run.name: r for r in report.results}
+    target = PAPER_SLOPES["smoother walls" if which == "smoother" else "fully rough walls"]
     out = []
     for s in relevant(report.groups, which):
+        cos = s.curves.get("cosserat")
+        reach = None
+        if cos is not None and cos.ok and cos.reach[0]:
+            full = cos.full_curve()
+            w = slope_window(full, target)
+            reach = {
+                "gaps": list(full[0]),
+                "Delta": list(full[1]),
+                "window": None if w["start"] is None else [w["start"], w["end"]],
+                "target": target,
+            }
         out.append(
             {
+                "reach": reach,
                 "key": s.key,
                 "label": re.sub(r" \(.*?\)", "", s.key),
                 "gaps": s.gaps,
@@ -687,9 +706,14 @@ def write_figures(
             draw(draw_figure, "spin_scan_figure", (scans,), out / SPIN_SCAN_FIGURE)
         files["claim_spin_scan"] = SPIN_SCAN_FIGURE
     slopes = {f"slope {v:.3g} ({k})": v for k, v in PAPER_SLOPES.items()}
+    couette = sum(len(s.points) for s in relevant(report.groups, "rough") if s.cell == "couette")
     for which, title in (
         ("smoother", "walls smoother than the material"),
-        ("rough", "fully rough walls, under gravity or in Couette flow"),
+        (  # the claim's scope, and what the corpus holds of it (referee 14, point 8)
+            "rough",
+            "fully rough walls, under gravity or in Couette flow (Couette: "
+            + (f"{couette} run{'s' if couette > 1 else ''})" if couette else "none run)"),
+        ),
     ):
         draw(
             draw_figure,

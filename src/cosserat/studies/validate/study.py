@@ -74,6 +74,7 @@ from .nulls import (
 )
 from .rate import (
     balance_rescaled_text,
+    balance_warning,
     misfit_twin_text,
     replicate_cells,
     slip_text,
@@ -1069,6 +1070,12 @@ def judge(
         for v in verdicts
     ]
     verdicts = [_misfit_twins(v, twins) if v.key == "spin_model" else v for v in verdicts]
+    verdicts = [  # the Delta series' runs' unexplained balance misses (referee 14, point 7)
+        replace(v, evidence=v.evidence + balance_warning([by_name[n].run for n in v.runs], twins))
+        if v.key in ("smoother", "rough")
+        else v
+        for v in verdicts
+    ]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))
 
 
