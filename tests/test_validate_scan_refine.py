@@ -262,3 +262,81 @@ def none_solved_only_by_range(k, ll, d):
     from cosserat.viz.validation import no_solution_cells
 
     return no_solution_cells(k, ll, d)[0]
+
+
+def _pass_grid(middle):
+    """Two islands on one row of a 3 x 5 grid, Delta chi^2 0 at (K 0, L 1) and 5.5 at (K 0,
+    L 16), the row between them 9, 20, 9; ``middle``: the second row's centre (a bypass)."""
+    k, ll = np.array([0.0, 1.0, 2.0]), np.geomspace(1.0, 16.0, 5)
+    d = np.full((3, 5), 50.0)
+    d[0] = [0.0, 9.0, 20.0, 9.0, 5.5]
+    d[1, 2] = middle
+    return k, ll, d
+
+
+def test_the_saddle_is_the_lowest_level_that_joins_the_islands():
+    for middle, want in ((50.0, 20.0), (8.0, 9.0)):  # over the ridge, or round it at 9
+        k, ll, d = _pass_grid(middle)
+        grids = [(k, ll, d, "refined")]
+        others = ss.region_pieces(grids, 6.0, (0.0, 1.0))[1]
+        assert len(others) == 1 and others[0]["L"] == [16.0, 16.0]
+        assert ss.island_saddle(grids, 6.0, (0.0, 1.0), others[0]["masks"]) == (want, "refined")
+    # the declared ranges' grid is used only where the finer ones do not join the islands
+    k, ll, d = _pass_grid(50.0)
+    grids = [(k, ll, d, "range")]
+    piece = ss.region_pieces(grids, 6.0, (0.0, 1.0))[1][0]["masks"]
+    assert ss.island_saddle(grids, 6.0, (0.0, 1.0), piece) == (20.0, "all")
+    # no finite level joins islands separated by points without a solution
+    d2 = d.copy()
+    d2[:, 2] = np.nan
+    piece = ss.region_pieces([(k, ll, d2, "range")], 6.0, (0.0, 1.0))[1][0]["masks"]
+    assert ss.island_saddle([(k, ll, d2, "range")], 6.0, (0.0, 1.0), piece) is None
+
+
+def test_the_small_islands_ends_and_saddle_are_told():
+    # the referee's smooth_H20 (round 14, point 5): a restart's fit is the small island's
+    # end; the refined points next beyond it, outside, bound it, else it is unresolved; the
+    # path between the islands climbs over the two basins' ridge
+    start = {"K": 2.9, "L": 3.8, "chi2": 45.56, "source": "the first fit (a restart's start)"}
+    kk, ll = ss.cell_axes(np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11), 2, 3)
+    sc = _basin_scan([start])
+    sc.patches = [SimpleNamespace(K=kk, L=ll, chi2=40.0 + _two_basins(kk, ll))]
+    reg = ss.scan_region(sc)
+    low = min(reg["islands"], key=lambda i: i["L"][0])
+    ends = {(e["name"], e["end"]): e for e in low["point_ends"]}
+    assert set(ends) == {("K", "upper"), ("L", "upper")}
+    # L's upper end is the fit (3.8 d); the patch's last L, 4.16 d, is next beyond it
+    assert ends["L", "upper"]["fit"] and ends["L", "upper"]["at"] == 3.8
+    assert ends["L", "upper"]["next"] == ll[-1]
+    assert ends["L", "upper"]["delta_chi2"] == pytest.approx(np.min(_two_basins(kk, ll[-1:])))
+    assert ends["L", "upper"]["delta_chi2"] > 6.02
+    # K's upper end is the patch's own last K (inside): nothing refined beyond it
+    assert not ends["K", "upper"]["fit"] and ends["K", "upper"]["next"] is None
+    saddle = low["saddle"]
+    assert saddle["threshold"] == 6.02
+    # 3 sigma for k = 2, scaled as the 95% threshold is: 6.02 x ppf(0.9973) / ppf(0.95)
+    assert saddle["threshold_3sigma"] == pytest.approx(6.02 * 11.829 / 5.9915, rel=1e-3)
+    # the refined grids alone (the patch and the finer box) do not join: the grids do
+    assert saddle["grids"] == "all" and saddle["delta_chi2"] > saddle["threshold_3sigma"]
+    text = ss.region_text(reg)
+    assert (
+        f"; the island at {ss._piece_text(low)} ends at a solved point in K (upper) and L "
+        f"(upper) (the refined points next beyond it, L {ll[-1]:.3g} d, are outside: Delta "
+        f"chi^2 >= {ends['L', 'upper']['delta_chi2']:.3g}), no refined point beyond it in K "
+        "(upper): unresolved there; the path between the islands climbs to Delta chi^2 = "
+        f"{saddle['delta_chi2']:.3g} (the saddle on the grids, at their resolution): separate "
+        f"basins at 95% (threshold 6.02) and at 3 sigma ({saddle['threshold_3sigma']:.3g})"
+    ) in text
+    # the fit alone: each of its ends unresolved
+    alone = min(ss.scan_region(_basin_scan([start]))["islands"], key=lambda i: i["L"][0])
+    assert ss._point_ends_text(alone) == (
+        "; the island at K 2.9, L ~3.8 d ends at a restart's fit in K (lower, upper) and L "
+        "(lower, upper), no refined point beyond it in K (lower, upper) and L (lower, upper): "
+        "unresolved there"
+    )
+    # below the 3-sigma threshold the text says so
+    one = {**low, "saddle": {**saddle, "delta_chi2": 10.0}}
+    assert ss._saddle_text(one, True).endswith(", not at 3 sigma (11.9)")
+    assert ss._beyond_all(3.0, np.array([1.0, 2.0])) == 1
+    assert ss._beyond_all(0.5, np.array([1.0, 2.0])) == -1
+    assert ss._beyond_all(1.5, np.array([1.0, 2.0])) == 0 == ss._beyond_all(1.0, np.zeros(0))
