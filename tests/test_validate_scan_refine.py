@@ -340,3 +340,55 @@ def test_the_small_islands_ends_and_saddle_are_told():
     assert ss._beyond_all(3.0, np.array([1.0, 2.0])) == 1
     assert ss._beyond_all(0.5, np.array([1.0, 2.0])) == -1
     assert ss._beyond_all(1.5, np.array([1.0, 2.0])) == 0 == ss._beyond_all(1.0, np.zeros(0))
+
+
+def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
+    """The cell refined around a restart's fit is drawn (dashed outline, its points) and
+    zoomed in an inset with the island's extent, and the key below the panels is >= 8 pt and
+    inside the figure (referee 14, points 5 and 8)."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import KEY_POINTS, spin_scan_figure
+
+    k, ll = np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11)
+    kk, lc = ss.cell_axes(k, ll, 2, 3)
+    zeros = np.zeros((11, 11))
+
+    def grid(K, L, d):
+        return {"K": list(K), "L": list(L), "departure": (0.01 + 0.0 * d).tolist(),
+                "null": (0.0 * d).tolist(), "delta_chi2": d.tolist()}  # fmt: skip
+
+    cell = {**grid(kk, lc, _two_basins(kk, lc)), "base": "the fit at K = 2.9, L = 3.8 d"}
+    island = {"K": [2.75, 2.9], "L": [3.65, 3.8]}
+    rec = {
+        "run": "r", "measured": -0.3, "measured_beyond_null": -0.28,
+        "measured_beyond_null_se": 0.03, "best_K": 5.3, "best_L": 14.0,
+        "best_beyond_null": 0.09, "threshold": 6.02, "phi": 18.1, "delta": {"moving": 13.2},
+        "grids": {"range": grid(k, ll, _two_basins(k, ll) + zeros), "near": grid(k, ll, zeros)},
+        "refined": [cell],
+        "extra": [{"K": 2.9, "L": 3.8, "delta_chi2": 5.56}],
+        "region": {"K": [2.75, 6.0], "L": [3.65, 15.0], "K_bounds": ["data", "data"],
+                   "L_bounds": ["data", "data"],
+                   "islands": [{"K": [4.7, 6.0], "L": [11.9, 15.0]}, island]},
+    }  # fmt: skip
+    fig = spin_scan_figure([rec])
+    panel = fig.axes[0]
+    (inset,) = panel.child_axes
+    assert inset.get_xlim() == pytest.approx((lc[0], lc[-1]))
+    assert inset.get_ylim() == pytest.approx((kk[0], kk[-1]))
+    assert "refined around" in inset.get_title()
+    # the island's extent as a box, its corners the region's
+    boxes = [ln.get_xydata() for ln in inset.get_lines() if len(ln.get_xdata()) == 5]
+    assert any(np.allclose(b[:4], [[3.65, 2.75], [3.8, 2.75], [3.8, 2.9], [3.65, 2.9]])
+               for b in boxes)  # fmt: skip
+    # the cell's outline in the panel (dashed) and its points
+    dashed = [ln for ln in panel.get_lines() if ln.get_linestyle() == "--"
+              and len(ln.get_xdata()) == 5]  # fmt: skip
+    assert any(np.allclose(ln.get_xdata()[:2], [lc[0], lc[-1]]) for ln in dashed)
+    (note,) = fig.texts
+    assert note.get_fontsize() == KEY_POINTS >= 8.0
+    fig.canvas.draw()
+    box = note.get_window_extent()
+    assert box.x0 >= 0.0 and box.y0 >= 0.0 and box.x1 <= fig.bbox.width
+    assert box.y1 < panel.get_window_extent().y0  # below the panels, clear of the x label
+    plt.close(fig)
