@@ -286,6 +286,14 @@ def test_the_saddle_is_the_lowest_level_that_joins_the_islands():
     grids = [(k, ll, d, "range")]
     piece = ss.region_pieces(grids, 6.0, (0.0, 1.0))[1][0]["masks"]
     assert ss.island_saddle(grids, 6.0, (0.0, 1.0), piece) == (20.0, "all")
+    # finer grids holding none of the optimum's island (a cell refined around the other
+    # island alone) do not set the saddle: the grids do
+    cell = (np.array([0.0, 0.5]), np.array([11.0, 16.0]), np.array([[5.8, 5.5], [7.0, 7.0]]),
+            "refined")  # fmt: skip
+    both = [(k, ll, d, "range"), cell]
+    main, others, _ = ss.region_pieces(both, 6.0, (0.0, 1.0))
+    assert main[0][0, 0] and not main[1].any() and len(others) == 1
+    assert ss.island_saddle(both, 6.0, (0.0, 1.0), others[0]["masks"], main) == (20.0, "all")
     # no finite level joins islands separated by points without a solution
     d2 = d.copy()
     d2[:, 2] = np.nan

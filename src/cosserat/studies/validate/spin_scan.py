@@ -1547,6 +1547,7 @@ def island_saddle(
     threshold: float,
     optimum: tuple[float, float],
     piece: Sequence[NDArray[np.bool_]],
+    main: Sequence[NDArray[np.bool_]] | None = None,
 ) -> tuple[float, str] | None:
     """The saddle between the optimum's island and another one (referee 14, point 5): the
     least Delta chi^2 at which :func:`region_pieces` (without its valley test: no solve) joins
@@ -1562,6 +1563,9 @@ def island_saddle(
         As :func:`region_pieces`.
     piece : sequence of bool arrays
         Per grid, the other island's points (its ``masks``).
+    main : sequence of bool arrays, optional
+        Per grid, the optimum's island's points: a set of grids without any of them (none
+        near the optimum) does not set the saddle.
 
     Returns
     -------
@@ -1574,7 +1578,10 @@ def island_saddle(
     for which, keep in (("refined", fine), ("all", list(range(len(grids))))):
         sub = [grids[i] for i in keep]
         mine = [piece[i] for i in keep]
-        if not sub or not any(m.any() for m in mine):
+        theirs = None if main is None else [main[i] for i in keep]
+        if not any(m.any() for m in mine) or (
+            theirs is not None and not any(m.any() for m in theirs)
+        ):
             continue
         levels = sorted(
             {float(v) for _, _, d, _ in sub for v in np.asarray(d, dtype=float).ravel()
@@ -1685,7 +1692,7 @@ def scan_region(sc: Scan) -> dict[str, Any] | None:
         )  # fmt: skip
         one["point_ends"] = _point_ends(one, grids)
         if n:  # referee 14, point 5: how high the path to the optimum's island climbs
-            got = island_saddle(grids, sc.threshold, optimum, piece_masks)
+            got = island_saddle(grids, sc.threshold, optimum, piece_masks, masks)
             one["saddle"] = {"delta_chi2": None if got is None else got[0],
                              "grids": None if got is None else got[1],
                              "threshold": sc.threshold, "threshold_3sigma": at_3_sigma}  # fmt: skip
