@@ -171,3 +171,18 @@ def test_a_run_figure_draws_the_joint_fit_and_its_null_with_their_own_labels():
     (line,) = [ln for ln in fig.axes[0].get_lines() if ln.get_label() == joint]
     assert line.get_linestyle() == "--" and line.get_color() == "k"
     plt.close(fig)
+
+
+def test_the_joint_fits_label_says_one_of_its_regions_basins():
+    """Where the scan's 95% region is two islands, the run figure's joint fit is one of two
+    basins (referee 14, point 8: smooth_H20's L = 14.1 d)."""
+    from cosserat.studies.validate.report import joint_label
+
+    one = {"K": 5.318, "L": 14.118, "basins": 1}
+    assert joint_label(one) == (
+        "cosserat: joint u + omega + stress-ratio fit (K = 5.32, L = 14.1 d)"
+    )
+    assert joint_label({**one, "basins": 2}) == (
+        "cosserat: joint u + omega + stress-ratio fit (K = 5.32, L = 14.1 d, one of two basins)"
+    )
+    assert joint_label({"K": 1.0, "L": 2.0}).endswith("(K = 1, L = 2 d)")

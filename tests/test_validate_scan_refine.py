@@ -262,3 +262,141 @@ def none_solved_only_by_range(k, ll, d):
     from cosserat.viz.validation import no_solution_cells
 
     return no_solution_cells(k, ll, d)[0]
+
+
+def _pass_grid(middle):
+    """Two islands on one row of a 3 x 5 grid, Delta chi^2 0 at (K 0, L 1) and 5.5 at (K 0,
+    L 16), the row between them 9, 20, 9; ``middle``: the second row's centre (a bypass)."""
+    k, ll = np.array([0.0, 1.0, 2.0]), np.geomspace(1.0, 16.0, 5)
+    d = np.full((3, 5), 50.0)
+    d[0] = [0.0, 9.0, 20.0, 9.0, 5.5]
+    d[1, 2] = middle
+    return k, ll, d
+
+
+def test_the_saddle_is_the_lowest_level_that_joins_the_islands():
+    for middle, want in ((50.0, 20.0), (8.0, 9.0)):  # over the ridge, or round it at 9
+        k, ll, d = _pass_grid(middle)
+        grids = [(k, ll, d, "refined")]
+        others = ss.region_pieces(grids, 6.0, (0.0, 1.0))[1]
+        assert len(others) == 1 and others[0]["L"] == [16.0, 16.0]
+        assert ss.island_saddle(grids, 6.0, (0.0, 1.0), others[0]["masks"]) == (want, "refined")
+    # the declared ranges' grid is used only where the finer ones do not join the islands
+    k, ll, d = _pass_grid(50.0)
+    grids = [(k, ll, d, "range")]
+    piece = ss.region_pieces(grids, 6.0, (0.0, 1.0))[1][0]["masks"]
+    assert ss.island_saddle(grids, 6.0, (0.0, 1.0), piece) == (20.0, "all")
+    # finer grids holding none of the optimum's island (a cell refined around the other
+    # island alone) do not set the saddle: the grids do
+    cell = (np.array([0.0, 0.5]), np.array([11.0, 16.0]), np.array([[5.8, 5.5], [7.0, 7.0]]),
+            "refined")  # fmt: skip
+    both = [(k, ll, d, "range"), cell]
+    main, others, _ = ss.region_pieces(both, 6.0, (0.0, 1.0))
+    assert main[0][0, 0] and not main[1].any() and len(others) == 1
+    assert ss.island_saddle(both, 6.0, (0.0, 1.0), others[0]["masks"], main) == (20.0, "all")
+    # no finite level joins islands separated by points without a solution
+    d2 = d.copy()
+    d2[:, 2] = np.nan
+    piece = ss.region_pieces([(k, ll, d2, "range")], 6.0, (0.0, 1.0))[1][0]["masks"]
+    assert ss.island_saddle([(k, ll, d2, "range")], 6.0, (0.0, 1.0), piece) is None
+
+
+def test_the_small_islands_ends_and_saddle_are_told():
+    # the referee's smooth_H20 (round 14, point 5): a restart's fit is the small island's
+    # end; the refined points next beyond it, outside, bound it, else it is unresolved; the
+    # path between the islands climbs over the two basins' ridge
+    start = {"K": 2.9, "L": 3.8, "chi2": 45.56, "source": "the first fit (a restart's start)"}
+    kk, ll = ss.cell_axes(np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11), 2, 3)
+    sc = _basin_scan([start])
+    sc.patches = [SimpleNamespace(K=kk, L=ll, chi2=40.0 + _two_basins(kk, ll))]
+    reg = ss.scan_region(sc)
+    low = min(reg["islands"], key=lambda i: i["L"][0])
+    ends = {(e["name"], e["end"]): e for e in low["point_ends"]}
+    assert set(ends) == {("K", "upper"), ("L", "upper")}
+    # L's upper end is the fit (3.8 d); the patch's last L, 4.16 d, is next beyond it
+    assert ends["L", "upper"]["fit"] and ends["L", "upper"]["at"] == 3.8
+    assert ends["L", "upper"]["next"] == ll[-1]
+    assert ends["L", "upper"]["delta_chi2"] == pytest.approx(np.min(_two_basins(kk, ll[-1:])))
+    assert ends["L", "upper"]["delta_chi2"] > 6.02
+    # K's upper end is the patch's own last K (inside): nothing refined beyond it
+    assert not ends["K", "upper"]["fit"] and ends["K", "upper"]["next"] is None
+    saddle = low["saddle"]
+    assert saddle["threshold"] == 6.02
+    # 3 sigma for k = 2, scaled as the 95% threshold is: 6.02 x ppf(0.9973) / ppf(0.95)
+    assert saddle["threshold_3sigma"] == pytest.approx(6.02 * 11.829 / 5.9915, rel=1e-3)
+    # the refined grids alone (the patch and the finer box) do not join: the grids do
+    assert saddle["grids"] == "all" and saddle["delta_chi2"] > saddle["threshold_3sigma"]
+    text = ss.region_text(reg)
+    assert (
+        f"; the island at {ss._piece_text(low)} ends at a solved point in K (upper) and L "
+        f"(upper) (the refined points next beyond it, L {ll[-1]:.3g} d, are outside: Delta "
+        f"chi^2 >= {ends['L', 'upper']['delta_chi2']:.3g}), no refined point beyond it in K "
+        "(upper): unresolved there; the path between the islands climbs to Delta chi^2 = "
+        f"{saddle['delta_chi2']:.3g} (the saddle on the grids, at their resolution): separate "
+        f"basins at 95% (threshold 6.02) and at 3 sigma ({saddle['threshold_3sigma']:.3g})"
+    ) in text
+    # the fit alone: each of its ends unresolved
+    alone = min(ss.scan_region(_basin_scan([start]))["islands"], key=lambda i: i["L"][0])
+    assert ss._point_ends_text(alone) == (
+        "; the island at K 2.9, L ~3.8 d ends at a restart's fit in K (lower, upper) and L "
+        "(lower, upper), no refined point beyond it in K (lower, upper) and L (lower, upper): "
+        "unresolved there"
+    )
+    # below the 3-sigma threshold the text says so
+    one = {**low, "saddle": {**saddle, "delta_chi2": 10.0}}
+    assert ss._saddle_text(one, True).endswith(", not at 3 sigma (11.9)")
+    assert ss._beyond_all(3.0, np.array([1.0, 2.0])) == 1
+    assert ss._beyond_all(0.5, np.array([1.0, 2.0])) == -1
+    assert ss._beyond_all(1.5, np.array([1.0, 2.0])) == 0 == ss._beyond_all(1.0, np.zeros(0))
+
+
+def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
+    """The cell refined around a restart's fit is drawn (dashed outline, its points) and
+    zoomed in an inset with the island's extent, and the key below the panels is >= 8 pt and
+    inside the figure (referee 14, points 5 and 8)."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import KEY_POINTS, spin_scan_figure
+
+    k, ll = np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11)
+    kk, lc = ss.cell_axes(k, ll, 2, 3)
+    zeros = np.zeros((11, 11))
+
+    def grid(K, L, d):
+        return {"K": list(K), "L": list(L), "departure": (0.01 + 0.0 * d).tolist(),
+                "null": (0.0 * d).tolist(), "delta_chi2": d.tolist()}  # fmt: skip
+
+    cell = {**grid(kk, lc, _two_basins(kk, lc)), "base": "the fit at K = 2.9, L = 3.8 d"}
+    island = {"K": [2.75, 2.9], "L": [3.65, 3.8]}
+    rec = {
+        "run": "r", "measured": -0.3, "measured_beyond_null": -0.28,
+        "measured_beyond_null_se": 0.03, "best_K": 5.3, "best_L": 14.0,
+        "best_beyond_null": 0.09, "threshold": 6.02, "phi": 18.1, "delta": {"moving": 13.2},
+        "grids": {"range": grid(k, ll, _two_basins(k, ll) + zeros), "near": grid(k, ll, zeros)},
+        "refined": [cell],
+        "extra": [{"K": 2.9, "L": 3.8, "delta_chi2": 5.56}],
+        "region": {"K": [2.75, 6.0], "L": [3.65, 15.0], "K_bounds": ["data", "data"],
+                   "L_bounds": ["data", "data"],
+                   "islands": [{"K": [4.7, 6.0], "L": [11.9, 15.0]}, island]},
+    }  # fmt: skip
+    fig = spin_scan_figure([rec])
+    panel = fig.axes[0]
+    (inset,) = panel.child_axes
+    assert inset.get_xlim() == pytest.approx((lc[0], lc[-1]))
+    assert inset.get_ylim() == pytest.approx((kk[0], kk[-1]))
+    assert "refined around" in inset.get_title()
+    # the island's extent as a box, its corners the region's
+    boxes = [ln.get_xydata() for ln in inset.get_lines() if len(ln.get_xdata()) == 5]
+    assert any(np.allclose(b[:4], [[3.65, 2.75], [3.8, 2.75], [3.8, 2.9], [3.65, 2.9]])
+               for b in boxes)  # fmt: skip
+    # the cell's outline in the panel (dashed) and its points
+    dashed = [ln for ln in panel.get_lines() if ln.get_linestyle() == "--"
+              and len(ln.get_xdata()) == 5]  # fmt: skip
+    assert any(np.allclose(ln.get_xdata()[:2], [lc[0], lc[-1]]) for ln in dashed)
+    (note,) = fig.texts
+    assert note.get_fontsize() == KEY_POINTS >= 8.0
+    fig.canvas.draw()
+    box = note.get_window_extent()
+    assert box.x0 >= 0.0 and box.y0 >= 0.0 and box.x1 <= fig.bbox.width
+    assert box.y1 < panel.get_window_extent().y0  # below the panels, clear of the x label
+    plt.close(fig)

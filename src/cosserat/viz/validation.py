@@ -1043,8 +1043,10 @@ SCAN_KEY = (
     "and bottom edges are the horizontal dotted lines); small black dots and medium contour: the "
     "declared ranges' cells along the region refined 4 times finer, coloured and hatched alike "
     "(the region followed along its valley), and around a restart's fit inside the region on "
-    "no refined grid; diamond: a restart's fit (a solved point off the grids; filled: inside "
-    "the 95% region); dark grey: no grid (the declared ranges', the finer or a refined one) "
+    "no refined grid (dashed outline; the inset zooms on them: grey dots outside, black inside "
+    "the region, the box the island's extent); diamond: a restart's fit (a solved point off "
+    "the grids; filled: inside the 95% region); dark grey: no grid (the declared ranges', the "
+    "finer or a refined one) "
     "has a solution in the cell (the couple stress reaches its yield bound inside the gap); "
     "light grey: a cell of the declared ranges' grid with solutions at some points and none "
     "at others, the existence bound inside it (refined cells drawn over it resolve it); "
@@ -1085,9 +1087,13 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
     cols = min(SCAN_COLUMNS, n)
     rows = -(-n // cols)
     spare = rows * cols > n  # a free panel holds the key
-    foot = 0.0 if spare else 1.3  # inches below the panels for the key
+    width = 4.9 * cols + 1.3
+    # the key below the panels at KEY_POINTS, wrapped to the figure's width (referee 14,
+    # point 8: legible at the saved size and not cut), the foot as high as its lines
+    key = textwrap.wrap(SCAN_KEY, int((width - 0.3) * 72.0 / (KEY_EM * KEY_POINTS)))
+    foot = 0.0 if spare else len(key) * KEY_POINTS * 1.25 / 72.0 + 0.2  # [in]
     height = 4.3 * rows + foot + 0.3
-    fig, axes = new_figure(rows, cols, width=4.9 * cols + 1.3, height=height)
+    fig, axes = new_figure(rows, cols, width=width, height=height)
     flat = list(axes.ravel())
     with style():
         if not scans:
@@ -1162,6 +1168,9 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                 ax.plot([e["L"]], [e["K"]], marker="D", markersize=5, linestyle="none",
                         markeredgecolor="k", markerfacecolor="k" if inside else "none",
                         zorder=5)  # fmt: skip
+            around = [g for g in sc.get("refined", ()) if g.get("base")]
+            if around:  # the cells refined around a restart's fit, outlined and zoomed
+                _zoom_around(ax, sc, around, norm, arr, beyond)
             # grey from every grid's solutions (referee 13, point 2), under the colours
             rg = sc["grids"]["range"]
             Kr, Lr = np.array(rg["K"]), np.array(rg["L"])
@@ -1205,8 +1214,80 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
             free.text(0.0, 1.0, "\n".join(textwrap.wrap(SCAN_KEY, 62)), va="top", ha="left",
                       fontsize=7.5, transform=free.transAxes)  # fmt: skip
         else:
-            fig.text(0.01, 0.01, "\n".join(textwrap.wrap(SCAN_KEY, 190)), fontsize=7)
+            fig.text(0.01, 0.008, "\n".join(key), fontsize=KEY_POINTS, va="bottom")
     return fig
+
+
+KEY_POINTS = 8.0
+"""The font size of :func:`spin_scan_figure`'s key below its panels [pt]."""
+KEY_EM = 0.6
+"""A character's mean width in the key's font, in its size (measured 0.52; with margin) [-]:
+the key is wrapped at the figure's width over it."""
+
+
+def _zoom_around(
+    ax: Axes,
+    sc: Mapping[str, Any],
+    cells: Sequence[Mapping[str, Any]],
+    norm: Any,
+    arr: Any,
+    beyond: Any,
+) -> None:
+    """The cells of a scan refined around a restart's fit (``refined`` with a ``base``),
+    outlined (dashed) in ``ax`` and drawn again in an inset zoomed on them, upper left: their
+    colours, points (black inside the 95% region, grey outside), the region's contour, the
+    extent of each island (``region``'s ``islands``) inside them (a box: a few points' island
+    has no contour to see) and the fit (diamond), too small to see at the panel's scale
+    (referee 14, point 5)."""
+    import numpy as np
+
+    k_lo = min(min(g["K"]) for g in cells)
+    k_hi = max(max(g["K"]) for g in cells)
+    l_lo = min(min(g["L"]) for g in cells)
+    l_hi = max(max(g["L"]) for g in cells)
+    for g in cells:
+        k, ll = g["K"], g["L"]
+        ax.plot([ll[0], ll[-1], ll[-1], ll[0], ll[0]], [k[0], k[0], k[-1], k[-1], k[0]],
+                color="k", linewidth=0.6, linestyle="--", zorder=4)  # fmt: skip
+    inset = ax.inset_axes((0.07, 0.43, 0.36, 0.34))
+    for g in cells:
+        K, L = np.array(g["K"]), np.array(g["L"])
+        d, dc = beyond(g), arr(g, "delta_chi2")
+        Lf, Kf, df = refine_grid(L, K, d, log_x=True)
+        fine = 0.25 * (df[:-1, :-1] + df[:-1, 1:] + df[1:, :-1] + df[1:, 1:])
+        inset.pcolormesh(Lf, Kf, np.ma.masked_invalid(fine), cmap="RdBu_r", norm=norm,
+                         shading="flat")  # fmt: skip
+        LL, KK = np.meshgrid(L, K)
+        inside = np.isfinite(dc) & (dc <= sc["threshold"])
+        inset.plot(LL[np.isfinite(d) & ~inside], KK[np.isfinite(d) & ~inside],
+                   linestyle="none", marker=".", markersize=2.0, color="0.35")  # fmt: skip
+        inset.plot(LL[inside], KK[inside], linestyle="none", marker="o", markersize=3.5,
+                   color="k", zorder=4)  # fmt: skip
+        ax.plot(LL[np.isfinite(d) & ~inside], KK[np.isfinite(d) & ~inside], linestyle="none",
+                marker=".", markersize=1.0, color="0.35")  # fmt: skip
+        if np.isfinite(dc).any():
+            _region_lines(inset, L, K, dc, sc["threshold"], 1.0)
+    for e in sc.get("extra", ()):
+        if k_lo <= e["K"] <= k_hi and l_lo <= e["L"] <= l_hi:
+            inside_e = e["delta_chi2"] <= sc["threshold"]
+            inset.plot([e["L"]], [e["K"]], marker="D", markersize=4, linestyle="none",
+                       markeredgecolor="k", markerfacecolor="k" if inside_e else "none",
+                       zorder=5)  # fmt: skip
+    for isl in (sc.get("region") or {}).get("islands", ()):  # an island too small to contour
+        (ka, kb), (la, lb) = isl["K"], isl["L"]
+        if k_lo <= ka and kb <= k_hi and l_lo <= la and lb <= l_hi:
+            inset.plot([la, lb, lb, la, la], [ka, ka, kb, kb, ka], color="k", linewidth=0.9,
+                       zorder=4)  # fmt: skip
+    inset.set_xscale("log")
+    ticks = [float(f"{v:.2g}") for v in np.geomspace(l_lo, l_hi, 4)]
+    ticks = [v for v in ticks if l_lo <= v <= l_hi]
+    inset.set_xticks(ticks, [f"{v:g}" for v in ticks])
+    inset.set_xticks([], minor=True)
+    inset.set_xlim(l_lo, l_hi)
+    inset.set_ylim(k_lo, k_hi)
+    inset.tick_params(labelsize=6.5)
+    inset.set_title("zoom: the cells refined around the\nrestart's fit (dashed); box: the island",
+                    fontsize=7, backgroundcolor="white", pad=9)  # fmt: skip
 
 
 def _region_lines(ax: Axes, L: Any, K: Any, dchi2: Any, threshold: float, width: float) -> None:

@@ -236,6 +236,19 @@ def run_caption(r: RunResult) -> str:
     )
 
 
+def joint_label(joint: Mapping[str, Any]) -> str:
+    """The run figure's legend label of the joint fit (``RunResult.joint``: ``K`` [-], ``L``
+    [d], ``basins``: its scan region's islands): where the region is more than one island the
+    fit is "one of" them (referee 14, point 8: smooth_H20's L = 14.1 d is one of two)."""
+    n = int(joint.get("basins", 0))
+    count = {2: "two", 3: "three", 4: "four"}.get(n, str(n))
+    basins = f", one of {count} basins" if n > 1 else ""
+    return (
+        f"cosserat: joint u + omega + stress-ratio fit (K = {joint['K']:.3g}, L = "
+        f"{joint['L']:.3g} d{basins})"
+    )
+
+
 def run_entry(r: RunResult) -> dict[str, Any]:
     """The plain data of a run's figure (``cosserat.viz.validation.run_figure``)."""
     m = r.run.measured()
@@ -265,9 +278,7 @@ def run_entry(r: RunResult) -> dict[str, Any]:
     if r.joint is not None and r.layer is None:
         # the spin verdicts' fit (referee 9, point 9): its velocity is their null
         j = r.joint
-        what = (
-            f"cosserat: joint u + omega + stress-ratio fit (K = {j['K']:.3g}, L = {j['L']:.3g} d)"
-        )
+        what = joint_label(j)
         models[JOINT] = {"d": j["d"], "u": j["u"], "label": what, "style": JOINT_STYLE}
         if spin is not None and r.spin.rows is not None:
             rows = r.spin.rows
