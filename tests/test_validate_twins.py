@@ -288,7 +288,8 @@ def test_the_design_at_the_seed_scatter_from_the_closed_form():
         "is reached by none of the designs; not by 20/40/80 d with one seed: sigma = 0.18; " \
         "20/40/80 d with 2 seeds each: sigma = 0.13; 20/40/80 d with 3 seeds each: sigma = " \
         "0.1. The 18% rests on 1 pair(s) (95% range 8-561%), so the 5 seeds per gap are a " \
-        "floor: a larger scatter, which the replicates do not exclude, needs more" in lead  # fmt: skip
+        "floor: a larger scatter, which the replicates do not exclude, needs " \
+        "more" in lead  # fmt: skip
     assert "as context" not in text  # referee 14, point 1: the rule's criterion alone
     # at the window where the rule judges (referee 14, point 1): the same count, its gaps
     at = precision_text(s, 1 / 3, 0.0, (55.13, 220.5))
