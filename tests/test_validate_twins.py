@@ -213,9 +213,38 @@ def test_a_balance_miss_beyond_the_seed_scatter_is_named_unexplained(tmp_path):
     assert balance_warning(run_list, twins) == (
         " Warning: momentum-balance misses unexplained: c at 8.5 d (z = -4 after the rescaling) "
         "stays beyond 3 se of the wall's shear stress with the seed scatter allowed for; this "
-        "series' Delta uses that run, and nothing here accounts for the misses."
+        "series' Delta uses that run, and nothing here accounts for the unexplained ones."
     )
     assert balance_warning(run_list, []) == ""
+
+
+def test_a_balance_miss_where_nu_exceeds_the_hexagonal_bound_is_in_the_layered_zone(tmp_path):
+    """Referee 15, point 5: the same -8 se miss at 8.5 d (-4 se after the rescaling), its bin
+    at nu = 0.949 > pi / (2 sqrt 3) = 0.907, is named as in the layered static zone, not as
+    unexplained; a second miss at 7.5 d in a bin at nu = 0.8 stays unexplained."""
+    step = np.r_[np.full(5, -2.0 * math.hypot(SE, SE)), np.zeros(5)]
+    b = _plane(tmp_path, "b", seed=2, shift={"sigma_yx": step})
+    twins = twin_pairs([_result(_plane(tmp_path, "a")), _result(b)])
+    off, dense = np.zeros(10), np.zeros(10)
+    off[1] = off[2] = -8.0 * math.hypot(SE, 0.01)
+    dense[1] = 0.949 - 0.8
+    run = _plane(tmp_path, "c", shift={"sigma_yx": off, "nu": dense})
+    assert balance_warning([run], twins) == (
+        " Warning: momentum-balance misses in the layered static zone (nu > 0.907, the "
+        "hexagonal packing bound), where a centre-binned value is not a bulk value: c at 8.5 d "
+        "(nu = 0.949; z = -4 after the rescaling); unexplained: c at 7.5 d (z = -4 after the "
+        "rescaling) stay beyond 3 se of the wall's shear stress with the seed scatter allowed "
+        "for; this series' Delta uses that run, and nothing here accounts for the unexplained "
+        "ones."
+    )
+    off[2] = 0.0
+    only = _plane(tmp_path, "d", shift={"sigma_yx": off, "nu": dense})
+    assert balance_warning([only], twins).endswith(
+        "d at 8.5 d (nu = 0.949; z = -4 after the rescaling) stays beyond 3 se of the wall's "
+        "shear stress with the seed scatter allowed for; this series' Delta uses that run; "
+        "centre-binned layered bins do not test the balance (bins area-weighted or shifted by "
+        "half a width would)."
+    )
 
 
 def test_the_misfit_reading_cites_the_replicates(tmp_path):

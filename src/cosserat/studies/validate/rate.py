@@ -991,32 +991,65 @@ def balance_rescaled(
 
 def balance_warning(runs: Sequence[Any], twins: Sequence[TwinPair]) -> str:
     """A warning naming the momentum-balance misses that stay beyond ``BALANCE_SIGMAS`` after
-    the seed-scatter rescaling (:func:`balance_rescaled`), by run and distance, as unexplained
-    (referee 14, point 7: the Delta series use those runs); "" where none stays."""
-    from .measures import BALANCE_SIGMAS
+    the seed-scatter rescaling (:func:`balance_rescaled`), by run and distance (referee 14,
+    point 7: the Delta series use those runs): those whose bin's nu exceeds the hexagonal
+    packing bound (``measures.HEXAGONAL_NU``, 2-D disks; ``measures.wall_bins``' dense bins)
+    as in the layered static zone, where a centre-binned value is not a bulk value; the others
+    as unexplained (referee 15, point 5); "" where none stays."""
+    from .measures import BALANCE_SIGMAS, HEXAGONAL_NU, wall_bins
 
     still = [r for r in balance_rescaled(runs, twins) if abs(r[3]) > BALANCE_SIGMAS]
     if not still:
         return ""
-    by_run: dict[str, list[tuple[float, float]]] = {}
-    for name, d, _, zr, _ in still:
-        by_run.setdefault(name, []).append((d, zr))
-    named = "; ".join(
-        f"{name} at "
-        + " and ".join(f"{d:.2g} d" for d, _ in sorted(pts))
-        + " (z = "
-        + ", ".join(f"{zr:+.2g}" for _, zr in sorted(pts))
-        + " after the rescaling)"
-        for name, pts in by_run.items()
-    )
+    dense = {run.name: wall_bins(run).dense for run in runs}
+
+    def nu_at(name: str, d: float) -> float | None:
+        return next((nu for _, dd, nu in dense.get(name, ()) if abs(dd - d) < 1e-3), None)
+
+    def named(rows: list[tuple[str, float, float, float | None]]) -> str:
+        by_run: dict[str, list[tuple[float, float, float | None]]] = {}
+        for name, d, zr, nu in rows:
+            by_run.setdefault(name, []).append((d, zr, nu))
+        return "; ".join(
+            f"{name} at "
+            + " and ".join(f"{d:.2g} d" for d, _, _ in sorted(pts))
+            + " ("
+            + (
+                ""
+                if pts[0][2] is None
+                else "nu = " + ", ".join(f"{nu:.3f}" for *_, nu in sorted(pts)) + "; "
+            )
+            + "z = "
+            + ", ".join(f"{zr:+.2g}" for _, zr, _ in sorted(pts))
+            + " after the rescaling)"
+            for name, pts in by_run.items()
+        )
+
+    rows = [(name, d, zr, nu_at(name, d)) for name, d, _, zr, _ in still]
+    layered = [r for r in rows if r[3] is not None]
+    other = [(n, d, zr, None) for n, d, zr, nu in rows if nu is None]
+    parts = []
+    if layered:
+        parts.append(
+            f"in the layered static zone (nu > {HEXAGONAL_NU:.3f}, the hexagonal packing "
+            f"bound), where a centre-binned value is not a bulk value: {named(layered)}"
+        )
+    if other:
+        parts.append(f"unexplained: {named(other)}")
+    n_runs = len({r[0] for r in rows})
     return (
-        f" Warning: momentum-balance misses unexplained: {named} "
-        + ("stays" if len(still) == 1 else "stay")
-        + f" beyond "
-        f"{BALANCE_SIGMAS:g} se of the wall's shear stress with the seed scatter allowed for; "
-        "this series' Delta uses "
-        + ("that run" if len(by_run) == 1 else "those runs")
-        + ", and nothing here accounts for the misses."
+        " Warning: momentum-balance misses "
+        + "; ".join(parts)
+        + (" stays" if len(rows) == 1 else " stay")
+        + f" beyond {BALANCE_SIGMAS:g} se of the wall's shear stress with the seed scatter "
+        "allowed for; this series' Delta uses "
+        + ("that run" if n_runs == 1 else "those runs")
+        + (
+            ", and nothing here accounts for the unexplained ones."
+            if other
+            else "; centre-binned layered bins do not test the balance (bins area-weighted or "
+            "shifted by half a width would)."
+        )
     )
 
 
