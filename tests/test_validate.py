@@ -370,6 +370,25 @@ def test_a_delta_panel_without_usable_points_draws_no_law_and_says_why():
     labels = low.get_legend_handles_labels()[1]
     assert "slope within 0.05 of 0: H/d = 160-640 (where the rule could judge)" in labels
     assert "20-80 d: the finite-H curve only" in labels
+    assert "DEM data (+- 1 se)" in labels and "160 d: the largest gap" not in " ".join(labels)
+    plt.close(fig)
+    # referee 15, point 7: the costed limit marked, the data filled with bars, the grey band
+    # stopped at a window starting inside 20-80 d
+    edge = reach | {"window": [56.0, 224.0], "target": 1 / 3, "costed": 160.0}
+    fig = delta_claim_figure([two | {"curves": {"cosserat": curve}, "reach": edge}], laws, "D")
+    low = fig.axes[1]
+    labels = low.get_legend_handles_labels()[1]
+    assert "160 d: the largest gap the DEM design costs" in labels
+    assert "20-80 d: the finite-H curve only (grey to the window's start, 56 d)" in labels
+    vline = [ln for ln in low.get_lines() if ln.get_label().startswith("160 d")]
+    assert list(vline[0].get_xdata()) == [160.0, 160.0]
+    grey = next(p for p in low.patches if p.get_label().startswith("20-80 d"))
+    assert grey.get_x() == 20.0 and grey.get_x() + grey.get_width() == pytest.approx(56.0)
+    filled = [c for c in low.containers if c.get_label() == "DEM data (+- 1 se)"]
+    assert filled and filled[0].has_yerr
+    assert filled[0].lines[0].get_markerfacecolor() == "k"
+    plt.close(fig)
+    fig = delta_claim_figure([two | {"curves": {"cosserat": curve}, "reach": reach}], laws, "D")
     assert [ln.get_label() for ln in fig.axes[0].get_lines()].count(
         "cosserat, one calibration of the material"
     ) == 1  # the helper draws the curve once, its run values as x

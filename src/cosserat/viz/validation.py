@@ -793,16 +793,33 @@ def _draw_delta_curve(
 
 def _reach_panel(ax: Axes, s: Mapping[str, Any], color: Any) -> None:
     """The Cosserat curve carried on to the largest gap computed (``s["reach"]``), the
-    measured Delta and the window where the slope rule could judge the exponent, shaded
-    (referee 14, point 1)."""
+    measured Delta (filled where used, open where left out, +- 1 se, as in the upper row) and
+    the window where the slope rule could judge the exponent, shaded (referee 14, point 1);
+    ``reach["costed"]`` (optional): the largest gap the DEM design costs [d], a labelled
+    vertical line; the grey 20-80 d band stops where the window starts (referee 15,
+    point 7)."""
     r = s["reach"]
     pts = [(g, d) for g, d in zip(r["gaps"], r["Delta"], strict=True) if d]
     ax.plot([g for g, _ in pts], [d for _, d in pts], color=color, linewidth=1.2,
             label="cosserat, one calibration, carried on")  # fmt: skip
-    data = [(g, d) for g, d, u in zip(s["gaps"], s["Delta"], s["usable"], strict=True) if d]
-    if data:
-        ax.plot([g for g, _ in data], [d for _, d in data], "o", color="k", markersize=3,
-                markerfacecolor="none", label="DEM data")  # fmt: skip
+    rows = [
+        (g, d, e, u)
+        for g, d, e, u in zip(s["gaps"], s["Delta"], s["stderr"], s["usable"], strict=True)
+        if d
+    ]
+    data = [(g, d) for g, d, _, _ in rows]
+    for use in (True, False):
+        sel = [p for p in rows if p[3] == use]
+        if sel:
+            ax.errorbar([p[0] for p in sel], [p[1] for p in sel],
+                        yerr=[p[2] or 0.0 for p in sel], fmt="o", color="k", capsize=2,
+                        markersize=3, markerfacecolor="k" if use else "none",
+                        label="DEM data (+- 1 se)" if use else "band fills its gap: left out",
+                        zorder=3)  # fmt: skip
+    costed = r.get("costed")
+    if costed:
+        ax.axvline(costed, color="tab:red", linestyle="--", linewidth=0.9,
+                   label=f"{costed:g} d: the largest gap the DEM design costs")  # fmt: skip
     w = r.get("window")
     if w:
         ax.axvspan(w[0], w[1], color="tab:green", alpha=0.15, linewidth=0,
@@ -811,8 +828,10 @@ def _reach_panel(ax: Axes, s: Mapping[str, Any], color: Any) -> None:
     else:
         ax.text(0.02, 0.95, f"no factor-4 window with slope within 0.05 of {r['target']:.3g}",
                 transform=ax.transAxes, fontsize=6, va="top")  # fmt: skip
-    ax.axvspan(20.0, 80.0, color="0.85", alpha=0.6, linewidth=0,
-               label="20-80 d: the finite-H curve only")  # fmt: skip
+    stop = 80.0 if not w or w[0] >= 80.0 else max(20.0, float(w[0]))
+    upto = "" if stop == 80.0 else f" (grey to the window's start, {stop:.3g} d)"
+    ax.axvspan(20.0, stop, color="0.85", alpha=0.6, linewidth=0,
+               label="20-80 d: the finite-H curve only" + upto)  # fmt: skip
     ax.set_xscale("log")
     ax.set_yscale("log")
     g = [p[0] for p in pts] + [p[0] for p in data]

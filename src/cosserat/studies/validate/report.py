@@ -32,6 +32,7 @@ from .measures import (
     slip_inertial_number,
 )
 from .verdicts import (
+    DEM_GAP_COSTED,
     EXPONENT_TOL,
     MIN_GAPS,
     P_CONSISTENT,
@@ -589,6 +590,7 @@ def delta_entries(report: ValidationReport, which: str) -> list[dict[str, Any]]:
                 "Delta": list(full[1]),
                 "window": None if w["start"] is None else [w["start"], w["end"]],
                 "target": target,
+                "costed": DEM_GAP_COSTED,
             }
         out.append(
             {
