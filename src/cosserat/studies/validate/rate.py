@@ -1006,7 +1006,7 @@ def balance_warning(runs: Sequence[Any], twins: Sequence[TwinPair]) -> str:
     def nu_at(name: str, d: float) -> float | None:
         return next((nu for _, dd, nu in dense.get(name, ()) if abs(dd - d) < 1e-3), None)
 
-    def named(rows: list[tuple[str, float, float, float | None]]) -> str:
+    def named(rows: Sequence[tuple[str, float, float, float | None]]) -> str:
         by_run: dict[str, list[tuple[float, float, float | None]]] = {}
         for name, d, zr, nu in rows:
             by_run.setdefault(name, []).append((d, zr, nu))
