@@ -1031,6 +1031,18 @@ def matched_exponential(
             "W_layers": w, "ratio": omega / w, "departure": omega - w}  # fmt: skip
 
 
+P_NOTE = (
+    "verdict_p (= pooled_p_headline) is the verdict's p: the pooled departure beyond the joint "
+    "fit's null under the weakest stencil, each z read under t(blocks - 1) where the blocks are "
+    "recorded; the other pooled_p_* are not: pooled_p_normal and "
+    "pooled_p_without_first_layer_normal read each z as normal, pooled_p_every_bin is the "
+    "analysis' stencil with every first layer, pooled_p_bound takes se_omega + se_half, "
+    "pooled_p_against_zero tests against 0 (no null), pooled_p_t_without_first_layer leaves the "
+    "first layers out (pooled_p_t is the headline's t reading)"
+)
+"""The spin verdict's ``p_note`` in results.json (referee 15, point 6)."""
+
+
 def matched_ratio_se(
     u_1: float, u_1_se: float, u_2: float, u_2_se: float, u_far: float = 0.0
 ) -> float | None:
@@ -1958,6 +1970,9 @@ def spin_verdict(
     numbers["pooled_p_headline_count"] = None if c_t is None else c_t[0]
     numbers["pooled_p_headline_draws"] = None if c_t is None else c_t[1]
     numbers["pooled_p_headline_mc_error"] = None if c_t is None else mc_error(*c_t)
+    # referee 15, point 6: the one p the verdict states, and why the other pooled_p_* are not it
+    numbers["verdict_p"] = numbers["pooled_p_headline"]
+    numbers["p_note"] = P_NOTE
     misfits = null_misfits(tested, info)
     numbers["null_fit_misfits"] = misfits
     misfit_line = _null_misfit_text(misfits)
