@@ -1136,14 +1136,13 @@ def free_rows(rows: Mapping[str, Any]) -> dict[str, Any]:
         s = -math.copysign(1.0, w * (u_2 - u_1)) if w * (u_2 - u_1) != 0.0 else None
         far = 1.0 if wall == "fixed" else 0.0
         match = None if s is None else matched_exponential(u_1, u_2, s, far)
-        if match is not None:
-            se_1, se_2 = r.get("u_1_se"), r.get("u_2_se")
-            match["ratio_se"] = (
-                None
-                if se_1 is None or se_2 is None
-                else matched_ratio_se(u_1, float(se_1), u_2, float(se_2), far)
-            )
-        row["matched"] = match
+        se_1, se_2 = r.get("u_1_se"), r.get("u_2_se")
+        se_r = (
+            None
+            if match is None or se_1 is None or se_2 is None
+            else matched_ratio_se(u_1, float(se_1), u_2, float(se_2), far)
+        )
+        row["matched"] = None if match is None else {**match, "ratio_se": se_r}
         if match is not None:
             ratio = match["ratio"]
             beyond = om - ratio * w
@@ -1157,7 +1156,6 @@ def free_rows(rows: Mapping[str, Any]) -> dict[str, Any]:
                 cov = rho * math.sqrt(vo * vw)
                 se = math.sqrt(max(vo + ratio**2 * vw - 2.0 * ratio * cov, 0.0))
                 se_fixed = math.sqrt(vo + ratio**2 * vw)
-                se_r = match["ratio_se"]
                 se_ind = None if se_r is None else math.sqrt(se_fixed**2 + (w * se_r) ** 2)
                 row["rho"] = rho
             else:
@@ -1294,7 +1292,8 @@ def free_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
             f"{len(matched)} walls ({len(count('z', 3.0))} by at least 3 se)"
             + (
                 f"; with omega_1 and W_layers independent (the bound: their correlation comes "
-                f"from the time blocks) at {len(bound)} of {len(with_bound)} "
+                f"from the time blocks) and R's own error propagated at {len(bound)} of "
+                f"{len(with_bound)} "
                 f"({len(count('z_independent', 3.0))} by at least 3 se)"
                 if with_bound
                 else ""
