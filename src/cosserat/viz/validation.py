@@ -302,7 +302,7 @@ def spin_claim_figure(
         ``wall``, ``ratio``, ``omega_1``, ``matched`` with ``ratio``, ``se_independent``):
         where given, a third panel draws each sheared wall's layer-1 omega_1/W_layers with +-
         2 se of omega_1/W_layers - R under independent errors (R's own error included:
-        se_independent/|W_layers|) beside its matched R (referee 15, point 3(ii)). Walls
+        se_independent/abs(W_layers)) beside its matched R (referee 15, point 3(ii)). Walls
         without a matched R or a bound are left out.
     """
     import numpy as np
@@ -412,7 +412,7 @@ def _free_drawable(r: Mapping[str, Any]) -> bool:
 def _free_panel(cx: Any, free: Mapping[str, Mapping[str, Any]], under: tuple[float, float]) -> None:
     """The model-free panel of :func:`spin_claim_figure` (referee 15, point 3(ii)): per
     sheared wall, omega_1/W_layers (circle: a moving wall; square: a layer run's sheared
-    fixed wall) with +- 2 se of its difference from R (se_independent/|W_layers|, W_layers =
+    fixed wall) with +- 2 se of its difference from R (se_independent/abs(W_layers), W_layers =
     omega_1/ratio), and the matched R (open diamond); tick labels on the right."""
     import numpy as np
 

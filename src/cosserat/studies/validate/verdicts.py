@@ -1048,8 +1048,8 @@ def matched_ratio_se(
 ) -> float | None:
     """The se of the matched ratio R = -ln q/(1 - q) = 1/(l (1 - q)) of
     :func:`matched_exponential` from the measured layer means' se (referee 15, point 3(i)),
-    by linear propagation with u_1 and u_2 independent: se_q = sqrt(se_2^2 + q^2 se_1^2)/|u_1 -
-    u_far| and se_R = |dR/dq| se_q, dR/dq = (-(1 - q)/q - ln q)/(1 - q)^2.
+    by linear propagation with u_1 and u_2 independent: se_q = sqrt(se_2^2 + q^2 se_1^2) /
+    abs(u_1 - u_far) and se_R = abs(dR/dq) se_q, dR/dq = (-(1 - q)/q - ln q)/(1 - q)^2.
 
     Parameters
     ----------
