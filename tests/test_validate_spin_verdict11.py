@@ -155,6 +155,14 @@ def test_the_headline_p_is_the_one_the_verdict_states():
     # referee 14, point 6: no key a tool could quote as the verdict's p under the old names
     assert "pooled_p" not in n and "pooled_p_without_first_layer" not in n
     assert n["pooled_p_without_first_layer_normal"] is not None
+    # referee 15, point 6: verdict_p is the headline, and p_note names every other pooled p
+    assert n["verdict_p"] == n["pooled_p_headline"] and m["verdict_p"] == m["pooled_p_normal"]
+    others = {k for k in n if k.startswith("pooled_p_") and k.split("_")[2] not in
+              ("t", "headline") and isinstance(n[k], float)}  # fmt: skip
+    assert others == {"pooled_p_normal", "pooled_p_every_bin", "pooled_p_bound",
+                      "pooled_p_against_zero", "pooled_p_without_first_layer_normal"}  # fmt: skip
+    assert all(k in n["p_note"] for k in others) and "\n" not in n["p_note"]
+    assert n["p_note"].startswith("verdict_p (= pooled_p_headline) is the verdict's p")
 
 
 def test_the_joint_fits_chi2_by_field_for_the_verdict():

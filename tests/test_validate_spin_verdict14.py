@@ -21,6 +21,7 @@ from cosserat.studies.validate.verdicts import (
     free_rows,
     free_text,
     matched_exponential,
+    matched_ratio_se,
 )
 
 DIST = np.array([0.5, 1.5, 2.5])
@@ -71,6 +72,26 @@ def test_the_matched_exponential_tends_to_the_far_walls_velocity():
     assert matched_exponential(0.6, 0.8, 1.0) is None
 
 
+def test_the_matched_ratios_se_is_the_linear_propagation():
+    """R = -ln q/(1 - q) with q = (u_2 - u_far)/(u_1 - u_far): matched_ratio_se is |dR/dq| se_q
+    with se_q = sqrt(se_2^2 + q^2 se_1^2)/|u_1 - u_far|, and agrees with a central difference
+    of matched_exponential's ratio in u_1 and u_2 separately; None where nothing matches."""
+    u_1, u_2, far, se_1, se_2 = 0.6, 0.75, 1.0, 0.03, 0.02
+
+    def big_r(a, b):
+        m = matched_exponential(a, b, 1.0, far)
+        assert m is not None
+        return m["ratio"]
+
+    h = 1e-6
+    d_1 = (big_r(u_1 + h, u_2) - big_r(u_1 - h, u_2)) / (2 * h)
+    d_2 = (big_r(u_1, u_2 + h) - big_r(u_1, u_2 - h)) / (2 * h)
+    se = matched_ratio_se(u_1, se_1, u_2, se_2, far)
+    assert se == pytest.approx(math.hypot(d_1 * se_1, d_2 * se_2), rel=1e-6)
+    assert matched_ratio_se(0.6, 0.01, 0.8, 0.01) is None
+    assert matched_ratio_se(0.4, math.nan, 0.2, 0.01) is None
+
+
 def test_the_bound_beside_the_block_correlated_se():
     """Upper moving wall, u_1 = 0.4, u_2 = 0.2 (R = 2 ln 2), omega_1 = -0.3, W_layers = -0.1:
     beyond = -0.3 + 0.2 ln 2. se_omega 0.02, se_W 0.01 and the departure's se 0.015 imply
@@ -87,7 +108,13 @@ def test_the_bound_beside_the_block_correlated_se():
     se = math.sqrt(4e-4 + big_r**2 * 1e-4 - 2.0 * big_r * 0.6875 * 2e-4)
     assert r["se"] == pytest.approx(se, rel=1e-12)
     assert r["z"] == pytest.approx(beyond / se, rel=1e-12)
-    bound = math.sqrt(4e-4 + big_r**2 * 1e-4)
+    fixed_r = math.sqrt(4e-4 + big_r**2 * 1e-4)
+    assert r["se_independent_fixed_R"] == pytest.approx(fixed_r, rel=1e-12)
+    assert r["z_independent_fixed_R"] == pytest.approx(beyond / fixed_r, rel=1e-12)
+    # referee 15, point 3(i): R's own error, u_1_se = u_2_se = 0.01, q = 1/2
+    se_big_r = 4.0 * (1.0 - LN2) * math.sqrt(1e-4 + 0.25e-4) / 0.4
+    assert r["matched"]["ratio_se"] == pytest.approx(se_big_r, rel=1e-12)
+    bound = math.sqrt(fixed_r**2 + (0.1 * se_big_r) ** 2)
     assert r["se_independent"] == pytest.approx(bound, rel=1e-12)
     assert r["z_independent"] == pytest.approx(beyond / bound, rel=1e-12)
     text, counts = free_text(free_rows(rows))
@@ -119,7 +146,8 @@ def test_a_sheared_fixed_wall_is_read_model_free_and_the_sentence_leads():
     assert c["matched"]["ratio"] == pytest.approx(2.0 * LN2, rel=1e-12)
     assert c["beyond"] == pytest.approx(-0.25 + 0.2 * LN2, rel=1e-12)
     assert free["moving_walls"] == 2 and free["fixed_walls"] == 1
-    bound = math.sqrt(4e-4 + (2.0 * LN2) ** 2 * 1e-4)
+    se_q = math.sqrt(1e-4 + 0.25e-4) / 0.4  # q = 1/2 at both walls (u_far 0 and 1)
+    bound = math.sqrt(4e-4 + (2.0 * LN2) ** 2 * 1e-4 + (0.1 * 4.0 * (1.0 - LN2) * se_q) ** 2)
     za, zc = (0.2 * LN2 - 0.3) / bound, (0.2 * LN2 - 0.25) / bound
     lead = free_lead(free["walls"])
     assert v.evidence.startswith(lead)
@@ -127,8 +155,9 @@ def test_a_sheared_fixed_wall_is_read_model_free_and_the_sentence_leads():
         "Model-free, grain by grain: layer 1 turns 3 times the half vorticity between layers "
         "1 and 2 at 2 of 2 moving walls; 2.5 times the half vorticity between layers 1 and 2 "
         "at 1 of 1 sheared fixed walls; a velocity matched to the measured layer means gives "
-        f"1.39; the data lie beyond it by {abs(zc):.2g}-{abs(za):.2g} se at those 3 of 3 "
-        f"sheared walls under independent errors (3 of 3 by at least 3 se). "
+        f"R = 1.39; the data lie beyond it by {abs(zc):.2g}-{abs(za):.2g} se: beyond 2 se at 3 "
+        "of 3 sheared walls (3 by >= 3 se) under independent errors (R's own error from u_1 "
+        "and u_2 propagated). "
     )
     assert "plane" not in lead and "c's fixed wall omega_1/W_layers 2.5" in v.evidence
     # without records, nothing leads

@@ -271,6 +271,7 @@ def spin_claim_figure(
     models: Sequence[str] = (),
     title: str = "",
     verdict_stencil: str = "",
+    free: Mapping[str, Mapping[str, Any]] | None = None,
 ) -> Figure:
     """Left: the measured departure of the spin in the first layer at each wall of each run,
     with its error bar (2 se), beside each model's prediction there (one row per run and
@@ -296,13 +297,22 @@ def spin_claim_figure(
         The stencil the verdict's test is taken under (where it is weakest); the right panel's
         bins are under the analysis' stencil, and its title says so and names this one where it
         differs (referee 11, point 7).
+    free : mapping, optional
+        The spin verdict's model-free reading, ``grain_scale_model_free["walls"]`` (wall ->
+        ``wall``, ``ratio``, ``omega_1``, ``matched`` with ``ratio``, ``se_independent``):
+        where given, a third panel draws each sheared wall's layer-1 omega_1/W_layers with +-
+        2 se of omega_1/W_layers - R under independent errors (R's own error included:
+        se_independent/abs(W_layers)) beside its matched R (referee 15, point 3(ii)). Walls
+        without a matched R or a bound are left out.
     """
     import numpy as np
 
     from .plotting import new_figure, style
 
     n = max(len(rows), 1)
-    fig, axes = new_figure(1, 2, width=11.0, height=max(2.6, 1.3 + 0.26 * n))
+    drawn = {k: r for k, r in (free or {}).items() if _free_drawable(r)}
+    fig, axes = new_figure(1, 3 if drawn else 2, width=16.5 if drawn else 11.0,
+                           height=max(2.6, 1.3 + 0.26 * n))  # fmt: skip
     ax, bx = axes[0, 0], axes[0, 1]
     with style():
         y = np.arange(len(rows))[::-1]
@@ -336,7 +346,8 @@ def spin_claim_figure(
         # 10, point 9: anchored in axes fractions they fell far below, past an empty band)
         h = fig.get_figheight()
         bottom, top = LABEL_BAND_IN / h, 1.0 - 0.35 / h
-        fig.subplots_adjust(left=0.2, right=0.98, wspace=0.3, bottom=bottom, top=top)
+        fig.subplots_adjust(left=0.14 if drawn else 0.2, right=0.86 if drawn else 0.98,
+                            wspace=0.3, bottom=bottom, top=top)  # fmt: skip
         under = (0.0, -LABEL_BAND_IN / ((top - bottom) * h))  # axes fraction
         handles, labels = ax.get_legend_handles_labels()
         uniq = dict(zip(labels, handles, strict=True))
@@ -386,8 +397,53 @@ def spin_claim_figure(
         if bx.get_legend_handles_labels()[0]:
             bx.legend(fontsize=7, frameon=False, loc="upper left", bbox_to_anchor=under,
                       borderpad=0.0, borderaxespad=0.0)  # fmt: skip
-        _legends_under_labels(fig, (ax, bx))
+        if drawn:
+            _free_panel(axes[0, 2], drawn, under)
+        _legends_under_labels(fig, (ax, bx, axes[0, 2]) if drawn else (ax, bx))
     return fig
+
+
+def _free_drawable(r: Mapping[str, Any]) -> bool:
+    """Whether a model-free row has what :func:`_free_panel` draws."""
+    m = r.get("matched")
+    return bool(m is not None and r.get("ratio") and r.get("se_independent") and r.get("omega_1"))
+
+
+def _free_panel(cx: Any, free: Mapping[str, Mapping[str, Any]], under: tuple[float, float]) -> None:
+    """The model-free panel of :func:`spin_claim_figure` (referee 15, point 3(ii)): per
+    sheared wall, omega_1/W_layers (circle: a moving wall; square: a layer run's sheared
+    fixed wall) with +- 2 se of its difference from R (se_independent/abs(W_layers), W_layers =
+    omega_1/ratio), and the matched R (open diamond); tick labels on the right."""
+    import numpy as np
+
+    y = np.arange(len(free))[::-1]
+    for yi, r in zip(y, free.values(), strict=True):
+        w = float(r["omega_1"]) / float(r["ratio"])
+        e = 2.0 * float(r["se_independent"]) / abs(w)
+        fixed = r.get("wall") == "fixed"
+        cx.errorbar([r["ratio"]], [yi], xerr=[e], fmt="s" if fixed else "o", color="k",
+                    capsize=2, elinewidth=0.8, markersize=4,
+                    label="data, a layer run's sheared fixed wall (+- 2 se)" if fixed
+                    else "data, moving wall (+- 2 se)")  # fmt: skip
+        cx.plot([r["matched"]["ratio"]], [yi], marker="D", markerfacecolor="none",
+                color="C3", linestyle="none",
+                label="R: a velocity matched to the layer means")  # fmt: skip
+    cx.axvline(1.0, color="0.5", linewidth=0.6)
+    names = [f"{k.partition(':')[0]}: {'fixed' if k.endswith(':fixed') else 'moving'}"
+             for k in free]  # fmt: skip
+    cx.set_yticks(y, names, fontsize=7)
+    cx.yaxis.tick_right()
+    cx.set_ylim(-0.8, len(free) - 0.2)
+    cx.set_xlabel(r"layer 1's $\omega_1 / W_\mathrm{layers}$ [-]")
+    cx.set_title(
+        "model-free, grain by grain (no fitted null): layer 1's spin over\nthe half vorticity "
+        "between layers 1 and 2, against the matched R",
+        fontsize=8,
+    )
+    handles, labels = cx.get_legend_handles_labels()
+    uniq = dict(zip(labels, handles, strict=True))
+    cx.legend(uniq.values(), uniq.keys(), loc="upper left", bbox_to_anchor=under, fontsize=7,
+              frameon=False, borderpad=0.0, borderaxespad=0.0)  # fmt: skip
 
 
 LEGEND_GAP_IN = 0.06

@@ -448,7 +448,9 @@ def _wall_kind(meta: Mapping[str, Any], wall: str) -> str:
     return str(side.get("kind", "")) if isinstance(side, Mapping) else ""
 
 
-def spin_caption(rows: list[dict[str, Any]]) -> str:
+def spin_caption(
+    rows: list[dict[str, Any]], free: Mapping[str, Mapping[str, Any]] | None = None
+) -> str:
     """The caption of ``claim_spin.png`` (referee 12, point 8): what each panel draws, and,
     computed from ``rows`` (:func:`spin_rows`), the grey range of the RAW first-layer
     departure over the stencils at the sheared walls (its sign depends on the stencil where
@@ -498,10 +500,24 @@ def spin_caption(rows: list[dict[str, Any]]) -> str:
             + "; where it is not, the first layer is left out of the verdict's test (open "
             "markers, right)."
         )
-    return text + (
-        " Right: the near-wall bins' departure beyond each wall's null (+- 2 se), under the "
+    # the rows spin_claim_figure's model-free panel draws (viz.validation._free_drawable)
+    drawn = [r for r in (free or {}).values() if r.get("matched") and r.get("z_independent")
+             and r.get("ratio") and r.get("se_independent") and r.get("omega_1")]  # fmt: skip
+    text += (" Middle" if drawn else " Right") + (
+        ": the near-wall bins' departure beyond each wall's null (+- 2 se), under the "
         "analysis' stencil; filled: the bins the verdict's test uses."
     )
+    if drawn:
+        far = sum(abs(r["z_independent"]) >= 2.0 for r in drawn)
+        text += (
+            " Right: the model-free reading that leads the verdict, no null fit: layer 1's "
+            "omega_1/W_layers at each sheared wall (circles: moving walls; squares: the layer "
+            "runs' fixed walls) against R, that of a velocity matched to the measured layer "
+            "means (diamonds); the bars are +- 2 se of omega_1/W_layers - R under independent "
+            f"errors, R's own included, so a bar missing its diamond is a wall beyond 2 se "
+            f"({far} of {len(drawn)})."
+        )
+    return text
 
 
 def _sign_of(x: float) -> int:
@@ -684,10 +700,18 @@ def write_figures(
         (str(v.numbers.get("pooled_stencil") or "") for v in report.verdicts if v.key == "spin"),
         "",
     )
+    free = next(
+        (
+            (v.numbers.get("grain_scale_model_free") or {}).get("walls")
+            for v in report.verdicts
+            if v.key == "spin"
+        ),
+        None,
+    )
     draw(
         draw_figure,
         "spin_claim_figure",
-        (rows, [], "does the spin depart from half the vorticity?", weakest),
+        (rows, [], "does the spin depart from half the vorticity?", weakest, free),
         out / CLAIM_FIGURES["spin"],
     )
     # the verdict's own fits, the joint calibrations, where it has them (referee 7, 10)
@@ -964,7 +988,10 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 or next(iter(figures.get(n, "") for n in v.runs), ""),
                 "caption": delta_caption(report, v.key)
                 if v.key in ("smoother", "rough")
-                else spin_caption(spin_rows(report))
+                else spin_caption(
+                    spin_rows(report),
+                    (v.numbers.get("grain_scale_model_free") or {}).get("walls"),
+                )
                 if v.key == "spin"
                 else "",
                 "extra_figures": extra_figures(report, v.key),

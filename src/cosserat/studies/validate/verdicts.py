@@ -988,7 +988,9 @@ MATCHED_NULL = (
     "(u_1 - u_far)/(l (1 - q))), its grains turning with it and measured as the joint fit's "
     "null is (layers at 0.5 and 1.5 d): omega_1/W_layers = R = 1/(l (1 - q)); the data beyond "
     "it are omega_1 - R W_layers, its se with the block correlation of omega_1 and W_layers "
-    "that the sidecar's departure se implies, and as a bound with the two independent"
+    "that the sidecar's departure se implies (R held fixed), and as a bound with the two "
+    "independent and R's own error from the se of u_1 and u_2 propagated linearly (u_1 and "
+    "u_2 independent)"
 )
 """The model-free null of :func:`matched_exponential`, in words (referee 13, point 1; the
 far velocity and the independent-error bound: referee 14, point 2)."""
@@ -1027,6 +1029,49 @@ def matched_exponential(
     w = -0.5 * s * (u_2 - u_1)
     return {"l": ell, "A": (u_1 - u_far) / (ell * (1.0 - q)), "omega_1": omega,
             "W_layers": w, "ratio": omega / w, "departure": omega - w}  # fmt: skip
+
+
+P_NOTE = (
+    "verdict_p (= pooled_p_headline) is the verdict's p: the pooled departure beyond the joint "
+    "fit's null under the weakest stencil, each z read under t(blocks - 1) where the blocks are "
+    "recorded; the other pooled_p_* are not: pooled_p_normal and "
+    "pooled_p_without_first_layer_normal read each z as normal, pooled_p_every_bin is the "
+    "analysis' stencil with every first layer, pooled_p_bound takes se_omega + se_half, "
+    "pooled_p_against_zero tests against 0 (no null), pooled_p_t_without_first_layer leaves the "
+    "first layers out (pooled_p_t is the headline's t reading)"
+)
+"""The spin verdict's ``p_note`` in results.json (referee 15, point 6)."""
+
+
+def matched_ratio_se(
+    u_1: float, u_1_se: float, u_2: float, u_2_se: float, u_far: float = 0.0
+) -> float | None:
+    """The se of the matched ratio R = -ln q/(1 - q) = 1/(l (1 - q)) of
+    :func:`matched_exponential` from the measured layer means' se (referee 15, point 3(i)),
+    by linear propagation with u_1 and u_2 independent: se_q = sqrt(se_2^2 + q^2 se_1^2) /
+    abs(u_1 - u_far) and se_R = abs(dR/dq) se_q, dR/dq = (-(1 - q)/q - ln q)/(1 - q)^2.
+
+    Parameters
+    ----------
+    u_1, u_1_se, u_2, u_2_se : float
+        Layers 1 and 2's mean velocities and their se [V].
+    u_far : float
+        As in :func:`matched_exponential` [V].
+
+    Returns
+    -------
+    float or None
+        se_R [-]; None where no decaying exponential matches (q not in (0, 1)) or an se is
+        not finite and non-negative.
+    """
+    if u_1 == u_far or not 0.0 < (u_2 - u_far) / (u_1 - u_far) < 1.0:
+        return None
+    if not all(math.isfinite(x) and x >= 0.0 for x in (u_1_se, u_2_se)):
+        return None
+    q = (u_2 - u_far) / (u_1 - u_far)
+    se_q = math.hypot(u_2_se, q * u_1_se) / abs(u_1 - u_far)
+    slope = (-(1.0 - q) / q - math.log(q)) / (1.0 - q) ** 2
+    return abs(slope) * se_q
 
 
 def fixed_rows(walls: Sequence[WallSpin], info: Mapping[str, SpinRun]) -> dict[str, Any]:
@@ -1068,8 +1113,11 @@ def free_rows(rows: Mapping[str, Any]) -> dict[str, Any]:
     velocity: 0 at a moving wall, 1 at a fixed one; None: no match), the data ``beyond`` it =
     omega_1 - R W_layers (R the matched ratio) with ``se`` (omega_1 and W_layers correlated as
     the sidecar's departure se implies: ``rho``; without ``W_layers_se`` the departure's se)
-    and ``z`` = beyond / se, and ``se_independent`` = sqrt(se_omega^2 + R^2 se_W^2) with
-    ``z_independent`` (the bound, referee 14, point 2) [-]."""
+    and ``z`` = beyond / se (R held fixed), and ``se_independent`` = sqrt(se_omega^2 + R^2
+    se_W^2 + W_layers^2 se_R^2) with ``z_independent`` (the bound, referee 14, point 2; R's
+    own se ``matched["ratio_se"]`` from :func:`matched_ratio_se`, referee 15, point 3(i);
+    None without the layers' se), and the bound with R held fixed,
+    ``se_independent_fixed_R`` and ``z_independent_fixed_R`` [-]."""
     out: dict[str, Any] = {}
     for run, r in rows.items():
         m = r["measures"].get("W_layers")
@@ -1088,7 +1136,13 @@ def free_rows(rows: Mapping[str, Any]) -> dict[str, Any]:
         s = -math.copysign(1.0, w * (u_2 - u_1)) if w * (u_2 - u_1) != 0.0 else None
         far = 1.0 if wall == "fixed" else 0.0
         match = None if s is None else matched_exponential(u_1, u_2, s, far)
-        row["matched"] = match
+        se_1, se_2 = r.get("u_1_se"), r.get("u_2_se")
+        se_r = (
+            None
+            if match is None or se_1 is None or se_2 is None
+            else matched_ratio_se(u_1, float(se_1), u_2, float(se_2), far)
+        )
+        row["matched"] = None if match is None else {**match, "ratio_se": se_r}
         if match is not None:
             ratio = match["ratio"]
             beyond = om - ratio * w
@@ -1101,14 +1155,17 @@ def free_rows(rows: Mapping[str, Any]) -> dict[str, Any]:
                 rho = min(1.0, max(-1.0, rho))
                 cov = rho * math.sqrt(vo * vw)
                 se = math.sqrt(max(vo + ratio**2 * vw - 2.0 * ratio * cov, 0.0))
-                se_ind = math.sqrt(vo + ratio**2 * vw)
+                se_fixed = math.sqrt(vo + ratio**2 * vw)
+                se_ind = None if se_r is None else math.sqrt(se_fixed**2 + (w * se_r) ** 2)
                 row["rho"] = rho
             else:
-                se, se_ind = m["se"], None
+                se, se_fixed, se_ind = m["se"], None, None
             row["se"] = se
             row["z"] = beyond / se if se > 0.0 else None
             row["se_independent"] = se_ind
             row["z_independent"] = beyond / se_ind if se_ind else None
+            row["se_independent_fixed_R"] = se_fixed
+            row["z_independent_fixed_R"] = beyond / se_fixed if se_fixed else None
         out[run] = row
     return out
 
@@ -1157,15 +1214,19 @@ def free_lead(rows: Mapping[str, Any]) -> str:
     z_hit = [abs(zs[k]) for k in far]
     three = sum(1 for k in ok if abs(zs[k]) >= 3.0)
     independent = all(r.get("z_independent") is not None for r in ok.values())
-    kind = "under independent errors" if independent else "in the departure's se"
+    kind = (
+        "under independent errors (R's own error from u_1 and u_2 propagated)"
+        if independent
+        else "in the departure's se"
+    )
     return (
         (
             "Model-free, grain by grain: layer 1 turns "
             + "; ".join(parts)
-            + f"; a velocity matched to the measured layer means gives "
+            + f"; a velocity matched to the measured layer means gives R = "
             f"{_span([r['matched']['ratio'] for r in ok.values()], '.3g')}; the data lie beyond "
-            f"it by {_span(z_hit, '.2g')} se at those {len(far)} of {len(ok)} sheared walls "
-            f"{kind} ({three} of {len(ok)} by at least 3 se). "
+            f"it by {_span(z_hit, '.2g')} se: beyond {GRAIN_SE:g} se at {len(far)} of "
+            f"{len(ok)} sheared walls ({three} by >= 3 se) {kind}. "
         )
         if far
         else (
@@ -1231,7 +1292,8 @@ def free_text(rows: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
             f"{len(matched)} walls ({len(count('z', 3.0))} by at least 3 se)"
             + (
                 f"; with omega_1 and W_layers independent (the bound: their correlation comes "
-                f"from the time blocks) at {len(bound)} of {len(with_bound)} "
+                f"from the time blocks) and R's own error propagated at {len(bound)} of "
+                f"{len(with_bound)} "
                 f"({len(count('z_independent', 3.0))} by at least 3 se)"
                 if with_bound
                 else ""
@@ -1907,6 +1969,9 @@ def spin_verdict(
     numbers["pooled_p_headline_count"] = None if c_t is None else c_t[0]
     numbers["pooled_p_headline_draws"] = None if c_t is None else c_t[1]
     numbers["pooled_p_headline_mc_error"] = None if c_t is None else mc_error(*c_t)
+    # referee 15, point 6: the one p the verdict states, and why the other pooled_p_* are not it
+    numbers["verdict_p"] = numbers["pooled_p_headline"]
+    numbers["p_note"] = P_NOTE
     misfits = null_misfits(tested, info)
     numbers["null_fit_misfits"] = misfits
     misfit_line = _null_misfit_text(misfits)
