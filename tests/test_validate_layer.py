@@ -455,6 +455,25 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     texts = [t.get_text() for t in legend.get_texts()]
     assert "shaded: the 3 d at each wall over which the asymmetry a is measured" in texts
     assert len(rate.lines) >= 5  # the decaying alternatives' rates, and the local one's
+    # referee 15, point 2: the (c) curves name their phi, and the layer verdict's profile at
+    # the material's L and phi (its solve, passed on) is drawn with them, in both panels
+    assert sum(r"$\phi$ = 19 deg" in name for name in entry["models"]) == 3
+    from cosserat.studies.validate.layer import material_length
+
+    assert r.layer is not None
+    m = material_length(r.run, r.layer, 5.28, 0.6, 18.15)
+    assert m is not None
+    drawn = run_entry(r, m.to_dict())
+    name = list(drawn["models"])[-1]
+    assert name.startswith(
+        r"(c) Cosserat, delta = 13.9 deg, material's L = 5.28 d, $\phi$ = 18.15 deg ($\chi^2$ "
+    )
+    assert list(drawn["models"])[:-1] == list(entry["models"])
+    assert name in drawn["layer"]["model_rates"]
+    curve = drawn["models"][name]
+    assert np.all(np.diff(curve["d"]) > 0.0)  # sorted, from the moving wall
+    assert curve["u"][0] == pytest.approx(1.0, abs=0.05) and curve["u"][-1] < 0.5
+    assert len(run_figure(drawn).axes[0].lines) == len(lin.lines) + 1
 
 
 def _cosserat_layer_run(L: float) -> Run:
@@ -521,10 +540,24 @@ def test_the_layer_shape_at_the_materials_L():
     assert (
         "(c) (phi = 30 deg (sin phi = 0.500; the material's, the same calibration's, from " in said
     )
+    # referee 15, point 2: the run's own L refitted at the material's phi (about 10 solves):
+    # at B = 0 phi and L enter (c) together, so at 30 deg a longer L fits the 19 deg, L = 4
+    # d profile exactly, and the alternatives' 4 d (at 19 deg) is kept beside it
+    assert at_30.chi2_fit == pytest.approx(0.0, abs=1e-6)
+    assert at_30.L_fit_design == pytest.approx(4.0, rel=2e-3) and at_30.L_fit > 4.1
+    assert same.L_fit_design == same.L_fit
     assert (
-        f"(chi^2 = {at_30.chi2_fit:.3g}/{at_30.dof_fit}; the alternatives' fit, at phi = 19 deg)"
-        in said
+        f"its own best L = {at_30.L_fit:.3g} +- {at_30.L_fit_se:.2g} d (chi^2 = "
+        f"{at_30.chi2_fit:.3g}/{at_30.dof_fit}; refitted at the material's phi, 4 d at the "
+        "alternatives' phi = 19 deg)" in said
     )
+    # its error from chi^2's curvature: finite, and small on a noiseless profile's bins
+    assert 0.0 < same.L_fit_se < 0.5
+    # the figure's curve is the same solve: at the bins it is the bins' model u
+    s_d, u_d = np.array(same.curve[0])[::-1], np.array(same.curve[1])[::-1]
+    data_u = np.interp(run.distance_d, s_d, u_d)
+    assert data_u == pytest.approx(run.quantity("u")[0], abs=2e-3)
+    assert same.asymmetry > 0.5  # its band at the smoother (fixed) wall
     assert f"decaying from the smoother wall over {at_30.decay_d:.2g} d)" in said
     with pytest.raises(ParameterError, match=re_escape("the material's phi must be in (0, 90)")):
         material_length(run, p, 4.0, 0.5, 90.0)
@@ -533,6 +566,26 @@ def test_the_layer_shape_at_the_materials_L():
         material_length(run, p, -1.0, 0.5)
     (v,) = layer_verdicts([run], material_L=(8.0, 1.0))
     assert v.verdict == "supported" and text in v.evidence
+    # referee 15, point 2: the rejection is a warning, and the band's side does not depend on L
+    from cosserat.studies.validate.layer import material_length_warning
+
+    a = v.numbers["asymmetry"]
+    warn = material_length_warning([other], [p], a)
+    assert warn in v.numbers["warnings"] and v.numbers["warnings"][0] == warn
+    assert warn.startswith(
+        "the Cosserat model with the material's L (8 +- 1 d, from the gravity runs' "
+        f"calibration) is rejected by the layer profile (layer chi^2 = {other.chi2['ar1']:.3g}"
+        f"/10, p = {other.p['ar1']:.2g}; under AR(1)); at B = 0 the data want L = 4 +- "
+    )
+    assert (
+        " d (the runs' own L; 4.0 se of the material's L below it): one material does not "
+        "carry one L across B = 0 and gravity, or the smoother fixed wall sets the layer's "
+        "scale. The band's side does not depend on L: every (c) profile puts the band at the "
+        f"smoother wall (a = {other.asymmetry:+.2f} to {other.asymmetry:+.2f} at the material's "
+        "L, " in warn
+    )
+    assert warn.endswith(f"the own L at phi = 19 deg), as the data's a = {a:+.3f} does")
+    assert material_length_warning([same], [p], 0.7) == ""  # fitted: no warning
     assert v.numbers["material_length"][0]["L_fit_below_se"] == pytest.approx(4.0, abs=0.01)
     (plain,) = layer_verdicts([run])
     assert "The material's L" not in plain.evidence and plain.numbers["material_length"] == []

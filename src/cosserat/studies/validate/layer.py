@@ -69,13 +69,16 @@ from .forward import forward_departure
 from .layer_alternatives import (
     COSSERAT_PHI,
     COVARIANCES,
+    CURVE_POINTS,
     REFERENCES,
     LayerAlternative,
     LayerData,
+    best_length,
     cosserat_profile,
     cosserat_values,
     cosserat_velocity,
     layer_alternatives,
+    profile_velocity,
 )
 from .measures import P_SIGNIFICANT, band_stress_ratio, spin_correlation, velocity_correlation
 from .stresses import fully_rough
@@ -1179,7 +1182,8 @@ class MaterialLength:
     dof : int
         The bins.
     L_fit, chi2_fit, dof_fit : float, float, int
-        The run's best-fitting L [d] and its chi^2 under AR(1) (NaN, NaN, 0 without it).
+        The run's best-fitting L [d] and its chi^2 under AR(1) (NaN, NaN, 0 without it), at
+        ``phi`` (refitted there where ``phi`` is the material's; referee 15, point 2).
     phi, delta : float
         The profile's friction angle and its smoother wall's delta [deg] (referee 13, point
         4: stated; NaN where not given).
@@ -1191,6 +1195,17 @@ class MaterialLength:
     decay_d : float
         The e-folding length of the profile's shear rate from the smoother wall [d], from its
         rates between the first bins (NaN where they do not decay).
+    L_fit_se : float
+        ``L_fit``'s error [d]: from chi^2's curvature in L (two more solves, at L_fit x
+        (1 +- 5%)), scaled by sqrt(chi2_fit / dof_fit) where that exceeds 1 (NaN without it).
+    L_fit_design : float
+        The alternatives' best L, at the design's phi :data:`COSSERAT_PHI` [d] (equal to
+        ``L_fit`` where ``phi`` is not the material's; NaN without it).
+    asymmetry : float
+        The profile's own a at the run's bins [-] (its band's side: > 0 at the smoother wall).
+    curve : (distance_d, u)
+        The profile for the run's figure: distances from the moving wall [d], u over V [-]
+        (from the same solve).
     """
 
     run: str
@@ -1207,6 +1222,10 @@ class MaterialLength:
     A: float = math.nan
     material_phi: bool = False
     decay_d: float = math.nan
+    L_fit_se: float = math.nan
+    L_fit_design: float = math.nan
+    asymmetry: float = math.nan
+    curve: tuple[tuple[float, ...], tuple[float, ...]] = ((), ())
 
     @property
     def p(self) -> dict[str, float]:
@@ -1237,6 +1256,10 @@ class MaterialLength:
             "A": self.A,
             "material_phi": self.material_phi,
             "decay_d": self.decay_d,
+            "L_fit_se": self.L_fit_se,
+            "L_fit_design": self.L_fit_design,
+            "asymmetry": self.asymmetry,
+            "curve": {"distance_d": list(self.curve[0]), "u": list(self.curve[1])},
         }
 
 
@@ -1256,8 +1279,10 @@ def material_length(
 ) -> MaterialLength | None:
     """:class:`MaterialLength` of one layer run at the material's ``L`` +- ``L_se`` [d] and
     its ``phi`` [deg] (None: the design's, :data:`~.layer_alternatives.COSSERAT_PHI`); one
-    solve. None where the run has no alternatives (no stress ratio) or the profile has no
-    solution."""
+    solve (bins and figure curve), and where ``phi`` is given the run's own L refitted there
+    (about 10 solves from the alternatives' L at the design's phi) and, in either case, its
+    error (2 solves): about 1 ms per solve. None where the run has no alternatives (no stress
+    ratio) or the profile has no solution."""
     if p.stress_ratio is None or not p.alternatives:
         return None
     if not (math.isfinite(L) and L > 0.0 and math.isfinite(L_se) and L_se >= 0.0):
@@ -1266,12 +1291,27 @@ def material_length(
         raise ParameterError(f"the material's phi must be in (0, 90) deg; got {phi}")
     angle = COSSERAT_PHI if phi is None else float(phi)
     data = layer_data(run, p.smoother, p.stress_ratio)
+    fit = next((x for x in p.alternatives if x.key == "cosserat-Lfit"), None)
+    design = math.nan if fit is None else float(fit.parameters["L_d"])
     try:
-        v = cosserat_velocity(data, L, phi=angle)
+        sol = cosserat_profile(data, L, angle)
+        own = (
+            (math.nan, math.nan)
+            if fit is None
+            else (design, fit.chi2)
+            if phi is None
+            else best_length(data, angle, near=design)
+        )
+        own_se = _length_se(data, angle, *own, data.v.size - 1) if fit is not None else math.nan
     except CosseratError:
         return None
+    v = profile_velocity(data, sol)
+    y = np.linspace(0.0, data.gap_d, CURVE_POINTS)
+    curve = (
+        tuple(float(x) for x in (data.gap_d - y if p.smoother == "fixed" else y)),
+        tuple(float(x) for x in data.to_u(profile_velocity(data, sol, y))),
+    )
     chi2 = {kind: data.under(kind).chi2(v) for kind in COVARIANCES}
-    fit = next((x for x in p.alternatives if x.key == "cosserat-Lfit"), None)
     given = cosserat_values(data, L, angle)
     wall = "delta_lower" if p.smoother == "fixed" else "delta"
     k_wall = "K_lower" if p.smoother == "fixed" else "K"
@@ -1281,8 +1321,8 @@ def material_length(
         float(L_se),
         chi2,
         int(data.v.size),
-        math.nan if fit is None else float(fit.parameters["L_d"]),
-        math.nan if fit is None else fit.chi2,
+        own[0],
+        own[1],
         0 if fit is None else fit.dof,
         float(given["phi"]),
         float(given[wall]),
@@ -1290,7 +1330,25 @@ def material_length(
         float(given["A"]),
         phi is not None,
         _decay_length(data.y, v),
+        own_se,
+        design,
+        data.asymmetry(v),
+        curve,
     )
+
+
+def _length_se(data: LayerData, phi: float, L: float, chi2: float, dof: int) -> float:
+    """The error of a best-fitting L [d] (chi^2 = ``chi2`` on ``dof``): 1 / sqrt(half chi^2's
+    second derivative in L), from chi^2 at L x (1 +- 5%) (two solves), scaled by
+    sqrt(chi2 / dof) where that exceeds 1; NaN where chi^2 does not curve upward there."""
+    if not math.isfinite(L):
+        return math.nan
+    h = 0.05 * L
+    lo, hi = (data.chi2(cosserat_velocity(data, L + s * h, phi=phi)) for s in (-1.0, 1.0))
+    curvature = (lo - 2.0 * chi2 + hi) / (h * h)
+    if not curvature > 0.0:
+        return math.nan
+    return math.sqrt(2.0 / curvature) * math.sqrt(max(1.0, chi2 / max(dof, 1)))
 
 
 def _decay_length(y: np.ndarray, v: np.ndarray, bins: int = 4) -> float:
@@ -1319,8 +1377,15 @@ def material_length_text(rows: Sequence[MaterialLength]) -> str:
     for m in rows:
         chis = ", ".join(f"{m.chi2[k]:.3g}/{m.dof}" for k in COVARIANCES if k in m.chi2)
         fitted = (
-            f"; its own best L = {m.L_fit:.3g} d (chi^2 = {m.chi2_fit:.3g}/{m.dof_fit}"
-            + (f"; the alternatives' fit, at phi = {COSSERAT_PHI:g} deg" if m.material_phi else "")
+            f"; its own best L = {m.L_fit:.3g}"
+            + (f" +- {m.L_fit_se:.2g}" if math.isfinite(m.L_fit_se) else "")
+            + f" d (chi^2 = {m.chi2_fit:.3g}/{m.dof_fit}"
+            + (
+                f"; refitted at the material's phi, {m.L_fit_design:.3g} d at the "
+                f"alternatives' phi = {COSSERAT_PHI:g} deg"
+                if m.material_phi
+                else ""
+            )
             + f") is {m.below_se:.1f} se of the material's L below it"
             if math.isfinite(m.L_fit)
             else ""
@@ -1531,6 +1596,65 @@ def below_yield_text(rows: Sequence[BelowYield], material: Sequence[MaterialLeng
     )
 
 
+def material_length_warning(
+    rows: Sequence[MaterialLength], positions: Sequence[LayerPosition], a: float
+) -> str:
+    """The warning (referee 15, point 2; "" unless every run's profile (c) at the material's L
+    is rejected, p < :data:`~.measures.P_SIGNIFICANT` under AR(1)): the material's L fails
+    the layers' shape, the L the layers want (their own, with its error, in the material's
+    se below it), the two readings, and that the band's side (every (c) profile's a, and the
+    data's pooled ``a``) does not depend on L."""
+    if not rows or any(m.p["ar1"] >= P_SIGNIFICANT for m in rows):
+        return ""
+    m0 = rows[0]
+    n = len(rows)
+    which = "the layer profile" if n == 1 else "both layer profiles" if n == 2 else f"all {n}"
+    misses = "; ".join(
+        f"{m.run} chi^2 = {m.chi2['ar1']:.3g}/{m.dof}, p = {m.p['ar1']:.2g}" for m in rows
+    )
+    own = [m for m in rows if math.isfinite(m.L_fit)]
+    wanted = (
+        "; at B = 0 the data want L = "
+        + ", ".join(
+            f"{m.L_fit:.2g}" + (f" +- {m.L_fit_se:.1g}" if math.isfinite(m.L_fit_se) else "")
+            for m in own
+        )
+        + " d (the runs' own L"
+        + (", at the material's phi" if all(m.material_phi for m in own) else "")
+        + "; "
+        + ", ".join(f"{m.below_se:.1f}" for m in own)
+        + " se of the material's L below it)"
+        if own
+        else ""
+    )
+    sides = {p.smoother for p in positions if p.run in {m.run for m in rows}}
+    wall = f"the smoother {sides.pop()} wall" if len(sides) == 1 else "the smoother wall"
+    cos = [x.asymmetry for p in positions for x in p.alternatives if x.key.startswith("cosserat")]
+    at_mat = [m.asymmetry for m in rows if math.isfinite(m.asymmetry)]
+    every = [*cos, *at_mat]
+    side = (
+        (
+            f"every (c) profile puts the band at the smoother wall (a = {min(at_mat):+.2f} to "
+            f"{max(at_mat):+.2f} at the material's L, {min(cos):+.2f} to {max(cos):+.2f} at L = "
+            f"4 d, 5 d and the own L at phi = {COSSERAT_PHI:g} deg), as the data's a = {a:+.3f}"
+            " does"
+        )
+        if every and at_mat and cos and min(every) > 0.0
+        else "the verdict is the data's a, not a profile's"
+    )
+    return (
+        f"the Cosserat model with the material's L ({m0.L:.3g} +- {m0.L_se:.2g} d, from the "
+        f"gravity runs' calibration"
+        + (f", at its phi = {m0.phi:.4g} deg" if m0.material_phi else "")
+        + f") is rejected by {which} ({misses}; under AR(1))"
+        + wanted
+        + ": one material does not carry one L across B = 0 and gravity, or "
+        + wall
+        + " sets the layer's scale. The band's side does not depend on L: "
+        + side
+    )
+
+
 def _given_text(m: MaterialLength) -> str:
     """What (c) is solved with besides L (referee 13, point 4), "" where not recorded."""
     if not math.isfinite(m.phi):
@@ -1606,6 +1730,8 @@ def layer_position_verdict(
     warnings = _warnings(positions, a, se, references)
     if below:
         warnings.insert(0, below_yield_text(below, material))
+    if warn := material_length_warning(material, positions, a):
+        warnings.insert(1 if below else 0, warn)
     steady_text, on_unsteady = steadiness_of_a(positions)
     evidence = (
         f"a = {a:+.3f} +- {se:.2g} ({z:+.1f} se) over {len(positions)} run(s): "
@@ -1800,6 +1926,7 @@ __all__ = [
     "layer_verdicts",
     "material_length",
     "material_length_text",
+    "material_length_warning",
     "measure_layer",
     "monotonic_violation",
     "shear_rates",

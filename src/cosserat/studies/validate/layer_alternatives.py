@@ -527,12 +527,44 @@ def cosserat_velocity(
     bins when None), the smoother wall at ``delta = atan(ratio)`` and the rougher fully rough,
     friction angle ``phi`` [deg] (default :data:`COSSERAT_PHI`), material length ``L_d`` [d]
     (:func:`cosserat_profile`)."""
-    sol = cosserat_profile(data, L_d, phi)
+    return profile_velocity(data, cosserat_profile(data, L_d, phi), y_d)
+
+
+def profile_velocity(data: LayerData, sol: Any, y_d: np.ndarray | None = None) -> np.ndarray:
+    """(c)'s ``v`` at ``y_d`` (distances from the smoother wall [d]; the bins when None) from
+    its solution ``sol`` (:func:`cosserat_profile`), so that one solve gives the bins and the
+    figure's curve."""
     xi, u = np.asarray(sol.xi, dtype=float), np.asarray(sol.u, dtype=float)
     y = data.y if y_d is None else np.asarray(y_d, dtype=float)
     y_fixed = y if data.smoother == "fixed" else data.gap_d - y
     u_bins = np.interp(y_fixed / data.gap_d, xi, u)
     return u_bins if data.smoother == "fixed" else 1.0 - u_bins
+
+
+def best_length(
+    data: LayerData, phi: float = COSSERAT_PHI, near: float | None = None
+) -> tuple[float, float]:
+    """(c)'s best-fitting ``L`` [d] at friction angle ``phi`` [deg] and its chi^2 under
+    ``data``'s error model: a bounded search of ln L, over the neighbours of the best of 13
+    points of :data:`L_RANGE`, or over ``near`` / 2 to ``near`` x 2 where ``near`` [d] (a fit
+    at another phi) is given (about 10 solves; the full search where the best lies at that
+    range's edge)."""
+    if near is None:
+        grid = np.geomspace(L_RANGE[0], L_RANGE[1], 13)
+        chis = [data.chi2(cosserat_velocity(data, L, phi=phi)) for L in grid]
+        k = int(np.argmin(chis))
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    else:
+        lo, hi = max(near / 2.0, L_RANGE[0]), min(near * 2.0, L_RANGE[1])
+    r = minimize_scalar(
+        lambda lnL: data.chi2(cosserat_velocity(data, math.exp(lnL), phi=phi)),
+        bounds=(math.log(lo), math.log(hi)),
+        method="bounded",
+        options={"xatol": 1e-3},
+    )
+    if near is not None and min(r.x - math.log(lo), math.log(hi) - r.x) < 1e-2:
+        return best_length(data, phi)
+    return math.exp(float(r.x)), float(r.fun)
 
 
 def fit_cosserat(data: LayerData) -> list[LayerAlternative]:
@@ -548,17 +580,7 @@ def fit_cosserat(data: LayerData) -> list[LayerAlternative]:
                 shape, True,
             )
         )  # fmt: skip
-    grid = np.geomspace(L_RANGE[0], L_RANGE[1], 13)
-    chis = [data.chi2(cosserat_velocity(data, L)) for L in grid]
-    k = int(np.argmin(chis))
-    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    r = minimize_scalar(
-        lambda lnL: data.chi2(cosserat_velocity(data, math.exp(lnL))),
-        bounds=(math.log(lo), math.log(hi)),
-        method="bounded",
-        options={"xatol": 1e-3},
-    )
-    L = math.exp(float(r.x))
+    L = best_length(data)[0]
     out.append(
         _alternative(
             data, "cosserat-Lfit", f"(c) Cosserat, delta = {delta:.1f} deg, L fitted",
@@ -620,6 +642,7 @@ __all__ = [
     "CovarianceFit",
     "LayerAlternative",
     "LayerData",
+    "best_length",
     "cooperativity_amplitude",
     "cosserat_profile",
     "cosserat_values",
@@ -633,4 +656,5 @@ __all__ = [
     "ngf_wall_fluidity",
     "ngf_wall_velocity",
     "profile_chi2",
+    "profile_velocity",
 ]

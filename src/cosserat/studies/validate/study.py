@@ -570,7 +570,8 @@ def analyse_run(
     fix: StressFix | None = None,
 ) -> RunResult:
     """Fit, measure and compare one run (module docstring); with ``figures_to``, also draw
-    the run's figure there (in the worker that analysed it, when there are workers);
+    the run's figure there (in the worker that analysed it, when there are workers; a layer
+    run's waits for the layer verdict, :func:`.report.write_figures`);
     ``independent_bins`` and ``fix`` (what the stresses fix in the Cosserat fit):
     :func:`.fits.fit_run`'s."""
     stress = band_stress_ratio(run)
@@ -684,7 +685,9 @@ def analyse_run(
         if run.cell == "channel" or layer is not None
         else thickness_sensitivity(run, sensitivity_fs(f)),
     )
-    if figures_to is not None:
+    # a layer run's figure waits for the layer verdict's profile at the material's L
+    # (report.write_figures draws it; referee 15, point 2): drawn once, not twice
+    if figures_to is not None and layer is None:
         from .report import write_run_figure
 
         result.figure = write_run_figure(result, figures_to)
