@@ -331,10 +331,17 @@ def test_the_small_islands_ends_and_saddle_are_told():
         f"; the island at {ss._piece_text(low)} ends at a solved point in K (upper) and L "
         f"(upper) (the refined points next beyond it, L {ll[-1]:.3g} d, are outside: Delta "
         f"chi^2 >= {ends['L', 'upper']['delta_chi2']:.3g}), no refined point beyond it in K "
-        "(upper): unresolved there; the path between the islands climbs to Delta chi^2 = "
-        f"{saddle['delta_chi2']:.3g} (the saddle on the grids, at their resolution): separate "
-        f"basins at 95% (threshold 6.02) and at 3 sigma ({saddle['threshold_3sigma']:.3g})"
+        "(upper): unresolved there; the path between the islands climbs to Delta chi^2 "
+        f"~{sum(saddle['range']) / 2:.2g} ({saddle['range'][0]:.3g}-{saddle['delta_chi2']:.3g} "
+        "on the grid points: the pass and its lowest neighbours towards each island) (the "
+        "saddle on the grids, at their resolution): separate basins at 95% (threshold 6.02) "
+        f"and at 3 sigma ({saddle['threshold_3sigma']:.3g}) at the pass's point only (its "
+        "range reaches below), at grid resolution; the island at "
+        f"{ss._piece_text(low)} exists only just: its least Delta chi^2 5.56 against the "
+        "threshold 6.02"
     ) in text
+    # on the declared ranges' grid the pass is one step from the small island's own point
+    assert saddle["range"][0] == pytest.approx(low["delta_chi2"])
     # the fit alone: each of its ends unresolved
     alone = min(ss.scan_region(_basin_scan([start]))["islands"], key=lambda i: i["L"][0])
     assert ss._point_ends_text(alone) == (
@@ -344,7 +351,7 @@ def test_the_small_islands_ends_and_saddle_are_told():
     )
     # below the 3-sigma threshold the text says so
     one = {**low, "saddle": {**saddle, "delta_chi2": 10.0}}
-    assert ss._saddle_text(one, True).endswith(", not at 3 sigma (11.9)")
+    assert ", not at 3 sigma (11.9); the island at" in ss._saddle_text(one, True)
     assert ss._beyond_all(3.0, np.array([1.0, 2.0])) == 1
     assert ss._beyond_all(0.5, np.array([1.0, 2.0])) == -1
     assert ss._beyond_all(1.5, np.array([1.0, 2.0])) == 0 == ss._beyond_all(1.0, np.zeros(0))
@@ -400,3 +407,37 @@ def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
     assert box.x0 >= 0.0 and box.y0 >= 0.0 and box.x1 <= fig.bbox.width
     assert box.y1 < panel.get_window_extent().y0  # below the panels, clear of the x label
     plt.close(fig)
+
+
+def test_the_saddle_is_told_as_a_range_at_grid_resolution():
+    # referee 15, point 4: the pass (20, over the ridge) steps down to 9 towards each island,
+    # so the saddle is ~14 (9-20); a pass of two points (round the ridge at 9 by 8) has none
+    k, ll, d = _pass_grid(50.0)
+    grids = [(k, ll, d, "refined")]
+    main, others, _ = ss.region_pieces(grids, 6.0, (0.0, 1.0))
+    got = ss.island_saddle(grids, 6.0, (0.0, 1.0), others[0]["masks"], main)
+    assert got == (20.0, "refined")
+    assert ss.saddle_pass(grids, got, (0.0, 1.0), others[0]["masks"]) == 9.0
+    k, ll, d8 = _pass_grid(8.0)
+    piece = ss.region_pieces([(k, ll, d8, "refined")], 6.0, (0.0, 1.0))[1][0]["masks"]
+    assert ss.saddle_pass([(k, ll, d8, "refined")], (9.0, "refined"), (0.0, 1.0), piece) is None
+    island = {"K": [0.0, 0.0], "L": [16.0, 16.0], "delta_chi2": 5.5,
+              "saddle": {"delta_chi2": 20.0, "grids": "refined", "range": [9.0, 20.0],
+                         "threshold": 6.0, "threshold_3sigma": 11.8}}  # fmt: skip
+    assert ss._saddle_text(island, True) == (
+        "; the path between the islands climbs to Delta chi^2 ~14 (9-20 on the refined "
+        "points: the pass and its lowest neighbours towards each island) (the saddle on the "
+        "refined grids, at their resolution): separate basins at 95% (threshold 6) and at 3 "
+        "sigma (11.8) at the pass's point only (its range reaches below), at grid resolution; "
+        "the island at K 0, L ~16 d exists only just: its "
+        "least Delta chi^2 5.5 against the threshold 6"
+    )
+    # the low end above the 3-sigma threshold: the margin, from the range's middle
+    far = {**island, "delta_chi2": 1.0,
+           "saddle": {**island["saddle"], "range": [12.7, 13.6], "delta_chi2": 13.6,
+                      "threshold": 6.02, "threshold_3sigma": 11.9}}  # fmt: skip
+    assert ss._saddle_text(far, True).endswith(
+        "~13 (12.7-13.6 on the refined points: the pass and its lowest neighbours towards "
+        "each island) (the saddle on the refined grids, at their resolution): separate basins "
+        "at 95% (threshold 6.02) and at 3 sigma (11.9) by a margin of ~1, at grid resolution"
+    )
