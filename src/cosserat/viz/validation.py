@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import textwrap
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from .calibration import MODEL_STYLES
@@ -31,6 +31,17 @@ def model_style(model: str, order: Sequence[str] = ()) -> dict[str, Any]:
         return dict(MODEL_STYLES[model])
     i = list(order).index(model) if model in order else len(order)
     return {"color": f"C{(i + 4) % 10}", "linestyle": ["-", "--", "-.", ":"][i % 4]}
+
+
+def declared_order(names: Iterable[str]) -> list[str]:
+    """``names`` in the declared models' order (cosserat, mui, ngf: :data:`MODEL_STYLES`),
+    any other (the joint fit, its null) after them in their own order: one legend order in
+    every run figure, whatever order the fits come in (referee 15, point 7)."""
+    known = list(MODEL_STYLES)
+    names = list(names)
+    return sorted(
+        names, key=lambda n: (known.index(n), 0) if n in known else (len(known), names.index(n))
+    )
 
 
 def _plain(ax: Axes, axis: str = "both") -> None:
@@ -129,7 +140,8 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 yerr=[lower[show], se[show]],
                 **DATA_STYLE,
             )
-            for name, curve in entry["models"].items():
+            for name in declared_order(entry["models"]):
+                curve = entry["models"][name]
                 cu = np.asarray(curve["u"], dtype=float)
                 cd = np.asarray(curve["d"], dtype=float)
                 keep = cu > 0 if log else np.ones(cu.size, bool)
@@ -168,7 +180,9 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
             )
             like = layer.get("spin_like", {}) if layer else {}
             labels, styles = spin.get("labels", {}), spin.get("styles", {})
-            for name, pred in spin.get("predicted", {}).items():
+            predicted = spin.get("predicted", {})
+            for name in declared_order(predicted):
+                pred = predicted[name]
                 # a layer's Cosserat spin in the colour of its velocity curve
                 look = {**model_style(like.get(name, name), order), **styles.get(name, {})}
                 ax.plot(x, np.asarray(pred, dtype=float)[o], label=labels.get(name, name),
@@ -1309,6 +1323,7 @@ __all__ = [
     "STATUS_CODES",
     "band_cells",
     "beyond_range",
+    "declared_order",
     "delta_claim_figure",
     "model_style",
     "no_solution_cells",
