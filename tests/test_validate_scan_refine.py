@@ -342,6 +342,9 @@ def test_the_small_islands_ends_and_saddle_are_told():
     ) in text
     # on the declared ranges' grid the pass is one step from the small island's own point
     assert saddle["range"][0] == pytest.approx(low["delta_chi2"])
+    assert saddle["delta_chi2"] == pytest.approx(float(np.min(
+        _two_basins(np.array([saddle["pass"]["K"]]), np.array([saddle["pass"]["L"]]))
+    )))  # fmt: skip
     # the fit alone: each of its ends unresolved
     alone = min(ss.scan_region(_basin_scan([start]))["islands"], key=lambda i: i["L"][0])
     assert ss._point_ends_text(alone) == (
@@ -417,7 +420,7 @@ def test_the_saddle_is_told_as_a_range_at_grid_resolution():
     main, others, _ = ss.region_pieces(grids, 6.0, (0.0, 1.0))
     got = ss.island_saddle(grids, 6.0, (0.0, 1.0), others[0]["masks"], main)
     assert got == (20.0, "refined")
-    assert ss.saddle_pass(grids, got, (0.0, 1.0), others[0]["masks"]) == 9.0
+    assert ss.saddle_pass(grids, got, (0.0, 1.0), others[0]["masks"]) == (9.0, 0.0, 4.0)
     k, ll, d8 = _pass_grid(8.0)
     piece = ss.region_pieces([(k, ll, d8, "refined")], 6.0, (0.0, 1.0))[1][0]["masks"]
     assert ss.saddle_pass([(k, ll, d8, "refined")], (9.0, "refined"), (0.0, 1.0), piece) is None

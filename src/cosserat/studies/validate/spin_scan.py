@@ -1674,7 +1674,7 @@ def saddle_pass(
     saddle: tuple[float, str],
     optimum: tuple[float, float],
     piece: Sequence[NDArray[np.bool_]],
-) -> float | None:
+) -> tuple[float, float, float] | None:
     """The low end of the saddle's range at grid resolution (referee 15, point 4): the pass
     (the point of :func:`island_saddle`'s level that joins the islands) steps down to each
     island's side (the pieces of the points below its level) at its lowest neighbour there;
@@ -1692,8 +1692,9 @@ def saddle_pass(
 
     Returns
     -------
-    float or None
-        The low end [-]; None where no pass point steps down to both sides.
+    (float, float, float) or None
+        The low end [-] and the pass's K [-] and L [d] (the figure marks it); None where no
+        pass point steps down to both sides.
     """
     level, which = saddle
     keep = [i for i, g in enumerate(grids) if which == "all" or g[3] != "range"]
@@ -1705,7 +1706,7 @@ def saddle_pass(
     for o in others:
         if any(bool((m & p).any()) for m, p in zip(o["masks"], mine, strict=True)):
             side = [s_ | m for s_, m in zip(side, o["masks"], strict=True)]
-    best: float | None = None
+    best: tuple[float, float, float] | None = None
     for g, (_, _, d, _) in enumerate(sub):
         d = np.asarray(d, dtype=float)
         for a, b in zip(*np.nonzero(d == level), strict=True):
@@ -1714,7 +1715,9 @@ def saddle_pass(
             theirs = [float(np.asarray(sub[h][2])[i, j]) for h, i, j in near if side[h][i, j]]
             if ours and theirs:
                 low = min(min(ours), min(theirs))
-                best = low if best is None else max(best, low)
+                if best is None or low > best[0]:
+                    K, L = np.asarray(sub[g][0], dtype=float), np.asarray(sub[g][1], dtype=float)
+                    best = (low, float(K[a]), float(L[b]))
     return best
 
 
@@ -1809,7 +1812,8 @@ def scan_region(sc: Scan) -> dict[str, Any] | None:
             low = None if got is None else saddle_pass(grids, got, optimum, piece_masks)
             one["saddle"] = {"delta_chi2": None if got is None else got[0],
                              "grids": None if got is None else got[1],
-                             "range": None if low is None else [low, got[0]],
+                             "range": None if low is None or got is None else [low[0], got[0]],
+                             "pass": None if low is None else {"K": low[1], "L": low[2]},
                              "threshold": sc.threshold, "threshold_3sigma": at_3_sigma}  # fmt: skip
         islands.append(one)
     ext["islands"] = islands
