@@ -5,6 +5,7 @@ at plane_smooth_H20_qs): :func:`~cosserat.studies.validate.spin_scan.refine_cell
 
 from __future__ import annotations
 
+import itertools
 import math
 from types import SimpleNamespace
 
@@ -410,6 +411,66 @@ def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
     assert box.x0 >= 0.0 and box.y0 >= 0.0 and box.x1 <= fig.bbox.width
     assert box.y1 < panel.get_window_extent().y0  # below the panels, clear of the x label
     plt.close(fig)
+
+
+def test_the_scan_figure_draws_the_saddles_cells_and_pass_and_names_the_insets_axes():
+    """Referee 15, point 4: a refined cell with no point inside the region (the saddle's,
+    K 4-5 x L 7.07-12 d in smooth_H20) is outlined and its points drawn, the pass marked (X),
+    the star above every dot; the inset's axes are named, its L tick labels apart, and its
+    white (not refined) said."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import SCAN_KEY, inset_ticks, spin_scan_figure
+
+    k, ll = np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11)
+    kk, lc = ss.cell_axes(k, ll, 2, 3)
+    ks, ls = ss.cell_axes(k, ll, 4, 5)  # K 4-5, L 7.07-12 d
+
+    def grid(K, L, d):
+        return {"K": list(K), "L": list(L), "departure": (0.01 + 0.0 * d).tolist(),
+                "null": (0.0 * d).tolist(), "delta_chi2": d.tolist()}  # fmt: skip
+
+    saddle_cell = grid(ks, ls, 12.0 + 0.0 * _two_basins(ks, ls))
+    pass_at = {"K": float(ks[2]), "L": float(ls[1])}
+    rec = {
+        "run": "r", "measured": -0.3, "measured_beyond_null": -0.28,
+        "measured_beyond_null_se": 0.03, "best_K": 5.3, "best_L": 14.0,
+        "best_beyond_null": 0.09, "threshold": 6.02, "phi": 18.1, "delta": {"moving": 13.2},
+        "grids": {"range": grid(k, ll, _two_basins(k, ll)),
+                  "near": grid(k, ll, np.zeros((11, 11)))},
+        "refined": [saddle_cell, {**grid(kk, lc, _two_basins(kk, lc)), "base": "the fit"}],
+        "extra": [{"K": 2.9, "L": 3.8, "delta_chi2": 5.56}],
+        "region": {"K": [2.75, 6.0], "L": [3.65, 15.0], "K_bounds": ["data", "data"],
+                   "L_bounds": ["data", "data"],
+                   "islands": [{"K": [4.7, 6.0], "L": [11.9, 15.0]},
+                               {"K": [2.75, 2.9], "L": [3.65, 3.8],
+                                "saddle": {"pass": pass_at}}]},
+    }  # fmt: skip
+    fig = spin_scan_figure([rec])
+    panel = fig.axes[0]
+    solid = [ln for ln in panel.get_lines() if ln.get_linestyle() == "-"
+             and len(ln.get_xdata()) == 5]  # fmt: skip
+    assert any(np.allclose(ln.get_xdata()[:2], [ls[0], ls[-1]])
+               and np.allclose(ln.get_ydata()[1:3], [ks[0], ks[-1]]) for ln in solid)  # fmt: skip
+    # its 25 points, all outside the region, drawn
+    assert any(len(ln.get_xdata()) == 25 and np.allclose(sorted(set(ln.get_xdata())), ls)
+               for ln in panel.get_lines())  # fmt: skip
+    (mark,) = [ln for ln in panel.get_lines() if ln.get_marker() == "X"]
+    assert (mark.get_xdata()[0], mark.get_ydata()[0]) == (pass_at["L"], pass_at["K"])
+    (star,) = [ln for ln in panel.get_lines() if ln.get_marker() == "*"]
+    assert star.get_zorder() > max(ln.get_zorder() for ln in panel.get_lines()
+                                   if ln.get_marker() == ".")  # fmt: skip
+    (inset,) = panel.child_axes
+    assert (inset.get_xlabel(), inset.get_ylabel()) == ("L [d]", "K [-]")
+    assert "white: not refined" in inset.get_title() and "white: not refined" in SCAN_KEY
+    fig.canvas.draw()
+    boxes = [t.get_window_extent() for t in inset.get_xticklabels() if t.get_text()]
+    assert len(boxes) >= 2
+    assert all(a.x1 < b.x0 for a, b in itertools.pairwise(boxes))
+    plt.close(fig)
+    # ticks a quarter of the span apart in log L: "3.5" and "5" overlapped over 2.45-7.07 d
+    assert inset_ticks(2.45, 7.07) == [3.0, 4.0, 7.0]
+    assert inset_ticks(12.0, 20.4) == [15.0, 20.0]
 
 
 def test_the_saddle_is_told_as_a_range_at_grid_resolution():
