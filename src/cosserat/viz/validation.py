@@ -1332,7 +1332,7 @@ INSET_TICKS = (1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.0, 10.0, 15.0, 20.0, 30.0, 50.0, 
 
 def inset_ticks(lo: float, hi: float) -> list[float]:
     """L ticks [d] for the spin scan's inset over ``lo``-``hi`` [d]: values of
-    :data:`INSET_TICKS` inside it, each at least a quarter of the span (in log L) from the
+    ``INSET_TICKS`` inside it, each at least a quarter of the span (in log L) from the
     last (referee 15, point 4: "3.5" and "5" overlapped)."""
     gap = 0.25 * math.log(hi / lo)
     out: list[float] = []

@@ -1344,7 +1344,7 @@ def _saddle_text(island: Mapping[str, Any], pair: bool = False) -> str:
 
 ONLY_JUST = 0.9
 """An island whose least Delta chi^2 exceeds this fraction of the threshold "exists only
-just" (:func:`_saddle_text`, referee 15, point 4) [-]."""
+just" (the saddle's sentence, referee 15, point 4) [-]."""
 
 
 def _only_just(island: Mapping[str, Any], threshold: float) -> str:
