@@ -173,6 +173,41 @@ def test_a_run_figure_draws_the_joint_fit_and_its_null_with_their_own_labels():
     plt.close(fig)
 
 
+def test_every_run_figures_legend_has_the_declared_models_order():
+    """Whatever order the fits come in (best first: mui first in rough_H10 and _s2), the
+    legend lists cosserat, mui, ngf, then the joint fit (referee 15, point 7)."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import declared_order, run_figure
+
+    assert declared_order(["joint", "ngf", "mui", "cosserat"]) == [
+        "cosserat", "mui", "ngf", "joint"
+    ]  # fmt: skip
+    assert declared_order(["b", "mui", "a"]) == ["mui", "b", "a"]
+    d = np.arange(10) + 0.5
+    dense = np.linspace(0.0, 10.0, 50)
+    got = []
+    for fits in (["mui", "cosserat", "ngf"], ["ngf", "cosserat", "mui"]):
+        models = {n: {"d": dense, "u": np.exp(-dense / 3.0), "label": f"{n}: u-only fit"}
+                  for n in fits}  # fmt: skip
+        models["joint"] = {"d": dense, "u": np.exp(-dense / 2.9), "label": "joint fit"}
+        entry = {
+            "name": "r", "title": "r", "distance_d": d, "u": np.exp(-d / 3.0),
+            "u_se": np.full(10, 0.01), "order": fits, "models": models,
+            "spin": {"distance_d": d, "departure": np.zeros(10), "stderr": np.full(10, 0.01),
+                     "predicted": {n: np.zeros(10) for n in reversed(fits)},
+                     "labels": {n: f"{n}: u-only fit" for n in fits},
+                     "near_wall_d": 2.5, "gap_d": 10.0},
+        }  # fmt: skip
+        fig = run_figure(entry)
+        got.append([t.get_text() for t in fig.legends[0].get_texts()])
+        plt.close(fig)
+    assert got[0] == got[1] == [
+        "cosserat: u-only fit", "mui: u-only fit", "ngf: u-only fit", "joint fit",
+        "DEM data (+- 1 se)",
+    ]  # fmt: skip
+
+
 def test_the_joint_fits_label_says_one_of_its_regions_basins():
     """Where the scan's 95% region is two islands, the run figure's joint fit is one of two
     basins (referee 14, point 8: smooth_H20's L = 14.1 d)."""

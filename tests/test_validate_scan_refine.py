@@ -5,6 +5,7 @@ at plane_smooth_H20_qs): :func:`~cosserat.studies.validate.spin_scan.refine_cell
 
 from __future__ import annotations
 
+import itertools
 import math
 from types import SimpleNamespace
 
@@ -331,10 +332,20 @@ def test_the_small_islands_ends_and_saddle_are_told():
         f"; the island at {ss._piece_text(low)} ends at a solved point in K (upper) and L "
         f"(upper) (the refined points next beyond it, L {ll[-1]:.3g} d, are outside: Delta "
         f"chi^2 >= {ends['L', 'upper']['delta_chi2']:.3g}), no refined point beyond it in K "
-        "(upper): unresolved there; the path between the islands climbs to Delta chi^2 = "
-        f"{saddle['delta_chi2']:.3g} (the saddle on the grids, at their resolution): separate "
-        f"basins at 95% (threshold 6.02) and at 3 sigma ({saddle['threshold_3sigma']:.3g})"
+        "(upper): unresolved there; the path between the islands climbs to Delta chi^2 "
+        f"~{sum(saddle['range']) / 2:.2g} ({saddle['range'][0]:.3g}-{saddle['delta_chi2']:.3g} "
+        "on the grid points: the pass and its lowest neighbours towards each island) (the "
+        "saddle on the grids, at their resolution): separate basins at 95% (threshold 6.02) "
+        f"and at 3 sigma ({saddle['threshold_3sigma']:.3g}) at the pass's point only (its "
+        "range reaches below), at grid resolution; the island at "
+        f"{ss._piece_text(low)} exists only just: its least Delta chi^2 5.56 against the "
+        "threshold 6.02"
     ) in text
+    # on the declared ranges' grid the pass is one step from the small island's own point
+    assert saddle["range"][0] == pytest.approx(low["delta_chi2"])
+    assert saddle["delta_chi2"] == pytest.approx(float(np.min(
+        _two_basins(np.array([saddle["pass"]["K"]]), np.array([saddle["pass"]["L"]]))
+    )))  # fmt: skip
     # the fit alone: each of its ends unresolved
     alone = min(ss.scan_region(_basin_scan([start]))["islands"], key=lambda i: i["L"][0])
     assert ss._point_ends_text(alone) == (
@@ -344,7 +355,7 @@ def test_the_small_islands_ends_and_saddle_are_told():
     )
     # below the 3-sigma threshold the text says so
     one = {**low, "saddle": {**saddle, "delta_chi2": 10.0}}
-    assert ss._saddle_text(one, True).endswith(", not at 3 sigma (11.9)")
+    assert ", not at 3 sigma (11.9); the island at" in ss._saddle_text(one, True)
     assert ss._beyond_all(3.0, np.array([1.0, 2.0])) == 1
     assert ss._beyond_all(0.5, np.array([1.0, 2.0])) == -1
     assert ss._beyond_all(1.5, np.array([1.0, 2.0])) == 0 == ss._beyond_all(1.0, np.zeros(0))
@@ -400,3 +411,97 @@ def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
     assert box.x0 >= 0.0 and box.y0 >= 0.0 and box.x1 <= fig.bbox.width
     assert box.y1 < panel.get_window_extent().y0  # below the panels, clear of the x label
     plt.close(fig)
+
+
+def test_the_scan_figure_draws_the_saddles_cells_and_pass_and_names_the_insets_axes():
+    """Referee 15, point 4: a refined cell with no point inside the region (the saddle's,
+    K 4-5 x L 7.07-12 d in smooth_H20) is outlined and its points drawn, the pass marked (X),
+    the star above every dot; the inset's axes are named, its L tick labels apart, and its
+    white (not refined) said."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import SCAN_KEY, inset_ticks, spin_scan_figure
+
+    k, ll = np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11)
+    kk, lc = ss.cell_axes(k, ll, 2, 3)
+    ks, ls = ss.cell_axes(k, ll, 4, 5)  # K 4-5, L 7.07-12 d
+
+    def grid(K, L, d):
+        return {"K": list(K), "L": list(L), "departure": (0.01 + 0.0 * d).tolist(),
+                "null": (0.0 * d).tolist(), "delta_chi2": d.tolist()}  # fmt: skip
+
+    saddle_cell = grid(ks, ls, 12.0 + 0.0 * _two_basins(ks, ls))
+    pass_at = {"K": float(ks[2]), "L": float(ls[1])}
+    rec = {
+        "run": "r", "measured": -0.3, "measured_beyond_null": -0.28,
+        "measured_beyond_null_se": 0.03, "best_K": 5.3, "best_L": 14.0,
+        "best_beyond_null": 0.09, "threshold": 6.02, "phi": 18.1, "delta": {"moving": 13.2},
+        "grids": {"range": grid(k, ll, _two_basins(k, ll)),
+                  "near": grid(k, ll, np.zeros((11, 11)))},
+        "refined": [saddle_cell, {**grid(kk, lc, _two_basins(kk, lc)), "base": "the fit"}],
+        "extra": [{"K": 2.9, "L": 3.8, "delta_chi2": 5.56}],
+        "region": {"K": [2.75, 6.0], "L": [3.65, 15.0], "K_bounds": ["data", "data"],
+                   "L_bounds": ["data", "data"],
+                   "islands": [{"K": [4.7, 6.0], "L": [11.9, 15.0]},
+                               {"K": [2.75, 2.9], "L": [3.65, 3.8],
+                                "saddle": {"pass": pass_at}}]},
+    }  # fmt: skip
+    fig = spin_scan_figure([rec])
+    panel = fig.axes[0]
+    solid = [ln for ln in panel.get_lines() if ln.get_linestyle() == "-"
+             and len(ln.get_xdata()) == 5]  # fmt: skip
+    assert any(np.allclose(ln.get_xdata()[:2], [ls[0], ls[-1]])
+               and np.allclose(ln.get_ydata()[1:3], [ks[0], ks[-1]]) for ln in solid)  # fmt: skip
+    # its 25 points, all outside the region, drawn
+    assert any(len(ln.get_xdata()) == 25 and np.allclose(sorted(set(ln.get_xdata())), ls)
+               for ln in panel.get_lines())  # fmt: skip
+    (mark,) = [ln for ln in panel.get_lines() if ln.get_marker() == "X"]
+    assert (mark.get_xdata()[0], mark.get_ydata()[0]) == (pass_at["L"], pass_at["K"])
+    (star,) = [ln for ln in panel.get_lines() if ln.get_marker() == "*"]
+    assert star.get_zorder() > max(ln.get_zorder() for ln in panel.get_lines()
+                                   if ln.get_marker() == ".")  # fmt: skip
+    (inset,) = panel.child_axes
+    assert (inset.get_xlabel(), inset.get_ylabel()) == ("L [d]", "K [-]")
+    assert "white: not refined" in inset.get_title() and "white: not refined" in SCAN_KEY
+    fig.canvas.draw()
+    boxes = [t.get_window_extent() for t in inset.get_xticklabels() if t.get_text()]
+    assert len(boxes) >= 2
+    assert all(a.x1 < b.x0 for a, b in itertools.pairwise(boxes))
+    plt.close(fig)
+    # ticks a quarter of the span apart in log L: "3.5" and "5" overlapped over 2.45-7.07 d
+    assert inset_ticks(2.45, 7.07) == [3.0, 4.0, 7.0]
+    assert inset_ticks(12.0, 20.4) == [15.0, 20.0]
+
+
+def test_the_saddle_is_told_as_a_range_at_grid_resolution():
+    # referee 15, point 4: the pass (20, over the ridge) steps down to 9 towards each island,
+    # so the saddle is ~14 (9-20); a pass of two points (round the ridge at 9 by 8) has none
+    k, ll, d = _pass_grid(50.0)
+    grids = [(k, ll, d, "refined")]
+    main, others, _ = ss.region_pieces(grids, 6.0, (0.0, 1.0))
+    got = ss.island_saddle(grids, 6.0, (0.0, 1.0), others[0]["masks"], main)
+    assert got == (20.0, "refined")
+    assert ss.saddle_pass(grids, got, (0.0, 1.0), others[0]["masks"]) == (9.0, 0.0, 4.0)
+    k, ll, d8 = _pass_grid(8.0)
+    piece = ss.region_pieces([(k, ll, d8, "refined")], 6.0, (0.0, 1.0))[1][0]["masks"]
+    assert ss.saddle_pass([(k, ll, d8, "refined")], (9.0, "refined"), (0.0, 1.0), piece) is None
+    island = {"K": [0.0, 0.0], "L": [16.0, 16.0], "delta_chi2": 5.5,
+              "saddle": {"delta_chi2": 20.0, "grids": "refined", "range": [9.0, 20.0],
+                         "threshold": 6.0, "threshold_3sigma": 11.8}}  # fmt: skip
+    assert ss._saddle_text(island, True) == (
+        "; the path between the islands climbs to Delta chi^2 ~14 (9-20 on the refined "
+        "points: the pass and its lowest neighbours towards each island) (the saddle on the "
+        "refined grids, at their resolution): separate basins at 95% (threshold 6) and at 3 "
+        "sigma (11.8) at the pass's point only (its range reaches below), at grid resolution; "
+        "the island at K 0, L ~16 d exists only just: its "
+        "least Delta chi^2 5.5 against the threshold 6"
+    )
+    # the low end above the 3-sigma threshold: the margin, from the range's middle
+    far = {**island, "delta_chi2": 1.0,
+           "saddle": {**island["saddle"], "range": [12.7, 13.6], "delta_chi2": 13.6,
+                      "threshold": 6.02, "threshold_3sigma": 11.9}}  # fmt: skip
+    assert ss._saddle_text(far, True).endswith(
+        "~13 (12.7-13.6 on the refined points: the pass and its lowest neighbours towards "
+        "each island) (the saddle on the refined grids, at their resolution): separate basins "
+        "at 95% (threshold 6.02) and at 3 sigma (11.9) by a margin of ~1, at grid resolution"
+    )

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import textwrap
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from .calibration import MODEL_STYLES
@@ -31,6 +31,17 @@ def model_style(model: str, order: Sequence[str] = ()) -> dict[str, Any]:
         return dict(MODEL_STYLES[model])
     i = list(order).index(model) if model in order else len(order)
     return {"color": f"C{(i + 4) % 10}", "linestyle": ["-", "--", "-.", ":"][i % 4]}
+
+
+def declared_order(names: Iterable[str]) -> list[str]:
+    """``names`` in the declared models' order (cosserat, mui, ngf: :data:`MODEL_STYLES`),
+    any other (the joint fit, its null) after them in their own order: one legend order in
+    every run figure, whatever order the fits come in (referee 15, point 7)."""
+    known = list(MODEL_STYLES)
+    names = list(names)
+    return sorted(
+        names, key=lambda n: (known.index(n), 0) if n in known else (len(known), names.index(n))
+    )
 
 
 def _plain(ax: Axes, axis: str = "both") -> None:
@@ -129,7 +140,8 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
                 yerr=[lower[show], se[show]],
                 **DATA_STYLE,
             )
-            for name, curve in entry["models"].items():
+            for name in declared_order(entry["models"]):
+                curve = entry["models"][name]
                 cu = np.asarray(curve["u"], dtype=float)
                 cd = np.asarray(curve["d"], dtype=float)
                 keep = cu > 0 if log else np.ones(cu.size, bool)
@@ -168,7 +180,9 @@ def run_figure(entry: Mapping[str, Any]) -> Figure:
             )
             like = layer.get("spin_like", {}) if layer else {}
             labels, styles = spin.get("labels", {}), spin.get("styles", {})
-            for name, pred in spin.get("predicted", {}).items():
+            predicted = spin.get("predicted", {})
+            for name in declared_order(predicted):
+                pred = predicted[name]
                 # a layer's Cosserat spin in the colour of its velocity curve
                 look = {**model_style(like.get(name, name), order), **styles.get(name, {})}
                 ax.plot(x, np.asarray(pred, dtype=float)[o], label=labels.get(name, name),
@@ -1115,11 +1129,13 @@ SCAN_KEY = (
     "of the joint u + omega + stress-ratio fit, Delta chi^2 <= chi2.ppf(0.95, k) x chi^2/dof "
     "on both grids (thin: the declared ranges' grid; thick: the finer grid), the text's "
     "region; star: its optimum; dotted box: the extent of the finer grid around it (its top "
-    "and bottom edges are the horizontal dotted lines); small black dots and medium contour: the "
+    "and bottom edges are the horizontal dotted lines; its points small, light grey outside the "
+    "region, dark grey inside); thin grey outline, small dots and medium contour: the "
     "declared ranges' cells along the region refined 4 times finer, coloured and hatched alike "
     "(the region followed along its valley), and around a restart's fit inside the region on "
     "no refined grid (dashed outline; the inset zooms on them: grey dots outside, black inside "
-    "the region, the box the island's extent); diamond: a restart's fit (a solved point off "
+    "the region, the box the island's extent, white: not refined); X: the saddle's pass between "
+    "two islands (the text's Delta chi^2 range); diamond: a restart's fit (a solved point off "
     "the grids; filled: inside the 95% region); dark grey: no grid (the declared ranges', the "
     "finer or a refined one) "
     "has a solution in the cell (the couple stress reaches its yield bound inside the gap); "
@@ -1224,12 +1240,22 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                     hatch_cells(ax, xe, ye, band, "////", "0.15")
                 LL, KK = np.meshgrid(L, K)
                 inside = np.isfinite(dc) & (dc <= sc["threshold"])
-                fine = name == "refined"
-                if not fine:
-                    ax.plot(LL[np.isfinite(d) & ~inside], KK[np.isfinite(d) & ~inside],
-                            linestyle="none", marker=".", markersize=1.5, color="0.35")  # fmt: skip
-                ax.plot(LL[inside], KK[inside], linestyle="none", marker=".",
-                        markersize=2.0 if fine else 3.5, color="k", zorder=4)  # fmt: skip
+                fine = name != "range"
+                # referee 15, point 4: the finer and refined grids' points small and light
+                # (dense, they hid the island and its star), every refined cell outlined and
+                # its outside points drawn (the saddle's cells were colour alone, like the
+                # declared ranges' interpolant under them)
+                out = np.isfinite(d) & ~inside
+                if out.any():
+                    ax.plot(LL[out], KK[out], linestyle="none", marker=".",
+                            markersize=1.0 if fine else 1.5,
+                            color="0.6" if fine else "0.35")  # fmt: skip
+                size, shade = (3.5, "k") if name == "range" else (1.0, "0.4")
+                ax.plot(LL[inside], KK[inside], linestyle="none", marker=".", markersize=size,
+                        color=shade, zorder=4)  # fmt: skip
+                if name == "refined" and not g.get("base"):
+                    ax.plot([L[0], L[-1], L[-1], L[0], L[0]], [K[0], K[0], K[-1], K[-1], K[0]],
+                            color="0.45", linewidth=0.5, zorder=3.5)  # fmt: skip
                 if np.isfinite(dc).any():
                     width = {"near": 1.3, "refined": 1.0}.get(name, 0.6)
                     _region_lines(ax, L, K, dc, sc["threshold"], width)
@@ -1237,7 +1263,14 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
                     ax.plot([L[0], L[-1], L[-1], L[0], L[0]], [K[0], K[0], K[-1], K[-1], K[0]],
                             color="0.3", linewidth=0.7, linestyle=":")  # fmt: skip
             ax.plot([sc["best_L"]], [sc["best_K"]], marker="*", color="k", markersize=10,
-                    linestyle="none", zorder=5)  # fmt: skip
+                    markeredgecolor="white", markeredgewidth=0.6, linestyle="none",
+                    zorder=6)  # fmt: skip
+            for isl in (sc.get("region") or {}).get("islands", ()):  # the saddle's pass
+                at = (isl.get("saddle") or {}).get("pass")
+                if at:
+                    ax.plot([at["L"]], [at["K"]], marker="X", markersize=6, color="k",
+                            markeredgecolor="white", markeredgewidth=0.5, linestyle="none",
+                            zorder=6)  # fmt: skip
             for e in sc.get("extra", ()):
                 inside = e["delta_chi2"] <= sc["threshold"]
                 ax.plot([e["L"]], [e["K"]], marker="D", markersize=5, linestyle="none",
@@ -1324,7 +1357,7 @@ def _zoom_around(
         k, ll = g["K"], g["L"]
         ax.plot([ll[0], ll[-1], ll[-1], ll[0], ll[0]], [k[0], k[0], k[-1], k[-1], k[0]],
                 color="k", linewidth=0.6, linestyle="--", zorder=4)  # fmt: skip
-    inset = ax.inset_axes((0.07, 0.43, 0.36, 0.34))
+    inset = ax.inset_axes((0.13, 0.43, 0.33, 0.34))  # room for its K label
     for g in cells:
         K, L = np.array(g["K"]), np.array(g["L"])
         d, dc = beyond(g), arr(g, "delta_chi2")
@@ -1354,15 +1387,34 @@ def _zoom_around(
             inset.plot([la, lb, lb, la, la], [ka, ka, kb, kb, ka], color="k", linewidth=0.9,
                        zorder=4)  # fmt: skip
     inset.set_xscale("log")
-    ticks = [float(f"{v:.2g}") for v in np.geomspace(l_lo, l_hi, 4)]
-    ticks = [v for v in ticks if l_lo <= v <= l_hi]
-    inset.set_xticks(ticks, [f"{v:g}" for v in ticks])
+    inset.set_xticks(inset_ticks(l_lo, l_hi), [f"{v:g}" for v in inset_ticks(l_lo, l_hi)])
     inset.set_xticks([], minor=True)
     inset.set_xlim(l_lo, l_hi)
     inset.set_ylim(k_lo, k_hi)
-    inset.tick_params(labelsize=6.5)
-    inset.set_title("zoom: the cells refined around the\nrestart's fit (dashed); box: the island",
-                    fontsize=7, backgroundcolor="white", pad=9)  # fmt: skip
+    inset.tick_params(labelsize=6.5, pad=1.5)
+    # referee 15, point 4: the inset's axes named and its white (nothing computed) said
+    inset.set_xlabel("L [d]", fontsize=6.5, labelpad=0.5, backgroundcolor="white")
+    inset.set_ylabel("K [-]", fontsize=6.5)
+    inset.yaxis.set_label_coords(-0.22, 0.5)  # left of the tick labels
+    inset.set_title("zoom: the cells refined around the restart's\nfit (dashed); box: the "
+                    "island; white: not refined", fontsize=7, backgroundcolor="white",
+                    pad=9)  # fmt: skip
+
+
+INSET_TICKS = (1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.0, 10.0, 15.0, 20.0, 30.0, 50.0, 70.0, 100.0)
+"""The L tick values [d] :func:`inset_ticks` takes from."""
+
+
+def inset_ticks(lo: float, hi: float) -> list[float]:
+    """L ticks [d] for the spin scan's inset over ``lo``-``hi`` [d]: values of
+    ``INSET_TICKS`` inside it, each at least a quarter of the span (in log L) from the
+    last (referee 15, point 4: "3.5" and "5" overlapped)."""
+    gap = 0.25 * math.log(hi / lo)
+    out: list[float] = []
+    for v in INSET_TICKS:
+        if lo <= v <= hi and (not out or math.log(v / out[-1]) >= gap):
+            out.append(v)
+    return out
 
 
 def _region_lines(ax: Axes, L: Any, K: Any, dchi2: Any, threshold: float, width: float) -> None:
@@ -1384,7 +1436,9 @@ __all__ = [
     "STATUS_CODES",
     "band_cells",
     "beyond_range",
+    "declared_order",
     "delta_claim_figure",
+    "inset_ticks",
     "model_style",
     "no_solution_cells",
     "none_ranges",

@@ -1322,12 +1322,39 @@ def _saddle_text(island: Mapping[str, Any], pair: bool = False) -> str:
     if s is None:
         return f"; no path over the grids joins the island at {where} to the optimum's"
     on = "the refined grids" if sd.get("grids") == "refined" else "the grids"
+    span = sd.get("range")
+    if span is not None and span[0] < s:  # referee 15, point 4: the pass at grid resolution
+        mid = 0.5 * (span[0] + s)
+        points = "the refined points" if sd.get("grids") == "refined" else "the grid points"
+        value = (f"~{mid:.2g} ({span[0]:.3g}-{s:.3g} on {points}: the pass and its lowest "
+                 "neighbours towards each island)")  # fmt: skip
+        margin = (f" by a margin of ~{mid - t3:.1g}, at grid resolution" if span[0] > t3
+                  else " at the pass's point only (its range reaches below), at grid "
+                  "resolution")  # fmt: skip
+    else:
+        value, margin = f"= {s:.3g}", ""
     return (
         f"; the path {'between the islands' if pair else f'from {where} to the optimum'} "
-        f"climbs to Delta chi^2 = {s:.3g} (the "
+        f"climbs to Delta chi^2 {value} (the "
         f"saddle on {on}, at their resolution): separate basins at 95% (threshold {t:.3g})"
-        + (f" and at 3 sigma ({t3:.3g})" if s > t3 else f", not at 3 sigma ({t3:.3g})")
+        + (f" and at 3 sigma ({t3:.3g}){margin}" if s > t3 else f", not at 3 sigma ({t3:.3g})")
+        + _only_just(island, t)
     )
+
+
+ONLY_JUST = 0.9
+"""An island whose least Delta chi^2 exceeds this fraction of the threshold "exists only
+just" (the saddle's sentence, referee 15, point 4) [-]."""
+
+
+def _only_just(island: Mapping[str, Any], threshold: float) -> str:
+    """Where the island's least Delta chi^2 is within the threshold by less than
+    1 - :data:`ONLY_JUST` of it: it exists only just."""
+    low = island.get("delta_chi2")
+    if low is None or not low > ONLY_JUST * threshold:
+        return ""
+    return (f"; the island at {_piece_text(island)} exists only just: its least Delta chi^2 "
+            f"{low:.3g} against the threshold {threshold:.3g}")  # fmt: skip
 
 
 def region_text(extent: Mapping[str, Any] | None) -> str:
@@ -1605,6 +1632,95 @@ def island_saddle(
     return None
 
 
+def _adjacent(
+    grids: Sequence[tuple[Any, Any, Any, str]], g: int, a: int, b: int
+) -> list[tuple[int, int, int]]:
+    """The points :func:`region_pieces` joins to point (``a``, ``b``) of grid ``g``: its 8
+    neighbours on its grid, and across grids the nearest point (and its 8 neighbours) of a
+    grid whose box holds it, or a point of another grid whose nearest point in ``g`` is it or
+    one of its 8 neighbours."""
+
+    def nearest(K: Any, L: Any, k: float, ll: float) -> tuple[int, int] | None:
+        K, L = np.asarray(K, dtype=float), np.asarray(L, dtype=float)
+        if K.size == 0 or L.size == 0 or not (K[0] <= k <= K[-1] and L[0] <= ll <= L[-1]):
+            return None
+        return (int(np.argmin(np.abs(K - k))),
+                int(np.argmin(np.abs(np.log(L) - math.log(ll)))))  # fmt: skip
+
+    K, L = np.asarray(grids[g][0], dtype=float), np.asarray(grids[g][1], dtype=float)
+    out = [(g, a + da, b + db) for da in (-1, 0, 1) for db in (-1, 0, 1)
+           if (da or db) and 0 <= a + da < K.size and 0 <= b + db < L.size]  # fmt: skip
+    for h, (Kh, Lh, _, _) in enumerate(grids):
+        if h == g:
+            continue
+        near = nearest(Kh, Lh, float(K[a]), float(L[b]))
+        if near is not None:
+            out += [
+                (h, near[0] + da, near[1] + db)
+                for da in (-1, 0, 1)
+                for db in (-1, 0, 1)
+                if 0 <= near[0] + da < np.size(Kh) and 0 <= near[1] + db < np.size(Lh)
+            ]
+        for a2, kv in enumerate(np.asarray(Kh, dtype=float)):
+            for b2, lv in enumerate(np.asarray(Lh, dtype=float)):
+                mine = nearest(K, L, float(kv), float(lv))
+                if mine is not None and abs(mine[0] - a) <= 1 and abs(mine[1] - b) <= 1:
+                    out.append((h, a2, b2))
+    return out
+
+
+def saddle_pass(
+    grids: Sequence[tuple[Any, Any, Any, str]],
+    saddle: tuple[float, str],
+    optimum: tuple[float, float],
+    piece: Sequence[NDArray[np.bool_]],
+) -> tuple[float, float, float] | None:
+    """The low end of the saddle's range at grid resolution (referee 15, point 4): the pass
+    (the point of :func:`island_saddle`'s level that joins the islands) steps down to each
+    island's side (the pieces of the points below its level) at its lowest neighbour there;
+    the lower of those two is the low end, the pass's own value the high end (the
+    continuous saddle lies between the path's points, at about their mean).
+
+    Parameters
+    ----------
+    grids, optimum
+        As :func:`region_pieces`.
+    saddle : (float, str)
+        :func:`island_saddle`'s answer (its grids: "refined" or "all").
+    piece : sequence of bool arrays
+        Per grid (all of ``grids``), the other island's points.
+
+    Returns
+    -------
+    (float, float, float) or None
+        The low end [-] and the pass's K [-] and L [d] (the figure marks it); None where no
+        pass point steps down to both sides.
+    """
+    level, which = saddle
+    keep = [i for i, g in enumerate(grids) if which == "all" or g[3] != "range"]
+    sub = [grids[i] for i in keep]
+    mine = [piece[i] for i in keep]
+    below = float(np.nextafter(level, -np.inf))
+    main, others, _ = region_pieces(sub, below, optimum)
+    side = [np.zeros_like(m) for m in main]
+    for o in others:
+        if any(bool((m & p).any()) for m, p in zip(o["masks"], mine, strict=True)):
+            side = [s_ | m for s_, m in zip(side, o["masks"], strict=True)]
+    best: tuple[float, float, float] | None = None
+    for g, (_, _, d, _) in enumerate(sub):
+        d = np.asarray(d, dtype=float)
+        for a, b in zip(*np.nonzero(d == level), strict=True):
+            near = _adjacent(sub, g, int(a), int(b))
+            ours = [float(np.asarray(sub[h][2])[i, j]) for h, i, j in near if main[h][i, j]]
+            theirs = [float(np.asarray(sub[h][2])[i, j]) for h, i, j in near if side[h][i, j]]
+            if ours and theirs:
+                low = min(min(ours), min(theirs))
+                if best is None or low > best[0]:
+                    K, L = np.asarray(sub[g][0], dtype=float), np.asarray(sub[g][1], dtype=float)
+                    best = (low, float(K[a]), float(L[b]))
+    return best
+
+
 def _inside_at(sc: Scan) -> Callable[[FloatArray, FloatArray], NDArray[np.bool_]] | None:
     """Region membership at any (K, L) of ``sc`` (the joint fit's other parameters at the
     optimum, as the grids hold them); None where the scan has no engine (a test's stand-in)."""
@@ -1693,8 +1809,11 @@ def scan_region(sc: Scan) -> dict[str, Any] | None:
         one["point_ends"] = _point_ends(one, grids)
         if n:  # referee 14, point 5: how high the path to the optimum's island climbs
             got = island_saddle(grids, sc.threshold, optimum, piece_masks, masks)
+            low = None if got is None else saddle_pass(grids, got, optimum, piece_masks)
             one["saddle"] = {"delta_chi2": None if got is None else got[0],
                              "grids": None if got is None else got[1],
+                             "range": None if low is None or got is None else [low[0], got[0]],
+                             "pass": None if low is None else {"K": low[1], "L": low[2]},
                              "threshold": sc.threshold, "threshold_3sigma": at_3_sigma}  # fmt: skip
         islands.append(one)
     ext["islands"] = islands
@@ -4133,6 +4252,7 @@ __all__ = [
     "rules_line",
     "rules_summary",
     "run_steadiness",
+    "saddle_pass",
     "scan",
     "scan_or_skip",
     "scan_region",
