@@ -82,7 +82,8 @@ def test_the_precision_needed_to_tell_zero_from_a_third():
     assert "sum (ln H - mean)^2 = 0.961 for any three gaps a factor 2 apart. At the runs' " \
         "Delta errors (10-25% of Delta; the largest, 25%, taken for every run; block errors, " \
         "which a second seed would check): sigma <= 0.0833 is reached by none of the " \
-        "designs; not by 271.3/542.6/1085 d with one seed: sigma = 0.26; 271.3/542.6/1085 d " \
+        "designs listed; not by 271.3/542.6/1085 d with one seed: sigma = 0.26; " \
+        "271.3/542.6/1085 d " \
         "with 3 seeds each: sigma = 0.15" in text  # fmt: skip
     assert "as context" not in text and "0.167" not in text  # referee 14: the rule's alone
     assert (
@@ -359,8 +360,9 @@ def test_the_ratio_of_the_two_wall_kinds_curves_is_the_costed_test():
         "log-slope is 0.15 over 20-80 d and 0.15 over 40-160 d; at the combined per-run "
         "scatter of the ratio, 31% (17.6% rough and 25.1% smoother, the series' levels above, "
         "in quadrature), telling that slope from 0 at 2 se (sigma <= |slope|/2) needs, per gap "
-        "per wall kind, 18 seeds at 20/40/80 d ((30.7%/0.075)^2 / 0.961 = 17.4, rounded up); "
-        "18 seeds at 40/80/160 d ((30.7%/0.075)^2 / 0.961 = 17.4, rounded up)"
+        "per wall kind, 18 seeds at 20/40/80 d ((30.7%/0.075)^2 / 0.961 = 17.4, rounded up: "
+        "108 runs over both wall kinds); 18 seeds at 40/80/160 d ((30.7%/0.075)^2 / 0.961 = "
+        "17.4, rounded up: 108 runs over both wall kinds)"
     )
     short = ModelDelta("cosserat", {}, (gaps[:3], (1.0, 1.1, 1.2)))
     assert ratio_test(rough, short, 0.176, 0.251) is None  # no value at 80 and 160 d

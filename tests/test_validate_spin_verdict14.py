@@ -160,6 +160,14 @@ def test_a_sheared_fixed_wall_is_read_model_free_and_the_sentence_leads():
         "and u_2 propagated). "
     )
     assert "plane" not in lead and "c's fixed wall omega_1/W_layers 2.5" in v.evidence
+    # a wall within 2 se: the span is of the walls beyond, the other's z said beside it
+    # (referee 16, point 3)
+    rows = {k: dict(r) for k, r in free["walls"].items()}
+    rows["c:fixed"]["z_independent"] = -1.23
+    assert (
+        f"the data lie beyond it by {abs(za):.2g} se: beyond 2 se at 2 of 3 sheared walls "
+        "(2 by >= 3 se; 1.2 se at the other 1) under independent errors"
+    ) in free_lead(rows)
     # without records, nothing leads
     assert free_lead({}) == "" and spin_verdict(walls).evidence.startswith("Beyond the null")
 

@@ -1213,6 +1213,10 @@ def free_lead(rows: Mapping[str, Any]) -> str:
         parts.append(text)
     z_hit = [abs(zs[k]) for k in far]
     three = sum(1 for k in ok if abs(zs[k]) >= 3.0)
+    # the span above is of the walls beyond GRAIN_SE only: the others' said beside it
+    # (referee 16, point 3)
+    z_rest = [abs(z) for k, z in zs.items() if k not in far]
+    rest = f"; {_span(z_rest, '.2g')} se at the other {len(z_rest)}" if z_rest else ""
     independent = all(r.get("z_independent") is not None for r in ok.values())
     kind = (
         "under independent errors (R's own error from u_1 and u_2 propagated)"
@@ -1226,7 +1230,7 @@ def free_lead(rows: Mapping[str, Any]) -> str:
             + f"; a velocity matched to the measured layer means gives R = "
             f"{_span([r['matched']['ratio'] for r in ok.values()], '.3g')}; the data lie beyond "
             f"it by {_span(z_hit, '.2g')} se: beyond {GRAIN_SE:g} se at {len(far)} of "
-            f"{len(ok)} sheared walls ({three} by >= 3 se) {kind}. "
+            f"{len(ok)} sheared walls ({three} by >= 3 se{rest}) {kind}. "
         )
         if far
         else (
@@ -3060,7 +3064,7 @@ def _designs_text(rows: Sequence[Mapping[str, Any]], margin: float) -> str:
     short_ = [_design_text(r) for r in rows if not r["margin"]]
     return (
         f"sigma <= {margin:.3g} is "
-        + ("reached by " + "; ".join(ok) if ok else "reached by none of the designs")
+        + ("reached by " + "; ".join(ok) if ok else "reached by none of the designs listed")
         + ("" if not short_ else "; not by " + "; ".join(short_))
     )
 
@@ -3425,7 +3429,7 @@ def ratio_text(t: Mapping[str, Any], model: str = "cosserat") -> str:
     seeds = "; ".join(
         f"{w['seeds']} seeds at {'/'.join(f'{g:g}' for g in w['gaps'])} d "
         f"(({100 * t['level']:.1f}%/{w['sigma_two_se']:.3g})^2 / {sxx:.3g} = {w['exact']:.3g}, "
-        "rounded up)"
+        f"rounded up: {2 * len(w['gaps']) * w['seeds']} runs over both wall kinds)"
         for w in t["windows"]
         if w["seeds"] is not None
     )
