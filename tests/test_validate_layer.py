@@ -468,7 +468,32 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     assert name.startswith(
         r"(c) Cosserat, delta = 13.9 deg, material's L = 5.28 d, $\phi$ = 18.15 deg ($\chi^2$ "
     )
-    assert list(drawn["models"])[:-1] == list(entry["models"])
+    # referee 16, point 2: the own L is drawn at the material's phi, refitted there (what the
+    # figure receives is the verdict's fit), in place of the one at 19 deg, in its colour
+    names, before = list(drawn["models"]), list(entry["models"])
+    (k,) = [i for i, n in enumerate(before) if "L fitted" in n]
+    assert names[:k] + names[k + 1 : -1] == before[:k] + before[k + 1 :]
+    assert names[k] == (
+        rf"(c) Cosserat, delta = 13.9 deg, own L = {m.L_fit:.3g} d fitted, $\phi$ = 18.15 deg "
+        rf"($\chi^2$ {m.chi2_fit:.0f}/{m.dof_fit})"
+    )
+    assert m.material_phi and m.phi == 18.15 and m.L_fit != m.L_fit_design
+    own = drawn["models"][names[k]]
+    assert own["u"] == pytest.approx(np.array(m.own_curve[1])[np.argsort(m.own_curve[0])])
+    # every (c) curve at 19 deg says it is the design's, the rest say the material's 18.15 deg
+    at = [n for n in names if n.startswith("(c)")]
+    assert sum(r"$\phi$ = 19 deg (design)" in n for n in at) == 2
+    assert sum(r"$\phi$ = 18.15 deg" in n for n in at) == 2
+    # the spin panel: the own L's spin at 18.15 deg (the same solve), in the own L's colour
+    spins = drawn["spin"]["predicted"]
+    assert m.own_spin is not None
+    spin_name = (
+        rf"(c) Cosserat spin, own L = {m.L_fit:.3g} d, $\phi$ = 18.15 deg ($\chi^2$ "
+        rf"{m.own_spin.chi2:.0f}/{m.own_spin.dof})"
+    )
+    assert spin_name in spins and len(spins) == 3
+    assert not any("L fitted" in n or rf"{m.L_fit_design:.3g} d" in n for n in spins)
+    assert drawn["layer"]["spin_like"][spin_name] == names[k]
     assert name in drawn["layer"]["model_rates"]
     curve = drawn["models"][name]
     assert np.all(np.diff(curve["d"]) > 0.0)  # sorted, from the moving wall
@@ -522,8 +547,12 @@ def test_the_layer_shape_at_the_materials_L():
     )
     assert (other.phi, other.K, other.A) == (19.0, 0.5, pytest.approx(1 / 3))
     assert other.delta == pytest.approx(math.degrees(math.atan(0.21)))
+    # referee 16, point 2: which se, with the arithmetic shown (8 - 4)/1 = 4, and both errors
+    both = 4.0 / math.hypot(1.0, other.L_fit_se)
+    assert other.below_se_both == pytest.approx(both, rel=1e-3) and 3.0 < both < 4.0
     assert text.endswith(
-        "is 4.0 se of the material's L below it. With one material and one L, the layer's shape "
+        f") lies below the material's L by (8 - 4)/1 = 4.0 se of the material's error ({both:.1f}"
+        " se with both errors in quadrature). With one material and one L, the layer's shape "
         "is not fitted by the material's calibration (p < 0.001 under AR(1) rejects); not "
         "judged: the verdict is the band's side."
     )
@@ -546,11 +575,26 @@ def test_the_layer_shape_at_the_materials_L():
     assert at_30.chi2_fit == pytest.approx(0.0, abs=1e-6)
     assert at_30.L_fit_design == pytest.approx(4.0, rel=2e-3) and at_30.L_fit > 4.1
     assert same.L_fit_design == same.L_fit
+    # referee 16, point 2: the own L said to be at the material's phi, the 19 deg one beside
     assert (
-        f"its own best L = {at_30.L_fit:.3g} +- {at_30.L_fit_se:.2g} d (chi^2 = "
-        f"{at_30.chi2_fit:.3g}/{at_30.dof_fit}; refitted at the material's phi, 4 d at the "
-        "alternatives' phi = 19 deg)" in said
+        f"its own best L = {at_30.L_fit:.3g} +- {at_30.L_fit_se:.2g} d at the material's phi "
+        f"(chi^2 = {at_30.chi2_fit:.3g}/{at_30.dof_fit}; 4 d at phi = 19 deg) lies below the "
+        f"material's L by (4 - {at_30.L_fit:.3g})/0.5 = {at_30.below_se:.1f} se of the "
+        f"material's error ({at_30.below_se_both:.1f} se with both errors in quadrature)" in said
     )
+    # and its profile, drawn in the figure, is at the material's phi and its own L: one more
+    # solve, the same velocities as a fresh solve there, which fit the run exactly
+    from cosserat.studies.validate.layer import layer_data
+    from cosserat.studies.validate.layer_alternatives import cosserat_velocity
+
+    data = layer_data(run, p.smoother, p.stress_ratio)
+    fresh = data.to_u(cosserat_velocity(data, at_30.L_fit, phi=30.0))
+    s_own, u_own = np.array(at_30.own_curve[0]), np.array(at_30.own_curve[1])
+    o = np.argsort(s_own)
+    drawn = np.interp(data.gap_d - data.y, s_own[o], u_own[o])  # at the bins (fixed smoother)
+    assert drawn == pytest.approx(fresh, abs=1e-3)
+    assert drawn == pytest.approx(data.to_u(data.v), abs=2e-3)  # chi^2 = 0: the run's own u
+    assert same.own_curve[1] == pytest.approx(same.curve[1], abs=2e-3)  # 4 d at 19 deg both
     # its error from chi^2's curvature: finite, and small on a noiseless profile's bins
     assert 0.0 < same.L_fit_se < 0.5
     # the figure's curve is the same solve: at the bins it is the bins' model u
@@ -578,7 +622,8 @@ def test_the_layer_shape_at_the_materials_L():
         f"/10, p = {other.p['ar1']:.2g}; under AR(1)); at B = 0 the data want L = 4 +- "
     )
     assert (
-        " d (the runs' own L; 4.0 se of the material's L below it): one material does not "
+        f" d (the runs' own L; below it by 4.0 se of the material's error, {both:.1f} with both "
+        "in quadrature): one material does not "
         "carry one L across B = 0 and gravity, or the smoother fixed wall sets the layer's "
         "scale. The band's side does not depend on L: every (c) profile puts the band at the "
         f"smoother wall (a = {other.asymmetry:+.2f} to {other.asymmetry:+.2f} at the material's "

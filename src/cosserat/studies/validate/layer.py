@@ -614,25 +614,54 @@ def design_asymmetry(data: LayerData) -> tuple[float, float] | None:
     return float(min(a)), float(max(a))
 
 
+def _spin_bins(run: Run, smoother: str) -> tuple[list[int], np.ndarray, np.ndarray, float] | None:
+    """The run's spin departure ``omega - half vorticity`` and its error per row [-], the rows
+    used in order from the ``smoother`` wall and the spin's lag-1 correlation; None without
+    spin columns or with fewer than 3 usable bins."""
+    if not (run.has("omega") and run.has("half_vorticity")):
+        return None
+    om, om_se = run.quantity("omega")
+    hv, hv_se = run.quantity("half_vorticity")
+    dep, se = om - hv, np.hypot(om_se, hv_se)
+    ok = np.isfinite(dep) & np.isfinite(se) & (se > 0.0)
+    if np.count_nonzero(ok) < 3:
+        return None
+    s = run.distance_d
+    order = [k for k in (np.argsort(s)[::-1] if smoother == "fixed" else np.argsort(s)) if ok[k]]
+    return order, dep, se, spin_correlation(run)[0]
+
+
+def profile_spin(
+    run: Run, data: LayerData, profile: Any, key: str, L: float,
+    bins: tuple[list[int], np.ndarray, np.ndarray, float] | None = None,
+) -> LayerSpin | None:  # fmt: skip
+    """:class:`LayerSpin` of one solved Cosserat layer profile ``profile`` (at ``L`` [d],
+    named ``key``) against ``run``'s spin, forward-modelled like the data (no solve; ``bins``
+    the run's spin bins where already read); None without spin columns."""
+    bins = bins or _spin_bins(run, data.smoother)
+    if bins is None:
+        return None
+    order, dep, se, rho = bins
+    model = forward_departure(profile, run)
+    w = whiten(dep[order] - model[order], se[order], rho)
+    own = float(np.max(np.abs(profile.spin_minus_half_vorticity))) / data.gap_d
+    return LayerSpin(
+        key, float(L), tuple(float(x) for x in model[order]), float(np.sum(w * w)), len(order),
+        own,
+    )  # fmt: skip
+
+
 def layer_spin(
     run: Run, data: LayerData, alts: Sequence[LayerAlternative]
 ) -> tuple[tuple[LayerSpin, ...], tuple[tuple[float, float, float], ...], float]:
     """The Cosserat alternatives' spin forward-modelled like ``run``'s and their chi^2 against
     its ``omega - half vorticity`` (:class:`LayerSpin`), the measured departure per bin from
     the smoother wall and the spin's lag-1 correlation; empty without spin columns."""
-    if not (run.has("omega") and run.has("half_vorticity")):
+    bins = _spin_bins(run, data.smoother)
+    if bins is None:
         return (), (), 0.0
-    om, om_se = run.quantity("omega")
-    hv, hv_se = run.quantity("half_vorticity")
-    dep, se = om - hv, np.hypot(om_se, hv_se)
-    ok = np.isfinite(dep) & np.isfinite(se) & (se > 0.0)
-    if np.count_nonzero(ok) < 3:
-        return (), (), 0.0
+    order, dep, se, rho = bins
     s = run.distance_d
-    order = [
-        k for k in (np.argsort(s)[::-1] if data.smoother == "fixed" else np.argsort(s)) if ok[k]
-    ]
-    rho, _ = spin_correlation(run)
     measured = tuple((float(s[k]), float(dep[k]), float(se[k])) for k in order)
     out = []
     for alt in alts:
@@ -640,22 +669,11 @@ def layer_spin(
             continue
         L = float(alt.parameters["L_d"])
         try:
-            profile = cosserat_profile(data, L)
-            model = forward_departure(profile, run)
+            x = profile_spin(run, data, cosserat_profile(data, L), alt.key, L, bins)
         except CosseratError:
             continue
-        w = whiten(dep[order] - model[order], se[order], rho)
-        own = float(np.max(np.abs(profile.spin_minus_half_vorticity))) / data.gap_d
-        out.append(
-            LayerSpin(
-                alt.key,
-                L,
-                tuple(float(x) for x in model[order]),
-                float(np.sum(w * w)),
-                len(order),
-                own,
-            )
-        )
+        if x is not None:
+            out.append(x)
     return tuple(out), measured, rho
 
 
@@ -1206,6 +1224,12 @@ class MaterialLength:
     curve : (distance_d, u)
         The profile for the run's figure: distances from the moving wall [d], u over V [-]
         (from the same solve).
+    own_curve : (distance_d, u)
+        The profile at ``L_fit`` and ``phi`` for the run's figure, as ``curve`` (referee 16,
+        point 2: the own L drawn at the material's phi; empty without ``L_fit``).
+    own_spin : LayerSpin or None
+        That profile's spin against the run's (:func:`profile_spin`, from the same solve; None
+        without ``L_fit`` or spin columns).
     """
 
     run: str
@@ -1226,6 +1250,8 @@ class MaterialLength:
     L_fit_design: float = math.nan
     asymmetry: float = math.nan
     curve: tuple[tuple[float, ...], tuple[float, ...]] = ((), ())
+    own_curve: tuple[tuple[float, ...], tuple[float, ...]] = ((), ())
+    own_spin: LayerSpin | None = None
 
     @property
     def p(self) -> dict[str, float]:
@@ -1237,6 +1263,13 @@ class MaterialLength:
         """(L - L_fit) / L_se: the run's fitted L below the material's in the material's se
         [-] (NaN without a fitted L)."""
         return (self.L - self.L_fit) / self.L_se if self.L_se > 0.0 else math.nan
+
+    @property
+    def below_se_both(self) -> float:
+        """(L - L_fit) / sqrt(L_se^2 + L_fit_se^2): the same with both errors in quadrature
+        [-] (referee 16, point 2; NaN without a fitted L or its error)."""
+        both = math.hypot(self.L_se, self.L_fit_se)
+        return (self.L - self.L_fit) / both if both > 0.0 else math.nan
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -1250,6 +1283,7 @@ class MaterialLength:
             "chi2_fit": self.chi2_fit,
             "dof_fit": self.dof_fit,
             "L_fit_below_se": self.below_se,
+            "L_fit_below_se_both": self.below_se_both,
             "phi": self.phi,
             "delta": self.delta,
             "K": self.K,
@@ -1260,6 +1294,8 @@ class MaterialLength:
             "L_fit_design": self.L_fit_design,
             "asymmetry": self.asymmetry,
             "curve": {"distance_d": list(self.curve[0]), "u": list(self.curve[1])},
+            "own_curve": {"distance_d": list(self.own_curve[0]), "u": list(self.own_curve[1])},
+            "own_spin": None if self.own_spin is None else self.own_spin.to_dict(),
         }
 
 
@@ -1281,8 +1317,9 @@ def material_length(
     its ``phi`` [deg] (None: the design's, :data:`~.layer_alternatives.COSSERAT_PHI`); one
     solve (bins and figure curve), and where ``phi`` is given the run's own L refitted there
     (about 10 solves from the alternatives' L at the design's phi) and, in either case, its
-    error (2 solves): about 1 ms per solve. None where the run has no alternatives (no stress
-    ratio) or the profile has no solution."""
+    error (2 solves) and its profile for the figure, velocity and spin (1 solve): about 0.4 ms
+    per solve. None where the run has no alternatives (no stress ratio) or the profile has no
+    solution."""
     if p.stress_ratio is None or not p.alternatives:
         return None
     if not (math.isfinite(L) and L > 0.0 and math.isfinite(L_se) and L_se >= 0.0):
@@ -1303,13 +1340,22 @@ def material_length(
             else best_length(data, angle, near=design)
         )
         own_se = _length_se(data, angle, *own, data.v.size - 1) if fit is not None else math.nan
+        # the own L's profile for the figure, velocity and spin (one solve: the search
+        # above keeps none at its optimum; referee 16, point 2)
+        own_sol = cosserat_profile(data, own[0], angle) if math.isfinite(own[0]) else None
     except CosseratError:
         return None
     v = profile_velocity(data, sol)
     y = np.linspace(0.0, data.gap_d, CURVE_POINTS)
-    curve = (
-        tuple(float(x) for x in (data.gap_d - y if p.smoother == "fixed" else y)),
-        tuple(float(x) for x in data.to_u(profile_velocity(data, sol, y))),
+    s_d = tuple(float(x) for x in (data.gap_d - y if p.smoother == "fixed" else y))
+
+    def drawn(solution: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        return s_d, tuple(float(x) for x in data.to_u(profile_velocity(data, solution, y)))
+
+    curve = drawn(sol)
+    own_curve = drawn(own_sol) if own_sol is not None else ((), ())
+    own_spin = (
+        profile_spin(run, data, own_sol, "cosserat-Lfit", own[0]) if own_sol is not None else None
     )
     chi2 = {kind: data.under(kind).chi2(v) for kind in COVARIANCES}
     given = cosserat_values(data, L, angle)
@@ -1334,6 +1380,8 @@ def material_length(
         design,
         data.asymmetry(v),
         curve,
+        own_curve,
+        own_spin,
     )
 
 
@@ -1349,6 +1397,18 @@ def _length_se(data: LayerData, phi: float, L: float, chi2: float, dof: int) -> 
     if not curvature > 0.0:
         return math.nan
     return math.sqrt(2.0 / curvature) * math.sqrt(max(1.0, chi2 / max(dof, 1)))
+
+
+def below_text(m: MaterialLength) -> str:
+    """How far the run's own L lies below the material's, in words with its arithmetic
+    (referee 16, point 2: which se): "(L - L_fit)/L_se = z se of the material's error; z' se
+    with both errors in quadrature" (the second in brackets, where ``L_fit`` has an error).
+    The material's se is printed to three figures, so that the shown arithmetic gives the
+    shown z."""
+    head = f"({m.L:.3g} - {m.L_fit:.3g})/{m.L_se:.3g} = {m.below_se:.1f} se of the material's error"
+    if not math.isfinite(m.below_se_both):
+        return head
+    return head + f" ({m.below_se_both:.1f} se with both errors in quadrature)"
 
 
 def _decay_length(y: np.ndarray, v: np.ndarray, bins: int = 4) -> float:
@@ -1379,14 +1439,12 @@ def material_length_text(rows: Sequence[MaterialLength]) -> str:
         fitted = (
             f"; its own best L = {m.L_fit:.3g}"
             + (f" +- {m.L_fit_se:.2g}" if math.isfinite(m.L_fit_se) else "")
-            + f" d (chi^2 = {m.chi2_fit:.3g}/{m.dof_fit}"
-            + (
-                f"; refitted at the material's phi, {m.L_fit_design:.3g} d at the "
-                f"alternatives' phi = {COSSERAT_PHI:g} deg"
-                if m.material_phi
-                else ""
-            )
-            + f") is {m.below_se:.1f} se of the material's L below it"
+            + " d"
+            + (" at the material's phi" if m.material_phi else "")
+            + f" (chi^2 = {m.chi2_fit:.3g}/{m.dof_fit}"
+            + (f"; {m.L_fit_design:.3g} d at phi = {COSSERAT_PHI:g} deg" if m.material_phi else "")
+            + ") lies below the material's L by "
+            + below_text(m)
             if math.isfinite(m.L_fit)
             else ""
         )
@@ -1621,9 +1679,15 @@ def material_length_warning(
         )
         + " d (the runs' own L"
         + (", at the material's phi" if all(m.material_phi for m in own) else "")
-        + "; "
+        + "; below it by "
         + ", ".join(f"{m.below_se:.1f}" for m in own)
-        + " se of the material's L below it)"
+        + " se of the material's error"
+        + (
+            ", " + ", ".join(f"{m.below_se_both:.1f}" for m in own) + " with both in quadrature"
+            if all(math.isfinite(m.below_se_both) for m in own)
+            else ""
+        )
+        + ")"
         if own
         else ""
     )
@@ -1912,6 +1976,7 @@ __all__ = [
     "MaterialLength",
     "WallReference",
     "band_inertial_number",
+    "below_text",
     "below_yield",
     "below_yield_text",
     "design_asymmetry",
@@ -1929,6 +1994,7 @@ __all__ = [
     "material_length_warning",
     "measure_layer",
     "monotonic_violation",
+    "profile_spin",
     "shear_rates",
     "smoother_wall",
     "tensorial_ratio",

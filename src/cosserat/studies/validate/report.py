@@ -300,7 +300,8 @@ def run_entry(r: RunResult, material: Mapping[str, Any] | None = None) -> dict[s
         assert m.u_err is not None  # the layer measure needs u's errors (layer.jump_fractions)
         models, order, layer, title = _layer_entry(r, m.distance_d, m.u_over_uw, m.u_err, material)
         if spin is not None:  # the single-run fits' spin has the wrong walls: the layer's own
-            spin = {**spin, "predicted": _layer_spin_curves(r, np.asarray(spin["distance_d"]))}
+            distance = np.asarray(spin["distance_d"])
+            spin = {**spin, "predicted": _layer_spin_curves(r, distance, material)}
     return {
         "name": r.run.name,
         "cell": r.run.cell,
@@ -342,14 +343,22 @@ def _layer_entry(
     """A layer run's figure data: the alternatives' curves (the right walls) in place of
     validate's single-run fits (which give the fixed wall the moving wall's kind), and
     ``material``'s curve (c) at the material's L and phi, the one the verdict's text judges
-    (referee 15, point 2), the walls' names, the windows of ``a``, the shear rate between
-    bins (data and alternatives) and a title quoting I in the band."""
+    (referee 15, point 2), with its own L refitted at that phi in place of the alternatives'
+    (at the design's phi; referee 16, point 2), the walls' names, the windows of ``a``, the
+    shear rate between bins (data and alternatives) and a title quoting I in the band."""
     p = r.layer
     assert p is not None
     kinds = {"fixed": "smooth", "moving": "rough"}
     if p.smoother == "moving":
         kinds = {"fixed": "rough", "moving": "smooth"}
-    curves = [(_alternative_name(alt), alt.curve) for alt in p.alternatives]
+    own = _own_length(material)
+    # the own L at the material's phi in place of the design's (referee 16, point 2)
+    curves = [
+        (own[0], own[2]) if own is not None and alt.key == OWN_KEY else
+        (_alternative_name(alt), alt.curve)
+        for alt in p.alternatives
+    ]  # fmt: skip
+    by_key = {alt.key: name for alt, (name, _) in zip(p.alternatives, curves, strict=True)}
     if material is not None and material.get("curve", {}).get("distance_d"):
         c = material["curve"]
         curves.append(
@@ -384,10 +393,9 @@ def _layer_entry(
         "smoother": p.smoother,
         # each Cosserat spin curve drawn in the colour of its velocity curve
         "spin_like": {
-            _spin_name(x.L_d, x.chi2, x.dof): _alternative_name(alt)
+            (own[1] if own is not None and x.key == OWN_KEY else _layer_spin_name(x)): by_key[x.key]
             for x in p.spin
-            for alt in p.alternatives
-            if alt.key == x.key
+            if x.key in by_key
         },
         # one line (referee 10, point 9: the four-line title was crowded; docs/validation.md
         # says the rest)
@@ -397,10 +405,42 @@ def _layer_entry(
     return models, list(models), layer, title
 
 
+OWN_KEY = "cosserat-Lfit"
+"""The alternative (c) with L fitted at the design's phi, which a layer run's figure replaces
+by the run's own L refitted at the material's phi where the layer verdict gives it."""
+
+
+def _own_length(
+    material: Mapping[str, Any] | None,
+) -> tuple[str, str, tuple[Any, Any], Mapping[str, Any] | None] | None:
+    """The figure's labels of the run's own L at the material's phi (velocity, spin), its
+    curve and its spin (``material``: ``layer.MaterialLength.to_dict``); None where it has
+    none (no material's phi, or no own L)."""
+    if not material or not material.get("material_phi"):
+        return None
+    c = material.get("own_curve") or {}
+    if not c.get("distance_d"):
+        return None
+    L, phi = material["L_fit"], material["phi"]
+    velocity = (
+        rf"(c) Cosserat, delta = {material['delta']:.1f} deg, own L = {L:.3g} d fitted, "
+        rf"$\phi$ = {phi:.4g} deg ($\chi^2$ {material['chi2_fit']:.0f}/{material['dof_fit']})"
+    )
+    spin = material.get("own_spin")
+    spin_label = (
+        rf"(c) Cosserat spin, own L = {L:.3g} d, $\phi$ = {phi:.4g} deg ($\chi^2$ "
+        rf"{spin['chi2']:.0f}/{spin['dof']})"
+        if spin
+        else ""
+    )
+    return velocity, spin_label, (c["distance_d"], c["u"]), spin
+
+
 def _alternative_name(alt: Any) -> str:
     """An alternative's figure label with its chi^2, and phi for the Cosserat profiles (c)
-    (referee 15, point 2: the design's phi, not the material's)."""
-    phi = rf", $\phi$ = {COSSERAT_PHI:g} deg" if alt.key.startswith("cosserat") else ""
+    (referee 15, point 2: the design's phi, not the material's; referee 16, point 2: named
+    so beside the material's)."""
+    phi = rf", $\phi$ = {COSSERAT_PHI:g} deg (design)" if alt.key.startswith("cosserat") else ""
     return _figure_label(alt.label) + phi + rf" ($\chi^2$ {alt.chi2:.0f}/{alt.dof})"
 
 
@@ -409,22 +449,35 @@ def _figure_label(label: str) -> str:
     return label.replace(" xi ", r" $\xi$ ").replace(", xi ", r", $\xi$ ")
 
 
-def _layer_spin_curves(r: RunResult, distance_d: np.ndarray) -> dict[str, np.ndarray]:
+def _layer_spin_curves(
+    r: RunResult, distance_d: np.ndarray, material: Mapping[str, Any] | None = None
+) -> dict[str, np.ndarray]:
     """The Cosserat layer profiles' forward-modelled spin departure at the spin panel's bins
-    (``distance_d`` from the moving wall, in that order), by figure label."""
+    (``distance_d`` from the moving wall, in that order), by figure label; the own L's at the
+    material's phi (``material``, :func:`_own_length`) in place of the design's."""
     p = r.layer
     if p is None or not p.spin_data:
         return {}
     s = np.array([x[0] for x in p.spin_data])
     o = np.argsort(s)
-    return {
-        _spin_name(x.L_d, x.chi2, x.dof): np.interp(distance_d, s[o], np.asarray(x.departure)[o])
-        for x in p.spin
-    }
+    own = _own_length(material)
+    out = {}
+    for x in p.spin:
+        name, departure = _layer_spin_name(x), x.departure
+        if own is not None and x.key == OWN_KEY:
+            if own[3] is None:
+                continue
+            name, departure = own[1], own[3]["departure"]
+        out[name] = np.interp(distance_d, s[o], np.asarray(departure)[o])
+    return out
 
 
-def _spin_name(L_d: float, chi2: float, dof: int) -> str:
-    return rf"(c) Cosserat spin, L = {L_d:.3g} d ($\chi^2$ {chi2:.0f}/{dof})"
+def _layer_spin_name(x: Any) -> str:
+    """A ``layer.LayerSpin``'s figure label (at the design's phi)."""
+    return (
+        rf"(c) Cosserat spin, L = {x.L_d:.3g} d, $\phi$ = {COSSERAT_PHI:g} deg ($\chi^2$ "
+        rf"{x.chi2:.0f}/{x.dof})"
+    )
 
 
 def spin_rows(report: ValidationReport) -> list[dict[str, Any]]:
