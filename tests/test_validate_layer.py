@@ -6,6 +6,7 @@ wall moves; mu(I) and NGF shear the gap uniformly)."""
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -700,3 +701,27 @@ def test_the_layers_flow_below_the_materials_sin_phi():
     assert v.numbers["below_yield"][0]["sin_phi"] == pytest.approx(0.5)
     (plain,) = layer_verdicts([run])
     assert plain.numbers["below_yield"] == [] and "one phi" not in plain.evidence
+
+
+@pytest.mark.parametrize(
+    ("L_fit", "L_fit_se", "said"),
+    [
+        (2.0835508, 0.2588836, "(5.28 - 2.08)/0.634 = 5.0 se of the material's error (4.7 se"),
+        (2.6857346, 0.3342781, "(5.28 - 2.69)/0.634 = 4.1 se of the material's error (3.6 se"),
+    ],
+)
+def test_the_own_L_below_the_materials_names_its_se(L_fit, L_fit_se, said):
+    """Referee 16, point 2, on the v2 runs' numbers (the material's L 5.2785 +- 0.63417 d):
+    which se, both given, computed: (L - L_fit)/L_se and (L - L_fit)/hypot(L_se, L_fit_se),
+    and the shown arithmetic gives the shown z."""
+    from cosserat.studies.validate.layer import MaterialLength, below_text
+
+    m = MaterialLength("r", 5.2784942, 0.6341713, {}, 10, L_fit=L_fit, L_fit_se=L_fit_se)
+    text = below_text(m)
+    assert text == said + " with both errors in quadrature)"
+    assert m.below_se == pytest.approx((5.2784942 - L_fit) / 0.6341713)
+    assert m.below_se_both == pytest.approx((5.2784942 - L_fit) / math.hypot(0.6341713, L_fit_se))
+    shown = [float(x) for x in re.findall(r"[0-9.]+", text)[:4]]
+    assert round((shown[0] - shown[1]) / shown[2], 1) == shown[3]
+    # without the own L's error, only the material's
+    assert below_text(replace(m, L_fit_se=math.nan)) == said.split(" (")[0]
