@@ -1332,6 +1332,244 @@ def wall_bins(run: Run) -> WallBins:
     return WallBins(run.name, truncated, balance, int(np.count_nonzero(ok)), at_wall, dense)
 
 
+INVERSION_SIGMAS = 3.0
+"""sigma_yy breaks its own y-balance between two adjacent bins (an *inversion*) when it falls
+with depth by more than this many standard errors of the two bins' difference [-] (referee 16,
+point 1). Under gravity along -y (``docs/dem.md``) and compressive stresses, sigma_yy must rise
+with depth, from the upper wall's load to the lower wall: ``d sigma_yy / d(depth) = rho_s nu
+g``. The same many se of the difference make a nu step significant (:data:`NU_STEP`)."""
+NU_STEP = 0.07
+"""Two adjacent bins whose solids fractions differ by more than this [-] (and by more than
+:data:`INVERSION_SIGMAS` se of the difference) form a *nu step*: twice the typical difference
+between adjacent 1-d bins of the shipped gravity runs (medians 0.028-0.059 over the eight runs),
+the grain layers' density oscillation aliased by centre binning rather than a bulk gradient."""
+MISS_PLACES = ("layered", "next to the layered zone", "unexplained")
+"""Where a momentum-balance miss sits (:func:`miss_place`): in a bin with nu above
+:data:`HEXAGONAL_NU`; next to one, in a sigma_yy inversion or a nu step with a neighbour; or
+none of these."""
+
+
+@dataclass(frozen=True)
+class BinPair:
+    """Two adjacent bins of a plane run under gravity, the deeper (lower y) first
+    (:func:`y_balance`)."""
+
+    deep: int
+    """The deeper bin's row."""
+    shallow: int
+    """The shallower bin's row."""
+    y_deep: float
+    """The deeper bin's y (distance from the lower wall) [d]."""
+    y_shallow: float
+    """The shallower bin's y [d]."""
+    difference: float
+    """sigma_yy(deep) - sigma_yy(shallow), in the profile's units [N]."""
+    se: float
+    """The difference's standard error, the two bins independent [N]."""
+    expected: float
+    """What gravity adds between them: the rise rate times the pair's mean nu over the run's
+    mean nu times their spacing [N]."""
+    nu_deep: float
+    """The deeper bin's nu [-]."""
+    nu_shallow: float
+    """The shallower bin's nu [-]."""
+    nu_se: float
+    """The nu difference's standard error [-]."""
+
+    @property
+    def z(self) -> float:
+        """The difference over its se: below ``-INVERSION_SIGMAS`` an inversion [-]."""
+        return self.difference / self.se
+
+    @property
+    def z_balance(self) -> float:
+        """The difference less gravity's increment, over its se [-]."""
+        return (self.difference - self.expected) / self.se
+
+    @property
+    def inversion(self) -> bool:
+        """sigma_yy falls with depth by more than :data:`INVERSION_SIGMAS` se."""
+        return self.z < -INVERSION_SIGMAS
+
+    @property
+    def nu_step(self) -> bool:
+        """The two bins' nu differ by more than :data:`NU_STEP` and than
+        :data:`INVERSION_SIGMAS` se of the difference."""
+        step = abs(self.nu_deep - self.nu_shallow)
+        return step > NU_STEP and step > INVERSION_SIGMAS * self.nu_se
+
+    def record(self) -> dict[str, float]:
+        """The pair for ``results.json``."""
+        return {
+            "y_deep": self.y_deep,
+            "y_shallow": self.y_shallow,
+            "sigma_yy_difference": self.difference,
+            "sigma_yy_se": self.se,
+            "z": self.z,
+            "expected": self.expected,
+            "z_balance": self.z_balance,
+            "nu_deep": self.nu_deep,
+            "nu_shallow": self.nu_shallow,
+            "nu_se": self.nu_se,
+        }
+
+
+@dataclass(frozen=True)
+class YBalance:
+    """sigma_yy's own balance across a plane run under gravity (:func:`y_balance`).
+
+    Attributes
+    ----------
+    run : str
+        The run's name.
+    rate : float
+        sigma_yy's rise per d of depth at the run's mean nu, ``B / H`` [N/d].
+    nu_mean : float
+        The bins' mean nu, weighted by their widths [-].
+    pairs : tuple of BinPair
+        Every pair of adjacent bins with usable sigma_yy and nu, from the lower wall up.
+    """
+
+    run: str
+    rate: float
+    nu_mean: float
+    pairs: tuple[BinPair, ...]
+
+    @property
+    def inversions(self) -> tuple[BinPair, ...]:
+        """The pairs where sigma_yy falls with depth beyond :data:`INVERSION_SIGMAS` se."""
+        return tuple(p for p in self.pairs if p.inversion)
+
+    @property
+    def nu_steps(self) -> tuple[BinPair, ...]:
+        """The pairs whose nu differ by a :data:`NU_STEP`."""
+        return tuple(p for p in self.pairs if p.nu_step)
+
+    def record(self) -> dict[str, Any]:
+        """The check for ``results.json``: ``rate``, ``nu_mean``, ``inversions`` and
+        ``nu_steps`` (each a :meth:`BinPair.record`)."""
+        return {
+            "rate": self.rate,
+            "nu_mean": self.nu_mean,
+            "inversions": [p.record() for p in self.inversions],
+            "nu_steps": [p.record() for p in self.nu_steps],
+        }
+
+
+def y_balance(run: Run) -> YBalance | None:
+    """sigma_yy's y-balance in ``run`` from its own profile (no solve; referee 16, point 1):
+    under gravity along -y sigma_yy rises with depth by ``rho_s nu g`` per d, ``B nu / (nu_mean
+    H)`` in units of the load N (B = rho_s nu_mean g H / N, the sidecar's, with the measured
+    mean nu). Every pair of adjacent bins is compared; :attr:`YBalance.inversions` are where
+    sigma_yy falls with depth instead. None for a run that is not plane shear under gravity
+    (B below ``grouping.ZERO_B``) or has no sigma_yy or nu."""
+    from .grouping import ZERO_B
+
+    if run.cell != "plane" or run.B < ZERO_B or not (run.has("sigma_yy") and run.has("nu")):
+        return None
+    y = np.asarray(run.columns["y"], dtype=float)
+    s, s_se = run.quantity("sigma_yy")
+    nu, nu_se = run.quantity("nu")
+    order = np.argsort(y)
+    edges = np.r_[0.0, 0.5 * (y[order][1:] + y[order][:-1]), run.gap_d]
+    width = np.clip(np.diff(edges), 0.0, None)
+    good = np.isfinite(nu[order])
+    if not good.any() or not width[good].sum() > 0.0:
+        return None
+    nu_mean = float(np.average(nu[order][good], weights=width[good]))
+    rate = run.B / run.gap_d
+    ok = usable(s, s_se) & usable(nu, nu_se)
+    pairs = []
+    for a, b in itertools.pairwise(order):  # a deeper (lower y) than b
+        if not (ok[a] and ok[b]):
+            continue
+        pairs.append(
+            BinPair(
+                int(a),
+                int(b),
+                float(y[a]),
+                float(y[b]),
+                float(s[a] - s[b]),
+                float(math.hypot(s_se[a], s_se[b])),
+                float(rate * 0.5 * (nu[a] + nu[b]) / nu_mean * (y[b] - y[a])),
+                float(nu[a]),
+                float(nu[b]),
+                float(math.hypot(nu_se[a], nu_se[b])),
+            )
+        )
+    return YBalance(run.name, float(rate), nu_mean, tuple(pairs))
+
+
+@dataclass(frozen=True)
+class MissPlace:
+    """Where one momentum-balance miss sits (:func:`miss_place`; referee 16, point 1)."""
+
+    row: int
+    place: str
+    """One of :data:`MISS_PLACES`."""
+    nu: float | None
+    """The bin's nu (None without a nu column) [-]."""
+    dense_neighbours: tuple[tuple[float, float], ...]
+    """The adjacent bins with nu above :data:`HEXAGONAL_NU`: (distance from the moving wall
+    [d], nu [-])."""
+    inversions: tuple[BinPair, ...]
+    """The sigma_yy inversions the bin is in."""
+    nu_steps: tuple[BinPair, ...]
+    """The nu steps the bin is in."""
+
+    def why(self) -> str:
+        """What places the miss next to the layered zone, in words ("" otherwise)."""
+        parts = [f"beside nu = {nu:.3f} at {d:.2g} d" for d, nu in self.dense_neighbours]
+        parts += [
+            f"sigma_yy inversion y = {p.y_deep:.3g}/{p.y_shallow:.3g} ({p.z:+.2g} se)"
+            for p in self.inversions
+        ]
+        parts += [
+            f"nu step y = {p.y_deep:.3g}/{p.y_shallow:.3g} ({p.nu_deep:.2f}/{p.nu_shallow:.2f})"
+            for p in self.nu_steps
+        ]
+        return ", ".join(parts)
+
+    def record(self) -> dict[str, Any]:
+        """The miss's place for ``results.json``."""
+        return {
+            "place": self.place,
+            "nu": self.nu,
+            "dense_neighbours": [{"distance_d": d, "nu": nu} for d, nu in self.dense_neighbours],
+            "inversions": [p.record() for p in self.inversions],
+            "nu_steps": [p.record() for p in self.nu_steps],
+        }
+
+
+def miss_place(run: Run, row: int, balance: YBalance | None = None) -> MissPlace:
+    """Where the momentum-balance miss in ``row`` of ``run`` sits (:data:`MISS_PLACES`):
+    ``"layered"`` where the bin's nu exceeds :data:`HEXAGONAL_NU` (centre binning of a layered
+    packing); ``"next to the layered zone"`` where an adjacent bin's does, or the bin is in a
+    sigma_yy inversion or a nu step with a neighbour (:func:`y_balance`; ``balance`` if given,
+    else computed); ``"unexplained"`` otherwise."""
+    nu_col = run.quantity("nu")[0] if run.has("nu") else None
+    nu = None if nu_col is None else float(nu_col[row])
+    dense: list[tuple[float, float]] = []
+    if nu_col is not None:
+        y = np.asarray(run.columns[COORDINATE[run.cell]], dtype=float)
+        order = [int(k) for k in np.argsort(y)]
+        at = order.index(row)
+        for k in order[max(at - 1, 0) : at + 2]:
+            if k != row and np.isfinite(nu_col[k]) and nu_col[k] > HEXAGONAL_NU:
+                dense.append((round(float(run.distance_d[k]), 4), round(float(nu_col[k]), 4)))
+    yb = balance if balance is not None else y_balance(run)
+    pairs = () if yb is None else tuple(p for p in yb.pairs if row in (p.deep, p.shallow))
+    inversions = tuple(p for p in pairs if p.inversion)
+    steps = tuple(p for p in pairs if p.nu_step)
+    if nu is not None and nu > HEXAGONAL_NU:
+        place = MISS_PLACES[0]
+    elif dense or inversions or steps:
+        place = MISS_PLACES[1]
+    else:
+        place = MISS_PLACES[2]
+    return MissPlace(row, place, nu, tuple(dense), inversions, steps)
+
+
 WINDOW_TRAVEL_D = MIN_TRAVEL_D
 """Wall travel every DEM window discards before averaging [d]: the DEM analysis' own rule
 (``cosserat.dem.analyse.MIN_TRAVEL_D``; referee 9, point 5)."""
