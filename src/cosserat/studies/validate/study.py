@@ -91,6 +91,7 @@ from .spin_scan import (
     shared_fits,
     spin_scans,
 )
+from .summaries import summary as verdict_summary
 from .verdicts import (
     MIN_GAPS,
     SAME_GAP,
@@ -1088,6 +1089,10 @@ def judge(
         replace(v, evidence=v.evidence + balance_warning([by_name[n].run for n in v.runs], twins))
         if v.key in ("smoother", "rough")
         else v
+        for v in verdicts
+    ]
+    verdicts = [  # the headline numbers, read from each verdict's numbers (.summaries)
+        replace(v, summary=verdict_summary(v.key, v.verdict, v.qualifier, v.numbers))
         for v in verdicts
     ]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))
