@@ -3911,12 +3911,7 @@ def delta_law_verdict(
         )
     calls: list[tuple[str, str, str]] = []
     runs: list[str] = []
-    # the claim's exponent, the largest costed gap and the curve's model, for the summary
-    numbers: dict[str, Any] = {
-        "claimed_exponent": target,
-        "costed_gap_d": DEM_GAP_COSTED,
-        "curve_model": model,
-    }
+    numbers: dict[str, Any] = {}
     precision: list[tuple[int, str]] = []
     for s in rel:
         runs += [p.run for p in s.points]
@@ -3980,6 +3975,9 @@ def delta_law_verdict(
             )
         )
 
+    # after the series (the first key stays a series): the claim's exponent, the largest
+    # costed gap and the curve's model, which the summary (.summaries) reads
+    numbers.update(claimed_exponent=target, costed_gap_d=DEM_GAP_COSTED, curve_model=model)
     ratio = _ratio_for(series, model)  # both wall kinds' curves (referee 15, point 1)
     if ratio is not None:
         numbers["ratio_test"] = ratio
