@@ -16,7 +16,8 @@ measured quantities), whichever way it goes:
 4. the departure of the spin has the sign and size the Cosserat model predicts.
 
 Each verdict is "supported", "refuted", "mixed" or "undecided", with its evidence (method,
-numbers, p-values, runs) and what would change it. The orchestration is :mod:`.study`; the
+numbers, p-values, runs) and what would change it, and a short summary of its headline
+numbers (:mod:`.summaries`). The orchestration is :mod:`.study`; the
 writers (figures in ``cosserat.viz.validation``, Markdown and HTML from templates through
 ``cosserat.viz.report``, ``results.json``) are :mod:`.report`. The rules and the schema of
 ``results.json``: ``docs/validation.md``.

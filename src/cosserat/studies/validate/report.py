@@ -1068,6 +1068,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
                 "claim": v.claim,
                 "verdict": v.verdict,
                 "qualifier": v.qualifier,
+                "summary": v.summary,
                 "evidence": v.evidence,
                 "would_change": v.would_change,
                 # a claim without a figure of its own (the layer's) shows its first run's

@@ -98,6 +98,7 @@ from .spin_scan import (
     shared_fits,
     spin_scans,
 )
+from .summaries import summary as verdict_summary
 from .verdicts import (
     MIN_GAPS,
     SAME_GAP,
@@ -1100,6 +1101,10 @@ def judge(
         )
         if v.key in ("smoother", "rough")
         else v
+        for v in verdicts
+    ]
+    verdicts = [  # the headline numbers, read from each verdict's numbers (.summaries)
+        replace(v, summary=verdict_summary(v.key, v.verdict, v.qualifier, v.numbers))
         for v in verdicts
     ]
     return series, verdicts, couette_note(group_runs([r.run for r in results]))

@@ -164,6 +164,10 @@ class Verdict:
     """The condition or scope the verdict holds under, shown beside it wherever the verdict is
     (e.g. spin "supported" *given a velocity smooth on the grain scale*; referee 10, point 3);
     empty when the verdict stands alone."""
+    summary: str = ""
+    """The headline numbers the evidence leads with, in a few sentences (:mod:`.summaries`),
+    set where the verdicts are assembled; empty: none (the report then shows the evidence in
+    place)."""
 
     @property
     def claim(self) -> str:
@@ -182,6 +186,7 @@ class Verdict:
             "claim": self.claim,
             "verdict": self.verdict,
             "qualifier": self.qualifier,
+            "summary": self.summary,
             "evidence": self.evidence,
             "would_change": self.would_change,
             "runs": list(self.runs),
@@ -3970,6 +3975,9 @@ def delta_law_verdict(
             )
         )
 
+    # after the series (the first key stays a series): the claim's exponent, the largest
+    # costed gap and the curve's model, which the summary (.summaries) reads
+    numbers.update(claimed_exponent=target, costed_gap_d=DEM_GAP_COSTED, curve_model=model)
     ratio = _ratio_for(series, model)  # both wall kinds' curves (referee 15, point 1)
     if ratio is not None:
         numbers["ratio_test"] = ratio
