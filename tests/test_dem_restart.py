@@ -262,6 +262,7 @@ def test_corpus_v2_regenerates_the_kept_runs_decks():
         "plane_layer_H10_qs_s2",
         "plane_rough_H10_qs_half",
         "plane_rough_H10_qs_s2",
+        "plane_smooth_H20_qs_s2",
     } <= set(checked)
 
 
