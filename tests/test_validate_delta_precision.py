@@ -81,7 +81,7 @@ def test_the_precision_needed_to_tell_zero_from_a_third():
     )
     assert "sum (ln H - mean)^2 = 0.961 for any three gaps a factor 2 apart. At the runs' " \
         "Delta errors (10-25% of Delta; the largest, 25%, taken for every run; block errors, " \
-        "which a second seed would check): sigma <= 0.0833 is reached by none of the " \
+        "which a second seed would check): sigma <= 0.0833 is reached by none of the 1-3-seed " \
         "designs listed; not by 271.3/542.6/1085 d with one seed: sigma = 0.26; " \
         "271.3/542.6/1085 d " \
         "with 3 seeds each: sigma = 0.15" in text  # fmt: skip

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -15,6 +16,7 @@ from cosserat.errors import ParameterError
 from cosserat.studies.validate.measures import (
     CONDITION_SIGMAS,
     SENSITIVITY_F,
+    DeltaSensitivity,
     measured_thickness,
     thickness_sensitivity,
 )
@@ -99,3 +101,24 @@ def test_validate_uses_the_series_f_for_its_delta_and_says_so(tmp_path):
     assert result.thickness.value == pytest.approx(measured_thickness(a, 0.05).value)
     assert result.sensitivity is not None and result.sensitivity.ill == (0.05, 0.1)
     assert "f = 0.2" in report.verdict("rough").evidence
+
+
+def test_the_runs_table_tag_names_the_used_f_and_the_shift():
+    """Referee 17, point 8: plane_smooth_H20_qs_s2's numbers (ill at f = 0.1 only, its decay
+    length moving by -3.36 se to f = 0.2; -0.80 se from 0.05 to 0.1): the table says its Delta
+    is at f = 0.05, which is not flagged."""
+    t = DeltaSensitivity(
+        (0.05, 0.1, 0.2),
+        (4.01, 3.30, 2.69),
+        (0.58, 0.36, 0.29),
+        (1.20, 1.25, 1.41),
+        (0.19, 0.16, 0.18),
+        (-0.803, -3.364, None),
+        (0.1,),
+    )
+    assert t.tag(0.05) == (
+        "ill-conditioned at f = 0.1: its decay length shifts -3.4 se to the next f (beyond "
+        "2 se); this Delta is at f = 0.05, not flagged"
+    )
+    assert t.tag(0.1).endswith("this Delta is at f = 0.1, one of them")
+    assert replace(t, ill=()).tag(0.05) == ""

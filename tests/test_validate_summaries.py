@@ -237,3 +237,19 @@ def test_without_summaries_the_report_has_no_appendix():
     md = render("validate.md.j2", ctx)
     assert "Evidence in full" not in md and md.count("Evidence: EVIDENCE-") == 3
     assert "Evidence in full" not in render("validate.html.j2", ctx)
+
+
+def test_a_smoother_summary_names_the_level_its_seed_count_uses():
+    """Referee 17, point 3(a): with the smooth pair's 13% scatter below the 25% block error, the
+    seed count rests on the block error, and the summary says so (v19's numbers)."""
+    n = numbers("smoother")
+    (series,) = [v for v in n.values() if isinstance(v, dict) and "precision_needed" in v]
+    need = series["precision_needed"]
+    need["seeds_for_margin"].update(level=0.2512, replicated=True)
+    need["seeds"] = {"relative": 0.1307, "dof": 1}
+    text = delta_summary("undecided", "", n)
+    assert "(30 runs; at the block error, 25% per run (the replicates' 13% is below it))" in text
+    need["seeds"] = {"relative": 0.2512, "dof": 1}  # the scatter is the level: it is named
+    assert "(30 runs; at the replicates' seed scatter, 25% per run)" in delta_summary(
+        "undecided", "", n
+    )

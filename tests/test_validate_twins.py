@@ -398,7 +398,7 @@ def test_the_design_at_the_seed_scatter_from_the_closed_form():
     assert 4 < exact < 5 and need["seeds_for_margin"]["seeds"] == 5
     assert "At 18% per run, the slope rule's sigma <= 0.0833 needs 5 seeds per gap at " \
         "20/40/80 d ((17.6%/0.0833)^2 / 0.961 = 4.6, rounded up): 15 runs; sigma <= 0.0833 " \
-        "is reached by none of the designs listed; not by 20/40/80 d with one seed: " \
+        "is reached by none of the 1-3-seed designs listed; not by 20/40/80 d with one seed: " \
         "sigma = 0.18; " \
         "20/40/80 d with 2 seeds each: sigma = 0.13; 20/40/80 d with 3 seeds each: sigma = " \
         "0.1. The 18% rests on 1 pair(s) (95% range 8-561%), so the 5 seeds per gap are a " \

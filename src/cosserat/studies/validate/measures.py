@@ -376,6 +376,27 @@ class DeltaSensitivity:
                 return fi
         return None
 
+    def tag(self, used: float) -> str:
+        """The runs table's note on the ill-conditioned f (referee 17, point 8): which f are
+        ill-conditioned and by how many se each one's decay length shifts to the next f, and
+        whether ``used``, the f of the run's Delta, is one of them; "" where none is."""
+        if not self.ill:
+            return ""
+        shifts = []
+        for x in self.ill:
+            k = next((i for i, fi in enumerate(self.f) if abs(fi - x) < 1e-12), None)
+            z = None if k is None else self.shift[k]
+            shifts.append(
+                f"f = {x:g}"
+                + ("" if z is None else f": its decay length shifts {z:+.2g} se to the next f")
+            )
+        used_ill = any(abs(x - used) < 1e-12 for x in self.ill)
+        return f"ill-conditioned at {'; '.join(shifts)} (beyond {CONDITION_SIGMAS:g} se); " + (
+            f"this Delta is at f = {used:g}, one of them"
+            if used_ill
+            else f"this Delta is at f = {used:g}, not flagged"
+        )
+
     def text(self) -> str:
         parts = [
             f"f = {fi:g}: {'-' if v is None else f'{v:.3g}'}"

@@ -976,8 +976,7 @@ def context(report: ValidationReport) -> dict[str, Any]:
         if t.far_slip and t.value_far is not None:
             delta += f" (far wall slips; {t.value_far:.4g} relative to its bin)"
         if r.sensitivity is not None and r.sensitivity.ill:
-            delta += " (ill-conditioned at f = " + ", ".join(f"{x:g}" for x in r.sensitivity.ill)
-            delta += ")"
+            delta += f" ({r.sensitivity.tag(report.f)})"
         walls = []
         for w in r.spin.walls if r.spin.available else []:
             walls.append(

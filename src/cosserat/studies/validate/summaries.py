@@ -209,18 +209,32 @@ def _delta_series(verdict: str, qualifier: str, n: Numbers) -> str:
                     text += f", beyond the largest costed gap, {costed:g} d"
                 elif sw["end"] > costed:
                     text += f", which ends beyond the largest costed gap, {costed:g} d"
-        need = (s.get("precision_needed") or {}).get("seeds_for_margin")
+        precision = s.get("precision_needed") or {}
+        need = precision.get("seeds_for_margin")
         if need is not None and need.get("seeds") is not None:
             gaps = "/".join(f"{g:.4g}" for g in need["gaps"])
-            scatter = (
-                "the replicates' seed scatter" if need.get("replicated") else "the block error"
-            )
             text += (
                 f"; there the slope rule needs {need['seeds']} seeds per gap at {gaps} d "
-                f"({need['runs']} runs; at {scatter}, {need['level']:.0%} per run)"
+                f"({need['runs']} runs; {_level_text(need, precision.get('seeds'))})"
             )
         out.append(text + ".")
     return " ".join(out)
+
+
+def _level_text(need: Mapping[str, Any], seeds: Mapping[str, Any] | None) -> str:
+    """Which per-run relative error of Delta the seed count rests on (``verdicts.
+    precision_needed``: the larger of the replicates' scatter and the block error; referee 17,
+    point 3a): "at the replicates' seed scatter, 18% per run" where the scatter is the larger,
+    "at the block error, 25% per run (the replicates' 13% is below it)" where it is not."""
+    level = float(need["level"])
+    if not need.get("replicated"):
+        return f"at the block error, {level:.0%} per run"
+    seed = None if not seeds else seeds.get("relative")
+    if seed is None or float(seed) >= level:
+        return f"at the replicates' seed scatter, {level:.0%} per run"
+    return (
+        f"at the block error, {level:.0%} per run (the replicates' {float(seed):.0%} is below it)"
+    )
 
 
 def _delta_ratio(verdict: str, qualifier: str, n: Numbers) -> str:
