@@ -147,7 +147,8 @@ def test_the_momentum_balance_misses_rescaled(tmp_path):
     assert (
         "The 3 momentum-balance misses beyond 3 se outside the truncated bins, each z divided by "
         "its bin's sigma_yx factor: 3 stay beyond 3 se (largest z = +5.5, was +5.8, "
-        "plane_rough_H20_qs at 14 d): the stresses' autocorrelation does not explain them." in text
+        "plane_rough_H20_qs at 14.1 d): the stresses' autocorrelation does not explain them."
+        in text
     )
 
     def slow(meta):

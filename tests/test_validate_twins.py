@@ -15,9 +15,11 @@ import pytest
 from cosserat.analysis.corpus import read_run, write_run
 from cosserat.studies.validate.measures import miss_place, wall_bins, y_balance
 from cosserat.studies.validate.rate import (
+    SE_FLOOR,
     RatePair,
     StaticMiss,
     TwinField,
+    TwinPair,
     balance_record,
     balance_rescaled,
     balance_rescaled_text,
@@ -105,7 +107,11 @@ def test_a_shift_of_three_combined_se_gives_nine_per_bin(tmp_path):
         in text  # fmt: skip
     assert "nu sum z^2 = 90 on 10 bins (largest +3 at 0.5 d)" in text
     assert "sigma_yy sum z^2 = 25 on 10 bins (beyond 3 se: +5 at 0.5 d)" in text
-    assert "nu 3 (3 in the static zone), sigma_yy 1.6 (2.2 in the static zone)" in text
+    # referee 17, point 5: beside each factor, the factor without its largest bin
+    assert "nu 3.0 (3.0 without the bin at 0.5 d; static zone 3.0, 3.0 without it), sigma_yy " \
+        "1.6 (0.0 without the bin at 0.5 d; static zone 2.2, 0.0 without it)" in text  # fmt: skip
+    assert syy.without_largest("static") == (pytest.approx(0.0), 0.5)
+    assert "So the factors above undercut no verdict's errors." in text
     assert "omega agrees between the seeds (sum z^2 = 0 on 10 bins" in text
 
 
@@ -196,7 +202,7 @@ def test_momentum_balance_misses_rescaled_by_the_shear_factor(tmp_path):
     off[1] = -5.0 * math.hypot(SE, 0.01)
     run = _plane(tmp_path, "c", shift={"sigma_yx": off})
     text = balance_rescaled_text([run], twins)
-    assert "c at 8.5 d: z = -5 -> -2.5: none stays beyond 3 se" in text
+    assert "c at 8.5 d: z = -5 -> -2.5 (factor 2.0): none stays beyond 3 se" in text
     assert balance_rescaled_text([run], []) == ""
     assert balance_warning([run], twins) == ""  # within 3 se after the rescaling
 
@@ -215,14 +221,25 @@ def test_a_balance_miss_beyond_the_seed_scatter_is_named_unexplained(tmp_path):
     assert (name, d, f) == ("c", 8.5, pytest.approx(2.0)) and zr == pytest.approx(z / 2.0)
     assert balance_warning(run_list, twins) == (
         " Warning: momentum-balance misses unexplained: c at 8.5 d (nu = 0.800; z = -4 after "
-        "the rescaling) stays beyond 3 se of the wall's shear stress with the seed scatter "
-        "allowed for; this series' Delta uses that run, and nothing here accounts for the "
-        "unexplained ones."
+        "the rescaling by 2.0; I = 1e-05 < 0.0001: a static-zone bin (block errors within one "
+        "realisation); Delta, read from u, does not use it) stays beyond 3 se of the wall's "
+        "shear stress with the seed scatter allowed for (each factor without the miss's own "
+        "bin); this series' Delta uses that run's u, not these bins' stresses."
     )
     assert balance_warning(run_list, []) == ""
     assert miss_place(run, 1).place == "unexplained"
     (rec,) = balance_record(run_list, twins)["misses"]
     assert (rec["place"], rec["stays"], rec["distance_d"]) == ("unexplained", True, 8.5)
+    assert rec["static_zone"] and rec["inertial_number"] == pytest.approx(1e-5)
+    # referee 17, point 5: in the flowing zone (I = 1e-3; the flowing factor is 1) the same
+    # miss is one Delta's run carries unexplained
+    moving = _plane(tmp_path, "m", shift={"sigma_yx": off}, inertial=np.full(10, 1e-3))
+    assert balance_warning([moving], twins) == (
+        " Warning: momentum-balance misses unexplained: m at 8.5 d (nu = 0.800; z = -8 after "
+        "the rescaling by 1.0) stays beyond 3 se of the wall's shear stress with the seed scatter "
+        "allowed for (each factor without the miss's own bin); this series' Delta uses that "
+        "run, and nothing here accounts for the unexplained ones."
+    )
 
 
 def test_a_balance_miss_where_nu_exceeds_the_hexagonal_bound_is_in_the_layered_zone(tmp_path):
@@ -240,12 +257,14 @@ def test_a_balance_miss_where_nu_exceeds_the_hexagonal_bound_is_in_the_layered_z
     assert balance_warning([run], twins) == (
         " Warning: momentum-balance misses in and next to the layered zone (nu steps between "
         "adjacent bins; sigma_yy's y-balance broken in the same bins): in it (nu > 0.907, the "
-        "hexagonal bound): c at 8.5 d (nu = 0.949; z = -4 after the rescaling); next to it "
+        "hexagonal bound): c at 8.5 d (nu = 0.949; z = -4 after the rescaling by 2.0); next "
+        "to it "
         "(beside a bin "
         "of nu > 0.907, in a sigma_yy inversion or a nu step of more than 0.07): c at 7.5 d "
-        "(nu = 0.800; z = -4 after the rescaling; beside nu = 0.949 at 8.5 d, nu step "
+        "(nu = 0.800; z = -4 after the rescaling by 2.0; beside nu = 0.949 at 8.5 d, nu step "
         "y = 1.5/2.5 (0.95/0.80)) stay beyond 3 se of the wall's shear stress with the seed "
-        "scatter allowed for; this series' Delta uses that run; centre binning of a layered "
+        "scatter allowed for (each factor without the miss's own bin); this series' Delta "
+        "uses that run; centre binning of a layered "
         "packing is why: a centre-binned layered bin, and its neighbours, do not test the "
         "balance (the stresses are not recomputed with area-weighted or half-shifted bins in "
         "this version)."
@@ -551,10 +570,12 @@ def test_the_runs_text_places_the_misses_and_lists_the_y_balance():
     ]
     text = wall_bins_text(runs)
     assert (
-        "3 of its other 19 bins, largest z = +5.8 at 14 d (1 in the layered zone, 2 next to "
+        "3 of its other 19 bins, largest z = +5.8 at 14.1 d (1 in the layered zone, 2 next to "
         "the layered zone))" in text
     )
-    assert "2 of its other 20 bins, largest z = -4.0 at 16 d (2 next to the layered zone))" in text
+    assert (
+        "2 of its other 20 bins, largest z = -4.0 at 16.2 d (2 next to the layered zone))" in text
+    )
     assert (
         "plane_rough_H20_qs (rise 0.051 N/d): inversions at y = 0.5/1.5 (-22 se), 1.5/2.5 "
         "(-13 se), 5.5/6.5 (-7.8 se), 11.5/12.5 (-5.3 se), 18.5/19.3 (-8.5 se); nu steps at "
@@ -562,3 +583,77 @@ def test_the_runs_text_places_the_misses_and_lists_the_y_balance():
     )
     assert "centre binning of a layered packing puts such bins' stresses off" in text
     assert "unexplained otherwise" in text and "(0 unexplained" not in text
+
+
+def test_a_bin_whose_block_se_is_zero_enters_no_factor(tmp_path):
+    """Referee 17, point 5: seed 2's nu se is 3.7e-17 in the first bin (the blocks returned one
+    value) and its nu 0.05 lower there: z = 0.05 / 0.01 = +5, over seed 1's se alone. Below
+    SE_FLOOR (0.01) of nu's median se (0.01), the bin is listed in sum z^2, marked, and left
+    out of every factor (so nu's factor is 0, not sqrt(25 / 10))."""
+    a = _plane(tmp_path, "a")
+    b = _plane(tmp_path, "b", seed=2, shift={"nu": np.r_[-0.05, np.zeros(9)]})
+    cols = {k: np.array(v, float) for k, v in b.columns.items()}
+    cols["nu_se"][0] = 3.7e-17
+    b = replace(b, columns=cols)
+    (p,) = twin_pairs([_result(a), _result(b)])
+    nu = p.fields["nu"]
+    assert SE_FLOOR == 0.01 and nu.floored == (True,) + (False,) * 9
+    assert nu.z[0] == pytest.approx(5.0) and nu.chi2 == pytest.approx(25.0)
+    assert nu.factor() == 0.0 and nu.factor("static") == 0.0 and nu.floored_at == [0.5]
+    assert p.fields["u"].floored == (False,) * 10
+    text = p.text()
+    assert "nu sum z^2 = 25 on 10 bins (beyond 3 se: +5 at 0.5 d (se below the floor))" in text
+    assert "left out too, for a block se below 0.01 of the field's median in one run (the " \
+        "blocks returned one value: no error estimate, so no z): nu at 0.5 d." in text  # fmt: skip
+    assert nu.to_dict()["floored"][0] and nu.to_dict()["se_floor"] == 0.01
+
+
+def test_a_miss_is_not_rescaled_by_a_factor_its_own_bin_drives(tmp_path):
+    """Referee 17, point 5: seed 2's sigma_yx is 2 sqrt 2 se low in the static bins but 8
+    sqrt 2 se low at 1.5 d from the fixed wall, a momentum-balance miss of z = -8 in seed 2
+    itself. The pair's static factor is sqrt((4 x 4 + 64) / 5) = 4 with that bin, 2 without
+    it: the miss is rescaled by 2 (-4, beyond 3 se), not by 4 (-2, within)."""
+    step = np.full(5, -2.0 * math.hypot(SE, SE))
+    step[1] = -8.0 * math.hypot(SE, SE)
+    b = _plane(tmp_path, "b", seed=2, shift={"sigma_yx": np.r_[step, np.zeros(5)]})
+    twins = twin_pairs([_result(_plane(tmp_path, "a")), _result(b)])
+    tf = twins[0].fields["sigma_yx"]
+    assert tf.factor("static") == pytest.approx(4.0)
+    assert tf.factor("static", (1,)) == pytest.approx(2.0) and tf.rows == tuple(range(10))
+    assert twin_factor(twins, "sigma_yx", "static", ("b", 1)) == pytest.approx(2.0)
+    assert twin_factor(twins, "sigma_yx", "static", ("c", 1)) == pytest.approx(4.0)
+    ((name, d, z, zr, f),) = balance_rescaled([b], twins)
+    assert (name, d) == ("b", 8.5) and z == pytest.approx(-8.0) and f == pytest.approx(2.0)
+    assert zr == pytest.approx(-4.0)
+    assert "b at 8.5 d: z = -8 -> -4 (factor 2.0): 1 stays beyond 3 se, so the seed scatter " \
+        "does not explain it." in balance_rescaled_text([b], twins)  # fmt: skip
+    (rec,) = balance_record([b], twins)["misses"]
+    assert rec["factor"] == pytest.approx(2.0) and rec["factor_without_own_bin"]
+
+
+def test_distances_print_with_one_decimal():
+    """Referee 17, point 5: 11.5 and 12.5 d both read "12 d" at two significant figures."""
+    p = TwinPair("a", "b", 1.0, (1, 2), {}, (None, None), (None, None))
+    f = TwinField("nu", (-24.0, 26.0, 1.0), (10.5, 11.5, 12.5), (True, True, True))
+    assert p.field_text(f) == (
+        "nu sum z^2 = 1.25e+03 on 3 bins (beyond 3 se: -24 at 10.5 d, +26 at 11.5 d)"
+    )
+    assert f.without_largest() == (pytest.approx(math.sqrt((24.0**2 + 1.0) / 2.0)), 11.5)
+    assert TwinField("u", (1.0,), (0.5,), (True,)).without_largest() is None
+
+
+def test_the_unused_stresses_sentence_follows_the_pairs_numbers(tmp_path):
+    """Referee 17, point 5: "no verdict uses binned nu or stresses outside the band" says
+    whether the band's stress ratio and the walls' contact stress ratio agree, from the pair;
+    a moving wall's ratio 3 combined se apart is said to differ."""
+    a = _plane(tmp_path, "a")
+    b = _plane(tmp_path, "b", seed=2)
+    (p,) = twin_pairs([_result(a), _result(b)])
+    assert p.unused_text().endswith("both agreeing between the seeds. So the factors above "
+                                    "undercut no verdict's errors.")  # fmt: skip
+    far = replace(p, wall_ratio=((0.30, 0.01), (0.30 - 3 * math.hypot(0.01, 0.01), 0.01)))
+    assert far.unused_text().endswith(
+        "(the moving wall's stress ratio: z = +3 between the seeds; phi and delta); the walls' "
+        "differs between the seeds beyond the block errors."
+    )
+    assert replace(p, wall_ratio=(None, None)).unused_text() == ""

@@ -1540,7 +1540,7 @@ class MissPlace:
 
     def why(self) -> str:
         """What places the miss next to the layered zone, in words ("" otherwise)."""
-        parts = [f"beside nu = {nu:.3f} at {d:.2g} d" for d, nu in self.dense_neighbours]
+        parts = [f"beside nu = {nu:.3f} at {d:.1f} d" for d, nu in self.dense_neighbours]
         parts += [
             f"sigma_yy inversion y = {p.y_deep:.3g}/{p.y_shallow:.3g} ({p.z:+.2g} se)"
             for p in self.inversions
@@ -1876,7 +1876,7 @@ def _tau_parts(records: dict[str, tuple[Run, dict]], columns: Sequence[str]) -> 
         top = max(rows, key=lambda x: x[1])
         long = [x for x in rows if x[1] >= LONG_TAU_BLOCKS]
         factor = block_se_factor(top[1], top[3])
-        where = f"{top[0]} at {top[2]:.2g} d"
+        where = f"{top[0]} at {top[2]:.1f} d"
         if long:
             parts[c] = (
                 f"{c} one block or more in {len(long)} of {len(rows)} bins of "
@@ -1918,7 +1918,7 @@ def _stress_tau_text(runs: Sequence[Run]) -> str:
             f"the truncated bins, each z divided by its bin's {shear} factor: {len(still)} stay "
             "beyond "
             f"{BALANCE_SIGMAS:g} se (largest z = {worst[3]:+.1f}, was {worst[2]:+.1f}, "
-            f"{worst[0]} at {worst[1]:.2g} d)"
+            f"{worst[0]} at {worst[1]:.1f} d)"
             + (
                 ": the stresses' autocorrelation does not explain them."
                 if len(still) == len(misses)

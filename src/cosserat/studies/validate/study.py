@@ -1335,7 +1335,7 @@ def _balance_run(c: WallBins, run: Run) -> str:
         )
         parts.append(
             f"{len(others)} of its other {c.tested - len(named)} bins, largest "
-            f"z = {worst[3]:+.1f} at {worst[1]:.2g} d ({counts})"
+            f"z = {worst[3]:+.1f} at {worst[1]:.1f} d ({counts})"
         )
     return f"{c.run} (wall {c.wall_shear:.3g}; {', '.join(parts)})"
 
