@@ -8,6 +8,8 @@ and every expected number worked by hand."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -61,7 +63,7 @@ def test_the_scaled_p_is_the_unscaled_p_of_chi2_over_f_squared_and_grows_with_f(
     assert [r["verdict"] for r in rows] == ["supported", "undecided"]
     # monotone over a grid of factors
     ps = [pooled_t_p(60.0 / f**2, 12, 10) for f in np.linspace(1.0, 2.0, 21)]
-    assert all(a <= b for a, b in zip(ps, ps[1:], strict=False))
+    assert all(a <= b for a, b in itertools.pairwise(ps))
     # without blocks the chi^2 reading, scaled the same way
     bare = seed_factor_rows([("a", 1.1)], (60.0, 12), (30.0, 8), 0, CARRYING)
     assert bare[0]["p_reading"] == "normal" and bare[0]["count"] is None

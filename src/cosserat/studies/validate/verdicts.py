@@ -2202,7 +2202,7 @@ def spin_verdict(
             return "refuted"
         return "undecided"
 
-    first_z = [(float(b["z"]), b["distance_d"] == float(np.min(w.distance_d)))
+    first_z = [(float(b["z"] or 0.0), b["distance_d"] == float(np.min(w.distance_d)))
                for w in tested for b in carrying_bins(w, weak)]  # fmt: skip
     rows = seed_factor_rows(seed_factors, (chi2, dof), rest[:2], blocks, first_z, rule_at)
     numbers["pooled_p_at_seed_factor"] = rows
