@@ -140,11 +140,11 @@ def test_the_summary_states_the_p_at_the_seed_factors_from_numbers():
         "verdict_at_largest_seed_factor": "supported",
     }
     assert spin_summary("supported", "", n) == (
-        "With every se times the replicates' omega seed factors (x1.13-1.26) p = "
-        "6.5e-05-0.00033, 3 of the 5 bins beyond 3 se; p reaches 0.001 at x1.37."
+        "With every se times the replicates' omega seed factors x1.13-1.26: p = "
+        "6.5e-05-0.00033, 3 of 5 bins beyond 3 se; 0.001 at x1.37."
     )
     n["verdict_at_largest_seed_factor"] = "undecided"
     assert spin_summary("supported", "", n).endswith(
-        "p reaches 0.001 at x1.37; at x1.26 the rule says undecided."
+        "3 se; 0.001 at x1.37; at x1.26 the rule says undecided."
     )
     assert spin_summary("supported", "", {"pooled_p_at_seed_factor": []}) == ""

@@ -124,14 +124,14 @@ def _spin_seed(verdict: str, qualifier: str, n: Numbers) -> str:
     if not rows:
         return ""
     text = (
-        f"With every se times the replicates' omega seed factors (x"
-        f"{_span([r['factor'] for r in rows])}) p = {_span([r['p'] for r in rows], '.2g')}, "
-        f"{_span([r['bins_beyond_3'] for r in rows], 'd')} of the {rows[0]['bins']} bins "
-        "beyond 3 se"
+        f"With every se times the replicates' omega seed factors "
+        f"x{_span([r['factor'] for r in rows])}: p = {_span([r['p'] for r in rows], '.2g')}, "
+        f"{_span([r['bins_beyond_3'] for r in rows], 'd')} of {rows[0]['bins']} bins beyond "
+        "3 se"
     )
     crossing = n.get("seed_factor_crossing")
     if crossing is not None:
-        text += f"; p reaches {P_SIGNIFICANT:g} at x{crossing:.3g}"
+        text += f"; {P_SIGNIFICANT:g} at x{crossing:.3g}"
     word = n.get("verdict_at_largest_seed_factor")
     if word is not None and word != verdict:
         text += f"; at x{n['seed_factor_largest']:.3g} the rule says {word}"
