@@ -1076,7 +1076,8 @@ P_NOTE = (
     "pooled_p_without_first_layer_normal read each z as normal, pooled_p_every_bin is the "
     "analysis' stencil with every first layer, pooled_p_bound takes se_omega + se_half, "
     "pooled_p_against_zero tests against 0 (no null), pooled_p_t_without_first_layer leaves the "
-    "first layers out (pooled_p_t is the headline's t reading)"
+    "first layers out (pooled_p_t is the headline's t reading), pooled_p_at_seed_factor "
+    "multiplies every se by the replicates' seed factors (seed_factor_note)"
 )
 """The spin verdict's ``p_note`` in results.json (referee 15, point 6)."""
 
