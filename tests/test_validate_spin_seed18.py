@@ -148,3 +148,24 @@ def test_the_summary_states_the_p_at_the_seed_factors_from_numbers():
         "3 se; 0.001 at x1.37; at x1.26 the rule says undecided."
     )
     assert spin_summary("supported", "", {"pooled_p_at_seed_factor": []}) == ""
+
+
+def test_the_replicates_omega_factors_with_and_without_the_truncated_bin():
+    """A pair with omega z = (1, 2, 2), the last bin truncated: its factor sqrt((1 + 4)/2) =
+    1.581 (truncated bin left out, rate.TwinField.factor) and sqrt(9/3) = 1.732 with it; a
+    pair without a truncated bin gives one factor; a pair without omega none."""
+    from types import SimpleNamespace
+
+    from cosserat.studies.validate.rate import TwinField
+    from cosserat.studies.validate.study import omega_seed_factors
+
+    cut = TwinField("omega", (1.0, 2.0, 2.0), (0.5, 1.5, 2.4), (False,) * 3, (False, False, True))
+    whole = TwinField("omega", (0.5, 0.5), (0.5, 1.5), (False, False), (False, False))
+    twins = [
+        SimpleNamespace(a="r", b="r_s2", fields={"omega": cut}),
+        SimpleNamespace(a="q", b="q_s2", fields={"omega": whole}),
+        SimpleNamespace(a="p", b="p_s2", fields={}),
+    ]
+    got = omega_seed_factors(twins)
+    assert [g[0] for g in got] == ["r/r_s2", "r/r_s2 with its truncated wall bin", "q/q_s2"]
+    assert [g[1] for g in got] == pytest.approx([5**0.5 / 2**0.5, 3**0.5, 0.5])
