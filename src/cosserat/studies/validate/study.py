@@ -1031,8 +1031,12 @@ def judge(
         systematic = _joint_nulls(results, scans, scanned.nulls)
     _joint_curves(results, scans)
     walls = [w for r in results if r.spin.available for w in r.spin.walls]
+    twins = twin_pairs(results)
     spin = spin_verdict(
-        walls, unfit=_spin_model_inputs(results)[2], runs_info=spin_runs(results, scans)
+        walls,
+        unfit=_spin_model_inputs(results)[2],
+        runs_info=spin_runs(results, scans),
+        seed_factors=omega_seed_factors(twins),
     )
     if systematic:
         spin = replace(
@@ -1083,7 +1087,6 @@ def judge(
         else v
         for v in verdicts
     ]
-    twins = twin_pairs(results)
     verdicts = [
         replace(
             v,
@@ -1155,6 +1158,26 @@ def _value_and_error(v: Any, se: Any) -> tuple[float, float] | None:
     if isinstance(v, int | float) and isinstance(se, int | float) and math.isfinite(v):
         return float(v), float(se)
     return None
+
+
+def omega_seed_factors(twins: Sequence[Any]) -> list[tuple[str, float]]:
+    """Each same-conditions replicate pair's omega seed-scatter factor (``rate.TwinPair``'s
+    omega ``TwinField.factor``, truncated wall bins left out) and, where the pair has a
+    truncated wall bin, sqrt(sum z^2 / n) with it counted (referee 17, point 2: 1.26 for the
+    rough H = 10 d pair), labelled by the pair, for the spin verdict's pooled p at the seed
+    scatter [-]."""
+    out = []
+    for t in twins:
+        om = t.fields.get("omega")
+        if om is None:
+            continue
+        pair = f"{t.a}/{t.b}"
+        f = om.factor()
+        if f is not None:
+            out.append((pair, float(f)))
+        if om.n_truncated:
+            out.append((f"{pair} with its truncated wall bin", math.sqrt(om.chi2 / om.n)))
+    return out
 
 
 def twins_text(twins: Sequence[Any], results: Sequence[RunResult]) -> str:

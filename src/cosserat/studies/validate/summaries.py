@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from .measures import P_SIGNIFICANT
 from .verdicts import GRAIN_SE
 
 SUMMARY_CHARS = 700
@@ -118,11 +119,33 @@ def _spin_carrying(verdict: str, qualifier: str, n: Numbers) -> str:
     return text + "."
 
 
+def _spin_seed(verdict: str, qualifier: str, n: Numbers) -> str:
+    rows = n["pooled_p_at_seed_factor"]
+    if not rows:
+        return ""
+    text = (
+        f"With every se times the replicates' omega seed factors "
+        f"x{_span([r['factor'] for r in rows])}: p = {_span([r['p'] for r in rows], '.2g')}, "
+        f"{_span([r['bins_beyond_3'] for r in rows], 'd')} of {rows[0]['bins']} bins beyond "
+        "3 se"
+    )
+    crossing = n.get("seed_factor_crossing")
+    if crossing is not None:
+        text += f"; {P_SIGNIFICANT:g} at x{crossing:.3g}"
+    word = n.get("verdict_at_largest_seed_factor")
+    if word is not None and word != verdict:
+        text += f"; at x{n['seed_factor_largest']:.3g} the rule says {word}"
+    return text + "."
+
+
 def spin_summary(verdict: str, qualifier: str, numbers: Numbers) -> str:
     """The spin verdict's summary: the model-free ratio omega_1/W_layers and how many walls
     lie beyond the matched velocity by :data:`~.verdicts.GRAIN_SE` se, the pooled test beyond
-    the joint fit's null with the verdict's p, and the bins it rests on."""
-    return _join(verdict, qualifier, numbers, (_spin_free, _spin_pooled, _spin_carrying))
+    the joint fit's null with the verdict's p, the bins it rests on, and the pooled p with
+    every se times the replicates' omega seed factors (referee 17, point 2)."""
+    return _join(
+        verdict, qualifier, numbers, (_spin_free, _spin_pooled, _spin_carrying, _spin_seed)
+    )
 
 
 # --- spin_model -----------------------------------------------------------------------------

@@ -69,6 +69,7 @@ p-values, the runs used) and what data would change it. The rules:
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import re
@@ -415,11 +416,43 @@ def pooled_t_count(
     (referee 12, point 7). None where :func:`pooled_t_p` is."""
     if chi2 is None or blocks < 2 or dof < 1 or not math.isfinite(chi2):
         return None
+    sums = _t_sums(dof, blocks, samples)
+    return int(sums.size - np.searchsorted(sums, chi2, side="left")), int(samples)
+
+
+@functools.lru_cache(maxsize=8)
+def _t_sums(dof: int, blocks: int, samples: int) -> FloatArray:
+    """:func:`pooled_t_count`'s seeded draws: ``samples`` sums of ``dof`` independent
+    F(1, blocks - 1) variables, sorted ascending and read-only (cached: the verdict reads one
+    set of draws at several chi^2, :func:`seed_factor_rows`) [-]."""
     rng = np.random.default_rng(20261127)
     total = np.zeros(samples)
     for _ in range(dof):  # one bin at a time: memory stays one column
         total += rng.f(1.0, blocks - 1.0, size=samples)
-    return int(np.count_nonzero(total >= chi2)), int(samples)
+    total.sort()
+    total.flags.writeable = False
+    return total
+
+
+def crossing_factor(
+    chi2: float | None, dof: int, blocks: int, line: float = P_SIGNIFICANT,
+    samples: int = T_SAMPLES,
+) -> float | None:  # fmt: skip
+    """The factor F on every bin's se at which :func:`pooled_t_p` of the pooled chi^2 reaches
+    ``line`` (referee 17, point 2) [-]. Exact over the Monte Carlo's draws, no bisection: F
+    divides every whitened z by F and so chi^2 by F^2, and the p at F is the unscaled p at
+    chi^2 / F^2 over the same seeded draws; p = (count + 1) / (draws + 1) >= ``line`` once at
+    least k = ceil(line (draws + 1) - 1) draws are at or above chi^2 / F^2, i.e. chi^2 / F^2 <=
+    s_k, the k-th largest draw: F = sqrt(chi^2 / s_k) (below 1 where the unscaled p is already
+    at or above ``line``). None without a test or where ``line`` needs more draws than there
+    are."""
+    if chi2 is None or blocks < 2 or dof < 1 or not math.isfinite(chi2) or chi2 <= 0.0:
+        return None
+    k = max(1, math.ceil(line * (samples + 1) - 1.0 - 1e-9))
+    if k > samples:
+        return None
+    sums = _t_sums(dof, blocks, samples)
+    return math.sqrt(chi2 / float(sums[sums.size - k]))
 
 
 def mc_error(count: int, draws: int) -> float:
@@ -1043,9 +1076,121 @@ P_NOTE = (
     "pooled_p_without_first_layer_normal read each z as normal, pooled_p_every_bin is the "
     "analysis' stencil with every first layer, pooled_p_bound takes se_omega + se_half, "
     "pooled_p_against_zero tests against 0 (no null), pooled_p_t_without_first_layer leaves the "
-    "first layers out (pooled_p_t is the headline's t reading)"
+    "first layers out (pooled_p_t is the headline's t reading), pooled_p_at_seed_factor "
+    "multiplies every se by the replicates' seed factors (seed_factor_note)"
 )
 """The spin verdict's ``p_note`` in results.json (referee 15, point 6)."""
+
+SEED_FACTOR_NOTE = (
+    "pooled_p_at_seed_factor: the verdict's pooled test (same stencil, same bins, same seeded "
+    "t(blocks - 1) Monte Carlo) with every bin's se multiplied by a same-conditions replicate "
+    "pair's omega seed-scatter factor sqrt(sum z^2 / n) (above 1 only; label: the pair, 'with "
+    "its truncated wall bin' where that bin is counted), one row per factor: factor, p "
+    "(count of draws at or above, draws; p_reading t or normal), bins_beyond_3 of bins (the "
+    "bins the verdict rests on still at |z| >= 3), the same without the first layers "
+    "(*_without_first_layer) and verdict (the rule's at that factor); seed_factor_crossing "
+    "(_without_first_layer) is the factor at which p reaches 0.001 (exact over the draws: p at "
+    "F is the unscaled p at chi^2/F^2); seed_factor_largest and verdict_at_largest_seed_factor "
+    "the largest factor's"
+)
+"""The spin verdict's ``seed_factor_note`` in results.json (referee 17, point 2)."""
+
+
+def _scaled_p(chi2: float | None, dof: int, blocks: int, factor: float) -> tuple[
+    float | None, int | None, int | None
+]:  # fmt: skip
+    """The pooled p of ``chi2`` over ``dof`` bins with every se times ``factor`` (chi^2 /
+    factor^2): :func:`pooled_t_count`'s where the blocks are recorded, else chi^2's; with the
+    count and draws (None for chi^2's) [-]."""
+    if chi2 is None or dof < 1:
+        return None, None, None
+    c = pooled_t_count(chi2 / factor**2, dof, blocks)
+    if c is None:
+        return float(chi2_dist.sf(chi2 / factor**2, dof)), None, None
+    return (c[0] + 1) / (c[1] + 1), c[0], c[1]
+
+
+def seed_factor_rows(
+    factors: Sequence[tuple[str, float]],
+    pooled: tuple[float | None, int],
+    rest: tuple[float | None, int],
+    blocks: int,
+    carrying: Sequence[tuple[float, bool]],
+    rule: Any = None,
+) -> list[dict[str, Any]]:
+    """The spin verdict's pooled test with every bin's se multiplied by each seed-scatter
+    factor above 1 (referee 17, point 2; :data:`SEED_FACTOR_NOTE`), by factor.
+
+    Parameters
+    ----------
+    factors : sequence of (str, float)
+        (the replicate pair it comes from, omega's seed-scatter factor [-]).
+    pooled, rest : (float or None, int)
+        The pooled chi^2 and its bins, with and without the first layers [-].
+    blocks : int
+        Time blocks behind each se (the t reading's blocks - 1 degrees of freedom).
+    carrying : sequence of (float, bool)
+        The whitened z of each bin the verdict rests on and whether it is a first layer [-].
+    rule : callable, optional
+        factor -> the rule's verdict at that factor (None: not given).
+    """
+    rows = []
+    for label, f in sorted(factors, key=lambda x: x[1]):
+        if not (math.isfinite(f) and f > 1.0):
+            continue
+        p, count, draws = _scaled_p(pooled[0], pooled[1], blocks, f)
+        p_r, count_r, draws_r = _scaled_p(rest[0], rest[1], blocks, f)
+        rows.append(
+            {
+                "label": label,
+                "factor": float(f),
+                "p": p,
+                "count": count,
+                "draws": draws,
+                "p_reading": "normal" if count is None else f"t({blocks - 1})",
+                "bins_beyond_3": sum(abs(z) / f >= CARRY_Z for z, _ in carrying),
+                "bins": len(carrying),
+                "p_without_first_layer": p_r,
+                "count_without_first_layer": count_r,
+                "draws_without_first_layer": draws_r,
+                "bins_beyond_3_without_first_layer": sum(
+                    abs(z) / f >= CARRY_Z for z, first in carrying if not first
+                ),
+                "bins_without_first_layer": sum(1 for _, first in carrying if not first),
+                "verdict": None if rule is None else rule(f),
+            }
+        )
+    return rows
+
+
+def seed_factor_text(rows: Sequence[Mapping[str, Any]], crossing: float | None) -> str:
+    """The sentence on the pooled p at the replicates' omega seed factors
+    (:func:`seed_factor_rows`; referee 17, point 2); "" without a factor above 1."""
+    if not rows:
+        return ""
+    ps = [r["p"] for r in rows if r["p"] is not None]
+    if not ps:
+        return ""
+    named = ", ".join(f"x{r['factor']:.3g} {r['label']}" for r in rows)
+    text = (
+        f" With every bin's se multiplied by the same-conditions replicates' omega seed-scatter "
+        f"factors ({named}) the pooled p is {', '.join(f'{p:.2g}' for p in ps)} under "
+        f"{rows[0]['p_reading']} ({', '.join(str(r['bins_beyond_3']) for r in rows)} of the "
+        f"{rows[0]['bins']} bins it rests on stay beyond {CARRY_Z:g} se)"
+    )
+    rest = [r["p_without_first_layer"] for r in rows if r["p_without_first_layer"] is not None]
+    if rest:
+        text += f"; without the first layers {', '.join(f'{p:.2g}' for p in rest)}"
+    if crossing is not None:
+        text += (
+            f"; it would reach {P_SIGNIFICANT:g} at a factor of {crossing:.3g} (exact over the "
+            "Monte Carlo's draws: F divides chi^2 by F^2, and the p at F is the unscaled p at "
+            "chi^2/F^2 over the same seeded draws)"
+        )
+    top = rows[-1]
+    if top["verdict"] is not None:
+        text += f"; at the largest, x{top['factor']:.3g}, the rule's verdict is '{top['verdict']}'"
+    return text + "."
 
 
 def matched_ratio_se(
@@ -1683,6 +1828,7 @@ def spin_verdict(
     model: str = "cosserat",
     unfit: Mapping[str, str] | None = None,
     runs_info: Mapping[str, SpinRun] | None = None,
+    seed_factors: Sequence[tuple[str, float]] = (),
 ) -> Verdict:
     """Does the spin depart from half the vorticity near the walls (module docstring)?
 
@@ -1705,6 +1851,11 @@ def spin_verdict(
         cells, a cell departing where each of its runs does), the evidence names the gaps,
         inertial numbers, seeds and wall speeds, compares one cell's first layer at two
         speeds, and says where a bin it rests on sits in a run that is not steady.
+    seed_factors : sequence of (str, float)
+        The same-conditions replicates' omega seed-scatter factors (``rate.TwinField.factor``),
+        each with the pair it comes from: the pooled test is repeated with every bin's se
+        multiplied by each factor above 1 (:func:`seed_factor_rows`; referee 17, point 2),
+        and where the rule would not say "supported" at the largest, the qualifier says so.
 
     Notes
     -----
@@ -1779,17 +1930,24 @@ def spin_verdict(
     significant = [r for r in runs if p_run[r] < P_SIGNIFICANT]
     cell_of = _cells(runs, info)
     cells = sorted(set(cell_of.values()))
+
     # a run whose errors could not have shown the departure predicted for it is neither for
     # nor against: it does not make the runs disagree
-    blind = []
-    for r in runs:
-        own = [w for w in tested if w.run == r]
-        if r in showing or r in unfit or all(_prediction(w, model, unfit)[0] is None for w in own):
-            continue
-        n_r = sum(_decisive(w).size for w in own)
-        s_r = sum(_shift(w, model, unfit) for w in own)
-        if float(chi2_dist.sf(n_r + s_r, n_r)) >= P_CONSISTENT:
-            blind.append(r)
+    def blind_at(show: Sequence[str], scale: float = 1.0) -> list[str]:
+        """The runs too noisy to show the predicted departure, every se times
+        1/sqrt(``scale``) (the shift scales as 1/se^2)."""
+        out = []
+        for r in runs:
+            own = [w for w in tested if w.run == r]
+            if r in show or r in unfit or all(_prediction(w, model, unfit)[0] is None for w in own):
+                continue
+            n_r = sum(_decisive(w).size for w in own)
+            s_r = sum(_shift(w, model, unfit) for w in own)
+            if float(chi2_dist.sf(n_r + scale * s_r, n_r)) >= P_CONSISTENT:
+                out.append(r)
+        return out
+
+    blind = blind_at(showing)
     on = (
         f"without the first layer at the {len(dependent)} walls where its departure beyond "
         f"the null changes sign between the stencils "
@@ -2025,6 +2183,37 @@ def spin_verdict(
     # the rule counts cells: runs of one cell at two wall speeds are not independent
     cells_showing = [c for c in cells if all(r in showing for r in runs if cell_of[r] == c)]
     cells_blind = [c for c in cells if all(r in blind for r in runs if cell_of[r] == c)]
+
+    def rule_at(factor: float) -> str:
+        """The rule's verdict with every se multiplied by ``factor`` (each chi^2 and the
+        predicted shift divided by factor^2), the cells counted as above."""
+        scale = 1.0 / factor**2
+        p_f = float(chi2_dist.sf(chi2 * scale, dof))
+        c_f = pooled_t_count(chi2 * scale, dof, blocks)
+        show = [r for r in runs if per_run[r][2] is not None
+                and float(chi2_dist.sf((per_run[r][0] or 0.0) * scale, per_run[r][1]))
+                < P_CONSISTENT]  # fmt: skip
+        blind_f = blind_at(show, scale)
+        c_show = [c for c in cells if all(r in show for r in runs if cell_of[r] == c)]
+        c_blind = [c for c in cells if all(r in blind_f for r in runs if cell_of[r] == c)]
+        if p_f < P_SIGNIFICANT and (c_f is None or (c_f[0] + 1) / (c_f[1] + 1) < P_SIGNIFICANT):
+            return "supported" if 2 * len(c_show) >= len(cells) - len(c_blind) else "mixed"
+        seen_f = float(chi2_dist.sf(dof + scale * shift, dof)) if sources else None
+        if p_f >= P_CONSISTENT and seen_f is not None and seen_f < P_SIGNIFICANT:
+            return "refuted"
+        return "undecided"
+
+    first_z = [(float(b["z"] or 0.0), b["distance_d"] == float(np.min(w.distance_d)))
+               for w in tested for b in carrying_bins(w, weak)]  # fmt: skip
+    rows = seed_factor_rows(seed_factors, (chi2, dof), rest[:2], blocks, first_z, rule_at)
+    numbers["pooled_p_at_seed_factor"] = rows
+    numbers["seed_factor_crossing"] = crossing_factor(chi2, dof, blocks)
+    numbers["seed_factor_crossing_without_first_layer"] = crossing_factor(rest[0], rest[1], blocks)
+    largest = max(rows, key=lambda r: r["factor"]) if rows else None
+    numbers["seed_factor_largest"] = None if largest is None else largest["factor"]
+    numbers["verdict_at_largest_seed_factor"] = None if largest is None else largest["verdict"]
+    numbers["seed_factor_note"] = SEED_FACTOR_NOTE
+    seed_line = seed_factor_text(rows, numbers["seed_factor_crossing"])
     if p < P_SIGNIFICANT and (p_t is None or p_t < P_SIGNIFICANT):
         lead = _lead(
             tested, info, weak, (chi2, dof, p, p_t), (*rest, p_t_rest), blocks, (c_t, c_t_rest)
@@ -2041,13 +2230,20 @@ def spin_verdict(
                 else ""
             )
             qualifier = null_qualifier(tested, needs_first)
+            if largest is not None and largest["verdict"] not in (None, "supported"):
+                # referee 17, point 2: not "supported" at the replicates' seed scatter
+                qualifier += (
+                    f", at the block errors (at the replicates' omega seed factor "
+                    f"x{largest['factor']:.3g}: p = {largest['p']:.2g}, '{largest['verdict']}')"
+                )
             numbers["qualifier"] = qualifier
             return Verdict(
                 key,
                 "supported",
-                f"{free_first}{lead}{given} The test: the measured spin departs from half the "
-                f"measured vorticity near the sheared walls, beyond what the binning and the "
-                f"stencil make of a spin equal to half the vorticity, under every stencil; {head}",
+                f"{free_first}{lead}{given}{seed_line} The test: the measured spin departs from "
+                f"half the measured vorticity near the sheared walls, beyond what the binning and "
+                f"the stencil make of a spin equal to half the vorticity, under every stencil; "
+                f"{head}",
                 f"{would_first}runs at the same conditions whose near-wall spins agree with half "
                 "the vorticity, a null (a velocity inside the first bin) that absorbs the "
                 "first-layer departure, or a bin-to-bin correlation of the errors large enough "
@@ -2063,13 +2259,13 @@ def spin_verdict(
             f"{free_first}Mixed: the pooled test departs, but only {len(cells_showing)} of "
             f"{len(cells) - len(cells_blind)} "
             f"{'runs' if len(cells) == len(runs) else 'cells'} that could show it do; the "
-            f"pooled result rests on them. {lead}{misfit_line} {head}",
+            f"pooled result rests on them. {lead}{misfit_line}{seed_line} {head}",
             f"{would_first}more runs at the conditions of those that do not depart, to tell a "
             f"real difference between runs from scatter; {deciding}.",
             tuple(runs),
             numbers,
         )
-    head = f"{head}{bin2}{misfit_line}{unsteady}{grain_line}"
+    head = f"{head}{bin2}{misfit_line}{unsteady}{grain_line}{seed_line}"
     if p >= P_CONSISTENT and p_seen is not None and p_seen < P_SIGNIFICANT:
         return Verdict(
             key,
