@@ -625,13 +625,43 @@ def test_the_layer_shape_at_the_materials_L():
     assert (
         f" d (the runs' own L; below it by 4.0 se of the material's error, {both:.1f} with both "
         "in quadrature): one material does not "
-        "carry one L across B = 0 and gravity, or the smoother fixed wall sets the layer's "
+        "carry one L across B = 0 and gravity; or the smoother fixed wall sets the layer's "
         "scale. The band's side does not depend on L: every (c) profile puts the band at the "
         f"smoother wall (a = {other.asymmetry:+.2f} to {other.asymmetry:+.2f} at the material's "
         "L, " in warn
     )
     assert warn.endswith(f"the own L at phi = 19 deg), as the data's a = {a:+.3f} does")
     assert material_length_warning([same], [p], 0.7) == ""  # fitted: no warning
+    # referee 17, point 4: the reading from the gravity runs' own 95% regions in L (the spin
+    # scan's): the two extreme regions disjoint, the layer's own L (4 d) in the lower one only
+    assert other.L_fit == pytest.approx(4.0, abs=0.01)
+    regions = {"rough": (4.87, 13.9), "mid": (2.7, 7.93), "s2": (2.03, 4.11)}
+    read = material_length_warning([other], [p], a, regions)
+    assert (
+        "): the material's runs do not share one L (rough >= 4.87 d, s2 <= 4.11 d: their 95% "
+        "regions in the spin scan are disjoint); the layer runs' L agrees with s2's (2.03-4.11 "
+        "d); or the smoother fixed wall sets the layer's scale. " in read
+    )
+    assert "across B = 0 and gravity" not in read
+    neither = material_length_warning([other], [p], a, {"hi": (5.0, 9.0), "lo": (1.0, 3.0)})
+    assert (
+        "(hi >= 5 d, lo <= 3 d: their 95% regions in the spin scan are disjoint); the " in neither
+        and "the layer runs' L lies in neither region; or " in neither
+    )
+    shared = material_length_warning([other], [p], a, {"x": (2.0, 6.0), "y": (3.0, 9.0)})
+    assert (
+        "): the material's runs share L = 3-6 d (every gravity run's 95% region in the spin "
+        "scan contains it); the layer runs' L lies in it; or the smoother " in shared
+    )
+    apart = material_length_warning([other], [p], a, {"x": (5.0, 6.0), "y": (4.5, 9.0)})
+    assert "share L = 5-6 d (every gravity run's 95% region in the spin scan contains it); " in (
+        apart
+    )
+    assert "the layer runs' L does not: one material does not carry one L across B = 0" in apart
+    # at assembly the layer runs' own regions are left out; the verdict records what it read
+    (w,) = layer_verdicts([run], material_L=(8.0, 1.0), regions={**regions, "layer": (1, 2)})
+    assert read in w.numbers["warnings"] and w.verdict == v.verdict
+    assert w.numbers["gravity_L_regions"] == {n: list(r) for n, r in regions.items()}
     assert v.numbers["material_length"][0]["L_fit_below_se"] == pytest.approx(4.0, abs=0.01)
     (plain,) = layer_verdicts([run])
     assert "The material's L" not in plain.evidence and plain.numbers["material_length"] == []
