@@ -429,6 +429,7 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     ]  # fmt: skip
     assert sum(r"$\xi$" in name for name in entry["models"]) == 2  # Greek xi
     assert "lines: GLS fits, AR(1) bin errors (rho = " in layer["note"]
+    assert ": may sit off most points); " in layer["note"]  # above or below (referee 17, 6)
     # the spin panel: the Cosserat layer profiles at L = 4, 5 d and the fitted L (point 7)
     assert "mui" not in entry["models"]
     spins = entry["spin"]["predicted"]
@@ -500,6 +501,38 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     assert np.all(np.diff(curve["d"]) > 0.0)  # sorted, from the moving wall
     assert curve["u"][0] == pytest.approx(1.0, abs=0.05) and curve["u"][-1] < 0.5
     assert len(run_figure(drawn).axes[0].lines) == len(lin.lines) + 1
+    # referee 17, point 6: a curve the material's lies on (within a line's width) is named
+    from cosserat.studies.validate.report import COINCIDE_U, coincident
+
+    others = [(n, (c["d"], c["u"])) for n, c in drawn["models"].items() if n != name]
+    on = coincident(curve["d"], curve["u"], others)
+    for n in on:
+        c = drawn["models"][n]
+        assert np.max(np.abs(np.interp(curve["d"], c["d"], c["u"]) - curve["u"])) < COINCIDE_U
+    assert name.count("\n    on the ") == len(on)
+
+
+def test_a_curve_under_another_says_so():
+    """Referee 17, point 6: the material's L curve lies on the L = 5 d one in the u panel; a
+    curve within COINCIDE_U of another at every point of their common range is named, one
+    that leaves it by 0.02 V once is not, nor one sharing fewer than two points."""
+    from cosserat.studies.validate.report import COINCIDE_U, _short_curve_name, coincident
+
+    d = np.linspace(0.0, 10.0, 201)
+    u = np.exp(-d / 4.5)
+    near = u + 0.009 * np.sin(d)
+    bump = u + 0.02 * (np.abs(d - 3.0) < 0.03)
+    label = r"(c) Cosserat, delta = 12.1 deg, L = 5 d, $\phi$ = 19 deg (design) ($\chi^2$ 113/10)"
+    curves = [
+        (label, (d[::-1], near[::-1])),  # unsorted: sorted before interpolating
+        ("bump", (d, bump)),
+        ("apart", (np.array([20.0, 30.0]), np.array([0.0, 0.0]))),
+        ("one", (np.array([0.0]), np.array([1.0]))),
+    ]
+    assert COINCIDE_U == 0.01 and np.max(np.abs(near - u)) == pytest.approx(0.009, rel=1e-3)
+    assert coincident(d, u, curves) == [label]
+    assert coincident(d, u, curves, tol=0.005) == []
+    assert _short_curve_name(label) == r"L = 5 d, $\phi$ = 19 deg (design)"
 
 
 def _cosserat_layer_run(L: float) -> Run:
