@@ -692,7 +692,11 @@ def _nice_ticks(lo: float, hi: float, wanted: Sequence[float]) -> list[float]:
 
 DODGE = 0.02
 """The sideways step between replicate markers at one gap, as a fraction of a Delta panel's
-log H span (about a marker's width)."""
+log H span (about a marker's width), at most :data:`DODGE_MAX`."""
+
+DODGE_MAX = 0.05
+"""The largest sideways step between replicate markers, in ln H (5% in H): on a panel spanning
+decades a fraction of the span would carry them far from their gap."""
 
 
 def dodge(gaps: Sequence[float], step: float) -> list[float]:
@@ -775,8 +779,8 @@ def delta_claim_figure(
             ]
             span = _span_gaps(s)
             # replicates at one gap side by side (referee 17, point 6), their models' x with them
-            at = dict(zip([p[0] for p in pts], dodge([p[0] for p in pts], DODGE * math.log(
-                max(span) / min(span) * 1.15**2)), strict=True)) if pts else {}  # fmt: skip
+            step = min(DODGE_MAX, DODGE * math.log(max(span) / min(span) * 1.15**2)) if pts else 0
+            at = dict(zip([p[0] for p in pts], dodge([p[0] for p in pts], step), strict=True))
             moved = moved or any(not math.isclose(at[g], g) for g in at)
             pts = [(at[g], d, e, u) for g, d, e, u in pts]
             for use in (True, False):
@@ -861,7 +865,7 @@ def delta_claim_figure(
                       for p in c.get("points", []))  # fmt: skip
         notes = ["x: each model at the runs, +- its calibration's error"] if markers else []
         notes += ["runs at one gap drawn side by side"] if moved else []
-        fig.suptitle(title + (f"  ({'; '.join(notes)})" if notes else ""), fontsize=8)
+        fig.suptitle(title + (f"\n({'; '.join(notes)})" if notes else ""), fontsize=8)
         for k, s in enumerate(series if reach else []):
             if s.get("reach"):
                 st = model_style("cosserat", order)
@@ -927,7 +931,8 @@ def _reach_panel(ax: Axes, s: Mapping[str, Any], color: Any) -> None:
     ]
     g_all = [g for g, _ in pts] + [p[0] for p in rows]
     if rows:  # replicates at one gap side by side, as in the upper row (referee 17, point 6)
-        xs = dodge([p[0] for p in rows], DODGE * math.log(max(g_all) / min(g_all) * 1.15**2))
+        step = min(DODGE_MAX, DODGE * math.log(max(g_all) / min(g_all) * 1.15**2))
+        xs = dodge([p[0] for p in rows], step)
         rows = [(x, *p[1:]) for x, p in zip(xs, rows, strict=True)]
     data = [(g, d) for g, d, _, _ in rows]
     for use in (True, False):
