@@ -875,11 +875,13 @@ def delta_claim_figure(
         if reach:
             axes[1, 0].set_ylabel(r"$\Delta$ [$d$]")
         _legend_below(fig, axs, ncol=2)
+        lower = 0.02 if notes else 0.0  # room for the title's second line
         if reach:
-            fig.subplots_adjust(left=0.09, right=0.98, bottom=0.22, top=0.92, wspace=0.3,
+            fig.subplots_adjust(left=0.09, right=0.98, bottom=0.22, top=0.92 - lower, wspace=0.3,
                                 hspace=0.38)  # fmt: skip
         else:
-            fig.subplots_adjust(left=0.09, right=0.98, bottom=0.36, top=0.86, wspace=0.3)
+            fig.subplots_adjust(left=0.09, right=0.98, bottom=0.36, top=0.86 - 2 * lower,
+                                wspace=0.3)  # fmt: skip
     return fig
 
 
