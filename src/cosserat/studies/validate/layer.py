@@ -1701,7 +1701,7 @@ def material_length_warning(
     is rejected, p < :data:`~.measures.P_SIGNIFICANT` under AR(1)): the material's L fails
     the layers' shape, the L the layers want (their own, with its error, in the material's
     se below it), the two readings (the first from the gravity runs' own 95% regions in L,
-    ``regions``, where given: :func:`_shared_l_text`), and that the band's side (every (c)
+    ``regions``, where given: ``_shared_l_text``), and that the band's side (every (c)
     profile's a, and the data's pooled ``a``) does not depend on L."""
     if not rows or any(m.p["ar1"] >= P_SIGNIFICANT for m in rows):
         return ""
