@@ -393,3 +393,44 @@ def test_a_delta_panel_without_usable_points_draws_no_law_and_says_why():
         "cosserat, one calibration of the material"
     ) == 1  # the helper draws the curve once, its run values as x
     plt.close(fig)
+
+
+def test_replicates_at_one_gap_stand_side_by_side():
+    """Referee 17, point 6: at H ~ 9.8-9.9 the rough runs' open markers (6.61, 6.65 d)
+    overlapped and read as filled. Gaps closer than the step in ln H are drawn one step apart
+    about their mean ln H, in order; a lone gap stays; each model's x at a run moves with it."""
+    import math
+
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import DODGE, DODGE_MAX, delta_claim_figure, dodge
+
+    assert dodge([20.0], 0.05) == [20.0] and dodge([10.0, 11.0], 0.05) == [10.0, 11.0]
+    x = dodge([9.9, 9.84, 20.0, 9.78], 0.05)
+    assert x[2] == pytest.approx(20.0) and x[3] < x[1] < x[0]
+    assert np.diff(np.log([x[3], x[1], x[0]])) == pytest.approx([0.05, 0.05])
+    assert np.mean(np.log([x[3], x[1], x[0]])) == pytest.approx(np.mean(np.log([9.78, 9.84, 9.9])))
+    gaps = [9.78, 9.84, 9.90, 19.56]
+    s = {"label": "plane", "gaps": gaps, "Delta": [5.15, 6.61, 6.65, 7.95],
+         "stderr": [0.5, 0.7, 0.7, 1.1], "usable": [False, False, False, True],
+         "curves": {"cosserat": {"gaps": [6.0, 20.0, 40.0], "Delta": [3.0, 6.0, 8.0],
+                                 "points": [(g, 4.0 + k, 0.1) for k, g in enumerate(gaps)]}},
+         "reach": {"gaps": [6.0, 20.0, 1280.0], "Delta": [3.0, 6.0, 30.0], "window": None,
+                   "target": 1 / 3}}  # fmt: skip
+    fig = delta_claim_figure([s], {}, "D")
+    top, low = fig.axes[0], fig.axes[1]
+    (open_top,) = [c for c in top.containers if c.get_label() == "band fills its gap: left out"]
+    xs = list(open_top.lines[0].get_xdata())
+    step = DODGE * math.log(40.0 / 6.0 * 1.15**2)  # the panel's log H span
+    assert np.diff(np.log(xs)) == pytest.approx([step, step])  # each open marker its own x
+    (filled,) = [c for c in top.containers if c.get_label() == "DEM data (+- 1 se)"]
+    assert list(filled.lines[0].get_xdata()) == [19.56]
+    (model,) = [c for c in top.containers if c.lines[0].get_marker() == "x"]
+    assert list(model.lines[0].get_xdata()) == pytest.approx([*xs, 19.56])
+    (open_low,) = [c for c in low.containers if c.get_label() == "band fills its gap: left out"]
+    xl = list(open_low.lines[0].get_xdata())  # 2% of 5.8 in ln H would be 0.12: capped
+    assert np.diff(np.log(xl)) == pytest.approx([DODGE_MAX, DODGE_MAX])
+    assert fig._suptitle.get_text().endswith("\n(x: each model at the runs, +- its "
+                                             "calibration's error; runs at one gap drawn side "
+                                             "by side)")  # fmt: skip
+    plt.close(fig)

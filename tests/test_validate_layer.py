@@ -429,6 +429,7 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     ]  # fmt: skip
     assert sum(r"$\xi$" in name for name in entry["models"]) == 2  # Greek xi
     assert "lines: GLS fits, AR(1) bin errors (rho = " in layer["note"]
+    assert ": may sit off most points); " in layer["note"]  # above or below (referee 17, 6)
     # the spin panel: the Cosserat layer profiles at L = 4, 5 d and the fitted L (point 7)
     assert "mui" not in entry["models"]
     spins = entry["spin"]["predicted"]
@@ -500,6 +501,38 @@ def test_the_layer_runs_figure_names_its_walls_and_draws_the_alternatives(tmp_pa
     assert np.all(np.diff(curve["d"]) > 0.0)  # sorted, from the moving wall
     assert curve["u"][0] == pytest.approx(1.0, abs=0.05) and curve["u"][-1] < 0.5
     assert len(run_figure(drawn).axes[0].lines) == len(lin.lines) + 1
+    # referee 17, point 6: a curve the material's lies on (within a line's width) is named
+    from cosserat.studies.validate.report import COINCIDE_U, coincident
+
+    others = [(n, (c["d"], c["u"])) for n, c in drawn["models"].items() if n != name]
+    on = coincident(curve["d"], curve["u"], others)
+    for n in on:
+        c = drawn["models"][n]
+        assert np.max(np.abs(np.interp(curve["d"], c["d"], c["u"]) - curve["u"])) < COINCIDE_U
+    assert name.count("\n    on the ") == len(on)
+
+
+def test_a_curve_under_another_says_so():
+    """Referee 17, point 6: the material's L curve lies on the L = 5 d one in the u panel; a
+    curve within COINCIDE_U of another at every point of their common range is named, one
+    that leaves it by 0.02 V once is not, nor one sharing fewer than two points."""
+    from cosserat.studies.validate.report import COINCIDE_U, _short_curve_name, coincident
+
+    d = np.linspace(0.0, 10.0, 201)
+    u = np.exp(-d / 4.5)
+    near = u + 0.009 * np.sin(d)
+    bump = u + 0.02 * (np.abs(d - 3.0) < 0.03)
+    label = r"(c) Cosserat, delta = 12.1 deg, L = 5 d, $\phi$ = 19 deg (design) ($\chi^2$ 113/10)"
+    curves = [
+        (label, (d[::-1], near[::-1])),  # unsorted: sorted before interpolating
+        ("bump", (d, bump)),
+        ("apart", (np.array([20.0, 30.0]), np.array([0.0, 0.0]))),
+        ("one", (np.array([0.0]), np.array([1.0]))),
+    ]
+    assert COINCIDE_U == 0.01 and np.max(np.abs(near - u)) == pytest.approx(0.009, rel=1e-3)
+    assert coincident(d, u, curves) == [label]
+    assert coincident(d, u, curves, tol=0.005) == []
+    assert _short_curve_name(label) == r"L = 5 d, $\phi$ = 19 deg (design)"
 
 
 def _cosserat_layer_run(L: float) -> Run:
@@ -625,13 +658,43 @@ def test_the_layer_shape_at_the_materials_L():
     assert (
         f" d (the runs' own L; below it by 4.0 se of the material's error, {both:.1f} with both "
         "in quadrature): one material does not "
-        "carry one L across B = 0 and gravity, or the smoother fixed wall sets the layer's "
+        "carry one L across B = 0 and gravity; or the smoother fixed wall sets the layer's "
         "scale. The band's side does not depend on L: every (c) profile puts the band at the "
         f"smoother wall (a = {other.asymmetry:+.2f} to {other.asymmetry:+.2f} at the material's "
         "L, " in warn
     )
     assert warn.endswith(f"the own L at phi = 19 deg), as the data's a = {a:+.3f} does")
     assert material_length_warning([same], [p], 0.7) == ""  # fitted: no warning
+    # referee 17, point 4: the reading from the gravity runs' own 95% regions in L (the spin
+    # scan's): the two extreme regions disjoint, the layer's own L (4 d) in the lower one only
+    assert other.L_fit == pytest.approx(4.0, abs=0.01)
+    regions = {"rough": (4.87, 13.9), "mid": (2.7, 7.93), "s2": (2.03, 4.11)}
+    read = material_length_warning([other], [p], a, regions)
+    assert (
+        "): the material's runs do not share one L (rough >= 4.87 d, s2 <= 4.11 d: their 95% "
+        "regions in the spin scan are disjoint); the layer runs' L agrees with s2's (2.03-4.11 "
+        "d); or the smoother fixed wall sets the layer's scale. " in read
+    )
+    assert "across B = 0 and gravity" not in read
+    neither = material_length_warning([other], [p], a, {"hi": (5.0, 9.0), "lo": (1.0, 3.0)})
+    assert (
+        "(hi >= 5 d, lo <= 3 d: their 95% regions in the spin scan are disjoint); the " in neither
+        and "the layer runs' L lies in neither region; or " in neither
+    )
+    shared = material_length_warning([other], [p], a, {"x": (2.0, 6.0), "y": (3.0, 9.0)})
+    assert (
+        "): the material's runs share L = 3-6 d (every gravity run's 95% region in the spin "
+        "scan contains it); the layer runs' L lies in it; or the smoother " in shared
+    )
+    apart = material_length_warning([other], [p], a, {"x": (5.0, 6.0), "y": (4.5, 9.0)})
+    assert "share L = 5-6 d (every gravity run's 95% region in the spin scan contains it); " in (
+        apart
+    )
+    assert "the layer runs' L does not: one material does not carry one L across B = 0" in apart
+    # at assembly the layer runs' own regions are left out; the verdict records what it read
+    (w,) = layer_verdicts([run], material_L=(8.0, 1.0), regions={**regions, "layer": (1, 2)})
+    assert read in w.numbers["warnings"] and w.verdict == v.verdict
+    assert w.numbers["gravity_L_regions"] == {n: list(r) for n, r in regions.items()}
     assert v.numbers["material_length"][0]["L_fit_below_se"] == pytest.approx(4.0, abs=0.01)
     (plain,) = layer_verdicts([run])
     assert "The material's L" not in plain.evidence and plain.numbers["material_length"] == []

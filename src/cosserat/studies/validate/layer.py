@@ -1654,14 +1654,55 @@ def below_yield_text(rows: Sequence[BelowYield], material: Sequence[MaterialLeng
     )
 
 
+def _shared_l_text(
+    own: Sequence[MaterialLength], regions: Mapping[str, tuple[float, float]] | None
+) -> str:
+    """The reading of the material's L failing the layers (referee 17, point 4), from the
+    gravity runs' own 95% regions in L (``regions``: run name -> (lowest, highest) L [d], the
+    spin scan's; None or empty: not known, the old reading): when two of them are disjoint the
+    material's runs do not share one L, and the layer runs' own L is placed against those two."""
+    if not regions:
+        return "one material does not carry one L across B = 0 and gravity"
+    high = max(regions, key=lambda n: regions[n][0])  # the region lying highest in L
+    low = min(regions, key=lambda n: regions[n][1])  # the region lying lowest in L
+    lo, hi = regions[high][0], regions[low][1]
+    fits = [m.L_fit for m in own]
+    if lo <= hi:
+        inside = all(lo <= x <= hi for x in fits)
+        return (
+            f"the material's runs share L = {lo:.3g}-{hi:.3g} d (every gravity run's 95% region "
+            "in the spin scan contains it)"
+            + ("" if not fits else "; the layer runs' L lies in it" if inside else
+               "; the layer runs' L does not: one material does not carry one L across B = 0 "
+               "and gravity")
+        )  # fmt: skip
+    agree = [n for n in (low, high) if all(regions[n][0] <= x <= regions[n][1] for x in fits)]
+    return (
+        f"the material's runs do not share one L ({high} >= {lo:.3g} d, {low} <= {hi:.3g} d: "
+        "their 95% regions in the spin scan are disjoint)"
+        + (
+            ""
+            if not fits
+            else f"; the layer runs' L agrees with {agree[0]}'s "
+            f"({regions[agree[0]][0]:.3g}-{regions[agree[0]][1]:.3g} d)"
+            if len(agree) == 1
+            else "; the layer runs' L lies in neither region"
+        )
+    )
+
+
 def material_length_warning(
-    rows: Sequence[MaterialLength], positions: Sequence[LayerPosition], a: float
+    rows: Sequence[MaterialLength],
+    positions: Sequence[LayerPosition],
+    a: float,
+    regions: Mapping[str, tuple[float, float]] | None = None,
 ) -> str:
     """The warning (referee 15, point 2; "" unless every run's profile (c) at the material's L
     is rejected, p < :data:`~.measures.P_SIGNIFICANT` under AR(1)): the material's L fails
     the layers' shape, the L the layers want (their own, with its error, in the material's
-    se below it), the two readings, and that the band's side (every (c) profile's a, and the
-    data's pooled ``a``) does not depend on L."""
+    se below it), the two readings (the first from the gravity runs' own 95% regions in L,
+    ``regions``, where given: ``_shared_l_text``), and that the band's side (every (c)
+    profile's a, and the data's pooled ``a``) does not depend on L."""
     if not rows or any(m.p["ar1"] >= P_SIGNIFICANT for m in rows):
         return ""
     m0 = rows[0]
@@ -1712,7 +1753,9 @@ def material_length_warning(
         + (f", at its phi = {m0.phi:.4g} deg" if m0.material_phi else "")
         + f") is rejected by {which} ({misses}; under AR(1))"
         + wanted
-        + ": one material does not carry one L across B = 0 and gravity, or "
+        + ": "
+        + _shared_l_text(own, regions)
+        + "; or "
         + wall
         + " sets the layer's scale. The band's side does not depend on L: "
         + side
@@ -1742,12 +1785,15 @@ def layer_position_verdict(
     references: Sequence[WallReference] = (),
     material: Sequence[MaterialLength] = (),
     below: Sequence[BelowYield] = (),
+    regions: Mapping[str, tuple[float, float]] | None = None,
 ) -> LayerVerdict:
     """The verdict on :data:`LAYER_CLAIM` from the runs' :class:`LayerPosition` (module
     docstring: the rule), with ``references`` (other runs' walls of the smoother kind) in the
     premise's warning and ``material`` (the runs' shape at the material's L,
     :func:`material_length`) in the evidence, not judged, and ``below`` (the runs' band
-    stress ratio against the material's sin phi, :func:`below_yield`) in the warnings."""
+    stress ratio against the material's sin phi, :func:`below_yield`) in the warnings;
+    ``regions`` (the gravity runs' own 95% regions in L [d], the spin scan's, by run name) in
+    the warning on the material's L (:func:`material_length_warning`)."""
     runs = tuple(p.run for p in positions)
     if not positions:
         return LayerVerdict(
@@ -1794,7 +1840,7 @@ def layer_position_verdict(
     warnings = _warnings(positions, a, se, references)
     if below:
         warnings.insert(0, below_yield_text(below, material))
-    if warn := material_length_warning(material, positions, a):
+    if warn := material_length_warning(material, positions, a, regions):
         warnings.insert(1 if below else 0, warn)
     steady_text, on_unsteady = steadiness_of_a(positions)
     evidence = (
@@ -1860,6 +1906,7 @@ def layer_position_verdict(
         "runs": [p.to_dict() for p in positions],
         "material_length": [m.to_dict() for m in material],
         "below_yield": [b.to_dict() for b in below],
+        "gravity_L_regions": {n: list(r) for n, r in (regions or {}).items()},
     }
     known = [p.wall_inertial_number for p in positions if p.wall_inertial_number is not None]
     if verdict != "undecided" and len(known) == len(positions) and min(known) > QUASI_STATIC_I:
@@ -1887,13 +1934,16 @@ def layer_verdicts(
     measured: Mapping[str, LayerPosition] | None = None,
     material_L: tuple[float, float] | None = None,
     material_phi: tuple[float, float] | None = None,
+    regions: Mapping[str, tuple[float, float]] | None = None,
 ) -> list[Verdict]:
     """``[layer_position_verdict(...)]`` on the runs :func:`measure_layer` measures (or the
     positions ``measured`` already, by run name), or ``[]`` when a corpus has none (the
     claim is then not judged); ``material_L``, the material's L and its error [d] (the one
     Cosserat calibration), adds the runs' shape at it (:func:`material_length`);
     ``material_phi``, the material's phi and its error [deg] (the same calibration's), the
-    warning that the layers flow below it (:func:`below_yield`)."""
+    warning that the layers flow below it (:func:`below_yield`); ``regions``, the gravity
+    runs' own 95% regions in L [d] by run name (the spin scan's), the reading of the
+    material's L warning (:func:`material_length_warning`; the layer runs' own left out)."""
     fits, measured = fits or {}, measured or {}
     by_name = {r.name: r for r in runs}
     positions = [
@@ -1928,7 +1978,15 @@ def layer_verdicts(
         else []
     )
     return (
-        [layer_position_verdict(positions, wall_references(runs, positions), material, below)]
+        [
+            layer_position_verdict(
+                positions,
+                wall_references(runs, positions),
+                material,
+                below,
+                {n: r for n, r in (regions or {}).items() if n not in {p.run for p in positions}},
+            )
+        ]
         if positions
         else []
     )

@@ -361,11 +361,17 @@ def _layer_entry(
     by_key = {alt.key: name for alt, (name, _) in zip(p.alternatives, curves, strict=True)}
     if material is not None and material.get("curve", {}).get("distance_d"):
         c = material["curve"]
+        # referee 17, point 6: a curve it hides under, said in its label
+        on = coincident(c["distance_d"], c["u"], curves)
         curves.append(
             (
                 rf"(c) Cosserat, delta = {material['delta']:.1f} deg, material's L = "
                 rf"{material['L']:.3g} d, $\phi$ = {material['phi']:.4g} deg ($\chi^2$ "
-                rf"{material['chi2']['ar1']:.0f}/{material['dof']})",
+                rf"{material['chi2']['ar1']:.0f}/{material['dof']})"
+                + "".join(
+                    f"\n    on the {_short_curve_name(n)} curve in u (within {COINCIDE_U:g} V)"
+                    for n in on
+                ),
                 (c["distance_d"], c["u"]),
             )
         )
@@ -399,10 +405,43 @@ def _layer_entry(
         },
         # one line (referee 10, point 9: the four-line title was crowded; docs/validation.md
         # says the rest)
-        "note": f"lines: GLS fits, AR(1) bin errors (rho = {rho:.2g}: may sit below most "
+        "note": f"lines: GLS fits, AR(1) bin errors (rho = {rho:.2g}: may sit off most "
         "points); validate's single-run fits (wrong fixed wall) not drawn",
     }
     return models, list(models), layer, title
+
+
+COINCIDE_U = 0.01
+"""Two velocity curves closer than this everywhere [V] are drawn as one in a layer run's u
+panel (about a line's width there): the one drawn under the other says so in its label."""
+
+
+def coincident(d: Any, u: Any, curves: Any, tol: float = COINCIDE_U) -> list[str]:
+    """The names of ``curves`` ((name, (distance [d], u [V])) pairs) within ``tol`` [V] of
+    the curve (``d``, ``u``) at each of its points inside their distance range (at least two:
+    none otherwise), the others' u interpolated linearly."""
+    d, u = np.asarray(d, dtype=float), np.asarray(u, dtype=float)
+    out = []
+    for name, (cd, cu) in curves:
+        cd, cu = np.asarray(cd, dtype=float), np.asarray(cu, dtype=float)
+        if cd.size < 2:
+            continue
+        o = np.argsort(cd)
+        cd, cu = cd[o], cu[o]
+        inside = (d >= cd[0]) & (d <= cd[-1])
+        if np.count_nonzero(inside) >= 2 and np.all(
+            np.abs(np.interp(d[inside], cd, cu) - u[inside]) < tol
+        ):
+            out.append(name)
+    return out
+
+
+def _short_curve_name(name: str) -> str:
+    """A layer figure's curve label without its family prefix and chi^2 (``(c) Cosserat,
+    delta = 12.1 deg, L = 5 d, phi = 19 deg (design) (chi^2 113/10)`` -> ``L = 5 d, phi = 19
+    deg (design)``)."""
+    name = name.split(r" ($\chi^2$")[0]
+    return re.sub(r"^\(c\) Cosserat, delta = [-\d.]+ deg, ", "", name)
 
 
 OWN_KEY = "cosserat-Lfit"

@@ -1056,6 +1056,7 @@ def judge(
             {r.run.name: r.layer for r in results if r.layer is not None},
             material_length(series, [r.run for r in results if r.layer is not None]),
             material_phi(series, [r.run for r in results if r.layer is not None]),
+            {sc.run: (reg["L"][0], reg["L"][1]) for sc in scans if (reg := scan_region(sc))},
         ),
     ]
     verdicts = [
