@@ -309,7 +309,7 @@ def forward_departure(profile: Any, run: Run, stencil: str = "analysis") -> Floa
         An unknown stencil, or a run with fewer than 3 bins.
     """
     _check_stencil(stencil)
-    return forward_fields(model_fields(profile, run), run, stencil)["departure"]
+    return forward_fields(_kept_fields(profile, run), run, stencil)["departure"]
 
 
 def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatArray:
@@ -317,8 +317,54 @@ def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatAr
     material (:func:`turning_with_the_material`): what the run's analysis reports for a spin
     equal to half the vorticity everywhere, per row [-]."""
     _check_stencil(stencil)
-    fields = turning_with_the_material(model_fields(profile, run))
+    fields = turning_with_the_material(_kept_fields(profile, run))
     return forward_fields(fields, run, stencil)["departure"]
+
+
+KEEP_PROFILES = 64
+"""How many profiles' :func:`model_fields` :func:`_kept_fields` keeps."""
+KEEP_POINTS = 8
+"""How many point sets each of their functions keeps the values at."""
+_KEPT: dict[tuple[int, int], tuple[Any, Run, ModelFields]] = {}
+
+
+def _kept_fields(profile: Any, run: Run) -> ModelFields:
+    """:func:`model_fields` of ``profile`` in ``run``, made once for the last
+    :data:`KEEP_PROFILES` (profile, run) pairs asked, each function giving again the values it
+    gave at the same points (:func:`_remembering`). A profile's departure and its null
+    (:func:`forward_departure`, :func:`null_departure`) are asked together at every point of
+    a scan, and under every stencil: they share the velocity, the spin and their bin means
+    (the same floats, evaluated once rather than up to 8 times)."""
+    key = (id(profile), id(run))  # both kept alive below, so neither id is reused meanwhile
+    kept = _KEPT.get(key)
+    if kept is not None and kept[0] is profile and kept[1] is run:
+        return kept[2]
+    fields = _remembering(model_fields(profile, run))
+    if len(_KEPT) >= KEEP_PROFILES:
+        del _KEPT[next(iter(_KEPT))]
+    _KEPT[key] = (profile, run, fields)
+    return fields
+
+
+def _remembering(fields: ModelFields) -> ModelFields:
+    """``fields`` whose functions keep their values at the last :data:`KEEP_POINTS` point
+    sets (by value) and give a copy of them when asked at the same points again."""
+
+    def keep(f: Callable[[FloatArray], FloatArray]) -> Callable[[FloatArray], FloatArray]:
+        values: dict[tuple[Any, ...], Any] = {}
+
+        def g(x: FloatArray) -> FloatArray:
+            a = np.asarray(x)
+            key = (a.dtype.str, a.shape, a.tobytes())
+            if key not in values:
+                if len(values) >= KEEP_POINTS:
+                    del values[next(iter(values))]
+                values[key] = f(x)
+            return np.array(values[key], copy=True)
+
+        return g
+
+    return ModelFields(keep(fields.u), keep(fields.omega), keep(fields.point_departure))
 
 
 def first_layer_half_se(
