@@ -44,7 +44,7 @@ from numpy.typing import NDArray
 from ..._stencil import half_vorticity
 from ...analysis.bins import Bins, bin_edges, half_vorticity_method
 from ...analysis.bins import distance_from_moving as _distance_from_moving
-from ...analysis.corpus import Run
+from ...analysis.corpus import COORDINATE, Run
 from ...analysis.fitting import moving_wall
 from ...calibration.data import BIN_NODES, gauss_legendre
 from ...errors import ParameterError
@@ -248,7 +248,7 @@ def forward_fields(
     """What the run's analysis would report for the model ``fields``: ``u``, ``omega``,
     ``half_vorticity`` and ``departure`` (omega - half vorticity) per bin, in the run's row
     order [-]; and ``point`` (the model's point departure at the bin centres) [-]."""
-    bins = bin_edges(run)
+    bins = _kept_bins(run)
     method = half_vorticity_method(run)
 
     def point_half(x: FloatArray) -> FloatArray:
@@ -289,6 +289,32 @@ def forward_fields(
     return out
 
 
+KEEP_PROFILES = 64
+"""How many profiles' :func:`model_fields` (and runs' bins) :func:`_kept_fields` (and
+:func:`_kept_bins`) keep."""
+KEEP_POINTS = 8
+"""How many point sets each of their functions keeps the values at."""
+_KEPT: dict[tuple[int, int], tuple[Any, Run, ModelFields]] = {}
+_KEPT_BINS: dict[int, tuple[Run, Any, Bins]] = {}
+
+
+def _kept_bins(run: Run) -> Bins:
+    """:func:`~cosserat.analysis.bins.bin_edges` of ``run``, made once for the last
+    :data:`KEEP_PROFILES` runs asked (read-only; made again if the run's coordinate column is
+    replaced): :func:`forward_fields` is asked ~10^4 times in one validate."""
+    column = run.columns.get(COORDINATE[run.cell])
+    kept = _KEPT_BINS.get(id(run))  # the run kept alive below, so its id is not reused
+    if kept is not None and kept[0] is run and kept[1] is column:
+        return kept[2]
+    bins = bin_edges(run)
+    for a in (bins.centre, bins.lo, bins.hi, bins.order):
+        a.flags.writeable = False
+    if len(_KEPT_BINS) >= KEEP_PROFILES:
+        del _KEPT_BINS[next(iter(_KEPT_BINS))]
+    _KEPT_BINS[id(run)] = (run, column, bins)
+    return bins
+
+
 def forward_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatArray:
     """A model's omega - half vorticity as the run's analysis would report it, per bin in the
     run's row order (the run's units and sign) [-].
@@ -319,13 +345,6 @@ def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatAr
     _check_stencil(stencil)
     fields = turning_with_the_material(_kept_fields(profile, run))
     return forward_fields(fields, run, stencil)["departure"]
-
-
-KEEP_PROFILES = 64
-"""How many profiles' :func:`model_fields` :func:`_kept_fields` keeps."""
-KEEP_POINTS = 8
-"""How many point sets each of their functions keeps the values at."""
-_KEPT: dict[tuple[int, int], tuple[Any, Run, ModelFields]] = {}
 
 
 def _kept_fields(profile: Any, run: Run) -> ModelFields:
