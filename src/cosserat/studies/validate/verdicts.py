@@ -417,7 +417,7 @@ def pooled_t_count(
 T_SEED = 20261127
 """The seed of :func:`pooled_t_count`'s Monte Carlo."""
 
-_T_KEPT: dict[tuple[int, int, int], tuple[FloatArray, dict[str, Any]]] = {}
+_T_KEPT: dict[tuple[int, int, int], tuple[FloatArray, Mapping[str, Any]]] = {}
 """The sums of :func:`_t_sums` last made: (dof, blocks, samples) -> (the sums, read-only; the
 generator's state after them)."""
 _T_KEEP = 6
