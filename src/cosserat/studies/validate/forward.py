@@ -289,10 +289,12 @@ def forward_fields(
     return out
 
 
-KEEP_PROFILES = 64
+_KEEP_PROFILES = 256
 """How many profiles' :func:`model_fields` (and runs' bins) :func:`_kept_fields` (and
-:func:`_kept_bins`) keep."""
-KEEP_POINTS = 8
+:func:`_kept_bins`) keep: more than a scan's 95% region has (~10-150 profiles, each ~25 kB
+kept), whose nulls are asked stencil by stencil over all of them (``nulls.joint_null``), so
+that the next stencil finds each profile still kept."""
+_KEEP_POINTS = 8
 """How many point sets each of their functions keeps the values at."""
 _KEPT: dict[tuple[int, int], tuple[Any, Run, ModelFields]] = {}
 _KEPT_BINS: dict[int, tuple[Run, Any, Bins]] = {}
@@ -300,7 +302,7 @@ _KEPT_BINS: dict[int, tuple[Run, Any, Bins]] = {}
 
 def _kept_bins(run: Run) -> Bins:
     """:func:`~cosserat.analysis.bins.bin_edges` of ``run``, made once for the last
-    :data:`KEEP_PROFILES` runs asked (read-only; made again if the run's coordinate column is
+    :data:`_KEEP_PROFILES` runs asked (read-only; made again if the run's coordinate column is
     replaced): :func:`forward_fields` is asked ~10^4 times in one validate."""
     column = run.columns.get(COORDINATE[run.cell])
     kept = _KEPT_BINS.get(id(run))  # the run kept alive below, so its id is not reused
@@ -309,7 +311,7 @@ def _kept_bins(run: Run) -> Bins:
     bins = bin_edges(run)
     for a in (bins.centre, bins.lo, bins.hi, bins.order):
         a.flags.writeable = False
-    if len(_KEPT_BINS) >= KEEP_PROFILES:
+    if len(_KEPT_BINS) >= _KEEP_PROFILES:
         del _KEPT_BINS[next(iter(_KEPT_BINS))]
     _KEPT_BINS[id(run)] = (run, column, bins)
     return bins
@@ -349,7 +351,7 @@ def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatAr
 
 def _kept_fields(profile: Any, run: Run) -> ModelFields:
     """:func:`model_fields` of ``profile`` in ``run``, made once for the last
-    :data:`KEEP_PROFILES` (profile, run) pairs asked, each function giving again the values it
+    :data:`_KEEP_PROFILES` (profile, run) pairs asked, each function giving again the values it
     gave at the same points (:func:`_remembering`). A profile's departure and its null
     (:func:`forward_departure`, :func:`null_departure`) are asked together at every point of
     a scan, and under every stencil: they share the velocity, the spin and their bin means
@@ -359,14 +361,14 @@ def _kept_fields(profile: Any, run: Run) -> ModelFields:
     if kept is not None and kept[0] is profile and kept[1] is run:
         return kept[2]
     fields = _remembering(model_fields(profile, run))
-    if len(_KEPT) >= KEEP_PROFILES:
+    if len(_KEPT) >= _KEEP_PROFILES:
         del _KEPT[next(iter(_KEPT))]
     _KEPT[key] = (profile, run, fields)
     return fields
 
 
 def _remembering(fields: ModelFields) -> ModelFields:
-    """``fields`` whose functions keep their values at the last :data:`KEEP_POINTS` point
+    """``fields`` whose functions keep their values at the last :data:`_KEEP_POINTS` point
     sets (by value) and give a copy of them when asked at the same points again."""
 
     def keep(f: Callable[[FloatArray], FloatArray]) -> Callable[[FloatArray], FloatArray]:
@@ -376,7 +378,7 @@ def _remembering(fields: ModelFields) -> ModelFields:
             a = np.asarray(x)
             key = (a.dtype.str, a.shape, a.tobytes())
             if key not in values:
-                if len(values) >= KEEP_POINTS:
+                if len(values) >= _KEEP_POINTS:
                     del values[next(iter(values))]
                 values[key] = f(x)
             return np.array(values[key], copy=True)
