@@ -522,5 +522,14 @@ def test_a_bin_mean_uses_the_gauss_legendre_rule_made_once():
     with pytest.raises(ValueError, match="read-only"):
         x[0] = 0.0
     lo, hi = np.array([0.0, 1.0]), np.array([1.0, 3.0])
-    pts, weights = Field("u", 0.5 * (lo + hi), np.zeros(2), np.ones(2), bins=(lo, hi)).nodes()
+    field = Field("u", 0.5 * (lo + hi), np.zeros(2), np.ones(2), bins=(lo, hi))
+    pts, weights = field.nodes()
     assert np.array_equal(pts[1], 2.0 + want_x) and np.array_equal(weights[0], want_w)
+    # the nodes themselves are made once per field (asked at every prediction) and read-only
+    assert field.nodes()[0] is pts and field.nodes()[1] is weights
+    with pytest.raises(ValueError, match="read-only"):
+        pts[0, 0] = 0.0
+    centres = Field("u", np.array([0.5, 2.0]), np.zeros(2), np.ones(2))
+    at, one = centres.nodes()
+    assert np.array_equal(at[:, 0], [0.5, 2.0]) and np.array_equal(one, np.ones((2, 1)))
+    assert centres.nodes()[0] is at and centres.s.flags.writeable  # s itself left writable

@@ -131,3 +131,23 @@ def test_runs_made_otherwise_are_measured_their_way(tmp_path):
     run = plane_run(tmp_path, lambda y: y, name="x", method="guess")
     with pytest.raises(ParameterError, match=r"half_vorticity_method must be one of np\.gradient"):
         fw.forward_fields(f, run)
+
+
+def test_the_bins_forward_fields_keeps_are_the_runs_and_read_only(tmp_path):
+    """forward._kept_bins: bin_edges of the run, made once per run (forward_fields is asked
+    ~10^4 times in one validate), read-only, and made again for a run whose coordinate
+    column is another."""
+    from dataclasses import replace
+
+    from cosserat.analysis.bins import bin_edges
+
+    run = plane_run(tmp_path, lambda y: y / H)
+    kept = fw._kept_bins(run)
+    fresh = bin_edges(run)
+    for name in ("centre", "lo", "hi", "order"):
+        assert np.array_equal(getattr(kept, name), getattr(fresh, name))
+        assert not getattr(kept, name).flags.writeable
+    assert fw._kept_bins(run) is kept
+    moved = replace(run, columns={**run.columns, "y": run.columns["y"] * 0.9})
+    assert np.array_equal(fw._kept_bins(moved).centre, 0.9 * fresh.centre)
+    assert fw._kept_bins(run) is kept

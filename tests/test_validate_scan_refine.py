@@ -361,14 +361,9 @@ def test_the_small_islands_ends_and_saddle_are_told():
     assert ss._beyond_all(1.5, np.array([1.0, 2.0])) == 0 == ss._beyond_all(1.0, np.zeros(0))
 
 
-def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
-    """The cell refined around a restart's fit is drawn (dashed outline, its points) and
-    zoomed in an inset with the island's extent, and the key below the panels is >= 8 pt and
-    inside the figure (referee 14, points 5 and 8)."""
-    import matplotlib.pyplot as plt
-
-    from cosserat.viz.validation import KEY_POINTS, spin_scan_figure
-
+def _restart_record():
+    """A scan record with a cell refined around a restart's fit (the referee's smooth_H20,
+    round 14, point 5), and the cell's K and L axes."""
     k, ll = np.linspace(0.0, 10.0, 11), np.geomspace(0.5, 100.0, 11)
     kk, lc = ss.cell_axes(k, ll, 2, 3)
     zeros = np.zeros((11, 11))
@@ -390,6 +385,18 @@ def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
                    "L_bounds": ["data", "data"],
                    "islands": [{"K": [4.7, 6.0], "L": [11.9, 15.0]}, island]},
     }  # fmt: skip
+    return rec, kk, lc
+
+
+def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
+    """The cell refined around a restart's fit is drawn (dashed outline, its points) and
+    zoomed in an inset with the island's extent, and the key below the panels is >= 8 pt and
+    inside the figure (referee 14, points 5 and 8)."""
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.validation import KEY_POINTS, spin_scan_figure
+
+    rec, kk, lc = _restart_record()
     fig = spin_scan_figure([rec])
     panel = fig.axes[0]
     (inset,) = panel.child_axes
@@ -411,6 +418,46 @@ def test_the_scan_figure_zooms_on_the_cells_refined_around_a_restarts_fit():
     assert box.x0 >= 0.0 and box.y0 >= 0.0 and box.x1 <= fig.bbox.width
     assert box.y1 < panel.get_window_extent().y0  # below the panels, clear of the x label
     plt.close(fig)
+
+
+def test_the_scan_insets_caption_hides_no_tick_label():
+    """Referee 16, point 6: in six panels (the shipped corpus's figure) as saved (the
+    package's style, at the saved dpi), the inset's caption box stays inside its panel and
+    clear of the panel's K tick labels (it hid K = 8)."""
+    import io
+
+    import matplotlib.pyplot as plt
+
+    from cosserat.viz.plotting import style
+    from cosserat.viz.validation import spin_scan_figure
+
+    rec = _restart_record()[0]
+    seen = []
+
+    def check(event):
+        renderer = event.renderer
+        for panel in event.canvas.figure.axes:
+            for inset in panel.child_axes:
+                title = inset.title  # its white box: the text and the box's pad (0.3 em)
+                pad = 0.3 * title.get_fontsize() * renderer.points_to_pixels(1.0)
+                caption = title.get_window_extent(renderer).padded(pad)
+                ticks = [t for t in panel.get_yticklabels() if t.get_visible() and t.get_text()]
+                seen.append(
+                    (
+                        caption.x0 > panel.get_window_extent(renderer).x0,
+                        len(ticks),
+                        [t.get_text() for t in ticks
+                         if caption.overlaps(t.get_window_extent(renderer))],
+                    )
+                )  # fmt: skip
+
+    with style():
+        fig = spin_scan_figure([{**rec, "run": f"r{i}"} for i in range(6)])
+        fig.canvas.mpl_connect("draw_event", check)
+        fig.savefig(io.BytesIO(), format="png")
+    plt.close(fig)
+    assert seen and len(seen) % 6 == 0  # each panel at each draw (a tight bbox draws twice)
+    assert all(inside and n >= 5 and not hidden for inside, n, hidden in seen), seen
 
 
 def test_the_scan_figure_draws_the_saddles_cells_and_pass_and_names_the_insets_axes():

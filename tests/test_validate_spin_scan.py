@@ -277,6 +277,41 @@ def test_a_stencil_free_scan_has_no_null_and_the_forward_one_has_its_own(pair):
     assert "implies a first-layer omega d / V = " in ss._describe(forward)
 
 
+def test_a_profiles_departure_and_null_share_its_fields_to_the_last_bit(pair):
+    """forward_departure and null_departure of one profile evaluate it once per point set
+    (forward._kept_fields: 5 evaluations for both, not 8) and give, under every stencil, the
+    very floats of forward_fields on a fresh model_fields."""
+    from cosserat.studies.validate import forward as fw
+
+    rough, smooth = pair
+    fit = ss.joint_fit(rough, ss.angles(rough, [rough, smooth]))
+    prof = ss._profile(fit.setup.model, fit.setup.runs[0], fit.setup.run_values(
+        fit.setup.runs[0], fit.theta))  # fmt: skip
+
+    class Counting:
+        def __init__(self, profile):
+            self.problem, self.calls, self._p = profile.problem, 0, profile
+
+        def evaluate(self, xi):
+            self.calls += 1
+            return self._p.evaluate(xi)
+
+    counted = Counting(prof)
+    first = fw.forward_departure(counted, rough), fw.null_departure(counted, rough)
+    assert counted.calls == 5  # the sign's probe, u, omega, the point departure at two sets
+    for stencil in fw.STENCILS:
+        fresh = fw.model_fields(prof, rough)
+        want = fw.forward_fields(fresh, rough, stencil)["departure"]
+        want_null = fw.forward_fields(fw.turning_with_the_material(fresh), rough, stencil)
+        for p in (prof, counted):
+            assert np.array_equal(fw.forward_departure(p, rough, stencil), want, equal_nan=True)
+            assert np.array_equal(
+                fw.null_departure(p, rough, stencil), want_null["departure"], equal_nan=True
+            )
+    assert np.array_equal(first[0], fw.forward_departure(prof, rough), equal_nan=True)
+    assert counted.calls == 5  # the other stencils bin and difference the same values
+
+
 def test_data_that_do_not_exclude_the_null_are_never_supported(pair):
     import dataclasses
 

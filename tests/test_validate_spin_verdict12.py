@@ -180,6 +180,30 @@ def test_the_monte_carlo_p_carries_its_count_and_draws():
     assert mc_line(None, None, "X") == ""
 
 
+def test_the_monte_carlo_sums_carried_on_are_those_drawn_afresh():
+    """Sums over fewer bins are carried on to more bins from the generator's state
+    (verdicts._t_sums): in any order of asking, each sum equals the one drawn afresh from the
+    seed, column by column, to the last bit, and so does every count."""
+    from cosserat.studies.validate import verdicts
+
+    def fresh(dof, blocks, samples):
+        rng = np.random.default_rng(verdicts.T_SEED)
+        total = np.zeros(samples)
+        for _ in range(dof):
+            total += rng.f(1.0, blocks - 1.0, size=samples)
+        return total
+
+    verdicts._T_KEPT.clear()
+    for dof, blocks in [(3, 10), (7, 10), (5, 10), (7, 10), (2, 4), (9, 4), (12, 10), (1, 10)]:
+        got = verdicts._t_sums(dof, blocks, 5000)
+        assert np.array_equal(got, fresh(dof, blocks, 5000)), (dof, blocks)
+        assert not got.flags.writeable
+        want = int(np.count_nonzero(fresh(dof, blocks, 5000) >= 1.5 * dof))
+        assert pooled_t_count(1.5 * dof, dof, blocks, 5000) == (want, 5000)
+    assert len(verdicts._T_KEPT) <= verdicts._T_KEEP
+    verdicts._T_KEPT.clear()
+
+
 def test_the_verdict_states_the_grain_scale_evidence_and_the_mc_counts():
     """Two runs with records: the evidence carries the paragraph and the u-only sentence,
     results.json's numbers the grain rows, the counts and every MC count and draws beside

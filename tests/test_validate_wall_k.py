@@ -132,6 +132,17 @@ def test_the_K_held_at_the_free_fit_reaches_its_chi2(made):
         wk.held_k_fit(run, sc, -1.0)
 
 
+def test_a_held_k_refit_is_the_same_fit_whatever_its_name(made):
+    """check_scan takes its K profile's point at K = 0.5 from the rolling refit rather than
+    fitting it again: the refit is a pure function of (run, scan, K), the same floats at a
+    second call, its name aside."""
+    run, sc = made
+    rolling = wk.held_k_fit(run, sc, wk.ROLLING_K, "rolling")
+    again = wk.held_k_fit(run, sc, wk.ROLLING_K)
+    assert again.name == "profile" and wk.ROLLING_K in wk.PROFILE_K
+    assert repr(dataclasses.replace(rolling, name="profile")) == repr(again)
+
+
 def test_on_data_the_model_made_the_fit_does_not_contradict_the_measured_K(made):
     run, sc = made
     c = wk.check_scan(sc, run)

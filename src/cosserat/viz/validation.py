@@ -1455,7 +1455,9 @@ def _zoom_around(
     inset.set_xlabel("L [d]", fontsize=6.5, labelpad=0.5, backgroundcolor="white")
     inset.set_ylabel("K [-]", fontsize=6.5)
     inset.yaxis.set_label_coords(-0.22, 0.5)  # left of the tick labels
-    inset.set_title("zoom: the cells refined around the restart's\nfit (dashed); box: the "
+    # three short lines: a wider caption box, centred on the inset, reached past the main
+    # panel's left spine and hid its K tick label (referee 16, point 6)
+    inset.set_title("zoom: the cells refined around\nthe restart's fit (dashed); box:\nthe "
                     "island; white: not refined", fontsize=7, backgroundcolor="white",
                     pad=9)  # fmt: skip
 

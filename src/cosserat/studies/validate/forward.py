@@ -44,7 +44,7 @@ from numpy.typing import NDArray
 from ..._stencil import half_vorticity
 from ...analysis.bins import Bins, bin_edges, half_vorticity_method
 from ...analysis.bins import distance_from_moving as _distance_from_moving
-from ...analysis.corpus import Run
+from ...analysis.corpus import COORDINATE, Run
 from ...analysis.fitting import moving_wall
 from ...calibration.data import BIN_NODES, gauss_legendre
 from ...errors import ParameterError
@@ -248,7 +248,7 @@ def forward_fields(
     """What the run's analysis would report for the model ``fields``: ``u``, ``omega``,
     ``half_vorticity`` and ``departure`` (omega - half vorticity) per bin, in the run's row
     order [-]; and ``point`` (the model's point departure at the bin centres) [-]."""
-    bins = bin_edges(run)
+    bins = _kept_bins(run)
     method = half_vorticity_method(run)
 
     def point_half(x: FloatArray) -> FloatArray:
@@ -289,6 +289,34 @@ def forward_fields(
     return out
 
 
+_KEEP_PROFILES = 256
+"""How many profiles' :func:`model_fields` (and runs' bins) :func:`_kept_fields` (and
+:func:`_kept_bins`) keep: more than a scan's 95% region has (~10-150 profiles, each ~25 kB
+kept), whose nulls are asked stencil by stencil over all of them (``nulls.joint_null``), so
+that the next stencil finds each profile still kept."""
+_KEEP_POINTS = 8
+"""How many point sets each of their functions keeps the values at."""
+_KEPT: dict[tuple[int, int], tuple[Any, Run, ModelFields]] = {}
+_KEPT_BINS: dict[int, tuple[Run, Any, Bins]] = {}
+
+
+def _kept_bins(run: Run) -> Bins:
+    """:func:`~cosserat.analysis.bins.bin_edges` of ``run``, made once for the last
+    :data:`_KEEP_PROFILES` runs asked (read-only; made again if the run's coordinate column is
+    replaced): :func:`forward_fields` is asked ~10^4 times in one validate."""
+    column = run.columns.get(COORDINATE[run.cell])
+    kept = _KEPT_BINS.get(id(run))  # the run kept alive below, so its id is not reused
+    if kept is not None and kept[0] is run and kept[1] is column:
+        return kept[2]
+    bins = bin_edges(run)
+    for a in (bins.centre, bins.lo, bins.hi, bins.order):
+        a.flags.writeable = False
+    if len(_KEPT_BINS) >= _KEEP_PROFILES:
+        del _KEPT_BINS[next(iter(_KEPT_BINS))]
+    _KEPT_BINS[id(run)] = (run, column, bins)
+    return bins
+
+
 def forward_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatArray:
     """A model's omega - half vorticity as the run's analysis would report it, per bin in the
     run's row order (the run's units and sign) [-].
@@ -309,7 +337,7 @@ def forward_departure(profile: Any, run: Run, stencil: str = "analysis") -> Floa
         An unknown stencil, or a run with fewer than 3 bins.
     """
     _check_stencil(stencil)
-    return forward_fields(model_fields(profile, run), run, stencil)["departure"]
+    return forward_fields(_kept_fields(profile, run), run, stencil)["departure"]
 
 
 def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatArray:
@@ -317,8 +345,47 @@ def null_departure(profile: Any, run: Run, stencil: str = "analysis") -> FloatAr
     material (:func:`turning_with_the_material`): what the run's analysis reports for a spin
     equal to half the vorticity everywhere, per row [-]."""
     _check_stencil(stencil)
-    fields = turning_with_the_material(model_fields(profile, run))
+    fields = turning_with_the_material(_kept_fields(profile, run))
     return forward_fields(fields, run, stencil)["departure"]
+
+
+def _kept_fields(profile: Any, run: Run) -> ModelFields:
+    """:func:`model_fields` of ``profile`` in ``run``, made once for the last
+    :data:`_KEEP_PROFILES` (profile, run) pairs asked, each function giving again the values it
+    gave at the same points (:func:`_remembering`). A profile's departure and its null
+    (:func:`forward_departure`, :func:`null_departure`) are asked together at every point of
+    a scan, and under every stencil: they share the velocity, the spin and their bin means
+    (the same floats, evaluated once rather than up to 8 times)."""
+    key = (id(profile), id(run))  # both kept alive below, so neither id is reused meanwhile
+    kept = _KEPT.get(key)
+    if kept is not None and kept[0] is profile and kept[1] is run:
+        return kept[2]
+    fields = _remembering(model_fields(profile, run))
+    if len(_KEPT) >= _KEEP_PROFILES:
+        del _KEPT[next(iter(_KEPT))]
+    _KEPT[key] = (profile, run, fields)
+    return fields
+
+
+def _remembering(fields: ModelFields) -> ModelFields:
+    """``fields`` whose functions keep their values at the last :data:`_KEEP_POINTS` point
+    sets (by value) and give a copy of them when asked at the same points again."""
+
+    def keep(f: Callable[[FloatArray], FloatArray]) -> Callable[[FloatArray], FloatArray]:
+        values: dict[tuple[Any, ...], Any] = {}
+
+        def g(x: FloatArray) -> FloatArray:
+            a = np.asarray(x)
+            key = (a.dtype.str, a.shape, a.tobytes())
+            if key not in values:
+                if len(values) >= _KEEP_POINTS:
+                    del values[next(iter(values))]
+                values[key] = f(x)
+            return np.array(values[key], copy=True)
+
+        return g
+
+    return ModelFields(keep(fields.u), keep(fields.omega), keep(fields.point_departure))
 
 
 def first_layer_half_se(

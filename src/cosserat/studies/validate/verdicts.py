@@ -416,22 +416,18 @@ def pooled_t_count(
     (referee 12, point 7). None where :func:`pooled_t_p` is."""
     if chi2 is None or blocks < 2 or dof < 1 or not math.isfinite(chi2):
         return None
-    sums = _t_sums(dof, blocks, samples)
+    sums = _t_sorted(dof, blocks, samples)
     return int(sums.size - np.searchsorted(sums, chi2, side="left")), int(samples)
 
 
 @functools.lru_cache(maxsize=8)
-def _t_sums(dof: int, blocks: int, samples: int) -> FloatArray:
-    """:func:`pooled_t_count`'s seeded draws: ``samples`` sums of ``dof`` independent
-    F(1, blocks - 1) variables, sorted ascending and read-only (cached: the verdict reads one
-    set of draws at several chi^2, :func:`seed_factor_rows`) [-]."""
-    rng = np.random.default_rng(20261127)
-    total = np.zeros(samples)
-    for _ in range(dof):  # one bin at a time: memory stays one column
-        total += rng.f(1.0, blocks - 1.0, size=samples)
-    total.sort()
-    total.flags.writeable = False
-    return total
+def _t_sorted(dof: int, blocks: int, samples: int) -> FloatArray:
+    """:func:`_t_sums` sorted ascending and read-only (cached: the verdict reads one set of
+    draws at several chi^2, :func:`seed_factor_rows`, and :func:`crossing_factor` reads its
+    k-th largest) [-]."""
+    out = np.sort(_t_sums(dof, blocks, samples))
+    out.flags.writeable = False
+    return out
 
 
 def crossing_factor(
@@ -451,8 +447,47 @@ def crossing_factor(
     k = max(1, math.ceil(line * (samples + 1) - 1.0 - 1e-9))
     if k > samples:
         return None
-    sums = _t_sums(dof, blocks, samples)
+    sums = _t_sorted(dof, blocks, samples)
     return math.sqrt(chi2 / float(sums[sums.size - k]))
+
+
+T_SEED = 20261127
+"""The seed of :func:`pooled_t_count`'s Monte Carlo."""
+
+_T_KEPT: dict[tuple[int, int, int], tuple[FloatArray, Mapping[str, Any]]] = {}
+"""The sums of :func:`_t_sums` last made: (dof, blocks, samples) -> (the sums, read-only; the
+generator's state after them)."""
+_T_KEEP = 6
+"""How many of them are kept (each ``samples`` floats: 1.6 MB at :data:`T_SAMPLES`)."""
+
+
+def _t_sums(dof: int, blocks: int, samples: int) -> FloatArray:
+    """The ``samples`` sums of ``dof`` F(1, blocks - 1) draws of :func:`pooled_t_count`, one
+    bin's column at a time from the seeded generator. The first k columns are the same for
+    every dof, so a sum over fewer columns made before is carried on from the generator's
+    state after it rather than drawn again (a validate asks for 4 sums, two of them the
+    others' first columns): the same additions in the same order, so the same floats."""
+    key = (dof, blocks, samples)
+    if key in _T_KEPT:
+        return _T_KEPT[key][0]
+    start = max(
+        (k for k in _T_KEPT if k[0] <= dof and k[1:] == (blocks, samples)),
+        key=lambda k: k[0],
+        default=None,
+    )
+    rng = np.random.default_rng(T_SEED)
+    if start is None:
+        done, total = 0, np.zeros(samples)
+    else:
+        done, total = start[0], _T_KEPT[start][0].copy()
+        rng.bit_generator.state = _T_KEPT[start][1]
+    for _ in range(dof - done):  # one bin at a time: memory stays one column
+        total += rng.f(1.0, blocks - 1.0, size=samples)
+    total.flags.writeable = False
+    if len(_T_KEPT) >= _T_KEEP:
+        del _T_KEPT[next(iter(_T_KEPT))]
+    _T_KEPT[key] = (total, rng.bit_generator.state)
+    return total
 
 
 def mc_error(count: int, draws: int) -> float:
@@ -2113,8 +2148,9 @@ def spin_verdict(
         f"{SPIN_METHOD}"
     )
     blocks = min((w.blocks for w in tested), default=0)
-    c_t = pooled_t_count(chi2, dof, blocks)
+    # the fewer bins first: the pooled test's sums then carry on from theirs (_t_sums)
     c_t_rest = pooled_t_count(rest[0], rest[1], blocks)
+    c_t = pooled_t_count(chi2, dof, blocks)
     p_t = None if c_t is None else (c_t[0] + 1) / (c_t[1] + 1)
     p_t_rest = None if c_t_rest is None else (c_t_rest[0] + 1) / (c_t_rest[1] + 1)
     numbers["pooled_p_t"] = p_t

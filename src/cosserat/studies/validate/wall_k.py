@@ -57,7 +57,7 @@ import contextlib
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -794,7 +794,12 @@ def check_scan(scan: Scan, run: Run, refits: bool = True) -> WallCheck:
     if refits:
         held = {name: held_k_fit(run, scan, K, name)
                 for name, K in (("rolling", ROLLING_K), ("sliding", SLIDING_K))}  # fmt: skip
-        profile = [held_k_fit(run, scan, K) for K in PROFILE_K]
+        # the profile's K = 0.5 is the rolling refit itself (the same fit, only its name
+        # differs): taken from it rather than fitted twice
+        profile = [
+            replace(held["rolling"], name="profile") if K == ROLLING_K else held_k_fit(run, scan, K)
+            for K in PROFILE_K
+        ]
         if measured.determined:
             proxy = _proxy_refit(run, scan, measured.K, [*held.values(), *profile])
             if proxy is not None:
