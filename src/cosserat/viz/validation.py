@@ -1303,7 +1303,7 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
             ax.set_title(
                 f"{sc['run']}\nphi {sc['phi']:.3g}, {deltas} deg\nbeyond the null: data "
                 f"{m:+.3g} +- {se:.2g}, best fit {sc['best_beyond_null']:+.3g}\n"
-                f"{region_short(sc)}\n{over}",
+                f"{region_short(sc)}{'; ' + sc['basins'] if sc.get('basins') else ''}\n{over}",
                 fontsize=8.5,
             )
         for ax in flat[len(scans) :]:
