@@ -3988,8 +3988,11 @@ def _islands(record: Mapping[str, Any]) -> list[dict[str, Any]]:
     k0, l0 = float(record["best_K"]), float(record["best_L"])
     holds = [_overlap(i["K"], (k0, k0)) and _overlap(i["L"], (l0, l0)) for i in pieces]
     if not any(holds) and pieces:  # the fit between grid points: the island of least chi^2
-        low = min(range(len(pieces)), key=lambda j: pieces[j].get("delta_chi2") or 0.0)
-        holds[low] = True
+        dchi2 = [
+            math.inf if p.get("delta_chi2") is None else float(p["delta_chi2"]) for p in pieces
+        ]
+        least = min(range(len(pieces)), key=dchi2.__getitem__)
+        holds[least] = True
     threshold = float(record.get("threshold") or math.nan)
     for j, (piece, fit) in enumerate(zip(pieces, holds, strict=True)):
         low = piece.get("delta_chi2")
