@@ -69,7 +69,14 @@ def test_regions_overlapping_in_l_share_a_basin():
     assert text.startswith("The refutation holds at both seeds of one cell at H = 20 d (x, ")
     assert "own L basin" not in text and "not replicated" not in text
     assert "both basins" not in text
-    assert "next to x's region island: overlapping it in L and K" in text
+    assert text.endswith(
+        "y's fit at K 2.2, L 3.6 d in its single region (K 1.9-3, L 3.5-6 d), overlapping x's "
+        "region in L and K."
+    )
+    b["call"] = a["call"] = "undecided"
+    assert ss.basin_text(ss.basin_comparison(a, b)).startswith(
+        "Both seeds of one cell at H = 20 d (x, seed 1; y, seed 2) are undecided: x's fit"
+    )
     assert ss.basin_title(cmp, "x") == ss.basin_title(cmp, "y") == ""
 
 

@@ -4077,12 +4077,12 @@ def basin_text(cmp: Mapping[str, Any]) -> str:
     replicate."""
     (ra, rb), (sa, sb), (ca, cb) = cmp["runs"], cmp["seeds"], cmp["calls"]
     gap = f" at H = {cmp['gap_d']:.3g} d" if cmp.get("gap_d") is not None else ""
-    if ca == cb:
-        word = {"refuted": "The refutation", "supported": "The support"}.get(ca, f"The {ca} call")
-        head = (
-            f"{word} holds at both seeds of one cell{gap} ({ra}, {_seed_word(sa, ra)}; {rb}, "
-            f"{_seed_word(sb, rb)})"
-        )
+    pair = f"one cell{gap} ({ra}, {_seed_word(sa, ra)}; {rb}, {_seed_word(sb, rb)})"
+    if ca == cb and ca in ("refuted", "supported"):
+        word = "The refutation" if ca == "refuted" else "The support"
+        head = f"{word} holds at both seeds of {pair}"
+    elif ca == cb:
+        head = f"Both seeds of {pair} are {ca}"
     else:
         head = f"The call differs between the seeds of one cell{gap} ({ra} {ca}; {rb} {cb})"
     head += ", each fit in its own L basin" if cmp["own_basins"] else ""
@@ -4107,10 +4107,11 @@ def basin_text(cmp: Mapping[str, Any]) -> str:
         if run == rb:
             met = [cmp["islands"][other][j] for j in fit["met"]]
             text += "".join(
-                f", next to {other}'s {q['label'] or 'region'} island: overlapping it in L"
+                (f", next to {other}'s {q['label']} island: overlapping it in L" if q["label"]
+                 else f", overlapping {other}'s region in L")
                 + (" and K" if _overlap(fit["K"], q["K"]) else f", not in K ({_piece_text(q)})")
                 for q in met
-            )
+            )  # fmt: skip
         parts.append(text)
     text = head + (": " + "; ".join(parts) if parts else "")
     unmet = [
