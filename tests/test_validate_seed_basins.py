@@ -154,3 +154,34 @@ def test_which_refuted_runs_joint_fits_fit_and_which_misfit(seed_scans):
         "71.6/10 under diagonal errors, p = 2.1e-11; u 40.6/10 under common-mode errors, p = "
         "1.3e-05), beta (overall p = 9.5e-05; omega 54/19, p = 3.3e-05)."
     )
+
+
+def test_the_scan_panel_says_which_basins_the_other_seed_finds_on_its_own_title_line():
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from cosserat.viz.validation import spin_scan_figure
+
+    k, ll = np.linspace(0.0, 10.0, 5), np.geomspace(0.5, 100.0, 5)
+    d = np.add.outer((k - 5.0) ** 2, np.log(ll / 14.0) ** 2)
+
+    def grid():
+        return {"K": list(k), "L": list(ll), "departure": (0.01 + 0.0 * d).tolist(),
+                "null": (0.0 * d).tolist(), "delta_chi2": d.tolist()}  # fmt: skip
+
+    rec = {
+        "run": "r", "measured": -0.3, "measured_beyond_null": -0.28,
+        "measured_beyond_null_se": 0.03, "best_K": 5.0, "best_L": 14.0,
+        "best_beyond_null": 0.09, "threshold": 5.99, "phi": 18.1, "delta": {"moving": 13.5},
+        "grids": {"range": grid(), "near": grid()},
+        "region": {"K": [2.87, 6.29], "L": [3.54, 15.7], "K_bounds": ["data", "data"],
+                   "L_bounds": ["data", "data"], "islands": TWO},
+        "basins": "one of two basins; seed 2 finds only the small-L one",
+    }  # fmt: skip
+    fig = spin_scan_figure([rec, {**rec, "run": "s", "basins": ""}])
+    lines = fig.axes[0].get_title().splitlines()
+    at = lines.index("95% region: 2 islands, L ~3.5 and 12.7-15.7 d")
+    assert lines[at + 1] == "one of two basins; seed 2 finds only the small-L one"
+    assert "seed 2" not in fig.axes[1].get_title()  # no note: no line
+    assert len(fig.axes[1].get_title().splitlines()) == len(lines) - 1
+    plt.close(fig)
