@@ -4131,11 +4131,11 @@ def seed_pairs(scans: Sequence[Scan]) -> list[dict[str, Any]]:
     regions (no solve)."""
     from .rate import twin_names
 
-    by_run = {sc.run: sc for sc in scans}
+    by_name = {sc.fit.setup.runs[0].name: sc for sc in scans}  # twin_names gives these
     out = []
     for a, b in twin_names([sc.fit.setup.runs[0] for sc in scans]):
         recs = []
-        for sc in (by_run[a], by_run[b]):
+        for sc in (by_name[a], by_name[b]):
             recs.append({
                 "run": sc.run, "seed": sc.fit.setup.runs[0].meta.get("seed"),
                 "gap_d": float(sc.fit.setup.runs[0].gap_d),
