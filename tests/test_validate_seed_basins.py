@@ -185,3 +185,15 @@ def test_the_scan_panel_says_which_basins_the_other_seed_finds_on_its_own_title_
     assert "seed 2" not in fig.axes[1].get_title()  # no note: no line
     assert len(fig.axes[1].get_title().splitlines()) == len(lines) - 1
     plt.close(fig)
+
+
+def test_the_scan_caption_gives_the_basin_note_beside_the_runs_region():
+    from cosserat.studies.validate.report import spin_scan_caption
+
+    rec = {"run": "r", "region_text": "two islands: K 2.87, L ~3.5 d and K 4.88-6.29, L "
+           "12.7-15.7 d", "measured_beyond_null": -0.28, "measured_beyond_null_se": 0.03,
+           "best_beyond_null": 0.09}  # fmt: skip
+    note = "one of two basins; seed 2 finds only the small-L one"
+    text = spin_scan_caption([{**rec, "basins": note}, {**rec, "run": "s", "basins": ""}])
+    assert f"r: two islands: K 2.87, L ~3.5 d and K 4.88-6.29, L 12.7-15.7 d ({note}); s: " in text
+    assert text.count(note) == 1
