@@ -128,7 +128,12 @@ def test_a_reversed_first_layer_is_refuted(tmp_path, pair):
         "At reversed the joint fit misfits "
     )
     fields = ss._misfit_fields(sc)
-    assert f"At reversed the joint fit misfits {fields} (p = " in v.evidence
+    # the overall p, then each field that misfits (referee 17, point 3(b))
+    bad = ss._misfit_parts(sc)
+    words = f"misfits (overall p = {sc.fit.calibration.p_value:.2g}; {'; '.join(bad)}"
+    if not bad:
+        words = "misfits its fields together (overall p = "
+    assert f"At reversed the joint fit {words}" in v.evidence
     assert "; sign rule under every stencil. " in v.evidence
     assert " No run is refuted by the size rule, where no null enters" in v.evidence
     # the scope in the verdict field (referee 10, point 1)

@@ -62,8 +62,26 @@ def test_spin_summary_leads_with_the_model_free_ratio_and_the_verdicts_p():
     assert len(text) <= SUMMARY_CHARS
 
 
+# the joint fits' chi^2 of results.json scans[] (validate on the nine v2 runs): plane_smooth_H10_qs
+# misfits overall with no field alone below p = 0.001; plane_smooth_H20_qs_s2 misfits omega
+FIT_CHI2 = {
+    "plane_smooth_H10_qs": {"chi2": 44.15774836682987, "dof": 19, "fields": {
+        "u": {"chi2": 16.046641665808917, "n": 10}, "omega": {"chi2": 27.290524936009625, "n": 9},
+        "stress_ratio": {"chi2": 0.8205817650113236, "n": 2}}},
+    "plane_smooth_H20_qs_s2": {"chi2": 80.81679061158351, "dof": 39, "fields": {
+        "u": {"chi2": 22.21446682145575, "n": 20}, "omega": {"chi2": 54.028143365093676, "n": 19},
+        "stress_ratio": {"chi2": 4.574180425034102, "n": 2}}},
+}  # fmt: skip
+
+
+def _with_fit_chi2(n: dict) -> dict:
+    for s in n["scans"]:
+        s.update(FIT_CHI2.get(s["run"], {}))
+    return n
+
+
 def test_spin_model_summary_says_where_refuted_and_by_which_rule():
-    text = spin_model_summary("refuted", "", numbers("spin_model"))
+    text = spin_model_summary("refuted", "", _with_fit_chi2(numbers("spin_model")))
     assert text.startswith(
         "Refuted at plane_smooth_H10_qs, plane_smooth_H20_qs (size rule: best fit - data beyond "
         "3 se, one sign, under every stencil and every error model of u"
@@ -71,9 +89,30 @@ def test_spin_model_summary_says_where_refuted_and_by_which_rule():
     assert "; undecided at 4 (plane_rough_H10_qs, plane_rough_H10_qs_half, " in text
     assert "plane_smooth_H10_qs -0.107 against -0.281 +- 0.017" in text
     assert "plane_smooth_H20_qs -0.073 against -0.445 +- 0.042." in text
-    # of the two refuted runs only plane_smooth_H10_qs is among the misfit runs
-    assert "At plane_smooth_H10_qs the joint fit, the calibration it is refuted against" in text
+    # of the two refuted runs only plane_smooth_H10_qs is among the misfit runs: no field
+    # alone misfits there, so the overall p is the misfit (referee 17, point 3(b))
+    assert text.endswith(
+        "At plane_smooth_H10_qs the joint fit it is refuted against misfits its fields together "
+        "(overall p = 0.0009)."
+    )
     assert len(text) <= SUMMARY_CHARS
+
+
+def test_spin_model_summary_names_the_field_that_misfits_beside_the_overall_p():
+    # referee 17, point 3(b): plane_smooth_H20_qs_s2 misfits omega (54/19, p = 3.3e-5; u p =
+    # 0.33), not its fields together; the overall p is 9.5e-5
+    n = numbers("spin_model")
+    n["calls"] = {**n["calls"], "plane_smooth_H20_qs_s2": "refuted"}
+    n["misfit_runs"] = [*n["misfit_runs"], "plane_smooth_H20_qs_s2"]
+    n["scans"] = [*n["scans"], {"run": "plane_smooth_H20_qs_s2"}]
+    text = spin_model_summary("refuted", "", _with_fit_chi2(n))
+    assert text.endswith(
+        "At plane_smooth_H10_qs the joint fit it is refuted against misfits its fields together "
+        "(overall p = 0.0009); at plane_smooth_H20_qs_s2 it misfits (overall p = 9.5e-05; omega "
+        "54/19, p = 3.3e-05)."
+    )
+    # without the fits' chi^2 the sentence is left out, not guessed
+    assert "misfits" not in spin_model_summary("refuted", "", numbers("spin_model"))
 
 
 @pytest.mark.parametrize(

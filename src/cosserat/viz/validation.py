@@ -1359,10 +1359,12 @@ def spin_scan_figure(scans: Sequence[Mapping[str, Any]]) -> Figure:
             )
             if not hatched:
                 over += ("; " if over else "") + "none within 2 se of the data"
+            # a seed pair's basins (spin_scan.mark_seed_basins; referee 17, point 1)
+            basins = f"\n{sc['basins']}" if sc.get("basins") else ""
             ax.set_title(
                 f"{sc['run']}\nphi {sc['phi']:.3g}, {deltas} deg\nbeyond the null: data "
                 f"{m:+.3g} +- {se:.2g}, best fit {sc['best_beyond_null']:+.3g}\n"
-                f"{region_short(sc)}\n{over}",
+                f"{region_short(sc)}{basins}\n{over}",
                 fontsize=8.5,
             )
         for ax in flat[len(scans) :]:

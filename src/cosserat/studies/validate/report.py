@@ -67,7 +67,11 @@ def spin_scan_caption(scans: list[dict[str, Any]]) -> str:
     """The caption of ``claim_spin_scan.png`` (referee 8, point 9): what is coloured, what
     the hatch means, with each run's numbers (``Scan.to_dict`` records)."""
     regions = (
-        "; ".join(f"{sc['run']}: {sc['region_text']}" for sc in scans if sc.get("region_text"))
+        "; ".join(
+            f"{sc['run']}: {sc['region_text']}" + (f" ({sc['basins']})" if sc.get("basins") else "")
+            for sc in scans
+            if sc.get("region_text")
+        )  # a seed pair's basins (spin_scan.mark_seed_basins; referee 17, point 1)
         or "no region recorded"
     )
     runs = "; ".join(

@@ -668,6 +668,10 @@ class Scan:
     """Solved fits off the grids (the joint fit's restarts' start and end, :func:`scan_run`):
     each ``K``, ``L`` [d], ``chi2`` and ``source``; those inside the threshold are points of
     the 95% region (:func:`scan_region`, referee 13, point 2)."""
+    basins: str = ""
+    """Where the run has a seed twin among the scans and its 95% region is several islands of
+    which the twin finds only some: the scan figure's panel note (:func:`mark_seed_basins`,
+    referee 17, point 1), e.g. "one of two basins; seed 2 finds only the small-L one"."""
     phi_sensitivity: dict[str, Any] = field(default_factory=dict)
     """The model's first-layer departure beyond its own null over the range grid at the ends
     of the plausible phi range (:func:`phi_sensitivity`, referee 11, point 3): ``rows`` (one
@@ -928,6 +932,7 @@ class Scan:
             "steadiness": self.steadiness,
             "unsteady": list(self.unsteady),
             "phi_sensitivity": dict(self.phi_sensitivity),
+            "basins": self.basins,
         }
 
 
@@ -3233,11 +3238,14 @@ def lead_text(scans: Sequence[Scan]) -> str:
         if sc.run in firm:
             p = mc.p_value
             if p is None or p >= MISFIT_P:
-                fits = "describes u, omega and the stress ratio"
-            else:
-                fits = f"misfits {_misfit_fields(sc)}"
+                fits, pw = "describes u, omega and the stress ratio", "p"
+            else:  # referee 17, point 3(b): the overall p, then each field's that misses
+                bad = _misfit_parts(sc)
+                fits = "misfits" if bad else "misfits its fields together"
+                pw = "overall p"
             text = (
-                f"At {sc.run} the joint fit {fits} (p = {'-' if p is None else f'{p:.2g}'}"
+                f"At {sc.run} the joint fit {fits} ({pw} = {'-' if p is None else f'{p:.2g}'}"
+                + (f"; {'; '.join(bad)}" if fits == "misfits" else "")
                 + (f"; {_u_models(sc)}" if _u_models(sc) else "")
                 + f"). Its first-layer spin is {sc.omega_model:+.3g} against "
                 f"{sc.omega_measured:+.3g} +- {sc.omega_measured_se:.2g} measured"
@@ -3690,6 +3698,7 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, pairs: Sequence[Any]
         sc.run for sc in scans if abs(sc.measured_beyond) >= SIGN_SIGMAS * sc.measured_beyond_se
     ]
     missed = [r for r in significant if calls[r] == "undecided"]
+    mark_seed_basins(scans)  # the panel notes, in the scans' records
     numbers: dict[str, Any] = {
         "scans": [sc.to_dict() for sc in scans],
         "calls": calls,
@@ -3739,7 +3748,12 @@ def scan_verdict(scans: Sequence[Scan], u_only: Any = None, pairs: Sequence[Any]
     numbers["rules_by_stencil"] = {sc.run: stencil_rules(sc) for sc in scans}
     numbers["size_z_by_error_model"] = {sc.run: size_z_by_model(sc) for sc in scans}
     numbers["rules_lines"] = [rules_line(sc) for sc in scans]
-    lead = lead_text(scans)
+    twins = seed_pairs(scans)
+    numbers["seed_basins"] = [
+        {k: c[k] for k in ("runs", "seeds", "calls", "own_basins", "unmet", "best")} for c in twins
+    ]
+    lead = " ".join(t for t in (*(basin_text(c) for c in twins), fits_text(scans)) if t)
+    lead = f"{lead} {lead_text(scans)}" if lead else lead_text(scans)
     lines = (
         " By run (a rule refutes only where it holds under every stencil, the size rule under "
         "every error model of u as well; n/m: the stencils it holds under, and the size rule's "
@@ -3964,6 +3978,256 @@ def _material_text(scans: Sequence[Scan]) -> str:
     return out
 
 
+# --------------------------------------------------------------------------- seed pairs' basins
+def _overlap(a: Sequence[float], b: Sequence[float]) -> bool:
+    """Whether the closed intervals ``a`` and ``b`` ([lo, hi]) share a point."""
+    return max(a[0], b[0]) <= min(a[1], b[1])
+
+
+def _islands(record: Mapping[str, Any]) -> list[dict[str, Any]]:
+    """A scan record's 95% region as islands sorted by L (one island where the region has
+    none listed), each with ``label`` ("small-L", "large-L" for two; "" for one; else "L
+    a-b d"), ``fit`` (the joint fit's (K, L) lies in it, or it holds the region's least Delta
+    chi^2) and ``only_just`` (its least Delta chi^2 above :data:`ONLY_JUST` of the
+    threshold)."""
+    region = record.get("region") or {}
+    pieces = [dict(i) for i in region.get("islands") or ()] or (
+        [{"K": region["K"], "L": region["L"], "delta_chi2": 0.0}] if "K" in region else []
+    )
+    pieces.sort(key=lambda i: i["L"][0])
+    k0, l0 = float(record["best_K"]), float(record["best_L"])
+    holds = [_overlap(i["K"], (k0, k0)) and _overlap(i["L"], (l0, l0)) for i in pieces]
+    if not any(holds) and pieces:  # the fit between grid points: the island of least chi^2
+        dchi2 = [
+            math.inf if p.get("delta_chi2") is None else float(p["delta_chi2"]) for p in pieces
+        ]
+        least = min(range(len(pieces)), key=dchi2.__getitem__)
+        holds[least] = True
+    threshold = float(record.get("threshold") or math.nan)
+    for j, (piece, fit) in enumerate(zip(pieces, holds, strict=True)):
+        low = piece.get("delta_chi2")
+        piece["fit"] = fit
+        piece["only_just"] = bool(low is not None and low > ONLY_JUST * threshold)
+        piece["label"] = (
+            ("small-L", "large-L")[j] if len(pieces) == 2 else "" if len(pieces) == 1
+            else f"L {piece['L'][0]:.3g}-{piece['L'][1]:.3g} d"
+        )  # fmt: skip
+    return pieces
+
+
+def basin_comparison(a: Mapping[str, Any], b: Mapping[str, Any]) -> dict[str, Any]:
+    """The 95% regions of two seeds of one cell compared in L (referee 17, point 1): ``a``,
+    ``b`` scan records (``run``, ``seed``, ``best_K``, ``best_L`` [d], ``threshold``,
+    ``region`` as ``Scan.to_dict`` gives them, ``call``, optional ``gap_d`` [d]). Returns
+    ``runs``, ``seeds``, ``calls``, ``gap_d``, ``islands`` (run -> the region's islands sorted
+    by L, each with ``label``, ``fit``, ``only_just`` and ``met``: the other run's islands
+    overlapping it in L, by index), ``own_basins`` (the two fits' islands are disjoint in L:
+    each fit in its own L basin), ``best`` (run -> the fit's [K, L]), ``threshold`` (run ->
+    its Delta chi^2 threshold) and ``unmet`` (run -> labels of its islands no island of the
+    other run meets in L: basins the other seed does not replicate)."""
+    recs = (a, b)
+    isl = {r["run"]: _islands(r) for r in recs}
+    for r, o in ((a, b), (b, a)):
+        for piece in isl[r["run"]]:
+            piece["met"] = [j for j, q in enumerate(isl[o["run"]]) if _overlap(piece["L"], q["L"])]
+    fits = [next((p for p in isl[r["run"]] if p["fit"]), None) for r in recs]
+    own = all(f is not None for f in fits) and not _overlap(fits[0]["L"], fits[1]["L"])  # type: ignore[index]
+    return {
+        "runs": [r["run"] for r in recs],
+        "seeds": [r.get("seed") for r in recs],
+        "calls": [r.get("call") for r in recs],
+        "islands": isl,
+        "gap_d": a.get("gap_d"),
+        "own_basins": bool(own),
+        "best": {r["run"]: [float(r["best_K"]), float(r["best_L"])] for r in recs},
+        "threshold": {r["run"]: float(r.get("threshold") or math.nan) for r in recs},
+        "unmet": {
+            r["run"]: [p["label"] or "single" for p in isl[r["run"]] if not p["met"]] for r in recs
+        },
+    }
+
+
+def _seed_word(seed: Any, run: str) -> str:
+    return f"seed {seed}" if seed is not None else run
+
+
+def basin_title(cmp: Mapping[str, Any], run: str) -> str:
+    """The scan figure's panel note for ``run`` of a seed pair (:func:`basin_comparison`):
+    where its region is several islands and the other seed meets only some of them, e.g.
+    "one of two basins; seed 2 finds only the small-L one"; "" otherwise."""
+    names = list(cmp["runs"])
+    if run not in names:
+        return ""
+    other = names[1 - names.index(run)]
+    pieces = cmp["islands"][run]
+    met = [p for p in pieces if p["met"]]
+    if len(pieces) < 2 or not met or len(met) == len(pieces):
+        return ""
+    count = _COUNT.get(len(pieces), str(len(pieces)))
+    fit = next((p for p in pieces if p["fit"]), None)
+    head = f"one of {count} basins" if fit is not None and not fit["met"] else f"{count} basins"
+    seed = _seed_word(cmp["seeds"][names.index(other)], other)
+    found = " and ".join(p["label"] for p in met)
+    return f"{head}; {seed} finds only the {found} one" + ("s" if len(met) > 1 else "")
+
+
+def _island_words(p: Mapping[str, Any]) -> str:
+    """An island in words: "the small-L island (K 2.87, L ~3.5 d)", or "its single region
+    (...)" for a region of one island."""
+    return (f"the {p['label']} island" if p["label"] else "its single region") + (
+        f" ({_piece_text(p)})"
+    )
+
+
+def basin_text(cmp: Mapping[str, Any]) -> str:
+    """One sentence on a seed pair's calls and L basins (:func:`basin_comparison`): whether
+    the call holds at both seeds, where each fit sits (its K and L [d], its island, the
+    other islands and whether they exist only just), how the second seed's fit island meets
+    the first seed's islands in L (and K), and which basins the other seed does not
+    replicate."""
+    (ra, rb), (sa, sb), (ca, cb) = cmp["runs"], cmp["seeds"], cmp["calls"]
+    gap = f" at H = {cmp['gap_d']:.3g} d" if cmp.get("gap_d") is not None else ""
+    pair = f"one cell{gap} ({ra}, {_seed_word(sa, ra)}; {rb}, {_seed_word(sb, rb)})"
+    if ca == cb and ca in ("refuted", "supported"):
+        word = "The refutation" if ca == "refuted" else "The support"
+        head = f"{word} holds at both seeds of {pair}"
+    elif ca == cb:
+        head = f"Both seeds of {pair} are {ca}"
+    else:
+        head = f"The call differs between the seeds of one cell{gap} ({ra} {ca}; {rb} {cb})"
+    head += ", each fit in its own L basin" if cmp["own_basins"] else ""
+    parts = []
+    for run, other in ((ra, rb), (rb, ra)):
+        pieces = cmp["islands"][run]
+        fit = next((p for p in pieces if p["fit"]), None)
+        if fit is None:
+            continue
+        best = cmp["best"][run]
+        of = f" of {_COUNT.get(len(pieces), len(pieces))}" if len(pieces) > 1 else ""
+        text = f"{run}'s fit at K {best[0]:.3g}, L {best[1]:.3g} d in {_island_words(fit)}{of}"
+        for p in pieces:
+            if p is fit:
+                continue
+            text += f"; its {_island_words(p).removeprefix('the ')}"
+            if p["only_just"]:
+                text += (
+                    f" exists only just (least Delta chi^2 {p['delta_chi2']:.3g} against the "
+                    f"threshold {cmp['threshold'][run]:.3g})"
+                )
+        if run == rb:
+            met = [cmp["islands"][other][j] for j in fit["met"]]
+            text += "".join(
+                (f", next to {other}'s {q['label']} island: overlapping it in L" if q["label"]
+                 else f", overlapping {other}'s region in L")
+                + (" and K" if _overlap(fit["K"], q["K"]) else f", not in K ({_piece_text(q)})")
+                for q in met
+            )  # fmt: skip
+        parts.append(text)
+    text = head + (": " + "; ".join(parts) if parts else "")
+    unmet = [
+        f"{run}'s {label} basin" for run in (ra, rb) for label in cmp["unmet"][run]
+        if label != "single"
+    ]  # fmt: skip
+    if unmet:
+        text += f". So {' and '.join(unmet)} {'is' if len(unmet) == 1 else 'are'} not replicated"
+    if ca == cb == "refuted" and cmp["own_basins"]:
+        text += f"{', and' if unmet else '. So'} the refutation holds in both basins"
+    return text + "."
+
+
+def seed_pairs(scans: Sequence[Scan]) -> list[dict[str, Any]]:
+    """:func:`basin_comparison` of every same-conditions seed pair among the scanned runs
+    (``rate.twin_names``: one cell, one wall speed, two seeds), from the scans' cached
+    regions (no solve)."""
+    from .rate import twin_names
+
+    by_name = {sc.fit.setup.runs[0].name: sc for sc in scans}  # twin_names gives these
+    out = []
+    for a, b in twin_names([sc.fit.setup.runs[0] for sc in scans]):
+        recs = []
+        for sc in (by_name[a], by_name[b]):
+            recs.append({
+                "run": sc.run, "seed": sc.fit.setup.runs[0].meta.get("seed"),
+                "gap_d": float(sc.fit.setup.runs[0].gap_d),
+                "best_K": sc.fit.value("K"), "best_L": sc.fit.value("L"),
+                "threshold": sc.threshold, "region": scan_region(sc), "call": wall_call(sc),
+            })  # fmt: skip
+        out.append(basin_comparison(*recs))
+    return out
+
+
+def mark_seed_basins(scans: Sequence[Scan]) -> None:
+    """Set each scan's ``basins`` (the figure's panel note, :func:`basin_title`) from the seed
+    pairs among ``scans`` (:func:`seed_pairs`)."""
+    for sc in scans:
+        sc.basins = ""
+    for cmp in seed_pairs(scans):
+        for sc in scans:
+            note = basin_title(cmp, sc.run)
+            if note:
+                sc.basins = note
+
+
+def _misfit_parts(sc: Scan) -> list[str]:
+    """The joint fit's fields whose chi^2 p is below :data:`MISFIT_P`, each "field chi^2/n, p
+    = ..." (e.g. "omega 54/19, p = 3.3e-05")."""
+    from ...calibration import diagnostics as dg
+
+    return [
+        f"{f.field} {f.chi2:.3g}/{f.n}, p = {q:.2g}"
+        for f in sc.fit.calibration.fields
+        if (q := dg.chi2_p_value(f.chi2, f.n)) is not None and q < MISFIT_P
+    ]
+
+
+def _u_misses(sc: Scan) -> list[str]:
+    """u's chi^2 under the diagonal and common-mode error models (:func:`error_models`) where
+    its p is below :data:`MISFIT_P`, each "u chi^2/n under <model> errors, p = ..."."""
+    u = error_models(sc).get("u")
+    if u is None:
+        return []
+    return [
+        f"u {u[m]:.3g}/{u['n']} under {m} errors, p = {q:.2g}"
+        for m in ("diagonal", "common-mode")
+        if (q := u["p"].get(m)) is not None and q < MISFIT_P and u.get(m) is not None
+    ]
+
+
+def fits_text(scans: Sequence[Scan]) -> str:
+    """Which refuted runs' joint fits fit (p >= :data:`MISFIT_P`) and which misfit, with the
+    overall p and each field that misses (chi^2/bins and p; u under its other error models
+    too); "" with fewer than two refuted runs (the run's own sentence says it) or none
+    misfitting."""
+    refuted = [sc for sc in scans if wall_call(sc) == "refuted"]
+    if len(refuted) < 2:
+        return ""
+    good, bad = [], []
+    for sc in refuted:
+        p = sc.fit.calibration.p_value
+        if p is None or p >= MISFIT_P:
+            good.append(f"{sc.run} (p = {'-' if p is None else f'{p:.2g}'})")
+        else:
+            fields = _misfit_parts(sc) + _u_misses(sc)
+            bad.append(f"{sc.run} (overall p = {p:.2g}; "
+                       f"{'; '.join(fields) or 'no field alone'})")  # fmt: skip
+    if not bad:
+        return ""
+    many = len(bad) > 1
+    against = "calibrations that misfit" if many else "a calibration that misfits"
+    if not good:
+        head = (
+            f"{'Every' if many else 'The'} refuted run is refuted against a calibration that "
+            "misfits: "
+        )
+    else:
+        head = (
+            f"Of the refuted runs, only {' and '.join(good)} {'has' if len(good) == 1 else 'have'} "
+            f"a joint calibration that fits; the other{f' {len(bad)}' if many else ''} "
+            f"{'are' if many else 'is'} refuted against {against}: "
+        )
+    return head + ", ".join(bad) + "."
+
+
 def restart_from_grid(
     fit: Any,
     lowest: Callable[[Any], Mapping[str, float] | None],
@@ -4103,6 +4367,7 @@ def spin_scans(
         elif got is not None:
             skipped.append(got)
     shared_fits(scans, runs, predictor)
+    mark_seed_basins(scans)
     return scans, skipped
 
 
@@ -4227,6 +4492,9 @@ __all__ = [
     "Scan",
     "angle_errors",
     "angles",
+    "basin_comparison",
+    "basin_text",
+    "basin_title",
     "below_optimum",
     "bin_means",
     "binned_departure",
@@ -4235,10 +4503,12 @@ __all__ = [
     "error_model_scales",
     "firm_runs",
     "first_bin",
+    "fits_text",
     "island_saddle",
     "islands_disjoint_in_l",
     "joint_fit",
     "lead_text",
+    "mark_seed_basins",
     "match_zone",
     "match_zone_text",
     "matching_reading",
@@ -4268,6 +4538,7 @@ __all__ = [
     "scan_region",
     "scan_run",
     "scan_verdict",
+    "seed_pairs",
     "shared_fits",
     "size_holds",
     "size_p",

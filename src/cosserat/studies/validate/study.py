@@ -92,6 +92,7 @@ from .rate import (
 from .spin_scan import (
     COARSE,
     Scan,
+    mark_seed_basins,
     scan_or_skip,
     scan_region,
     scan_verdict,
@@ -409,6 +410,7 @@ def gather_scans(
         for sc in scans:
             if sc.run in shared:
                 sc.shared = shared[sc.run]
+    mark_seed_basins(scans)  # the seed pairs' panel notes (referee 17, point 1)
     nulls = {o.run: o.null for o in outcomes if o.null is not None}
     return Scanned(scans, skipped, nulls)
 
