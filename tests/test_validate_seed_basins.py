@@ -197,3 +197,27 @@ def test_the_scan_caption_gives_the_basin_note_beside_the_runs_region():
     text = spin_scan_caption([{**rec, "basins": note}, {**rec, "run": "s", "basins": ""}])
     assert f"r: two islands: K 2.87, L ~3.5 d and K 4.88-6.29, L 12.7-15.7 d ({note}); s: " in text
     assert text.count(note) == 1
+
+
+def test_the_refutations_runs_say_which_are_seeds_of_one_cell(monkeypatch):
+    """The spin_model evidence's "It rests on n runs": "one seed each" only where no two of
+    them are seeds of one cell (rate.twin_names); else how many cells and which pair."""
+    from types import SimpleNamespace
+
+    from cosserat.studies.validate import rate, spin_scan
+
+    def scan(name):
+        return SimpleNamespace(run=name, fit=SimpleNamespace(setup=SimpleNamespace(
+            runs=[SimpleNamespace(name=name)])))  # fmt: skip
+
+    scans = [scan("a"), scan("b"), scan("b_s2")]
+    solid = ["a", "b", "b_s2"]
+    monkeypatch.setattr(rate, "twin_names", lambda runs: (("b", "b_s2"),))
+    assert spin_scan._seeds_note(scans, solid) == (
+        " of 2 cells (a, b, b_s2; b and b_s2 two seeds of one cell)"
+    )
+    monkeypatch.setattr(rate, "twin_names", lambda runs: ())
+    assert spin_scan._seeds_note(scans, solid) == ", one seed each (a, b, b_s2)"
+    # a pair one of whose runs is not among the refuting ones is not counted
+    monkeypatch.setattr(rate, "twin_names", lambda runs: (("b", "c"),))
+    assert spin_scan._seeds_note(scans, solid) == ", one seed each (a, b, b_s2)"

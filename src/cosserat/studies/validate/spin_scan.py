@@ -3368,7 +3368,21 @@ def _rests_on(scans: Sequence[Scan]) -> str:
         return f" No run is {why}{rest}."
     if len(solid) == 1:
         return f" It rests on one run, {solid[0]}, and one seed: the only run {why}{rest}."
-    return f" It rests on {len(solid)} runs, one seed each ({', '.join(solid)}): {why}{rest}."
+    return f" It rests on {len(solid)} runs{_seeds_note(scans, solid)}: {why}{rest}."
+
+
+def _seeds_note(scans: Sequence[Scan], solid: Sequence[str]) -> str:
+    """The refuting runs ``solid`` named, with how many cells they are and which of them are
+    seeds of one cell (``rate.twin_names``), or "one seed each" where none are."""
+    from .rate import twin_names
+
+    runs = [sc.fit.setup.runs[0] for sc in scans if sc.run in solid]
+    pairs = [(a, b) for a, b in twin_names(runs) if a in solid and b in solid]
+    if not pairs:
+        return f", one seed each ({', '.join(solid)})"
+    cells = len(solid) - len(pairs)
+    twins = "; ".join(f"{a} and {b} two seeds of one cell" for a, b in pairs)
+    return f" of {cells} cells ({', '.join(solid)}; {twins})"
 
 
 MISFIT_P = 1e-3
