@@ -9,6 +9,7 @@ and every expected number worked by hand."""
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 import pytest
@@ -148,6 +149,26 @@ def test_the_summary_states_the_p_at_the_seed_factors_from_numbers():
         "3 se; 0.001 at x1.37; at x1.26 the rule says undecided."
     )
     assert spin_summary("supported", "", {"pooled_p_at_seed_factor": []}) == ""
+    # referee 18, points 1 and 4: the Monte Carlo error where a p rests on few draws, and,
+    # where the test without the first layers fails at every factor, that the verdict rests
+    # on the first layers and how many walls the grain-by-grain reading puts beyond 2 se
+    n["verdict_at_largest_seed_factor"] = "supported"
+    n["pooled_p_at_seed_factor"] = [
+        dict(r, count=c, draws=200_000, p_without_first_layer=q)
+        for r, c, q in zip(n["pooled_p_at_seed_factor"], (12, 65), (0.0014, 0.0052), strict=True)
+    ]
+    n["grain_scale_model_free"] = {"beyond_independent": 7, "walls_with_independent_bound": 9}
+    err = 100.0 * math.sqrt((1.0 - 13 / 200_001) / 13)  # verdicts.mc_error(12, 200000)
+    assert f"{err:.0f}" == "28"
+    assert spin_summary("supported", "", n) == (
+        "With every se times the replicates' omega seed factors x1.13-1.26: p = "
+        "6.5e-05-0.00033, 3 of 5 bins beyond 3 se (Monte Carlo error up to +-28%); 0.001 at "
+        "x1.37; without the first layers p = 0.0014-0.0052, so at the seed scatter the verdict "
+        "rests on the first layers, which the grain-by-grain reading backs (7 of 9 walls beyond "
+        "2 se)."
+    )
+    n["pooled_p_at_seed_factor"][0]["p_without_first_layer"] = 0.0005  # one passes: no clause
+    assert "rests on the first layers" not in spin_summary("supported", "", n)
 
 
 def test_the_replicates_omega_factors_with_and_without_the_truncated_bin():
@@ -169,3 +190,19 @@ def test_the_replicates_omega_factors_with_and_without_the_truncated_bin():
     got = omega_seed_factors(twins)
     assert [g[0] for g in got] == ["r/r_s2", "r/r_s2 with its truncated wall bin", "q/q_s2"]
     assert [g[1] for g in got] == pytest.approx([5**0.5 / 2**0.5, 3**0.5, 0.5])
+
+
+def test_a_p_on_few_draws_is_quoted_with_its_monte_carlo_error():
+    """Referee 18, point 4: a seed-factor p resting on fewer than 30 draws at or above its
+    chi^2 carries its relative error sqrt((1 - p)/(count + 1)) (12 of 200,000: +-28%); one
+    on more draws is quoted bare."""
+    rows = [
+        {"label": "a/b", "factor": 1.13, "p": 6.5e-5, "count": 12, "draws": 200_000,
+         "p_reading": "t(9)", "bins_beyond_3": 3, "bins": 5, "p_without_first_layer": None,
+         "verdict": "supported"},
+        {"label": "c/d", "factor": 1.26, "p": 3.3e-4, "count": 65, "draws": 200_000,
+         "p_reading": "t(9)", "bins_beyond_3": 3, "bins": 5, "p_without_first_layer": None,
+         "verdict": "supported"},
+    ]  # fmt: skip
+    text = seed_factor_text(rows, None)
+    assert "the pooled p is 6.5e-05 (+-28%), 0.00033 under t(9)" in text

@@ -13,6 +13,7 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
+from scipy.stats import chi2
 
 from cosserat.studies.validate.summaries import (
     SUMMARIES,
@@ -92,8 +93,8 @@ def test_spin_model_summary_says_where_refuted_and_by_which_rule():
     # of the two refuted runs only plane_smooth_H10_qs is among the misfit runs: no field
     # alone misfits there, so the overall p is the misfit (referee 17, point 3(b))
     assert text.endswith(
-        "At plane_smooth_H10_qs the joint fit it is refuted against misfits its fields together "
-        "(overall p = 0.0009)."
+        "At plane_smooth_H10_qs the joint fit against which it is refuted misfits its fields "
+        "together (overall p = 0.0009)."
     )
     assert len(text) <= SUMMARY_CHARS
 
@@ -107,9 +108,19 @@ def test_spin_model_summary_names_the_field_that_misfits_beside_the_overall_p():
     n["scans"] = [*n["scans"], {"run": "plane_smooth_H20_qs_s2"}]
     text = spin_model_summary("refuted", "", _with_fit_chi2(n))
     assert text.endswith(
-        "At plane_smooth_H10_qs the joint fit it is refuted against misfits its fields together "
-        "(overall p = 0.0009); at plane_smooth_H20_qs_s2 it misfits (overall p = 9.5e-05; omega "
-        "54/19, p = 3.3e-05)."
+        "At plane_smooth_H10_qs the joint fit against which it is refuted misfits its fields "
+        "together (overall p = 0.0009); at plane_smooth_H20_qs_s2 it misfits (overall p = "
+        "9.5e-05; omega 54/19, p = 3.3e-05)."
+    )
+    # referee 18, point 2: a refuted run whose joint fit fits is named with its p
+    n["scans"] = [
+        dict(s, chi2=39.55, dof=40) if s["run"] == "plane_smooth_H20_qs" else s for s in n["scans"]
+    ]
+    p = chi2.sf(39.55, 40)
+    assert f"{p:.2g}" == "0.49"
+    assert spin_model_summary("refuted", "", _with_fit_chi2(n)).endswith(
+        "omega 54/19, p = 3.3e-05); only plane_smooth_H20_qs (p = 0.49) has a calibration that "
+        "fits."
     )
     # without the fits' chi^2 the sentence is left out, not guessed
     assert "misfits" not in spin_model_summary("refuted", "", numbers("spin_model"))

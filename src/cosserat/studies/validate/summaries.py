@@ -14,10 +14,12 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from .measures import P_SIGNIFICANT
-from .verdicts import GRAIN_SE
+from scipy.stats import chi2 as chi2_dist
 
-SUMMARY_CHARS = 700
+from .measures import P_SIGNIFICANT
+from .verdicts import GRAIN_SE, MC_QUOTE_COUNT, mc_error
+
+SUMMARY_CHARS = 1100
 """The length a summary aims to stay within [characters]."""
 
 Numbers = Mapping[str, Any]
@@ -129,12 +131,29 @@ def _spin_seed(verdict: str, qualifier: str, n: Numbers) -> str:
         f"{_span([r['bins_beyond_3'] for r in rows], 'd')} of {rows[0]['bins']} bins beyond "
         "3 se"
     )
+    counted = [r for r in rows if r.get("count") is not None and r.get("draws")]
+    worst = min(counted, key=lambda r: r["count"], default=None)
+    if worst is not None and worst["count"] < MC_QUOTE_COUNT:  # referee 18, point 4
+        err = mc_error(worst["count"], worst["draws"])
+        text += f" (Monte Carlo error up to +-{100.0 * err:.0f}%)"
     crossing = n.get("seed_factor_crossing")
     if crossing is not None:
         text += f"; {P_SIGNIFICANT:g} at x{crossing:.3g}"
     word = n.get("verdict_at_largest_seed_factor")
     if word is not None and word != verdict:
         text += f"; at x{n['seed_factor_largest']:.3g} the rule says {word}"
+    rest = [r["p_without_first_layer"] for r in rows if r.get("p_without_first_layer") is not None]
+    if rest and min(rest) >= P_SIGNIFICANT:  # referee 18, point 1
+        text += (
+            f"; without the first layers p = {_span(rest, '.2g')}, so at the seed scatter the "
+            "verdict rests on the first layers"
+        )
+        free = n.get("grain_scale_model_free") or {}
+        if free.get("walls_with_independent_bound"):
+            text += (
+                f", which the grain-by-grain reading backs ({free['beyond_independent']} of "
+                f"{free['walls_with_independent_bound']} walls beyond {GRAIN_SE:g} se)"
+            )
     return text + "."
 
 
@@ -212,14 +231,46 @@ def _model_misfit(verdict: str, qualifier: str, n: Numbers) -> str:
         return ""
     scans = {s["run"]: s for s in n["scans"]}
     first, *rest = bad
-    text = f"At {first} the joint fit it is refuted against {_misfit_words(scans[first])}"
-    return text + "".join(f"; at {r} it {_misfit_words(scans[r])}" for r in rest) + "."
+    text = f"At {first} the joint fit against which it is refuted {_misfit_words(scans[first])}"
+    text += "".join(f"; at {r} it {_misfit_words(scans[r])}" for r in rest)
+    fit = [
+        r
+        for r in own
+        if r not in set(n["misfit_runs"])
+        and scans.get(r, {}).get("chi2") is not None
+        and scans[r].get("dof")
+    ]
+    if fit:  # referee 18, point 2
+        ps = ", ".join(
+            f"{r} (p = {chi2_dist.sf(scans[r]['chi2'], scans[r]['dof']):.2g})" for r in fit
+        )
+        has = "has a calibration that fits" if len(fit) == 1 else "have calibrations that fit"
+        text += f"; only {ps} {has}"
+    return text + "."
+
+
+def _model_seeds(verdict: str, qualifier: str, n: Numbers) -> str:
+    """The seed pairs both of whose runs get the verdict, each in its own L basin or not
+    (``numbers.seed_basins``; referee 18, point 2)."""
+    out = []
+    for pair in n.get("seed_basins") or ():
+        a, b = pair["runs"]
+        if any(c != verdict for c in pair["calls"]):
+            continue
+        where = ", in both L basins" if pair.get("own_basins") else ""
+        out.append(f"{verdict.capitalize()} at both seeds of one cell ({a}, {b}){where}.")
+    return " ".join(out)
 
 
 def spin_model_summary(verdict: str, qualifier: str, numbers: Numbers) -> str:
     """The spin_model verdict's summary: where it holds and by which rule, the other runs'
     calls, the first-layer spin against the measured there, and where the joint fit misfits."""
-    return _join(verdict, qualifier, numbers, (_model_calls, _model_first_layer, _model_misfit))
+    return _join(
+        verdict,
+        qualifier,
+        numbers,
+        (_model_calls, _model_seeds, _model_first_layer, _model_misfit),
+    )
 
 
 # --- the Delta claims (smoother, rough) ------------------------------------------------------

@@ -1198,6 +1198,11 @@ def seed_factor_rows(
     return rows
 
 
+MC_QUOTE_COUNT = 30
+"""A Monte Carlo p resting on fewer draws at or above its chi^2 than this is quoted with its
+relative error (:func:`mc_error`; referee 18, point 4)."""
+
+
 def seed_factor_text(rows: Sequence[Mapping[str, Any]], crossing: float | None) -> str:
     """The sentence on the pooled p at the replicates' omega seed factors
     (:func:`seed_factor_rows`; referee 17, point 2); "" without a factor above 1."""
@@ -1207,9 +1212,17 @@ def seed_factor_text(rows: Sequence[Mapping[str, Any]], crossing: float | None) 
     if not ps:
         return ""
     named = ", ".join(f"x{r['factor']:.3g} {r['label']}" for r in rows)
+
+    def quoted(r: Mapping[str, Any]) -> str:  # referee 18, point 4: few draws, its MC error
+        count, draws = r.get("count"), r.get("draws")
+        if count is None or not draws or count >= MC_QUOTE_COUNT:
+            return f"{r['p']:.2g}"
+        return f"{r['p']:.2g} (+-{100.0 * mc_error(count, draws):.0f}%)"
+
     text = (
         f" With every bin's se multiplied by the same-conditions replicates' omega seed-scatter "
-        f"factors ({named}) the pooled p is {', '.join(f'{p:.2g}' for p in ps)} under "
+        f"factors ({named}) the pooled p is "
+        f"{', '.join(quoted(r) for r in rows if r['p'] is not None)} under "
         f"{rows[0]['p_reading']} ({', '.join(str(r['bins_beyond_3']) for r in rows)} of the "
         f"{rows[0]['bins']} bins it rests on stay beyond {CARRY_Z:g} se)"
     )
