@@ -395,6 +395,47 @@ def test_a_delta_panel_without_usable_points_draws_no_law_and_says_why():
     plt.close(fig)
 
 
+def test_the_delta_legends_show_the_data_markers_open_or_filled_without_bars():
+    """Referee 18, point 3: in the lower panel's legend the 3 pt open circle of "band fills
+    its gap: left out" read as filled under its error bar's cap. Both legends (the lower
+    panel's and the figure's) key the data by their marker alone, KEY_MARKER pt, open where
+    the data's is; the points drawn keep their size, face and bars."""
+    import matplotlib.pyplot as plt
+    from matplotlib.container import ErrorbarContainer
+    from matplotlib.lines import Line2D
+
+    from cosserat.viz.validation import KEY_MARKER, delta_claim_figure, marker_key
+
+    s = {"label": "plane", "gaps": [9.8, 19.6], "Delta": [6.6, 7.9], "stderr": [0.7, 1.1],
+         "usable": [False, True], "curves": {},
+         "reach": {"gaps": [6.0, 20.0, 1280.0], "Delta": [3.0, 6.0, 30.0], "window": None,
+                   "target": 1 / 3}}  # fmt: skip
+    fig = delta_claim_figure([s], {}, "D")
+    top, low = fig.axes[0], fig.axes[1]
+    faces = {"band fills its gap: left out": "none", "DEM data (+- 1 se)": "k"}
+    for legend in (low.get_legend(), fig.legends[0]):
+        keys = dict(zip([t.get_text() for t in legend.get_texts()], legend.legend_handles,
+                        strict=True))  # fmt: skip
+        for label, face in faces.items():
+            key = keys[label]
+            assert type(key) is Line2D and key.get_marker() == "o"
+            assert key.get_linestyle() == "None" and key.get_markersize() == KEY_MARKER
+            assert key.get_markerfacecolor() == face and key.get_markeredgecolor() == "k"
+    assert KEY_MARKER >= 2 * 3.0  # twice the lower panel's data markers
+    for ax, size in ((top, 4.0), (low, 3.0)):  # the data as before, with their bars
+        (left_out,) = [c for c in ax.containers if c.get_label() == "band fills its gap: left out"]
+        assert left_out.has_yerr and left_out.lines[0].get_markerfacecolor() == "none"
+        assert left_out.lines[0].get_markersize() == size
+    plt.close(fig)
+    # any other handle as it is (a model's x markers, a curve)
+    fig, ax = plt.subplots()
+    x = ax.errorbar([1.0], [2.0], yerr=[0.1], fmt="x")
+    (line,) = ax.plot([1.0], [2.0])
+    assert marker_key(x) is x and marker_key(line) is line
+    assert isinstance(x, ErrorbarContainer)
+    plt.close(fig)
+
+
 def test_replicates_at_one_gap_stand_side_by_side():
     """Referee 17, point 6: at H ~ 9.8-9.9 the rough runs' open markers (6.61, 6.65 d)
     overlapped and read as filled. Gaps closer than the step in ln H are drawn one step apart

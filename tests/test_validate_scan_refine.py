@@ -460,6 +460,57 @@ def test_the_scan_insets_caption_hides_no_tick_label():
     assert all(inside and n >= 5 and not hidden for inside, n, hidden in seen), seen
 
 
+def test_the_scan_inset_is_opaque_above_the_dots_and_its_labels_clear():
+    """Referee 18, point 3: the panel's grid dots sat on the inset's K ticks 2.2 and 2.8 and
+    the L label's box hid half of its tick "3". As saved (the package's style), the inset is
+    white, above the panel's dots and outlines, its white backing under every tick and axis
+    label, and its L label clear of its L tick labels."""
+    import io
+
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_rgba
+    from matplotlib.patches import Rectangle
+
+    from cosserat.viz.plotting import style
+    from cosserat.viz.validation import INSET_ZORDER, spin_scan_figure
+
+    rec = _restart_record()[0]
+    seen = []
+
+    def check(event):
+        renderer = event.renderer
+        (panel,) = [a for a in event.canvas.figure.axes if a.child_axes]
+        (inset,) = panel.child_axes
+        (back,) = [p for p in inset.patches if isinstance(p, Rectangle)
+                   and p.get_data_transform() == inset.transAxes]  # fmt: skip
+        white = back.get_window_extent(renderer)
+        ticks = [t for t in inset.get_xticklabels() + inset.get_yticklabels() if t.get_text()]
+        labels = [*ticks, inset.xaxis.label, inset.yaxis.label]
+        inside = [white.x0 <= b.x0 and b.x1 <= white.x1 and white.y0 <= b.y0 and b.y1 <= white.y1
+                  for b in (t.get_window_extent(renderer) for t in labels)]  # fmt: skip
+        em = 0.3 * inset.xaxis.label.get_fontsize() * renderer.points_to_pixels(1.0)
+        lab = inset.xaxis.label.get_window_extent(renderer).padded(em)  # as if it had a box
+        hit = [t.get_text() for t in inset.get_xticklabels()  # below them all, not only beside
+               if t.get_text() and lab.y1 >= t.get_window_extent(renderer).y0]  # fmt: skip
+        seen.append((len(ticks), all(inside), hit, to_rgba(back.get_facecolor())))
+
+    with style():
+        fig = spin_scan_figure([rec])
+        panel = fig.axes[0]
+        (inset,) = panel.child_axes
+        assert to_rgba(inset.get_facecolor()) == to_rgba("white")
+        assert inset.get_zorder() == INSET_ZORDER
+        under = [ln.get_zorder() for ln in panel.get_lines() if ln.get_marker() == "."]
+        under += [ln.get_zorder() for ln in panel.get_lines() if ln.get_linestyle() == "--"]
+        assert under and INSET_ZORDER > max(under)
+        fig.canvas.mpl_connect("draw_event", check)
+        fig.savefig(io.BytesIO(), format="png")
+    plt.close(fig)
+    assert seen
+    assert all(n >= 4 and ok and not hit and rgba == to_rgba("white")
+               for n, ok, hit, rgba in seen), seen  # fmt: skip
+
+
 def test_the_scan_figure_draws_the_saddles_cells_and_pass_and_names_the_insets_axes():
     """Referee 15, point 4: a refined cell with no point inside the region (the saddle's,
     K 4-5 x L 7.07-12 d in smooth_H20) is outlined and its points drawn, the pass marked (X),

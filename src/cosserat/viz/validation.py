@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import textwrap
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from .calibration import MODEL_STYLES
@@ -56,14 +56,17 @@ def _plain(ax: Axes, axis: str = "both") -> None:
             a.set_minor_formatter(NullFormatter())
 
 
-def _legend_below(fig: Figure, axes: Sequence[Axes], ncol: int = 4) -> None:
-    """One legend for the figure, below the panels (off the data)."""
+def _legend_below(
+    fig: Figure, axes: Sequence[Axes], ncol: int = 4, key: Callable[[Any], Any] | None = None
+) -> None:
+    """One legend for the figure, below the panels (off the data); ``key`` (optional) maps
+    each handle to the one the legend shows (:func:`marker_key`)."""
     handles, labels, seen = [], [], set()
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
             if lab not in seen:
                 seen.add(lab)
-                handles.append(h)
+                handles.append(key(h) if key else h)
                 labels.append(lab)
     if handles:
         fig.legend(
@@ -75,6 +78,28 @@ def _legend_below(fig: Figure, axes: Sequence[Axes], ncol: int = 4) -> None:
             fontsize=7,
             bbox_to_anchor=(0.5, 0.0),
         )
+
+
+KEY_MARKER = 6.0
+"""The size of a measured point's marker in a Delta figure's legend [pt], the bar and caps
+left out: under them the lower panel's 3 pt open circle read as filled (referee 18,
+point 3)."""
+
+
+def marker_key(handle: Any) -> Any:
+    """The legend's key for ``handle``: a measured point's (an error-bar container of circles)
+    as its marker alone, :data:`KEY_MARKER` pt, open where the data's is; any other handle as
+    it is. The points drawn are not changed."""
+    from matplotlib.container import ErrorbarContainer
+    from matplotlib.lines import Line2D
+
+    line = handle.lines[0] if isinstance(handle, ErrorbarContainer) else None
+    if line is None or line.get_marker() != "o":
+        return handle
+    return Line2D([], [], linestyle="none", marker="o", color=line.get_color(),
+                  markerfacecolor=line.get_markerfacecolor(),
+                  markeredgecolor=line.get_markeredgecolor(),
+                  markeredgewidth=line.get_markeredgewidth(), markersize=KEY_MARKER)  # fmt: skip
 
 
 DATA_STYLE: dict[str, Any] = {
@@ -874,7 +899,7 @@ def delta_claim_figure(
                 axes[1, k].set_axis_off()
         if reach:
             axes[1, 0].set_ylabel(r"$\Delta$ [$d$]")
-        _legend_below(fig, axs, ncol=2)
+        _legend_below(fig, axs, ncol=2, key=marker_key)
         lower = 0.02 if notes else 0.0  # room for the title's second line
         if reach:
             fig.subplots_adjust(left=0.09, right=0.98, bottom=0.22, top=0.92 - lower, wspace=0.3,
@@ -972,7 +997,9 @@ def _reach_panel(ax: Axes, s: Mapping[str, Any], color: Any) -> None:
     ax.set_xticks(_nice_ticks(min(g) / 1.15, max(g) * 1.15, (10, 20, 40, 80, 160, 320, 640, 1280)))
     ax.set_yticks(_nice_ticks(lo, hi, (1, 2, 3, 5, 7, 10, 15, 20, 30, 50)))
     ax.set_xlabel(r"$H/d$ [-]")
-    ax.legend(loc="upper left", fontsize=6, frameon=False)
+    handles, labels = ax.get_legend_handles_labels()
+    ax.legend([marker_key(h) for h in handles], labels, loc="upper left", fontsize=6,
+              frameon=False)  # fmt: skip
     ax.set_title(f"the Cosserat curve to H/d = {max(p[0] for p in pts):.4g}", fontsize=7)
 
 
@@ -1409,6 +1436,7 @@ def _zoom_around(
     has no contour to see) and the fit (diamond), too small to see at the panel's scale
     (referee 14, point 5)."""
     import numpy as np
+    from matplotlib.patches import Rectangle
 
     k_lo = min(min(g["K"]) for g in cells)
     k_hi = max(max(g["K"]) for g in cells)
@@ -1419,6 +1447,12 @@ def _zoom_around(
         ax.plot([ll[0], ll[-1], ll[-1], ll[0], ll[0]], [k[0], k[0], k[-1], k[-1], k[0]],
                 color="k", linewidth=0.6, linestyle="--", zorder=4)  # fmt: skip
     inset = ax.inset_axes((0.13, 0.43, 0.33, 0.34))  # room for its K label
+    # opaque, above the panel's dots, its tick and axis labels on white (referee 18, point 3)
+    inset.set_facecolor("white")
+    inset.set_zorder(INSET_ZORDER)
+    inset.add_patch(Rectangle(INSET_BACKING[:2], *INSET_BACKING[2:], transform=inset.transAxes,
+                              facecolor="white", edgecolor="none", clip_on=False,
+                              zorder=0))  # fmt: skip
     for g in cells:
         K, L = np.array(g["K"]), np.array(g["L"])
         d, dc = beyond(g), arr(g, "delta_chi2")
@@ -1454,7 +1488,7 @@ def _zoom_around(
     inset.set_ylim(k_lo, k_hi)
     inset.tick_params(labelsize=6.5, pad=1.5)
     # referee 15, point 4: the inset's axes named and its white (nothing computed) said
-    inset.set_xlabel("L [d]", fontsize=6.5, labelpad=0.5, backgroundcolor="white")
+    inset.set_xlabel("L [d]", fontsize=6.5, labelpad=INSET_LABELPAD)  # its box below the ticks
     inset.set_ylabel("K [-]", fontsize=6.5)
     inset.yaxis.set_label_coords(-0.22, 0.5)  # left of the tick labels
     # three short lines: a wider caption box, centred on the inset, reached past the main
@@ -1463,6 +1497,17 @@ def _zoom_around(
                     "island; white: not refined", fontsize=7, backgroundcolor="white",
                     pad=9)  # fmt: skip
 
+
+INSET_ZORDER = 5.0
+"""The zorder of :func:`spin_scan_figure`'s inset in its panel: above the panel's grid dots
+(2) and the refined cells' outlines (4) [-]."""
+INSET_BACKING = (-0.32, -0.28, 1.32, 1.32)
+"""The white under :func:`spin_scan_figure`'s inset, its tick and axis labels included (x, y,
+width, height in the inset's axes fraction) [-]: the panel's dots sat on its K ticks 2.2 and
+2.8 (referee 18, point 3)."""
+INSET_LABELPAD = 3.0
+"""The gap between the inset's L tick labels and its L label [pt]: at 0.5 pt the label's
+white box hid half of the tick "3" (referee 18, point 3)."""
 
 INSET_TICKS = (1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.0, 10.0, 15.0, 20.0, 30.0, 50.0, 70.0, 100.0)
 """The L tick values [d] :func:`inset_ticks` takes from."""
