@@ -691,6 +691,19 @@ def test_the_layer_shape_at_the_materials_L():
         apart
     )
     assert "the layer runs' L does not: one material does not carry one L across B = 0" in apart
+    # a run's islands are alternatives (review of stop 29): the span between them is not in
+    # its region; an L in one island of each run is shared
+    isl = {"rough": (4.87, 13.9), "seed1": [(3.54, 3.54), (12.7, 15.7)], "s2": (2.03, 4.11)}
+    read_isl = material_length_warning([other], [p], a, isl)
+    assert "the material's runs do not share one L (rough >= 4.87 d, s2 <= 4.11 d" in read_isl
+    both = material_length_warning(
+        [other], [p], a, {"x": [(1.0, 2.0), (6.0, 8.0)], "y": (5.0, 7.0)}
+    )
+    assert "the material's runs share L = 6-7 d (every gravity run's" in both
+    assert "; the layer runs' L does not: " in both  # the layer's own 4 d lies between
+    gap = material_length_warning([other], [p], a, {"x": [(1.0, 2.0), (6.0, 8.0)], "y": (3.0, 5.0)})
+    assert "(x at 1-2 or 6-8 d, y at 3-5 d: their 95% regions in the spin scan are disjoint)" in gap
+    assert "; the layer runs' L agrees with y's (3-5 d)" in gap
     # at assembly the layer runs' own regions are left out; the verdict records what it read
     (w,) = layer_verdicts([run], material_L=(8.0, 1.0), regions={**regions, "layer": (1, 2)})
     assert read in w.numbers["warnings"] and w.verdict == v.verdict

@@ -303,3 +303,19 @@ def test_a_smoother_summary_names_the_level_its_seed_count_uses():
     assert "(30 runs; at the replicates' seed scatter, 25% per run)" in delta_summary(
         "undecided", "", n
     )
+
+
+def test_the_layer_summary_names_a_side_only_beyond_three_se_and_no_nan_length():
+    """Review of stop 29: a = +0.1 +- 0.1 (1 se) places no band; a run without an own L
+    (L_fit NaN, not fitted) is left out of "the runs' own L", never printed as nan."""
+    n = {"asymmetry": 0.1, "asymmetry_se": 0.1, "z": 1.0, "runs": [{}], "warnings": [],
+         "material_length": [
+             {"L": 4.5, "L_se": 0.5, "p": {"ar1": 1e-5}, "L_fit": float("nan")},
+             {"L": 4.5, "L_se": 0.5, "p": {"ar1": 1e-4}, "L_fit": 2.7},
+         ]}  # fmt: skip
+    text = layer_summary("undecided", "", n)
+    assert text.startswith("a = f_smoother - f_rougher = +0.1 +- 0.1 (+1 se) over 1 run(s): no ")
+    assert "no side within 3 se." in text and "band at the" not in text
+    assert "nan" not in text and "the runs' own L = 2.7 d." in text
+    n.update(asymmetry=0.5, z=5.0)
+    assert ": the band at the smoother wall." in layer_summary("supported", "", n)

@@ -1654,37 +1654,85 @@ def below_yield_text(rows: Sequence[BelowYield], material: Sequence[MaterialLeng
     )
 
 
-def _shared_l_text(
-    own: Sequence[MaterialLength], regions: Mapping[str, tuple[float, float]] | None
-) -> str:
+Interval = tuple[float, float]
+"""A closed interval of L [d]."""
+LRegion = Interval | Sequence[Interval]
+"""A run's 95% region in L [d]: one interval, or its islands' (a run with several basins)."""
+
+
+def _intervals(region: LRegion) -> list[Interval]:
+    """A region's intervals: one (lowest, highest) pair, or each island's."""
+    items: Sequence[Any] = region
+    if len(items) == 2 and all(isinstance(x, (int, float)) for x in items):
+        return [(float(items[0]), float(items[1]))]
+    return [(float(a), float(b)) for a, b in items]
+
+
+def _meet(a: Sequence[Interval], b: Sequence[Interval]) -> list[Interval]:
+    """The intersection of two unions of intervals, as intervals."""
+    out = [(max(x[0], y[0]), min(x[1], y[1])) for x in a for y in b]
+    return sorted(r for r in out if r[0] <= r[1])
+
+
+def _within(x: float, union: Sequence[Interval]) -> bool:
+    return any(lo <= x <= hi for lo, hi in union)
+
+
+def _said(union: Sequence[Interval]) -> str:
+    return " or ".join(f"{lo:.3g}-{hi:.3g}" for lo, hi in union)
+
+
+def _shared_l_text(own: Sequence[MaterialLength], regions: Mapping[str, LRegion] | None) -> str:
     """The reading of the material's L failing the layers (referee 17, point 4), from the
-    gravity runs' own 95% regions in L (``regions``: run name -> (lowest, highest) L [d], the
-    spin scan's; None or empty: not known, the old reading): when two of them are disjoint the
-    material's runs do not share one L, and the layer runs' own L is placed against those two."""
+    gravity runs' own 95% regions in L (``regions``: run name -> its region, one (lowest,
+    highest) interval or its islands' intervals [d], the spin scan's; None or empty: not
+    known, the old reading): an L in every run's region is one the material's runs share; when
+    none is, two runs whose regions are disjoint show it, and the layer runs' own L is placed
+    against those two. A run's islands are alternatives: an L need lie in one of them only."""
     if not regions:
         return "one material does not carry one L across B = 0 and gravity"
-    high = max(regions, key=lambda n: regions[n][0])  # the region lying highest in L
-    low = min(regions, key=lambda n: regions[n][1])  # the region lying lowest in L
-    lo, hi = regions[high][0], regions[low][1]
+    unions = {n: _intervals(r) for n, r in regions.items()}
     fits = [m.L_fit for m in own]
-    if lo <= hi:
-        inside = all(lo <= x <= hi for x in fits)
+    shared: list[Interval] | None = None
+    for u in unions.values():
+        shared = list(u) if shared is None else _meet(shared, u)
+    if shared:
+        inside = all(_within(x, shared) for x in fits)
         return (
-            f"the material's runs share L = {lo:.3g}-{hi:.3g} d (every gravity run's 95% region "
+            f"the material's runs share L = {_said(shared)} d (every gravity run's 95% region "
             "in the spin scan contains it)"
             + ("" if not fits else "; the layer runs' L lies in it" if inside else
                "; the layer runs' L does not: one material does not carry one L across B = 0 "
                "and gravity")
         )  # fmt: skip
-    agree = [n for n in (low, high) if all(regions[n][0] <= x <= regions[n][1] for x in fits)]
+    high = max(unions, key=lambda n: min(lo for lo, _ in unions[n]))  # lying highest in L
+    low = min(unions, key=lambda n: max(hi for _, hi in unions[n]))  # lying lowest in L
+    pair = (low, high)
+    if _meet(unions[low], unions[high]):  # the extremes overlap: another pair is disjoint
+        names = list(unions)
+        disjoint = [
+            (a, b) for i, a in enumerate(names) for b in names[i + 1 :]
+            if not _meet(unions[a], unions[b])
+        ]  # fmt: skip
+        if not disjoint:
+            return (
+                "the material's runs share no one L (their 95% regions in the spin scan "
+                "overlap in pairs, but no L lies in all of them)"
+            )
+        pair = disjoint[0]
+    a, b = pair
+    if len(unions[a]) == len(unions[b]) == 1 and unions[a][0][1] < unions[b][0][0]:
+        apart = f"{b} >= {unions[b][0][0]:.3g} d, {a} <= {unions[a][0][1]:.3g} d"
+    else:
+        apart = f"{a} at {_said(unions[a])} d, {b} at {_said(unions[b])} d"
+    agree = [n for n in pair if all(_within(x, unions[n]) for x in fits)]
     return (
-        f"the material's runs do not share one L ({high} >= {lo:.3g} d, {low} <= {hi:.3g} d: "
-        "their 95% regions in the spin scan are disjoint)"
+        f"the material's runs do not share one L ({apart}: their 95% regions in the spin scan "
+        "are disjoint)"
         + (
             ""
             if not fits
-            else f"; the layer runs' L agrees with {agree[0]}'s "
-            f"({regions[agree[0]][0]:.3g}-{regions[agree[0]][1]:.3g} d)"
+            else f"; the layer runs' L agrees with {agree[0]}'s ({_said(unions[agree[0]])} d)"
             if len(agree) == 1
             else "; the layer runs' L lies in neither region"
         )
@@ -1695,7 +1743,7 @@ def material_length_warning(
     rows: Sequence[MaterialLength],
     positions: Sequence[LayerPosition],
     a: float,
-    regions: Mapping[str, tuple[float, float]] | None = None,
+    regions: Mapping[str, LRegion] | None = None,
 ) -> str:
     """The warning (referee 15, point 2; "" unless every run's profile (c) at the material's L
     is rejected, p < :data:`~.measures.P_SIGNIFICANT` under AR(1)): the material's L fails
@@ -1785,7 +1833,7 @@ def layer_position_verdict(
     references: Sequence[WallReference] = (),
     material: Sequence[MaterialLength] = (),
     below: Sequence[BelowYield] = (),
-    regions: Mapping[str, tuple[float, float]] | None = None,
+    regions: Mapping[str, LRegion] | None = None,
 ) -> LayerVerdict:
     """The verdict on :data:`LAYER_CLAIM` from the runs' :class:`LayerPosition` (module
     docstring: the rule), with ``references`` (other runs' walls of the smoother kind) in the
@@ -1906,7 +1954,12 @@ def layer_position_verdict(
         "runs": [p.to_dict() for p in positions],
         "material_length": [m.to_dict() for m in material],
         "below_yield": [b.to_dict() for b in below],
-        "gravity_L_regions": {n: list(r) for n, r in (regions or {}).items()},
+        "gravity_L_regions": {
+            n: [list(x) for x in _intervals(r)]
+            if len(_intervals(r)) > 1
+            else list(_intervals(r)[0])
+            for n, r in (regions or {}).items()
+        },
     }
     known = [p.wall_inertial_number for p in positions if p.wall_inertial_number is not None]
     if verdict != "undecided" and len(known) == len(positions) and min(known) > QUASI_STATIC_I:
@@ -1934,7 +1987,7 @@ def layer_verdicts(
     measured: Mapping[str, LayerPosition] | None = None,
     material_L: tuple[float, float] | None = None,
     material_phi: tuple[float, float] | None = None,
-    regions: Mapping[str, tuple[float, float]] | None = None,
+    regions: Mapping[str, LRegion] | None = None,
 ) -> list[Verdict]:
     """``[layer_position_verdict(...)]`` on the runs :func:`measure_layer` measures (or the
     positions ``measured`` already, by run name), or ``[]`` when a corpus has none (the

@@ -1244,9 +1244,23 @@ def balance_warning(runs: Sequence[Any], twins: Sequence[TwinPair]) -> str:
         )
     parts = []
     if zone:
+        zoned = layered + near  # review of stop 29: say only what these bins show
+        marks = [
+            w
+            for w, has in (
+                ("nu steps between adjacent bins", any(r[5].nu_steps for r in zoned)),
+                (
+                    "sigma_yy's y-balance broken in the same bins",
+                    any(r[5].inversions for r in zoned),
+                ),
+            )
+            if has
+        ]
         parts.append(
-            "in and next to the layered zone (nu steps between adjacent bins; sigma_yy's "
-            "y-balance broken in the same bins): " + "; ".join(zone)
+            "in and next to the layered zone"
+            + (f" ({'; '.join(marks)})" if marks else "")
+            + ": "
+            + "; ".join(zone)
         )
     if other:
         parts.append(f"unexplained: {named(other)}")

@@ -228,6 +228,16 @@ class ValidationReport:
         return "\n".join(lines) + "\n"
 
 
+def _l_region(region: Mapping[str, Any]) -> Any:
+    """A scan's 95% region in L for the layer warning (``layer.LRegion``): its (lowest,
+    highest) L [d], or each island's interval where it has several (review of stop 29: a
+    run's islands are alternatives, and the span between them holds no admissible point)."""
+    islands = [tuple(i["L"]) for i in region.get("islands") or () if i.get("L")]
+    if len(islands) > 1:
+        return [(float(a), float(b)) for a, b in islands]
+    return (float(region["L"][0]), float(region["L"][1]))
+
+
 def _model_slopes(results: Sequence[RunResult]) -> dict[str, SlopeFit | None]:
     out: dict[str, SlopeFit | None] = {}
     for m in sorted({m for r in results for m in r.model_delta}):
@@ -1058,7 +1068,7 @@ def judge(
             {r.run.name: r.layer for r in results if r.layer is not None},
             material_length(series, [r.run for r in results if r.layer is not None]),
             material_phi(series, [r.run for r in results if r.layer is not None]),
-            {sc.run: (reg["L"][0], reg["L"][1]) for sc in scans if (reg := scan_region(sc))},
+            {sc.run: _l_region(reg) for sc in scans if (reg := scan_region(sc))},
         ),
     ]
     verdicts = [

@@ -11,11 +11,13 @@ qualifier and its ``numbers`` (as in ``results.json``): every number is read fro
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from scipy.stats import chi2 as chi2_dist
 
+from .layer import SIGMAS as LAYER_SIGMAS
 from .measures import P_SIGNIFICANT
 from .verdicts import GRAIN_SE, MC_QUOTE_COUNT, mc_error
 
@@ -361,7 +363,10 @@ def delta_summary(verdict: str, qualifier: str, numbers: Numbers) -> str:
 def _layer_a(verdict: str, qualifier: str, n: Numbers) -> str:
     a, se, z = float(n["asymmetry"]), float(n["asymmetry_se"]), float(n["z"])
     runs = n.get("runs") or []
-    side = "the band at the smoother wall" if a > 0 else "the band at the rougher wall"
+    if abs(z) < LAYER_SIGMAS:  # review of stop 29: a side only where the verdict places one
+        side = f"no side within {LAYER_SIGMAS:g} se"
+    else:
+        side = "the band at the smoother wall" if a > 0 else "the band at the rougher wall"
     over = f" over {len(runs)} run(s)" if runs else ""
     return f"a = f_smoother - f_rougher = {a:+.3g} +- {se:.2g} ({z:+.3g} se){over}: {side}."
 
@@ -386,7 +391,11 @@ def _layer_length(verdict: str, qualifier: str, n: Numbers) -> str:
     if not rows:
         return ""
     p = [r["p"]["ar1"] for r in rows]
-    own = ", ".join(f"{r['L_fit']:.2g}" for r in rows if r.get("L_fit") is not None)
+    own = ", ".join(
+        f"{r['L_fit']:.2g}"
+        for r in rows
+        if r.get("L_fit") is not None and math.isfinite(r["L_fit"])  # NaN: not fitted
+    )
     return (
         f"The Cosserat layer profile at the material's L = {rows[0]['L']:.3g} +- "
         f"{rows[0]['L_se']:.2g} d gives p = {', '.join(format(x, '.2g') for x in p)} under AR(1)"
