@@ -3376,7 +3376,8 @@ def _seeds_note(scans: Sequence[Scan], solid: Sequence[str]) -> str:
     seeds of one cell (``rate.twin_names``), or "one seed each" where none are."""
     from .rate import twin_names
 
-    runs = [sc.fit.setup.runs[0] for sc in scans if sc.run in solid]
+    setups = [getattr(getattr(sc, "fit", None), "setup", None) for sc in scans if sc.run in solid]
+    runs = [st.runs[0] for st in setups if st is not None]  # a scan without its fit: no pairs
     pairs = [(a, b) for a, b in twin_names(runs) if a in solid and b in solid]
     if not pairs:
         return f", one seed each ({', '.join(solid)})"
