@@ -1654,13 +1654,13 @@ def below_yield_text(rows: Sequence[BelowYield], material: Sequence[MaterialLeng
     )
 
 
-Interval = tuple[float, float]
-"""A closed interval of L [d]."""
-LRegion = Interval | Sequence[Interval]
-"""A run's 95% region in L [d]: one interval, or its islands' (a run with several basins)."""
+# a closed interval of L [d]; a run's 95% region in L [d]: one interval, or its islands' (a
+# run with several basins)
+_Interval = tuple[float, float]
+_LRegion = _Interval | Sequence[_Interval]
 
 
-def _intervals(region: LRegion) -> list[Interval]:
+def _intervals(region: _LRegion) -> list[_Interval]:
     """A region's intervals: one (lowest, highest) pair, or each island's."""
     items: Sequence[Any] = region
     if len(items) == 2 and all(isinstance(x, (int, float)) for x in items):
@@ -1668,21 +1668,21 @@ def _intervals(region: LRegion) -> list[Interval]:
     return [(float(a), float(b)) for a, b in items]
 
 
-def _meet(a: Sequence[Interval], b: Sequence[Interval]) -> list[Interval]:
+def _meet(a: Sequence[_Interval], b: Sequence[_Interval]) -> list[_Interval]:
     """The intersection of two unions of intervals, as intervals."""
     out = [(max(x[0], y[0]), min(x[1], y[1])) for x in a for y in b]
     return sorted(r for r in out if r[0] <= r[1])
 
 
-def _within(x: float, union: Sequence[Interval]) -> bool:
+def _within(x: float, union: Sequence[_Interval]) -> bool:
     return any(lo <= x <= hi for lo, hi in union)
 
 
-def _said(union: Sequence[Interval]) -> str:
+def _said(union: Sequence[_Interval]) -> str:
     return " or ".join(f"{lo:.3g}-{hi:.3g}" for lo, hi in union)
 
 
-def _shared_l_text(own: Sequence[MaterialLength], regions: Mapping[str, LRegion] | None) -> str:
+def _shared_l_text(own: Sequence[MaterialLength], regions: Mapping[str, _LRegion] | None) -> str:
     """The reading of the material's L failing the layers (referee 17, point 4), from the
     gravity runs' own 95% regions in L (``regions``: run name -> its region, one (lowest,
     highest) interval or its islands' intervals [d], the spin scan's; None or empty: not
@@ -1693,7 +1693,7 @@ def _shared_l_text(own: Sequence[MaterialLength], regions: Mapping[str, LRegion]
         return "one material does not carry one L across B = 0 and gravity"
     unions = {n: _intervals(r) for n, r in regions.items()}
     fits = [m.L_fit for m in own]
-    shared: list[Interval] | None = None
+    shared: list[_Interval] | None = None
     for u in unions.values():
         shared = list(u) if shared is None else _meet(shared, u)
     if shared:
@@ -1743,7 +1743,7 @@ def material_length_warning(
     rows: Sequence[MaterialLength],
     positions: Sequence[LayerPosition],
     a: float,
-    regions: Mapping[str, LRegion] | None = None,
+    regions: Mapping[str, _LRegion] | None = None,
 ) -> str:
     """The warning (referee 15, point 2; "" unless every run's profile (c) at the material's L
     is rejected, p < :data:`~.measures.P_SIGNIFICANT` under AR(1)): the material's L fails
@@ -1833,7 +1833,7 @@ def layer_position_verdict(
     references: Sequence[WallReference] = (),
     material: Sequence[MaterialLength] = (),
     below: Sequence[BelowYield] = (),
-    regions: Mapping[str, LRegion] | None = None,
+    regions: Mapping[str, _LRegion] | None = None,
 ) -> LayerVerdict:
     """The verdict on :data:`LAYER_CLAIM` from the runs' :class:`LayerPosition` (module
     docstring: the rule), with ``references`` (other runs' walls of the smoother kind) in the
@@ -1987,7 +1987,7 @@ def layer_verdicts(
     measured: Mapping[str, LayerPosition] | None = None,
     material_L: tuple[float, float] | None = None,
     material_phi: tuple[float, float] | None = None,
-    regions: Mapping[str, LRegion] | None = None,
+    regions: Mapping[str, _LRegion] | None = None,
 ) -> list[Verdict]:
     """``[layer_position_verdict(...)]`` on the runs :func:`measure_layer` measures (or the
     positions ``measured`` already, by run name), or ``[]`` when a corpus has none (the

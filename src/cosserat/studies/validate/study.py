@@ -229,7 +229,7 @@ class ValidationReport:
 
 
 def _l_region(region: Mapping[str, Any]) -> Any:
-    """A scan's 95% region in L for the layer warning (``layer.LRegion``): its (lowest,
+    """A scan's 95% region in L for the layer warning (``layer._LRegion``): its (lowest,
     highest) L [d], or each island's interval where it has several (review of stop 29: a
     run's islands are alternatives, and the span between them holds no admissible point)."""
     islands = [tuple(i["L"]) for i in region.get("islands") or () if i.get("L")]
