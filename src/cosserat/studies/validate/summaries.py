@@ -19,6 +19,7 @@ from scipy.stats import chi2 as chi2_dist
 
 from .layer import SIGMAS as LAYER_SIGMAS
 from .measures import P_SIGNIFICANT
+from .spin_scan import MISFIT_P
 from .verdicts import GRAIN_SE, MC_QUOTE_COUNT, mc_error
 
 SUMMARY_CHARS = 1100
@@ -203,10 +204,6 @@ def _model_first_layer(verdict: str, qualifier: str, n: Numbers) -> str:
     if not parts:
         return ""
     return "First-layer spin, the joint fit's against the measured: " + "; ".join(parts) + "."
-
-
-MISFIT_P = 1e-3
-"""A joint fit or field with chi^2 p below this misfits (``spin_scan.MISFIT_P``)."""
 
 
 def _misfit_words(scan: Mapping[str, Any]) -> str:
